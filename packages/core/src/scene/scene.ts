@@ -1,0 +1,29 @@
+import { VptError } from '../errors.js';
+import { validateCamera, type Camera } from './camera.js';
+import { validateEnvironment, validateLights, type Environment, type Light } from './lights.js';
+import { validateTransferFunction, type TransferFunction } from './transfer-function.js';
+import { validateVolume, type Volume } from './volume.js';
+
+/** Everything that determines the image. Changing any part resets accumulation. */
+export interface Scene {
+  volume: Volume;
+  transferFunction: TransferFunction;
+  camera: Camera;
+  lights: Light[];
+  environment: Environment;
+  /** Extinction per world unit at opacity 1: sigma_t(x) = densityScale * opacity(x). */
+  densityScale: number;
+  /** User seed mixed into the RNG, so runs are reproducible and independent runs differ. */
+  seed: number;
+}
+
+export function validateScene(s: Scene): void {
+  if (!s || typeof s !== 'object') throw new VptError('invalid-scene', 'Scene: missing');
+  validateVolume(s.volume);
+  validateTransferFunction(s.transferFunction);
+  validateCamera(s.camera);
+  validateLights(s.lights ?? []);
+  validateEnvironment(s.environment);
+  if (!Number.isFinite(s.densityScale) || s.densityScale < 0) throw new VptError('invalid-scene', `Scene: densityScale must be finite and non-negative, got ${s.densityScale}`);
+  if (!Number.isInteger(s.seed) || s.seed < 0 || s.seed > 0xffffffff) throw new VptError('invalid-scene', `Scene: seed must be an integer in [0, 2^32), got ${s.seed}`);
+}

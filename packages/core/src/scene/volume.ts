@@ -1,0 +1,95 @@
+import { VptError } from '../errors.js';
+
+export type VoxelType = 'uint8' | 'uint16' | 'int16' | 'float32';
+export type VoxelArray = Uint8Array | Uint16Array | Int16Array | Float32Array;
+
+/**
+ * A scalar volume. Plain and serializable (the typed array aside).
+ * Layout: x fastest, then y, then z: value(x,y,z) = data[x + NX*(y + NY*z)].
+ */
+export interface Volume {
+  dims: [number, number, number];
+  /** Physical voxel size; only ratios matter (the box is scaled so its longest side is 1). */
+  spacing: [number, number, number];
+  type: VoxelType;
+  data: VoxelArray;
+  /**
+   * The value range mapped to [0, 1] for float32 and int16 data. uint8 maps value/255
+   * and uint16 value/65535 (DESIGN.md); when omitted for int16/float32 the data's own
+   * min..max is used.
+   */
+  valueRange?: [number, number];
+  name?: string;
+}
+
+const ARRAY_OF: Record<VoxelType, new (n: number) => VoxelArray> = {
+  uint8: Uint8Array, uint16: Uint16Array, int16: Int16Array, float32: Float32Array,
+};
+
+export function voxelCount(dims: readonly number[]): number {
+  return dims[0] * dims[1] * dims[2];
+}
+
+/** Check a volume against the model's rules; throws VptError('invalid-scene'). */
+export function validateVolume(v: Volume): void {
+  const bad = (msg: string) => { throw new VptError('invalid-scene', `Volume${v.name ? ` "${v.name}"` : ''}: ${msg}`); };
+  if (!v || typeof v !== 'object') bad('missing');
+  if (!Array.isArray(v.dims) || v.dims.length !== 3) bad('dims must be [NX, NY, NZ]');
+  for (const d of v.dims) {
+    if (!Number.isInteger(d) || d < 1) bad(`every dimension must be a positive integer, got [${v.dims.join(', ')}]`);
+  }
+  if (!Array.isArray(v.spacing) || v.spacing.length !== 3 || v.spacing.some((s) => !Number.isFinite(s) || s <= 0)) {
+    bad(`spacing must be three positive finite numbers, got [${v.spacing}]`);
+  }
+  if (!(v.type in ARRAY_OF)) bad(`unknown voxel type "${v.type}"`);
+  if (!(v.data instanceof ARRAY_OF[v.type])) bad(`data must be a ${ARRAY_OF[v.type].name} for type ${v.type}`);
+  const n = voxelCount(v.dims);
+  if (v.data.length !== n) bad(`dims [${v.dims.join(', ')}] need ${n} voxels, data has ${v.data.length}`);
+  if (v.valueRange && (!v.valueRange.every(Number.isFinite) || !(v.valueRange[1] > v.valueRange[0]))) {
+    bad(`valueRange must be two finite numbers with min < max, got [${v.valueRange}]`);
+  }
+}
+
+/** The range that maps to [0, 1] for this volume (DESIGN.md conventions). */
+export function normalizationRange(v: Volume): [number, number] {
+  if (v.type === 'uint8' && !v.valueRange) return [0, 255];
+  if (v.type === 'uint16' && !v.valueRange) return [0, 65535];
+  if (v.valueRange) return v.valueRange;
+  let lo = Infinity, hi = -Infinity;
+  for (let i = 0; i < v.data.length; i++) {
+    const x = v.data[i];
+    if (x < lo) lo = x; // NaN compares false and is skipped
+    if (x > hi) hi = x;
+  }
+  if (!Number.isFinite(lo)) return [0, 1];
+  return hi > lo ? [lo, hi] : [lo, lo + 1];
+}
+
+/**
+ * Normalized float32 copy of the data in [0, 1]; NaN and ±Inf become 0 so they never
+ * reach a kernel (an accumulation buffer must never see NaN).
+ */
+export function normalizedData(v: Volume): Float32Array {
+  const [lo, hi] = normalizationRange(v);
+  const scale = 1 / (hi - lo);
+  const out = new Float32Array(v.data.length);
+  for (let i = 0; i < out.length; i++) {
+    const x = (v.data[i] - lo) * scale;
+    out[i] = Number.isFinite(x) ? Math.min(1, Math.max(0, x)) : 0;
+  }
+  return out;
+}
+
+/** Physical extent scaled so the longest side is 1, centred at the origin (DESIGN.md). */
+export function volumeBox(v: Pick<Volume, 'dims' | 'spacing'>): { min: [number, number, number]; max: [number, number, number]; size: [number, number, number] } {
+  const ext = [0, 1, 2].map((i) => v.dims[i] * v.spacing[i]);
+  const longest = Math.max(...ext);
+  const size = ext.map((e) => e / longest) as [number, number, number];
+  return { min: size.map((s) => -s / 2) as [number, number, number], max: size.map((s) => s / 2) as [number, number, number], size };
+}
+
+export function createVolume(dims: [number, number, number], type: VoxelType, data?: VoxelArray, spacing: [number, number, number] = [1, 1, 1]): Volume {
+  const v: Volume = { dims, spacing, type, data: data ?? new ARRAY_OF[type](voxelCount(dims)) };
+  validateVolume(v);
+  return v;
+}
