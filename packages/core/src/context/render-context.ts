@@ -1,0 +1,418 @@
+import { VptError } from '../errors.js';
+import { createBackend } from '../gpu/create-backend.js';
+import type { BackendPreference, GpuBackend, GpuPass, GpuTexture, RenderTarget } from '../gpu/backend.js';
+import type { PostStep } from '../post-step.js';
+import type { Renderer } from '../renderer.js';
+import type { Scene } from '../scene/scene.js';
+import { validateScene } from '../scene/scene.js';
+import { rasterizeTransferFunction, TF_RESOLUTION } from '../scene/transfer-function.js';
+import { normalizedData } from '../scene/volume.js';
+import { GLSL_COMMON, GLSL_RAY, GLSL_RNG } from '../shaders/glsl-common.js';
+import { SCENE_UNIFORM_FIELDS, sceneUniformValues } from '../shaders/scene-uniforms.js';
+import { WGSL_COMMON, WGSL_RAY, WGSL_RNG } from '../shaders/wgsl-common.js';
+import { UniformLayout } from '../uniforms/layout.js';
+import { PRESENT_PASS } from './present-pass.js';
+import { ProgressiveLoop } from './progressive-loop.js';
+
+export interface RenderContextOptions {
+  backend?: BackendPreference;
+  canvas?: HTMLCanvasElement | OffscreenCanvas;
+  /** Render resolution in pixels (the canvas drawing buffer is resized to it). */
+  width: number;
+  height: number;
+  renderer: Renderer;
+  post?: PostStep[];
+}
+
+export interface RenderStats {
+  /** Iterations accumulated since the last reset. */
+  iterations: number;
+  /** Samples per pixel (one path per pixel per iteration). */
+  samplesPerPixel: number;
+  /** Mean wall-clock ms per iteration over the last measured batch (GPU synchronised). */
+  msPerIteration: number;
+}
+
+type RendererPasses = { generate: GpuPass; integrate: GpuPass; render: GpuPass };
+
+/**
+ * Owns the backend, the scene's GPU resources, the renderer's buffers and the post
+ * chain, and runs the progressive loop: generate → integrate per iteration, then
+ * render → post → present. Resets accumulation whenever the image would change.
+ */
+export class RenderContext {
+  readonly backend: GpuBackend;
+  private _renderer: Renderer;
+  private _post: PostStep[];
+  private scene: Scene | null = null;
+  private width: number;
+  private height: number;
+  private layout!: UniformLayout;
+  private passes: RendererPasses | null = null;
+  private postPasses: GpuPass[] = [];
+  private presentPass: GpuPass | null = null;
+
+  private volumeTexture: GpuTexture | null = null;
+  private volumeSource: Scene['volume'] | null = null;
+  private tfTexture: GpuTexture | null = null;
+  private tfSource: string | null = null;
+  private frame: RenderTarget | null = null;
+  private accum: [RenderTarget, RenderTarget] | null = null;
+  private hdr: RenderTarget | null = null;
+  private postTargets: RenderTarget[] = [];
+
+  private iteration = 0;
+  private rendererVersion = -1;
+  private variantKey = '';
+  private hdrIteration = -1; // iteration count the HDR/LDR images were last rendered at
+  private msPerIteration = 0;
+  private disposed = false;
+  private readonly loop: ProgressiveLoop;
+  private readonly listeners = new Set<(stats: RenderStats) => void>();
+
+  private constructor(backend: GpuBackend, opts: RenderContextOptions) {
+    this.backend = backend;
+    this._renderer = opts.renderer;
+    this._post = opts.post ?? [];
+    checkSize(opts.width, opts.height, backend);
+    this.width = opts.width;
+    this.height = opts.height;
+    this.backend.resizeCanvas(this.width, this.height);
+    this.loop = new ProgressiveLoop({
+      step: (n) => this.iterate(n),
+      finishFrame: () => this.present(),
+      sync: () => this.backend.finish(),
+      onStats: (ms) => { this.msPerIteration = ms; this.emit(); },
+    });
+    backend.onLost(() => this.loop.pause());
+    backend.onRestored(() => this.restore());
+  }
+
+  static async create(opts: RenderContextOptions): Promise<RenderContext> {
+    const backend = await createBackend({ backend: opts.backend ?? 'auto', canvas: opts.canvas });
+    try {
+      return new RenderContext(backend, opts);
+    } catch (e) {
+      backend.dispose();
+      throw e;
+    }
+  }
+
+  get renderer(): Renderer { return this._renderer; }
+  get post(): readonly PostStep[] { return this._post; }
+  get size(): { width: number; height: number } { return { width: this.width, height: this.height }; }
+
+  get stats(): RenderStats {
+    return { iterations: this.iteration, samplesPerPixel: this.iteration, msPerIteration: this.msPerIteration };
+  }
+
+  /** Called with fresh stats after each progressive batch. */
+  onStats(listener: (stats: RenderStats) => void): () => void {
+    this.listeners.add(listener);
+    return () => this.listeners.delete(listener);
+  }
+
+  /**
+   * Replace the scene. The scene is validated first: an invalid scene throws
+   * VptError('invalid-scene' | 'limit-exceeded') and the context keeps the previous one.
+   */
+  setScene(scene: Scene): void {
+    this.assertAlive();
+    validateScene(scene);
+    const [nx, ny, nz] = scene.volume.dims;
+    const max3D = this.backend.limits.maxTextureDimension3D;
+    if (nx > max3D || ny > max3D || nz > max3D) {
+      throw new VptError('limit-exceeded', `Volume dims [${nx}, ${ny}, ${nz}] exceed this device's 3D texture limit of ${max3D} per side (maxTextureDimension3D)`);
+    }
+    this.scene = scene;
+    this.syncSceneResources();
+    this.reset();
+  }
+
+  /** Shallow-merge changes into the current scene (camera, lights, TF…) and reset. */
+  updateScene(changes: Partial<Scene>): void {
+    if (!this.scene) throw new VptError('invalid-scene', 'updateScene() before setScene()');
+    this.setScene({ ...this.scene, ...changes });
+  }
+
+  getScene(): Scene | null { return this.scene; }
+
+  setRenderer(renderer: Renderer): void {
+    this._renderer = renderer;
+    this.passes = null;
+    this.destroyRendererTargets();
+    this.reset();
+  }
+
+  setPost(steps: PostStep[]): void {
+    this._post = steps;
+    this.postPasses = [];
+    this.hdrIteration = -1;
+  }
+
+  setSize(width: number, height: number): void {
+    checkSize(width, height, this.backend);
+    if (width === this.width && height === this.height) return;
+    this.width = width;
+    this.height = height;
+    this.backend.resizeCanvas(width, height);
+    this.destroyRendererTargets();
+    this.destroyPostTargets();
+    this.reset();
+  }
+
+  /** Drop accumulated samples: the next iteration starts a new estimate. */
+  reset(): void {
+    this.iteration = 0;
+    this.hdrIteration = -1;
+  }
+
+  /** Run n iterations (generate + integrate each). Does not wait for the GPU. */
+  iterate(n = 1): void {
+    this.assertAlive();
+    if (!this.scene || this.backend.isLost) return;
+    this.prepare();
+    const scene = this.scene;
+    const passes = this.passes!;
+    const textures = { volume: this.volumeTexture!, transferFunction: this.tfTexture! };
+    for (let k = 0; k < n; k++) {
+      const uniforms = this.uniforms(scene);
+      this.backend.draw(passes.generate, { uniforms, textures, target: this.frame! });
+      const [prev, next] = this.accum!;
+      const integrateTextures: Record<string, GpuTexture> = {};
+      this.frame!.textures.forEach((t, i) => { integrateTextures[`frame${i}`] = t; });
+      prev.textures.forEach((t, i) => { integrateTextures[`accum${i}`] = t; });
+      this.backend.draw(passes.integrate, { uniforms, textures: integrateTextures, target: next });
+      this.accum = [next, prev];
+      this.iteration++;
+    }
+  }
+
+  /** Reset, run exactly n iterations, render and post-process, and wait for the GPU. */
+  async renderIterations(n: number): Promise<void> {
+    if (!Number.isInteger(n) || n < 1) throw new VptError('invalid-scene', `renderIterations needs a positive integer, got ${n}`);
+    this.reset();
+    const t0 = performance.now();
+    this.iterate(n);
+    await this.backend.finish();
+    this.msPerIteration = (performance.now() - t0) / n;
+    this.renderImage();
+    await this.backend.finish();
+  }
+
+  /** Render accumulation → HDR → post chain (skipped when nothing changed since last time). */
+  renderImage(): void {
+    this.assertAlive();
+    if (!this.scene || this.backend.isLost || this.iteration === 0) return;
+    if (this.hdrIteration === this.iteration && this.postPasses.length === this._post.length) return;
+    this.prepare();
+    const uniforms = this.uniforms(this.scene, this.iteration - 1);
+    const accTextures: Record<string, GpuTexture> = {};
+    this.accum![0].textures.forEach((t, i) => { accTextures[`accum${i}`] = t; });
+    this.backend.draw(this.passes!.render, { uniforms, textures: accTextures, target: this.hdr! });
+    this.preparePost();
+    let input = this.hdr!.textures[0];
+    this._post.forEach((step, i) => {
+      const pass = this.postPasses[i];
+      this.backend.draw(pass, { uniforms: step.uniforms.pack(step.uniformValues()), textures: { inputImage: input }, target: this.postTargets[i] });
+      input = this.postTargets[i].textures[0];
+    });
+    this.hdrIteration = this.iteration;
+  }
+
+  /** Draw the current LDR image to the canvas. */
+  present(): void {
+    if (!this.scene || this.backend.isLost || this.iteration === 0) return;
+    this.renderImage();
+    this.presentPass ??= this.backend.createPass(PRESENT_PASS);
+    this.backend.draw(this.presentPass, {
+      uniforms: PRESENT_PASS.uniforms.pack({ pad: 0 }),
+      textures: { inputImage: this.ldrTexture() },
+      target: 'canvas',
+    });
+  }
+
+  /** The HDR render output (linear RGB, a = coverage), RGBA float, top row first. */
+  async readHDR(): Promise<Float32Array> {
+    this.renderImage();
+    if (!this.hdr) throw new VptError('invalid-scene', 'Nothing rendered yet: call setScene() and iterate first');
+    return (await this.backend.readTexture(this.hdr.textures[0])) as Float32Array;
+  }
+
+  /** The LDR image after the post chain, RGBA8, top row first. */
+  async readLDR(): Promise<Uint8Array> {
+    this.renderImage();
+    if (!this.hdr) throw new VptError('invalid-scene', 'Nothing rendered yet: call setScene() and iterate first');
+    return (await this.backend.readTexture(this.ldrTexture())) as Uint8Array;
+  }
+
+  /** Start refining in the background, a time budget's worth of iterations per animation frame. */
+  start(options: { frameBudgetMs?: number; maxIterations?: number } = {}): void {
+    this.assertAlive();
+    this.loop.start({ ...options, currentIterations: () => this.iteration });
+  }
+
+  stop(): void { this.loop.stop(); }
+
+  get running(): boolean { return this.loop.running; }
+
+  dispose(): void {
+    if (this.disposed) return;
+    this.loop.stop();
+    this.releaseGpuResources();
+    this.backend.dispose();
+    this.disposed = true;
+  }
+
+  // ——— internals ———
+
+  private emit(): void {
+    const s = this.stats;
+    this.listeners.forEach((l) => l(s));
+  }
+
+  private assertAlive(): void {
+    if (this.disposed) throw new VptError('disposed', 'This RenderContext was disposed');
+  }
+
+  private uniforms(scene: Scene, iteration = this.iteration): ArrayBuffer {
+    return this.layout.pack({
+      ...sceneUniformValues(scene, this.width, this.height, iteration, TF_RESOLUTION),
+      ...this._renderer.paramValues(scene),
+    });
+  }
+
+  /** Upload the volume and transfer function when they changed (by identity / content). */
+  private syncSceneResources(): void {
+    const scene = this.scene!;
+    if (this.volumeSource !== scene.volume || !this.volumeTexture) {
+      if (this.volumeTexture) this.backend.destroyTexture(this.volumeTexture);
+      this.volumeTexture = null;
+      const [width, height, depth] = scene.volume.dims;
+      this.volumeTexture = this.backend.createTexture({ dimension: '3d', width, height, depth, format: 'r32float', data: normalizedData(scene.volume), label: 'volume' });
+      this.volumeSource = scene.volume;
+    }
+    const tfKey = JSON.stringify(scene.transferFunction);
+    if (this.tfSource !== tfKey || !this.tfTexture) {
+      const data = rasterizeTransferFunction(scene.transferFunction, TF_RESOLUTION);
+      if (this.tfTexture) this.backend.writeTexture(this.tfTexture, data);
+      else this.tfTexture = this.backend.createTexture({ dimension: '2d', width: TF_RESOLUTION, height: 1, format: 'rgba32float', data, label: 'transfer function' });
+      this.tfSource = tfKey;
+    }
+  }
+
+  /** Compile the renderer's variant for the current scene and allocate its targets. */
+  private prepare(): void {
+    const r = this._renderer;
+    const features = r.features(this.scene!);
+    const key = `${r.name}|${JSON.stringify(features)}`;
+    if (r.version !== this.rendererVersion) {
+      this.rendererVersion = r.version;
+      this.reset();
+    }
+    if (!this.passes || key !== this.variantKey) {
+      this.layout = new UniformLayout('Params', [...SCENE_UNIFORM_FIELDS, ...r.paramFields]);
+      const mk = (stage: 'generate' | 'integrate' | 'render', textures: { name: string; dimension: '2d' | '3d' }[], outputs: typeof r.frameFormats) =>
+        this.backend.createPass({
+          label: `${r.name}.${stage}`,
+          glsl: GLSL_COMMON_FOR(stage) + r.kernels[stage].glsl,
+          wgsl: WGSL_COMMON_FOR(stage) + r.kernels[stage].wgsl,
+          uniforms: this.layout,
+          textures,
+          outputs,
+          defines: features,
+        });
+      const frameTex = r.frameFormats.map((_, i) => ({ name: `frame${i}`, dimension: '2d' as const }));
+      const accTex = r.accumulationFormats.map((_, i) => ({ name: `accum${i}`, dimension: '2d' as const }));
+      this.passes = {
+        generate: mk('generate', [{ name: 'volume', dimension: '3d' }, { name: 'transferFunction', dimension: '2d' }], r.frameFormats),
+        integrate: mk('integrate', [...frameTex, ...accTex], r.accumulationFormats),
+        render: mk('render', accTex, ['rgba32float']),
+      };
+      this.variantKey = key;
+    }
+    if (!this.frame) {
+      this.frame = this.backend.createRenderTarget(this.width, this.height, r.frameFormats, `${r.name} frame`);
+      this.accum = [
+        this.backend.createRenderTarget(this.width, this.height, r.accumulationFormats, `${r.name} accumulation A`),
+        this.backend.createRenderTarget(this.width, this.height, r.accumulationFormats, `${r.name} accumulation B`),
+      ];
+      this.hdr = this.backend.createRenderTarget(this.width, this.height, ['rgba32float'], 'HDR render');
+    }
+  }
+
+  private preparePost(): void {
+    if (this.postPasses.length !== this._post.length || this.postTargets.length !== this._post.length) {
+      this.destroyPostTargets();
+      this.postPasses = this._post.map((step, i) => this.backend.createPass({
+        label: `post.${step.name}`,
+        glsl: step.glsl,
+        wgsl: step.wgsl,
+        uniforms: step.uniforms,
+        textures: [{ name: 'inputImage', dimension: '2d' }],
+        outputs: [i === this._post.length - 1 ? 'rgba8unorm' : 'rgba32float'],
+        defines: step.defines?.() ?? {},
+      }));
+      this.postTargets = this._post.map((_, i) =>
+        this.backend.createRenderTarget(this.width, this.height, [i === this._post.length - 1 ? 'rgba8unorm' : 'rgba32float'], `post ${i}`));
+    }
+  }
+
+  private ldrTexture(): GpuTexture {
+    if (this._post.length === 0) {
+      throw new VptError('invalid-scene', 'The post chain is empty: add at least one step (e.g. sRGB encoding) to get an LDR image');
+    }
+    return this.postTargets[this.postTargets.length - 1].textures[0];
+  }
+
+  private destroyRendererTargets(): void {
+    if (this.frame) this.backend.destroyRenderTarget(this.frame);
+    this.accum?.forEach((t) => this.backend.destroyRenderTarget(t));
+    if (this.hdr) this.backend.destroyRenderTarget(this.hdr);
+    this.frame = null;
+    this.accum = null;
+    this.hdr = null;
+  }
+
+  private destroyPostTargets(): void {
+    this.postTargets.forEach((t) => this.backend.destroyRenderTarget(t));
+    this.postTargets = [];
+    this.postPasses = [];
+  }
+
+  private releaseGpuResources(): void {
+    this.destroyRendererTargets();
+    this.destroyPostTargets();
+    if (this.volumeTexture) this.backend.destroyTexture(this.volumeTexture);
+    if (this.tfTexture) this.backend.destroyTexture(this.tfTexture);
+    this.volumeTexture = null;
+    this.tfTexture = null;
+  }
+
+  /** After a context/device loss: every GPU object is gone; rebuild from the retained scene and continue. */
+  private restore(): void {
+    if (this.disposed) return;
+    // The old handles belong to the lost context: forget them without calling destroy.
+    this.frame = null; this.accum = null; this.hdr = null;
+    this.postTargets = []; this.postPasses = []; this.presentPass = null;
+    this.volumeTexture = null; this.volumeSource = null; this.tfTexture = null; this.tfSource = null;
+    this.passes = null; this.variantKey = '';
+    this.backend.resizeCanvas(this.width, this.height);
+    if (this.scene) this.syncSceneResources();
+    this.reset();
+    this.loop.resume();
+  }
+}
+
+// The volume/TF chunks read the `volume` and `transferFunction` textures, which only
+// the generate pass binds; integrate and render get the texture-free chunks.
+const GLSL_COMMON_FOR = (stage: string) => (stage === 'generate' ? GLSL_COMMON : GLSL_RNG + GLSL_RAY);
+const WGSL_COMMON_FOR = (stage: string) => (stage === 'generate' ? WGSL_COMMON : WGSL_RNG + WGSL_RAY);
+
+function checkSize(width: number, height: number, backend: GpuBackend): void {
+  const max = backend.limits.maxTextureDimension2D;
+  if (!Number.isInteger(width) || !Number.isInteger(height) || width < 1 || height < 1) {
+    throw new VptError('invalid-scene', `Render size must be positive integers, got ${width} x ${height}`);
+  }
+  if (width > max || height > max) throw new VptError('limit-exceeded', `Render size ${width} x ${height} exceeds this device's 2D texture limit of ${max} (maxTextureDimension2D)`);
+}

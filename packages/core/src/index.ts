@@ -1,0 +1,25 @@
+export { VptError, isVptError, type VptErrorCode } from './errors.js';
+
+export * from './scene/volume.js';
+export * from './scene/camera.js';
+export * from './scene/lights.js';
+export * from './scene/transfer-function.js';
+export * from './scene/scene.js';
+export * from './scene/procedural.js';
+
+export { UniformLayout, type UniformField, type UniformType, type UniformValues, type UniformValue, type FieldPlacement } from './uniforms/layout.js';
+
+export type * from './gpu/backend.js';
+export { createBackend } from './gpu/create-backend.js';
+export { createWebGL2Backend } from './gpu/webgl2/webgl2-backend.js';
+export { createWebGPUBackend, isWebGPUAvailable } from './gpu/webgpu/webgpu-backend.js';
+
+export type { Renderer, KernelSource } from './renderer.js';
+export type { PostStep } from './post-step.js';
+export { RenderContext, type RenderContextOptions, type RenderStats } from './context/render-context.js';
+
+export { SCENE_UNIFORM_FIELDS, sceneUniformValues } from './shaders/scene-uniforms.js';
+export { GLSL_RNG, GLSL_RAY, GLSL_VOLUME, GLSL_COMMON } from './shaders/glsl-common.js';
+export { WGSL_RNG, WGSL_RAY, WGSL_VOLUME, WGSL_COMMON } from './shaders/wgsl-common.js';
+
+export * as reference from './reference/cpu-reference.js';

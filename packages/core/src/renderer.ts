@@ -1,0 +1,39 @@
+import type { TextureFormat } from './gpu/backend.js';
+import type { Scene } from './scene/scene.js';
+import type { UniformField, UniformValues } from './uniforms/layout.js';
+
+/** A kernel in both shading languages; the context prepends the shared chunks and the prelude. */
+export interface KernelSource {
+  glsl: string;
+  wgsl: string;
+}
+
+/**
+ * A renderer plugin, declared rather than driven: the RenderContext runs its three
+ * kernels as full-screen passes (DESIGN.md, "The pipeline"):
+ *
+ *  - generate:  textures `volume` (3D r32float, normalized) and `transferFunction`
+ *               (2D rgba32float, tfSize x 1) → `frameFormats` (the new sample).
+ *  - integrate: textures `frame0..` and `accum0..` (the previous accumulation) →
+ *               `accumulationFormats`. With `u.iteration == 0` it must ignore `accum*`
+ *               (that is how reset works: nothing is cleared, the first sample overwrites).
+ *  - render:    textures `accum0..` → one rgba32float HDR image (linear RGB, a = coverage).
+ *
+ * All three see the same uniform block: SCENE_UNIFORM_FIELDS followed by `paramFields`.
+ * `u.iteration` is the index of the sample being generated/integrated (0-based).
+ */
+export interface Renderer {
+  readonly name: string;
+  readonly frameFormats: readonly TextureFormat[];
+  readonly accumulationFormats: readonly TextureFormat[];
+  readonly kernels: { readonly generate: KernelSource; readonly integrate: KernelSource; readonly render: KernelSource };
+  readonly paramFields: readonly UniformField[];
+  /**
+   * Bumped whenever a parameter that changes the image changes; the context resets
+   * accumulation when it sees a new version.
+   */
+  readonly version: number;
+  paramValues(scene: Scene): UniformValues;
+  /** Compile-time feature flags derived from the scene: one kernel variant per distinct set. */
+  features(scene: Scene): Record<string, boolean | number>;
+}

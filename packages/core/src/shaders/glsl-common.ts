@@ -1,0 +1,95 @@
+/**
+ * Shared GLSL ES 3.0 chunks. Every function here has a WGSL twin in wgsl-common.ts
+ * with the same arithmetic in the same order, so both backends agree bit for bit on
+ * SwiftShader. Expects the scene uniform block as `u` (scene-uniforms.ts) and, for
+ * the volume/TF helpers, textures named `volume` (sampler3D) and `transferFunction`.
+ */
+
+/** PCG hash (Jarzynski & Olano 2020, "Hash Functions for GPU Rendering", pcg) and a uniform float stream. */
+export const GLSL_RNG = /* glsl */ `
+uint pcgHash(uint v) {
+  uint state = v * 747796405u + 2891336453u;
+  uint word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
+  return (word >> 22u) ^ word;
+}
+// Seeded by (pixel, iteration, user seed): reproducible runs, decorrelated pixels.
+uint rngInit(ivec2 pixel, uint iteration, uint seed) {
+  return pcgHash(uint(pixel.x) + pcgHash(uint(pixel.y) + pcgHash(iteration + pcgHash(seed))));
+}
+// 24 high-quality bits -> [0, 1), exactly representable in float32.
+float rngNext(inout uint state) {
+  state = pcgHash(state);
+  return float(state >> 8u) * (1.0 / 16777216.0);
+}
+`;
+
+/** Ray-box slab intersection (Kay & Kajiya 1986); returns (tNear, tFar), empty when tNear >= tFar. */
+export const GLSL_RAY = /* glsl */ `
+vec3 safeInverse(vec3 d) {
+  // Avoid 0 * inf = NaN for axis-parallel rays: a tiny signed component is as good as zero.
+  vec3 s = vec3(d.x < 0.0 ? -1.0 : 1.0, d.y < 0.0 ? -1.0 : 1.0, d.z < 0.0 ? -1.0 : 1.0);
+  vec3 m = max(abs(d), vec3(1e-20));
+  return s / m;
+}
+vec2 intersectBox(vec3 origin, vec3 dir, vec3 boxMin, vec3 boxMax) {
+  vec3 inv = safeInverse(dir);
+  vec3 t0 = (boxMin - origin) * inv;
+  vec3 t1 = (boxMax - origin) * inv;
+  vec3 tmin = min(t0, t1);
+  vec3 tmax = max(t0, t1);
+  float tNear = max(max(tmin.x, tmin.y), max(tmin.z, 0.0));
+  float tFar = min(min(tmax.x, tmax.y), tmax.z);
+  return vec2(tNear, tFar);
+}
+// Pinhole camera (DESIGN.md): film point (x, y) in [0,1]^2, y down.
+vec3 cameraRayDirection(vec2 film) {
+  float sx = (2.0 * film.x - 1.0) * u.tanHalfFovy * u.aspect;
+  float sy = (1.0 - 2.0 * film.y) * u.tanHalfFovy;
+  return normalize(u.cameraForward + u.cameraRight * sx + u.cameraUp * sy);
+}
+// Box-filtered pixel: a uniformly jittered point inside the pixel.
+vec3 jitteredCameraRay(ivec2 pixel, ivec2 size, inout uint rng) {
+  float jx = rngNext(rng);
+  float jy = rngNext(rng);
+  vec2 film = vec2((float(pixel.x) + jx) / float(size.x), (float(pixel.y) + jy) / float(size.y));
+  return cameraRayDirection(film);
+}
+`;
+
+/** Cell-centred trilinear volume sample with clamp-to-edge (GL LINEAR + CLAMP_TO_EDGE, computed in full float). */
+export const GLSL_VOLUME = /* glsl */ `
+float lerp1(float a, float b, float t) { return a + (b - a) * t; }
+vec4 lerp4(vec4 a, vec4 b, float t) { return a + (b - a) * t; }
+float sampleVolume(vec3 p) {
+  vec3 tc = (p - u.boxMin) / (u.boxMax - u.boxMin);
+  ivec3 dims = u.volumeDims.xyz;
+  vec3 g = tc * vec3(dims) - 0.5;
+  vec3 g0 = floor(g);
+  vec3 f = g - g0;
+  ivec3 i0 = clamp(ivec3(g0), ivec3(0), dims - 1);
+  ivec3 i1 = clamp(ivec3(g0) + 1, ivec3(0), dims - 1);
+  float c000 = texelFetch(volume, ivec3(i0.x, i0.y, i0.z), 0).r;
+  float c100 = texelFetch(volume, ivec3(i1.x, i0.y, i0.z), 0).r;
+  float c010 = texelFetch(volume, ivec3(i0.x, i1.y, i0.z), 0).r;
+  float c110 = texelFetch(volume, ivec3(i1.x, i1.y, i0.z), 0).r;
+  float c001 = texelFetch(volume, ivec3(i0.x, i0.y, i1.z), 0).r;
+  float c101 = texelFetch(volume, ivec3(i1.x, i0.y, i1.z), 0).r;
+  float c011 = texelFetch(volume, ivec3(i0.x, i1.y, i1.z), 0).r;
+  float c111 = texelFetch(volume, ivec3(i1.x, i1.y, i1.z), 0).r;
+  float c00 = lerp1(c000, c100, f.x);
+  float c10 = lerp1(c010, c110, f.x);
+  float c01 = lerp1(c001, c101, f.x);
+  float c11 = lerp1(c011, c111, f.x);
+  return lerp1(lerp1(c00, c10, f.y), lerp1(c01, c11, f.y), f.z);
+}
+// 1D transfer function: texel k holds value k/(N-1); linear between texels.
+vec4 transferLookup(float value) {
+  float x = clamp(value, 0.0, 1.0) * float(u.tfSize - 1);
+  float x0 = floor(x);
+  int i0 = int(x0);
+  int i1 = min(i0 + 1, u.tfSize - 1);
+  return lerp4(texelFetch(transferFunction, ivec2(i0, 0), 0), texelFetch(transferFunction, ivec2(i1, 0), 0), x - x0);
+}
+`;
+
+export const GLSL_COMMON = GLSL_RNG + GLSL_RAY + GLSL_VOLUME;

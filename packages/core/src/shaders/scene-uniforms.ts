@@ -1,0 +1,50 @@
+import { cameraBasis } from '../scene/camera.js';
+import type { Scene } from '../scene/scene.js';
+import { volumeBox } from '../scene/volume.js';
+import type { UniformField, UniformValues } from '../uniforms/layout.js';
+
+/**
+ * Uniforms every renderer kernel sees, declared once. A renderer's layout is these
+ * fields followed by its own, so shared shader chunks can read `u.cameraPosition` etc.
+ * in both languages.
+ */
+export const SCENE_UNIFORM_FIELDS: readonly UniformField[] = [
+  { name: 'cameraPosition', type: 'vec3' },
+  { name: 'tanHalfFovy', type: 'f32' },
+  { name: 'cameraForward', type: 'vec3' },
+  { name: 'aspect', type: 'f32' },
+  { name: 'cameraRight', type: 'vec3' },
+  { name: 'densityScale', type: 'f32' },
+  { name: 'cameraUp', type: 'vec3' },
+  { name: 'iteration', type: 'u32' },
+  { name: 'boxMin', type: 'vec3' },
+  { name: 'seed', type: 'u32' },
+  { name: 'boxMax', type: 'vec3' },
+  { name: 'tfSize', type: 'i32' },
+  { name: 'volumeDims', type: 'ivec4' },
+  { name: 'background', type: 'vec4' },
+];
+
+/** Values of SCENE_UNIFORM_FIELDS for one iteration at a given image size. */
+export function sceneUniformValues(scene: Scene, width: number, height: number, iteration: number, tfSize: number): UniformValues {
+  const basis = cameraBasis(scene.camera);
+  const box = volumeBox(scene.volume);
+  const env = scene.environment;
+  const bg = env.type === 'constant' ? env.radiance : [0, 0, 0];
+  return {
+    cameraPosition: scene.camera.position,
+    tanHalfFovy: Math.tan(scene.camera.fovy / 2),
+    cameraForward: basis.forward,
+    aspect: width / height,
+    cameraRight: basis.right,
+    densityScale: scene.densityScale,
+    cameraUp: basis.up,
+    iteration: iteration >>> 0,
+    boxMin: box.min,
+    seed: scene.seed >>> 0,
+    boxMax: box.max,
+    tfSize,
+    volumeDims: [...scene.volume.dims, 0],
+    background: [bg[0], bg[1], bg[2], 1],
+  };
+}

@@ -1,0 +1,87 @@
+/**
+ * Shared WGSL chunks: twins of glsl-common.ts, same arithmetic in the same order.
+ * Expects `u` (scene uniforms) and textures `volume` (texture_3d) and `transferFunction`.
+ */
+
+/** PCG hash (Jarzynski & Olano 2020, "Hash Functions for GPU Rendering", pcg) and a uniform float stream. */
+export const WGSL_RNG = /* wgsl */ `
+fn pcgHash(v: u32) -> u32 {
+  let state = v * 747796405u + 2891336453u;
+  let word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
+  return (word >> 22u) ^ word;
+}
+fn rngInit(pixel: vec2i, iteration: u32, seed: u32) -> u32 {
+  return pcgHash(u32(pixel.x) + pcgHash(u32(pixel.y) + pcgHash(iteration + pcgHash(seed))));
+}
+fn rngNext(state: ptr<function, u32>) -> f32 {
+  *state = pcgHash(*state);
+  return f32(*state >> 8u) * (1.0 / 16777216.0);
+}
+`;
+
+/** Ray-box slab intersection (Kay & Kajiya 1986); returns (tNear, tFar), empty when tNear >= tFar. */
+export const WGSL_RAY = /* wgsl */ `
+fn safeInverse(d: vec3f) -> vec3f {
+  let s = vec3f(select(1.0, -1.0, d.x < 0.0), select(1.0, -1.0, d.y < 0.0), select(1.0, -1.0, d.z < 0.0));
+  let m = max(abs(d), vec3f(1e-20));
+  return s / m;
+}
+fn intersectBox(origin: vec3f, dir: vec3f, boxMin: vec3f, boxMax: vec3f) -> vec2f {
+  let inv = safeInverse(dir);
+  let t0 = (boxMin - origin) * inv;
+  let t1 = (boxMax - origin) * inv;
+  let tmin = min(t0, t1);
+  let tmax = max(t0, t1);
+  let tNear = max(max(tmin.x, tmin.y), max(tmin.z, 0.0));
+  let tFar = min(min(tmax.x, tmax.y), tmax.z);
+  return vec2f(tNear, tFar);
+}
+fn cameraRayDirection(film: vec2f) -> vec3f {
+  let sx = (2.0 * film.x - 1.0) * u.tanHalfFovy * u.aspect;
+  let sy = (1.0 - 2.0 * film.y) * u.tanHalfFovy;
+  return normalize(u.cameraForward + u.cameraRight * sx + u.cameraUp * sy);
+}
+fn jitteredCameraRay(pixel: vec2i, size: vec2i, rng: ptr<function, u32>) -> vec3f {
+  let jx = rngNext(rng);
+  let jy = rngNext(rng);
+  let film = vec2f((f32(pixel.x) + jx) / f32(size.x), (f32(pixel.y) + jy) / f32(size.y));
+  return cameraRayDirection(film);
+}
+`;
+
+/** Cell-centred trilinear volume sample with clamp-to-edge, computed in full float. */
+export const WGSL_VOLUME = /* wgsl */ `
+fn lerp1(a: f32, b: f32, t: f32) -> f32 { return a + (b - a) * t; }
+fn lerp4(a: vec4f, b: vec4f, t: f32) -> vec4f { return a + (b - a) * t; }
+fn sampleVolume(p: vec3f) -> f32 {
+  let tc = (p - u.boxMin) / (u.boxMax - u.boxMin);
+  let dims = u.volumeDims.xyz;
+  let g = tc * vec3f(dims) - 0.5;
+  let g0 = floor(g);
+  let f = g - g0;
+  let i0 = clamp(vec3i(g0), vec3i(0), dims - 1);
+  let i1 = clamp(vec3i(g0) + 1, vec3i(0), dims - 1);
+  let c000 = textureLoad(volume, vec3i(i0.x, i0.y, i0.z), 0).r;
+  let c100 = textureLoad(volume, vec3i(i1.x, i0.y, i0.z), 0).r;
+  let c010 = textureLoad(volume, vec3i(i0.x, i1.y, i0.z), 0).r;
+  let c110 = textureLoad(volume, vec3i(i1.x, i1.y, i0.z), 0).r;
+  let c001 = textureLoad(volume, vec3i(i0.x, i0.y, i1.z), 0).r;
+  let c101 = textureLoad(volume, vec3i(i1.x, i0.y, i1.z), 0).r;
+  let c011 = textureLoad(volume, vec3i(i0.x, i1.y, i1.z), 0).r;
+  let c111 = textureLoad(volume, vec3i(i1.x, i1.y, i1.z), 0).r;
+  let c00 = lerp1(c000, c100, f.x);
+  let c10 = lerp1(c010, c110, f.x);
+  let c01 = lerp1(c001, c101, f.x);
+  let c11 = lerp1(c011, c111, f.x);
+  return lerp1(lerp1(c00, c10, f.y), lerp1(c01, c11, f.y), f.z);
+}
+fn transferLookup(value: f32) -> vec4f {
+  let x = clamp(value, 0.0, 1.0) * f32(u.tfSize - 1);
+  let x0 = floor(x);
+  let i0 = i32(x0);
+  let i1 = min(i0 + 1, u.tfSize - 1);
+  return lerp4(textureLoad(transferFunction, vec2i(i0, 0), 0), textureLoad(transferFunction, vec2i(i1, 0), 0), x - x0);
+}
+`;
+
+export const WGSL_COMMON = WGSL_RNG + WGSL_RAY + WGSL_VOLUME;

@@ -1,0 +1,1 @@
+export { EamRenderer, type EamParams } from './eam-renderer.js';

@@ -1,0 +1,51 @@
+// Emission-absorption (Max 1995, "Optical models for direct volume rendering", eq. 4-5)
+// by a stratified, randomly offset ray march; alpha = 1 - exp(-sigma_t * segment length).
+
+export const generate = /* wgsl */ `
+@fragment fn fs_main(@builtin(position) fragCoord: vec4f) -> VptOut {
+  let pixel = vptPixel(fragCoord);
+  var rng = rngInit(pixel, u.iteration, u.seed);
+  let dir = jitteredCameraRay(pixel, vptTargetSize(), &rng);
+  let t = intersectBox(u.cameraPosition, dir, u.boxMin, u.boxMax);
+  var color = vec3f(0.0);
+  var transmittance = 1.0;
+  if (t.x < t.y) {
+    let offset = rngNext(&rng);
+    let len = t.y - t.x;
+    let n = max(1, i32(ceil(len / u.stepSize)));
+    let seg = len / f32(n);
+    for (var k = 0; k < n; k++) {
+      let s = t.x + (f32(k) + offset) * seg;
+      let tf = transferLookup(sampleVolume(u.cameraPosition + dir * s));
+      let alpha = 1.0 - exp(-(u.densityScale * tf.a) * seg);
+      color += (transmittance * alpha) * tf.rgb;
+      transmittance *= 1.0 - alpha;
+      if (transmittance < u.cutoff) { transmittance = 0.0; break; }
+    }
+  }
+  var o: VptOut;
+  o.out0 = vec4f(color + transmittance * u.background.rgb, 1.0 - transmittance);
+  return o;
+}
+`;
+
+export const integrate = /* wgsl */ `
+@fragment fn fs_main(@builtin(position) fragCoord: vec4f) -> VptOut {
+  let p = vptPixel(fragCoord);
+  let f = textureLoad(frame0, p, 0);
+  var o: VptOut;
+  if (u.iteration == 0u) { o.out0 = f; return o; }
+  let a = textureLoad(accum0, p, 0);
+  let w = 1.0 / f32(u.iteration + 1u);
+  o.out0 = a + (f - a) * w;
+  return o;
+}
+`;
+
+export const render = /* wgsl */ `
+@fragment fn fs_main(@builtin(position) fragCoord: vec4f) -> VptOut {
+  var o: VptOut;
+  o.out0 = textureLoad(accum0, vptPixel(fragCoord), 0);
+  return o;
+}
+`;

@@ -1,0 +1,1 @@
+export { MipRenderer, defaultStepSize, type MipParams } from './mip-renderer.js';

@@ -1,0 +1,44 @@
+// Monte Carlo maximum intensity projection (Lesar, Bohak, Marolt 2018, §4.1): each
+// iteration marches a jittered ray with a random offset; the accumulation keeps the max.
+
+export const generate = /* glsl */ `
+void main() {
+  ivec2 pixel = vptPixel();
+  uint rng = rngInit(pixel, u.iteration, u.seed);
+  vec3 dir = jitteredCameraRay(pixel, vptTargetSize(), rng);
+  vec2 t = intersectBox(u.cameraPosition, dir, u.boxMin, u.boxMax);
+  float maxValue = 0.0;
+  float coverage = 0.0;
+  if (t.x < t.y) {
+    coverage = 1.0;
+    float offset = rngNext(rng);
+    float len = t.y - t.x;
+    int n = max(1, int(ceil(len / u.stepSize)));
+    float seg = len / float(n);
+    for (int k = 0; k < n; k++) {
+      float s = t.x + (float(k) + offset) * seg;
+      maxValue = max(maxValue, sampleVolume(u.cameraPosition + dir * s));
+    }
+  }
+  vpt_out0 = vec4(maxValue, 0.0, 0.0, coverage);
+}
+`;
+
+// Keep the running maximum of the value; coverage (pixel footprint inside the box) is a running mean.
+export const integrate = /* glsl */ `
+void main() {
+  ivec2 p = vptPixel();
+  vec4 f = texelFetch(frame0, p, 0);
+  if (u.iteration == 0u) { vpt_out0 = f; return; }
+  vec4 a = texelFetch(accum0, p, 0);
+  float w = 1.0 / float(u.iteration + 1u);
+  vpt_out0 = vec4(max(a.r, f.r), 0.0, 0.0, a.a + (f.a - a.a) * w);
+}
+`;
+
+export const render = /* glsl */ `
+void main() {
+  vec4 a = texelFetch(accum0, vptPixel(), 0);
+  vpt_out0 = vec4(a.r, a.r, a.r, a.a);
+}
+`;

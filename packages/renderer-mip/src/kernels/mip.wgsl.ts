@@ -1,0 +1,49 @@
+// Monte Carlo maximum intensity projection (Lesar, Bohak, Marolt 2018, §4.1): each
+// iteration marches a jittered ray with a random offset; the accumulation keeps the max.
+
+export const generate = /* wgsl */ `
+@fragment fn fs_main(@builtin(position) fragCoord: vec4f) -> VptOut {
+  let pixel = vptPixel(fragCoord);
+  var rng = rngInit(pixel, u.iteration, u.seed);
+  let dir = jitteredCameraRay(pixel, vptTargetSize(), &rng);
+  let t = intersectBox(u.cameraPosition, dir, u.boxMin, u.boxMax);
+  var maxValue = 0.0;
+  var coverage = 0.0;
+  if (t.x < t.y) {
+    coverage = 1.0;
+    let offset = rngNext(&rng);
+    let len = t.y - t.x;
+    let n = max(1, i32(ceil(len / u.stepSize)));
+    let seg = len / f32(n);
+    for (var k = 0; k < n; k++) {
+      let s = t.x + (f32(k) + offset) * seg;
+      maxValue = max(maxValue, sampleVolume(u.cameraPosition + dir * s));
+    }
+  }
+  var o: VptOut;
+  o.out0 = vec4f(maxValue, 0.0, 0.0, coverage);
+  return o;
+}
+`;
+
+export const integrate = /* wgsl */ `
+@fragment fn fs_main(@builtin(position) fragCoord: vec4f) -> VptOut {
+  let p = vptPixel(fragCoord);
+  let f = textureLoad(frame0, p, 0);
+  var o: VptOut;
+  if (u.iteration == 0u) { o.out0 = f; return o; }
+  let a = textureLoad(accum0, p, 0);
+  let w = 1.0 / f32(u.iteration + 1u);
+  o.out0 = vec4f(max(a.r, f.r), 0.0, 0.0, a.a + (f.a - a.a) * w);
+  return o;
+}
+`;
+
+export const render = /* wgsl */ `
+@fragment fn fs_main(@builtin(position) fragCoord: vec4f) -> VptOut {
+  let a = textureLoad(accum0, vptPixel(fragCoord), 0);
+  var o: VptOut;
+  o.out0 = vec4f(a.r, a.r, a.r, a.a);
+  return o;
+}
+`;

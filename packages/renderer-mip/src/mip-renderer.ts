@@ -1,0 +1,47 @@
+import type { Renderer, Scene, UniformField, UniformValues } from '@vpt/core';
+import * as glsl from './kernels/mip.glsl.js';
+import * as wgsl from './kernels/mip.wgsl.js';
+
+export interface MipParams {
+  /** Distance between samples along a ray, in world units (box longest side = 1). Default: half a voxel. */
+  stepSize?: number;
+}
+
+/** Maximum intensity projection. HDR output: the maximum normalized value as grey, a = coverage. */
+export class MipRenderer implements Renderer {
+  readonly name = 'mip';
+  readonly frameFormats = ['rgba32float'] as const;
+  readonly accumulationFormats = ['rgba32float'] as const;
+  readonly kernels = {
+    generate: { glsl: glsl.generate, wgsl: wgsl.generate },
+    integrate: { glsl: glsl.integrate, wgsl: wgsl.integrate },
+    render: { glsl: glsl.render, wgsl: wgsl.render },
+  };
+  readonly paramFields: readonly UniformField[] = [{ name: 'stepSize', type: 'f32' }];
+  private _version = 0;
+  private params: MipParams;
+
+  constructor(params: MipParams = {}) {
+    this.params = { ...params };
+  }
+
+  get version(): number { return this._version; }
+
+  setParams(params: MipParams): void {
+    this.params = { ...this.params, ...params };
+    this._version++;
+  }
+
+  getParams(): MipParams { return { ...this.params }; }
+
+  paramValues(scene: Scene): UniformValues {
+    return { stepSize: this.params.stepSize ?? defaultStepSize(scene) };
+  }
+
+  features(): Record<string, boolean | number> { return {}; }
+}
+
+/** Half a voxel along the longest axis in world units. */
+export function defaultStepSize(scene: Scene): number {
+  return 0.5 / Math.max(...scene.volume.dims);
+}
