@@ -1,0 +1,498 @@
+/**
+ * The WebGL 2 implementation of GpuBackend: textures, MRT render targets, full-screen
+ * passes (one buffer-less triangle per draw), readback, and context-loss handling.
+ */
+import { VptError } from '../../errors.js';
+import type {
+  BackendInfo, BackendLimits, DrawCall, GpuBackend, GpuPass, GpuTexture, PassDescriptor, RenderTarget,
+  TextureDescriptor, TextureFormat,
+} from '../backend.js';
+import { type GlLimits, acquireContext, readInfo, readLimits, requireColorBufferFloat } from './context-setup.js';
+import { ProgramCache, UNIFORM_BLOCK_BINDING } from './program-cache.js';
+import { WebGL2Pass, WebGL2RenderTarget, WebGL2Texture } from './resources.js';
+import { checkTextureData, glFormat } from './texture-formats.js';
+
+export function createWebGL2Backend(canvas: HTMLCanvasElement | OffscreenCanvas): GpuBackend {
+  return new WebGL2Backend(canvas);
+}
+
+/** How long simulateLoss() waits for the browser to restore the context before giving up. */
+const RESTORE_TIMEOUT_MS = 10_000;
+
+interface Waiter { resolve: () => void; reject: (e: unknown) => void }
+
+class WebGL2Backend implements GpuBackend {
+  readonly kind = 'webgl2' as const;
+  readonly info: BackendInfo;
+  private readonly gl: WebGL2RenderingContext;
+  private glLimits: GlLimits;
+  /** Bumped on every restore: objects from an older generation point at GL objects that no longer exist. */
+  private generation = 0;
+  private lost = false;
+  private disposed = false;
+  private readonly programs: ProgramCache;
+  private readonly textures = new Set<WebGL2Texture>();
+  private readonly targets = new Set<WebGL2RenderTarget>();
+  private readFramebuffer: WebGLFramebuffer | null = null;
+  private syncTarget: { texture: WebGLTexture; framebuffer: WebGLFramebuffer } | null = null;
+  private readonly syncPixel = new Uint8Array(4);
+  private vao: WebGLVertexArrayObject | null = null;
+  private loseContextExt: WEBGL_lose_context | null = null;
+  private readonly lostCallbacks: Array<() => void> = [];
+  private readonly restoredCallbacks: Array<() => void> = [];
+  private restoreWaiters: Waiter[] = [];
+
+  constructor(readonly canvas: HTMLCanvasElement | OffscreenCanvas) {
+    const gl = acquireContext(canvas);
+    if (gl.isContextLost()) throw new VptError('context-lost', 'The WebGL 2 context was lost as soon as it was created');
+    requireColorBufferFloat(gl);
+    this.gl = gl;
+    this.info = readInfo(gl);
+    this.glLimits = readLimits(gl);
+    this.programs = new ProgramCache(gl);
+    this.initState();
+    const events = canvas as EventTarget;
+    events.addEventListener('webglcontextlost', this.handleLost);
+    events.addEventListener('webglcontextrestored', this.handleRestored);
+  }
+
+  get limits(): BackendLimits {
+    return { maxTextureDimension2D: this.glLimits.maxTextureDimension2D, maxTextureDimension3D: this.glLimits.maxTextureDimension3D };
+  }
+
+  get isLost(): boolean {
+    return this.lost || this.gl.isContextLost();
+  }
+
+  // ——— textures ———
+
+  createTexture(desc: TextureDescriptor): GpuTexture {
+    this.assertNotDisposed();
+    const label = desc.label ?? `${desc.dimension} ${desc.format} texture`;
+    const depth = desc.dimension === '3d' ? desc.depth ?? 1 : 1;
+    if (desc.dimension === '2d' && desc.depth !== undefined && desc.depth !== 1) {
+      throw new RangeError(`texture "${label}": a 2D texture has depth 1, got ${desc.depth}`);
+    }
+    this.checkTextureSize(label, desc.dimension, desc.width, desc.height, depth);
+    if (desc.data) checkTextureData(label, desc.format, desc.width * desc.height * depth, desc.data);
+    const tex = this.allocTexture(desc.dimension, desc.width, desc.height, depth, desc.format, label, desc.data ?? null);
+    this.textures.add(tex);
+    return tex;
+  }
+
+  writeTexture(texture: GpuTexture, data: Float32Array | Uint8Array): void {
+    this.assertNotDisposed();
+    const tex = this.own(texture, WebGL2Texture, 'texture');
+    checkTextureData(tex.label, tex.format, tex.width * tex.height * tex.depth, data);
+    if (this.isLost) return;
+    this.assertCurrent(tex, `texture "${tex.label}"`);
+    const gl = this.gl;
+    const f = glFormat(tex.format);
+    if (tex.dimension === '3d') {
+      gl.bindTexture(gl.TEXTURE_3D, tex.handle);
+      gl.texSubImage3D(gl.TEXTURE_3D, 0, 0, 0, 0, tex.width, tex.height, tex.depth, f.format, f.type, data);
+    } else {
+      gl.bindTexture(gl.TEXTURE_2D, tex.handle);
+      gl.texSubImage2D(gl.TEXTURE_2D, 0, 0, 0, tex.width, tex.height, f.format, f.type, data);
+    }
+  }
+
+  destroyTexture(texture: GpuTexture): void {
+    if (this.disposed) return;
+    const tex = this.own(texture, WebGL2Texture, 'texture');
+    this.textures.delete(tex);
+    this.deleteTexture(tex);
+  }
+
+  // ——— render targets ———
+
+  createRenderTarget(width: number, height: number, formats: readonly TextureFormat[], label = 'render target'): RenderTarget {
+    this.assertNotDisposed();
+    if (formats.length === 0) throw new RangeError(`render target "${label}" needs at least one format`);
+    if (formats.length > this.glLimits.maxColorAttachments) {
+      throw new VptError('limit-exceeded', `Render target "${label}" has ${formats.length} colour attachments; this device allows ${this.glLimits.maxColorAttachments} (MAX_COLOR_ATTACHMENTS / MAX_DRAW_BUFFERS)`);
+    }
+    this.checkTextureSize(label, '2d', width, height, 1);
+    const textures = formats.map((f, k) => this.allocTexture('2d', width, height, 1, f, `${label} [${k}]`, null));
+    if (this.isLost) return new WebGL2RenderTarget(width, height, textures, label, null, this.generation);
+
+    const gl = this.gl;
+    const framebuffer = gl.createFramebuffer();
+    gl.bindFramebuffer(gl.DRAW_FRAMEBUFFER, framebuffer);
+    textures.forEach((t, k) => gl.framebufferTexture2D(gl.DRAW_FRAMEBUFFER, gl.COLOR_ATTACHMENT0 + k, gl.TEXTURE_2D, t.handle, 0));
+    gl.drawBuffers(textures.map((_, k) => gl.COLOR_ATTACHMENT0 + k));
+    const status = gl.checkFramebufferStatus(gl.DRAW_FRAMEBUFFER);
+    gl.bindFramebuffer(gl.DRAW_FRAMEBUFFER, null);
+    if (status !== gl.FRAMEBUFFER_COMPLETE && !gl.isContextLost()) {
+      gl.deleteFramebuffer(framebuffer);
+      textures.forEach((t) => this.deleteTexture(t));
+      throw new VptError('missing-extension', `Render target "${label}" (${formats.join(', ')}, ${width}x${height}) cannot be rendered to on this device: framebuffer status 0x${status.toString(16)}`);
+    }
+    const target = new WebGL2RenderTarget(width, height, textures, label, framebuffer, this.generation);
+    this.targets.add(target);
+    return target;
+  }
+
+  destroyRenderTarget(target: RenderTarget): void {
+    if (this.disposed) return;
+    const t = this.own(target, WebGL2RenderTarget, 'render target');
+    this.targets.delete(t);
+    this.deleteTarget(t);
+  }
+
+  // ——— passes ———
+
+  createPass(desc: PassDescriptor): GpuPass {
+    this.assertNotDisposed();
+    if (desc.textures.length > this.glLimits.maxTextureUnits) {
+      throw new VptError('limit-exceeded', `Pass "${desc.label}" reads ${desc.textures.length} textures; this device allows ${this.glLimits.maxTextureUnits} (MAX_TEXTURE_IMAGE_UNITS)`);
+    }
+    if (desc.outputs.length === 0 || desc.outputs.length > this.glLimits.maxColorAttachments) {
+      throw new VptError('limit-exceeded', `Pass "${desc.label}" writes ${desc.outputs.length} outputs; this device allows 1 to ${this.glLimits.maxColorAttachments} (MAX_DRAW_BUFFERS)`);
+    }
+    if (desc.uniforms.byteSize > this.glLimits.maxUniformBlockSize) {
+      throw new VptError('limit-exceeded', `Pass "${desc.label}" has a ${desc.uniforms.byteSize}-byte uniform block; this device allows ${this.glLimits.maxUniformBlockSize} (MAX_UNIFORM_BLOCK_SIZE)`);
+    }
+    if (this.isLost) return new WebGL2Pass(desc, null, this.generation);
+    return new WebGL2Pass(desc, this.programs.get(desc), this.generation);
+  }
+
+  draw(pass: GpuPass, call: DrawCall): void {
+    this.assertNotDisposed();
+    if (this.isLost) return; // nothing can be drawn; the owner redraws after onRestored
+    const p = this.own(pass, WebGL2Pass, 'pass');
+    const desc = p.descriptor;
+    this.assertCurrent(p, `pass "${desc.label}"`);
+    const gl = this.gl;
+
+    let width: number;
+    let height: number;
+    let flipY: number;
+    let targetTextures: readonly WebGL2Texture[] = [];
+    if (call.target === 'canvas') {
+      if (desc.outputs.length !== 1) throw new RangeError(`pass "${desc.label}" draws to the canvas, so it must have one output, not ${desc.outputs.length}`);
+      gl.bindFramebuffer(gl.DRAW_FRAMEBUFFER, null);
+      // The drawing buffer is the canvas size unless the browser had to clamp it.
+      width = gl.drawingBufferWidth;
+      height = gl.drawingBufferHeight;
+      flipY = 1;
+    } else {
+      const t = this.own(call.target, WebGL2RenderTarget, 'render target');
+      this.assertCurrent(t, `render target "${t.label}"`);
+      if (t.textures.length !== desc.outputs.length || t.textures.some((tex, k) => tex.format !== desc.outputs[k])) {
+        throw new RangeError(`pass "${desc.label}" writes [${desc.outputs.join(', ')}] but render target "${t.label}" holds [${t.textures.map((x) => x.format).join(', ')}]`);
+      }
+      gl.bindFramebuffer(gl.DRAW_FRAMEBUFFER, t.framebuffer);
+      width = t.width;
+      height = t.height;
+      flipY = 0;
+      targetTextures = t.textures;
+    }
+    gl.viewport(0, 0, width, height);
+
+    const prog = p.program!;
+    gl.useProgram(prog.program);
+    gl.uniform2i(prog.targetSize, width, height);
+    gl.uniform1i(prog.flipY, flipY);
+
+    if (prog.ubo) {
+      if (call.uniforms.byteLength < desc.uniforms.byteSize) {
+        throw new RangeError(`pass "${desc.label}": the uniform buffer has ${call.uniforms.byteLength} bytes, the layout needs ${desc.uniforms.byteSize}`);
+      }
+      gl.bindBuffer(gl.UNIFORM_BUFFER, prog.ubo);
+      if (prog.uboSize === call.uniforms.byteLength) gl.bufferSubData(gl.UNIFORM_BUFFER, 0, call.uniforms);
+      else {
+        gl.bufferData(gl.UNIFORM_BUFFER, call.uniforms, gl.DYNAMIC_DRAW);
+        prog.uboSize = call.uniforms.byteLength;
+      }
+      gl.bindBufferBase(gl.UNIFORM_BUFFER, UNIFORM_BLOCK_BINDING, prog.ubo);
+    }
+
+    desc.textures.forEach((binding, k) => {
+      const given = call.textures[binding.name];
+      if (!given) throw new RangeError(`pass "${desc.label}" needs texture "${binding.name}"`);
+      const tex = this.own(given, WebGL2Texture, 'texture');
+      this.assertCurrent(tex, `texture "${tex.label}"`);
+      if (tex.dimension !== binding.dimension) {
+        throw new RangeError(`pass "${desc.label}": "${binding.name}" is a ${binding.dimension} texture, got ${tex.dimension} texture "${tex.label}"`);
+      }
+      if (targetTextures.includes(tex)) {
+        throw new RangeError(`pass "${desc.label}" reads texture "${tex.label}" while writing it (a feedback loop): ping-pong between two targets instead`);
+      }
+      gl.activeTexture(gl.TEXTURE0 + k);
+      gl.bindTexture(tex.dimension === '3d' ? gl.TEXTURE_3D : gl.TEXTURE_2D, tex.handle);
+    });
+
+    gl.bindVertexArray(this.vao);
+    gl.drawArrays(gl.TRIANGLES, 0, 3);
+  }
+
+  // ——— readback and sync ———
+
+  async readTexture(texture: GpuTexture): Promise<Float32Array | Uint8Array> {
+    this.assertNotDisposed();
+    const tex = this.own(texture, WebGL2Texture, 'texture');
+    if (tex.dimension !== '2d') throw new RangeError(`readTexture reads 2D textures only; "${tex.label}" is 3D`);
+    if (this.isLost) throw new VptError('context-lost', `Cannot read texture "${tex.label}": the WebGL context is lost`);
+    this.assertCurrent(tex, `texture "${tex.label}"`);
+    const gl = this.gl;
+    this.readFramebuffer ??= gl.createFramebuffer();
+    gl.bindFramebuffer(gl.READ_FRAMEBUFFER, this.readFramebuffer);
+    gl.framebufferTexture2D(gl.READ_FRAMEBUFFER, gl.COLOR_ATTACHMENT0, gl.TEXTURE_2D, tex.handle, 0);
+    gl.readBuffer(gl.COLOR_ATTACHMENT0);
+    const { width, height } = tex;
+    const f = glFormat(tex.format);
+    // GL returns row y = 0 first; texel row 0 is vpt's top row, so no flip is needed.
+    let out: Float32Array | Uint8Array;
+    if (f.isFloat) {
+      // RGBA/FLOAT is the one float read combination every float colour buffer supports.
+      const rgba = new Float32Array(width * height * 4);
+      gl.readPixels(0, 0, width, height, gl.RGBA, gl.FLOAT, rgba);
+      if (f.channels === 1) {
+        out = new Float32Array(width * height);
+        for (let i = 0; i < out.length; i++) out[i] = rgba[4 * i];
+      } else out = rgba;
+    } else {
+      out = new Uint8Array(width * height * 4);
+      gl.readPixels(0, 0, width, height, gl.RGBA, gl.UNSIGNED_BYTE, out);
+    }
+    gl.framebufferTexture2D(gl.READ_FRAMEBUFFER, gl.COLOR_ATTACHMENT0, gl.TEXTURE_2D, null, 0);
+    gl.bindFramebuffer(gl.READ_FRAMEBUFFER, null);
+    if (gl.isContextLost()) throw new VptError('context-lost', `Reading texture "${tex.label}" failed: the WebGL context was lost`);
+    return out;
+  }
+
+  async finish(): Promise<void> {
+    this.assertNotDisposed();
+    if (this.isLost) return;
+    // gl.finish() returns at once in Chrome; a readPixels must wait for all queued work.
+    const gl = this.gl;
+    if (!this.syncTarget) {
+      const texture = gl.createTexture()!;
+      gl.bindTexture(gl.TEXTURE_2D, texture);
+      gl.texImage2D(gl.TEXTURE_2D, 0, gl.RGBA8, 1, 1, 0, gl.RGBA, gl.UNSIGNED_BYTE, null);
+      const framebuffer = gl.createFramebuffer()!;
+      gl.bindFramebuffer(gl.READ_FRAMEBUFFER, framebuffer);
+      gl.framebufferTexture2D(gl.READ_FRAMEBUFFER, gl.COLOR_ATTACHMENT0, gl.TEXTURE_2D, texture, 0);
+      this.syncTarget = { texture, framebuffer };
+    }
+    gl.bindFramebuffer(gl.READ_FRAMEBUFFER, this.syncTarget.framebuffer);
+    gl.readBuffer(gl.COLOR_ATTACHMENT0);
+    gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, this.syncPixel);
+    gl.bindFramebuffer(gl.READ_FRAMEBUFFER, null);
+  }
+
+  resizeCanvas(width: number, height: number): void {
+    this.assertNotDisposed();
+    if (!Number.isInteger(width) || !Number.isInteger(height) || width < 1 || height < 1) {
+      throw new RangeError(`canvas size must be positive integers, got ${width}x${height}`);
+    }
+    if (this.canvas.width !== width) this.canvas.width = width;
+    if (this.canvas.height !== height) this.canvas.height = height;
+  }
+
+  // ——— context loss ———
+
+  onLost(callback: () => void): void {
+    this.lostCallbacks.push(callback);
+  }
+
+  onRestored(callback: () => void): void {
+    this.restoredCallbacks.push(callback);
+  }
+
+  simulateLoss(restoreAfterMs = 50): Promise<void> {
+    if (this.disposed) return Promise.reject(new VptError('disposed', 'This WebGL 2 backend was disposed'));
+    const ext = this.loseContextExt;
+    if (!ext) return Promise.reject(new VptError('missing-extension', 'WEBGL_lose_context is not available, so a context loss cannot be simulated'));
+    if (this.isLost) return Promise.reject(new VptError('context-lost', 'The WebGL context is already lost'));
+    return new Promise<void>((resolve, reject) => {
+      const timer = setTimeout(() => {
+        this.restoreWaiters = this.restoreWaiters.filter((w) => w !== waiter);
+        reject(new VptError('context-lost', `The WebGL context was not restored within ${restoreAfterMs + RESTORE_TIMEOUT_MS} ms`));
+      }, restoreAfterMs + RESTORE_TIMEOUT_MS);
+      const waiter: Waiter = {
+        resolve: () => { clearTimeout(timer); resolve(); },
+        reject: (e) => { clearTimeout(timer); reject(e); },
+      };
+      this.restoreWaiters.push(waiter);
+      // Registered after handleLost, so preventDefault() (which makes the context restorable) has run.
+      (this.canvas as EventTarget).addEventListener('webglcontextlost', () => {
+        setTimeout(() => {
+          try {
+            ext.restoreContext();
+          } catch (e) {
+            this.restoreWaiters = this.restoreWaiters.filter((w) => w !== waiter);
+            waiter.reject(new VptError('context-lost', 'WEBGL_lose_context.restoreContext() failed', { cause: e }));
+          }
+        }, restoreAfterMs);
+      }, { once: true });
+      ext.loseContext();
+    });
+  }
+
+  private readonly handleLost = (event: Event): void => {
+    // Without preventDefault the browser never restores the context.
+    event.preventDefault();
+    if (this.disposed) return;
+    this.lost = true;
+    runCallbacks(this.lostCallbacks);
+  };
+
+  private readonly handleRestored = (): void => {
+    if (this.disposed) return;
+    // Every GL object is gone: forget them (no deletes) and make new shared state.
+    this.generation++;
+    this.programs.forget();
+    this.textures.clear();
+    this.targets.clear();
+    this.readFramebuffer = null;
+    this.syncTarget = null;
+    this.vao = null;
+    const waiters = this.restoreWaiters;
+    this.restoreWaiters = [];
+    try {
+      requireColorBufferFloat(this.gl);
+    } catch (e) {
+      waiters.forEach((w) => w.reject(e));
+      return; // stays lost: a restored context without float targets cannot run vpt
+    }
+    this.glLimits = readLimits(this.gl);
+    this.initState();
+    this.lost = false;
+    runCallbacks(this.restoredCallbacks);
+    waiters.forEach((w) => w.resolve());
+  };
+
+  // ——— disposal ———
+
+  dispose(): void {
+    if (this.disposed) return;
+    const events = this.canvas as EventTarget;
+    events.removeEventListener('webglcontextlost', this.handleLost);
+    events.removeEventListener('webglcontextrestored', this.handleRestored);
+    if (!this.isLost) {
+      const gl = this.gl;
+      this.textures.forEach((t) => this.deleteTexture(t));
+      this.targets.forEach((t) => this.deleteTarget(t));
+      this.programs.deleteAll();
+      gl.deleteFramebuffer(this.readFramebuffer);
+      if (this.syncTarget) {
+        gl.deleteFramebuffer(this.syncTarget.framebuffer);
+        gl.deleteTexture(this.syncTarget.texture);
+      }
+      gl.deleteVertexArray(this.vao);
+    }
+    this.textures.clear();
+    this.targets.clear();
+    this.programs.forget();
+    this.readFramebuffer = null;
+    this.syncTarget = null;
+    this.vao = null;
+    this.disposed = true;
+    this.restoreWaiters.forEach((w) => w.reject(new VptError('disposed', 'The WebGL 2 backend was disposed')));
+    this.restoreWaiters = [];
+    // Give the driver's memory back now rather than when the canvas is collected.
+    this.loseContextExt?.loseContext();
+    this.loseContextExt = null;
+  }
+
+  // ——— internals ———
+
+  /** State every pass relies on; set at creation and again after a restore. */
+  private initState(): void {
+    const gl = this.gl;
+    gl.pixelStorei(gl.UNPACK_ALIGNMENT, 1);
+    gl.pixelStorei(gl.PACK_ALIGNMENT, 1);
+    // Passes overwrite every pixel with exact values: no blending, tests or dithering.
+    gl.disable(gl.BLEND);
+    gl.disable(gl.DEPTH_TEST);
+    gl.disable(gl.STENCIL_TEST);
+    gl.disable(gl.SCISSOR_TEST);
+    gl.disable(gl.CULL_FACE);
+    gl.disable(gl.DITHER);
+    // The full-screen triangle reads no attributes; an empty VAO keeps it independent of other state.
+    this.vao = gl.createVertexArray();
+    this.loseContextExt = gl.getExtension('WEBGL_lose_context');
+  }
+
+  private allocTexture(
+    dimension: '2d' | '3d', width: number, height: number, depth: number, format: TextureFormat, label: string,
+    data: Float32Array | Uint8Array | null,
+  ): WebGL2Texture {
+    if (this.isLost) return new WebGL2Texture(dimension, width, height, depth, format, label, null, this.generation);
+    const gl = this.gl;
+    const f = glFormat(format);
+    const target = dimension === '3d' ? gl.TEXTURE_3D : gl.TEXTURE_2D;
+    const handle = gl.createTexture();
+    gl.bindTexture(target, handle);
+    // Kernels use texelFetch only; NEAREST also keeps R32F/RGBA32F complete without OES_texture_float_linear.
+    gl.texParameteri(target, gl.TEXTURE_MIN_FILTER, gl.NEAREST);
+    gl.texParameteri(target, gl.TEXTURE_MAG_FILTER, gl.NEAREST);
+    gl.texParameteri(target, gl.TEXTURE_WRAP_S, gl.CLAMP_TO_EDGE);
+    gl.texParameteri(target, gl.TEXTURE_WRAP_T, gl.CLAMP_TO_EDGE);
+    if (dimension === '3d') {
+      gl.texParameteri(target, gl.TEXTURE_WRAP_R, gl.CLAMP_TO_EDGE);
+      gl.texImage3D(target, 0, f.internalFormat, width, height, depth, 0, f.format, f.type, data);
+    } else {
+      gl.texImage2D(target, 0, f.internalFormat, width, height, 0, f.format, f.type, data);
+    }
+    gl.bindTexture(target, null);
+    return new WebGL2Texture(dimension, width, height, depth, format, label, handle, this.generation);
+  }
+
+  private checkTextureSize(label: string, dimension: '2d' | '3d', width: number, height: number, depth: number): void {
+    for (const [name, v] of [['width', width], ['height', height], ['depth', depth]] as const) {
+      if (!Number.isInteger(v) || v < 1) throw new RangeError(`texture "${label}": ${name} must be a positive integer, got ${v}`);
+    }
+    if (dimension === '3d') {
+      const max = this.glLimits.maxTextureDimension3D;
+      if (width > max || height > max || depth > max) {
+        throw new VptError('limit-exceeded', `3D texture "${label}" is ${width}x${height}x${depth}, but this device's MAX_3D_TEXTURE_SIZE is ${max}`);
+      }
+    } else {
+      const max = this.glLimits.maxTextureDimension2D;
+      if (width > max || height > max) {
+        throw new VptError('limit-exceeded', `2D texture "${label}" is ${width}x${height}, but this device's MAX_TEXTURE_SIZE is ${max}`);
+      }
+    }
+  }
+
+  private deleteTexture(tex: WebGL2Texture): void {
+    // Objects of an older generation died with the lost context.
+    if (tex.handle && tex.generation === this.generation && !this.isLost) this.gl.deleteTexture(tex.handle);
+    tex.handle = null;
+  }
+
+  private deleteTarget(t: WebGL2RenderTarget): void {
+    if (t.framebuffer && t.generation === this.generation && !this.isLost) this.gl.deleteFramebuffer(t.framebuffer);
+    t.framebuffer = null;
+    t.textures.forEach((tex) => this.deleteTexture(tex));
+  }
+
+  private own<T>(obj: unknown, cls: abstract new (...args: never[]) => T, what: string): T {
+    if (!(obj instanceof cls)) throw new TypeError(`this ${what} was not made by this WebGL 2 backend`);
+    return obj;
+  }
+
+  private assertCurrent(obj: { generation: number }, what: string): void {
+    if (obj.generation !== this.generation) {
+      throw new VptError('context-lost', `${what} was made before the WebGL context was lost; re-create it after onRestored`);
+    }
+  }
+
+  private assertNotDisposed(): void {
+    if (this.disposed) throw new VptError('disposed', 'This WebGL 2 backend was disposed');
+  }
+}
+
+/** Run owner callbacks; one that throws must not stop the others or the backend's own bookkeeping. */
+function runCallbacks(callbacks: ReadonlyArray<() => void>): void {
+  for (const cb of callbacks) {
+    try {
+      cb();
+    } catch (e) {
+      console.error('vpt: a context-loss callback threw', e);
+    }
+  }
+}
