@@ -1,11 +1,24 @@
+import { fileURLToPath } from 'node:url';
 import { defineConfig } from 'vitest/config';
 
 // Two projects: fast node-side unit tests next to each package, and end-to-end browser
 // tests (headless Chromium on SwiftShader) under tests/, which need `pnpm build` first.
+const src = (pkg: string) => fileURLToPath(new URL(`./packages/${pkg}/src/index.ts`, import.meta.url));
+
 export default defineConfig({
+  // Node-side code imports the workspace packages from source; the browser side loads dist/.
+  resolve: {
+    alias: {
+      '@vpt/core': src('core'),
+      '@vpt/renderer-mip': src('renderer-mip'),
+      '@vpt/renderer-eam': src('renderer-eam'),
+      '@vpt/post': src('post'),
+    },
+  },
   test: {
     projects: [
       {
+        extends: true,
         test: {
           name: 'unit',
           include: ['packages/*/test/**/*.test.ts'],
@@ -13,6 +26,7 @@ export default defineConfig({
         },
       },
       {
+        extends: true,
         test: {
           name: 'browser',
           include: ['tests/**/*.test.ts'],

@@ -51,7 +51,13 @@ export class ProgressiveLoop {
     const budget = this.options.frameBudgetMs ?? 12;
     const done = this.options.currentIterations?.() ?? 0;
     const remaining = (this.options.maxIterations ?? Infinity) - done;
-    if (remaining <= 0) { this.hooks.finishFrame(); return; }
+    if (remaining <= 0) {
+      // Converged: keep presenting (cheap, skipped when nothing changed) so that a reset
+      // or a post-chain change after convergence is picked up on the next frame.
+      this.hooks.finishFrame();
+      this.schedule();
+      return;
+    }
     // First frame: one iteration to learn the rate; later, fill the budget (at least one).
     const n = Math.max(1, Math.min(remaining, this.msPerIteration > 0 ? Math.floor(budget / this.msPerIteration) : 1, 256));
     const t0 = performance.now();

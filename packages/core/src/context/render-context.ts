@@ -65,6 +65,9 @@ export class RenderContext {
   private rendererVersion = -1;
   private variantKey = '';
   private hdrIteration = -1; // iteration count the HDR/LDR images were last rendered at
+  private imageVersion = 0; // bumped whenever renderImage() produced a new LDR image
+  private presentedVersion = -1;
+  private postKey = ''; // post-chain parameters the current LDR image was made with
   private msPerIteration = 0;
   private disposed = false;
   private readonly loop: ProgressiveLoop;
@@ -204,7 +207,9 @@ export class RenderContext {
   renderImage(): void {
     this.assertAlive();
     if (!this.scene || this.backend.isLost || this.iteration === 0) return;
-    if (this.hdrIteration === this.iteration && this.postPasses.length === this._post.length) return;
+    const postKey = JSON.stringify(this._post.map((s) => [s.name, s.uniformValues(), s.defines?.()]));
+    if (this.hdrIteration === this.iteration && this.postKey === postKey && this.postPasses.length === this._post.length) return;
+    this.postKey = postKey;
     this.prepare();
     const uniforms = this.uniforms(this.scene, this.iteration - 1);
     const accTextures: Record<string, GpuTexture> = {};
@@ -218,18 +223,21 @@ export class RenderContext {
       input = this.postTargets[i].textures[0];
     });
     this.hdrIteration = this.iteration;
+    this.imageVersion++;
   }
 
   /** Draw the current LDR image to the canvas. */
   present(): void {
     if (!this.scene || this.backend.isLost || this.iteration === 0) return;
     this.renderImage();
+    if (this.presentedVersion === this.imageVersion) return;
     this.presentPass ??= this.backend.createPass(PRESENT_PASS);
     this.backend.draw(this.presentPass, {
       uniforms: PRESENT_PASS.uniforms.pack({ pad: 0 }),
       textures: { inputImage: this.ldrTexture() },
       target: 'canvas',
     });
+    this.presentedVersion = this.imageVersion;
   }
 
   /** The HDR render output (linear RGB, a = coverage), RGBA float, top row first. */
@@ -244,6 +252,15 @@ export class RenderContext {
     this.renderImage();
     if (!this.hdr) throw new VptError('invalid-scene', 'Nothing rendered yet: call setScene() and iterate first');
     return (await this.backend.readTexture(this.ldrTexture())) as Uint8Array;
+  }
+
+  /**
+   * The sample of the most recent iteration alone (the renderer's frame buffer,
+   * output `index`), RGBA float, top row first. For tests and debugging.
+   */
+  async readFrame(index = 0): Promise<Float32Array> {
+    if (!this.frame || this.iteration === 0) throw new VptError('invalid-scene', 'Nothing rendered yet: call setScene() and iterate first');
+    return (await this.backend.readTexture(this.frame.textures[index])) as Float32Array;
   }
 
   /** Start refining in the background, a time budget's worth of iterations per animation frame. */
@@ -396,7 +413,7 @@ export class RenderContext {
     this.frame = null; this.accum = null; this.hdr = null;
     this.postTargets = []; this.postPasses = []; this.presentPass = null;
     this.volumeTexture = null; this.volumeSource = null; this.tfTexture = null; this.tfSource = null;
-    this.passes = null; this.variantKey = '';
+    this.passes = null; this.variantKey = ''; this.presentedVersion = -1;
     this.backend.resizeCanvas(this.width, this.height);
     if (this.scene) this.syncSceneResources();
     this.reset();

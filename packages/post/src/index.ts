@@ -1,0 +1,24 @@
+export { ExposureStep, MAX_EXPOSURE_STOPS } from './exposure.js';
+export { ToneMapStep, TONE_MAP_OPERATORS, isToneMapOperator, type ToneMapOperator } from './tone-mapping.js';
+export { SrgbEncodeStep } from './srgb.js';
+export {
+  defaultPostChain,
+  postStepFromJSON,
+  postChainFromJSON,
+  postStepToJSON,
+  postChainToJSON,
+  type PostStepJSON,
+  type DefaultPostChainOptions,
+} from './chain.js';
+export {
+  exposureRef,
+  toneMapRef,
+  srgbEncodeRef,
+  srgbOetfRef,
+  reinhardRef,
+  acesRef,
+  pbrNeutralRef,
+  postStepRef,
+  postChainRef,
+  type Rgb,
+} from './reference.js';

@@ -1,0 +1,22 @@
+/**
+ * One headless Chromium page per test file with `window.vpt` = { core, mip, eam, post }
+ * loaded from the built packages (run `pnpm build` first).
+ */
+import { afterAll, beforeAll } from 'vitest';
+import { openVptPage, type VptPageSession } from '../../packages/headless/src/index.js';
+import { IN_PAGE_HELPERS } from './in-page.js';
+
+export function usePage(): () => VptPageSession {
+  let session: VptPageSession | undefined;
+  beforeAll(async () => {
+    session = await openVptPage();
+    await session.page.evaluate(IN_PAGE_HELPERS);
+  });
+  afterAll(async () => { await session?.close(); });
+  return () => {
+    if (!session) throw new Error('page not open');
+    return session;
+  };
+}
+
+export const BACKENDS = ['webgl2', 'webgpu'] as const;
