@@ -30,7 +30,7 @@ describe('WebGL 2 / WebGPU parity', () => {
       for (let i = 4; i < a.hdr.length; i += 4) if (a.hdr[i] !== a.hdr[0]) varied++;
       return { hdrDiff: t.sameBits(a.hdr, b.hdr), ldrDiff, varied, n: a.hdr.length };
     }, renderer);
-    expect(result.varied).toBeGreaterThan(result.n / 8); // a real image, not a constant
+    expect(result.varied).toBeGreaterThan(result.n / 4 / 8); // a real image: over 1/8 of the pixels differ from the first
     expect(result.hdrDiff).toBe(0);
     expect(result.ldrDiff).toBe(0);
   });

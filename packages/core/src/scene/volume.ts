@@ -58,7 +58,8 @@ export function normalizationRange(v: Volume): [number, number] {
   let lo = Infinity, hi = -Infinity;
   for (let i = 0; i < v.data.length; i++) {
     const x = v.data[i];
-    if (x < lo) lo = x; // NaN compares false and is skipped
+    if (!Number.isFinite(x)) continue; // NaN/Inf voxels must not stretch the range
+    if (x < lo) lo = x;
     if (x > hi) hi = x;
   }
   if (!Number.isFinite(lo)) return [0, 1];
