@@ -61,7 +61,7 @@ describe.each(BACKENDS)('EAM on %s', (backend) => {
       await ctx.renderIterations(ITER);
       const hdr = await ctx.readHDR();
       ctx.dispose();
-      return Array.from(hdr);
+      return Array.from(hdr as Float32Array);
     }, backend, W, H, ITER, camera, color, bg, sigma);
     const scene = { camera } as Scene;
     void createProceduralVolume;

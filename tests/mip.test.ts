@@ -50,7 +50,7 @@ describe.each(BACKENDS)('MIP on %s', (backend) => {
       await ctx.renderIterations(ITER);
       const hdr = await ctx.readHDR();
       ctx.dispose();
-      return Array.from(hdr);
+      return Array.from(hdr as Float32Array);
     }, backend, W, H, ITER, camera);
     const cpu = cpuMip(scene, W, H, ITER, defaultStepSize(scene));
     let maxErr = 0, covered = 0;
@@ -77,7 +77,7 @@ describe.each(BACKENDS)('MIP on %s', (backend) => {
       await ctx.renderIterations(2);
       const hdr = await ctx.readHDR();
       ctx.dispose();
-      return Array.from(hdr);
+      return Array.from(hdr as Float32Array);
     }, backend, w, h, camera);
     const cpu = cpuMip(scene, w, h, 2, defaultStepSize(scene));
     let maxErr = 0, bright = 0;

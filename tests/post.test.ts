@@ -35,11 +35,11 @@ async function runChain(backend: string, chain: object[]) {
       const passFor = (format: string) => b.createPass({ label: s.name, glsl: s.glsl, wgsl: s.wgsl, uniforms: s.uniforms, textures: [{ name: 'inputImage', dimension: '2d' }], outputs: [format], defines: s.defines ? s.defines() : {} });
       const uniforms = s.uniforms.pack(s.uniformValues());
       b.draw(passFor('rgba32float'), { uniforms, textures: { inputImage: input }, target: floatOut });
-      lastFloat = Array.from(await b.readTexture(floatOut.textures[0]));
+      lastFloat = Array.from((await b.readTexture(floatOut.textures[0])) as Float32Array);
       if (i === steps.length - 1) b.draw(passFor('rgba8unorm'), { uniforms, textures: { inputImage: input }, target: ldrOut });
       else input = b.createTexture({ dimension: '2d', width: W, height: H, format: 'rgba32float', data: new Float32Array(lastFloat) });
     }
-    const ldr = Array.from(await b.readTexture(ldrOut.textures[0]));
+    const ldr = Array.from((await b.readTexture(ldrOut.textures[0])) as Uint8Array);
     b.dispose();
     return { float: lastFloat, ldr };
   }, backend, chain, Array.from(hdr), W, H);

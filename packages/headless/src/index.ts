@@ -1,0 +1,13 @@
+export { launchChromium, chromiumExecutable, CHROMIUM_FLAGS, WEBGPU_FLAGS, type ChromiumOptions } from './chromium.js';
+export { startStaticServer, mimeType, type StaticServer, type StaticServerOptions } from './server.js';
+export { openVptPage, renderScene, PageError, type VptPageOptions, type VptPageSession, type RenderResult, type RenderSceneOptions, type PageRenderOptions } from './render.js';
+export { encodePNG, decodePNG, opaque, encodePFM, decodePFM, type DecodedPFM } from './image-io.js';
+export { readSceneFile, resolveSceneFiles, mountSceneFiles } from './scene-files.js';
+export { headlessPackageDir, findPackageDir, workspaceRoot, mountPagePackages, PAGE_PATH } from './packages.js';
+export {
+  SCENE_DEFAULTS, checkSceneDescription,
+  type SceneDescription, type VolumeDescription, type RawVolumeDescription, type SidecarVolumeDescription,
+  type ProceduralVolumeDescription, type EnvironmentDescription, type TransferPointDescription,
+  type BackendName, type RendererName, type VoxelTypeName,
+} from './scene-description.js';
+export type { VptPageApi, PageRenderResult, RenderTimings, BackendSummary, PostModule } from './page/types.js';

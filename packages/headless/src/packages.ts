@@ -1,0 +1,76 @@
+import fs from 'node:fs';
+import path from 'node:path';
+import { fileURLToPath } from 'node:url';
+import type { StaticServer } from './server.js';
+
+/** The packages the headless page loads, by URL folder name under /packages/. */
+export const PAGE_PACKAGES: Record<string, string> = {
+  core: '@vpt/core',
+  'renderer-mip': '@vpt/renderer-mip',
+  'renderer-eam': '@vpt/renderer-eam',
+  post: '@vpt/post',
+};
+
+function readName(dir: string): string | undefined {
+  try {
+    return JSON.parse(fs.readFileSync(path.join(dir, 'package.json'), 'utf8')).name;
+  } catch {
+    return undefined;
+  }
+}
+
+/** This package's folder (works from src/ under Vitest and from dist/ once built). */
+export function headlessPackageDir(): string {
+  let dir = path.dirname(fileURLToPath(import.meta.url));
+  for (;;) {
+    if (readName(dir) === '@vpt/headless') return dir;
+    const up = path.dirname(dir);
+    if (up === dir) throw new Error('@vpt/headless: cannot find my own package.json');
+    dir = up;
+  }
+}
+
+/**
+ * The folder of an installed package, found the way Node resolves bare names (each
+ * ancestor's node_modules) but without going through its `exports`, which expose only
+ * the ESM entry. Symlinks (pnpm workspaces) are followed to the real folder.
+ */
+export function findPackageDir(name: string, fromDir = headlessPackageDir()): string {
+  let dir = fromDir;
+  for (;;) {
+    const candidate = path.join(dir, 'node_modules', ...name.split('/'));
+    if (fs.existsSync(path.join(candidate, 'package.json'))) return fs.realpathSync(candidate);
+    const up = path.dirname(dir);
+    if (up === dir) throw new Error(`Cannot find the package ${name} (looked in node_modules above ${fromDir}); install it next to @vpt/headless`);
+    dir = up;
+  }
+}
+
+/** The pnpm workspace this package lives in (the repository root), or null when installed from npm. */
+export function workspaceRoot(fromDir = headlessPackageDir()): string | null {
+  let dir = fromDir;
+  for (;;) {
+    if (fs.existsSync(path.join(dir, 'pnpm-workspace.yaml'))) return dir;
+    const up = path.dirname(dir);
+    if (up === dir) return null;
+    dir = up;
+  }
+}
+
+/**
+ * Mount this package and the packages the page imports at /packages/<name>/, the URLs
+ * in page/index.html's import map. In the repository those are the workspace folders
+ * (the same files the root would serve); from npm they are the installed copies.
+ * `overrides` maps a folder name (e.g. `core`) to another package folder, to run
+ * another build of it (a benchmark against an older version, a test double).
+ */
+export function mountPagePackages(server: StaticServer, overrides: Record<string, string> = {}): void {
+  const self = headlessPackageDir();
+  server.mount(self, '/packages/headless/');
+  for (const [folder, name] of Object.entries(PAGE_PACKAGES)) {
+    server.mount(overrides[folder] ?? findPackageDir(name, self), `/packages/${folder}/`);
+  }
+}
+
+/** URL path of the headless page. */
+export const PAGE_PATH = '/packages/headless/page/index.html';

@@ -1,0 +1,62 @@
+/**
+ * Types shared by the Node side and the in-browser page: what `window.vpt` holds, so
+ * tests can write `page.evaluate(() => { const { core, mip } = window.vpt; ... })`
+ * with full types.
+ */
+import type * as CoreModule from '@vpt/core';
+import type * as MipModule from '@vpt/renderer-mip';
+import type * as EamModule from '@vpt/renderer-eam';
+import type { PostStep, Scene, Volume } from '@vpt/core';
+import type { SceneDescription, VolumeDescription } from '../scene-description.js';
+
+/** The part of @vpt/post the page relies on. */
+export interface PostModule {
+  postChainFromJSON(json: unknown): PostStep[];
+  [name: string]: unknown;
+}
+
+export interface RenderTimings {
+  /** Wall-clock ms of the timed iterations plus the render and post passes. */
+  totalMs: number;
+  iterations: number;
+  /** Mean ms per iteration as measured by the render context (GPU synchronised). */
+  msPerIteration: number;
+  /** Context creation, volume load and upload, kernel compilation (warm-up iteration). */
+  setupMs: number;
+}
+
+export interface BackendSummary {
+  kind: 'webgl2' | 'webgpu';
+  /** WebGL UNMASKED_RENDERER / WebGPU adapter description. */
+  renderer: string;
+}
+
+/** What `renderDescription` returns inside the page: images as base64 to cross the DevTools wire. */
+export interface PageRenderResult {
+  width: number;
+  height: number;
+  /** Float32 RGBA, top row first. */
+  hdr: string;
+  /** RGBA8, top row first; null when the post chain is empty. */
+  ldr: string | null;
+  timings: RenderTimings;
+  backend: BackendSummary;
+}
+
+export interface VptPageApi {
+  core: typeof CoreModule;
+  mip: typeof MipModule;
+  eam: typeof EamModule;
+  post: PostModule;
+  renderDescription(desc: SceneDescription, options?: { baseUrl?: string; warmup?: boolean }): Promise<PageRenderResult>;
+  buildScene(desc: SceneDescription, baseUrl?: string): Promise<Scene>;
+  loadVolume(desc: VolumeDescription, baseUrl?: string): Promise<Volume>;
+}
+
+declare global {
+  interface Window {
+    vpt: VptPageApi;
+    __vptReady?: boolean;
+    __vptError?: string;
+  }
+}

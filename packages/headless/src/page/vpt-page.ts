@@ -1,0 +1,178 @@
+/**
+ * The in-browser side of @vpt/headless, loaded by page/index.html (whose import map
+ * points the @vpt/* names at each package's dist/). It loads the packages, then exposes
+ * `window.vpt = { core, mip, eam, post, renderDescription, buildScene, loadVolume }` and
+ * sets `window.__vptReady`, or `window.__vptError` when a package cannot be loaded.
+ */
+import type { Environment, Scene, Volume } from '@vpt/core';
+import { SCENE_DEFAULTS, checkSceneDescription, type SceneDescription, type VolumeDescription } from '../scene-description.js';
+import type { PageRenderResult, PostModule, VptPageApi } from './types.js';
+
+type CoreModule = VptPageApi['core'];
+
+let core!: CoreModule;
+let mip!: VptPageApi['mip'];
+let eam!: VptPageApi['eam'];
+let post!: PostModule;
+
+const ARRAYS = { uint8: Uint8Array, uint16: Uint16Array, int16: Int16Array, float32: Float32Array } as const;
+
+async function fetchOk(url: string): Promise<Response> {
+  let res: Response;
+  try {
+    res = await fetch(url);
+  } catch (e) {
+    throw new core.VptError('load-failed', `Could not fetch ${url}: ${(e as Error).message}`, { cause: e });
+  }
+  if (!res.ok) throw new core.VptError('load-failed', `Could not fetch ${url}: HTTP ${res.status}`);
+  return res;
+}
+
+async function loadRaw(url: string, dims: [number, number, number], type: keyof typeof ARRAYS, endianness = 'little'): Promise<Volume['data']> {
+  const Ctor = ARRAYS[type];
+  if (!Ctor) throw new core.VptError('load-failed', `${url}: unknown voxel type "${type}" (uint8, uint16, int16, float32)`);
+  const bytes = new Uint8Array(await (await fetchOk(url)).arrayBuffer());
+  const expected = dims[0] * dims[1] * dims[2] * Ctor.BYTES_PER_ELEMENT;
+  if (bytes.byteLength !== expected) {
+    throw new core.VptError('load-failed', `${url}: dims [${dims.join(', ')}] of ${type} need ${expected} bytes, the file has ${bytes.byteLength}`);
+  }
+  // Typed arrays use the host's byte order, which is little-endian on every browser
+  // platform vpt targets; swap big-endian files in place.
+  if (endianness === 'big' && Ctor.BYTES_PER_ELEMENT > 1) {
+    const n = Ctor.BYTES_PER_ELEMENT;
+    for (let i = 0; i < bytes.length; i += n) bytes.subarray(i, i + n).reverse();
+  }
+  return new Ctor(bytes.buffer, 0, bytes.byteLength / Ctor.BYTES_PER_ELEMENT);
+}
+
+/** Turn a volume description into a core Volume; relative URLs resolve against baseUrl. */
+async function loadVolume(desc: VolumeDescription, baseUrl: string = document.baseURI): Promise<Volume> {
+  if ('procedural' in desc) return core.createProceduralVolume(desc.procedural, desc.size ?? 32);
+  if ('sidecar' in desc) {
+    const sidecarUrl = new URL(desc.sidecar, baseUrl).href;
+    let meta: Record<string, unknown>;
+    try {
+      meta = await (await fetchOk(sidecarUrl)).json();
+    } catch (e) {
+      if (core.isVptError(e)) throw e;
+      throw new core.VptError('load-failed', `${sidecarUrl}: not valid JSON (${(e as Error).message})`, { cause: e });
+    }
+    // The .raw sits beside the sidecar with the same base name (the sidecar's own
+    // "file" field, when present, names it explicitly).
+    const file = typeof meta.file === 'string' && !meta.file.includes('/') ? meta.file : sidecarUrl.split('/').pop()!.replace(/\.json$/i, '') + '.raw';
+    return loadVolume({
+      raw: new URL(file, sidecarUrl).href,
+      dims: meta.dims as [number, number, number],
+      type: meta.voxel_type as keyof typeof ARRAYS,
+      spacing: meta.spacing as [number, number, number] | undefined,
+      valueRange: meta.value_range as [number, number] | undefined,
+      endianness: meta.endianness as 'little' | 'big' | undefined,
+    }, sidecarUrl);
+  }
+  const url = new URL(desc.raw, baseUrl).href;
+  const data = await loadRaw(url, desc.dims, desc.type, desc.endianness);
+  const volume = core.createVolume(desc.dims, desc.type, data, desc.spacing ?? [1, 1, 1]);
+  if (desc.valueRange) volume.valueRange = desc.valueRange;
+  volume.name = url.split('/').pop();
+  return volume;
+}
+
+function environmentOf(d: SceneDescription): Environment {
+  const env = d.environment ?? SCENE_DEFAULTS.environment;
+  if (env.type === 'latlong') return { ...env, data: Float32Array.from(env.data) };
+  return env;
+}
+
+/** Build the core Scene for a description (defaults filled in). */
+async function buildScene(d: SceneDescription, baseUrl?: string): Promise<Scene> {
+  checkSceneDescription(d);
+  const tf = d.transferFunction;
+  return {
+    volume: await loadVolume(d.volume ?? SCENE_DEFAULTS.volume, baseUrl),
+    transferFunction: tf ? { dimensions: '1d', points: tf.points } : core.rampTransferFunction(),
+    camera: { ...core.defaultCamera(), ...d.camera },
+    lights: d.lights ?? [],
+    environment: environmentOf(d),
+    densityScale: d.densityScale ?? SCENE_DEFAULTS.densityScale,
+    seed: d.seed ?? SCENE_DEFAULTS.seed,
+  };
+}
+
+function makeRenderer(d: SceneDescription) {
+  const name = d.renderer ?? SCENE_DEFAULTS.renderer;
+  const params = d.rendererParams ?? {};
+  if (name === 'mip') return new mip.MipRenderer(params);
+  if (name === 'eam') return new eam.EamRenderer(params);
+  throw new core.VptError('invalid-scene', `Unknown renderer "${name as string}" (eam, mip)`);
+}
+
+/** Base64 of a typed array's bytes, in chunks (String.fromCharCode takes limited arguments). */
+function toBase64(a: ArrayBufferView): string {
+  const bytes = new Uint8Array(a.buffer, a.byteOffset, a.byteLength);
+  let s = '';
+  for (let i = 0; i < bytes.length; i += 0x8000) s += String.fromCharCode(...bytes.subarray(i, i + 0x8000));
+  return btoa(s);
+}
+
+/**
+ * Render a scene description: exactly `iterations` progressive iterations, then read
+ * the HDR and LDR images back. `totalMs` times those iterations plus the render and
+ * post passes, after one warm-up iteration has compiled the kernels (compilation is
+ * reported in `setupMs`, with volume loading and upload).
+ */
+async function renderDescription(desc: SceneDescription, options: { baseUrl?: string; warmup?: boolean } = {}): Promise<PageRenderResult> {
+  const t0 = performance.now();
+  checkSceneDescription(desc);
+  const width = desc.width ?? SCENE_DEFAULTS.width;
+  const height = desc.height ?? SCENE_DEFAULTS.height;
+  const iterations = desc.iterations ?? SCENE_DEFAULTS.iterations;
+  const scene = await buildScene(desc, options.baseUrl);
+  const steps = post.postChainFromJSON(desc.post ?? SCENE_DEFAULTS.post);
+  const canvas = document.createElement('canvas');
+  canvas.width = width;
+  canvas.height = height;
+  const ctx = await core.RenderContext.create({ canvas, backend: desc.backend ?? SCENE_DEFAULTS.backend, width, height, renderer: makeRenderer(desc), post: steps });
+  try {
+    ctx.setScene(scene);
+    if (options.warmup !== false) await ctx.renderIterations(1);
+    const t1 = performance.now();
+    await ctx.renderIterations(iterations);
+    const totalMs = performance.now() - t1;
+    const hdr = await ctx.readHDR();
+    // Without post steps there is no LDR image (core refuses to invent one).
+    const ldr = steps.length > 0 ? await ctx.readLDR() : null;
+    const stats = ctx.stats;
+    return {
+      width,
+      height,
+      hdr: toBase64(hdr),
+      ldr: ldr ? toBase64(ldr) : null,
+      timings: { totalMs, iterations: stats.iterations, msPerIteration: stats.msPerIteration, setupMs: t1 - t0 },
+      backend: { kind: ctx.backend.kind, renderer: ctx.backend.info.renderer },
+    };
+  } finally {
+    ctx.dispose();
+  }
+}
+
+async function load<T>(name: string): Promise<T> {
+  try {
+    return (await import(/* @vite-ignore */ name)) as T;
+  } catch (e) {
+    throw new Error(`could not load ${name} (${(e as Error).message}); build the packages first: pnpm run build`);
+  }
+}
+
+try {
+  [core, mip, eam, post] = await Promise.all([
+    load<CoreModule>('@vpt/core'),
+    load<VptPageApi['mip']>('@vpt/renderer-mip'),
+    load<VptPageApi['eam']>('@vpt/renderer-eam'),
+    load<PostModule>('@vpt/post'),
+  ]);
+  window.vpt = { core, mip, eam, post, renderDescription, buildScene, loadVolume };
+  window.__vptReady = true;
+} catch (e) {
+  window.__vptError = (e as Error).message;
+  console.error(window.__vptError);
+}

@@ -1,0 +1,197 @@
+import type { Browser, Page } from 'puppeteer-core';
+import { launchChromium, type ChromiumOptions } from './chromium.js';
+import { PAGE_PATH, mountPagePackages, workspaceRoot } from './packages.js';
+import type { BackendSummary, PageRenderResult, RenderTimings } from './page/types.js';
+import type { BackendName, SceneDescription } from './scene-description.js';
+import { mountSceneFiles, resolveSceneFiles } from './scene-files.js';
+import { startStaticServer, type StaticServer } from './server.js';
+
+export interface VptPageOptions {
+  /** Reuse a running browser (it is left open by close()); otherwise one is launched. */
+  browser?: Browser;
+  chromium?: ChromiumOptions;
+  /**
+   * Folder served at the URL root, besides the packages under /packages/. Default: the
+   * workspace root when running from the repository (so tests can load /data/… and
+   * their own pages), none when installed from npm.
+   */
+  root?: string | null;
+  /** Forward the page's console to this function (e.g. `(l) => console.error(l)`). */
+  onConsole?: (line: string) => void;
+  /**
+   * Serve other folders for some of the page's packages, by URL folder name
+   * (`core`, `renderer-mip`, `renderer-eam`, `post`), e.g. another build of core.
+   */
+  packageDirs?: Record<string, string>;
+  /** How long the page may take to load the packages, in ms (default 60 s). */
+  loadTimeoutMs?: number;
+}
+
+export interface RenderResult {
+  width: number;
+  height: number;
+  /** Linear HDR RGBA float, top row first. */
+  hdr: Float32Array;
+  /** LDR RGBA8 after the post chain, top row first; null when the post chain is empty. */
+  ldr: Uint8Array | null;
+  timings: RenderTimings;
+  backend: BackendSummary;
+}
+
+export interface PageRenderOptions {
+  /** Folder that relative file paths in the description resolve against (default: cwd). */
+  baseDir?: string;
+  /** One untimed iteration first, so kernel compilation is not in totalMs (default true). */
+  warmup?: boolean;
+}
+
+export interface VptPageSession {
+  page: Page;
+  browser: Browser;
+  server: StaticServer;
+  /** URL of the loaded page. */
+  url: string;
+  /** `page.evaluate`, bound. */
+  evaluate: Page['evaluate'];
+  /** Serve a local folder to the page; returns its URL path (e.g. `/__mount/0/`). */
+  mount(dir: string, urlPath?: string): string;
+  /** Render a scene description in this page (files it names are mounted first). */
+  render(desc: SceneDescription, options?: PageRenderOptions): Promise<RenderResult>;
+  /** Close the page, the server, and the browser unless it was passed in. */
+  close(): Promise<void>;
+}
+
+/** An Error raised inside the page, with VptError's `code` when it had one. */
+export class PageError extends Error {
+  readonly code?: string;
+  constructor(message: string, code?: string) {
+    super(message);
+    this.name = 'PageError';
+    this.code = code;
+  }
+}
+
+/**
+ * Serve the built packages, open the headless page in Chromium and wait until
+ * `window.vpt` is loaded. Tests then run code in the page:
+ * `await session.page.evaluate(async () => { const { core, mip } = window.vpt; ... })`.
+ */
+export async function openVptPage(options: VptPageOptions = {}): Promise<VptPageSession> {
+  const root = options.root === undefined ? workspaceRoot() : options.root;
+  const server = await startStaticServer(root);
+  let browser: Browser | undefined;
+  let page: Page | undefined;
+  const ownsBrowser = !options.browser;
+  const problems: string[] = [];
+  try {
+    mountPagePackages(server, options.packageDirs);
+    browser = options.browser ?? await launchChromium(options.chromium);
+    page = await browser.newPage();
+    page.on('console', (m) => options.onConsole?.(`[page ${m.type()}] ${m.text()}`));
+    page.on('pageerror', (e) => {
+      const msg = e instanceof Error ? e.message : String(e);
+      problems.push(msg);
+      options.onConsole?.(`[page error] ${msg}`);
+    });
+    page.on('response', (r) => { if (r.status() >= 400 && !r.url().endsWith('/favicon.ico')) problems.push(`HTTP ${r.status()} ${r.url()}`); });
+    const url = new URL(PAGE_PATH, server.url).href;
+    await page.goto(url);
+    const timeout = options.loadTimeoutMs ?? 60_000;
+    try {
+      await page.waitForFunction('window.__vptReady === true || typeof window.__vptError === "string"', { timeout, polling: 50 });
+    } catch {
+      throw new Error(`The vpt page did not load within ${timeout} ms${problems.length ? `: ${problems.join('; ')}` : ''}`);
+    }
+    const loadError = await page.evaluate(() => window.__vptError ?? null);
+    if (loadError) throw new Error(`The vpt page failed to load: ${loadError}${problems.length ? ` (${problems.join('; ')})` : ''}`);
+
+    const b = browser, p = page;
+    return {
+      page,
+      browser: b,
+      server,
+      url,
+      evaluate: p.evaluate.bind(p) as Page['evaluate'],
+      mount: (dir, urlPath) => server.mount(dir, urlPath),
+      render: (desc, renderOptions = {}) => renderInPage(p, server, desc, renderOptions),
+      async close() {
+        await p.close().catch(() => {});
+        if (ownsBrowser) await b.close().catch(() => {});
+        await server.close();
+      },
+    };
+  } catch (e) {
+    await page?.close().catch(() => {});
+    if (ownsBrowser) await browser?.close().catch(() => {});
+    await server.close();
+    throw e;
+  }
+}
+
+async function renderInPage(page: Page, server: StaticServer, desc: SceneDescription, options: PageRenderOptions): Promise<RenderResult> {
+  const mounted = mountSceneFiles(desc, options.baseDir ?? process.cwd(), server);
+  // Errors come back as data: a rejected evaluate would lose VptError's code.
+  type Outcome = { ok: PageRenderResult; error?: undefined } | { ok?: undefined; error: { message: string; code?: string } };
+  const out: Outcome = await page.evaluate(async (d, o) => {
+    try {
+      return { ok: await window.vpt.renderDescription(d, o) };
+    } catch (e) {
+      const err = e as { message?: string; code?: string };
+      return { error: { message: String(err?.message ?? e), code: err?.code } };
+    }
+  }, mounted, { warmup: options.warmup ?? true });
+  if (out.error) throw new PageError(out.error.message, out.error.code);
+  return decodeResult(out.ok!);
+}
+
+function decodeResult(r: PageRenderResult): RenderResult {
+  return {
+    width: r.width,
+    height: r.height,
+    hdr: new Float32Array(bytesOf(r.hdr).buffer),
+    ldr: r.ldr === null ? null : bytesOf(r.ldr),
+    timings: r.timings,
+    backend: r.backend,
+  };
+}
+
+/** Base64 → a fresh, 4-byte-aligned Uint8Array (Buffers may sit at odd pool offsets). */
+function bytesOf(b64: string): Uint8Array {
+  const buf = Buffer.from(b64, 'base64');
+  const out = new Uint8Array(buf.byteLength);
+  out.set(buf);
+  return out;
+}
+
+export interface RenderSceneOptions extends PageRenderOptions {
+  backend?: BackendName;
+  iterations?: number;
+  width?: number;
+  height?: number;
+  seed?: number;
+  chromium?: ChromiumOptions;
+  /** Render in an already open page (not closed afterwards), e.g. for benchmark series. */
+  session?: VptPageSession;
+  onConsole?: (line: string) => void;
+  /** See VptPageOptions.packageDirs. */
+  packageDirs?: Record<string, string>;
+}
+
+/**
+ * Render a scene description headless: launch Chromium, serve the packages, render,
+ * read the images back, close. Options override the description's own fields.
+ */
+export async function renderScene(desc: SceneDescription, options: RenderSceneOptions = {}): Promise<RenderResult> {
+  const overrides: Partial<SceneDescription> = {};
+  for (const key of ['backend', 'iterations', 'width', 'height', 'seed'] as const) {
+    if (options[key] !== undefined) (overrides as Record<string, unknown>)[key] = options[key];
+  }
+  // Missing files fail here, before a browser is started.
+  const full = resolveSceneFiles({ ...desc, ...overrides }, options.baseDir ?? process.cwd());
+  const session = options.session ?? await openVptPage({ chromium: options.chromium, onConsole: options.onConsole, packageDirs: options.packageDirs });
+  try {
+    return await session.render(full, options);
+  } finally {
+    if (!options.session) await session.close();
+  }
+}

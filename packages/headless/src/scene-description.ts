@@ -1,0 +1,114 @@
+/**
+ * A scene as plain JSON: what `vpt-render scene.json` reads and what the headless page
+ * turns into a core `Scene` + `RenderContext`. Everything is optional; missing fields
+ * take the defaults below. Pure data and pure functions only: this module is also
+ * loaded by the in-browser page.
+ */
+
+export type Vec3 = [number, number, number];
+export type VoxelTypeName = 'uint8' | 'uint16' | 'int16' | 'float32';
+export type BackendName = 'auto' | 'webgl2' | 'webgpu';
+export type RendererName = 'eam' | 'mip';
+
+/** Raw voxels at a URL (relative URLs resolve against the scene file's folder). */
+export interface RawVolumeDescription {
+  raw: string;
+  dims: [number, number, number];
+  type: VoxelTypeName;
+  spacing?: Vec3;
+  valueRange?: [number, number];
+  /** Byte order of multi-byte voxels; default little. */
+  endianness?: 'little' | 'big';
+}
+
+/**
+ * A JSON sidecar as in data/*.json (dims, voxel_type, spacing, endianness,
+ * value_range); the .raw sits beside it with the same base name.
+ */
+export interface SidecarVolumeDescription {
+  sidecar: string;
+}
+
+/** A test volume generated in code (core `createProceduralVolume`). */
+export interface ProceduralVolumeDescription {
+  procedural: 'sphere' | 'cube' | 'ramp' | 'blob';
+  size?: number;
+}
+
+export type VolumeDescription = RawVolumeDescription | SidecarVolumeDescription | ProceduralVolumeDescription;
+
+export interface TransferPointDescription {
+  value: number;
+  color: Vec3;
+  opacity: number;
+}
+
+export type EnvironmentDescription =
+  | { type: 'constant'; radiance: Vec3 }
+  /** RGB floats, row 0 at the top, as a plain array. */
+  | { type: 'latlong'; width: number; height: number; data: number[]; scale?: number };
+
+export interface SceneDescription {
+  width?: number;
+  height?: number;
+  renderer?: RendererName;
+  /** Passed to the renderer's constructor (e.g. `{ "stepSize": 0.005 }`). */
+  rendererParams?: Record<string, unknown>;
+  volume?: VolumeDescription;
+  transferFunction?: { dimensions?: '1d'; points: TransferPointDescription[] };
+  /** Merged over core's `defaultCamera()`; fovy is the full vertical angle in radians. */
+  camera?: { position?: Vec3; target?: Vec3; up?: Vec3; fovy?: number };
+  lights?: { type: 'directional'; direction: Vec3; irradiance: Vec3 }[];
+  environment?: EnvironmentDescription;
+  densityScale?: number;
+  seed?: number;
+  /** Post chain as JSON, for `postChainFromJSON` of @vpt/post. */
+  post?: Record<string, unknown>[];
+  iterations?: number;
+  backend?: BackendName;
+}
+
+export const SCENE_DEFAULTS = {
+  width: 64,
+  height: 64,
+  renderer: 'eam' as RendererName,
+  volume: { procedural: 'sphere', size: 32 } as VolumeDescription,
+  environment: { type: 'constant', radiance: [1, 1, 1] } as EnvironmentDescription,
+  densityScale: 10,
+  seed: 1,
+  post: [{ type: 'exposure', exposure: 0 }, { type: 'tonemap', operator: 'aces' }, { type: 'srgb' }] as Record<string, unknown>[],
+  iterations: 64,
+  backend: 'auto' as BackendName,
+};
+
+export const RENDERER_NAMES: readonly RendererName[] = ['eam', 'mip'];
+export const BACKEND_NAMES: readonly BackendName[] = ['auto', 'webgl2', 'webgpu'];
+
+/**
+ * Catch the mistakes a person makes when writing a scene file by hand, with a message
+ * that names the field. (The scene model itself is validated again by core.)
+ */
+export function checkSceneDescription(d: unknown): asserts d is SceneDescription {
+  const bad = (m: string): never => { throw new Error(`Scene description: ${m}`); };
+  if (!d || typeof d !== 'object' || Array.isArray(d)) bad('must be a JSON object');
+  const s = d as Record<string, unknown>;
+  const posInt = (k: string) => {
+    if (s[k] !== undefined && !(Number.isInteger(s[k]) && (s[k] as number) >= 1)) bad(`"${k}" must be a positive integer, got ${JSON.stringify(s[k])}`);
+  };
+  posInt('width'); posInt('height'); posInt('iterations');
+  if (s.seed !== undefined && !(Number.isInteger(s.seed) && (s.seed as number) >= 0)) bad(`"seed" must be a non-negative integer, got ${JSON.stringify(s.seed)}`);
+  if (s.renderer !== undefined && !RENDERER_NAMES.includes(s.renderer as RendererName)) bad(`"renderer" must be one of ${RENDERER_NAMES.join(', ')}, got ${JSON.stringify(s.renderer)}`);
+  if (s.backend !== undefined && !BACKEND_NAMES.includes(s.backend as BackendName)) bad(`"backend" must be one of ${BACKEND_NAMES.join(', ')}, got ${JSON.stringify(s.backend)}`);
+  if (s.post !== undefined && !Array.isArray(s.post)) bad('"post" must be an array of steps');
+  if (s.lights !== undefined && !Array.isArray(s.lights)) bad('"lights" must be an array');
+  const v = s.volume as Record<string, unknown> | undefined;
+  if (v !== undefined) {
+    if (!v || typeof v !== 'object') bad('"volume" must be an object');
+    else if (typeof v.raw === 'string') {
+      if (!Array.isArray(v.dims) || v.dims.length !== 3) bad('"volume.dims" must be [nx, ny, nz]');
+      if (!['uint8', 'uint16', 'int16', 'float32'].includes(v.type as string)) bad(`"volume.type" must be uint8, uint16, int16 or float32, got ${JSON.stringify(v.type)}`);
+    } else if (typeof v.sidecar !== 'string' && typeof v.procedural !== 'string') {
+      bad('"volume" needs one of "raw" (with dims and type), "sidecar" or "procedural"');
+    }
+  }
+}

@@ -1,0 +1,21 @@
+#!/usr/bin/env bash
+# Install everything vpt needs on a fresh Debian/Ubuntu machine: Chromium (for headless
+# rendering and the browser tests), pnpm (pinned in package.json), the workspace's
+# packages. (`pnpm test` and `pnpm demo` build the packages themselves.)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+if [ -z "${VPT_CHROMIUM:-}" ] && [ -z "${CHROMIUM_PATH:-}" ] && [ ! -x /usr/bin/chromium ]; then
+  echo "setup: installing Chromium (apt-get)"
+  SUDO=""; [ "$(id -u)" -ne 0 ] && SUDO="sudo"
+  $SUDO apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq chromium > /dev/null
+fi
+
+want_pnpm="$(node -p "require('./package.json').packageManager.split('@')[1]")"
+if ! command -v pnpm > /dev/null || [ "$(pnpm --version)" != "$want_pnpm" ]; then
+  echo "setup: installing pnpm@$want_pnpm (npm)"
+  npm install -g "pnpm@$want_pnpm" > /dev/null
+fi
+
+pnpm install --frozen-lockfile
