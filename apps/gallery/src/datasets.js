@@ -10,11 +10,13 @@ export const DATASETS = [
     camera: { position: [-1.6, -0.35, 0.55], target: [0, 0, 0], up: [0, -1, 0], fovy: 0.75 },
     transferFunction: { dimensions: '1d', points: [
       { value: 0.0, color: [0, 0, 0], opacity: 0 },
-      { value: 0.12, color: [0.9, 0.6, 0.45], opacity: 0 },
-      { value: 0.3, color: [1.0, 0.75, 0.6], opacity: 0.35 },
-      { value: 0.6, color: [1.0, 0.95, 0.9], opacity: 1 },
-      { value: 1.0, color: [1, 1, 1], opacity: 1 },
+      { value: 0.15, color: [0.5, 0.2, 0.1], opacity: 0 },
+      { value: 0.3, color: [0.9, 0.5, 0.35], opacity: 0.02 },
+      { value: 0.5, color: [1.0, 0.85, 0.7], opacity: 0.08 },
+      { value: 0.7, color: [2.0, 1.9, 1.8], opacity: 0.5 },
+      { value: 1.0, color: [3, 3, 3], opacity: 1 },
     ] },
+    densityScale: 80,
   },
   {
     id: 'blob', title: 'Procedural Gaussian blob (64³)', procedural: 'blob', size: 64,

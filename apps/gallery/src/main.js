@@ -81,6 +81,7 @@ async function selectDataset() {
   controls.target.fromArray(c.target);
   controls.update();
   ctx.setScene({ volume, transferFunction: dataset.transferFunction, camera: vptCamera(), lights: [], environment: { type: 'constant', radiance: [0.02, 0.02, 0.03] }, densityScale: Number(ui.density.value), seed: 1 });
+  if (dataset.densityScale) { ui.density.value = String(dataset.densityScale); ctx.updateScene({ densityScale: dataset.densityScale }); }
 }
 
 controls.addEventListener('change', () => { if (ctx?.getScene()) ctx.updateScene({ camera: vptCamera() }); });
