@@ -20,7 +20,7 @@ describe('demo page (apps/gallery)', () => {
     const page = await browser.newPage();
     const errors: string[] = [];
     page.on('console', (m) => { if (m.type() === 'error') errors.push(m.text()); });
-    page.on('pageerror', (e) => errors.push(e.message));
+    page.on('pageerror', (e) => errors.push((e as Error).message));
     await page.goto(new URL(`apps/gallery/index.html?backend=${backend}`, server.url).href);
     await page.waitForFunction('window.__demoReady === true', { timeout: 60_000 });
     await page.waitForFunction('window.vptDemo.context && window.vptDemo.context.stats.iterations >= 2', { timeout: 120_000 });

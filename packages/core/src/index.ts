@@ -15,6 +15,8 @@ export { createWebGL2Backend } from './gpu/webgl2/webgl2-backend.js';
 export { createWebGPUBackend, isWebGPUAvailable } from './gpu/webgpu/webgpu-backend.js';
 
 export type { Renderer, KernelSource } from './renderer.js';
+export { BaseRenderer } from './base-renderer.js';
+export { RUNNING_MEAN_INTEGRATE, COPY_ACCUMULATION_RENDER } from './shaders/accumulation-kernels.js';
 export type { PostStep } from './post-step.js';
 export { RenderContext, type RenderContextOptions, type RenderStats } from './context/render-context.js';
 

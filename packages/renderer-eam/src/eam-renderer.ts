@@ -1,4 +1,4 @@
-import type { Renderer, Scene, UniformField, UniformValues } from '@vpt/core';
+import { BaseRenderer, COPY_ACCUMULATION_RENDER, RUNNING_MEAN_INTEGRATE, type Scene, type UniformField, type UniformValues } from '@vpt/core';
 import * as glsl from './kernels/eam.glsl.js';
 import * as wgsl from './kernels/eam.wgsl.js';
 
@@ -13,41 +13,29 @@ export interface EamParams {
 }
 
 /** Emission-absorption: HDR = emitted colour + transmittance x background, a = 1 - transmittance. */
-export class EamRenderer implements Renderer {
+export class EamRenderer extends BaseRenderer<EamParams> {
   readonly name = 'eam';
   readonly frameFormats = ['rgba32float'] as const;
   readonly accumulationFormats = ['rgba32float'] as const;
   readonly kernels = {
     generate: { glsl: glsl.generate, wgsl: wgsl.generate },
-    integrate: { glsl: glsl.integrate, wgsl: wgsl.integrate },
-    render: { glsl: glsl.render, wgsl: wgsl.render },
+    integrate: RUNNING_MEAN_INTEGRATE,
+    render: COPY_ACCUMULATION_RENDER,
   };
   readonly paramFields: readonly UniformField[] = [
     { name: 'stepSize', type: 'f32' },
     { name: 'cutoff', type: 'f32' },
   ];
-  private _version = 0;
-  private params: EamParams;
 
   constructor(params: EamParams = {}) {
-    this.params = { ...params };
+    super(params);
   }
-
-  get version(): number { return this._version; }
-
-  setParams(params: EamParams): void {
-    this.params = { ...this.params, ...params };
-    this._version++;
-  }
-
-  getParams(): EamParams { return { ...this.params }; }
 
   paramValues(scene: Scene): UniformValues {
+    const p = this.getParams();
     return {
-      stepSize: this.params.stepSize ?? 0.5 / Math.max(...scene.volume.dims),
-      cutoff: this.params.cutoff ?? 1e-6,
+      stepSize: p.stepSize ?? 0.5 / Math.max(...scene.volume.dims),
+      cutoff: p.cutoff ?? 1e-6,
     };
   }
-
-  features(): Record<string, boolean | number> { return {}; }
 }

@@ -1,4 +1,4 @@
-import type { Renderer, Scene, UniformField, UniformValues } from '@vpt/core';
+import { BaseRenderer, type Scene, type UniformField, type UniformValues } from '@vpt/core';
 import * as glsl from './kernels/mip.glsl.js';
 import * as wgsl from './kernels/mip.wgsl.js';
 
@@ -8,7 +8,7 @@ export interface MipParams {
 }
 
 /** Maximum intensity projection. HDR output: the maximum normalized value as grey, a = coverage. */
-export class MipRenderer implements Renderer {
+export class MipRenderer extends BaseRenderer<MipParams> {
   readonly name = 'mip';
   readonly frameFormats = ['rgba32float'] as const;
   readonly accumulationFormats = ['rgba32float'] as const;
@@ -18,27 +18,14 @@ export class MipRenderer implements Renderer {
     render: { glsl: glsl.render, wgsl: wgsl.render },
   };
   readonly paramFields: readonly UniformField[] = [{ name: 'stepSize', type: 'f32' }];
-  private _version = 0;
-  private params: MipParams;
 
   constructor(params: MipParams = {}) {
-    this.params = { ...params };
+    super(params);
   }
-
-  get version(): number { return this._version; }
-
-  setParams(params: MipParams): void {
-    this.params = { ...this.params, ...params };
-    this._version++;
-  }
-
-  getParams(): MipParams { return { ...this.params }; }
 
   paramValues(scene: Scene): UniformValues {
-    return { stepSize: this.params.stepSize ?? defaultStepSize(scene) };
+    return { stepSize: this.getParams().stepSize ?? defaultStepSize(scene) };
   }
-
-  features(): Record<string, boolean | number> { return {}; }
 }
 
 /** Half a voxel along the longest axis in world units. */

@@ -28,20 +28,3 @@ void main() {
 }
 `;
 
-// Running mean: acc_n = acc_{n-1} + (x_n - acc_{n-1}) / (n + 1), stable over very long runs.
-export const integrate = /* glsl */ `
-void main() {
-  ivec2 p = vptPixel();
-  vec4 f = texelFetch(frame0, p, 0);
-  if (u.iteration == 0u) { vpt_out0 = f; return; }
-  vec4 a = texelFetch(accum0, p, 0);
-  float w = 1.0 / float(u.iteration + 1u);
-  vpt_out0 = a + (f - a) * w;
-}
-`;
-
-export const render = /* glsl */ `
-void main() {
-  vpt_out0 = texelFetch(accum0, vptPixel(), 0);
-}
-`;

@@ -28,24 +28,3 @@ export const generate = /* wgsl */ `
   return o;
 }
 `;
-
-export const integrate = /* wgsl */ `
-@fragment fn fs_main(@builtin(position) fragCoord: vec4f) -> VptOut {
-  let p = vptPixel(fragCoord);
-  let f = textureLoad(frame0, p, 0);
-  var o: VptOut;
-  if (u.iteration == 0u) { o.out0 = f; return o; }
-  let a = textureLoad(accum0, p, 0);
-  let w = 1.0 / f32(u.iteration + 1u);
-  o.out0 = a + (f - a) * w;
-  return o;
-}
-`;
-
-export const render = /* wgsl */ `
-@fragment fn fs_main(@builtin(position) fragCoord: vec4f) -> VptOut {
-  var o: VptOut;
-  o.out0 = textureLoad(accum0, vptPixel(fragCoord), 0);
-  return o;
-}
-`;
