@@ -1,4 +1,4 @@
-import type { TextureFormat } from './gpu/backend.js';
+import type { TextureDescriptor, TextureFormat } from './gpu/backend.js';
 import type { Scene } from './scene/scene.js';
 import type { UniformField, UniformValues } from './uniforms/layout.js';
 
@@ -36,4 +36,25 @@ export interface Renderer {
   paramValues(scene: Scene): UniformValues;
   /** Compile-time feature flags derived from the scene: one kernel variant per distinct set. */
   features(scene: Scene): Record<string, boolean | number>;
+  /**
+   * Extra textures the generate pass reads (majorant grid, environment CDFs…), derived
+   * from the scene. The context binds each under `name`, builds it with `create()` only
+   * when its `key` changes (so a camera move rebuilds nothing), frees it when it is no
+   * longer listed, and rebuilds all of them after a context loss.
+   */
+  auxiliaryTextures?(scene: Scene): readonly AuxiliaryTexture[];
+  /**
+   * Indices into `accumulationFormats` of two textures holding the running means of the
+   * even and of the odd iterations. When present, `RenderContext.estimateError()` reports
+   * the live error of the full estimate from their difference.
+   */
+  readonly halfAccumulations?: readonly [number, number];
+}
+
+export interface AuxiliaryTexture {
+  name: string;
+  dimension: '2d' | '3d';
+  /** Changes exactly when the content changes (e.g. a hash of the inputs). */
+  key: string;
+  create(): TextureDescriptor;
 }

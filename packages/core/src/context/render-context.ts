@@ -2,7 +2,7 @@ import { VptError } from '../errors.js';
 import { createBackend } from '../gpu/create-backend.js';
 import type { BackendPreference, GpuBackend, GpuPass, GpuTexture, RenderTarget } from '../gpu/backend.js';
 import type { PostStep } from '../post-step.js';
-import type { Renderer } from '../renderer.js';
+import type { AuxiliaryTexture, Renderer } from '../renderer.js';
 import type { Scene } from '../scene/scene.js';
 import { validateScene } from '../scene/scene.js';
 import { rasterizeTransferFunction, TF_RESOLUTION } from '../scene/transfer-function.js';
@@ -56,6 +56,8 @@ export class RenderContext {
   private volumeSource: Scene['volume'] | null = null;
   private tfTexture: GpuTexture | null = null;
   private tfSource: string | null = null;
+  private auxTextures = new Map<string, { key: string; texture: GpuTexture; dimension: '2d' | '3d' }>();
+  private auxFor: { scene: Scene | null; renderer: Renderer | null; version: number } = { scene: null, renderer: null, version: -1 };
   private frame: RenderTarget | null = null;
   private accum: [RenderTarget, RenderTarget] | null = null;
   private hdr: RenderTarget | null = null;
@@ -177,7 +179,8 @@ export class RenderContext {
     this.prepare();
     const scene = this.scene;
     const passes = this.passes!;
-    const textures = { volume: this.volumeTexture!, transferFunction: this.tfTexture! };
+    const textures: Record<string, GpuTexture> = { volume: this.volumeTexture!, transferFunction: this.tfTexture! };
+    for (const [name, aux] of this.auxTextures) textures[name] = aux.texture;
     for (let k = 0; k < n; k++) {
       const uniforms = this.uniforms(scene);
       this.backend.draw(passes.generate, { uniforms, textures, target: this.frame! });
@@ -263,6 +266,31 @@ export class RenderContext {
     return (await this.backend.readTexture(this.frame.textures[index])) as Float32Array;
   }
 
+  /**
+   * Live error estimate from the renderer's two half-accumulations (even and odd
+   * iterations): for independent halves of equal size, the error of the full mean is
+   * |A − B| / 2 per pixel in expectation. Returns the RMSE over RGB and the RMSE relative
+   * to the image's mean, or null when the renderer keeps no halves or fewer than two
+   * iterations ran.
+   */
+  async estimateError(): Promise<{ rmse: number; relativeRmse: number } | null> {
+    const halves = this._renderer.halfAccumulations;
+    if (!halves || !this.accum || this.iteration < 2) return null;
+    const [a, b] = await Promise.all(halves.map((i) => this.backend.readTexture(this.accum![0].textures[i]))) as Float32Array[];
+    let sq = 0, sum = 0, n = 0;
+    for (let i = 0; i < a.length; i += 4) {
+      for (let c = 0; c < 3; c++) {
+        const d = (a[i + c] - b[i + c]) / 2;
+        sq += d * d;
+        sum += (a[i + c] + b[i + c]) / 2;
+        n++;
+      }
+    }
+    const rmse = Math.sqrt(sq / n);
+    const mean = sum / n;
+    return { rmse, relativeRmse: mean > 0 ? rmse / mean : 0 };
+  }
+
   /** Start refining in the background, a time budget's worth of iterations per animation frame. */
   start(options: { frameBudgetMs?: number; maxIterations?: number } = {}): void {
     this.assertAlive();
@@ -322,11 +350,13 @@ export class RenderContext {
   private prepare(): void {
     const r = this._renderer;
     const features = r.features(this.scene!);
-    const key = `${r.name}|${JSON.stringify(features)}`;
     if (r.version !== this.rendererVersion) {
       this.rendererVersion = r.version;
       this.reset();
     }
+    this.syncAuxiliaryTextures();
+    const auxBindings = [...this.auxTextures].map(([name, a]) => ({ name, dimension: a.dimension }));
+    const key = `${r.name}|${JSON.stringify(features)}|${auxBindings.map((b) => b.name).join(',')}`;
     if (!this.passes || key !== this.variantKey) {
       this.layout = new UniformLayout('Params', [...SCENE_UNIFORM_FIELDS, ...r.paramFields]);
       const mk = (stage: 'generate' | 'integrate' | 'render', textures: { name: string; dimension: '2d' | '3d' }[], outputs: typeof r.frameFormats) =>
@@ -342,7 +372,7 @@ export class RenderContext {
       const frameTex = r.frameFormats.map((_, i) => ({ name: `frame${i}`, dimension: '2d' as const }));
       const accTex = r.accumulationFormats.map((_, i) => ({ name: `accum${i}`, dimension: '2d' as const }));
       this.passes = {
-        generate: mk('generate', [{ name: 'volume', dimension: '3d' }, { name: 'transferFunction', dimension: '2d' }], r.frameFormats),
+        generate: mk('generate', [{ name: 'volume', dimension: '3d' }, { name: 'transferFunction', dimension: '2d' }, ...auxBindings], r.frameFormats),
         integrate: mk('integrate', [...frameTex, ...accTex], r.accumulationFormats),
         render: mk('render', accTex, ['rgba32float']),
       };
@@ -356,6 +386,24 @@ export class RenderContext {
       ];
       this.hdr = this.backend.createRenderTarget(this.width, this.height, ['rgba32float'], 'HDR render');
     }
+  }
+
+  /** Build, reuse or free the renderer's auxiliary textures (only when scene or renderer changed). */
+  private syncAuxiliaryTextures(): void {
+    const r = this._renderer;
+    if (this.auxFor.scene === this.scene && this.auxFor.renderer === r && this.auxFor.version === r.version) return;
+    const specs: readonly AuxiliaryTexture[] = r.auxiliaryTextures?.(this.scene!) ?? [];
+    const wanted = new Set(specs.map((a) => a.name));
+    for (const [name, aux] of this.auxTextures) {
+      if (!wanted.has(name)) { this.backend.destroyTexture(aux.texture); this.auxTextures.delete(name); }
+    }
+    for (const spec of specs) {
+      const have = this.auxTextures.get(spec.name);
+      if (have && have.key === spec.key) continue;
+      if (have) this.backend.destroyTexture(have.texture);
+      this.auxTextures.set(spec.name, { key: spec.key, texture: this.backend.createTexture(spec.create()), dimension: spec.dimension });
+    }
+    this.auxFor = { scene: this.scene, renderer: r, version: r.version };
   }
 
   private preparePost(): void {
@@ -404,6 +452,9 @@ export class RenderContext {
     if (this.tfTexture) this.backend.destroyTexture(this.tfTexture);
     this.volumeTexture = null;
     this.tfTexture = null;
+    this.auxTextures.forEach((a) => this.backend.destroyTexture(a.texture));
+    this.auxTextures.clear();
+    this.auxFor = { scene: null, renderer: null, version: -1 };
   }
 
   /** After a context/device loss: every GPU object is gone; rebuild from the retained scene and continue. */
@@ -414,6 +465,7 @@ export class RenderContext {
     this.postTargets = []; this.postPasses = []; this.presentPass = null;
     this.volumeTexture = null; this.volumeSource = null; this.tfTexture = null; this.tfSource = null;
     this.passes = null; this.variantKey = ''; this.presentedVersion = -1;
+    this.auxTextures.clear(); this.auxFor = { scene: null, renderer: null, version: -1 };
     this.backend.resizeCanvas(this.width, this.height);
     if (this.scene) this.syncSceneResources();
     this.reset();

@@ -90,6 +90,12 @@ vec4 transferLookup(float value) {
   int i1 = min(i0 + 1, u.tfSize - 1);
   return lerp4(texelFetch(transferFunction, ivec2(i0, 0), 0), texelFetch(transferFunction, ivec2(i1, 0), 0), x - x0);
 }
+// The transfer function at a world point: (linear RGB albedo/emission, opacity).
+// Renderers call this, not sampleVolume + transferLookup, so a 2D (value x gradient)
+// transfer function can change what it reads without touching any renderer.
+vec4 transferAt(vec3 p) {
+  return transferLookup(sampleVolume(p));
+}
 `;
 
 export const GLSL_COMMON = GLSL_RNG + GLSL_RAY + GLSL_VOLUME;

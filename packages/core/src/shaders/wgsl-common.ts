@@ -82,6 +82,10 @@ fn transferLookup(value: f32) -> vec4f {
   let i1 = min(i0 + 1, u.tfSize - 1);
   return lerp4(textureLoad(transferFunction, vec2i(i0, 0), 0), textureLoad(transferFunction, vec2i(i1, 0), 0), x - x0);
 }
+// The transfer function at a world point (see glsl-common.ts).
+fn transferAt(p: vec3f) -> vec4f {
+  return transferLookup(sampleVolume(p));
+}
 `;
 
 export const WGSL_COMMON = WGSL_RNG + WGSL_RAY + WGSL_VOLUME;

@@ -17,7 +17,7 @@ void main() {
     float seg = len / float(n);
     for (int k = 0; k < n; k++) {
       float s = t.x + (float(k) + offset) * seg;
-      vec4 tf = transferLookup(sampleVolume(u.cameraPosition + dir * s));
+      vec4 tf = transferAt(u.cameraPosition + dir * s);
       float alpha = 1.0 - exp(-(u.densityScale * tf.a) * seg);
       color += (transmittance * alpha) * tf.rgb;
       transmittance *= 1.0 - alpha;
