@@ -1,0 +1,105 @@
+/** What the suites run: scenes, renderer configurations (and MCRT variants), presets. */
+
+export type Backend = 'webgl2' | 'webgpu';
+
+export interface RendererConfig {
+  label: string;
+  renderer: 'mip' | 'eam' | 'iso' | 'mcrt';
+  params?: Record<string, unknown>;
+  /** Supports RenderContext.estimateError() (two half-accumulations). */
+  halves?: boolean;
+}
+
+export interface SceneSpec {
+  volume: { kind: 'cloud' | 'head' | 'sphere' | 'blob' | 'cube' | 'ball'; size?: number; radius?: number };
+  transferFunction: unknown;
+  camera: { position: number[]; target: number[]; up: number[]; fovy: number };
+  lights?: unknown[];
+  environment?: unknown;
+  densityScale: number;
+  seed?: number;
+}
+
+const TF_CLOUD = { dimensions: '1d', points: [{ value: 0, color: [0.9, 0.9, 0.9], opacity: 0 }, { value: 0.2, color: [0.95, 0.8, 0.7], opacity: 0.3 }, { value: 1, color: [1, 1, 1], opacity: 1 }] };
+const TF_HEAD = { dimensions: '1d', points: [
+  { value: 0.0, color: [0, 0, 0], opacity: 0 }, { value: 0.15, color: [0.5, 0.2, 0.1], opacity: 0 },
+  { value: 0.3, color: [0.9, 0.5, 0.35], opacity: 0.02 }, { value: 0.5, color: [1.0, 0.85, 0.7], opacity: 0.08 },
+  { value: 0.7, color: [2.0, 1.9, 1.8], opacity: 0.5 }, { value: 1.0, color: [3, 3, 3], opacity: 1 }] };
+
+/** The procedural 128³ scene (fixed seed) and the bundled MRI head. */
+export function scenes(cloudSize: number): Record<string, SceneSpec> {
+  return {
+    cloud: {
+      volume: { kind: 'cloud', size: cloudSize },
+      transferFunction: TF_CLOUD,
+      camera: { position: [1.1, 0.6, 1.5], target: [0, 0, 0], up: [0, 1, 0], fovy: 0.75 },
+      lights: [{ type: 'directional', direction: [0.5, 1, 0.3], irradiance: [3, 3, 3] }],
+      environment: { type: 'constant', radiance: [0.4, 0.5, 0.7] },
+      densityScale: 60,
+    },
+    head: {
+      volume: { kind: 'head' },
+      transferFunction: TF_HEAD,
+      camera: { position: [-1.6, -0.35, 0.55], target: [0, 0, 0], up: [0, -1, 0], fovy: 0.75 },
+      lights: [{ type: 'directional', direction: [-1, -1, 0.5], irradiance: [3, 3, 3] }],
+      environment: { type: 'constant', radiance: [0.3, 0.3, 0.35] },
+      densityScale: 80,
+    },
+  };
+}
+
+/**
+ * Renderer configurations. MCRT variants compare tracking estimators, the majorant grid,
+ * MIS and scattering order; parameter names follow @vpt/renderer-mcrt's McrtParams.
+ */
+export const RENDERERS: RendererConfig[] = [
+  { label: 'mip', renderer: 'mip' },
+  { label: 'eam', renderer: 'eam' },
+  { label: 'iso', renderer: 'iso' },
+  { label: 'mcrt single', renderer: 'mcrt', params: { scattering: 'single' }, halves: true },
+  { label: 'mcrt multiple', renderer: 'mcrt', params: { scattering: 'multiple' }, halves: true },
+];
+
+export const MCRT_VARIANTS: RendererConfig[] = [
+  { label: 'mcrt delta tracking, global majorant', renderer: 'mcrt', params: { scattering: 'multiple', transmittance: 'delta', majorantGrid: false }, halves: true },
+  { label: 'mcrt delta tracking, majorant grid', renderer: 'mcrt', params: { scattering: 'multiple', transmittance: 'delta', majorantGrid: true }, halves: true },
+  { label: 'mcrt ratio tracking, majorant grid', renderer: 'mcrt', params: { scattering: 'multiple', transmittance: 'ratio', majorantGrid: true }, halves: true },
+  { label: 'mcrt residual ratio tracking, majorant grid', renderer: 'mcrt', params: { scattering: 'multiple', transmittance: 'residual-ratio', majorantGrid: true }, halves: true },
+  { label: 'mcrt residual ratio, no MIS', renderer: 'mcrt', params: { scattering: 'multiple', transmittance: 'residual-ratio', majorantGrid: true, mis: false }, halves: true },
+];
+
+export interface Preset {
+  name: string;
+  errorSize: number;
+  referenceIterations: Record<string, number>;
+  curveIterations: number;
+  curveBudgetMs: number;
+  frameSizes: number[];
+  frameVolumeSizes: number[];
+  frameSizeAtVolume: number;
+  frameIterations: number;
+  frameRepeats: number;
+  convergenceSizes: number[];
+  cloudSize: number;
+  scalingVolumeSizes: number[];
+  scalingEmptyFractions: number[];
+}
+
+export const PRESETS: Record<string, Preset> = {
+  /** Seconds, not minutes: exercised by the test suite to keep the harness working. */
+  smoke: {
+    name: 'smoke', errorSize: 16, referenceIterations: { mip: 16, eam: 16, iso: 16, mcrt: 32 }, curveIterations: 8, curveBudgetMs: 5_000,
+    frameSizes: [16], frameVolumeSizes: [16], frameSizeAtVolume: 16, frameIterations: 1, frameRepeats: 2,
+    convergenceSizes: [16], cloudSize: 16, scalingVolumeSizes: [16], scalingEmptyFractions: [0, 0.9],
+  },
+  quick: {
+    name: 'quick', errorSize: 96, referenceIterations: { mip: 128, eam: 128, iso: 256, mcrt: 512 }, curveIterations: 128, curveBudgetMs: 40_000,
+    frameSizes: [64, 128, 256, 512], frameVolumeSizes: [64, 128, 256], frameSizeAtVolume: 256, frameIterations: 2, frameRepeats: 3,
+    convergenceSizes: [64, 128], cloudSize: 128, scalingVolumeSizes: [32, 64, 128], scalingEmptyFractions: [0, 0.5, 0.9],
+  },
+  full: {
+    name: 'full', errorSize: 256, referenceIterations: { mip: 512, eam: 512, iso: 1024, mcrt: 4096 }, curveIterations: 1024, curveBudgetMs: 300_000,
+    frameSizes: [64, 128, 256, 512], frameVolumeSizes: [64, 128, 256], frameSizeAtVolume: 512, frameIterations: 4, frameRepeats: 5,
+    convergenceSizes: [256, 512, 1024], cloudSize: 128, scalingVolumeSizes: [32, 64, 128, 256], scalingEmptyFractions: [0, 0.25, 0.5, 0.75, 0.9],
+  },
+};

@@ -1,0 +1,165 @@
+/**
+ * Code installed into the headless page (window.vpt = { core, mip, eam, post, … }).
+ * Images stay in the page: only curves and timings travel back to Node.
+ * Timing: every measured span ends with backend.finish() (a blocking 1-texel readback on
+ * WebGL 2 — gl.finish() does not wait in Chrome — and onSubmittedWorkDone on WebGPU), and
+ * read-backs for error measurement are excluded from the clock.
+ */
+export const PAGE_CODE = String.raw`
+(() => {
+  const vpt = window.vpt;
+  const refs = new Map();
+
+  // A deterministic 128³-style test cloud: Gaussian blobs at positions from a fixed-seed
+  // LCG, modulated by hashed value noise, about half of the box empty.
+  function cloudVolume(size, seed = 1234) {
+    let s = seed >>> 0;
+    const rnd = () => ((s = (Math.imul(s, 1664525) + 1013904223) >>> 0) / 4294967296);
+    const blobs = Array.from({ length: 12 }, () => ({ c: [rnd() - 0.5, rnd() - 0.5, rnd() - 0.5].map((v) => v * 0.6), r: 0.06 + 0.12 * rnd(), w: 0.5 + 0.5 * rnd() }));
+    const hash = (x, y, z) => { let h = Math.imul(x, 374761393) ^ Math.imul(y, 668265263) ^ Math.imul(z, 2147483647) ^ seed; h = Math.imul(h ^ (h >>> 13), 1274126177); return ((h ^ (h >>> 16)) >>> 0) / 4294967296; };
+    const data = new Float32Array(size * size * size);
+    for (let z = 0; z < size; z++) for (let y = 0; y < size; y++) for (let x = 0; x < size; x++) {
+      const p = [(x + 0.5) / size - 0.5, (y + 0.5) / size - 0.5, (z + 0.5) / size - 0.5];
+      let v = 0;
+      for (const b of blobs) { const d2 = (p[0] - b.c[0]) ** 2 + (p[1] - b.c[1]) ** 2 + (p[2] - b.c[2]) ** 2; v += b.w * Math.exp(-d2 / (2 * b.r * b.r)); }
+      const n = hash(x >> 2, y >> 2, z >> 2);
+      v = v * (0.75 + 0.5 * n);
+      data[x + size * (y + size * z)] = v < 0.15 ? 0 : Math.min(1, v);
+    }
+    const vol = vpt.core.createVolume([size, size, size], 'float32', data);
+    vol.valueRange = [0, 1];
+    vol.name = 'cloud-' + size;
+    return vol;
+  }
+
+  // A solid ball of the given radius (box units): everything outside it is empty space.
+  function ballVolume(size, radius) {
+    const data = new Float32Array(size * size * size);
+    for (let z = 0; z < size; z++) for (let y = 0; y < size; y++) for (let x = 0; x < size; x++) {
+      const r = Math.hypot((x + 0.5) / size - 0.5, (y + 0.5) / size - 0.5, (z + 0.5) / size - 0.5);
+      data[x + size * (y + size * z)] = r < radius ? 1 : 0;
+    }
+    const vol = vpt.core.createVolume([size, size, size], 'float32', data);
+    vol.valueRange = [0, 1];
+    return vol;
+  }
+
+  async function headVolume() {
+    const buf = await (await fetch('/data/mri_head_volpack_brainsmall_128x128x84_uint8.raw')).arrayBuffer();
+    return vpt.core.createVolume([128, 128, 84], 'uint8', new Uint8Array(buf));
+  }
+
+  const volumes = new Map();
+  async function volume(spec) {
+    const key = JSON.stringify(spec);
+    if (!volumes.has(key)) volumes.set(key, spec.kind === 'head' ? await headVolume() : spec.kind === 'cloud' ? cloudVolume(spec.size) : spec.kind === 'ball' ? ballVolume(spec.size, spec.radius) : vpt.core.createProceduralVolume(spec.kind, spec.size));
+    return volumes.get(key);
+  }
+
+  async function scene(spec) {
+    const vol = await volume(spec.volume);
+    return {
+      volume: vol,
+      transferFunction: spec.transferFunction,
+      camera: spec.camera,
+      lights: spec.lights || [],
+      environment: spec.environment || { type: 'constant', radiance: [1, 1, 1] },
+      densityScale: spec.densityScale,
+      seed: spec.seed ?? 1,
+    };
+  }
+
+  function renderer(config) {
+    const mod = { mip: vpt.mip && vpt.mip.MipRenderer, eam: vpt.eam && vpt.eam.EamRenderer, iso: vpt.iso && vpt.iso.IsoRenderer, mcrt: vpt.mcrt && vpt.mcrt.McrtRenderer }[config.renderer];
+    if (!mod) throw new Error('renderer ' + config.renderer + ' is not available in this build');
+    return new mod(config.params || {});
+  }
+
+  async function context(config, width, height) {
+    return vpt.core.RenderContext.create({ backend: config.backend, width, height, renderer: renderer(config), post: vpt.post.postChainFromJSON([{ type: 'tonemap', operator: 'aces' }, { type: 'srgb' }]) });
+  }
+
+  function errors(hdr, ldr, ref) {
+    let se = 0, seL = 0, n = 0, nonFinite = 0;
+    for (let i = 0; i < hdr.length; i += 4) for (let c = 0; c < 3; c++) {
+      const d = hdr[i + c] - ref.hdr[i + c];
+      if (!Number.isFinite(hdr[i + c])) nonFinite++;
+      se += d * d; const dl = ldr[i + c] - ref.ldr[i + c]; seL += dl * dl; n++;
+    }
+    const rmse = Math.sqrt(se / n), rmseLdr = Math.sqrt(seL / n);
+    return { rmse, psnr: 20 * Math.log10(ref.peak / Math.max(rmse, 1e-12)), rmseLdr, psnrLdr: 20 * Math.log10(255 / Math.max(rmseLdr, 1e-12)), nonFinite };
+  }
+
+  window.bench = {
+    /** Render and keep a converged reference (HDR peak = max over RGB, for PSNR). */
+    async reference(key, config, sceneSpec, width, height, iterations) {
+      if (refs.has(key)) return refs.get(key).info;
+      const ctx = await context(config, width, height);
+      ctx.setScene(await scene({ ...sceneSpec, seed: 987654 }));
+      const t0 = performance.now();
+      const chunk = 32;
+      ctx.reset();
+      for (let done = 0; done < iterations; done += chunk) { ctx.iterate(Math.min(chunk, iterations - done)); await ctx.backend.finish(); }
+      const hdr = await ctx.readHDR(), ldr = await ctx.readLDR();
+      let peak = 0;
+      for (let i = 0; i < hdr.length; i += 4) peak = Math.max(peak, hdr[i], hdr[i + 1], hdr[i + 2]);
+      const info = { iterations, ms: performance.now() - t0, peak, backend: ctx.backend.kind };
+      refs.set(key, { hdr, ldr, peak, info });
+      ctx.dispose();
+      return info;
+    },
+
+    /** Error against wall-clock time and iterations, at doubling iteration checkpoints. */
+    async errorCurve(config, sceneSpec, width, height, refKey, maxIterations, budgetMs, withEstimate) {
+      const ref = refs.get(refKey);
+      const ctx = await context(config, width, height);
+      ctx.setScene(await scene(sceneSpec));
+      await ctx.renderIterations(1); // compile every kernel variant outside the clock
+      ctx.reset();
+      const points = [];
+      let clock = 0, done = 0, next = 1;
+      while (done < maxIterations && clock < budgetMs) {
+        const t0 = performance.now();
+        ctx.iterate(next - done);
+        await ctx.backend.finish();
+        clock += performance.now() - t0;
+        done = next;
+        const hdr = await ctx.readHDR(), ldr = await ctx.readLDR();
+        const e = errors(hdr, ldr, ref);
+        const est = withEstimate ? await ctx.estimateError() : null;
+        points.push({ iterations: done, ms: clock, ...e, estimatedRmse: est ? est.rmse : null });
+        next = Math.min(maxIterations, done < 8 ? done + 1 : Math.ceil(done * 1.5));
+      }
+      ctx.dispose();
+      return points;
+    },
+
+    /** ms per iteration: repeated GPU-synchronised batches of iterations, after a warm-up. */
+    async frameTime(config, sceneSpec, width, height, iterations, repeats) {
+      const ctx = await context(config, width, height);
+      ctx.setScene(await scene(sceneSpec));
+      await ctx.renderIterations(1);
+      const samples = [];
+      for (let r = 0; r < repeats; r++) {
+        ctx.reset();
+        await ctx.backend.finish();
+        const t0 = performance.now();
+        ctx.iterate(iterations);
+        await ctx.backend.finish();
+        samples.push((performance.now() - t0) / iterations);
+      }
+      const info = ctx.backend.info;
+      ctx.dispose();
+      return { samples, device: info.renderer };
+    },
+
+    backendInfo: async (backend) => {
+      const b = await vpt.core.createBackend({ backend });
+      const info = { ...b.info, limits: b.limits };
+      b.dispose();
+      return info;
+    },
+    available: () => ['mip', 'eam', 'iso', 'mcrt'].filter((r) => vpt[r]),
+  };
+})();
+`;

@@ -1,0 +1,92 @@
+import { readFileSync } from 'node:fs';
+import { createRequire } from 'node:module';
+import path from 'node:path';
+import type { ErrorCurveResult } from './suites/error-vs-time.js';
+import type { FrameTimeRow } from './suites/frame-time.js';
+import type { ConvergenceResult } from './suites/convergence.js';
+import type { ScalingRow } from './suites/scaling.js';
+
+export interface Results {
+  machine: Record<string, unknown>;
+  backends: Record<string, unknown>;
+  preset: string;
+  errorVsTime?: ErrorCurveResult[];
+  frameTime?: FrameTimeRow[];
+  convergence?: ConvergenceResult[];
+  scaling?: ScalingRow[];
+  skipped: string[];
+}
+
+const esc = (s: unknown) => String(s).replace(/[&<>"]/g, (c) => ({ '&': '&amp;', '<': '&lt;', '>': '&gt;', '"': '&quot;' })[c]!);
+const fmt = (ms: number | null) => (ms === null ? '—' : ms < 1000 ? `${ms.toFixed(0)} ms` : `${(ms / 1000).toFixed(2)} s`);
+
+/** A self-contained HTML report: tables plus uPlot charts (the library is inlined). */
+export function htmlReport(r: Results): string {
+  const require = createRequire(import.meta.url);
+  const uplotDir = path.dirname(require.resolve('uplot/dist/uPlot.iife.min.js'));
+  const uplotJs = readFileSync(path.join(uplotDir, 'uPlot.iife.min.js'), 'utf8');
+  const uplotCss = readFileSync(path.join(uplotDir, 'uPlot.min.css'), 'utf8');
+
+  const sections: string[] = [];
+  const charts: unknown[] = [];
+
+  if (r.errorVsTime?.length) {
+    const rows = r.errorVsTime.map((c) => `<tr><td>${esc(c.scene)}</td><td>${esc(c.label)}</td><td>${esc(c.backend)}</td><td>${c.size}²</td>${[25, 30, 35, 40].map((d) => `<td>${fmt(c.timeToDb[d])}</td>`).join('')}<td>${c.points.at(-1)?.psnr.toFixed(1)} dB @ ${c.points.at(-1)?.iterations} it</td></tr>`).join('');
+    sections.push(`<h2>Error against wall-clock time</h2><p>Time to reach a PSNR (HDR, peak = reference maximum) against a converged reference rendered by the same configuration with another seed. Interpolated in log time between checkpoints; read-backs excluded from the clock.</p>
+<table><tr><th>scene</th><th>configuration</th><th>backend</th><th>size</th><th>25 dB</th><th>30 dB</th><th>35 dB</th><th>40 dB</th><th>last point</th></tr>${rows}</table><div id="evt"></div>`);
+    for (const scene of new Set(r.errorVsTime.map((c) => c.scene))) {
+      const curves = r.errorVsTime.filter((c) => c.scene === scene);
+      charts.push({ id: 'evt', title: `PSNR vs time — ${scene}`, xLabel: 'seconds', yLabel: 'PSNR (dB)', logX: true, series: curves.map((c) => ({ label: `${c.label} (${c.backend})`, x: c.points.map((p) => p.ms / 1000), y: c.points.map((p) => p.psnr) })) });
+    }
+    const withEstimate = r.errorVsTime.filter((c) => c.points.some((p) => p.estimatedRmse !== null));
+    if (withEstimate.length) {
+      sections.push(`<h2>Live error estimate</h2><p>The context's estimate (two half-accumulations) divided by the true RMSE against the reference, along each curve. 1 is perfect.</p><div id="est"></div>`);
+      charts.push({ id: 'est', title: 'estimated / true RMSE', xLabel: 'iterations', yLabel: 'ratio', logX: true, series: withEstimate.map((c) => ({ label: `${c.scene} ${c.label} (${c.backend})`, x: c.points.filter((p) => p.estimatedRmse !== null).map((p) => p.iterations), y: c.points.filter((p) => p.estimatedRmse !== null).map((p) => p.estimatedRmse! / p.rmse) })) });
+    }
+  }
+
+  if (r.frameTime?.length) {
+    const table = (t: FrameTimeRow['table'], col: (x: FrameTimeRow) => string) => {
+      const rows = r.frameTime!.filter((x) => x.table === t);
+      return `<table><tr><th>configuration</th><th>backend</th><th>${t === 'by-volume' ? 'volume' : 'framebuffer'}</th><th>median ms/iteration</th><th>min–max</th></tr>${rows.map((x) => `<tr><td>${esc(x.label)}</td><td>${x.backend}</td><td>${col(x)}</td><td>${x.medianMs.toFixed(1)}</td><td>${x.minMs.toFixed(1)}–${x.maxMs.toFixed(1)}</td></tr>`).join('')}</table>`;
+    };
+    sections.push(`<h2>Frame time (Lesar et al. 2018, Table 1)</h2><h3>By volume size</h3>${table('by-volume', (x) => `${x.volumeSize}³ at ${x.size}²`)}<h3>By framebuffer size (128³)</h3>${table('by-framebuffer', (x) => `${x.size}²`)}`);
+  }
+
+  if (r.convergence?.length) {
+    sections.push(`<h2>Convergence per iteration (Lesar et al. 2018, Figure 5)</h2><div id="conv"></div>`);
+    charts.push({ id: 'conv', title: 'PSNR vs iterations', xLabel: 'iterations', yLabel: 'PSNR (dB)', logX: true, series: r.convergence.map((c) => ({ label: `${c.label} ${c.size}²`, x: c.points.map((p) => p.iterations), y: c.points.map((p) => p.psnr) })) });
+  }
+
+  if (r.scaling?.length) {
+    for (const axis of ['volume-size', 'empty-fraction'] as const) {
+      const rows = r.scaling.filter((x) => x.axis === axis);
+      if (!rows.length) continue;
+      sections.push(`<h2>Scaling: cost per path against ${axis === 'volume-size' ? 'volume size' : 'fraction of empty space'}</h2><div id="sc-${axis}"></div>`);
+      charts.push({ id: `sc-${axis}`, title: `ns per path vs ${axis}`, xLabel: axis === 'volume-size' ? 'volume side (voxels)' : 'empty fraction', yLabel: 'ns per path', logX: axis === 'volume-size', series: [...new Set(rows.map((x) => x.label))].map((label) => ({ label, x: rows.filter((x) => x.label === label).map((x) => x.x), y: rows.filter((x) => x.label === label).map((x) => x.nsPerPath) })) });
+    }
+  }
+
+  return `<!doctype html><html lang="en"><head><meta charset="utf-8"><title>vpt benchmarks — ${esc(r.machine.date)}</title>
+<style>${uplotCss}
+body{font-family:system-ui,sans-serif;max-width:1100px;margin:2rem auto;padding:0 1rem;color:#222}
+table{border-collapse:collapse;margin:0.5rem 0 1.5rem}td,th{border:1px solid #ccc;padding:0.25rem 0.5rem;text-align:right}td:first-child,th:first-child{text-align:left}
+pre{background:#f4f4f4;padding:0.5rem;overflow:auto}</style></head><body>
+<h1>vpt benchmarks (${esc(r.preset)} preset)</h1>
+<pre>${esc(JSON.stringify({ machine: r.machine, backends: r.backends }, null, 2))}</pre>
+${r.skipped.length ? `<p>Skipped: ${r.skipped.map(esc).join('; ')}</p>` : ''}
+${sections.join('\n')}
+<script>${uplotJs}</script>
+<script>
+const charts = ${JSON.stringify(charts)};
+const palette = ['#1f77b4','#ff7f0e','#2ca02c','#d62728','#9467bd','#8c564b','#e377c2','#7f7f7f','#bcbd22','#17becf'];
+for (const c of charts) {
+  const xs = [...new Set(c.series.flatMap((s) => s.x))].sort((a, b) => a - b);
+  const data = [xs, ...c.series.map((s) => xs.map((x) => { const i = s.x.indexOf(x); return i < 0 ? null : s.y[i]; }))];
+  const el = document.createElement('div'); document.getElementById(c.id).appendChild(el);
+  new uPlot({ title: c.title, width: 1000, height: 360, scales: { x: { time: false, distr: c.logX ? 3 : 1 } },
+    axes: [{ label: c.xLabel }, { label: c.yLabel }],
+    series: [{ label: c.xLabel }, ...c.series.map((s, i) => ({ label: s.label, stroke: palette[i % palette.length], spanGaps: true, points: { show: true } }))] }, data, el);
+}
+</script></body></html>`;
+}

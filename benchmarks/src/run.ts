@@ -1,0 +1,58 @@
+/**
+ * `pnpm bench [--preset quick|full] [--suites error,frame,convergence,scaling] [--backends webgl2,webgpu]`
+ * Runs the suites in headless Chromium and writes benchmarks/results/<stamp>/results.json
+ * and report.html. Nothing here asserts a time: comparisons are ratios within one run.
+ */
+import { mkdirSync, writeFileSync } from 'node:fs';
+import path from 'node:path';
+import { fileURLToPath } from 'node:url';
+import { openVptPage, CHROMIUM_FLAGS, WEBGPU_FLAGS } from '@vpt/headless';
+import { MCRT_VARIANTS, PRESETS, RENDERERS, type Backend } from './configs.js';
+import { machineRecord } from './environment.js';
+import { PAGE_CODE } from './page-code.js';
+import { htmlReport, type Results } from './report.js';
+import { convergence } from './suites/convergence.js';
+import { errorVsTime } from './suites/error-vs-time.js';
+import { frameTime } from './suites/frame-time.js';
+import { scaling } from './suites/scaling.js';
+import type { SuiteContext } from './suites/types.js';
+
+function arg(name: string, fallback: string): string {
+  const i = process.argv.indexOf(`--${name}`);
+  return i > 0 && process.argv[i + 1] ? process.argv[i + 1] : fallback;
+}
+
+const preset = PRESETS[arg('preset', 'quick')];
+if (!preset) throw new Error(`unknown preset (use ${Object.keys(PRESETS).join(', ')})`);
+const suites = arg('suites', 'error,frame,convergence,scaling').split(',');
+const backends = arg('backends', 'webgl2,webgpu').split(',') as Backend[];
+const only = arg('renderers', '');
+
+const started = Date.now();
+const log = (line: string) => console.log(`[${((Date.now() - started) / 1000).toFixed(0).padStart(5)} s] ${line}`);
+const session = await openVptPage();
+try {
+  await session.page.evaluate(PAGE_CODE);
+  const available = await session.page.evaluate(() => (window as unknown as { bench: { available(): string[] } }).bench.available());
+  const keep = (r: { renderer: string; label: string }) => available.includes(r.renderer) && (!only || only.split(',').some((o) => r.label.startsWith(o)));
+  const skipped = [...RENDERERS, ...MCRT_VARIANTS].filter((r) => !available.includes(r.renderer)).map((r) => `${r.label} (package not in this build)`);
+  const results: Results = {
+    machine: machineRecord(await session.browser.version(), [...CHROMIUM_FLAGS, ...WEBGPU_FLAGS]),
+    backends: Object.fromEntries(await Promise.all(backends.map(async (b) => [b, await session.page.evaluate((b) => (window as unknown as { bench: { backendInfo(b: string): Promise<unknown> } }).bench.backendInfo(b), b)]))),
+    preset: preset.name,
+    skipped,
+  };
+  const ctx: SuiteContext = { page: session.page, preset, backends, renderers: RENDERERS.filter(keep), mcrtVariants: MCRT_VARIANTS.filter(keep), log };
+  if (suites.includes('frame')) results.frameTime = await frameTime(ctx);
+  if (suites.includes('error')) results.errorVsTime = await errorVsTime(ctx);
+  if (suites.includes('convergence')) results.convergence = await convergence(ctx);
+  if (suites.includes('scaling')) results.scaling = await scaling(ctx);
+
+  const dir = path.join(fileURLToPath(new URL('..', import.meta.url)), 'results', new Date().toISOString().replace(/[:.]/g, '-'));
+  mkdirSync(dir, { recursive: true });
+  writeFileSync(path.join(dir, 'results.json'), JSON.stringify(results, null, 2));
+  writeFileSync(path.join(dir, 'report.html'), htmlReport(results));
+  log(`wrote ${path.join(dir, 'report.html')}`);
+} finally {
+  await session.close();
+}

@@ -1,0 +1,22 @@
+import { scenes } from '../configs.js';
+import type { CurvePoint } from '../metrics.js';
+import { bench, type SuiteContext } from './types.js';
+
+export interface ConvergenceResult { label: string; backend: string; size: number; points: CurvePoint[] }
+
+/** The paper's Figure 5: PSNR against iteration count at several resolutions (first backend). */
+export async function convergence(s: SuiteContext): Promise<ConvergenceResult[]> {
+  const out: ConvergenceResult[] = [];
+  const spec = scenes(s.preset.cloudSize).cloud;
+  const backend = s.backends[0];
+  for (const size of s.preset.convergenceSizes) {
+    for (const config of s.renderers) {
+      const refKey = `conv|${config.label}|${backend}|${size}`;
+      s.log(`convergence: ${config.label} ${backend} ${size}²`);
+      await bench(s.page, 'reference', refKey, { ...config, backend }, spec, size, size, s.preset.referenceIterations[config.renderer]);
+      const points = await bench<CurvePoint[]>(s.page, 'errorCurve', { ...config, backend }, spec, size, size, refKey, s.preset.curveIterations, s.preset.curveBudgetMs, false);
+      out.push({ label: config.label, backend, size, points });
+    }
+  }
+  return out;
+}

@@ -1,0 +1,42 @@
+import { describe, expect, it } from 'vitest';
+import { execFileSync } from 'node:child_process';
+import { readdirSync, readFileSync, statSync } from 'node:fs';
+import path from 'node:path';
+import { fileURLToPath } from 'node:url';
+
+// The benchmark suites are not part of the test run; this only keeps their harness honest
+// (tiny sizes, seconds). It checks what the runner records, never how fast anything is.
+describe('benchmark harness (smoke preset)', () => {
+  it('records monotone error curves, frame times for both backends, and a self-contained report', () => {
+    const root = fileURLToPath(new URL('..', import.meta.url));
+    const resultsDir = path.join(root, 'benchmarks', 'results');
+    const before = new Set(safeList(resultsDir));
+    execFileSync('node', [path.join(root, 'benchmarks/dist/run.js'), '--preset', 'smoke', '--suites', 'error,frame'], { cwd: root, stdio: 'pipe', timeout: 180_000 });
+    const fresh = safeList(resultsDir).filter((d) => !before.has(d));
+    expect(fresh.length).toBe(1);
+    const dir = path.join(resultsDir, fresh[0]);
+    const results = JSON.parse(readFileSync(path.join(dir, 'results.json'), 'utf8'));
+    expect(results.machine.commit).toMatch(/^[0-9a-f]{40}$|unknown/);
+    expect(Object.keys(results.backends).sort()).toEqual(['webgl2', 'webgpu']);
+    for (const curve of results.errorVsTime) {
+      const pts = curve.points;
+      expect(pts.length).toBeGreaterThan(2);
+      for (let i = 1; i < pts.length; i++) {
+        expect(pts[i].ms).toBeGreaterThan(pts[i - 1].ms);
+        expect(pts[i].iterations).toBeGreaterThan(pts[i - 1].iterations);
+      }
+      expect(pts.every((p: { nonFinite: number; psnr: number }) => p.nonFinite === 0 && Number.isFinite(p.psnr))).toBe(true);
+      if (curve.label === 'eam') expect(pts.at(-1).psnr).toBeGreaterThan(pts[0].psnr); // error falls with samples
+    }
+    const backendsTimed = new Set(results.frameTime.map((r: { backend: string }) => r.backend));
+    expect([...backendsTimed].sort()).toEqual(['webgl2', 'webgpu']);
+    expect(results.frameTime.every((r: { medianMs: number }) => r.medianMs > 0)).toBe(true);
+    const html = readFileSync(path.join(dir, 'report.html'), 'utf8');
+    expect(html).toContain('uPlot');
+    expect(html).not.toMatch(/<script[^>]+src=/); // self-contained
+  }, 240_000);
+});
+
+function safeList(dir: string): string[] {
+  try { return readdirSync(dir).filter((d) => statSync(path.join(dir, d)).isDirectory()); } catch { return []; }
+}
