@@ -12,7 +12,10 @@ export default defineConfig({
       '@vpt/core': src('core'),
       '@vpt/renderer-mip': src('renderer-mip'),
       '@vpt/renderer-eam': src('renderer-eam'),
+      '@vpt/renderer-iso': src('renderer-iso'),
+      '@vpt/renderer-mcrt': src('renderer-mcrt'),
       '@vpt/post': src('post'),
+      '@vpt/loaders': src('loaders'),
     },
   },
   test: {

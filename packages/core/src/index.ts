@@ -4,6 +4,8 @@ export * from './scene/volume.js';
 export * from './scene/camera.js';
 export * from './scene/lights.js';
 export * from './scene/transfer-function.js';
+export * from './scene/transfer-function-json.js';
+export * from './scene/transfer-function-presets.js';
 export * from './scene/scene.js';
 export * from './scene/procedural.js';
 
@@ -23,5 +25,13 @@ export { RenderContext, type RenderContextOptions, type RenderStats } from './co
 export { SCENE_UNIFORM_FIELDS, sceneUniformValues } from './shaders/scene-uniforms.js';
 export { GLSL_RNG, GLSL_RAY, GLSL_VOLUME, GLSL_COMMON } from './shaders/glsl-common.js';
 export { WGSL_RNG, WGSL_RAY, WGSL_VOLUME, WGSL_COMMON } from './shaders/wgsl-common.js';
+export { glslCommon, GLSL_GRADIENT, GLSL_TRANSFER_2D, type CommonChunkOptions } from './shaders/glsl-common.js';
+export { wgslCommon, WGSL_GRADIENT, WGSL_TRANSFER_2D } from './shaders/wgsl-common.js';
+export { gradientAtlasLayout, atlasTexel, type GradientAtlasLayout } from './gradient/atlas.js';
+export { gradientMagnitudes, maxGradientMagnitude } from './gradient/gradient-cpu.js';
+export { buildGradientVolume, destroyGradientVolume, type GradientVolume } from './gradient/gradient-volume.js';
+export { GLSL_SAMPLING, GLSL_ENVIRONMENT_MAP } from './shaders/glsl-sampling.js';
+export { WGSL_SAMPLING, WGSL_ENVIRONMENT_MAP } from './shaders/wgsl-sampling.js';
+export * from './scene/environment-sampling.js';
 
 export * as reference from './reference/cpu-reference.js';

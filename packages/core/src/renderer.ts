@@ -13,7 +13,10 @@ export interface KernelSource {
  * kernels as full-screen passes (DESIGN.md, "The pipeline"):
  *
  *  - generate:  textures `volume` (3D r32float, normalized) and `transferFunction`
- *               (2D rgba32float, tfSize x 1) → `frameFormats` (the new sample).
+ *               (2D rgba32float, tfSize x tfHeight: 1 row for a 1D TF, 256 for a 2D one),
+ *               plus the gradient textures when needed (see `needsGradient`)
+ *               → `frameFormats` (the new sample). Kernels read the TF through the
+ *               shared `transferAt(p)`, which works for 1D and 2D alike.
  *  - integrate: textures `frame0..` and `accum0..` (the previous accumulation) →
  *               `accumulationFormats`. With `u.iteration == 0` it must ignore `accum*`
  *               (that is how reset works: nothing is cleared, the first sample overwrites).
@@ -49,6 +52,14 @@ export interface Renderer {
    * the live error of the full estimate from their difference.
    */
   readonly halfAccumulations?: readonly [number, number];
+  /**
+   * Set when the generate kernel reads the gradient magnitude. The context then builds
+   * the volume's gradient-magnitude texture once (on the GPU), binds it as
+   * `gradientMagnitude` + `gradientMax`, defines VPT_GRADIENT and includes the chunk with
+   * `sampleGradientMagnitude(p)` / `normalizedGradientAt(p)`. A 2D transfer function
+   * does the same on its own (and defines VPT_TF_2D), whatever this flag says.
+   */
+  readonly needsGradient?: boolean;
 }
 
 export interface AuxiliaryTexture {

@@ -8,7 +8,10 @@ export const PAGE_PACKAGES: Record<string, string> = {
   core: '@vpt/core',
   'renderer-mip': '@vpt/renderer-mip',
   'renderer-eam': '@vpt/renderer-eam',
+  'renderer-iso': '@vpt/renderer-iso',
+  'renderer-mcrt': '@vpt/renderer-mcrt',
   post: '@vpt/post',
+  loaders: '@vpt/loaders',
 };
 
 function readName(dir: string): string | undefined {

@@ -5,10 +5,12 @@
  * loaded by the in-browser page.
  */
 
+import type { TransferWidget } from '@vpt/core';
+
 export type Vec3 = [number, number, number];
 export type VoxelTypeName = 'uint8' | 'uint16' | 'int16' | 'float32';
 export type BackendName = 'auto' | 'webgl2' | 'webgpu';
-export type RendererName = 'eam' | 'mip';
+export type RendererName = 'eam' | 'mip' | 'mcrt' | 'iso';
 
 /** Raw voxels at a URL (relative URLs resolve against the scene file's folder). */
 export interface RawVolumeDescription {
@@ -55,7 +57,8 @@ export interface SceneDescription {
   /** Passed to the renderer's constructor (e.g. `{ "stepSize": 0.005 }`). */
   rendererParams?: Record<string, unknown>;
   volume?: VolumeDescription;
-  transferFunction?: { dimensions?: '1d'; points: TransferPointDescription[] };
+  /** 1D (control points) or 2D (value x gradient-magnitude widgets, as core's TransferFunction2D). */
+  transferFunction?: { dimensions?: '1d'; points: TransferPointDescription[] } | { dimensions: '2d'; widgets: TransferWidget[] };
   /** Merged over core's `defaultCamera()`; fovy is the full vertical angle in radians. */
   camera?: { position?: Vec3; target?: Vec3; up?: Vec3; fovy?: number };
   lights?: { type: 'directional'; direction: Vec3; irradiance: Vec3 }[];
@@ -81,7 +84,7 @@ export const SCENE_DEFAULTS = {
   backend: 'auto' as BackendName,
 };
 
-export const RENDERER_NAMES: readonly RendererName[] = ['eam', 'mip'];
+export const RENDERER_NAMES: readonly RendererName[] = ['eam', 'mip', 'mcrt', 'iso'];
 export const BACKEND_NAMES: readonly BackendName[] = ['auto', 'webgl2', 'webgpu'];
 
 /**

@@ -18,7 +18,7 @@ describe.skipIf(!pageBuilt || !fs.existsSync(chromiumExecutable()))('the headles
   beforeAll(async () => {
     tmp = fs.mkdtempSync(path.join(os.tmpdir(), 'vpt-page-'));
     const packageDirs: Record<string, string> = {};
-    for (const name of ['core', 'renderer-mip', 'renderer-eam', 'post']) {
+    for (const name of ['core', 'renderer-mip', 'renderer-eam', 'renderer-iso', 'renderer-mcrt', 'post']) {
       fs.mkdirSync(path.join(tmp, 'packages', name, 'dist'), { recursive: true });
       fs.copyFileSync(path.join(here, 'fixtures', 'stub-packages', name, 'index.js'), path.join(tmp, 'packages', name, 'dist', 'index.js'));
       packageDirs[name] = path.join(tmp, 'packages', name);
@@ -47,7 +47,7 @@ describe.skipIf(!pageBuilt || !fs.existsSync(chromiumExecutable()))('the headles
 
   it('exposes window.vpt', async () => {
     const keys = await session.page.evaluate(() => Object.keys(window.vpt).sort());
-    expect(keys).toEqual(['buildScene', 'core', 'eam', 'loadVolume', 'mip', 'post', 'renderDescription']);
+    expect(keys).toEqual(['buildScene', 'core', 'eam', 'iso', 'loadVolume', 'mcrt', 'mip', 'post', 'renderDescription']);
   });
 
   it('fills in defaults and returns the images and timings', async () => {

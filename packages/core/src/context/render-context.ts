@@ -5,11 +5,13 @@ import type { PostStep } from '../post-step.js';
 import type { AuxiliaryTexture, Renderer } from '../renderer.js';
 import type { Scene } from '../scene/scene.js';
 import { validateScene } from '../scene/scene.js';
-import { rasterizeTransferFunction, TF_RESOLUTION } from '../scene/transfer-function.js';
+import { rasterizeTransferFunction, TF_RESOLUTION, transferFunctionSize } from '../scene/transfer-function.js';
 import { normalizedData } from '../scene/volume.js';
-import { GLSL_COMMON, GLSL_RAY, GLSL_RNG } from '../shaders/glsl-common.js';
+import { gradientAtlasLayout } from '../gradient/atlas.js';
+import { buildGradientVolume, destroyGradientVolume, type GradientVolume } from '../gradient/gradient-volume.js';
+import { glslCommon, GLSL_RAY, GLSL_RNG, type CommonChunkOptions } from '../shaders/glsl-common.js';
 import { SCENE_UNIFORM_FIELDS, sceneUniformValues } from '../shaders/scene-uniforms.js';
-import { WGSL_COMMON, WGSL_RAY, WGSL_RNG } from '../shaders/wgsl-common.js';
+import { wgslCommon, WGSL_RAY, WGSL_RNG } from '../shaders/wgsl-common.js';
 import { UniformLayout } from '../uniforms/layout.js';
 import { PRESENT_PASS } from './present-pass.js';
 import { ProgressiveLoop } from './progressive-loop.js';
@@ -56,6 +58,10 @@ export class RenderContext {
   private volumeSource: Scene['volume'] | null = null;
   private tfTexture: GpuTexture | null = null;
   private tfSource: string | null = null;
+  // The volume's gradient magnitude (gradient/), built on the GPU the first time a 2D TF or
+  // a renderer with needsGradient asks for it, kept until the volume changes.
+  private gradient: GradientVolume | null = null;
+  private gradientSource: Scene['volume'] | null = null;
   private auxTextures = new Map<string, { key: string; texture: GpuTexture; dimension: '2d' | '3d' }>();
   private auxFor: { scene: Scene | null; renderer: Renderer | null; version: number } = { scene: null, renderer: null, version: -1 };
   private frame: RenderTarget | null = null;
@@ -129,6 +135,13 @@ export class RenderContext {
     if (nx > max3D || ny > max3D || nz > max3D) {
       throw new VptError('limit-exceeded', `Volume dims [${nx}, ${ny}, ${nz}] exceed this device's 3D texture limit of ${max3D} per side (maxTextureDimension3D)`);
     }
+    if (this.wantsGradient(scene)) {
+      const atlas = gradientAtlasLayout(scene.volume.dims);
+      const max2D = this.backend.limits.maxTextureDimension2D;
+      if (atlas.width > max2D || atlas.height > max2D) {
+        throw new VptError('limit-exceeded', `The gradient volume of a [${nx}, ${ny}, ${nz}] volume (needed by the 2D transfer function or the renderer) needs a ${atlas.width} x ${atlas.height} slice atlas; this device's 2D texture limit is ${max2D} (maxTextureDimension2D)`);
+      }
+    }
     this.scene = scene;
     this.syncSceneResources();
     this.reset();
@@ -180,6 +193,10 @@ export class RenderContext {
     const scene = this.scene;
     const passes = this.passes!;
     const textures: Record<string, GpuTexture> = { volume: this.volumeTexture!, transferFunction: this.tfTexture! };
+    if (this.gradient && this.wantsGradient(scene)) {
+      textures.gradientMagnitude = this.gradient.atlas.textures[0];
+      textures.gradientMax = this.gradient.max.textures[0];
+    }
     for (const [name, aux] of this.auxTextures) textures[name] = aux.texture;
     for (let k = 0; k < n; k++) {
       const uniforms = this.uniforms(scene);
@@ -267,6 +284,33 @@ export class RenderContext {
   }
 
   /**
+   * The volume's gradient magnitude as the kernels see it (for tests and tools): |∇f| per
+   * voxel in data units per spacing unit, x fastest (read back from the GPU's slice atlas),
+   * and the largest value, which normalizes a 2D transfer function's gradient axis. Builds
+   * the gradient volume if the scene had not needed it yet.
+   */
+  async readGradientVolume(): Promise<{ magnitudes: Float32Array; max: number }> {
+    this.assertAlive();
+    if (!this.scene) throw new VptError('invalid-scene', 'readGradientVolume() before setScene()');
+    if (!this.gradient || this.gradientSource !== this.scene.volume) {
+      this.dropGradient();
+      this.gradient = buildGradientVolume(this.backend, this.volumeTexture!, this.scene.volume);
+      this.gradientSource = this.scene.volume;
+    }
+    const g = this.gradient;
+    const [atlas, max] = await Promise.all([this.backend.readTexture(g.atlas.textures[0]), this.backend.readTexture(g.max.textures[0])]) as Float32Array[];
+    const [nx, ny, nz] = this.scene.volume.dims;
+    const magnitudes = new Float32Array(nx * ny * nz);
+    for (let z = 0; z < nz; z++) {
+      const ox = (z % g.layout.columns) * nx, oy = Math.floor(z / g.layout.columns) * ny;
+      for (let y = 0; y < ny; y++) {
+        magnitudes.set(atlas.subarray(ox + g.layout.width * (oy + y), ox + g.layout.width * (oy + y) + nx), nx * (y + ny * z));
+      }
+    }
+    return { magnitudes, max: max[0] };
+  }
+
+  /**
    * Live error estimate from the renderer's two half-accumulations (even and odd
    * iterations): for independent halves of equal size, the error of the full mean is
    * |A − B| / 2 per pixel in expectation. Returns the RMSE over RGB and the RMSE relative
@@ -333,6 +377,7 @@ export class RenderContext {
     if (this.volumeSource !== scene.volume || !this.volumeTexture) {
       if (this.volumeTexture) this.backend.destroyTexture(this.volumeTexture);
       this.volumeTexture = null;
+      this.dropGradient();
       const [width, height, depth] = scene.volume.dims;
       this.volumeTexture = this.backend.createTexture({ dimension: '3d', width, height, depth, format: 'r32float', data: normalizedData(scene.volume), label: 'volume' });
       this.volumeSource = scene.volume;
@@ -340,30 +385,67 @@ export class RenderContext {
     const tfKey = JSON.stringify(scene.transferFunction);
     if (this.tfSource !== tfKey || !this.tfTexture) {
       const data = rasterizeTransferFunction(scene.transferFunction, TF_RESOLUTION);
+      const [width, height] = transferFunctionSize(scene.transferFunction, TF_RESOLUTION);
+      if (this.tfTexture && (this.tfTexture.width !== width || this.tfTexture.height !== height)) {
+        this.backend.destroyTexture(this.tfTexture);
+        this.tfTexture = null;
+      }
       if (this.tfTexture) this.backend.writeTexture(this.tfTexture, data);
-      else this.tfTexture = this.backend.createTexture({ dimension: '2d', width: TF_RESOLUTION, height: 1, format: 'rgba32float', data, label: 'transfer function' });
+      else this.tfTexture = this.backend.createTexture({ dimension: '2d', width, height, format: 'rgba32float', data, label: 'transfer function' });
       this.tfSource = tfKey;
     }
+    this.syncGradient();
+  }
+
+  /** A 2D transfer function reads the gradient magnitude, and so does a renderer that asks for it. */
+  private wantsGradient(scene: Scene): boolean {
+    return scene.transferFunction.dimensions === '2d' || this._renderer.needsGradient === true;
+  }
+
+  /** Build the gradient-magnitude volume when the scene first needs it (GPU passes, no read-back). */
+  private syncGradient(): void {
+    const scene = this.scene!;
+    if (!this.wantsGradient(scene) || !this.volumeTexture || this.backend.isLost) return;
+    if (this.gradient && this.gradientSource === scene.volume) return;
+    this.dropGradient();
+    this.gradient = buildGradientVolume(this.backend, this.volumeTexture, scene.volume);
+    this.gradientSource = scene.volume;
+  }
+
+  private dropGradient(): void {
+    if (this.gradient) destroyGradientVolume(this.backend, this.gradient);
+    this.gradient = null;
+    this.gradientSource = null;
+  }
+
+  /** Which shared chunks (and defines) the generate pass needs for this scene. */
+  private chunkOptions(scene: Scene): Required<CommonChunkOptions> {
+    const tf2d = scene.transferFunction.dimensions === '2d';
+    return { tf2d, gradient: this.wantsGradient(scene) };
   }
 
   /** Compile the renderer's variant for the current scene and allocate its targets. */
   private prepare(): void {
     const r = this._renderer;
-    const features = r.features(this.scene!);
+    const chunks = this.chunkOptions(this.scene!);
+    // VPT_TF_2D / VPT_GRADIENT let a kernel branch at compile time on what the scene binds.
+    const features = { ...r.features(this.scene!), VPT_TF_2D: chunks.tf2d, VPT_GRADIENT: chunks.gradient };
     if (r.version !== this.rendererVersion) {
       this.rendererVersion = r.version;
       this.reset();
     }
+    this.syncGradient();
     this.syncAuxiliaryTextures();
     const auxBindings = [...this.auxTextures].map(([name, a]) => ({ name, dimension: a.dimension }));
+    const gradientBindings = chunks.gradient ? [{ name: 'gradientMagnitude', dimension: '2d' as const }, { name: 'gradientMax', dimension: '2d' as const }] : [];
     const key = `${r.name}|${JSON.stringify(features)}|${auxBindings.map((b) => b.name).join(',')}`;
     if (!this.passes || key !== this.variantKey) {
       this.layout = new UniformLayout('Params', [...SCENE_UNIFORM_FIELDS, ...r.paramFields]);
       const mk = (stage: 'generate' | 'integrate' | 'render', textures: { name: string; dimension: '2d' | '3d' }[], outputs: typeof r.frameFormats) =>
         this.backend.createPass({
           label: `${r.name}.${stage}`,
-          glsl: GLSL_COMMON_FOR(stage) + r.kernels[stage].glsl,
-          wgsl: WGSL_COMMON_FOR(stage) + r.kernels[stage].wgsl,
+          glsl: GLSL_COMMON_FOR(stage, chunks) + r.kernels[stage].glsl,
+          wgsl: WGSL_COMMON_FOR(stage, chunks) + r.kernels[stage].wgsl,
           uniforms: this.layout,
           textures,
           outputs,
@@ -372,7 +454,7 @@ export class RenderContext {
       const frameTex = r.frameFormats.map((_, i) => ({ name: `frame${i}`, dimension: '2d' as const }));
       const accTex = r.accumulationFormats.map((_, i) => ({ name: `accum${i}`, dimension: '2d' as const }));
       this.passes = {
-        generate: mk('generate', [{ name: 'volume', dimension: '3d' }, { name: 'transferFunction', dimension: '2d' }, ...auxBindings], r.frameFormats),
+        generate: mk('generate', [{ name: 'volume', dimension: '3d' }, { name: 'transferFunction', dimension: '2d' }, ...gradientBindings, ...auxBindings], r.frameFormats),
         integrate: mk('integrate', [...frameTex, ...accTex], r.accumulationFormats),
         render: mk('render', accTex, ['rgba32float']),
       };
@@ -452,6 +534,7 @@ export class RenderContext {
     if (this.tfTexture) this.backend.destroyTexture(this.tfTexture);
     this.volumeTexture = null;
     this.tfTexture = null;
+    this.dropGradient();
     this.auxTextures.forEach((a) => this.backend.destroyTexture(a.texture));
     this.auxTextures.clear();
     this.auxFor = { scene: null, renderer: null, version: -1 };
@@ -464,6 +547,7 @@ export class RenderContext {
     this.frame = null; this.accum = null; this.hdr = null;
     this.postTargets = []; this.postPasses = []; this.presentPass = null;
     this.volumeTexture = null; this.volumeSource = null; this.tfTexture = null; this.tfSource = null;
+    this.gradient = null; this.gradientSource = null;
     this.passes = null; this.variantKey = ''; this.presentedVersion = -1;
     this.auxTextures.clear(); this.auxFor = { scene: null, renderer: null, version: -1 };
     this.backend.resizeCanvas(this.width, this.height);
@@ -473,10 +557,10 @@ export class RenderContext {
   }
 }
 
-// The volume/TF chunks read the `volume` and `transferFunction` textures, which only
-// the generate pass binds; integrate and render get the texture-free chunks.
-const GLSL_COMMON_FOR = (stage: string) => (stage === 'generate' ? GLSL_COMMON : GLSL_RNG + GLSL_RAY);
-const WGSL_COMMON_FOR = (stage: string) => (stage === 'generate' ? WGSL_COMMON : WGSL_RNG + WGSL_RAY);
+// The volume/TF chunks read the `volume` and `transferFunction` (and gradient) textures,
+// which only the generate pass binds; integrate and render get the texture-free chunks.
+const GLSL_COMMON_FOR = (stage: string, o: CommonChunkOptions) => (stage === 'generate' ? glslCommon(o) : GLSL_RNG + GLSL_RAY);
+const WGSL_COMMON_FOR = (stage: string, o: CommonChunkOptions) => (stage === 'generate' ? wgslCommon(o) : WGSL_RNG + WGSL_RAY);
 
 function checkSize(width: number, height: number, backend: GpuBackend): void {
   const max = backend.limits.maxTextureDimension2D;

@@ -56,8 +56,8 @@ vec3 jitteredCameraRay(ivec2 pixel, ivec2 size, inout uint rng) {
 }
 `;
 
-/** Cell-centred trilinear volume sample with clamp-to-edge (GL LINEAR + CLAMP_TO_EDGE, computed in full float). */
-export const GLSL_VOLUME = /* glsl */ `
+/** Cell-centred trilinear volume sample with clamp-to-edge (GL LINEAR + CLAMP_TO_EDGE, computed in full float), and the 1D TF lookup. */
+export const GLSL_VOLUME_SAMPLING = /* glsl */ `
 float lerp1(float a, float b, float t) { return a + (b - a) * t; }
 vec4 lerp4(vec4 a, vec4 b, float t) { return a + (b - a) * t; }
 float sampleVolume(vec3 p) {
@@ -90,6 +90,10 @@ vec4 transferLookup(float value) {
   int i1 = min(i0 + 1, u.tfSize - 1);
   return lerp4(texelFetch(transferFunction, ivec2(i0, 0), 0), texelFetch(transferFunction, ivec2(i1, 0), 0), x - x0);
 }
+`;
+
+/** transferAt for a 1D transfer function. */
+export const GLSL_TRANSFER_1D = /* glsl */ `
 // The transfer function at a world point: (linear RGB albedo/emission, opacity).
 // Renderers call this, not sampleVolume + transferLookup, so a 2D (value x gradient)
 // transfer function can change what it reads without touching any renderer.
@@ -98,4 +102,91 @@ vec4 transferAt(vec3 p) {
 }
 `;
 
-export const GLSL_COMMON = GLSL_RNG + GLSL_RAY + GLSL_VOLUME;
+/**
+ * Gradient magnitude |grad f| (gradient/gradient-volume.ts), read from the slice atlas
+ * (texture `gradientMagnitude`, tile of slice z at (z mod cols, z / cols)) with the same
+ * cell-centred trilinear filter as sampleVolume, and normalized by the volume's largest
+ * magnitude (1 x 1 texture `gradientMax`). Only in kernels of scenes that need it.
+ */
+export const GLSL_GRADIENT = /* glsl */ `
+float gradientTexel(ivec3 v) {
+  int cols = u.gradientAtlasColumns;
+  ivec2 q = ivec2(v.x + (v.z % cols) * u.volumeDims.x, v.y + (v.z / cols) * u.volumeDims.y);
+  return texelFetch(gradientMagnitude, q, 0).r;
+}
+float sampleGradientMagnitude(vec3 p) {
+  vec3 tc = (p - u.boxMin) / (u.boxMax - u.boxMin);
+  ivec3 dims = u.volumeDims.xyz;
+  vec3 g = tc * vec3(dims) - 0.5;
+  vec3 g0 = floor(g);
+  vec3 f = g - g0;
+  ivec3 i0 = clamp(ivec3(g0), ivec3(0), dims - 1);
+  ivec3 i1 = clamp(ivec3(g0) + 1, ivec3(0), dims - 1);
+  float c000 = gradientTexel(ivec3(i0.x, i0.y, i0.z));
+  float c100 = gradientTexel(ivec3(i1.x, i0.y, i0.z));
+  float c010 = gradientTexel(ivec3(i0.x, i1.y, i0.z));
+  float c110 = gradientTexel(ivec3(i1.x, i1.y, i0.z));
+  float c001 = gradientTexel(ivec3(i0.x, i0.y, i1.z));
+  float c101 = gradientTexel(ivec3(i1.x, i0.y, i1.z));
+  float c011 = gradientTexel(ivec3(i0.x, i1.y, i1.z));
+  float c111 = gradientTexel(ivec3(i1.x, i1.y, i1.z));
+  float c00 = lerp1(c000, c100, f.x);
+  float c10 = lerp1(c010, c110, f.x);
+  float c01 = lerp1(c001, c101, f.x);
+  float c11 = lerp1(c011, c111, f.x);
+  return lerp1(lerp1(c00, c10, f.y), lerp1(c01, c11, f.y), f.z);
+}
+// In [0, 1]: the magnitude divided by the 2D TF's gradientMax when set, else by the volume's
+// largest (0 for a constant volume).
+float normalizedGradientAt(vec3 p) {
+  float gmax = u.tfGradientMax > 0.0 ? u.tfGradientMax : texelFetch(gradientMax, ivec2(0, 0), 0).r;
+  return gmax > 0.0 ? min(sampleGradientMagnitude(p) / gmax, 1.0) : 0.0;
+}
+`;
+
+/** transferAt for a 2D (value x normalized gradient magnitude) transfer function. */
+export const GLSL_TRANSFER_2D = /* glsl */ `
+// 2D transfer function (Kniss et al. 2002): texel (i, j) holds value i/(W-1) and normalized
+// gradient magnitude j/(H-1); bilinear between texels.
+vec4 transferLookup2D(float value, float gradient) {
+  float x = clamp(value, 0.0, 1.0) * float(u.tfSize - 1);
+  float y = clamp(gradient, 0.0, 1.0) * float(u.tfHeight - 1);
+  float x0 = floor(x);
+  float y0 = floor(y);
+  int i0 = int(x0);
+  int i1 = min(i0 + 1, u.tfSize - 1);
+  int j0 = int(y0);
+  int j1 = min(j0 + 1, u.tfHeight - 1);
+  vec4 a = lerp4(texelFetch(transferFunction, ivec2(i0, j0), 0), texelFetch(transferFunction, ivec2(i1, j0), 0), x - x0);
+  vec4 b = lerp4(texelFetch(transferFunction, ivec2(i0, j1), 0), texelFetch(transferFunction, ivec2(i1, j1), 0), x - x0);
+  return lerp4(a, b, y - y0);
+}
+vec4 transferAt(vec3 p) {
+  return transferLookup2D(sampleVolume(p), normalizedGradientAt(p));
+}
+`;
+
+/** Volume sampling with the 1D transferAt() (the chunk as it was before 2D transfer functions). */
+export const GLSL_VOLUME = GLSL_VOLUME_SAMPLING + GLSL_TRANSFER_1D;
+
+/** Options of the generate pass's shared chunks, derived from the scene by RenderContext. */
+export interface CommonChunkOptions {
+  /** The transfer function is 2D: transferAt() reads value x normalized gradient magnitude. */
+  tf2d?: boolean;
+  /** The gradient textures are bound: sampleGradientMagnitude() / normalizedGradientAt() exist. */
+  gradient?: boolean;
+}
+
+/**
+ * The shared chunks for a generate pass: RNG, rays, volume sampling, the gradient helpers
+ * when bound and the matching transferAt(). A scene with a 1D transfer function whose
+ * renderer needs no gradient compiles no gradient code (DESIGN.md, "Leave out what a
+ * scene does not need").
+ */
+export function glslCommon(opts: CommonChunkOptions = {}): string {
+  const gradient = opts.gradient || opts.tf2d;
+  return GLSL_RNG + GLSL_RAY + GLSL_VOLUME_SAMPLING + (gradient ? GLSL_GRADIENT : '') + (opts.tf2d ? GLSL_TRANSFER_2D : GLSL_TRANSFER_1D);
+}
+
+/** The 1D variant (no gradient code), as before 2D transfer functions existed. */
+export const GLSL_COMMON = glslCommon();

@@ -1,5 +1,7 @@
+import { gradientAtlasLayout } from '../gradient/atlas.js';
 import { cameraBasis } from '../scene/camera.js';
 import type { Scene } from '../scene/scene.js';
+import { transferFunctionSize } from '../scene/transfer-function.js';
 import { volumeBox } from '../scene/volume.js';
 import type { UniformField, UniformValues } from '../uniforms/layout.js';
 
@@ -23,6 +25,12 @@ export const SCENE_UNIFORM_FIELDS: readonly UniformField[] = [
   { name: 'tfSize', type: 'i32' },
   { name: 'volumeDims', type: 'ivec4' },
   { name: 'background', type: 'vec4' },
+  // Rows of the transfer-function texture: 1 for a 1D TF, the gradient axis of a 2D one.
+  { name: 'tfHeight', type: 'i32' },
+  // Slice-atlas columns of the gradient-magnitude texture (gradient/atlas.ts).
+  { name: 'gradientAtlasColumns', type: 'i32' },
+  // A 2D TF's gradientMax (> 0), or 0: normalize by the volume's largest magnitude.
+  { name: 'tfGradientMax', type: 'f32' },
 ];
 
 /** Values of SCENE_UNIFORM_FIELDS for one iteration at a given image size. */
@@ -46,5 +54,8 @@ export function sceneUniformValues(scene: Scene, width: number, height: number, 
     tfSize,
     volumeDims: [...scene.volume.dims, 0],
     background: [bg[0], bg[1], bg[2], 1],
+    tfHeight: transferFunctionSize(scene.transferFunction, tfSize)[1],
+    gradientAtlasColumns: gradientAtlasLayout(scene.volume.dims).columns,
+    tfGradientMax: scene.transferFunction.dimensions === '2d' ? scene.transferFunction.gradientMax ?? 0 : 0,
   };
 }

@@ -1,3 +1,5 @@
+import type { CommonChunkOptions } from './glsl-common.js';
+
 /**
  * Shared WGSL chunks: twins of glsl-common.ts, same arithmetic in the same order.
  * Expects `u` (scene uniforms) and textures `volume` (texture_3d) and `transferFunction`.
@@ -49,8 +51,8 @@ fn jitteredCameraRay(pixel: vec2i, size: vec2i, rng: ptr<function, u32>) -> vec3
 }
 `;
 
-/** Cell-centred trilinear volume sample with clamp-to-edge, computed in full float. */
-export const WGSL_VOLUME = /* wgsl */ `
+/** Cell-centred trilinear volume sample with clamp-to-edge, computed in full float, and the 1D TF lookup. */
+export const WGSL_VOLUME_SAMPLING = /* wgsl */ `
 fn lerp1(a: f32, b: f32, t: f32) -> f32 { return a + (b - a) * t; }
 fn lerp4(a: vec4f, b: vec4f, t: f32) -> vec4f { return a + (b - a) * t; }
 fn sampleVolume(p: vec3f) -> f32 {
@@ -82,10 +84,78 @@ fn transferLookup(value: f32) -> vec4f {
   let i1 = min(i0 + 1, u.tfSize - 1);
   return lerp4(textureLoad(transferFunction, vec2i(i0, 0), 0), textureLoad(transferFunction, vec2i(i1, 0), 0), x - x0);
 }
-// The transfer function at a world point (see glsl-common.ts).
+`;
+
+/** transferAt for a 1D transfer function (see glsl-common.ts). */
+export const WGSL_TRANSFER_1D = /* wgsl */ `
 fn transferAt(p: vec3f) -> vec4f {
   return transferLookup(sampleVolume(p));
 }
 `;
 
-export const WGSL_COMMON = WGSL_RNG + WGSL_RAY + WGSL_VOLUME;
+/** Gradient magnitude from the slice atlas, trilinear, and normalized (twin of GLSL_GRADIENT). */
+export const WGSL_GRADIENT = /* wgsl */ `
+fn gradientTexel(v: vec3i) -> f32 {
+  let cols = u.gradientAtlasColumns;
+  let q = vec2i(v.x + (v.z % cols) * u.volumeDims.x, v.y + (v.z / cols) * u.volumeDims.y);
+  return textureLoad(gradientMagnitude, q, 0).r;
+}
+fn sampleGradientMagnitude(p: vec3f) -> f32 {
+  let tc = (p - u.boxMin) / (u.boxMax - u.boxMin);
+  let dims = u.volumeDims.xyz;
+  let g = tc * vec3f(dims) - 0.5;
+  let g0 = floor(g);
+  let f = g - g0;
+  let i0 = clamp(vec3i(g0), vec3i(0), dims - 1);
+  let i1 = clamp(vec3i(g0) + 1, vec3i(0), dims - 1);
+  let c000 = gradientTexel(vec3i(i0.x, i0.y, i0.z));
+  let c100 = gradientTexel(vec3i(i1.x, i0.y, i0.z));
+  let c010 = gradientTexel(vec3i(i0.x, i1.y, i0.z));
+  let c110 = gradientTexel(vec3i(i1.x, i1.y, i0.z));
+  let c001 = gradientTexel(vec3i(i0.x, i0.y, i1.z));
+  let c101 = gradientTexel(vec3i(i1.x, i0.y, i1.z));
+  let c011 = gradientTexel(vec3i(i0.x, i1.y, i1.z));
+  let c111 = gradientTexel(vec3i(i1.x, i1.y, i1.z));
+  let c00 = lerp1(c000, c100, f.x);
+  let c10 = lerp1(c010, c110, f.x);
+  let c01 = lerp1(c001, c101, f.x);
+  let c11 = lerp1(c011, c111, f.x);
+  return lerp1(lerp1(c00, c10, f.y), lerp1(c01, c11, f.y), f.z);
+}
+fn normalizedGradientAt(p: vec3f) -> f32 {
+  let gmax = select(textureLoad(gradientMax, vec2i(0, 0), 0).r, u.tfGradientMax, u.tfGradientMax > 0.0);
+  return select(0.0, min(sampleGradientMagnitude(p) / gmax, 1.0), gmax > 0.0);
+}
+`;
+
+/** transferAt for a 2D (value x normalized gradient magnitude) transfer function (twin of GLSL_TRANSFER_2D). */
+export const WGSL_TRANSFER_2D = /* wgsl */ `
+fn transferLookup2D(value: f32, gradient: f32) -> vec4f {
+  let x = clamp(value, 0.0, 1.0) * f32(u.tfSize - 1);
+  let y = clamp(gradient, 0.0, 1.0) * f32(u.tfHeight - 1);
+  let x0 = floor(x);
+  let y0 = floor(y);
+  let i0 = i32(x0);
+  let i1 = min(i0 + 1, u.tfSize - 1);
+  let j0 = i32(y0);
+  let j1 = min(j0 + 1, u.tfHeight - 1);
+  let a = lerp4(textureLoad(transferFunction, vec2i(i0, j0), 0), textureLoad(transferFunction, vec2i(i1, j0), 0), x - x0);
+  let b = lerp4(textureLoad(transferFunction, vec2i(i0, j1), 0), textureLoad(transferFunction, vec2i(i1, j1), 0), x - x0);
+  return lerp4(a, b, y - y0);
+}
+fn transferAt(p: vec3f) -> vec4f {
+  return transferLookup2D(sampleVolume(p), normalizedGradientAt(p));
+}
+`;
+
+/** Volume sampling with the 1D transferAt() (the chunk as it was before 2D transfer functions). */
+export const WGSL_VOLUME = WGSL_VOLUME_SAMPLING + WGSL_TRANSFER_1D;
+
+/** The shared chunks for a generate pass (twin of glslCommon in glsl-common.ts). */
+export function wgslCommon(opts: CommonChunkOptions = {}): string {
+  const gradient = opts.gradient || opts.tf2d;
+  return WGSL_RNG + WGSL_RAY + WGSL_VOLUME_SAMPLING + (gradient ? WGSL_GRADIENT : '') + (opts.tf2d ? WGSL_TRANSFER_2D : WGSL_TRANSFER_1D);
+}
+
+/** The 1D variant (no gradient code), as before 2D transfer functions existed. */
+export const WGSL_COMMON = wgslCommon();

@@ -6,6 +6,8 @@
 import type * as CoreModule from '@vpt/core';
 import type * as MipModule from '@vpt/renderer-mip';
 import type * as EamModule from '@vpt/renderer-eam';
+import type * as IsoModule from '@vpt/renderer-iso';
+import type * as McrtModule from '@vpt/renderer-mcrt';
 import type { PostStep, Scene, Volume } from '@vpt/core';
 import type { SceneDescription, VolumeDescription } from '../scene-description.js';
 
@@ -47,6 +49,8 @@ export interface VptPageApi {
   core: typeof CoreModule;
   mip: typeof MipModule;
   eam: typeof EamModule;
+  iso: typeof IsoModule;
+  mcrt: typeof McrtModule;
   post: PostModule;
   renderDescription(desc: SceneDescription, options?: { baseUrl?: string; warmup?: boolean }): Promise<PageRenderResult>;
   buildScene(desc: SceneDescription, baseUrl?: string): Promise<Scene>;

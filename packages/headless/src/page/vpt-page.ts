@@ -1,7 +1,7 @@
 /**
  * The in-browser side of @vpt/headless, loaded by page/index.html (whose import map
  * points the @vpt/* names at each package's dist/). It loads the packages, then exposes
- * `window.vpt = { core, mip, eam, post, renderDescription, buildScene, loadVolume }` and
+ * `window.vpt = { core, mip, eam, mcrt, iso, post, renderDescription, buildScene, loadVolume }` and
  * sets `window.__vptReady`, or `window.__vptError` when a package cannot be loaded.
  */
 import type { Environment, Scene, Volume } from '@vpt/core';
@@ -13,6 +13,8 @@ type CoreModule = VptPageApi['core'];
 let core!: CoreModule;
 let mip!: VptPageApi['mip'];
 let eam!: VptPageApi['eam'];
+let mcrt!: VptPageApi['mcrt'];
+let iso!: VptPageApi['iso'];
 let post!: PostModule;
 
 const ARRAYS = { uint8: Uint8Array, uint16: Uint16Array, int16: Int16Array, float32: Float32Array } as const;
@@ -89,7 +91,7 @@ async function buildScene(d: SceneDescription, baseUrl?: string): Promise<Scene>
   const tf = d.transferFunction;
   return {
     volume: await loadVolume(d.volume ?? SCENE_DEFAULTS.volume, baseUrl),
-    transferFunction: tf ? { dimensions: '1d', points: tf.points } : core.rampTransferFunction(),
+    transferFunction: !tf ? core.rampTransferFunction() : tf.dimensions === '2d' ? core.transferFunctionFromJSON(tf) : { dimensions: '1d', points: tf.points },
     camera: { ...core.defaultCamera(), ...d.camera },
     lights: d.lights ?? [],
     environment: environmentOf(d),
@@ -103,7 +105,9 @@ function makeRenderer(d: SceneDescription) {
   const params = d.rendererParams ?? {};
   if (name === 'mip') return new mip.MipRenderer(params);
   if (name === 'eam') return new eam.EamRenderer(params);
-  throw new core.VptError('invalid-scene', `Unknown renderer "${name as string}" (eam, mip)`);
+  if (name === 'mcrt') return new mcrt.McrtRenderer(params);
+  if (name === 'iso') return new iso.IsoRenderer(params);
+  throw new core.VptError('invalid-scene', `Unknown renderer "${name as string}" (eam, mip, mcrt, iso)`);
 }
 
 /** Base64 of a typed array's bytes, in chunks (String.fromCharCode takes limited arguments). */
@@ -164,13 +168,15 @@ async function load<T>(name: string): Promise<T> {
 }
 
 try {
-  [core, mip, eam, post] = await Promise.all([
+  [core, mip, eam, post, mcrt] = await Promise.all([
     load<CoreModule>('@vpt/core'),
     load<VptPageApi['mip']>('@vpt/renderer-mip'),
     load<VptPageApi['eam']>('@vpt/renderer-eam'),
     load<PostModule>('@vpt/post'),
+    load<VptPageApi['mcrt']>('@vpt/renderer-mcrt'),
   ]);
-  window.vpt = { core, mip, eam, post, renderDescription, buildScene, loadVolume };
+  iso = await load<VptPageApi['iso']>('@vpt/renderer-iso');
+  window.vpt = { core, mip, eam, mcrt, iso, post, renderDescription, buildScene, loadVolume };
   window.__vptReady = true;
 } catch (e) {
   window.__vptError = (e as Error).message;

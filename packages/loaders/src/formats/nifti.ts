@@ -1,0 +1,197 @@
+import { LoaderError } from '../errors.js';
+import type { LoadContext } from '../context.js';
+import type { LoadedVolume } from '../types.js';
+import { finishVolume } from '../convert/finish.js';
+import { checkAvailable, checkDims, checkFits, SOURCE_BYTES, type SourceType } from '../convert/size.js';
+import { chooseType, integralScaling, readSamples, scanRange, scaledRange, toVoxelArray, IDENTITY, OUTPUT_BYTES, type Scaling } from '../convert/voxels.js';
+import { gunzip, isGzip } from '../io/gzip.js';
+import { loadDependency } from '../io/deps.js';
+import { axisCodes, directionCosines, isFiniteVector } from './orientation.js';
+
+const HEADER = 348;
+const MIN_OFFSET = 352; // header + the 4-byte extension flag
+
+/** NIfTI-1 datatype codes vpt reads, and the type they are read as. */
+const DATATYPES: Record<number, SourceType> = {
+  2: 'uint8', 4: 'int16', 8: 'int32', 16: 'float32', 64: 'float64', 256: 'int8', 512: 'uint16', 768: 'uint32',
+};
+const UNSUPPORTED_TYPES: Record<number, string> = {
+  1: 'binary (1 bit)', 32: 'complex64', 128: 'RGB24', 1024: 'int64', 1280: 'uint64', 1536: 'float128', 1792: 'complex128', 2048: 'complex256', 2304: 'RGBA32',
+};
+
+/** Is this a NIfTI-1 single file (magic "n+1\0" at byte 344)? */
+export function hasNiftiMagic(bytes: Uint8Array): boolean {
+  return bytes.length >= HEADER && bytes[344] === 0x6e && (bytes[345] === 0x2b || bytes[345] === 0x69) && bytes[346] === 0x31 && bytes[347] === 0;
+}
+
+interface NiftiHeader {
+  littleEndian: boolean;
+  dims: number[];
+  datatypeCode: number;
+  numBitsPerVoxel: number;
+  pixDims: number[];
+  vox_offset: number;
+  scl_slope: number;
+  scl_inter: number;
+  xyzt_units: number;
+  cal_min: number;
+  cal_max: number;
+  description: string;
+  qform_code: number;
+  sform_code: number;
+  magic: string;
+  getQformMat(): number[][];
+}
+
+interface Plan { header: NiftiHeader; dims: [number, number, number]; source: SourceType; offset: number; count: number; extraVolumes: number }
+
+/**
+ * Read the 348-byte header with nifti-reader-js and check everything the data step relies
+ * on. Only the header is handed to the library (its extension reader trusts sizes from the
+ * file and can loop on a corrupt one); vpt does not need extensions.
+ */
+type NiftiModule = typeof import('nifti-reader-js');
+
+function readPlan(head: Uint8Array, ctx: LoadContext, nifti: NiftiModule): Plan {
+  if (head.length < HEADER) throw new LoaderError('truncated', `${ctx.name}: ${head.length} bytes is shorter than a NIfTI-1 header (348 bytes)`);
+  const view = new DataView(head.buffer, head.byteOffset, HEADER);
+  const sizeLE = view.getInt32(0, true), sizeBE = view.getInt32(0, false);
+  if (sizeLE === 540 || sizeBE === 540) {
+    throw new LoaderError('unsupported', `${ctx.name} is NIfTI-2, which vpt does not read; save it as NIfTI-1 (e.g. nibabel.Nifti1Image)`);
+  }
+  if (sizeLE !== HEADER && sizeBE !== HEADER) {
+    throw new LoaderError('bad-magic', `${ctx.name} is not a NIfTI-1 file: its first 4 bytes (sizeof_hdr) are not 348 in either byte order`);
+  }
+  const header = new nifti.NIFTI1() as unknown as NiftiHeader & { readHeader(b: ArrayBuffer): void };
+  try {
+    header.readHeader(head.slice(0, HEADER).buffer);
+  } catch (e) {
+    throw new LoaderError('bad-header', `${ctx.name}: the NIfTI header cannot be read (${(e as Error)?.message ?? e})`, { cause: e });
+  }
+  if (header.magic === 'ni1') {
+    throw new LoaderError('unsupported', `${ctx.name} is the header of a .hdr/.img pair; vpt reads single-file NIfTI (.nii, .nii.gz): convert it, e.g. with nibabel or fslchfiletype`);
+  }
+  if (header.magic !== 'n+1') throw new LoaderError('bad-magic', `${ctx.name}: the NIfTI magic at byte 344 is "${header.magic}", not "n+1"`);
+
+  const d = header.dims;
+  if (!(d[0] >= 1 && d[0] <= 7)) throw new LoaderError('bad-header', `${ctx.name}: dim[0] = ${d[0]} must be 1..7 (the number of dimensions)`);
+  const dims = [d[1], d[0] >= 2 ? d[2] : 1, d[0] >= 3 ? d[3] : 1];
+  checkDims(dims, ctx, 'NIfTI header');
+  let extraVolumes = 1;
+  for (let i = 4; i <= d[0]; i++) {
+    if (d[i] < 0) throw new LoaderError('bad-header', `${ctx.name}: dim[${i}] = ${d[i]} is negative`);
+    extraVolumes *= Math.max(1, d[i]);
+  }
+  const source = DATATYPES[header.datatypeCode];
+  if (!source) {
+    const known = UNSUPPORTED_TYPES[header.datatypeCode];
+    if (known) throw new LoaderError('unsupported', `${ctx.name}: NIfTI datatype ${header.datatypeCode} (${known}) is not supported; vpt reads scalar integer and float data`);
+    throw new LoaderError('bad-header', `${ctx.name}: NIfTI datatype code ${header.datatypeCode} is not a valid NIfTI-1 datatype`);
+  }
+  const offset = header.vox_offset;
+  if (!Number.isFinite(offset) || offset < HEADER || !Number.isInteger(offset)) {
+    throw new LoaderError('bad-header', `${ctx.name}: vox_offset = ${offset} must be a whole number ≥ 352`);
+  }
+  if (offset < MIN_OFFSET) ctx.warnings.push(`vox_offset ${offset} is below the 352 the NIfTI-1 standard requires`);
+  const count = dims[0] * dims[1] * dims[2];
+  return { header, dims, source, offset, count, extraVolumes };
+}
+
+function scalingOf(h: NiftiHeader, ctx: LoadContext): Scaling {
+  const { scl_slope: slope, scl_inter: inter } = h;
+  // NIfTI-1: slope 0 means "no scaling"; a NaN/Inf pair is a broken header, ignored as nibabel does.
+  if (slope === 0 || !Number.isFinite(slope)) {
+    if (!Number.isFinite(slope)) ctx.warnings.push(`scl_slope = ${slope} ignored`);
+    return IDENTITY;
+  }
+  if (!Number.isFinite(inter)) {
+    ctx.warnings.push(`scl_inter = ${inter} ignored`);
+    return { slope, inter: 0 };
+  }
+  return { slope, inter };
+}
+
+/** World placement: the sform when sform_code > 0, else the qform when qform_code > 0, else none (nibabel's order). */
+function placement(h: NiftiHeader, head: Uint8Array, ctx: LoadContext): { orientation?: number[]; origin?: [number, number, number]; xform: string } {
+  const view = new DataView(head.buffer, head.byteOffset, HEADER);
+  if (h.sform_code > 0) {
+    const rows = [0, 1, 2].map((r) => [0, 1, 2, 3].map((c) => view.getFloat32(280 + (4 * r + c) * 4, h.littleEndian)));
+    const cos = rows.every(isFiniteVector) ? directionCosines([0, 1, 2].map((c) => rows.map((row) => row[c]))) : null;
+    if (cos) return { orientation: cos.orientation, origin: [rows[0][3], rows[1][3], rows[2][3]], xform: 'sform' };
+    ctx.warnings.push('the sform is degenerate; ignored');
+  }
+  if (h.qform_code > 0) {
+    const q = h.getQformMat();
+    const cos = q.slice(0, 3).every(isFiniteVector) ? directionCosines([0, 1, 2].map((c) => [q[0][c], q[1][c], q[2][c]])) : null;
+    if (cos) return { orientation: cos.orientation, origin: [q[0][3], q[1][3], q[2][3]], xform: 'qform' };
+    ctx.warnings.push('the qform is degenerate; ignored');
+  }
+  return { xform: 'none' };
+}
+
+function isNifti2(head: Uint8Array): boolean {
+  const v = new DataView(head.buffer, head.byteOffset, Math.min(head.length, 4));
+  return head.length >= 4 && (v.getInt32(0, true) === 540 || v.getInt32(0, false) === 540);
+}
+
+/** Limit check before allocating, at the smallest size the result can have; finishVolume checks the exact one. */
+function earlyFits(plan: Plan, ctx: LoadContext): void {
+  const integral = integralScaling(scalingOf(plan.header, { ...ctx, warnings: [] }));
+  const bytes = plan.source === 'uint8' && integral ? 1 : integral && SOURCE_BYTES[plan.source] <= 4 ? 2 : OUTPUT_BYTES.float32;
+  checkFits(plan.dims, bytes, ctx);
+}
+
+const SPATIAL_UNITS: Record<number, string> = { 1: 'm', 2: 'mm', 3: 'µm' };
+
+/** NIfTI-1 single file, plain or gzip-compressed, either byte order. */
+export async function decodeNifti(input: Uint8Array, ctx: LoadContext): Promise<LoadedVolume> {
+  const nifti = await loadDependency('nifti-reader-js', () => import('nifti-reader-js'));
+  let bytes = input;
+  let plan: Plan | undefined;
+  if (isGzip(input)) {
+    // Inflate in steps: once the header is out it is checked, so a lying or oversize file
+    // stops before the rest is inflated, and the output is allocated once at its exact size.
+    bytes = await gunzip(input, ctx, {
+      maxOutput: ctx.downsample ? Number.MAX_SAFE_INTEGER : 2 * ctx.limits.maxBytes + (1 << 20),
+      headBytes: MIN_OFFSET,
+      onHead: (head) => {
+        if (!hasNiftiMagic(head) && head.length >= HEADER && !isNifti2(head)) {
+          throw new LoaderError('bad-magic', `${ctx.name}: gzip-compressed data that is not NIfTI-1 (no "n+1" magic at byte 344)`);
+        }
+        plan = readPlan(head, ctx, nifti);
+        earlyFits(plan, ctx);
+        return plan.offset + plan.count * SOURCE_BYTES[plan.source];
+      },
+    });
+  }
+  plan ??= readPlan(bytes, ctx, nifti);
+  const { header, dims, source, offset, count } = plan;
+  if (plan.extraVolumes > 1) ctx.warnings.push(`the file holds ${plan.extraVolumes} volumes (4D or more); the first is loaded`);
+  const scaling = scalingOf(header, ctx);
+  const integral = integralScaling(scaling);
+  checkAvailable(bytes.length - offset, count * SOURCE_BYTES[source], ctx);
+  earlyFits(plan, ctx);
+  ctx.progress('convert', 0, count);
+  const samples = readSamples(bytes, offset, count, source, header.littleEndian);
+  const range = scanRange(samples);
+  const type = chooseType(source, scaledRange(range, scaling), integral);
+  const data = toVoxelArray(samples, type, scaling);
+  ctx.progress('convert', count, count);
+  const pixdim = [1, 2, 3].map((i) => Math.abs(header.pixDims[i]));
+  const spacing = pixdim.map((s, i) => {
+    if (Number.isFinite(s) && s > 0) return s;
+    if (dims[i] > 1) ctx.warnings.push(`pixdim[${i + 1}] = ${header.pixDims[i + 1]} is not a positive size; 1 used`);
+    return 1;
+  }) as [number, number, number];
+  const place = placement(header, bytes, ctx);
+  const meta: Record<string, unknown> = {
+    space: 'RAS', xform: place.xform, sclSlope: scaling.slope, sclInter: scaling.inter,
+    littleEndian: header.littleEndian, datatype: source,
+  };
+  if (place.orientation) meta.axisCodes = axisCodes(place.orientation, 'RAS');
+  const units = SPATIAL_UNITS[header.xyzt_units & 7];
+  if (units) meta.spacingUnits = units;
+  if (header.description) meta.description = header.description;
+  if (Number.isFinite(header.cal_min) && Number.isFinite(header.cal_max) && header.cal_max > header.cal_min) meta.calRange = [header.cal_min, header.cal_max];
+  return finishVolume({ format: 'nifti', dims, spacing, type, data, orientation: place.orientation, origin: place.origin, meta }, ctx);
+}

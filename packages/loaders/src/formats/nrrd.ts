@@ -1,0 +1,267 @@
+import { LoaderError } from '../errors.js';
+import type { LoadContext } from '../context.js';
+import type { LoadedVolume } from '../types.js';
+import { finishVolume } from '../convert/finish.js';
+import { checkAvailable, checkDims, checkFits, SOURCE_BYTES, type SourceType } from '../convert/size.js';
+import { chooseType, readSamples, scanRange, toVoxelArray, IDENTITY, OUTPUT_BYTES, type SourceArray } from '../convert/voxels.js';
+import { gunzip } from '../io/gzip.js';
+import { directionCosines, isFiniteVector } from './orientation.js';
+
+/*
+ * NRRD (teem's "nearly raw raster data", https://teem.sourceforge.net/nrrd/format.html).
+ * The header is a few lines of "field: value" text; the npm packages that parse it are
+ * unmaintained (nrrd-js, 2016) and read neither gzip nor detached data, so this short
+ * reader follows the spec directly and leaves gzip to fflate.
+ */
+
+const MAX_HEADER = 1 << 20; // 1 MiB of header text is far past any real file
+
+const TYPES: Record<string, SourceType> = {};
+for (const [type, names] of Object.entries({
+  int8: ['signed char', 'int8', 'int8_t'],
+  uint8: ['uchar', 'unsigned char', 'uint8', 'uint8_t'],
+  int16: ['short', 'short int', 'signed short', 'signed short int', 'int16', 'int16_t'],
+  uint16: ['ushort', 'unsigned short', 'unsigned short int', 'uint16', 'uint16_t'],
+  int32: ['int', 'signed int', 'int32', 'int32_t'],
+  uint32: ['uint', 'unsigned int', 'uint32', 'uint32_t'],
+  float32: ['float'],
+  float64: ['double'],
+})) for (const n of names) TYPES[n] = type as SourceType;
+
+const UNSUPPORTED_TYPES = ['longlong', 'long long', 'long long int', 'signed long long', 'signed long long int', 'int64', 'int64_t',
+  'ulonglong', 'unsigned long long', 'unsigned long long int', 'uint64', 'uint64_t', 'block'];
+
+export interface NrrdHeader {
+  fields: Record<string, string>;
+  keyValues: Record<string, string>;
+  /** Byte offset of the data in the same file (after the blank line). */
+  dataStart: number;
+}
+
+export function hasNrrdMagic(bytes: Uint8Array): boolean {
+  return bytes.length >= 8 && String.fromCharCode(...bytes.subarray(0, 7)) === 'NRRD000' && bytes[7] >= 0x30 && bytes[7] <= 0x39;
+}
+
+/** Split the header text into fields (`name: value`) and key/values (`key:=value`). */
+export function parseNrrdHeader(bytes: Uint8Array, ctx: LoadContext): NrrdHeader {
+  if (!hasNrrdMagic(bytes)) throw new LoaderError('bad-magic', `${ctx.name} is not NRRD: it does not start with "NRRD000x"`);
+  // The header ends at the first empty line (or at the end of a detached .nhdr).
+  let end = -1, dataStart = bytes.length;
+  const limit = Math.min(bytes.length, MAX_HEADER);
+  for (let i = 0; i < limit; i++) {
+    if (bytes[i] !== 0x0a) continue;
+    if (bytes[i + 1] === 0x0a) { end = i; dataStart = i + 2; break; }
+    if (bytes[i + 1] === 0x0d && bytes[i + 2] === 0x0a) { end = i; dataStart = i + 3; break; }
+  }
+  if (end < 0) {
+    if (bytes.length > MAX_HEADER) throw new LoaderError('bad-header', `${ctx.name}: no empty line ends the NRRD header within its first ${MAX_HEADER} bytes`);
+    end = bytes.length;
+  }
+  const text = new TextDecoder('latin1').decode(bytes.subarray(0, end));
+  const fields: Record<string, string> = {};
+  const keyValues: Record<string, string> = {};
+  const lines = text.split(/\r?\n/);
+  for (let n = 1; n < lines.length; n++) {
+    const line = lines[n];
+    if (line === '' || line.startsWith('#')) continue;
+    const kv = line.indexOf(':=');
+    const colon = line.indexOf(': ');
+    if (kv >= 0 && (colon < 0 || kv < colon)) { keyValues[line.slice(0, kv)] = line.slice(kv + 2); continue; }
+    if (colon < 0) throw new LoaderError('bad-header', `${ctx.name}: NRRD header line ${n + 1} "${line.slice(0, 60)}" is not "field: value"`);
+    fields[line.slice(0, colon).trim().toLowerCase()] = line.slice(colon + 2).trim();
+  }
+  return { fields, keyValues, dataStart };
+}
+
+function numbers(text: string | undefined): number[] {
+  return text === undefined ? [] : text.trim().split(/\s+/).map(Number);
+}
+
+/** `(1,0,0) (0,1,0) none …` → vectors (null for "none"). */
+function vectors(text: string, ctx: LoadContext, field: string): (number[] | null)[] {
+  const out: (number[] | null)[] = [];
+  const re = /\(([^)]*)\)|none/g;
+  let m: RegExpExecArray | null;
+  while ((m = re.exec(text))) out.push(m[1] === undefined ? null : m[1].split(',').map(Number));
+  if (out.some((v) => v && (v.length !== 3 || !isFiniteVector(v)))) {
+    throw new LoaderError('bad-header', `${ctx.name}: NRRD "${field}: ${text.slice(0, 80)}" must hold vectors of three numbers`);
+  }
+  return out;
+}
+
+const SPACES: Record<string, string> = {
+  'right-anterior-superior': 'RAS', ras: 'RAS', 'left-anterior-superior': 'LAS', las: 'LAS',
+  'left-posterior-superior': 'LPS', lps: 'LPS', 'scanner-xyz': 'scanner-xyz', '3d-right-handed': '3D-right-handed', '3d-left-handed': '3D-left-handed',
+};
+
+export interface DetachedResolver {
+  /** Bytes of a file named relative to the header (a URL next to it, or one of the dropped files). */
+  (name: string): Promise<Uint8Array>;
+}
+
+/** NRRD with raw, gzip, ascii or hex encoding, attached or detached data, spatial axes via space directions or spacings. */
+export async function decodeNrrd(bytes: Uint8Array, ctx: LoadContext, resolve?: DetachedResolver): Promise<LoadedVolume> {
+  const { fields, keyValues, dataStart } = parseNrrdHeader(bytes, ctx);
+  const need = (f: string) => {
+    const v = fields[f];
+    if (v === undefined) throw new LoaderError('bad-header', `${ctx.name}: the NRRD header has no "${f}" field`);
+    return v;
+  };
+  const typeName = need('type').toLowerCase();
+  const source = TYPES[typeName];
+  if (!source) {
+    if (UNSUPPORTED_TYPES.includes(typeName)) throw new LoaderError('unsupported', `${ctx.name}: NRRD type "${typeName}" is not supported; vpt reads 8/16/32-bit integer, float and double`);
+    throw new LoaderError('bad-header', `${ctx.name}: "${typeName}" is not an NRRD type`);
+  }
+  const dimension = Number(need('dimension'));
+  const sizes = numbers(need('sizes'));
+  if (!Number.isInteger(dimension) || dimension < 1 || sizes.length !== dimension) {
+    throw new LoaderError('bad-header', `${ctx.name}: NRRD dimension ${fields.dimension} does not match sizes "${fields.sizes}"`);
+  }
+  // Spatial axes: all of them, or all but a leading length-1 axis.
+  let axes = sizes.map((_, i) => i);
+  if (dimension === 4) {
+    if (sizes[0] !== 1) throw new LoaderError('unsupported', `${ctx.name}: a 4D NRRD with ${sizes[0]} values per voxel (kinds: ${fields.kinds ?? 'none'}) is not a scalar volume`);
+    axes = [1, 2, 3];
+  } else if (dimension > 4) {
+    throw new LoaderError('unsupported', `${ctx.name}: a ${dimension}-dimensional NRRD is not supported; vpt reads 2D and 3D scalar data`);
+  }
+  const dims = [0, 1, 2].map((i) => (i < axes.length ? sizes[axes[i]] : 1));
+  checkDims(dims, ctx, 'NRRD header');
+  const count = dims[0] * dims[1] * dims[2];
+  const size = SOURCE_BYTES[source];
+  const endian = (fields.endian ?? 'little').toLowerCase();
+  if (endian !== 'little' && endian !== 'big') throw new LoaderError('bad-header', `${ctx.name}: NRRD endian "${fields.endian}" must be little or big`);
+  if (size > 1 && fields.endian === undefined) ctx.warnings.push('the NRRD header has no endian field; little-endian assumed');
+
+  const encoding = (fields.encoding ?? '').toLowerCase();
+  const outBytes = source === 'uint8' ? 1 : SOURCE_BYTES[source] <= 2 ? 2 : 4;
+  checkFits(dims, Math.min(outBytes, OUTPUT_BYTES.float32), ctx);
+
+  // Where the data is: after the header, or a detached file.
+  const dataFile = fields['data file'] ?? fields.datafile;
+  let data = bytes.subarray(dataStart);
+  if (dataFile !== undefined) {
+    if (/^LIST\b/.test(dataFile) || /%/.test(dataFile) || /\s/.test(dataFile.trim())) {
+      throw new LoaderError('unsupported', `${ctx.name}: NRRD "data file: ${dataFile}" names several files; vpt reads one detached data file`);
+    }
+    if (!resolve) {
+      throw new LoaderError('unsupported', `${ctx.name}: the data is in a separate file "${dataFile}"; load the header by URL, or drop both files together`);
+    }
+    data = await resolve(dataFile);
+  }
+  const lineSkip = Number(fields['line skip'] ?? fields.lineskip ?? 0);
+  const byteSkip = Number(fields['byte skip'] ?? fields.byteskip ?? 0);
+  if (!Number.isInteger(lineSkip) || lineSkip < 0 || !Number.isInteger(byteSkip) || byteSkip < -1) {
+    throw new LoaderError('bad-header', `${ctx.name}: NRRD line skip ${fields['line skip']} / byte skip ${fields['byte skip']} must be whole numbers ≥ 0 (byte skip may be -1)`);
+  }
+  for (let l = 0; l < lineSkip; l++) {
+    const nl = data.indexOf(0x0a);
+    if (nl < 0) throw new LoaderError('truncated', `${ctx.name}: the data ends before the ${lineSkip} lines "line skip" asks to skip`);
+    data = data.subarray(nl + 1);
+  }
+
+  const dataBytes = count * size;
+  let samples: SourceArray;
+  ctx.progress('convert', 0, count);
+  if (encoding === 'raw') {
+    if (byteSkip === -1) {
+      checkAvailable(data.length, dataBytes, ctx);
+      data = data.subarray(data.length - dataBytes);
+    } else {
+      checkAvailable(data.length - byteSkip, dataBytes, ctx);
+      data = data.subarray(byteSkip);
+    }
+    samples = readSamples(data, 0, count, source, endian === 'little');
+  } else if (encoding === 'gzip' || encoding === 'gz') {
+    const inflated = await gunzip(data, ctx, {
+      maxOutput: ctx.downsample ? Number.MAX_SAFE_INTEGER : Math.max(dataBytes, 2 * ctx.limits.maxBytes),
+      // The header already says the size: allocate once, and stop at it.
+      headBytes: 0,
+      onHead: () => (byteSkip > 0 ? byteSkip : 0) + dataBytes,
+    });
+    const from = byteSkip === -1 ? inflated.length - dataBytes : byteSkip;
+    checkAvailable(inflated.length - Math.max(0, from), dataBytes, ctx);
+    samples = readSamples(inflated, Math.max(0, from), count, source, endian === 'little');
+  } else if (encoding === 'ascii' || encoding === 'text' || encoding === 'txt') {
+    samples = parseAscii(data, count, source, ctx);
+  } else if (encoding === 'hex') {
+    samples = readSamples(parseHex(data, dataBytes, ctx), 0, count, source, endian === 'little');
+  } else if (encoding === 'bzip2' || encoding === 'bz2') {
+    throw new LoaderError('unsupported', `${ctx.name}: NRRD bzip2 encoding is not supported; re-save with gzip or raw encoding (e.g. unu save -e gzip)`);
+  } else {
+    throw new LoaderError('bad-header', `${ctx.name}: NRRD encoding "${fields.encoding ?? ''}" is not raw, gzip, ascii, hex or bzip2`);
+  }
+
+  const range = scanRange(samples);
+  const type = chooseType(source, range, true);
+  const voxels = toVoxelArray(samples, type, IDENTITY);
+  ctx.progress('convert', count, count);
+
+  // Geometry: space directions (columns of the index→world matrix) or spacings.
+  let spacing: [number, number, number] = [1, 1, 1];
+  let orientation: number[] | undefined;
+  let origin: [number, number, number] | undefined;
+  const meta: Record<string, unknown> = { encoding, datatype: source, endianness: endian };
+  if (fields['space directions']) {
+    const dirs = vectors(fields['space directions'], ctx, 'space directions');
+    if (dirs.length !== dimension) throw new LoaderError('bad-header', `${ctx.name}: NRRD space directions has ${dirs.length} entries for ${dimension} axes`);
+    const spatial = axes.map((a) => dirs[a]);
+    if (spatial.some((v) => v === null)) throw new LoaderError('bad-header', `${ctx.name}: a spatial NRRD axis has space direction "none"`);
+    const cols = [0, 1, 2].map((i) => spatial[i] ?? [0, 0, 0]);
+    if (spatial.length < 3) cols[2] = cross(cols[0], cols[1]); // a 2D image: its normal, unit length
+    const cos = directionCosines(cols);
+    if (!cos) throw new LoaderError('bad-header', `${ctx.name}: NRRD space directions has a zero-length axis`);
+    orientation = cos.orientation;
+    spacing = cos.lengths.map((l, i) => (i < spatial.length ? l : 1)) as [number, number, number];
+  } else if (fields.spacings) {
+    const s = numbers(fields.spacings);
+    spacing = [0, 1, 2].map((i) => (i < axes.length && Number.isFinite(Math.abs(s[axes[i]])) && Math.abs(s[axes[i]]) > 0 ? Math.abs(s[axes[i]]) : 1)) as [number, number, number];
+  }
+  if (fields['space origin']) {
+    const o = vectors(fields['space origin'], ctx, 'space origin')[0];
+    if (o) origin = [o[0], o[1], o[2]];
+  }
+  const space = fields.space?.toLowerCase();
+  if (space) meta.space = SPACES[space] ?? fields.space;
+  if (fields['space units']) meta.spaceUnits = fields['space units'];
+  if (Object.keys(keyValues).length) meta.keyValues = keyValues;
+  return finishVolume({ format: 'nrrd', dims: dims as [number, number, number], spacing, type, data: voxels, orientation, origin, meta }, ctx);
+}
+
+function cross(a: number[], b: number[]): number[] {
+  const c = [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
+  const l = Math.hypot(c[0], c[1], c[2]);
+  return l > 0 ? c.map((x) => x / l) : [0, 0, 1];
+}
+
+function parseAscii(data: Uint8Array, count: number, source: SourceType, ctx: LoadContext): SourceArray {
+  const words = new TextDecoder('latin1').decode(data).split(/[\s,]+/).filter(Boolean);
+  if (words.length < count) throw new LoaderError('truncated', `${ctx.name}: the ASCII data holds ${words.length} values, the header announces ${count}`);
+  const out = new Float64Array(count);
+  for (let i = 0; i < count; i++) {
+    const x = Number(words[i]);
+    if (Number.isNaN(x) && !/^[-+]?nan$/i.test(words[i])) throw new LoaderError('invalid-data', `${ctx.name}: ASCII value ${i} "${words[i].slice(0, 20)}" is not a number`);
+    out[i] = x;
+  }
+  // Through the declared type, so integer data wraps and rounds as a binary file would.
+  const typed = new ({ uint8: Uint8Array, int8: Int8Array, uint16: Uint16Array, int16: Int16Array, uint32: Uint32Array, int32: Int32Array, float32: Float32Array, float64: Float64Array }[source])(count);
+  typed.set(out);
+  return typed;
+}
+
+function parseHex(data: Uint8Array, need: number, ctx: LoadContext): Uint8Array {
+  const out = new Uint8Array(need);
+  let n = 0, hi = -1;
+  for (let i = 0; i < data.length && n < need; i++) {
+    const c = data[i];
+    const v = c >= 0x30 && c <= 0x39 ? c - 0x30 : c >= 0x61 && c <= 0x66 ? c - 0x57 : c >= 0x41 && c <= 0x46 ? c - 0x37 : -1;
+    if (v < 0) {
+      if (c === 0x20 || c === 0x0a || c === 0x0d || c === 0x09) continue;
+      throw new LoaderError('invalid-data', `${ctx.name}: byte ${i} of the hex data is not a hex digit`);
+    }
+    if (hi < 0) hi = v; else { out[n++] = (hi << 4) | v; hi = -1; }
+  }
+  if (n < need) throw new LoaderError('truncated', `${ctx.name}: the hex data holds ${n} bytes, the header announces ${need}`);
+  return out;
+}

@@ -1,0 +1,63 @@
+import type { Volume } from '@vpt/core';
+
+/**
+ * What loadVolume accepts: a URL (string or URL; a sidecar .json URL works too), a Blob or
+ * File, the bytes themselves, or a set of files (a DICOM series, a dropped folder, a
+ * sidecar with its raw file, a detached NRRD header with its data file).
+ */
+export type VolumeSource = string | URL | Blob | File | ArrayBuffer | ArrayBufferView | readonly File[];
+
+export interface LoadProgress {
+  /** fetch: bytes read; parse: compressed bytes inflated or DICOM files parsed; convert: voxels decoded. */
+  stage: 'fetch' | 'parse' | 'convert';
+  loaded: number;
+  total?: number;
+}
+
+export type LoaderFormat = 'auto' | 'raw' | 'nrrd' | 'nifti' | 'dicom';
+
+export interface RawOptions {
+  dims: [number, number, number];
+  type: 'uint8' | 'uint16' | 'int16' | 'float32';
+  spacing?: [number, number, number];
+  endianness?: 'little' | 'big';
+}
+
+export interface LoadLimits {
+  /** Largest allowed size of any axis (the device's 3D texture size). Default 2048. */
+  maxTextureDimension3D?: number;
+  /** Largest allowed size in bytes of the loaded voxel data (dims × bytes per voxel of the result type). Default 1 GiB. */
+  maxBytes?: number;
+}
+
+export interface LoadOptions {
+  /** auto: by file extension, then by magic bytes. */
+  format?: LoaderFormat;
+  /** Dims and type of headerless raw data (a sidecar .json next to it, or as the source, does the same). */
+  raw?: RawOptions;
+  signal?: AbortSignal;
+  onProgress?: (p: LoadProgress) => void;
+  limits?: LoadLimits;
+  /** Shrink by integer factors (box average) to fit the limits instead of failing. */
+  downsample?: boolean;
+  /** Parse in a Web Worker. Default true where Worker exists (browsers); Node parses in-thread. */
+  worker?: boolean;
+}
+
+/**
+ * A Volume plus where it sits in the world. `orientation` is the 3×3 matrix of direction
+ * cosines, row-major, whose columns are the world directions of the i, j, k index axes;
+ * world = orientation · (index ∘ spacing) + origin, in the space named by `meta.space`
+ * ('RAS' for NIfTI, 'LPS' for DICOM, NRRD's own `space`).
+ */
+export interface LoadedVolume extends Volume {
+  format: string;
+  orientation?: number[];
+  origin?: [number, number, number];
+  meta?: Record<string, unknown>;
+}
+
+export const DEFAULT_LIMITS: Required<LoadLimits> = {
+  maxTextureDimension3D: 2048,
+  maxBytes: 1024 * 1024 * 1024,
+};

@@ -1,0 +1,144 @@
+import {
+  BaseRenderer, buildEnvironmentSampling, environmentEmits, volumeBox, VptError,
+  type AuxiliaryTexture, type LatLongEnvironment, type Scene, type UniformField, type UniformValues,
+} from '@vpt/core';
+import * as glsl from './kernels/iso.glsl.js';
+import * as wgsl from './kernels/iso.wgsl.js';
+import { MAX_ISO_LIGHTS, MAX_ISO_SURFACES, resolveIsoParams, type IsoParams, type ResolvedIsoParams } from './params.js';
+
+export const ISO_PARAM_FIELDS: readonly UniformField[] = [
+  { name: 'isoValues', type: 'vec4' },
+  { name: 'isoSurface', type: 'vec4', count: MAX_ISO_SURFACES },
+  { name: 'isoLightDirection', type: 'vec4', count: MAX_ISO_LIGHTS },
+  { name: 'isoLightIrradiance', type: 'vec4', count: MAX_ISO_LIGHTS },
+  { name: 'gradientStep', type: 'vec3' },
+  { name: 'stepSize', type: 'f32' },
+  { name: 'specular', type: 'f32' },
+  { name: 'shininess', type: 'f32' },
+  { name: 'aoRadius', type: 'f32' },
+  { name: 'rayEpsilon', type: 'f32' },
+];
+
+// Stable ids for environment images (the auxiliary textures' key), without hashing pixels.
+const ids = new WeakMap<object, number>();
+let nextId = 1;
+const idOf = (o: object) => { let i = ids.get(o); if (i === undefined) { i = nextId++; ids.set(o, i); } return i; };
+
+const OUTPUT_CODE = { shaded: 0, depth: 1, normal: 2 } as const;
+
+/**
+ * Monte Carlo isosurface renderer (Lesar et al. 2018, ISO), extended with several
+ * semi-transparent surfaces, shadows and ambient occlusion. Per iteration the generate
+ * pass finds the first crossing along a jittered camera ray (bisection-refined), shades it
+ * with one stochastic shadow ray per light and one ambient-occlusion/environment sample,
+ * and writes two targets: the shaded sample and the first visible crossing (depth, normal).
+ * The accumulation keeps the running mean of the first and the nearest hit of the second
+ * (a depth test, as in the paper); the render pass outputs the image or, for `output:
+ * 'depth' | 'normal'`, the nearest hit's depth or normal.
+ *
+ * Lights: the scene's directional lights (at most 4) and its environment (constant or
+ * lat-long). The scene's transfer function, 1D or 2D, is not used.
+ */
+export class IsoRenderer extends BaseRenderer<IsoParams> {
+  readonly name = 'iso';
+  readonly frameFormats = ['rgba32float', 'rgba32float'] as const;
+  readonly accumulationFormats = ['rgba32float', 'rgba32float'] as const;
+  readonly kernels = {
+    generate: { glsl: glsl.generate, wgsl: wgsl.generate },
+    integrate: { glsl: glsl.integrate, wgsl: wgsl.integrate },
+    render: { glsl: glsl.render, wgsl: wgsl.render },
+  };
+  readonly paramFields = ISO_PARAM_FIELDS;
+  private resolved: ResolvedIsoParams;
+
+  constructor(params: IsoParams = {}) {
+    const resolved = resolveIsoParams(params);
+    super(params);
+    this.resolved = resolved;
+  }
+
+  /** Merge and validate new parameters (VptError 'invalid-scene' on a bad value, nothing changed); resets accumulation. */
+  override setParams(params: Partial<IsoParams>): void {
+    const resolved = resolveIsoParams({ ...this.getParams(), ...params });
+    super.setParams(params);
+    this.resolved = resolved;
+  }
+
+  /** The parameters with defaults filled in. */
+  get resolvedParams(): ResolvedIsoParams { return structuredClone(this.resolved); }
+
+  override features(scene: Scene): Record<string, boolean | number> {
+    const p = this.resolved;
+    if (scene.lights.length > MAX_ISO_LIGHTS) {
+      throw new VptError('limit-exceeded', `IsoRenderer: the scene has ${scene.lights.length} lights; at most ${MAX_ISO_LIGHTS} directional lights are supported`);
+    }
+    const env = scene.environment;
+    return {
+      ISO_COUNT: p.surfaces.length,
+      ISO_LIGHTS: scene.lights.length,
+      // 0: no environment light (black), 1: constant, 2: lat-long map
+      ISO_ENV: !environmentEmits(env) ? 0 : env.type === 'latlong' ? 2 : 1,
+      ISO_SHADOWS: p.shadows,
+      ISO_AO: p.ambientOcclusion,
+      ISO_SOFT_LIGHTS: p.lightAngularRadius > 0,
+      ISO_JITTER: p.jitter,
+      ISO_OUTPUT: OUTPUT_CODE[p.output],
+    };
+  }
+
+  paramValues(scene: Scene): UniformValues {
+    const p = this.resolved;
+    const values = new Float32Array(4);
+    const surface = new Float32Array(4 * MAX_ISO_SURFACES);
+    p.surfaces.forEach((s, i) => {
+      values[i] = s.value;
+      surface.set([...s.color, s.opacity], 4 * i);
+    });
+    const dirs = new Float32Array(4 * MAX_ISO_LIGHTS), irr = new Float32Array(4 * MAX_ISO_LIGHTS);
+    const cosRadius = Math.cos(p.lightAngularRadius);
+    scene.lights.slice(0, MAX_ISO_LIGHTS).forEach((l, i) => {
+      const d = l.direction, len = Math.hypot(d[0], d[1], d[2]);
+      dirs.set([d[0] / len, d[1] / len, d[2] / len, cosRadius], 4 * i);
+      irr.set([...l.irradiance, 0], 4 * i);
+    });
+    const box = volumeBox(scene.volume);
+    const voxel = box.size.map((s, i) => s / scene.volume.dims[i]);
+    return {
+      isoValues: values,
+      isoSurface: surface,
+      isoLightDirection: dirs,
+      isoLightIrradiance: irr,
+      gradientStep: voxel,
+      stepSize: p.stepSize ?? 0.5 / Math.max(...scene.volume.dims),
+      specular: p.specular,
+      shininess: p.shininess,
+      aoRadius: Number.isFinite(p.aoRadius) ? p.aoRadius : 1e30,
+      // Shadow/AO rays start half a voxel off the surface, outside the crossing they left.
+      rayEpsilon: 0.5 * Math.min(...voxel),
+    };
+  }
+
+  /**
+   * The environment's lookup and sampling textures (shared chunk GLSL_ENVIRONMENT_MAP);
+   * a scene without a lat-long map binds 1-texel stand-ins, so one kernel source serves all.
+   */
+  auxiliaryTextures(scene: Scene): readonly AuxiliaryTexture[] {
+    const env = scene.environment;
+    if (env.type === 'latlong' && environmentEmits(env)) {
+      const e = env as LatLongEnvironment;
+      const key = `${idOf(e.data)}|${e.scale ?? 1}|${e.width}x${e.height}`;
+      let tables: ReturnType<typeof buildEnvironmentSampling> | null = null;
+      const t = () => (tables ??= buildEnvironmentSampling(e));
+      return [
+        { name: 'envMap', dimension: '2d', key, create: () => ({ dimension: '2d', width: e.width, height: e.height, format: 'rgba32float', data: t().map, label: 'environment map' }) },
+        { name: 'envMarginal', dimension: '2d', key, create: () => ({ dimension: '2d', width: e.height + 1, height: 1, format: 'r32float', data: t().marginal, label: 'environment marginal CDF' }) },
+        { name: 'envConditional', dimension: '2d', key, create: () => ({ dimension: '2d', width: e.width + 1, height: e.height, format: 'r32float', data: t().conditional, label: 'environment conditional CDFs' }) },
+      ];
+    }
+    return [
+      { name: 'envMap', dimension: '2d', key: 'none', create: () => ({ dimension: '2d', width: 1, height: 1, format: 'rgba32float', data: new Float32Array([0, 0, 0, 1]) }) },
+      { name: 'envMarginal', dimension: '2d', key: 'none', create: () => ({ dimension: '2d', width: 2, height: 1, format: 'r32float', data: new Float32Array([0, 1]) }) },
+      { name: 'envConditional', dimension: '2d', key: 'none', create: () => ({ dimension: '2d', width: 2, height: 1, format: 'r32float', data: new Float32Array([0, 1]) }) },
+    ];
+  }
+}

@@ -1,0 +1,217 @@
+import { WGSL_ENVIRONMENT_MAP, WGSL_SAMPLING } from '@vpt/core';
+
+// Monte Carlo isosurface rendering (Lesar et al. 2018, the ISO renderer) with stochastic
+// transparency (Enderton et al. 2010): twin of iso.glsl.ts, same arithmetic in the same
+// order. Compile-time switches are WGSL constants (const-folded branches) where GLSL uses #if.
+
+const ISO_COMMON = /* wgsl */ `
+const ISO_REFINE_STEPS: i32 = 10;
+
+fn isoRefine(o: vec3f, d: vec3f, ta0: f32, fa0: f32, tb0: f32, iso: f32) -> f32 {
+  var ta = ta0;
+  var fa = fa0;
+  var tb = tb0;
+  for (var i = 0; i < ISO_REFINE_STEPS; i++) {
+    let tm = 0.5 * (ta + tb);
+    let fm = sampleVolume(o + d * tm) - iso;
+    if ((fm >= 0.0) == (fa >= 0.0)) { ta = tm; fa = fm; } else { tb = tm; }
+  }
+  return 0.5 * (ta + tb);
+}
+
+fn isoTrace(o: vec3f, d: vec3f, t0: f32, t1: f32, rng: ptr<function, u32>) -> vec4f {
+  let offset = rngNext(rng);
+  let n = max(1, i32(ceil((t1 - t0) / u.stepSize)));
+  let seg = (t1 - t0) / f32(n);
+  var tPrev = t0;
+  var vPrev = sampleVolume(o + d * t0);
+  var r = vec4f(-1.0);
+  for (var i = 0; i <= n; i++) {
+    let t = min(t0 + (f32(i) + offset) * seg, t1);
+    let v = sampleVolume(o + d * t);
+    for (var k = 0; k < ISO_COUNT; k++) {
+      let iso = u.isoValues[k];
+      let alpha = u.isoSurface[k].a;
+      if ((vPrev >= iso) != (v >= iso) && alpha > 0.0) {
+        let tc = isoRefine(o, d, tPrev, vPrev - iso, t, iso);
+        if (r.z < 0.0 || tc < r.z) { r.z = tc; r.w = f32(k); }
+        var opaque = true;
+        if (alpha < 1.0) { opaque = rngNext(rng) < alpha; }
+        if (opaque && (r.x < 0.0 || tc < r.x)) { r.x = tc; r.y = f32(k); }
+      }
+    }
+    if (r.x >= 0.0) { return r; }
+    tPrev = t;
+    vPrev = v;
+  }
+  return r;
+}
+
+fn isoVisibility(o: vec3f, d: vec3f, maxDist: f32, rng: ptr<function, u32>) -> f32 {
+  let tb = intersectBox(o, d, u.boxMin, u.boxMax);
+  let t1 = min(tb.y, maxDist);
+  if (!(tb.x < t1)) { return 1.0; }
+  let t0 = tb.x;
+  let offset = rngNext(rng);
+  let n = max(1, i32(ceil((t1 - t0) / u.stepSize)));
+  let seg = (t1 - t0) / f32(n);
+  var vPrev = sampleVolume(o + d * t0);
+  for (var i = 0; i <= n; i++) {
+    let t = min(t0 + (f32(i) + offset) * seg, t1);
+    let v = sampleVolume(o + d * t);
+    for (var k = 0; k < ISO_COUNT; k++) {
+      let iso = u.isoValues[k];
+      let alpha = u.isoSurface[k].a;
+      if ((vPrev >= iso) != (v >= iso) && alpha > 0.0) {
+        if (alpha >= 1.0) { return 0.0; }
+        if (rngNext(rng) < alpha) { return 0.0; }
+      }
+    }
+    vPrev = v;
+  }
+  return 1.0;
+}
+
+fn isoNormal(p: vec3f, d: vec3f) -> vec3f {
+  let h = u.gradientStep;
+  let gx = (sampleVolume(p + vec3f(h.x, 0.0, 0.0)) - sampleVolume(p - vec3f(h.x, 0.0, 0.0))) / (2.0 * h.x);
+  let gy = (sampleVolume(p + vec3f(0.0, h.y, 0.0)) - sampleVolume(p - vec3f(0.0, h.y, 0.0))) / (2.0 * h.y);
+  let gz = (sampleVolume(p + vec3f(0.0, 0.0, h.z)) - sampleVolume(p - vec3f(0.0, 0.0, h.z))) / (2.0 * h.z);
+  let g = vec3f(gx, gy, gz);
+  if (!(dot(g, g) > 1e-30)) { return -d; }
+  let n = normalize(g);
+  return select(n, -n, dot(n, d) > 0.0);
+}
+
+fn isoBrdf(n: vec3f, wi: vec3f, wo: vec3f, albedo: vec3f) -> vec3f {
+  let hs = wi + wo;
+  var lobe = 0.0;
+  let h2 = dot(hs, hs);
+  if (h2 > 1e-12) {
+    let nh = max(dot(n, hs / sqrt(h2)), 0.0);
+    lobe = (u.shininess + 8.0) * (1.0 / (8.0 * VPT_PI)) * exp2(u.shininess * log2(max(nh, 1e-8)));
+  }
+  return albedo * ((1.0 - u.specular) / VPT_PI) + vec3f(u.specular * lobe);
+}
+
+fn isoEnvironment(d: vec3f) -> vec3f {
+  if (ISO_ENV == 2) { return environmentLookup(d).rgb; }
+  return u.background.rgb;
+}
+
+fn isoShade(p: vec3f, n: vec3f, wo: vec3f, albedo: vec3f, rng: ptr<function, u32>) -> vec3f {
+  var radiance = vec3f(0.0);
+  let origin = p + n * u.rayEpsilon;
+  for (var l = 0; l < ISO_LIGHTS; l++) {
+    let ld = u.isoLightDirection[l];
+    var wi = ld.xyz;
+    if (ISO_SOFT_LIGHTS) {
+      let c1 = rngNext(rng);
+      let c2 = rngNext(rng);
+      let cosT = 1.0 - c1 * (1.0 - ld.w);
+      let sinT = sqrt(max((1.0 - cosT) * (1.0 + cosT), 0.0));
+      wi = directionAround(ld.xyz, cosT, sinT, 2.0 * VPT_PI * c2);
+    }
+    let cosI = dot(n, wi);
+    if (cosI > 0.0) {
+      var vis = 1.0;
+      if (ISO_SHADOWS) { vis = isoVisibility(origin, wi, 1e30, rng); }
+      radiance += u.isoLightIrradiance[l].rgb * (cosI * vis) * isoBrdf(n, wi, wo, albedo);
+    }
+  }
+  if (ISO_ENV > 0) {
+    let e1 = rngNext(rng);
+    let e2 = rngNext(rng);
+    let cosC = sqrt(1.0 - e1);
+    let wc = directionAround(n, cosC, sqrt(e1), 2.0 * VPT_PI * e2);
+    var visC = 1.0;
+    if (ISO_AO) { visC = isoVisibility(origin, wc, u.aoRadius, rng); }
+    if (ISO_ENV == 2) {
+      let envC = environmentLookup(wc);
+      let pdfC = cosC * (1.0 / VPT_PI);
+      let wC = select(0.0, pdfC / (pdfC + envC.a), pdfC > 0.0);
+      radiance += envC.rgb * (visC * VPT_PI * wC) * isoBrdf(n, wc, wo, albedo);
+      let s1 = rngNext(rng);
+      let s2 = rngNext(rng);
+      let es = sampleEnvironment(s1, s2);
+      let cosE = dot(n, es.direction);
+      if (cosE > 0.0 && es.pdf > 0.0) {
+        var visE = 1.0;
+        if (ISO_AO) { visE = isoVisibility(origin, es.direction, u.aoRadius, rng); }
+        let pdfCE = cosE * (1.0 / VPT_PI);
+        let wE = es.pdf / (es.pdf + pdfCE);
+        radiance += es.radiance * (visE * cosE * wE / es.pdf) * isoBrdf(n, es.direction, wo, albedo);
+      }
+    } else {
+      radiance += u.background.rgb * (visC * VPT_PI) * isoBrdf(n, wc, wo, albedo);
+    }
+  }
+  return radiance;
+}
+`;
+
+export const generate = WGSL_SAMPLING + WGSL_ENVIRONMENT_MAP + ISO_COMMON + /* wgsl */ `
+@fragment fn fs_main(@builtin(position) fragCoord: vec4f) -> VptOut {
+  let pixel = vptPixel(fragCoord);
+  let size = vptTargetSize();
+  var rng = rngInit(pixel, u.iteration, u.seed);
+  var dir: vec3f;
+  if (ISO_JITTER) {
+    dir = jitteredCameraRay(pixel, size, &rng);
+  } else {
+    dir = cameraRayDirection(vec2f((f32(pixel.x) + 0.5) / f32(size.x), (f32(pixel.y) + 0.5) / f32(size.y)));
+  }
+  let o = u.cameraPosition;
+  let tb = intersectBox(o, dir, u.boxMin, u.boxMax);
+  var hit = vec4f(-1.0);
+  if (tb.x < tb.y) { hit = isoTrace(o, dir, tb.x, tb.y, &rng); }
+  var color = vec4f(isoEnvironment(dir), 0.0);
+  var nearest = vec4f(-1.0, 0.0, 0.0, 0.0);
+  if (hit.z >= 0.0) {
+    let nz = isoNormal(o + dir * hit.z, dir);
+    nearest = vec4f(hit.z, nz);
+    if (hit.x >= 0.0) {
+      let k = i32(hit.y);
+      var n = nz;
+      if (hit.x != hit.z) { n = isoNormal(o + dir * hit.x, dir); }
+      color = vec4f(isoShade(o + dir * hit.x, n, -dir, u.isoSurface[k].rgb, &rng), 1.0);
+    }
+  }
+  var res: VptOut;
+  res.out0 = color;
+  res.out1 = nearest;
+  return res;
+}
+`;
+
+export const integrate = /* wgsl */ `
+@fragment fn fs_main(@builtin(position) fragCoord: vec4f) -> VptOut {
+  let p = vptPixel(fragCoord);
+  let f0 = textureLoad(frame0, p, 0);
+  let f1 = textureLoad(frame1, p, 0);
+  var o: VptOut;
+  if (u.iteration == 0u) { o.out0 = f0; o.out1 = f1; return o; }
+  let a0 = textureLoad(accum0, p, 0);
+  let a1 = textureLoad(accum1, p, 0);
+  let w = 1.0 / f32(u.iteration + 1u);
+  o.out0 = a0 + (f0 - a0) * w;
+  let nearer = f1.x >= 0.0 && (a1.x < 0.0 || f1.x < a1.x);
+  o.out1 = select(a1, f1, nearer);
+  return o;
+}
+`;
+
+export const render = /* wgsl */ `
+@fragment fn fs_main(@builtin(position) fragCoord: vec4f) -> VptOut {
+  let p = vptPixel(fragCoord);
+  var o: VptOut;
+  if (ISO_OUTPUT == 0) {
+    o.out0 = textureLoad(accum0, p, 0);
+    return o;
+  }
+  let a = textureLoad(accum1, p, 0);
+  if (!(a.x >= 0.0)) { o.out0 = vec4f(0.0); return o; }
+  if (ISO_OUTPUT == 1) { o.out0 = vec4f(a.x, a.x, a.x, 1.0); } else { o.out0 = vec4f(a.yzw, 1.0); }
+  return o;
+}
+`;

@@ -1,0 +1,24 @@
+import { GLSL_ENVIRONMENT_MAP, GLSL_SAMPLING, WGSL_ENVIRONMENT_MAP, WGSL_SAMPLING, type KernelSource } from '@vpt/core';
+import type { McrtFeatures } from './features.js';
+import * as glslAccumulate from './kernels/accumulate.glsl.js';
+import * as wgslAccumulate from './kernels/accumulate.wgsl.js';
+import * as glslPath from './kernels/path.glsl.js';
+import * as wgslPath from './kernels/path.wgsl.js';
+import * as glslTracking from './kernels/tracking.glsl.js';
+import * as wgslTracking from './kernels/tracking.wgsl.js';
+import { preprocess, type Flags } from './preprocess.js';
+
+/**
+ * The generate kernel of one feature variant, in both languages: the shared sampling chunks,
+ * the environment-map chunk only when the variant binds an environment map, then tracking
+ * and the path loop, each cut down to the variant's code by the same preprocessor.
+ */
+export function generateKernel(f: McrtFeatures): KernelSource {
+  const flags = f as unknown as Flags;
+  const glsl = GLSL_SAMPLING + (f.ENV_MAP ? GLSL_ENVIRONMENT_MAP : '') + glslTracking.tracking + glslPath.path;
+  const wgsl = WGSL_SAMPLING + (f.ENV_MAP ? WGSL_ENVIRONMENT_MAP : '') + wgslTracking.tracking + wgslPath.path;
+  return { glsl: preprocess(glsl, flags), wgsl: preprocess(wgsl, flags) };
+}
+
+/** Running means of all, even and odd iterations (three rgba32float accumulation targets). */
+export const INTEGRATE_HALVES: KernelSource = { glsl: glslAccumulate.integrate, wgsl: wgslAccumulate.integrate };

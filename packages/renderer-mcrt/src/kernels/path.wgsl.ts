@@ -1,0 +1,142 @@
+// Volumetric path tracing (Kajiya 1986; PBR 4th ed., ch. 14) with NEE + MIS (Veach & Guibas
+// 1995) and throughput Russian roulette. Twin of path.glsl.ts: same arithmetic in the same order.
+
+export const path = /* wgsl */ `
+fn maxComponent(v: vec3f) -> f32 { return max(max(v.x, v.y), v.z); }
+fn finiteOr0(x: f32) -> f32 { return select(x, 0.0, (bitcast<u32>(x) & 0x7f800000u) == 0x7f800000u); }
+fn finiteOrZero(v: vec3f) -> vec3f { return vec3f(finiteOr0(v.x), finiteOr0(v.y), finiteOr0(v.z)); }
+
+#if ENV_SAMPLING == 2 && MIS_POWER
+fn misWeight(a: f32, b: f32) -> f32 { return misPower(a, b); }
+#elif ENV_SAMPLING == 2
+fn misWeight(a: f32, b: f32) -> f32 { return misBalance(a, b); }
+#endif
+
+fn environmentAlong(d: vec3f) -> vec4f {
+#if ENV_MAP
+  return environmentLookup(d);
+#else
+  return vec4f(u.background.rgb, VPT_INV_4PI);
+#endif
+}
+
+fn escapedRadiance(d: vec3f, depth: i32, phasePdf: f32) -> vec3f {
+  if (depth == 0) { return environmentAlong(d).rgb; }
+#if ENV_LIGHT && ENV_SAMPLING == 0
+  return environmentAlong(d).rgb;
+#elif ENV_LIGHT && ENV_SAMPLING == 2
+  let e = environmentAlong(d);
+  return e.rgb * misWeight(phasePdf, e.a);
+#else
+  return vec3f(0.0);
+#endif
+}
+
+fn directLight(x: vec3f, w: vec3f, rng: ptr<function, u32>) -> vec3f {
+  var Ld = vec3f(0.0);
+#if LIGHT_COUNT > 0
+  for (var i = 0; i < LIGHT_COUNT; i++) {
+    let l = u.lightDirection[i].xyz;
+    let ph = hgPhase(u.phaseG, dot(w, l));
+    let tb = intersectBox(x, l, u.boxMin, u.boxMax);
+    var T = 1.0;
+    if (tb.x < tb.y) { T = transmittance(x, l, tb.x, tb.y, rng); }
+    Ld += u.lightIrradiance[i].rgb * (ph * T);
+  }
+#endif
+#if ENV_LIGHT && ENV_SAMPLING != 0
+  let xi1 = rngNext(rng);
+  let xi2 = rngNext(rng);
+#if ENV_MAP
+  let e = sampleEnvironment(xi1, xi2);
+  let wl = e.direction;
+  let pl = e.pdf;
+  let Le = e.radiance;
+#else
+  let wl = sampleUniformSphere(xi1, xi2);
+  let pl = VPT_INV_4PI;
+  let Le = u.background.rgb;
+#endif
+  if (pl > 0.0) {
+    let ph = hgPhase(u.phaseG, dot(w, wl));
+    let tb = intersectBox(x, wl, u.boxMin, u.boxMax);
+    var T = 1.0;
+    if (tb.x < tb.y) { T = transmittance(x, wl, tb.x, tb.y, rng); }
+#if ENV_SAMPLING == 2
+    let wMis = misWeight(pl, ph);
+#else
+    let wMis = 1.0;
+#endif
+    Ld += Le * (ph * T * wMis / pl);
+  }
+#endif
+  return Ld;
+}
+
+@fragment fn fs_main(@builtin(position) fragCoord: vec4f) -> VptOut {
+  let pixel = vptPixel(fragCoord);
+  var rng = rngInit(pixel, u.iteration, u.seed);
+  var dir = jitteredCameraRay(pixel, vptTargetSize(), &rng);
+  var pos = u.cameraPosition;
+  var tb = intersectBox(pos, dir, u.boxMin, u.boxMax);
+  var o: VptOut;
+#if DEBUG_OUTPUT == 1
+  var Tcam = 1.0;
+  if (tb.x < tb.y) { Tcam = transmittance(pos, dir, tb.x, tb.y, &rng); }
+  o.out0 = vec4f(Tcam, Tcam, Tcam, 1.0);
+#else
+  var L = vec3f(0.0);
+  var beta = vec3f(1.0);
+  var alpha = 0.0;
+  var depth = 0;
+  var phasePdf = 0.0;
+  while (trackingSteps < MAX_TRACKING_STEPS) {
+    var c = Collision(false, 0.0, vec3f(0.0));
+    if (tb.x < tb.y) { c = freeFlight(pos, dir, tb.x, tb.y, &rng); }
+    if (!c.hit) {
+      L += beta * escapedRadiance(dir, depth, phasePdf);
+      break;
+    }
+    if (depth == 0) { alpha = 1.0; }
+    pos = pos + dir * c.t;
+    beta *= c.albedo;
+    depth++;
+    if (maxComponent(beta) <= 0.0) { break; }
+    L += beta * directLight(pos, dir, &rng);
+    let xi1 = rngNext(&rng);
+    let xi2 = rngNext(&rng);
+    let ps = sampleHG(dir, u.phaseG, xi1, xi2);
+    phasePdf = ps.w;
+#if SINGLE_SCATTERING
+    let last = true;
+#else
+    let last = u.maxDepth > 0 && depth >= u.maxDepth;
+#endif
+    if (last) {
+#if ENV_LIGHT && ENV_SAMPLING != 1
+      let tn = intersectBox(pos, ps.xyz, u.boxMin, u.boxMax);
+      var Tn = 1.0;
+      if (tn.x < tn.y) { Tn = transmittance(pos, ps.xyz, tn.x, tn.y, &rng); }
+      L += beta * escapedRadiance(ps.xyz, depth, phasePdf) * Tn;
+#endif
+      break;
+    }
+#if !SINGLE_SCATTERING
+    if (depth >= u.rouletteDepth) {
+      let q = min(maxComponent(beta), 1.0);
+      if (rngNext(&rng) >= q) { break; }
+      beta /= q;
+    }
+    dir = ps.xyz;
+    tb = intersectBox(pos, dir, u.boxMin, u.boxMax);
+#endif
+  }
+#if DEBUG_OUTPUT == 2
+  o.out0 = vec4f(f32(mediumLookups), f32(cellVisits), f32(depth), 1.0);
+#else
+  o.out0 = vec4f(finiteOrZero(L), alpha);
+#endif
+#endif
+  return o;
+}
+`;

@@ -1,0 +1,147 @@
+import {
+  BaseRenderer, buildEnvironmentSampling, COPY_ACCUMULATION_RENDER, rasterizeTransferFunction, TF_RESOLUTION,
+  type AuxiliaryTexture, type EnvironmentSamplingTables, type KernelSource, type LatLongEnvironment, type Scene,
+  type UniformField, type UniformValues, type Volume,
+} from '@vpt/core';
+import { activeLights, computeFeatures, featureKey, MAX_LIGHTS, type McrtFeatures } from './features.js';
+import { generateKernel, INTEGRATE_HALVES } from './kernel-sources.js';
+import { buildMajorantGrid, gridCells, volumeCellRanges, type MajorantGrid } from './majorant-grid.js';
+import { resolveParams, type McrtParams, type ResolvedMcrtParams } from './params.js';
+
+export const MCRT_PARAM_FIELDS: readonly UniformField[] = [
+  { name: 'phaseG', type: 'f32' },
+  { name: 'maxDepth', type: 'i32' },
+  { name: 'rouletteDepth', type: 'i32' },
+  { name: 'globalMajorant', type: 'f32' },
+  { name: 'globalMinorant', type: 'f32' },
+  { name: 'lightDirection', type: 'vec4', count: MAX_LIGHTS },
+  { name: 'lightIrradiance', type: 'vec4', count: MAX_LIGHTS },
+];
+
+// Stable ids for the objects whose identity keys the auxiliary textures.
+const ids = new WeakMap<object, number>();
+let nextId = 1;
+const idOf = (o: object) => { let i = ids.get(o); if (i === undefined) { i = nextId++; ids.set(o, i); } return i; };
+
+/**
+ * Monte Carlo volumetric path tracer (DESIGN.md; issue 3). HDR = estimated radiance,
+ * a = 1 if the camera ray had a real collision (its mean is the opacity along the ray).
+ * Accumulates the running mean of all iterations and of the even and odd ones
+ * (`halfAccumulations`), so RenderContext.estimateError() works.
+ *
+ * The generate kernel is specialised to the scene: `features()` derives the flag set and
+ * `kernels.generate` is that variant's source (the context reads `kernels` right after
+ * calling `features()` for the same scene), cached by flag set.
+ */
+export class McrtRenderer extends BaseRenderer<McrtParams> {
+  readonly name = 'mcrt';
+  readonly frameFormats = ['rgba32float'] as const;
+  readonly accumulationFormats = ['rgba32float', 'rgba32float', 'rgba32float'] as const;
+  readonly halfAccumulations = [1, 2] as const;
+  readonly paramFields = MCRT_PARAM_FIELDS;
+  private resolved: ResolvedMcrtParams;
+  private current: McrtFeatures | null = null;
+  private readonly variants = new Map<string, KernelSource>();
+  private gridMemo: { key: string; grid: MajorantGrid } | null = null;
+  private envMemo: { key: string; tables: EnvironmentSamplingTables } | null = null;
+
+  constructor(params: McrtParams = {}) {
+    const resolved = resolveParams(params);
+    super(params);
+    this.resolved = resolved;
+  }
+
+  /** Merge and validate new parameters (VptError 'invalid-scene' on a bad value); resets accumulation. */
+  override setParams(params: Partial<McrtParams>): void {
+    const resolved = resolveParams({ ...this.getParams(), ...params });
+    super.setParams(params);
+    this.resolved = resolved;
+  }
+
+  /** The parameters with defaults filled in. */
+  get resolvedParams(): ResolvedMcrtParams { return { ...this.resolved }; }
+
+  get kernels(): { readonly generate: KernelSource; readonly integrate: KernelSource; readonly render: KernelSource } {
+    return { generate: this.variant(this.current), integrate: INTEGRATE_HALVES, render: COPY_ACCUMULATION_RENDER };
+  }
+
+  /** The generate kernel for a feature set (the last features() result when omitted). */
+  variant(features: McrtFeatures | null = this.current): KernelSource {
+    const f = features ?? DEFAULT_FEATURES;
+    const key = featureKey(f);
+    let k = this.variants.get(key);
+    if (!k) { k = generateKernel(f); this.variants.set(key, k); }
+    return k;
+  }
+
+  override features(scene: Scene): Record<string, boolean | number> {
+    const f = computeFeatures(scene, this.resolved);
+    this.current = f;
+    return { ...f };
+  }
+
+  paramValues(scene: Scene): UniformValues {
+    const p = this.resolved;
+    const grid = this.majorantGrid(scene);
+    const lights = activeLights(scene);
+    const dirs = new Float32Array(4 * MAX_LIGHTS), irr = new Float32Array(4 * MAX_LIGHTS);
+    lights.forEach((l, i) => { dirs.set(l.direction, 4 * i); irr.set(l.irradiance, 4 * i); });
+    return {
+      phaseG: p.anisotropy,
+      maxDepth: p.scattering === 'single' ? 1 : p.maxDepth,
+      rouletteDepth: p.rouletteDepth,
+      globalMajorant: grid.globalMajorant,
+      globalMinorant: grid.globalMinorant,
+      lightDirection: dirs,
+      lightIrradiance: irr,
+    };
+  }
+
+  auxiliaryTextures(scene: Scene): readonly AuxiliaryTexture[] {
+    const aux: AuxiliaryTexture[] = [];
+    const f = computeFeatures(scene, this.resolved);
+    if (f.MAJORANT_GRID) {
+      const [gx, gy, gz] = gridCells(scene.volume.dims, this.resolved.majorantCellSize);
+      aux.push({
+        name: 'majorantGrid', dimension: '3d', key: this.gridKey(scene),
+        create: () => ({ dimension: '3d', width: gx, height: gy, depth: gz, format: 'rgba32float', data: this.majorantGrid(scene).data, label: 'majorant grid' }),
+      });
+    }
+    if (f.ENV_MAP) {
+      const env = scene.environment as LatLongEnvironment;
+      const key = `${idOf(env.data)}|${env.scale ?? 1}|${env.width}x${env.height}`;
+      const tables = () => this.environmentTables(env, key);
+      aux.push(
+        { name: 'envMap', dimension: '2d', key, create: () => ({ dimension: '2d', width: env.width, height: env.height, format: 'rgba32float', data: tables().map, label: 'environment map' }) },
+        { name: 'envMarginal', dimension: '2d', key, create: () => ({ dimension: '2d', width: env.height + 1, height: 1, format: 'r32float', data: tables().marginal, label: 'environment marginal CDF' }) },
+        { name: 'envConditional', dimension: '2d', key, create: () => ({ dimension: '2d', width: env.width + 1, height: env.height, format: 'r32float', data: tables().conditional, label: 'environment conditional CDFs' }) },
+      );
+    }
+    return aux;
+  }
+
+  /** The majorant grid of a scene (cached by volume, TF, density scale and cell size). */
+  majorantGrid(scene: Scene): MajorantGrid {
+    const key = this.gridKey(scene);
+    if (this.gridMemo?.key !== key) {
+      const ranges = volumeCellRanges(scene.volume, this.resolved.majorantCellSize);
+      const tf = rasterizeTransferFunction(scene.transferFunction, TF_RESOLUTION);
+      this.gridMemo = { key, grid: buildMajorantGrid(ranges, tf, scene.densityScale) };
+    }
+    return this.gridMemo.grid;
+  }
+
+  private gridKey(scene: Scene): string {
+    return `${idOf(scene.volume as Volume)}|${this.resolved.majorantCellSize}|${scene.densityScale}|${JSON.stringify(scene.transferFunction)}`;
+  }
+
+  private environmentTables(env: LatLongEnvironment, key: string): EnvironmentSamplingTables {
+    if (this.envMemo?.key !== key) this.envMemo = { key, tables: buildEnvironmentSampling(env) };
+    return this.envMemo.tables;
+  }
+}
+
+const DEFAULT_FEATURES: McrtFeatures = {
+  ENV_MAP: false, ENV_LIGHT: true, LIGHT_COUNT: 0, SINGLE_SCATTERING: false, MAJORANT_GRID: true,
+  TRACKING: 2, ENV_SAMPLING: 2, MIS_POWER: true, DEBUG_OUTPUT: 0,
+};

@@ -1,0 +1,75 @@
+import { VptError } from '@vpt/core';
+
+/** Shadow-ray (transmittance) estimator. Free flights always use delta tracking. */
+export type TrackingMode = 'delta' | 'ratio' | 'residual';
+/** How light from the environment is gathered at a scattering event. */
+export type EnvironmentSampling = 'mis' | 'light' | 'phase';
+
+export interface McrtParams {
+  /** 'single': one real scattering event per path (as in the seed paper); 'multiple' (default): up to `maxDepth`. */
+  scattering?: 'single' | 'multiple';
+  /** Multiple scattering: most real scattering events per path; -1 (default) = unlimited (Russian roulette ends paths). */
+  maxDepth?: number;
+  /** Real scattering events before Russian roulette may end a path (survival = max(throughput), capped at 1). Default 2. */
+  rouletteDepth?: number;
+  /** Henyey–Greenstein asymmetry g in [-0.9999, 0.9999]; g > 0 scatters forward. Default 0. */
+  anisotropy?: number;
+  /** Transmittance estimator for shadow rays. Default 'residual' (Novák et al. 2014). */
+  tracking?: TrackingMode;
+  /** Traverse a coarse grid of per-cell extinction bounds (default) instead of one global majorant. */
+  majorantGrid?: boolean;
+  /** Edge of a majorant-grid cell in voxels (default 8; at most 64 cells per axis). */
+  majorantCellSize?: number;
+  /**
+   * Environment light: 'mis' (default) = light sampling and phase sampling combined by multiple
+   * importance sampling; 'light' = light sampling only; 'phase' = phase sampling only.
+   */
+  environmentSampling?: EnvironmentSampling;
+  /** MIS heuristic: 'power' (β = 2, default) or 'balance'. */
+  misHeuristic?: 'power' | 'balance';
+  /**
+   * Debug outputs replacing the radiance: 'transmittance' = the shadow-ray estimator along each
+   * camera ray through the box; 'fetches' = (medium lookups, majorant-grid cells visited, real
+   * scattering events, 1) per path. Default 'none'.
+   */
+  debugOutput?: 'none' | 'transmittance' | 'fetches';
+}
+
+export type ResolvedMcrtParams = Required<McrtParams>;
+
+export const MCRT_DEFAULTS: ResolvedMcrtParams = {
+  scattering: 'multiple',
+  maxDepth: -1,
+  rouletteDepth: 2,
+  anisotropy: 0,
+  tracking: 'residual',
+  majorantGrid: true,
+  majorantCellSize: 8,
+  environmentSampling: 'mis',
+  misHeuristic: 'power',
+  debugOutput: 'none',
+};
+
+/** The largest |g| accepted: HG's peak (1+g)/(4π(1−g)²) stays far from float32 overflow. */
+export const MAX_ANISOTROPY = 0.9999;
+
+const oneOf = <T extends string>(name: string, v: unknown, allowed: readonly T[]) => {
+  if (!allowed.includes(v as T)) throw new VptError('invalid-scene', `MCRT: ${name} must be one of ${allowed.join(', ')}, got ${JSON.stringify(v)}`);
+};
+
+/** Defaults filled in and every value checked; throws VptError('invalid-scene') naming the bad field. */
+export function resolveParams(p: McrtParams): ResolvedMcrtParams {
+  const r: ResolvedMcrtParams = { ...MCRT_DEFAULTS };
+  for (const [k, v] of Object.entries(p)) if (v !== undefined) (r as Record<string, unknown>)[k] = v;
+  oneOf('scattering', r.scattering, ['single', 'multiple'] as const);
+  oneOf('tracking', r.tracking, ['delta', 'ratio', 'residual'] as const);
+  oneOf('environmentSampling', r.environmentSampling, ['mis', 'light', 'phase'] as const);
+  oneOf('misHeuristic', r.misHeuristic, ['power', 'balance'] as const);
+  oneOf('debugOutput', r.debugOutput, ['none', 'transmittance', 'fetches'] as const);
+  if (typeof r.majorantGrid !== 'boolean') throw new VptError('invalid-scene', `MCRT: majorantGrid must be a boolean, got ${JSON.stringify(r.majorantGrid)}`);
+  if (!Number.isInteger(r.maxDepth) || r.maxDepth < -1 || r.maxDepth === 0) throw new VptError('invalid-scene', `MCRT: maxDepth must be -1 (unlimited) or a positive integer, got ${r.maxDepth}`);
+  if (!Number.isInteger(r.rouletteDepth) || r.rouletteDepth < 1) throw new VptError('invalid-scene', `MCRT: rouletteDepth must be a positive integer, got ${r.rouletteDepth}`);
+  if (!Number.isFinite(r.anisotropy) || Math.abs(r.anisotropy) > MAX_ANISOTROPY) throw new VptError('invalid-scene', `MCRT: anisotropy must be in [-${MAX_ANISOTROPY}, ${MAX_ANISOTROPY}], got ${r.anisotropy}`);
+  if (!Number.isInteger(r.majorantCellSize) || r.majorantCellSize < 1) throw new VptError('invalid-scene', `MCRT: majorantCellSize must be a positive integer (voxels), got ${r.majorantCellSize}`);
+  return r;
+}

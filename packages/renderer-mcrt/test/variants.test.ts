@@ -1,0 +1,123 @@
+import { describe, expect, it } from 'vitest';
+import { createProceduralVolume, isVptError, rampTransferFunction, type Scene } from '@vpt/core';
+import { computeFeatures, generateKernel, McrtRenderer, preprocess, resolveParams, type McrtFeatures } from '../src/index.js';
+
+describe('preprocess', () => {
+  const src = ['a', '#if X', 'x', '#elif Y == 2 && !Z', 'y', '#else', 'e', '#if Z', 'z', '#endif', '#endif', 'b'].join('\n');
+  it('keeps the taken branch of nested #if/#elif/#else', () => {
+    expect(preprocess(src, { X: true, Y: 2, Z: false })).toBe('a\nx\nb');
+    expect(preprocess(src, { X: false, Y: 2, Z: false })).toBe('a\ny\nb');
+    expect(preprocess(src, { X: false, Y: 1, Z: true })).toBe('a\ne\nz\nb');
+    expect(preprocess(src, { X: false, Y: 2, Z: true })).toBe('a\ne\nz\nb');
+    expect(preprocess('#if A || B > 3\nq\n#endif', { A: false, B: 4 })).toBe('q');
+    expect(preprocess('#if A || B > 3\nq\n#endif', { A: false, B: 3 })).toBe('');
+  });
+  it('rejects unknown flags and unbalanced directives', () => {
+    expect(() => preprocess('#if NOPE\n#endif', {})).toThrow(/unknown flag "NOPE"/);
+    expect(() => preprocess('#if A\n', { A: true })).toThrow(/unterminated/);
+    expect(() => preprocess('#endif', {})).toThrow(/without #if/);
+  });
+});
+
+function scene(over: Partial<Scene> = {}): Scene {
+  return {
+    volume: createProceduralVolume('blob', 8), transferFunction: rampTransferFunction(),
+    camera: { position: [0, 0, 2], target: [0, 0, 0], up: [0, 1, 0], fovy: 0.8 },
+    lights: [], environment: { type: 'constant', radiance: [1, 1, 1] }, densityScale: 10, seed: 1, ...over,
+  };
+}
+
+describe('MCRT feature variants', () => {
+  it('derives the flags from the scene and the parameters', () => {
+    const f = computeFeatures(scene({ lights: [{ type: 'directional', direction: [0, 1, 0], irradiance: [1, 1, 1] }, { type: 'directional', direction: [1, 0, 0], irradiance: [0, 0, 0] }] }), resolveParams({}));
+    expect(f).toEqual({ ENV_MAP: false, ENV_LIGHT: true, LIGHT_COUNT: 1, SINGLE_SCATTERING: false, MAJORANT_GRID: true, TRACKING: 2, ENV_SAMPLING: 2, MIS_POWER: true, DEBUG_OUTPUT: 0 });
+    const black = computeFeatures(scene({ environment: { type: 'constant', radiance: [0, 0, 0] } }), resolveParams({ environmentSampling: 'light', misHeuristic: 'balance' }));
+    expect(black.ENV_LIGHT).toBe(false);
+    expect(black.ENV_SAMPLING).toBe(0); // irrelevant flags are canonical: no extra variants
+    expect(black.MIS_POWER).toBe(false);
+    const map = computeFeatures(scene({ environment: { type: 'latlong', width: 2, height: 1, data: new Float32Array([0, 0, 0, 1, 2, 3]) } }), resolveParams({ scattering: 'single', tracking: 'ratio', majorantGrid: false }));
+    expect(map).toMatchObject({ ENV_MAP: true, ENV_LIGHT: true, SINGLE_SCATTERING: true, TRACKING: 1, MAJORANT_GRID: false });
+    const darkMap = computeFeatures(scene({ environment: { type: 'latlong', width: 1, height: 1, data: new Float32Array(3) } }), resolveParams({}));
+    expect(darkMap.ENV_MAP).toBe(false);
+  });
+
+  const base: McrtFeatures = { ENV_MAP: false, ENV_LIGHT: true, LIGHT_COUNT: 0, SINGLE_SCATTERING: false, MAJORANT_GRID: true, TRACKING: 2, ENV_SAMPLING: 2, MIS_POWER: true, DEBUG_OUTPUT: 0 };
+  const both = (f: McrtFeatures) => { const k = generateKernel(f); return [k.glsl, k.wgsl]; };
+
+  it('compiles only the code a variant needs, in both languages', () => {
+    for (const src of both(base)) {
+      expect(src).not.toMatch(/^\s*#(if|elif|else|endif)/m);
+      expect(src).not.toContain('envMap');
+      expect(src).not.toContain('lightDirection');
+      expect(src).toContain('majorantGrid');
+      expect(src).toContain('misPower(a, b)');
+      expect(src).toContain('u.rouletteDepth');
+    }
+    for (const src of both({ ...base, ENV_MAP: true, LIGHT_COUNT: 2 })) {
+      expect(src).toContain('sampleEnvironment(xi1, xi2)');
+      expect(src).toContain('u.lightDirection[i]');
+    }
+    for (const src of both({ ...base, MAJORANT_GRID: false })) {
+      expect(src).not.toContain('majorantGrid');
+      expect(src).not.toContain('ddaNext');
+      expect(src).toContain('u.globalMajorant');
+    }
+    for (const src of both({ ...base, SINGLE_SCATTERING: true })) expect(src).not.toContain('u.rouletteDepth');
+    for (const src of both({ ...base, TRACKING: 0 })) expect(src).not.toMatch(/exp\(-ctl/);
+    for (const src of both({ ...base, ENV_SAMPLING: 1, MIS_POWER: false })) {
+      expect(src).not.toContain('misWeight');
+      expect(src).toContain('sampleUniformSphere(xi1, xi2)');
+    }
+    for (const src of both({ ...base, ENV_SAMPLING: 0, MIS_POWER: false })) expect(src).not.toContain('sampleUniformSphere(xi1, xi2)');
+    for (const src of both({ ...base, ENV_LIGHT: false, ENV_SAMPLING: 0, MIS_POWER: false })) {
+      expect(src).not.toContain('sampleUniformSphere(xi1, xi2)');
+      expect(src).not.toContain('misWeight');
+    }
+    const full = generateKernel({ ...base, ENV_MAP: true, LIGHT_COUNT: 2 }).glsl.length;
+    expect(generateKernel({ ...base, ENV_LIGHT: false, ENV_SAMPLING: 0, MIS_POWER: false, MAJORANT_GRID: false, SINGLE_SCATTERING: true }).glsl.length).toBeLessThan(full * 0.8);
+  });
+
+  it('serves the variant of the last features() call and caches it', () => {
+    const r = new McrtRenderer();
+    r.features(scene());
+    const a = r.kernels.generate;
+    r.features(scene({ environment: { type: 'constant', radiance: [0, 0, 0] } }));
+    const b = r.kernels.generate;
+    expect(b).not.toBe(a);
+    r.features(scene());
+    expect(r.kernels.generate).toBe(a);
+  });
+
+  it('lists the majorant grid and environment tables as auxiliary textures with content keys', () => {
+    const r = new McrtRenderer();
+    const s = scene({ environment: { type: 'latlong', width: 4, height: 2, data: new Float32Array(24).fill(1) } });
+    const aux = r.auxiliaryTextures(s);
+    expect(aux.map((a) => a.name)).toEqual(['majorantGrid', 'envMap', 'envMarginal', 'envConditional']);
+    const key = aux[0].key;
+    // A camera move keeps the key; density, TF or volume changes alter it.
+    expect(r.auxiliaryTextures({ ...s, camera: { ...s.camera, position: [1, 2, 3] } })[0].key).toBe(key);
+    expect(r.auxiliaryTextures({ ...s, densityScale: 11 })[0].key).not.toBe(key);
+    expect(r.auxiliaryTextures({ ...s, transferFunction: rampTransferFunction([1, 0, 0]) })[0].key).not.toBe(key);
+    expect(r.auxiliaryTextures({ ...s, volume: createProceduralVolume('blob', 8) })[0].key).not.toBe(key);
+    const grid = aux[0].create();
+    expect([grid.width, grid.height, grid.depth, grid.format]).toEqual([1, 1, 1, 'rgba32float']);
+    const cdf = aux[2].create();
+    expect([cdf.width, cdf.height]).toEqual([3, 1]);
+    r.setParams({ majorantGrid: false });
+    expect(r.auxiliaryTextures(scene()).length).toBe(0);
+  });
+
+  it('rejects bad parameters with a typed error', () => {
+    const bad: object[] = [{ anisotropy: 1 }, { anisotropy: NaN }, { maxDepth: 0 }, { maxDepth: 2.5 }, { tracking: 'woodcock' }, { rouletteDepth: 0 }, { majorantCellSize: 0 }, { environmentSampling: 'nee' }];
+    for (const p of bad) {
+      let err: unknown;
+      try { new McrtRenderer(p); } catch (e) { err = e; }
+      expect(isVptError(err) && err.code === 'invalid-scene', JSON.stringify(p)).toBe(true);
+    }
+    const r = new McrtRenderer();
+    expect(() => r.setParams({ anisotropy: -2 })).toThrow(/anisotropy/);
+    expect(r.resolvedParams.anisotropy).toBe(0); // a rejected change leaves the renderer as it was
+    const many = Array.from({ length: 9 }, () => ({ type: 'directional' as const, direction: [0, 1, 0] as [number, number, number], irradiance: [1, 1, 1] as [number, number, number] }));
+    expect(() => r.features(scene({ lights: many }))).toThrow(/at most 8/);
+  });
+});

@@ -1,0 +1,49 @@
+import { describe, expect, it } from 'vitest';
+import { usePage } from './helpers/session.js';
+
+/**
+ * RenderContext.estimateError() reports |even − odd|/2 from the renderer's half
+ * accumulations. Against the true RMSE (the image vs a long-run reference with another
+ * seed) it must agree within a factor of 2 (with ~430 RGB values the estimate's own
+ * relative spread is ~7 %), and fall as the iterations grow.
+ */
+const page = usePage();
+
+describe('MCRT live error estimate (webgl2)', () => {
+  it('tracks the true RMSE against a long-run reference', async () => {
+    const r = await page().page.evaluate(async () => {
+      const t = (window as any).t;
+      const { core } = (window as any).vpt;
+      const W = 12, H = 12;
+      const scene = (seed: number) => ({
+        volume: core.createProceduralVolume('blob', 16),
+        transferFunction: { dimensions: '1d', points: [{ value: 0.05, color: [0.9, 0.8, 0.7], opacity: 0 }, { value: 1, color: [0.95, 0.95, 0.95], opacity: 1 }] },
+        camera: { position: [0.2, 0.5, 1.9], target: [0, 0, 0], up: [0, 1, 0], fovy: 0.7 },
+        lights: [{ type: 'directional', direction: [1, 1, 0], irradiance: [2, 2, 2] }],
+        environment: { type: 'constant', radiance: [0.3, 0.4, 0.6] }, densityScale: 20, seed,
+      });
+      const ctx = await t.context({ backend: 'webgl2', renderer: 'mcrt', width: W, height: H, params: { anisotropy: 0.3 } });
+      ctx.setScene(scene(100));
+      await ctx.renderIterations(1024);
+      const ref: Float32Array = await ctx.readHDR();
+      const out = [];
+      for (const n of [16, 64]) {
+        ctx.setScene(scene(5 + n));
+        await ctx.renderIterations(n);
+        const img: Float32Array = await ctx.readHDR();
+        let sq = 0, cnt = 0;
+        for (let i = 0; i < img.length; i += 4) for (let c = 0; c < 3; c++) { sq += (img[i + c] - ref[i + c]) ** 2; cnt++; }
+        out.push({ n, trueRmse: Math.sqrt(sq / cnt), estimate: (await ctx.estimateError()).rmse });
+      }
+      ctx.dispose();
+      return out;
+    });
+    for (const { n, trueRmse, estimate } of r) {
+      const msg = `${n} iterations: true ${trueRmse}, estimate ${estimate}`;
+      expect(trueRmse, msg).toBeGreaterThan(1e-3);
+      expect(estimate / trueRmse, msg).toBeGreaterThan(0.5);
+      expect(estimate / trueRmse, msg).toBeLessThan(2);
+    }
+    expect(r[1].estimate).toBeLessThan(r[0].estimate);
+  });
+});
