@@ -61,11 +61,11 @@ export const RENDERERS: RendererConfig[] = [
 ];
 
 export const MCRT_VARIANTS: RendererConfig[] = [
-  { label: 'mcrt delta tracking, global majorant', renderer: 'mcrt', params: { scattering: 'multiple', transmittance: 'delta', majorantGrid: false }, halves: true },
-  { label: 'mcrt delta tracking, majorant grid', renderer: 'mcrt', params: { scattering: 'multiple', transmittance: 'delta', majorantGrid: true }, halves: true },
-  { label: 'mcrt ratio tracking, majorant grid', renderer: 'mcrt', params: { scattering: 'multiple', transmittance: 'ratio', majorantGrid: true }, halves: true },
-  { label: 'mcrt residual ratio tracking, majorant grid', renderer: 'mcrt', params: { scattering: 'multiple', transmittance: 'residual-ratio', majorantGrid: true }, halves: true },
-  { label: 'mcrt residual ratio, no MIS', renderer: 'mcrt', params: { scattering: 'multiple', transmittance: 'residual-ratio', majorantGrid: true, mis: false }, halves: true },
+  { label: 'mcrt delta tracking, global majorant', renderer: 'mcrt', params: { scattering: 'multiple', tracking: 'delta', majorantGrid: false }, halves: true },
+  { label: 'mcrt delta tracking, majorant grid', renderer: 'mcrt', params: { scattering: 'multiple', tracking: 'delta', majorantGrid: true }, halves: true },
+  { label: 'mcrt ratio tracking, majorant grid', renderer: 'mcrt', params: { scattering: 'multiple', tracking: 'ratio', majorantGrid: true }, halves: true },
+  { label: 'mcrt residual ratio tracking, majorant grid', renderer: 'mcrt', params: { scattering: 'multiple', tracking: 'residual', majorantGrid: true }, halves: true },
+  { label: 'mcrt residual ratio, phase sampling only (no MIS)', renderer: 'mcrt', params: { scattering: 'multiple', tracking: 'residual', majorantGrid: true, environmentSampling: 'phase' }, halves: true },
 ];
 
 export interface Preset {
