@@ -1,0 +1,104 @@
+// Build the gallery, a static site, into dist/:
+//   dist/index.html, compare.html      the pages (src/*.html)
+//   dist/assets/                       their scripts and styles (src/*.js, *.css) and
+//                                      the one-file <vpt-viewer> bundle with its lazy chunks
+//   dist/data/                         the bundled volumes (copied) and data/fetched/
+//                                      (linked: up to hundreds of MB; `cp -rL dist …` to deploy)
+//   dist/data/manifest.json            what is there: every sidecar and real-format file found
+//   dist/scenes/                       the CLI's scene files (the bundled head's presets)
+// Usage: node build.mjs   (pnpm --filter @vpt/gallery run build)
+import fs from 'node:fs';
+import path from 'node:path';
+import { fileURLToPath } from 'node:url';
+
+const here = path.dirname(fileURLToPath(import.meta.url));
+const root = path.resolve(here, '../..');
+const dist = path.join(here, 'dist');
+const src = path.join(here, 'src');
+const dataDir = path.join(root, 'data');
+
+function fail(message) {
+  console.error(`gallery build: ${message}`);
+  process.exit(1);
+}
+
+// The viewer bundle (built by `pnpm run build`, which builds every package).
+const viewerDist = path.join(here, 'node_modules', '@vpt', 'viewer', 'dist');
+if (!fs.existsSync(path.join(viewerDist, 'vpt-viewer.bundle.js'))) {
+  fail(`${path.relative(root, viewerDist)}/vpt-viewer.bundle.js is missing: build the packages first (pnpm run build)`);
+}
+
+fs.rmSync(dist, { recursive: true, force: true });
+fs.mkdirSync(path.join(dist, 'assets'), { recursive: true });
+fs.mkdirSync(path.join(dist, 'data'), { recursive: true });
+
+for (const f of fs.readdirSync(src)) {
+  const from = path.join(src, f);
+  if (f.endsWith('.html')) fs.copyFileSync(from, path.join(dist, f));
+  else if (/\.(js|css)$/.test(f)) fs.copyFileSync(from, path.join(dist, 'assets', f));
+}
+// The headless CLI's scene files double as the bundled head's presets.
+fs.cpSync(path.join(here, 'scenes'), path.join(dist, 'scenes'), { recursive: true });
+fs.copyFileSync(path.join(viewerDist, 'vpt-viewer.bundle.js'), path.join(dist, 'assets', 'vpt-viewer.bundle.js'));
+const chunks = path.join(viewerDist, 'bundle-chunks');
+if (fs.existsSync(chunks)) fs.cpSync(chunks, path.join(dist, 'assets', 'bundle-chunks'), { recursive: true });
+if (fs.existsSync(path.join(viewerDist, 'loader-worker.js'))) {
+  fs.copyFileSync(path.join(viewerDist, 'loader-worker.js'), path.join(dist, 'assets', 'loader-worker.js'));
+  fs.cpSync(path.join(viewerDist, 'chunks'), path.join(dist, 'assets', 'chunks'), { recursive: true });
+}
+
+// ——— data ———
+
+const REAL_FORMATS = [/\.nrrd$/i, /\.nhdr$/i, /\.nii(\.gz)?$/i];
+const readJson = (f) => {
+  try { return JSON.parse(fs.readFileSync(f, 'utf8')); } catch { return null; }
+};
+const registry = readJson(path.join(dataDir, 'datasets.json'))?.datasets ?? [];
+const registryEntry = (name) => registry.find((d) => d.name === name || d.original?.file === name);
+
+/** One manifest entry per sidecar (with its .raw present) and per real-format file. */
+function scan(folder, urlPrefix, bundled) {
+  if (!fs.existsSync(folder)) return [];
+  const out = [];
+  for (const f of fs.readdirSync(folder).sort()) {
+    const file = path.join(folder, f);
+    if (f.endsWith('.json')) {
+      const meta = readJson(file);
+      if (!meta || !Array.isArray(meta.dims) || !meta.voxel_type) continue; // not a sidecar
+      const raw = typeof meta.file === 'string' ? meta.file : f.replace(/\.json$/, '.raw');
+      if (!fs.existsSync(path.join(folder, raw))) continue;
+      const id = f.replace(/\.json$/, '');
+      const reg = registryEntry(id);
+      out.push({
+        id, url: `${urlPrefix}${f}`, format: 'raw', bundled,
+        title: meta.title ?? id, modality: meta.modality ?? '', dims: meta.dims, type: meta.voxel_type, spacing: meta.spacing ?? [1, 1, 1], valueRange: meta.value_range ?? null,
+        bytes: fs.statSync(path.join(folder, raw)).size, license: meta.license ?? reg?.license ?? '', gpl: reg?.gpl ?? false,
+      });
+    } else if (REAL_FORMATS.some((re) => re.test(f))) {
+      const reg = registryEntry(f);
+      const twin = reg ? readJson(path.join(folder, `${reg.name}.json`)) : null;
+      const format = /\.nii/i.test(f) ? 'nifti' : 'nrrd';
+      out.push({
+        id: f.replace(/\.(nii\.gz|nii|nrrd|nhdr)$/i, '') + `-${format}`, url: `${urlPrefix}${f}`, format, bundled,
+        title: `${twin?.title ?? f} — original ${format.toUpperCase()} file`, modality: twin?.modality ?? '', dims: twin?.dims ?? null,
+        type: twin?.voxel_type ?? null, spacing: twin?.spacing ?? null, valueRange: twin?.value_range ?? null, bytes: fs.statSync(file).size,
+        license: twin?.license ?? reg?.license ?? '', gpl: reg?.gpl ?? false, sameAs: reg?.name ?? null,
+      });
+    }
+  }
+  return out;
+}
+
+// Bundled volumes are small: copy them (the site then works wherever dist/ is copied).
+for (const f of fs.readdirSync(dataDir)) {
+  if (/\.(json|raw)$/.test(f) && f !== 'datasets.json') fs.copyFileSync(path.join(dataDir, f), path.join(dist, 'data', f));
+}
+const bundled = scan(dataDir, 'data/', true);
+const fetchedDir = path.join(dataDir, 'fetched');
+// A fetched copy of a bundled volume is listed once, as the bundled one.
+const fetched = scan(fetchedDir, 'data/fetched/', false).filter((d) => !bundled.some((b) => b.id === d.id));
+if (fetched.length) fs.symlinkSync(path.relative(path.join(dist, 'data'), fetchedDir), path.join(dist, 'data', 'fetched'), 'dir');
+
+const manifest = { generated: new Date().toISOString(), datasets: [...bundled, ...fetched] };
+fs.writeFileSync(path.join(dist, 'data', 'manifest.json'), JSON.stringify(manifest, null, 1));
+console.log(`gallery: ${path.relative(root, dist)}/ with ${bundled.length} bundled and ${fetched.length} fetched datasets${fetched.length ? '' : ' (run `pnpm data:fetch` for more)'}`);

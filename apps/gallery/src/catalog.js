@@ -1,0 +1,206 @@
+// The gallery's datasets and the preset each renderer starts from. A preset is the
+// set of <vpt-viewer> properties that make a dataset look right with that renderer.
+// The bundled MRI head uses the scene files of the headless CLI (scenes/head-*.json),
+// so the gallery and `pnpm render` show the same thing; the other datasets get presets
+// from their modality and orientation, and an automatic transfer function from the
+// histogram where nothing better is known.
+import { fitCamera, valueHistogram } from './vpt-viewer.bundle.js';
+
+export const RENDERERS = [
+  { name: 'mip', label: 'MIP' },
+  { name: 'iso', label: 'Isosurface' },
+  { name: 'eam', label: 'Emission–absorption' },
+  { name: 'mcrt', label: 'Path traced' },
+];
+
+const PROCEDURAL = [
+  { id: 'blob', title: 'Gaussian blob (procedural, 64³)', url: 'procedural:blob?size=64', modality: 'procedural', dims: [64, 64, 64], type: 'float32' },
+  { id: 'sphere', title: 'Sphere (procedural, 64³)', url: 'procedural:sphere?size=64', modality: 'procedural', dims: [64, 64, 64], type: 'float32' },
+  { id: 'ramp', title: 'Linear ramp along x (procedural, 32³)', url: 'procedural:ramp?size=32', modality: 'procedural', dims: [32, 32, 32], type: 'float32' },
+];
+
+/** Every dataset: the build's manifest (bundled + fetched files) and the procedural ones. */
+export async function loadCatalog() {
+  let datasets = [];
+  try {
+    const res = await fetch('data/manifest.json');
+    if (res.ok) datasets = (await res.json()).datasets;
+  } catch {
+    // Without a manifest (not built?) the procedural volumes still work.
+  }
+  return [...datasets, ...PROCEDURAL.map((d) => ({ ...d, bundled: true, format: 'procedural', license: 'generated in code' }))];
+}
+
+// ——— presets ———
+
+const HEAD = 'mri_head_volpack_brainsmall_128x128x84_uint8';
+
+/** How to look at a dataset: the direction the camera sits in and which way is up (from each file's orientation notes). */
+const VIEWS = {
+  ct_head_invesalius_256x256x108_int16: { dir: [0.45, 1.6, 0.35], up: [0, 0, 1] }, // y toward the face, z up
+  ct_chest_pyradiomics_lung2_512x512x61_int16: { dir: [0.45, -1.6, 0.35], up: [0, 0, 1] }, // LPS: anterior is -y
+  mri_brain_mni152_2009a_t1_197x233x189_uint8: { dir: [0.9, 1.4, 0.5], up: [0, 0, 1] }, // RAS
+  mri_head_colin27_ch2_181x217x181_uint8: { dir: [0.7, 1.5, 0.35], up: [0, 0, 1] },
+  mri_head_colin27_ch2better_301x370x316_uint8: { dir: [0.9, 1.4, 0.5], up: [0, 0, 1] },
+  mri_brain_nibabel_anatomical_33x41x25_int16: { dir: [0.9, 1.4, 0.5], up: [0, 0, 1] }, // LAS
+  mri_brain_dipy_aniso_vox_58x58x24_int16: { dir: [0.9, -1.4, 0.5], up: [0, 0, 1] }, // LPS
+  geo_channels_facies_250x250x100_uint8: { dir: [1.2, -1.3, 1.0], up: [0, 0, 1] },
+};
+
+/** Normalized value of a CT number for a volume whose value range is [lo, hi]. */
+const hu = (h, [lo, hi]) => (h - lo) / (hi - lo);
+
+/** Core's 2D presets, fitted by the viewer to the loaded volume (value range, foreground, gradients). */
+function fittedPreset(d) {
+  const id = d.sameAs ?? d.id;
+  if (d.modality === 'CT') return id.startsWith('ct_chest') ? 'ct-soft-tissue' : 'ct-bone';
+  if (/^mri_brain_mni|^mri_head_colin/.test(id)) return 'mri-brain';
+  // Fluorescence only: a cryo-EM tomogram is noise-dominated and gets the automatic function.
+  if (/fluorescence/i.test(d.modality)) return 'microscopy';
+  return null;
+}
+
+/** Transfer functions known to work for a dataset without a fitted preset (values normalized by its value_range). */
+function tunedTransferFunction(d) {
+  if ((d.sameAs ?? d.id).startsWith('geo_')) {
+    // Categorical facies 0..4 → 0, 0.25 … 1: the background class clear, each other class its own colour.
+    const cls = (v, color, opacity) => [{ value: v - 0.1, color, opacity }, { value: v + 0.1, color, opacity }];
+    return { dimensions: '1d', points: [
+      { value: 0.12, color: [0, 0, 0], opacity: 0 },
+      ...cls(0.25, [0.25, 0.45, 1.2], 0.08), ...cls(0.5, [1.3, 1.0, 0.3], 0.5), ...cls(0.75, [1.4, 0.45, 0.25], 0.8),
+      { value: 0.9, color: [1.8, 1.8, 1.6], opacity: 1 }, { value: 1, color: [1.8, 1.8, 1.6], opacity: 1 },
+    ] };
+  }
+  return null;
+}
+
+const PALETTES = {
+  warm: [[0.8, 0.45, 0.3], [1.0, 0.8, 0.65], [2.2, 2.1, 1.9]],
+  hot: [[1.2, 0.15, 0.02], [2.4, 1.1, 0.1], [4, 3.4, 2.4]],
+  cool: [[0.1, 0.3, 1.0], [0.4, 1.2, 1.6], [2.5, 2.6, 2.8]],
+};
+
+/**
+ * A transfer function from the histogram: clear below the median of the non-background
+ * voxels, rising to opaque at the 99.5th percentile. Good enough to see any volume.
+ */
+export function autoTransferFunction(volume, palette = 'warm') {
+  const h = valueHistogram(volume, 256);
+  let total = 0;
+  for (let i = 1; i < h.bins.length; i++) total += h.bins[i];
+  const quantile = (q) => {
+    let acc = 0;
+    for (let i = 1; i < h.bins.length; i++) {
+      acc += h.bins[i];
+      if (acc >= q * total) return (i + 0.5) / h.bins.length;
+    }
+    return 1;
+  };
+  const [c0, c1, c2] = PALETTES[palette];
+  const lo = quantile(0.5), mid = quantile(0.9), hi = Math.max(quantile(0.995), mid + 0.02);
+  const r = (x) => Math.round(Math.min(1, x) * 1e4) / 1e4;
+  return { dimensions: '1d', points: [
+    { value: r(lo), color: c0, opacity: 0 },
+    { value: r(mid), color: c1, opacity: 0.15 },
+    { value: r(hi), color: c2, opacity: 1 },
+  ] };
+}
+
+/** Colours as albedos in [0, 1] for the path tracer (emission-style colours above 1 are not albedos). */
+function asAlbedo(tf) {
+  if (tf.dimensions !== '1d') return tf;
+  return { ...tf, points: tf.points.map((p) => ({ ...p, color: p.color.map((c) => Math.min(0.98, c / Math.max(1, ...p.color))) })) };
+}
+
+/** The value where the transfer function first reaches a third of its largest opacity: a sensible isovalue. */
+function isoValueOf(tf) {
+  if (tf.dimensions !== '1d') return 0.5;
+  const max = Math.max(...tf.points.map((p) => p.opacity));
+  return tf.points.find((p) => p.opacity >= max / 3)?.value ?? 0.5;
+}
+
+function paletteOf(d) {
+  if (/tomogra|cryo/i.test(d.modality) || d.modality === 'procedural') return 'cool';
+  if (/microscopy/i.test(d.modality)) return 'hot';
+  return 'warm';
+}
+
+/** The camera for a dataset: its view direction and up, at the automatic framing distance. */
+function viewCamera(d, volume) {
+  const fit = fitCamera(volume, 0.7);
+  const view = VIEWS[d.sameAs ?? d.id];
+  if (!view) return fit;
+  const dist = Math.hypot(...fit.position);
+  const len = Math.hypot(...view.dir);
+  return { position: view.dir.map((x) => Math.round((x / len) * dist * 1e4) / 1e4), target: [0, 0, 0], up: view.up, fovy: 0.7 };
+}
+
+/** A light from above the camera's left shoulder, in the dataset's own "up". */
+function keyLight(camera, irradiance) {
+  const [px, py, pz] = camera.position;
+  const [ux, uy, uz] = camera.up;
+  const len = Math.hypot(px, py, pz) || 1;
+  const dir = [px / len + 1.2 * ux, py / len + 1.2 * uy, pz / len + 1.2 * uz];
+  const l = Math.hypot(...dir) || 1;
+  return [{ type: 'directional', direction: dir.map((x) => Math.round((x / l) * 1e4) / 1e4), irradiance }];
+}
+
+/** Properties of a scene file (scenes/*.json) as <vpt-viewer> properties. */
+function fromSceneFile(s) {
+  const p = {
+    renderer: s.renderer, camera: s.camera, environment: s.environment ?? { type: 'constant', radiance: [1, 1, 1] },
+    lights: s.lights ?? [], densityScale: s.densityScale ?? 10, rendererParams: s.rendererParams ?? null,
+    exposure: 0, toneMapper: 'aces',
+  };
+  if (s.transferFunction) p.transferFunction = { dimensions: '1d', ...s.transferFunction };
+  for (const step of s.post ?? []) {
+    if (step.type === 'exposure') p.exposure = step.exposure ?? 0;
+    if (step.type === 'tonemap') p.toneMapper = step.operator ?? 'aces';
+  }
+  return p;
+}
+
+const sceneFiles = new Map();
+async function sceneFile(name) {
+  if (!sceneFiles.has(name)) sceneFiles.set(name, fetch(`scenes/${name}.json`).then((r) => (r.ok ? r.json() : null)).catch(() => null));
+  return sceneFiles.get(name);
+}
+
+/**
+ * The preset of `renderer` for dataset `d` whose volume (for the histogram and the box)
+ * is `volume`: an object of <vpt-viewer> properties.
+ */
+export async function presetFor(d, renderer, volume) {
+  if (d.id === HEAD || d.sameAs === HEAD) {
+    const s = await sceneFile(`head-${renderer}`);
+    if (s) {
+      const p = fromSceneFile(s);
+      if (!p.transferFunction) p.transferFunction = fromSceneFile(await sceneFile('head-eam')).transferFunction;
+      return p;
+    }
+  }
+  const tf = tunedTransferFunction(d) ?? autoTransferFunction(volume, paletteOf(d));
+  const fitted = fittedPreset(d);
+  const camera = viewCamera(d, volume);
+  const base = { renderer, camera, transferFunction: tf, exposure: 0, toneMapper: 'aces', rendererParams: null, lights: [] };
+  // CT: bone at 300 HU; otherwise where the automatic function turns a third opaque.
+  const iso = d.modality === 'CT' && d.valueRange ? hu(300, d.valueRange) : isoValueOf(tf);
+  switch (renderer) {
+    case 'mip':
+      return { ...base, toneMapper: 'clamp', environment: { type: 'constant', radiance: [0, 0, 0] }, densityScale: 20 };
+    case 'iso':
+      return {
+        ...base, environment: { type: 'constant', radiance: [0.25, 0.28, 0.35] }, densityScale: 20,
+        rendererParams: { surfaces: [{ value: Math.round(iso * 1000) / 1000, color: [0.92, 0.88, 0.8], opacity: 1 }], specular: 0.15, shininess: 30 },
+        lights: keyLight(camera, [2.2, 2.1, 2.0]),
+      };
+    case 'mcrt':
+      return {
+        ...base, transferFunction: fitted ?? asAlbedo(tf), environment: { type: 'constant', radiance: [0.08, 0.09, 0.12] }, densityScale: fitted ? 1 : 150,
+        rendererParams: { anisotropy: 0.2 }, lights: keyLight(camera, [4, 3.7, 3.2]),
+      };
+    default:
+      // Core's presets are extinctions for densityScale 1 with albedo-like colours: a stop brighter as emission.
+      return { ...base, transferFunction: fitted ?? tf, exposure: fitted ? 1 : 0, environment: { type: 'constant', radiance: [0.03, 0.035, 0.05] }, densityScale: fitted ? 1 : 60 };
+  }
+}

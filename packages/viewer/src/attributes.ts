@@ -1,0 +1,198 @@
+/**
+ * Parsing and comparing the element's attribute values. Every parser takes what a
+ * person may write (an attribute string: a preset name or JSON; or an object set as a
+ * property) and returns the model value, or throws VptError('invalid-scene') with a
+ * message that names the attribute. Nothing here touches the GPU.
+ */
+import {
+  VptError, validateCamera, validateEnvironment, validateLights, validateTransferFunction,
+  TRANSFER_FUNCTION_PRESETS as CORE_TF_PRESETS, transferFunctionPreset as coreTransferFunctionPreset,
+  type Camera, type Environment, type Light, type TransferFunction, type TransferFunctionPresetName, type Volume,
+} from '@vpt/core';
+import { TONE_MAP_OPERATORS, type ToneMapOperator } from '@vpt/post';
+import { TRANSFER_FUNCTION_PRESETS, transferFunctionPreset } from './presets.js';
+
+export type BackendName = 'auto' | 'webgl2' | 'webgpu';
+export const BACKEND_NAMES: readonly BackendName[] = ['auto', 'webgl2', 'webgpu'];
+
+/** An environment given as a URL of a Radiance .hdr (or OpenEXR) lat-long image; loaded asynchronously. */
+export interface EnvironmentUrl { type: 'url'; url: string; scale?: number }
+export type EnvironmentValue = Environment | EnvironmentUrl;
+
+const bad = (attribute: string, message: string): never => {
+  throw new VptError('invalid-scene', `<vpt-viewer> ${attribute}: ${message}`);
+};
+
+/** JSON text → value; a clear message for the typical mistakes. */
+function parseJson(attribute: string, text: string): unknown {
+  try {
+    return JSON.parse(text);
+  } catch (e) {
+    return bad(attribute, `not valid JSON (${(e as Error).message})`);
+  }
+}
+
+/** Re-throw core's validation errors with the attribute's name in front. */
+function withAttribute<T>(attribute: string, check: () => T): T {
+  try {
+    return check();
+  } catch (e) {
+    if (e instanceof VptError) return bad(attribute, e.message);
+    throw e;
+  }
+}
+
+/** Core's 2D presets, fitted to a volume's value range and foreground (core's transferFunctionPreset). */
+export function isFittedPreset(name: unknown): name is TransferFunctionPresetName {
+  return typeof name === 'string' && (CORE_TF_PRESETS as readonly string[]).includes(name.trim());
+}
+
+/**
+ * A preset name (the viewer's fixed ones, or core's 2D presets fitted to `volume`) or a
+ * transfer-function object / JSON, validated.
+ */
+export function parseTransferFunction(v: unknown, volume?: Volume): TransferFunction {
+  const attribute = 'transfer-function';
+  let tf: unknown = v;
+  if (typeof v === 'string') {
+    const text = v.trim();
+    const preset = transferFunctionPreset(text);
+    if (preset) return preset;
+    if (isFittedPreset(text)) return coreTransferFunctionPreset(text, volume);
+    if (!text.startsWith('{')) bad(attribute, `unknown preset "${text}" (presets: ${[...Object.keys(TRANSFER_FUNCTION_PRESETS), ...CORE_TF_PRESETS].join(', ')}; or JSON like {"dimensions":"1d","points":[…]})`);
+    tf = parseJson(attribute, text);
+  }
+  if (!tf || typeof tf !== 'object') bad(attribute, `expected a preset name or a transfer-function object, got ${JSON.stringify(tf)}`);
+  const copy = structuredClone(tf) as TransferFunction;
+  withAttribute(attribute, () => validateTransferFunction(copy));
+  return copy;
+}
+
+export const DEFAULT_FOVY = 0.7;
+
+export function parseCamera(v: unknown): Camera {
+  const attribute = 'camera';
+  const c = typeof v === 'string' ? parseJson(attribute, v) : v;
+  if (!c || typeof c !== 'object' || Array.isArray(c)) bad(attribute, 'expected JSON like {"position":[0,0,2],"target":[0,0,0],"up":[0,1,0],"fovy":0.7}');
+  const o = c as Partial<Camera>;
+  const cam: Camera = {
+    position: o.position as Camera['position'],
+    target: (o.target ?? [0, 0, 0]) as Camera['target'],
+    up: (o.up ?? [0, 1, 0]) as Camera['up'],
+    fovy: o.fovy ?? DEFAULT_FOVY,
+  };
+  withAttribute(attribute, () => validateCamera(cam));
+  return { position: [...cam.position], target: [...cam.target], up: [...cam.up], fovy: cam.fovy };
+}
+
+export function parseLights(v: unknown): Light[] {
+  const attribute = 'lights';
+  if (typeof v === 'string' && v.trim() === 'none') return [];
+  const l = typeof v === 'string' ? parseJson(attribute, v) : v;
+  if (!Array.isArray(l)) return bad(attribute, 'expected a JSON array like [{"type":"directional","direction":[1,1,1],"irradiance":[3,3,3]}] or "none"');
+  const lights = structuredClone(l) as Light[];
+  for (const [i, light] of lights.entries()) {
+    if (!light || typeof light !== 'object' || !Array.isArray(light.direction) || !Array.isArray(light.irradiance)) {
+      bad(attribute, `light ${i} needs "type", "direction" [x,y,z] and "irradiance" [r,g,b]`);
+    }
+  }
+  withAttribute(attribute, () => validateLights(lights));
+  return lights;
+}
+
+/** A constant radiance as JSON, `{"type":"constant","radiance":[r,g,b]}`, or the URL of a lat-long .hdr image. */
+export function parseEnvironment(v: unknown): EnvironmentValue {
+  const attribute = 'environment';
+  if (typeof v === 'string') {
+    const text = v.trim();
+    if (!text.startsWith('{')) {
+      if (!/\.(hdr|pic|exr)(\?|#|$)/i.test(text)) bad(attribute, `expected JSON like {"type":"constant","radiance":[1,1,1]} or the URL of a .hdr/.exr lat-long image, got "${text}"`);
+      return { type: 'url', url: text };
+    }
+    v = parseJson(attribute, text);
+  }
+  if (!v || typeof v !== 'object') return bad(attribute, 'expected an environment object');
+  const env = { ...(v as object) } as EnvironmentValue;
+  if (env.type === 'url') {
+    if (typeof env.url !== 'string') bad(attribute, '"url" must be a string');
+    return { ...env };
+  }
+  if (env.type === 'constant' && (!Array.isArray(env.radiance) || env.radiance.length !== 3)) bad(attribute, '"radiance" must be [r, g, b]');
+  if (env.type === 'latlong') {
+    if (Array.isArray(env.data)) env.data = Float32Array.from(env.data as number[]);
+    if (!(env.data instanceof Float32Array)) bad(attribute, 'a lat-long environment needs "data": width*height*3 floats');
+  }
+  withAttribute(attribute, () => validateEnvironment(env));
+  // Lat-long data (a Float32Array) is kept by identity: copying megabytes per set is waste.
+  return env.type === 'constant' ? { type: 'constant', radiance: [...env.radiance] } : env;
+}
+
+export function parseRendererParams(v: unknown): Record<string, unknown> {
+  const p = typeof v === 'string' ? (v.trim() === '' ? {} : parseJson('renderer-params', v)) : v ?? {};
+  if (!p || typeof p !== 'object' || Array.isArray(p)) return bad('renderer-params', 'expected a JSON object like {"stepSize":0.004}');
+  return { ...(p as Record<string, unknown>) };
+}
+
+export function parseBackend(v: unknown): BackendName {
+  if (!BACKEND_NAMES.includes(v as BackendName)) bad('backend', `must be one of ${BACKEND_NAMES.join(', ')}, got ${JSON.stringify(v)}`);
+  return v as BackendName;
+}
+
+export function parseToneMapper(v: unknown): ToneMapOperator {
+  if (!TONE_MAP_OPERATORS.includes(v as ToneMapOperator)) bad('tone-mapper', `must be one of ${TONE_MAP_OPERATORS.join(', ')}, got ${JSON.stringify(v)}`);
+  return v as ToneMapOperator;
+}
+
+export function parseNumber(attribute: string, v: unknown, { min = -Infinity, max = Infinity, integer = false } = {}): number {
+  const n = typeof v === 'string' ? Number(v.trim() === '' ? NaN : v) : v;
+  if (typeof n !== 'number' || !Number.isFinite(n) || n < min || n > max || (integer && !Number.isInteger(n))) {
+    bad(attribute, `must be a${integer ? 'n integer' : ' number'} in [${min}, ${max}], got ${JSON.stringify(v)}`);
+  }
+  return n as number;
+}
+
+/** An attribute value that did not parse; the element reports `error` and keeps the last valid value. */
+export class InvalidAttribute {
+  constructor(readonly error: unknown) {}
+}
+
+/**
+ * Converter for object-valued properties: the attribute holds JSON or a preset name, the
+ * property the parsed object. Parsing happens here, on the way in, so the attribute keeps
+ * what the page wrote (a preset name stays a name) instead of being rewritten as JSON.
+ */
+export function jsonConverter(parse: (v: unknown) => unknown, keep: (value: string) => boolean = () => false) {
+  return {
+    fromAttribute: (value: string | null): unknown => {
+      if (value === null) return null;
+      if (keep(value)) return value; // parsed later, with more context (a preset fitted to the volume)
+      try {
+        return parse(value);
+      } catch (e) {
+        return new InvalidAttribute(e);
+      }
+    },
+    toAttribute: (value: unknown): string | null => (value == null ? null : typeof value === 'string' ? value : JSON.stringify(value, jsonReplacer)),
+  };
+}
+
+/** Typed arrays (lat-long environment data) are not written into attributes. */
+function jsonReplacer(_key: string, value: unknown): unknown {
+  return ArrayBuffer.isView(value) ? `[${(value as unknown as { length: number }).length} values]` : value;
+}
+
+/**
+ * Structural equality for attribute values: plain objects and arrays by content,
+ * typed arrays by identity (so a lat-long image is not compared element by element).
+ */
+export function sameValue(a: unknown, b: unknown): boolean {
+  if (a === b) return true;
+  if (typeof a !== 'object' || typeof b !== 'object' || a === null || b === null) return Number.isNaN(a) && Number.isNaN(b);
+  if (ArrayBuffer.isView(a) || ArrayBuffer.isView(b)) return false;
+  if (Array.isArray(a) !== Array.isArray(b)) return false;
+  const ka = Object.keys(a), kb = Object.keys(b);
+  if (ka.length !== kb.length) return false;
+  return ka.every((k) => Object.hasOwn(b, k) && sameValue((a as Record<string, unknown>)[k], (b as Record<string, unknown>)[k]));
+}
+
+export const hasChanged = (value: unknown, old: unknown): boolean => !sameValue(value, old);

@@ -1,0 +1,10 @@
+/**
+ * Entry of dist/vpt-viewer.bundle.js, the one-file build for plain HTML pages:
+ *   <script type="module" src=".../vpt-viewer.bundle.js"></script>
+ *   <vpt-viewer src="head.json" renderer="eam"></vpt-viewer>
+ * It contains Lit, the used parts of Three.js, core, post and every installed renderer,
+ * and re-exports core and post for pages that build scenes in code.
+ */
+export * from './index.js';
+export * as core from '@vpt/core';
+export * as post from '@vpt/post';

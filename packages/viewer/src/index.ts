@@ -1,0 +1,36 @@
+/**
+ * @vpt/viewer: `import '@vpt/viewer'` defines <vpt-viewer>, <vpt-tf-editor> and <vpt-tf2d-editor> (this
+ * module's only side effect) and exports their classes and the pieces an application
+ * may want on its own (renderer registry, presets, histogram, exporters).
+ */
+import { VptTfEditor } from './tf-editor-1d.js';
+import { VptTf2dEditor } from './tf-editor-2d.js';
+import { VptViewer } from './viewer-element.js';
+
+export { VptViewer, VptTfEditor, VptTf2dEditor };
+export type { ViewerErrorDetail, ViewerProgressDetail, ViewerConvergedDetail, ViewerLoadDetail, ViewerChangeDetail, PanelName } from './viewer-element.js';
+export type { RefinementStats } from './session.js';
+export { registerRenderer, rendererEntries, rendererEntry, createRenderer, type RendererEntry, type RendererConstructor, type RendererParamSpec } from './renderer-registry.js';
+export { TRANSFER_FUNCTION_PRESETS, transferFunctionPreset } from './presets.js';
+export { parseTransferFunction, parseCamera, parseLights, parseEnvironment } from './attributes.js';
+export { valueHistogram, gradientSamples, valueGradientHistogram, type Histogram1D, type Histogram2D, type GradientSamples } from './histogram.js';
+export { encodePfm, encodeExr, encodePngBlob } from './export.js';
+export { fitCamera } from './camera-fit.js';
+export { volumeLoader } from './loading/volume-source.js';
+export type { VolumeSource, LoadOptions, LoadedVolumeLike } from './loading/types.js';
+
+/** Define the custom elements once (a second copy of the package on the page is ignored, not an error). */
+function define(name: string, ctor: CustomElementConstructor): void {
+  if (typeof customElements !== 'undefined' && !customElements.get(name)) customElements.define(name, ctor);
+}
+define('vpt-viewer', VptViewer);
+define('vpt-tf-editor', VptTfEditor);
+define('vpt-tf2d-editor', VptTf2dEditor);
+
+declare global {
+  interface HTMLElementTagNameMap {
+    'vpt-viewer': VptViewer;
+    'vpt-tf-editor': VptTfEditor;
+    'vpt-tf2d-editor': VptTf2dEditor;
+  }
+}

@@ -1,0 +1,53 @@
+/**
+ * Turn the element's `src` (or a dropped file) into a Volume: `procedural:<kind>?size=N`
+ * in code, everything else through @vpt/loaders when it is installed, else through the
+ * small sidecar loader beside this file.
+ */
+import { VptError, createProceduralVolume, type ProceduralKind } from '@vpt/core';
+import { fallbackLoadVolume } from './fallback-loader.js';
+import type { LoadOptions, LoadVolumeFn, LoadedVolumeLike, VolumeSource } from './types.js';
+
+const PROCEDURAL: readonly ProceduralKind[] = ['sphere', 'cube', 'ramp', 'blob'];
+
+let loaderPromise: Promise<{ loadVolume: LoadVolumeFn; name: string }> | null = null;
+
+/** @vpt/loaders' loadVolume when it can be imported, else the fallback (decided once per page). */
+export function volumeLoader(): Promise<{ loadVolume: LoadVolumeFn; name: string }> {
+  loaderPromise ??= (async () => {
+    try {
+      // @ts-ignore -- optional package, may be absent when this is type-checked
+      const m = (await import('@vpt/loaders')) as { loadVolume?: LoadVolumeFn; __vptMissing?: string };
+      if (!m.__vptMissing && typeof m.loadVolume === 'function') return { loadVolume: m.loadVolume, name: '@vpt/loaders' };
+    } catch {
+      // Not installed (or not built): the fallback handles sidecar URLs.
+    }
+    return { loadVolume: fallbackLoadVolume, name: 'fallback' };
+  })();
+  return loaderPromise;
+}
+
+/** `procedural:blob?size=64` → the volume; null for any other source. */
+export function proceduralVolume(source: VolumeSource): LoadedVolumeLike | null {
+  if (typeof source !== 'string' || !source.startsWith('procedural:')) return null;
+  const url = new URL(source);
+  const kind = url.pathname.replace(/^\/+/, '') as ProceduralKind;
+  if (!PROCEDURAL.includes(kind)) throw new VptError('load-failed', `${source}: unknown procedural volume "${kind}" (${PROCEDURAL.join(', ')})`);
+  const size = url.searchParams.has('size') ? Number(url.searchParams.get('size')) : 64;
+  if (!Number.isInteger(size) || size < 2 || size > 512) throw new VptError('load-failed', `${source}: size must be an integer in [2, 512]`);
+  return Object.assign(createProceduralVolume(kind, size), { format: 'procedural' });
+}
+
+export async function loadVolumeSource(source: VolumeSource, options: LoadOptions): Promise<LoadedVolumeLike> {
+  const procedural = proceduralVolume(source);
+  if (procedural) return procedural;
+  const { loadVolume } = await volumeLoader();
+  const volume = await loadVolume(source, options);
+  // A sidecar's value_range maps to [0, 1] for every voxel type, as the headless renderer
+  // (vpt-render) reads scene files; @vpt/loaders keeps it in meta only. Applying it here
+  // makes the element show exactly what vpt-render renders for the same scene.
+  const range = volume.meta?.value_range;
+  if (!volume.valueRange && Array.isArray(range) && range.length === 2 && range.every(Number.isFinite) && range[1] > range[0]) {
+    volume.valueRange = [range[0], range[1]];
+  }
+  return volume;
+}

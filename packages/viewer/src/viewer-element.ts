@@ -1,0 +1,760 @@
+/**
+ * `<vpt-viewer>`: a progressive volume renderer as one HTML element.
+ *
+ * Attributes (all reflected, all also properties): src, renderer, backend,
+ * transfer-function, camera, lights, environment, exposure, tone-mapper, max-samples,
+ * target-error, density-scale, seed, renderer-params, resolution-scale, panels, collapsed.
+ * Events: load, progress (loading and refinement), converged, error, change (the user
+ * edited something through the element: camera drag, panels).
+ *
+ * Async work (loading a renderer package, a volume, an environment image, opening a GPU
+ * context) runs in the background and applies the *current* attribute values when it
+ * completes, so attributes can be set in any order at any time. Everything else applies
+ * synchronously after Lit's update, and only a change of the image resets accumulation.
+ */
+import { LitElement, html, nothing, type PropertyValues } from 'lit';
+import { isVptError, VptError, type Camera, type Environment, type Light, type Renderer, type Scene, type TransferFunction, type Volume } from '@vpt/core';
+import { defaultPostChain, type ToneMapOperator } from '@vpt/post';
+import {
+  hasChanged, InvalidAttribute, isFittedPreset, jsonConverter, parseBackend, parseCamera, parseEnvironment, parseLights, parseNumber, parseRendererParams,
+  parseToneMapper, parseTransferFunction, sameValue, type BackendName, type EnvironmentValue,
+} from './attributes.js';
+import { fitCamera } from './camera-fit.js';
+import { download, encodeExr, encodePfm, encodePngBlob } from './export.js';
+import { gradientSamples, valueHistogram, type GradientSamples, type Histogram1D } from './histogram.js';
+import { loadEnvironment } from './loading/environment-loader.js';
+import type { LoadedVolumeLike, VolumeSource } from './loading/types.js';
+import { loadVolumeSource } from './loading/volume-source.js';
+import { OrbitCamera } from './orbit.js';
+import { renderPanels, type PanelName, PANEL_NAMES } from './panels.js';
+import { DEFAULT_TRANSFER_FUNCTION, transferFunctionPreset } from './presets.js';
+import { createRenderer } from './renderer-registry.js';
+import { RenderSession, type RefinementStats } from './session.js';
+import { viewerStyles } from './styles.js';
+
+export interface ViewerErrorDetail {
+  /** The typed error (a VptError: `code`, and `reason` for load failures). */
+  error: VptError;
+  code: VptError['code'];
+  message: string;
+  /** What failed: the volume, the renderer, the environment image, the GPU context, or an attribute value. */
+  source: 'src' | 'renderer' | 'environment' | 'context' | 'attribute' | 'export';
+}
+export type ViewerProgressDetail =
+  | { phase: 'loading'; stage: string; loaded: number; total?: number }
+  | ({ phase: 'refining' } & RefinementStats);
+export type ViewerConvergedDetail = RefinementStats & { reason: 'max-samples' | 'target-error' };
+export interface ViewerLoadDetail { volume: Volume; format: string; dims: [number, number, number]; type: string }
+export interface ViewerChangeDetail { property: string }
+
+const DEFAULT_ENVIRONMENT: Environment = { type: 'constant', radiance: [1, 1, 1] };
+/** Interaction should leave time for at least one iteration per 60 Hz frame. */
+const INTERACTION_BUDGET_MS = 14;
+/** Full resolution returns this long after the last camera movement. */
+const SETTLE_MS = 180;
+
+/** Fields whose change goes straight to the GPU scene/post/stopping (no async work). */
+const SYNC_FIELDS = ['transferFunction', 'camera', 'lights', 'densityScale', 'seed', 'exposure', 'toneMapper', 'maxSamples', 'targetError', 'resolutionScale'] as const;
+
+export class VptViewer extends LitElement {
+  static override styles = viewerStyles;
+
+  static override properties = {
+    src: { type: String, reflect: true },
+    renderer: { type: String, reflect: true },
+    backend: { type: String, reflect: true },
+    transferFunction: { attribute: 'transfer-function', reflect: true, converter: jsonConverter(parseTransferFunction, isFittedPreset), hasChanged },
+    camera: { reflect: true, converter: jsonConverter(parseCamera), hasChanged },
+    lights: { reflect: true, converter: jsonConverter(parseLights), hasChanged },
+    environment: { reflect: true, converter: jsonConverter(parseEnvironment), hasChanged },
+    exposure: { type: Number, reflect: true },
+    toneMapper: { attribute: 'tone-mapper', type: String, reflect: true },
+    maxSamples: { attribute: 'max-samples', type: Number, reflect: true },
+    targetError: { attribute: 'target-error', type: Number, reflect: true },
+    densityScale: { attribute: 'density-scale', type: Number, reflect: true },
+    seed: { type: Number, reflect: true },
+    rendererParams: { attribute: 'renderer-params', reflect: true, converter: jsonConverter(parseRendererParams), hasChanged },
+    resolutionScale: { attribute: 'resolution-scale', type: Number, reflect: true },
+    panels: { type: String, reflect: true },
+    collapsed: { type: Boolean, reflect: true },
+    _error: { state: true },
+    _status: { state: true },
+    _lost: { state: true },
+    _stats: { state: true },
+    _histogram: { state: true },
+    _dragOver: { state: true },
+  };
+
+  /** URL of the volume (any format @vpt/loaders reads; a JSON sidecar; or `procedural:blob?size=64`). */
+  declare src: string | null;
+  /** mip | iso | eam | mcrt, or any name added with registerRenderer(). */
+  declare renderer: string;
+  declare backend: BackendName;
+  /** A preset name or JSON as attribute; the TransferFunction object as property (a string is parsed). */
+  declare transferFunction: TransferFunction | string | null;
+  /** null: framed automatically when a volume loads. */
+  declare camera: Camera | string | null;
+  declare lights: Light[] | string | null;
+  declare environment: EnvironmentValue | string | null;
+  /** Exposure in stops (applied before tone mapping). */
+  declare exposure: number;
+  declare toneMapper: ToneMapOperator;
+  /** Refinement stops at this many samples per pixel. */
+  declare maxSamples: number;
+  /** Refinement stops when the estimated relative RMSE falls below this (0: off; needs a renderer with half accumulations). */
+  declare targetError: number;
+  /** Extinction per world unit at opacity 1. */
+  declare densityScale: number;
+  declare seed: number;
+  declare rendererParams: Record<string, unknown> | string | null;
+  /** Render resolution relative to the element's device pixels (1 = full). */
+  declare resolutionScale: number;
+  /** "all", "none", or a space-separated list of tf lights quality stats export. */
+  declare panels: string;
+  /** Panels sidebar closed (the toolbar button opens it). */
+  declare collapsed: boolean;
+
+  declare private _error: ViewerErrorDetail | null;
+  declare private _status: string;
+  declare private _lost: boolean;
+  declare private _stats: RefinementStats | null;
+  declare private _histogram: Histogram1D | null;
+  declare private _dragOver: boolean;
+
+  private session: RenderSession | null = null;
+  private canvas: HTMLCanvasElement | null = null;
+  private rendererInstance: Renderer | null = null;
+  private rendererKey = '';
+  private volume: LoadedVolumeLike | null = null;
+  private loadedSource: VolumeSource | null = null;
+  private resolvedEnvironment: Environment = DEFAULT_ENVIRONMENT;
+  private readonly orbit: OrbitCamera;
+  private cameraIsAuto = true;
+  private homeCamera: Camera | null = null;
+  private internalChange = new Set<string>();
+  private cssSize = { width: 0, height: 0 };
+  private interacting = false;
+  private settleTimer: ReturnType<typeof setTimeout> | null = null;
+  private resizeObserver: ResizeObserver | null = null;
+  private dprQuery: MediaQueryList | null = null;
+  private pending = new Set<Promise<unknown>>();
+  private tokens = { session: 0, renderer: 0, src: 0, environment: 0 };
+  private srcAbort: AbortController | null = null;
+  private postKey = '';
+  private lastValid = new Map<string, unknown>();
+  private connected = false;
+
+  constructor() {
+    super();
+    this.src = null;
+    this.renderer = 'eam';
+    this.backend = 'auto';
+    this.transferFunction = null;
+    this.camera = null;
+    this.lights = null;
+    this.environment = null;
+    this.exposure = 0;
+    this.toneMapper = 'aces';
+    this.maxSamples = 1024;
+    this.targetError = 0;
+    this.densityScale = 10;
+    this.seed = 1;
+    this.rendererParams = null;
+    this.resolutionScale = 1;
+    this.panels = 'all';
+    this.collapsed = false;
+    this._error = null;
+    this._status = '';
+    this._lost = false;
+    this._stats = null;
+    this._histogram = null;
+    this._dragOver = false;
+    // Seed the "last valid value" of each checked property with its default, for a first value that is invalid.
+    for (const key of ['transferFunction', 'camera', 'lights', 'environment', 'rendererParams', 'backend', 'toneMapper', 'exposure', 'maxSamples', 'targetError', 'densityScale', 'seed', 'resolutionScale'] as const) {
+      this.lastValid.set(key, this[key]);
+    }
+    this.orbit = new OrbitCamera({
+      start: () => { /* a click without movement must not drop resolution: see change */ },
+      change: (camera) => this.onUserCamera(camera),
+      end: () => this.scheduleSettle(),
+    });
+  }
+
+  // ——— public API ———
+
+  /** The RenderContext (null until the GPU context is open): stats, readHDR/readLDR, estimateError… */
+  get context() { return this.session?.ctx ?? null; }
+  /** Samples per pixel accumulated for the current image. */
+  get samples(): number { return this.session?.samples ?? 0; }
+  /** The latest refinement numbers (samples, ms per iteration, estimated error, render size). */
+  get stats(): RefinementStats | null { return this._stats; }
+  /** The volume on display. */
+  get loadedVolume(): LoadedVolumeLike | null { return this.volume; }
+  /** Whether the current image has reached max-samples or target-error. */
+  get converged(): boolean { return this.session?.isConverged ?? false; }
+
+  /** Resolves once every pending load (renderer, volume, environment, GPU context) has been applied. */
+  async whenSettled(): Promise<void> {
+    await this.updateComplete;
+    while (this.pending.size) {
+      await Promise.allSettled([...this.pending]);
+      await this.updateComplete;
+    }
+  }
+
+  /** Load a volume from anything @vpt/loaders accepts (Files from a picker or a drop, bytes, a URL). */
+  async load(source: VolumeSource): Promise<void> {
+    if (typeof source === 'string') {
+      this.src = source;
+      await this.whenSettled();
+      return;
+    }
+    await this.track(this.loadSource(source));
+  }
+
+  /** Frame the volume again (the camera attribute's value when one was given, else an automatic fit). */
+  resetCamera(): void {
+    const cam = this.homeCamera ?? (this.volume ? fitCamera(this.volume) : null);
+    if (cam) this.setInternal('camera', cam);
+  }
+
+  /** The displayed image as a PNG. */
+  async screenshot(): Promise<Blob> {
+    const ctx = this.requireContext();
+    const ldr = await ctx.readLDR();
+    const { width, height } = ctx.size;
+    return encodePngBlob(ldr, width, height);
+  }
+
+  /** The linear HDR render (before exposure and tone mapping) as PFM or 32-bit float OpenEXR bytes. */
+  async exportHDR(format: 'pfm' | 'exr' = 'exr'): Promise<Uint8Array> {
+    const ctx = this.requireContext();
+    const hdr = await ctx.readHDR();
+    const { width, height } = ctx.size;
+    return format === 'pfm' ? encodePfm(hdr, width, height) : encodeExr(hdr, width, height);
+  }
+
+  // ——— lifecycle ———
+
+  override connectedCallback(): void {
+    super.connectedCallback();
+    this.connected = true;
+    this.watchDevicePixelRatio();
+    // Re-attached after a removal: the GPU context was released, open a new one.
+    if (this.hasUpdated) {
+      const view = this.renderRoot.querySelector('.view');
+      if (view) this.resizeObserver?.observe(view);
+      if (!this.session) this.track(this.openSession());
+    }
+  }
+
+  override disconnectedCallback(): void {
+    super.disconnectedCallback();
+    this.connected = false;
+    this.resizeObserver?.disconnect();
+    this.dprQuery?.removeEventListener('change', this.onDprChange);
+    this.srcAbort?.abort();
+    this.tokens.session++;
+    this.session?.dispose();
+    this.session = null;
+  }
+
+  protected override firstUpdated(): void {
+    const view = this.renderRoot.querySelector('.view') as HTMLElement;
+    this.resizeObserver = new ResizeObserver((entries) => {
+      const e = entries[0];
+      this.cssSize = { width: e.contentRect.width, height: e.contentRect.height };
+      this.applySize();
+    });
+    try {
+      // The device-pixel box changes with the DPR too (zoom, moving to another screen): a callback then.
+      this.resizeObserver.observe(view, { box: 'device-pixel-content-box' });
+    } catch {
+      this.resizeObserver.observe(view);
+    }
+    const r = view.getBoundingClientRect();
+    this.cssSize = { width: r.width, height: r.height };
+  }
+
+  protected override willUpdate(changed: PropertyValues<this>): void {
+    // Normalize and validate what changed; an invalid value is reported and the last valid one restored.
+    const self = this as unknown as Record<string, unknown>;
+    const check = (key: string, parse: (v: unknown) => unknown) => {
+      if (!changed.has(key as keyof VptViewer)) return;
+      const value = self[key];
+      if (value === null || value === undefined) { this.lastValid.set(key, value); return; }
+      try {
+        if (value instanceof InvalidAttribute) throw value.error;
+        const parsed = parse(value);
+        // Strings set as properties become objects; objects (from an attribute or a
+        // property) are only validated, so an attribute's own text is not rewritten.
+        if (typeof value === 'string' && typeof parsed === 'object') self[key] = parsed;
+        this.lastValid.set(key, typeof parsed === 'object' && typeof value !== 'string' ? value : parsed);
+      } catch (e) {
+        self[key] = this.lastValid.get(key);
+        this.fail(e, 'attribute');
+      }
+    };
+    if (changed.has('transferFunction') && !this.keepFittedPreset) {
+      // A fitted preset's name is kept until a volume is loaded, then refitted to each new one.
+      this.fittedPreset = isFittedPreset(this.transferFunction) ? (this.transferFunction as string).trim() : null;
+    }
+    this.keepFittedPreset = false;
+    check('transferFunction', (v) => parseTransferFunction(v, this.volume ?? undefined));
+    check('camera', parseCamera);
+    check('lights', parseLights);
+    check('environment', parseEnvironment);
+    check('rendererParams', parseRendererParams);
+    check('backend', parseBackend);
+    check('toneMapper', parseToneMapper);
+    check('exposure', (v) => parseNumber('exposure', v, { min: -64, max: 64 }));
+    check('maxSamples', (v) => parseNumber('max-samples', v, { min: 1, integer: true }));
+    check('targetError', (v) => parseNumber('target-error', v, { min: 0 }));
+    check('densityScale', (v) => parseNumber('density-scale', v, { min: 0 }));
+    check('seed', (v) => parseNumber('seed', v, { min: 0, max: 0xffffffff, integer: true }));
+    check('resolutionScale', (v) => parseNumber('resolution-scale', v, { min: 0.05, max: 4 }));
+    if (changed.has('camera') && !this.internalChange.has('camera')) {
+      // A camera given from outside becomes "home" for resetCamera().
+      this.cameraIsAuto = this.camera === null;
+      this.homeCamera = this.camera as Camera | null;
+    }
+  }
+
+  protected override updated(changed: PropertyValues<this>): void {
+    const internal = this.internalChange;
+    this.internalChange = new Set();
+    if (!this.connected) return;
+    if (changed.has('camera') && this.camera && !internal.has('camera')) this.orbit.set(this.camera as Camera);
+    if (changed.has('backend') || (!this.session && !this.opening)) this.track(this.openSession());
+    else if (this.session && (changed.has('renderer') || changed.has('rendererParams'))) this.track(this.switchRenderer());
+    if (changed.has('src')) this.track(this.loadSource(this.src));
+    if (changed.has('environment')) this.track(this.resolveEnvironment());
+    if (SYNC_FIELDS.some((f) => changed.has(f))) this.applySync();
+  }
+
+  // ——— rendering (DOM) ———
+
+  private get panelSet(): Set<PanelName> {
+    const p = (this.panels ?? 'all').trim();
+    if (p === 'none') return new Set();
+    if (p === 'all' || p === '') return new Set(PANEL_NAMES);
+    return new Set(p.split(/[\s,]+/).filter((n): n is PanelName => (PANEL_NAMES as readonly string[]).includes(n)));
+  }
+
+  protected override render() {
+    const panels = this.panelSet;
+    const showAside = panels.size > 0 && !this.collapsed;
+    return html`
+      <div class="layout">
+        <div class="view" part="view"
+          @dragover=${this.onDragOver} @dragleave=${() => { this._dragOver = false; }} @drop=${this.onDrop}>
+          ${this._status ? html`<p class="overlay status" part="status" role="status">${this._status}</p>` : nothing}
+          ${panels.size ? html`<div class="toolbar">
+            <button type="button" part="panels-toggle" aria-expanded=${showAside ? 'true' : 'false'} aria-controls="panels"
+              @click=${() => { this.collapsed = !this.collapsed; }}>${showAside ? 'Hide panels' : 'Panels'}</button>
+          </div>` : nothing}
+          ${this._lost ? html`<div class="overlay lost" role="alert">
+            <p>The GPU context was lost. Restoring…</p>
+            <div><button type="button" @click=${() => this.track(this.openSession())}>Restart renderer</button></div>
+          </div>` : nothing}
+          ${this._error ? html`<div class="overlay error" part="error" role="alert">
+            <p>${this._error.message}</p>
+            <button type="button" aria-label="Dismiss error" @click=${() => { this._error = null; }}>×</button>
+          </div>` : nothing}
+          ${this._dragOver ? html`<div class="drop" aria-hidden="true">Drop a volume file</div>` : nothing}
+        </div>
+        ${showAside ? html`<aside id="panels" part="panels" aria-label="Viewer settings">${renderPanels(this, panels)}</aside>` : nothing}
+      </div>`;
+  }
+
+  // ——— state the panels read and write ———
+
+  /** @internal for the panels */
+  get panelState() {
+    return {
+      transferFunction: this.currentTransferFunction(),
+      histogram: this._histogram,
+      lights: (this.lights as Light[] | null) ?? [],
+      environment: this.environment as EnvironmentValue | null,
+      stats: this._stats,
+      backendKind: this.session?.ctx.backend.kind ?? null,
+      volume: this.volume,
+      rendererInstance: this.rendererInstance,
+    };
+  }
+
+  /** @internal Set a property as the user did through the element: reflected, and announced with `change`. */
+  setInternal(property: 'camera' | 'transferFunction' | 'lights' | 'environment' | 'renderer' | 'backend' | 'exposure' | 'toneMapper' | 'maxSamples' | 'targetError' | 'densityScale' | 'seed' | 'rendererParams' | 'resolutionScale', value: unknown): void {
+    if (sameValue(this[property], value)) return;
+    (this as Record<string, unknown>)[property] = value;
+    if (property === 'camera') this.internalChange.add('camera');
+    this.dispatchEvent(new CustomEvent<ViewerChangeDetail>('change', { detail: { property } }));
+  }
+
+  private gradientCache: { volume: Volume; samples: GradientSamples } | null = null;
+  /** Name of core's volume-fitted 2D preset the transfer function came from, if it did. */
+  private fittedPreset: string | null = null;
+  private keepFittedPreset = false;
+
+  /** @internal The volume's (value, gradient) pairs for the 2D editor's histogram; computed once per volume, on first use. */
+  gradientSamples(): GradientSamples | null {
+    if (!this.volume) return null;
+    if (this.gradientCache?.volume !== this.volume) this.gradientCache = { volume: this.volume, samples: gradientSamples(this.volume) };
+    return this.gradientCache.samples;
+  }
+
+  /** @internal The core 2D preset the transfer function was fitted from, if any. */
+  get fittedPresetName(): string | null { return this.fittedPreset; }
+
+  /** @internal */
+  async downloadScreenshot(): Promise<void> {
+    try {
+      download(await this.screenshot(), 'vpt.png');
+    } catch (e) { this.fail(e, 'export'); }
+  }
+
+  /** @internal */
+  async downloadHDR(format: 'pfm' | 'exr'): Promise<void> {
+    try {
+      download(await this.exportHDR(format), `vpt.${format}`, format === 'exr' ? 'image/x-exr' : 'image/x-portable-floatmap');
+    } catch (e) { this.fail(e, 'export'); }
+  }
+
+  // ——— async work ———
+
+  private track<T>(p: Promise<T>): Promise<T> {
+    this.pending.add(p);
+    p.finally(() => this.pending.delete(p)).catch(() => {});
+    return p;
+  }
+
+  private requireContext() {
+    const ctx = this.session?.ctx;
+    if (!ctx || !ctx.getScene()) throw new VptError('invalid-scene', '<vpt-viewer>: nothing rendered yet (no volume loaded)');
+    return ctx;
+  }
+
+  private async loadRendererInstance(): Promise<Renderer> {
+    const key = this.desiredRendererKey();
+    if (this.rendererInstance && key === this.rendererKey) return this.rendererInstance;
+    try {
+      const r = await createRenderer(this.renderer, (this.rendererParams as Record<string, unknown> | null) ?? {});
+      this.rendererInstance = r;
+      this.rendererKey = key;
+      this.failedRendererKey = '';
+      return r;
+    } catch (e) {
+      this.failedRendererKey = key;
+      throw e;
+    }
+  }
+
+  private async switchRenderer(): Promise<void> {
+    const token = ++this.tokens.renderer;
+    try {
+      const r = await this.loadRendererInstance();
+      if (token !== this.tokens.renderer || !this.session) return;
+      if (this.session.ctx.renderer !== r) this.session.setRenderer(r);
+      this.clearError('renderer');
+      this.requestUpdate();
+    } catch (e) {
+      if (token === this.tokens.renderer) this.fail(e, 'renderer');
+    }
+  }
+
+  /** (Re)open the GPU context on a fresh canvas (a canvas keeps the first context type it was given). */
+  private async openSession(): Promise<void> {
+    const token = ++this.tokens.session;
+    const opening = this.openSessionNow(token).finally(() => { if (this.opening === opening) this.opening = null; });
+    this.opening = opening;
+    return opening;
+  }
+
+  private opening: Promise<void> | null = null;
+  /** The renderer key that failed to load last, so it is reported once rather than on every retry. */
+  private failedRendererKey = '';
+
+  private desiredRendererKey(): string {
+    return `${this.renderer}|${JSON.stringify(this.rendererParams ?? {})}`;
+  }
+
+  private async openSessionNow(token: number): Promise<void> {
+    ++this.tokens.renderer;
+    this.session?.dispose();
+    this.session = null;
+    this._lost = false;
+    await this.updateComplete;
+    const view = this.renderRoot.querySelector('.view') as HTMLElement | null;
+    if (!view || token !== this.tokens.session) return;
+    let renderer: Renderer;
+    try {
+      renderer = await this.loadRendererInstance();
+    } catch (e) {
+      if (token !== this.tokens.session) return;
+      this.fail(e, 'renderer');
+      // Keep going with the previous renderer, or else the default one, so the element stays usable.
+      try { renderer = this.rendererInstance ?? await createRenderer('eam'); } catch { return; }
+    }
+    if (token !== this.tokens.session) return;
+    const canvas = document.createElement('canvas');
+    canvas.tabIndex = 0;
+    canvas.setAttribute('part', 'canvas');
+    canvas.setAttribute('role', 'img');
+    canvas.setAttribute('aria-label', 'Volume rendering. Drag or use the arrow keys to orbit; right-drag or Shift+arrows to pan; wheel, +/- to zoom.');
+    const { width, height } = this.renderSize(Infinity);
+    let session: RenderSession;
+    try {
+      session = await RenderSession.create(
+        { canvas, backend: this.backend, renderer, post: this.makePost(), width, height },
+        {
+          progress: (s) => this.onProgress(s),
+          converged: (s) => this.dispatchEvent(new CustomEvent<ViewerConvergedDetail>('converged', { detail: s })),
+          lost: () => { this._lost = true; },
+          restored: () => { this._lost = false; },
+        },
+      );
+    } catch (e) {
+      if (token === this.tokens.session) this.fail(e, 'context');
+      return;
+    }
+    if (token !== this.tokens.session || !this.connected) { session.dispose(); return; }
+    this.canvas?.remove();
+    this.canvas = canvas;
+    view.prepend(canvas);
+    this.session = session;
+    this.postKey = this.postKeyNow();
+    this.orbit.attach(canvas);
+    if (this.camera) this.orbit.set(this.camera as Camera);
+    this.clearError('context');
+    this.applySize();
+    this.applySync();
+    this.requestUpdate();
+    // The renderer attribute may have changed while the context was opening.
+    if (this.desiredRendererKey() !== this.rendererKey && this.desiredRendererKey() !== this.failedRendererKey) this.track(this.switchRenderer());
+  }
+
+  private async loadSource(source: VolumeSource | null): Promise<void> {
+    const token = ++this.tokens.src;
+    this.srcAbort?.abort();
+    if (source === null || source === '') return;
+    const abort = new AbortController();
+    this.srcAbort = abort;
+    this._status = 'Loading…';
+    try {
+      const limits = this.session ? { maxTextureDimension3D: this.session.ctx.backend.limits.maxTextureDimension3D } : undefined;
+      const volume = await loadVolumeSource(source, {
+        signal: abort.signal,
+        limits,
+        onProgress: (p) => {
+          if (token !== this.tokens.src) return;
+          this._status = p.total ? `Loading… ${Math.round((100 * p.loaded) / p.total)}%` : `Loading… ${(p.loaded / 1048576).toFixed(1)} MB`;
+          this.dispatchEvent(new CustomEvent<ViewerProgressDetail>('progress', { detail: { phase: 'loading', ...p } }));
+        },
+      });
+      if (token !== this.tokens.src) return;
+      this.volume = volume;
+      this.loadedSource = source;
+      this._status = '';
+      this._histogram = valueHistogram(volume);
+      if (this.fittedPreset) {
+        const name = this.fittedPreset;
+        this.transferFunction = parseTransferFunction(name, volume);
+        this.fittedPreset = name; // the willUpdate for this set would clear it
+        this.keepFittedPreset = true;
+      }
+      if (this.cameraIsAuto || !this.camera) {
+        const fit = fitCamera(volume, (this.camera as Camera | null)?.fovy);
+        this.internalChange.add('camera');
+        this.camera = fit;
+        this.cameraIsAuto = true;
+        this.orbit.set(fit);
+      }
+      this.clearError('src');
+      this.applySync();
+      this.dispatchEvent(new CustomEvent<ViewerLoadDetail>('load', { detail: { volume, format: volume.format, dims: [...volume.dims], type: volume.type } }));
+    } catch (e) {
+      if (token !== this.tokens.src) return;
+      this._status = '';
+      this.fail(e, 'src');
+    }
+  }
+
+  private async resolveEnvironment(): Promise<void> {
+    const token = ++this.tokens.environment;
+    const env = this.environment as EnvironmentValue | null;
+    if (!env) this.resolvedEnvironment = DEFAULT_ENVIRONMENT;
+    else if (env.type !== 'url') this.resolvedEnvironment = env;
+    else {
+      try {
+        const loaded = await loadEnvironment(env.url, env.scale ?? 1);
+        if (token !== this.tokens.environment) return;
+        this.resolvedEnvironment = loaded;
+        this.clearError('environment');
+      } catch (e) {
+        if (token === this.tokens.environment) this.fail(e, 'environment');
+        return;
+      }
+    }
+    this.applySync();
+  }
+
+  // ——— applying state to the GPU ———
+
+  private currentTransferFunction(): TransferFunction {
+    const tf = this.transferFunction;
+    return tf && typeof tf === 'object' ? tf : transferFunctionPreset(DEFAULT_TRANSFER_FUNCTION)!;
+  }
+
+  private makePost() {
+    return defaultPostChain({ exposure: this.exposure, toneMapper: this.toneMapper });
+  }
+
+  private postKeyNow(): string {
+    return `${this.exposure}|${this.toneMapper}`;
+  }
+
+  /** The scene from the current attributes, or null before a volume is loaded. */
+  private sceneNow(): Scene | null {
+    if (!this.volume) return null;
+    const camera = (this.camera && typeof this.camera === 'object' ? this.camera : fitCamera(this.volume));
+    return {
+      volume: this.volume,
+      transferFunction: this.currentTransferFunction(),
+      camera,
+      lights: Array.isArray(this.lights) ? this.lights : [],
+      environment: this.resolvedEnvironment,
+      densityScale: this.densityScale,
+      seed: this.seed,
+    };
+  }
+
+  private applySync(): void {
+    const s = this.session;
+    if (!s) return;
+    const key = this.postKeyNow();
+    if (key !== this.postKey) {
+      try {
+        s.setPost(this.makePost());
+        this.postKey = key;
+      } catch (e) { this.fail(e, 'attribute'); }
+    }
+    this.applySize();
+    s.setStopping(this.maxSamples, this.targetError);
+    const scene = this.sceneNow();
+    if (!scene) return;
+    try {
+      s.applyScene(scene);
+    } catch (e) {
+      if (isVptError(e, 'limit-exceeded')) {
+        // The volume does not fit this device: drop it rather than fail again on every change.
+        this.volume = null;
+        this.fail(e, 'src');
+      } else {
+        this.fail(e, 'attribute');
+      }
+    }
+  }
+
+  /** Device-pixel size of the render: element size × DPR × resolution-scale (× the interaction factor while moving). */
+  private renderSize(maxDim: number): { width: number; height: number } {
+    const dpr = globalThis.devicePixelRatio || 1;
+    const base = { width: this.cssSize.width * dpr, height: this.cssSize.height * dpr };
+    let k = Number.isFinite(this.resolutionScale) ? this.resolutionScale : 1;
+    if (this.interacting) k *= this.interactionFactor();
+    const fit = (px: number) => Math.max(1, Math.min(maxDim, Math.round(px * k)));
+    return { width: fit(base.width || 1), height: fit(base.height || 1) };
+  }
+
+
+  /**
+   * While the camera moves, shrink the image so one iteration fits the frame budget:
+   * the cost scales with the pixel count, so the side scales with the square root.
+   */
+  private interactionFactor(): number {
+    const ms = this.fullResMs;
+    if (!(ms > 0)) return 0.5;
+    return Math.min(1, Math.max(0.25, Math.sqrt(INTERACTION_BUDGET_MS / ms)));
+  }
+
+  private fullResMs = 0;
+
+  private applySize(): void {
+    const s = this.session;
+    if (!s) return;
+    const max = s.ctx.backend.limits.maxTextureDimension2D;
+    const { width, height } = this.renderSize(max);
+    try {
+      s.setSize(width, height);
+    } catch (e) { this.fail(e, 'context'); }
+  }
+
+  private onProgress(s: RefinementStats): void {
+    if (!this.interacting) this.fullResMs = s.msPerIteration;
+    this._stats = s;
+    this.dispatchEvent(new CustomEvent<ViewerProgressDetail>('progress', { detail: { phase: 'refining', ...s } }));
+  }
+
+  private onUserCamera(camera: Camera): void {
+    if (!this.interacting) {
+      this.interacting = true;
+      this.applySize();
+    }
+    if (this.settleTimer) clearTimeout(this.settleTimer);
+    this.settleTimer = null;
+    this.cameraIsAuto = false;
+    this.setInternal('camera', camera);
+  }
+
+  private scheduleSettle(): void {
+    if (!this.interacting) return;
+    if (this.settleTimer) clearTimeout(this.settleTimer);
+    this.settleTimer = setTimeout(() => {
+      this.settleTimer = null;
+      this.interacting = false;
+      this.applySize();
+    }, SETTLE_MS);
+  }
+
+  private watchDevicePixelRatio(): void {
+    this.dprQuery?.removeEventListener('change', this.onDprChange);
+    if (typeof matchMedia !== 'function') return;
+    this.dprQuery = matchMedia(`(resolution: ${globalThis.devicePixelRatio || 1}dppx)`);
+    this.dprQuery.addEventListener('change', this.onDprChange);
+  }
+
+  private readonly onDprChange = (): void => {
+    this.watchDevicePixelRatio();
+    this.applySize();
+  };
+
+  // ——— errors ———
+
+  private fail(e: unknown, source: ViewerErrorDetail['source']): void {
+    const error = isVptError(e) ? e : new VptError(source === 'src' ? 'load-failed' : 'invalid-scene', (e as Error)?.message ?? String(e), { cause: e });
+    const detail: ViewerErrorDetail = { error, code: error.code, message: error.message, source };
+    this._error = detail;
+    this.dispatchEvent(new CustomEvent<ViewerErrorDetail>('error', { detail }));
+  }
+
+  private clearError(source: ViewerErrorDetail['source']): void {
+    if (this._error?.source === source) this._error = null;
+  }
+
+  // ——— drag and drop ———
+
+  private onDragOver = (e: DragEvent): void => {
+    if (!e.dataTransfer?.types.includes('Files')) return;
+    e.preventDefault();
+    this._dragOver = true;
+  };
+
+  private onDrop = (e: DragEvent): void => {
+    this._dragOver = false;
+    const files = [...(e.dataTransfer?.files ?? [])];
+    if (!files.length) return;
+    e.preventDefault();
+    void this.load(files.length === 1 ? files[0] : files);
+  };
+}
+
+export type { PanelName };

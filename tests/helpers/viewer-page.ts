@@ -1,0 +1,99 @@
+/**
+ * A headless Chromium page with tests/pages/viewer.html (the <vpt-viewer> bundle plus
+ * the built packages for reference renders) and `window.vt` helpers for driving
+ * elements from page.evaluate.
+ */
+import { fileURLToPath } from 'node:url';
+import type { Browser, Page } from 'puppeteer-core';
+import { launchChromium, startStaticServer, type StaticServer } from '../../packages/headless/src/index.js';
+
+export const ROOT = fileURLToPath(new URL('../..', import.meta.url));
+export const HEAD_SIDECAR = '/data/mri_head_volpack_brainsmall_128x128x84_uint8.json';
+
+export const VIEWER_HELPERS = `
+window.vt = {
+  /** A <vpt-viewer> with these attributes and a record of its events (el.__events). */
+  create(attrs, style = 'width:24px;height:24px') {
+    const el = document.createElement('vpt-viewer');
+    el.__events = [];
+    for (const type of ['load', 'progress', 'converged', 'error', 'change']) {
+      el.addEventListener(type, (e) => {
+        const d = e.detail || {};
+        el.__events.push({ type, phase: d.phase, samples: d.samples, reason: d.reason, code: d.code, message: d.message, source: d.source, property: d.property });
+      });
+    }
+    for (const [k, v] of Object.entries(attrs)) el.setAttribute(k, v);
+    el.setAttribute('style', style);
+    document.body.append(el);
+    return el;
+  },
+  /** The next event of this type after now (rejects after timeoutMs). */
+  next(el, type, timeoutMs = 90000) {
+    return new Promise((resolve, reject) => {
+      const t = setTimeout(() => reject(new Error('no ' + type + ' event within ' + timeoutMs + ' ms; events: ' + JSON.stringify(el.__events.slice(-8)))), timeoutMs);
+      el.addEventListener(type, (e) => { clearTimeout(t); resolve(e.detail); }, { once: true });
+    });
+  },
+  /** Resolves when the element has converged (now or later). */
+  async converged(el, timeoutMs = 90000) {
+    await el.whenSettled();
+    if (el.converged) return;
+    await this.next(el, 'converged', timeoutMs);
+  },
+  async ldr(el) { return Array.from(await el.context.readLDR()); },
+  frames(n = 4) { return new Promise((r) => { const f = () => (n-- <= 0 ? r() : requestAnimationFrame(f)); f(); }); },
+  shadowText(el, selector) { const n = el.shadowRoot.querySelector(selector); return n ? n.textContent.trim() : null; },
+};
+`;
+
+/** Per-pixel comparison of two RGBA8 images (alpha ignored). */
+export function compareRgba(a: ArrayLike<number>, b: ArrayLike<number>): { maxDiff: number; meanDiff: number; differingPixels: number } {
+  let max = 0, sum = 0, differing = 0;
+  for (let i = 0; i < a.length; i += 4) {
+    let pixelDiff = 0;
+    for (let c = 0; c < 3; c++) {
+      const d = Math.abs(a[i + c] - b[i + c]);
+      pixelDiff = Math.max(pixelDiff, d);
+      sum += d;
+    }
+    if (pixelDiff > 0) differing++;
+    max = Math.max(max, pixelDiff);
+  }
+  return { maxDiff: max, meanDiff: sum / ((a.length / 4) * 3), differingPixels: differing };
+}
+
+export function distinctGreys(rgba: ArrayLike<number>): number {
+  const s = new Set<number>();
+  for (let i = 0; i < rgba.length; i += 4) s.add(rgba[i] * 65536 + rgba[i + 1] * 256 + rgba[i + 2]);
+  return s.size;
+}
+
+export interface ViewerPage {
+  browser: Browser;
+  server: StaticServer;
+  page: Page;
+  /** Console errors and uncaught exceptions seen so far. */
+  errors: string[];
+  close(): Promise<void>;
+}
+
+export async function openViewerPage(browser?: Browser): Promise<ViewerPage> {
+  const server = await startStaticServer(ROOT);
+  const b = browser ?? await launchChromium();
+  const page = await b.newPage();
+  const errors: string[] = [];
+  page.on('console', (m) => { if (m.type() === 'error') errors.push(m.text()); });
+  page.on('pageerror', (e) => errors.push((e as Error).message));
+  await page.setViewport({ width: 400, height: 300, deviceScaleFactor: 1 });
+  await page.goto(new URL('tests/pages/viewer.html', server.url).href);
+  await page.waitForFunction('window.__ready === true', { timeout: 60_000 });
+  await page.evaluate(VIEWER_HELPERS);
+  return {
+    browser: b, server, page, errors,
+    async close() {
+      await page.close().catch(() => {});
+      if (!browser) await b.close().catch(() => {});
+      await server.close();
+    },
+  };
+}
