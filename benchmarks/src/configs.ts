@@ -83,6 +83,8 @@ export interface Preset {
   cloudSize: number;
   scalingVolumeSizes: number[];
   scalingEmptyFractions: number[];
+  /** Scenes of the error-vs-time suite (default: all). */
+  errorScenes?: string[];
 }
 
 export const PRESETS: Record<string, Preset> = {
@@ -97,6 +99,15 @@ export const PRESETS: Record<string, Preset> = {
     name: 'table', errorSize: 64, referenceIterations: { mip: 64, eam: 64, iso: 64, mcrt: 128 }, curveIterations: 32, curveBudgetMs: 20_000,
     frameSizes: [256, 512], frameVolumeSizes: [], frameSizeAtVolume: 256, frameIterations: 2, frameRepeats: 3,
     convergenceSizes: [64], cloudSize: 128, scalingVolumeSizes: [64], scalingEmptyFractions: [0],
+  },
+  /**
+   * The MCRT figures of issue 3: time to 30/35 dB at 256² on the 128³ cloud
+   * (`--suites error --renderers "mcrt single,mcrt multiple"`).
+   */
+  mcrt256: {
+    name: 'mcrt256', errorSize: 256, referenceIterations: { mip: 256, eam: 256, iso: 256, mcrt: 256 }, curveIterations: 256, curveBudgetMs: 360_000,
+    frameSizes: [256], frameVolumeSizes: [], frameSizeAtVolume: 256, frameIterations: 2, frameRepeats: 3,
+    convergenceSizes: [256], cloudSize: 128, scalingVolumeSizes: [128], scalingEmptyFractions: [0], errorScenes: ['cloud'],
   },
   quick: {
     name: 'quick', errorSize: 96, referenceIterations: { mip: 128, eam: 128, iso: 256, mcrt: 512 }, curveIterations: 128, curveBudgetMs: 40_000,

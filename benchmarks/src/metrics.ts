@@ -3,7 +3,10 @@
 export interface CurvePoint {
   iterations: number;
   ms: number;
+  /** HDR RMSE against the truth: the measured one with the reference's own noise variance subtracted (when the renderer estimates it). */
   rmse: number;
+  /** HDR RMSE against the reference as measured. */
+  rmseRaw?: number;
   psnr: number;
   rmseLdr: number;
   psnrLdr: number;

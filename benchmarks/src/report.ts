@@ -32,7 +32,7 @@ export function htmlReport(r: Results): string {
 
   if (r.errorVsTime?.length) {
     const rows = r.errorVsTime.map((c) => `<tr><td>${esc(c.scene)}</td><td>${esc(c.label)}</td><td>${esc(c.backend)}</td><td>${c.size}²</td>${[25, 30, 35, 40].map((d) => `<td>${fmt(c.timeToDb[d])}</td>`).join('')}<td>${c.points.at(-1)?.psnr.toFixed(1)} dB @ ${c.points.at(-1)?.iterations} it</td></tr>`).join('');
-    sections.push(`<h2>Error against wall-clock time</h2><p>Time to reach a PSNR (HDR, peak = reference maximum) against a converged reference rendered by the same configuration with another seed. Interpolated in log time between checkpoints; read-backs excluded from the clock.</p>
+    sections.push(`<h2>Error against wall-clock time</h2><p>Time to reach a PSNR (HDR, peak = reference maximum) against a converged reference rendered by the same configuration with another seed (one reference serves both backends, which give bit-identical images). Where the renderer estimates its error (MCRT), the reference's own noise variance, estimated from its even/odd half-accumulations, is subtracted from the measured mean squared error, so the curve shows the error against the converged image rather than flattening at the reference's noise. Interpolated in log time between checkpoints; read-backs excluded from the clock.</p>
 <table><tr><th>scene</th><th>configuration</th><th>backend</th><th>size</th><th>25 dB</th><th>30 dB</th><th>35 dB</th><th>40 dB</th><th>last point</th></tr>${rows}</table><div id="evt"></div>`);
     for (const scene of new Set(r.errorVsTime.map((c) => c.scene))) {
       const curves = r.errorVsTime.filter((c) => c.scene === scene);

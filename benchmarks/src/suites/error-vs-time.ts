@@ -10,6 +10,8 @@ export interface ErrorCurveResult {
   backend: string;
   size: number;
   referenceIterations: number;
+  /** The reference's own estimated RMSE (from its half-accumulations), subtracted in quadrature from the curve; null when the renderer has no estimate. */
+  referenceRmse: number | null;
   points: CurvePoint[];
   timeToDb: Record<string, number | null>;
   timeToDbLdr: Record<string, number | null>;
@@ -25,16 +27,19 @@ export async function errorVsTime(s: SuiteContext): Promise<ErrorCurveResult[]> 
   const size = s.preset.errorSize;
   const all = [...s.renderers, ...s.mcrtVariants];
   for (const [sceneName, spec] of Object.entries(scenes(s.preset.cloudSize))) {
+    if (s.preset.errorScenes && !s.preset.errorScenes.includes(sceneName)) continue;
     for (const backend of s.backends) {
       for (const config of all) {
         if (sceneName === 'head' && s.mcrtVariants.includes(config)) continue; // variants on the procedural scene only
         const refIterations = s.preset.referenceIterations[config.renderer];
-        const refKey = `${sceneName}|${config.label}|${backend}|${size}`;
+        // One reference per configuration, made on the first backend: the backends give
+        // bit-identical images (tests/*parity*), so it is the reference for both.
+        const refKey = `${sceneName}|${config.label}|${size}`;
         s.log(`error-vs-time: ${sceneName} ${config.label} ${backend} (reference ${refIterations} it)`);
-        await bench(s.page, 'reference', refKey, { ...config, backend }, spec, size, size, refIterations);
+        const ref = await bench<{ rmse: number | null }>(s.page, 'reference', refKey, { ...config, backend: s.backends[0] }, spec, size, size, refIterations);
         const points = await bench<CurvePoint[]>(s.page, 'errorCurve', { ...config, backend }, spec, size, size, refKey, s.preset.curveIterations, s.preset.curveBudgetMs, !!config.halves);
         out.push({
-          scene: sceneName, label: config.label, backend, size, referenceIterations: refIterations, points,
+          scene: sceneName, label: config.label, backend, size, referenceIterations: refIterations, referenceRmse: ref.rmse ?? null, points,
           timeToDb: Object.fromEntries(TARGETS_DB.map((d) => [d, timeToPsnr(points, d)])),
           timeToDbLdr: Object.fromEntries(TARGETS_DB.map((d) => [d, timeToPsnr(points, d, 'psnrLdr')])),
         });
