@@ -7,11 +7,11 @@ import { fileURLToPath } from 'node:url';
 // The benchmark suites are not part of the test run; this only keeps their harness honest
 // (tiny sizes, seconds). It checks what the runner records, never how fast anything is.
 describe('benchmark harness (smoke preset)', () => {
-  it('records monotone error curves, frame times for both backends, and a self-contained report', () => {
+  it('records monotone error curves, frame times and the specialization comparison for both backends, and a self-contained report', () => {
     const root = fileURLToPath(new URL('..', import.meta.url));
     const resultsDir = path.join(root, 'benchmarks', 'results');
     const before = new Set(safeList(resultsDir));
-    execFileSync('node', [path.join(root, 'benchmarks/dist/run.js'), '--preset', 'smoke', '--suites', 'error,frame'], { cwd: root, stdio: 'pipe', timeout: 180_000 });
+    execFileSync('node', [path.join(root, 'benchmarks/dist/run.js'), '--preset', 'smoke', '--suites', 'error,frame,specialization'], { cwd: root, stdio: 'pipe', timeout: 180_000 });
     const fresh = safeList(resultsDir).filter((d) => !before.has(d));
     expect(fresh.length).toBe(1);
     const dir = path.join(resultsDir, fresh[0]);
@@ -31,7 +31,21 @@ describe('benchmark harness (smoke preset)', () => {
     const backendsTimed = new Set(results.frameTime.map((r: { backend: string }) => r.backend));
     expect([...backendsTimed].sort()).toEqual(['webgl2', 'webgpu']);
     expect(results.frameTime.every((r: { medianMs: number }) => r.medianMs > 0)).toBe(true);
+    // GPU timer queries, where offered, time the batch inside the wall-clock span around it.
+    for (const r of results.frameTime as { gpuTimer: string; gpuMedianMs: number | null; medianMs: number }[]) {
+      if (r.gpuTimer === 'none') continue;
+      expect(r.gpuMedianMs).toBeGreaterThan(0);
+      expect(r.gpuMedianMs!).toBeLessThan(r.medianMs * 1.1 + 0.5);
+    }
+    const spec = results.specialization as { scene: string; scattering: string; backend: string; ratio: number; specializedMs: number; genericMs: number }[];
+    expect(spec.length).toBe(2 * 3 * 2); // backends × scenes × scattering orders
+    expect(new Set(spec.map((r) => r.backend)).size).toBe(2);
+    for (const r of spec) {
+      expect(r.specializedMs).toBeGreaterThan(0);
+      expect(r.ratio).toBeCloseTo(r.genericMs / r.specializedMs, 10);
+    }
     const html = readFileSync(path.join(dir, 'report.html'), 'utf8');
+    expect(html).toContain('MCRT kernel specialization');
     expect(html).toContain('uPlot');
     expect(html).not.toMatch(/<script[^>]+src=/); // self-contained
   }, 240_000);

@@ -8,6 +8,11 @@ export interface RendererConfig {
   params?: Record<string, unknown>;
   /** Supports RenderContext.estimateError() (two half-accumulations). */
   halves?: boolean;
+  /**
+   * Label of the configuration whose converged image is this one's reference: unbiased
+   * variants of one estimator (tested to agree in tests/mcrt-unbiased.test.ts) share it.
+   */
+  referenceGroup?: string;
 }
 
 export interface SceneSpec {
@@ -61,11 +66,11 @@ export const RENDERERS: RendererConfig[] = [
 ];
 
 export const MCRT_VARIANTS: RendererConfig[] = [
-  { label: 'mcrt delta tracking, global majorant', renderer: 'mcrt', params: { scattering: 'multiple', tracking: 'delta', majorantGrid: false }, halves: true },
-  { label: 'mcrt delta tracking, majorant grid', renderer: 'mcrt', params: { scattering: 'multiple', tracking: 'delta', majorantGrid: true }, halves: true },
-  { label: 'mcrt ratio tracking, majorant grid', renderer: 'mcrt', params: { scattering: 'multiple', tracking: 'ratio', majorantGrid: true }, halves: true },
-  { label: 'mcrt residual ratio tracking, majorant grid', renderer: 'mcrt', params: { scattering: 'multiple', tracking: 'residual', majorantGrid: true }, halves: true },
-  { label: 'mcrt residual ratio, phase sampling only (no MIS)', renderer: 'mcrt', params: { scattering: 'multiple', tracking: 'residual', majorantGrid: true, environmentSampling: 'phase' }, halves: true },
+  { label: 'mcrt delta tracking, global majorant', renderer: 'mcrt', params: { scattering: 'multiple', tracking: 'delta', majorantGrid: false }, halves: true, referenceGroup: 'mcrt multiple' },
+  { label: 'mcrt delta tracking, majorant grid', renderer: 'mcrt', params: { scattering: 'multiple', tracking: 'delta', majorantGrid: true }, halves: true, referenceGroup: 'mcrt multiple' },
+  { label: 'mcrt ratio tracking, majorant grid', renderer: 'mcrt', params: { scattering: 'multiple', tracking: 'ratio', majorantGrid: true }, halves: true, referenceGroup: 'mcrt multiple' },
+  { label: 'mcrt residual ratio tracking, majorant grid', renderer: 'mcrt', params: { scattering: 'multiple', tracking: 'residual', majorantGrid: true }, halves: true, referenceGroup: 'mcrt multiple' },
+  { label: 'mcrt residual ratio, phase sampling only (no MIS)', renderer: 'mcrt', params: { scattering: 'multiple', tracking: 'residual', majorantGrid: true, environmentSampling: 'phase' }, halves: true, referenceGroup: 'mcrt multiple' },
 ];
 
 export interface Preset {
@@ -83,6 +88,8 @@ export interface Preset {
   cloudSize: number;
   scalingVolumeSizes: number[];
   scalingEmptyFractions: number[];
+  /** Framebuffer side of the specialization suite (MCRT specialised vs generic kernel). */
+  specializationSize: number;
   /** Scenes of the error-vs-time suite (default: all). */
   errorScenes?: string[];
 }
@@ -90,13 +97,13 @@ export interface Preset {
 export const PRESETS: Record<string, Preset> = {
   /** Seconds, not minutes: exercised by the test suite to keep the harness working. */
   smoke: {
-    name: 'smoke', errorSize: 16, referenceIterations: { mip: 16, eam: 16, iso: 16, mcrt: 32 }, curveIterations: 8, curveBudgetMs: 5_000,
+    name: 'smoke', specializationSize: 16, errorSize: 16, referenceIterations: { mip: 16, eam: 16, iso: 16, mcrt: 32 }, curveIterations: 8, curveBudgetMs: 5_000,
     frameSizes: [16], frameVolumeSizes: [16], frameSizeAtVolume: 16, frameIterations: 1, frameRepeats: 2,
     convergenceSizes: [16], cloudSize: 16, scalingVolumeSizes: [16], scalingEmptyFractions: [0, 0.9],
   },
   /** Only the frame-time table at 256² and 512² on the 128³ cloud (the figures quoted in issue notes). */
   table: {
-    name: 'table', errorSize: 64, referenceIterations: { mip: 64, eam: 64, iso: 64, mcrt: 128 }, curveIterations: 32, curveBudgetMs: 20_000,
+    name: 'table', specializationSize: 64, errorSize: 64, referenceIterations: { mip: 64, eam: 64, iso: 64, mcrt: 128 }, curveIterations: 32, curveBudgetMs: 20_000,
     frameSizes: [256, 512], frameVolumeSizes: [], frameSizeAtVolume: 256, frameIterations: 2, frameRepeats: 3,
     convergenceSizes: [64], cloudSize: 128, scalingVolumeSizes: [64], scalingEmptyFractions: [0],
   },
@@ -105,17 +112,17 @@ export const PRESETS: Record<string, Preset> = {
    * (`--suites error --renderers "mcrt single,mcrt multiple"`).
    */
   mcrt256: {
-    name: 'mcrt256', errorSize: 256, referenceIterations: { mip: 256, eam: 256, iso: 256, mcrt: 256 }, curveIterations: 256, curveBudgetMs: 360_000,
+    name: 'mcrt256', specializationSize: 256, errorSize: 256, referenceIterations: { mip: 256, eam: 256, iso: 256, mcrt: 256 }, curveIterations: 256, curveBudgetMs: 360_000,
     frameSizes: [256], frameVolumeSizes: [], frameSizeAtVolume: 256, frameIterations: 2, frameRepeats: 3,
     convergenceSizes: [256], cloudSize: 128, scalingVolumeSizes: [128], scalingEmptyFractions: [0], errorScenes: ['cloud'],
   },
   quick: {
-    name: 'quick', errorSize: 96, referenceIterations: { mip: 128, eam: 128, iso: 256, mcrt: 512 }, curveIterations: 128, curveBudgetMs: 40_000,
-    frameSizes: [64, 128, 256, 512], frameVolumeSizes: [64, 128, 256], frameSizeAtVolume: 256, frameIterations: 2, frameRepeats: 3,
+    name: 'quick', specializationSize: 96, errorSize: 64, referenceIterations: { mip: 128, eam: 128, iso: 256, mcrt: 384 }, curveIterations: 128, curveBudgetMs: 15_000,
+    frameSizes: [64, 128, 256, 512], frameVolumeSizes: [64, 128, 256], frameSizeAtVolume: 128, frameIterations: 1, frameRepeats: 3,
     convergenceSizes: [64, 128], cloudSize: 128, scalingVolumeSizes: [32, 64, 128], scalingEmptyFractions: [0, 0.5, 0.9],
   },
   full: {
-    name: 'full', errorSize: 256, referenceIterations: { mip: 512, eam: 512, iso: 1024, mcrt: 4096 }, curveIterations: 1024, curveBudgetMs: 300_000,
+    name: 'full', specializationSize: 256, errorSize: 256, referenceIterations: { mip: 512, eam: 512, iso: 1024, mcrt: 4096 }, curveIterations: 1024, curveBudgetMs: 300_000,
     frameSizes: [64, 128, 256, 512], frameVolumeSizes: [64, 128, 256], frameSizeAtVolume: 512, frameIterations: 4, frameRepeats: 5,
     convergenceSizes: [256, 512, 1024], cloudSize: 128, scalingVolumeSizes: [32, 64, 128, 256], scalingEmptyFractions: [0, 0.25, 0.5, 0.75, 0.9],
   },

@@ -94,6 +94,64 @@ export const PAGE_CODE = String.raw`
     return { rmse, rmseRaw: Math.sqrt(rawMse), psnr: 20 * Math.log10(ref.peak / Math.max(rmse, 1e-12)), rmseLdr, psnrLdr: 20 * Math.log10(255 / Math.max(rmseLdr, 1e-12)), nonFinite };
   }
 
+  /**
+   * A GPU timer around a batch of work, or null where none is offered.
+   * WebGL 2: EXT_disjoint_timer_query_webgl2 TIME_ELAPSED on the backend's own context (a
+   * canvas returns the context it already has); a disjoint event discards the sample.
+   * WebGPU: 'timestamp-query' (the backend requests it where the adapter has it): an empty
+   * compute pass writes a timestamp before the batch and another after it; the queue runs
+   * submissions in order, so the difference spans the batch.
+   */
+  function gpuTimer(backend) {
+    if (backend.kind === 'webgl2') {
+      const gl = backend.canvas.getContext('webgl2');
+      const ext = gl && gl.getExtension('EXT_disjoint_timer_query_webgl2');
+      if (!ext) return null;
+      let query = null;
+      return {
+        kind: 'EXT_disjoint_timer_query_webgl2',
+        begin() { query = gl.createQuery(); gl.beginQuery(ext.TIME_ELAPSED_EXT, query); },
+        end() { gl.endQuery(ext.TIME_ELAPSED_EXT); },
+        async result() {
+          const q = query; query = null;
+          for (let tries = 0; tries < 2000 && !gl.getQueryParameter(q, gl.QUERY_RESULT_AVAILABLE); tries++) await new Promise((r) => setTimeout(r, 1));
+          const ok = gl.getQueryParameter(q, gl.QUERY_RESULT_AVAILABLE) && !gl.getParameter(ext.GPU_DISJOINT_EXT);
+          const ns = ok ? gl.getQueryParameter(q, gl.QUERY_RESULT) : null;
+          gl.deleteQuery(q);
+          return ns === null ? null : ns / 1e6;
+        },
+        dispose() {},
+      };
+    }
+    const device = backend.device;
+    if (!device || !device.features.has('timestamp-query')) return null;
+    const querySet = device.createQuerySet({ type: 'timestamp', count: 2 });
+    const resolve = device.createBuffer({ size: 16, usage: GPUBufferUsage.QUERY_RESOLVE | GPUBufferUsage.COPY_SRC });
+    const read = device.createBuffer({ size: 16, usage: GPUBufferUsage.MAP_READ | GPUBufferUsage.COPY_DST });
+    const stamp = (writes) => {
+      const enc = device.createCommandEncoder();
+      enc.beginComputePass({ timestampWrites: { querySet, ...writes } }).end();
+      return enc;
+    };
+    return {
+      kind: 'timestamp-query',
+      begin() { device.queue.submit([stamp({ beginningOfPassWriteIndex: 0 }).finish()]); },
+      end() {
+        const enc = stamp({ endOfPassWriteIndex: 1 });
+        enc.resolveQuerySet(querySet, 0, 2, resolve, 0);
+        enc.copyBufferToBuffer(resolve, 0, read, 0, 16);
+        device.queue.submit([enc.finish()]);
+      },
+      async result() {
+        await read.mapAsync(GPUMapMode.READ);
+        const [t0, t1] = new BigUint64Array(read.getMappedRange().slice(0));
+        read.unmap();
+        return t1 > t0 ? Number(t1 - t0) / 1e6 : null;
+      },
+      dispose() { querySet.destroy(); resolve.destroy(); read.destroy(); },
+    };
+  }
+
   window.bench = {
     /** Render and keep a converged reference (HDR peak = max over RGB, for PSNR). */
     async reference(key, config, sceneSpec, width, height, iterations) {
@@ -140,23 +198,35 @@ export const PAGE_CODE = String.raw`
       return points;
     },
 
-    /** ms per iteration: repeated GPU-synchronised batches of iterations, after a warm-up. */
+    /**
+     * ms per iteration: repeated GPU-synchronised batches of iterations, after a warm-up.
+     * Wall-clock samples always; GPU samples too where the backend offers a timer
+     * (gpuTimer), the GPU time of the whole batch.
+     */
     async frameTime(config, sceneSpec, width, height, iterations, repeats) {
       const ctx = await context(config, width, height);
       ctx.setScene(await scene(sceneSpec));
-      await ctx.renderIterations(1);
-      const samples = [];
+      const tFirst = performance.now();
+      await ctx.renderIterations(1); // compiles the kernels: outside the samples
+      const firstMs = performance.now() - tFirst;
+      const samples = [], gpuSamples = [];
+      const timer = gpuTimer(ctx.backend);
       for (let r = 0; r < repeats; r++) {
         ctx.reset();
         await ctx.backend.finish();
         const t0 = performance.now();
+        if (timer) timer.begin();
         ctx.iterate(iterations);
+        if (timer) timer.end();
         await ctx.backend.finish();
         samples.push((performance.now() - t0) / iterations);
+        const gpuMs = timer ? await timer.result() : null;
+        if (gpuMs !== null) gpuSamples.push(gpuMs / iterations);
       }
       const info = ctx.backend.info;
+      if (timer) timer.dispose();
       ctx.dispose();
-      return { samples, device: info.renderer };
+      return { samples, gpuSamples, gpuTimer: timer ? timer.kind : 'none', firstMs, device: info.renderer };
     },
 
     backendInfo: async (backend) => {

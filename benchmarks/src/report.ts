@@ -5,6 +5,7 @@ import type { ErrorCurveResult } from './suites/error-vs-time.js';
 import type { FrameTimeRow } from './suites/frame-time.js';
 import type { ConvergenceResult } from './suites/convergence.js';
 import type { ScalingRow } from './suites/scaling.js';
+import type { SpecializationRow } from './suites/specialization.js';
 
 export interface Results {
   machine: Record<string, unknown>;
@@ -14,6 +15,7 @@ export interface Results {
   frameTime?: FrameTimeRow[];
   convergence?: ConvergenceResult[];
   scaling?: ScalingRow[];
+  specialization?: SpecializationRow[];
   skipped: string[];
 }
 
@@ -48,9 +50,10 @@ export function htmlReport(r: Results): string {
   if (r.frameTime?.length) {
     const table = (t: FrameTimeRow['table'], col: (x: FrameTimeRow) => string) => {
       const rows = r.frameTime!.filter((x) => x.table === t);
-      return `<table><tr><th>configuration</th><th>backend</th><th>${t === 'by-volume' ? 'volume' : 'framebuffer'}</th><th>median ms/iteration</th><th>min–max</th></tr>${rows.map((x) => `<tr><td>${esc(x.label)}</td><td>${x.backend}</td><td>${col(x)}</td><td>${x.medianMs.toFixed(1)}</td><td>${x.minMs.toFixed(1)}–${x.maxMs.toFixed(1)}</td></tr>`).join('')}</table>`;
+      const gpu = (x: FrameTimeRow) => (x.gpuMedianMs === null || x.gpuMedianMs === undefined ? '<td>—</td><td>—</td>' : `<td>${x.gpuMedianMs.toFixed(1)}</td><td>${x.gpuMinMs!.toFixed(1)}–${x.gpuMaxMs!.toFixed(1)}</td>`);
+      return `<table><tr><th>configuration</th><th>backend</th><th>${t === 'by-volume' ? 'volume' : 'framebuffer'}</th><th>median ms/iteration (wall)</th><th>min–max</th><th>median ms/iteration (GPU timer)</th><th>min–max</th></tr>${rows.map((x) => `<tr><td>${esc(x.label)}</td><td>${x.backend}</td><td>${col(x)}</td><td>${x.medianMs.toFixed(1)}</td><td>${x.minMs.toFixed(1)}–${x.maxMs.toFixed(1)}</td>${gpu(x)}</tr>`).join('')}</table>`;
     };
-    sections.push(`<h2>Frame time (Lesar et al. 2018, Table 1)</h2><h3>By volume size</h3>${table('by-volume', (x) => `${x.volumeSize}³ at ${x.size}²`)}<h3>By framebuffer size (128³)</h3>${table('by-framebuffer', (x) => `${x.size}²`)}`);
+    sections.push(`<h2>Frame time (Lesar et al. 2018, Table 1)</h2><p>Wall clock: a batch of iterations between two blocking GPU syncs. GPU timer: the same batch timed by EXT_disjoint_timer_query_webgl2 (WebGL 2) or timestamp queries (WebGPU) where offered. On SwiftShader the "GPU" is the CPU, so the two agree closely.</p><h3>By volume size</h3>${table('by-volume', (x) => `${x.volumeSize}³ at ${x.size}²`)}<h3>By framebuffer size (128³)</h3>${table('by-framebuffer', (x) => `${x.size}²`)}`);
   }
 
   if (r.convergence?.length) {
@@ -65,6 +68,12 @@ export function htmlReport(r: Results): string {
       sections.push(`<h2>Scaling: cost per path against ${axis === 'volume-size' ? 'volume size' : 'fraction of empty space'}</h2><div id="sc-${axis}"></div>`);
       charts.push({ id: `sc-${axis}`, title: `ns per path vs ${axis}`, xLabel: axis === 'volume-size' ? 'volume side (voxels)' : 'empty fraction', yLabel: 'ns per path', logX: axis === 'volume-size', series: [...new Set(rows.map((x) => x.label))].map((label) => ({ label, x: rows.filter((x) => x.label === label).map((x) => x.x), y: rows.filter((x) => x.label === label).map((x) => x.nsPerPath) })) });
     }
+  }
+
+  if (r.specialization?.length) {
+    const rows = r.specialization.map((x) => `<tr><td>${esc(x.scene)}</td><td>${x.scattering}</td><td>${x.backend}</td><td>${x.size}²</td><td>${x.specializedMs.toFixed(1)}</td><td>${x.genericMs.toFixed(1)}</td><td>${x.ratio.toFixed(2)}×</td><td>${fmt(x.specializedFirstMs)} / ${fmt(x.genericFirstMs)}</td></tr>`).join('');
+    sections.push(`<h2>MCRT kernel specialization</h2><p>Median ms per iteration of the kernel compiled for the scene against the generic kernel (<code>specialize: false</code>: environment map, light loop, scattering order and majorant grid as runtime data), measured alternately in the same run. Ratio &gt; 1: specialization saves that factor. Last column: first iteration after a scene change (kernel compilation + one iteration), specialised / generic.</p>
+<table><tr><th>scene</th><th>scattering</th><th>backend</th><th>size</th><th>specialised ms/it</th><th>generic ms/it</th><th>generic / specialised</th><th>first iteration</th></tr>${rows}</table>`);
   }
 
   return `<!doctype html><html lang="en"><head><meta charset="utf-8"><title>vpt benchmarks — ${esc(r.machine.date)}</title>

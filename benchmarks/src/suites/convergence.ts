@@ -1,5 +1,6 @@
 import { scenes } from '../configs.js';
 import type { CurvePoint } from '../metrics.js';
+import { referenceKey } from './error-vs-time.js';
 import { bench, type SuiteContext } from './types.js';
 
 export interface ConvergenceResult { label: string; backend: string; size: number; points: CurvePoint[] }
@@ -11,7 +12,7 @@ export async function convergence(s: SuiteContext): Promise<ConvergenceResult[]>
   const backend = s.backends[0];
   for (const size of s.preset.convergenceSizes) {
     for (const config of s.renderers) {
-      const refKey = `conv|${config.label}|${backend}|${size}`;
+      const refKey = referenceKey('cloud', config.label, size); // shared with error-vs-time where the sizes match
       s.log(`convergence: ${config.label} ${backend} ${size}²`);
       await bench(s.page, 'reference', refKey, { ...config, backend }, spec, size, size, s.preset.referenceIterations[config.renderer]);
       const points = await bench<CurvePoint[]>(s.page, 'errorCurve', { ...config, backend }, spec, size, size, refKey, s.preset.curveIterations, s.preset.curveBudgetMs, false);

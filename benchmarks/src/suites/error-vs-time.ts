@@ -1,4 +1,4 @@
-import { scenes } from '../configs.js';
+import { scenes, type RendererConfig } from '../configs.js';
 import { timeToPsnr, type CurvePoint } from '../metrics.js';
 import { bench, type SuiteContext } from './types.js';
 
@@ -34,9 +34,10 @@ export async function errorVsTime(s: SuiteContext): Promise<ErrorCurveResult[]> 
         const refIterations = s.preset.referenceIterations[config.renderer];
         // One reference per configuration, made on the first backend: the backends give
         // bit-identical images (tests/*parity*), so it is the reference for both.
-        const refKey = `${sceneName}|${config.label}|${size}`;
-        s.log(`error-vs-time: ${sceneName} ${config.label} ${backend} (reference ${refIterations} it)`);
-        const ref = await bench<{ rmse: number | null }>(s.page, 'reference', refKey, { ...config, backend: s.backends[0] }, spec, size, size, refIterations);
+        const refConfig = referenceConfig(config, all);
+        const refKey = referenceKey(sceneName, refConfig.label, size);
+        s.log(`error-vs-time: ${sceneName} ${config.label} ${backend} (reference: ${refConfig.label}, ${refIterations} it)`);
+        const ref = await bench<{ rmse: number | null }>(s.page, 'reference', refKey, { ...refConfig, backend: s.backends[0] }, spec, size, size, refIterations);
         const points = await bench<CurvePoint[]>(s.page, 'errorCurve', { ...config, backend }, spec, size, size, refKey, s.preset.curveIterations, s.preset.curveBudgetMs, !!config.halves);
         out.push({
           scene: sceneName, label: config.label, backend, size, referenceIterations: refIterations, referenceRmse: ref.rmse ?? null, points,
@@ -48,3 +49,11 @@ export async function errorVsTime(s: SuiteContext): Promise<ErrorCurveResult[]> 
   }
   return out;
 }
+
+/** The configuration whose converged image is `config`'s reference (its referenceGroup, else itself). */
+export function referenceConfig(config: RendererConfig, all: readonly RendererConfig[]): RendererConfig {
+  return (config.referenceGroup && all.find((c) => c.label === config.referenceGroup)) || config;
+}
+
+/** References live in the page by this key, so suites that need the same one share it. */
+export const referenceKey = (scene: string, label: string, size: number) => `${scene}|${label}|${size}`;

@@ -12,12 +12,19 @@ export interface FrameTimeRow {
   minMs: number;
   maxMs: number;
   samples: number[];
+  /** GPU time per iteration (timer queries), median and min–max; null where no timer was offered. */
+  gpuMedianMs: number | null;
+  gpuMinMs: number | null;
+  gpuMaxMs: number | null;
+  gpuTimer: string;
 }
 
 /**
  * The paper's Table 1: ms per iteration by volume size (at a fixed framebuffer size) and by
  * framebuffer size (at 128³). Each sample is a batch of iterations bracketed by GPU syncs
- * (blocking 1-texel readback on WebGL 2, onSubmittedWorkDone on WebGPU).
+ * (blocking 1-texel readback on WebGL 2, onSubmittedWorkDone on WebGPU), timed by the wall
+ * clock and, where offered, by GPU timer queries (EXT_disjoint_timer_query_webgl2,
+ * WebGPU timestamp-query).
  */
 export async function frameTime(s: SuiteContext): Promise<FrameTimeRow[]> {
   const rows: FrameTimeRow[] = [];
@@ -27,9 +34,13 @@ export async function frameTime(s: SuiteContext): Promise<FrameTimeRow[]> {
     for (const backend of s.backends) {
       for (const config of s.renderers) {
         s.log(`frame-time: ${table} ${config.label} ${backend} volume ${volumeSize}³ at ${size}²`);
-        const r = await bench<{ samples: number[] }>(s.page, 'frameTime', { ...config, backend }, spec, size, size, p.frameIterations, p.frameRepeats);
+        const r = await bench<{ samples: number[]; gpuSamples: number[]; gpuTimer: string }>(s.page, 'frameTime', { ...config, backend }, spec, size, size, p.frameIterations, p.frameRepeats);
         const sp = spread(r.samples);
-        rows.push({ table, label: config.label, backend, volumeSize, size, medianMs: median(r.samples), minMs: sp.min, maxMs: sp.max, samples: r.samples });
+        const gp = r.gpuSamples.length ? spread(r.gpuSamples) : null;
+        rows.push({
+          table, label: config.label, backend, volumeSize, size, medianMs: median(r.samples), minMs: sp.min, maxMs: sp.max, samples: r.samples,
+          gpuMedianMs: gp ? median(r.gpuSamples) : null, gpuMinMs: gp?.min ?? null, gpuMaxMs: gp?.max ?? null, gpuTimer: r.gpuTimer,
+        });
       }
     }
   };

@@ -27,6 +27,8 @@ export interface McrtFeatures {
   MIS_POWER: boolean;
   /** 0 radiance, 1 shadow-ray transmittance of the camera ray, 2 work counters. */
   DEBUG_OUTPUT: number;
+  /** The unspecialised kernel (`specialize: false`): scene features are runtime data (see McrtParams.specialize). */
+  GENERIC: boolean;
 }
 
 export interface ActiveLight {
@@ -44,6 +46,7 @@ export function activeLights(scene: Scene): ActiveLight[] {
 }
 
 export function computeFeatures(scene: Scene, p: ResolvedMcrtParams): McrtFeatures {
+  if (!p.specialize) return genericFeatures(p);
   const envLight = environmentEmits(scene.environment);
   const envMap = scene.environment.type === 'latlong' && envLight;
   const envSampling = !envLight ? 0 : p.environmentSampling === 'phase' ? 0 : p.environmentSampling === 'light' ? 1 : 2;
@@ -57,6 +60,29 @@ export function computeFeatures(scene: Scene, p: ResolvedMcrtParams): McrtFeatur
     ENV_SAMPLING: envSampling,
     MIS_POWER: envSampling === 2 && p.misHeuristic === 'power',
     DEBUG_OUTPUT: p.debugOutput === 'transmittance' ? 1 : p.debugOutput === 'fetches' ? 2 : 0,
+    GENERIC: false,
+  };
+}
+
+/**
+ * The one feature set of `specialize: false`, whatever the scene: every scene feature on
+ * (environment map and light, MAX_LIGHTS lights cut short by a runtime count, multiple
+ * scattering, majorant grid). The estimator choices (tracking, environment sampling, MIS
+ * heuristic, debug output) stay compiled in, as they are in the specialised kernels.
+ */
+function genericFeatures(p: ResolvedMcrtParams): McrtFeatures {
+  const envSampling = p.environmentSampling === 'phase' ? 0 : p.environmentSampling === 'light' ? 1 : 2;
+  return {
+    ENV_MAP: true,
+    ENV_LIGHT: true,
+    LIGHT_COUNT: MAX_LIGHTS,
+    SINGLE_SCATTERING: false,
+    MAJORANT_GRID: true,
+    TRACKING: p.tracking === 'delta' ? 0 : p.tracking === 'ratio' ? 1 : 2,
+    ENV_SAMPLING: envSampling,
+    MIS_POWER: envSampling === 2 && p.misHeuristic === 'power',
+    DEBUG_OUTPUT: p.debugOutput === 'transmittance' ? 1 : p.debugOutput === 'fetches' ? 2 : 0,
+    GENERIC: true,
   };
 }
 

@@ -14,6 +14,8 @@ export const MCRT_PARAM_FIELDS: readonly UniformField[] = [
   { name: 'rouletteDepth', type: 'i32' },
   { name: 'globalMajorant', type: 'f32' },
   { name: 'globalMinorant', type: 'f32' },
+  /** Lights in use; read only by the generic kernel (specialised kernels loop to LIGHT_COUNT). */
+  { name: 'lightCount', type: 'i32' },
   { name: 'lightDirection', type: 'vec4', count: MAX_LIGHTS },
   { name: 'lightIrradiance', type: 'vec4', count: MAX_LIGHTS },
 ];
@@ -44,6 +46,7 @@ export class McrtRenderer extends BaseRenderer<McrtParams> {
   private readonly variants = new Map<string, KernelSource>();
   private gridMemo: { key: string; grid: MajorantGrid } | null = null;
   private envMemo: { key: string; tables: EnvironmentSamplingTables } | null = null;
+  private constantMapMemo: { key: string; map: LatLongEnvironment } | null = null;
 
   constructor(params: McrtParams = {}) {
     const resolved = resolveParams(params);
@@ -92,6 +95,7 @@ export class McrtRenderer extends BaseRenderer<McrtParams> {
       rouletteDepth: p.rouletteDepth,
       globalMajorant: grid.globalMajorant,
       globalMinorant: grid.globalMinorant,
+      lightCount: lights.length,
       lightDirection: dirs,
       lightIrradiance: irr,
     };
@@ -101,14 +105,14 @@ export class McrtRenderer extends BaseRenderer<McrtParams> {
     const aux: AuxiliaryTexture[] = [];
     const f = computeFeatures(scene, this.resolved);
     if (f.MAJORANT_GRID) {
-      const [gx, gy, gz] = gridCells(scene.volume.dims, this.resolved.majorantCellSize);
+      const [gx, gy, gz] = gridCells(scene.volume.dims, this.cellSize(scene));
       aux.push({
         name: 'majorantGrid', dimension: '3d', key: this.gridKey(scene),
         create: () => ({ dimension: '3d', width: gx, height: gy, depth: gz, format: 'rgba32float', data: this.majorantGrid(scene).data, label: 'majorant grid' }),
       });
     }
     if (f.ENV_MAP) {
-      const env = scene.environment as LatLongEnvironment;
+      const env = this.environmentMap(scene);
       const key = `${idOf(env.data)}|${env.scale ?? 1}|${env.width}x${env.height}`;
       const tables = () => this.environmentTables(env, key);
       aux.push(
@@ -124,7 +128,7 @@ export class McrtRenderer extends BaseRenderer<McrtParams> {
   majorantGrid(scene: Scene): MajorantGrid {
     const key = this.gridKey(scene);
     if (this.gridMemo?.key !== key) {
-      const ranges = volumeCellRanges(scene.volume, this.resolved.majorantCellSize);
+      const ranges = volumeCellRanges(scene.volume, this.cellSize(scene));
       const tf = rasterizeTransferFunction(scene.transferFunction, TF_RESOLUTION);
       this.gridMemo = { key, grid: buildMajorantGrid(ranges, tf, scene.densityScale) };
     }
@@ -132,7 +136,27 @@ export class McrtRenderer extends BaseRenderer<McrtParams> {
   }
 
   private gridKey(scene: Scene): string {
-    return `${idOf(scene.volume as Volume)}|${this.resolved.majorantCellSize}|${scene.densityScale}|${JSON.stringify(scene.transferFunction)}`;
+    return `${idOf(scene.volume as Volume)}|${this.cellSize(scene)}|${scene.densityScale}|${JSON.stringify(scene.transferFunction)}`;
+  }
+
+  /** Majorant-grid cell edge in voxels: the generic kernel always walks a grid, of one cell when the grid is off. */
+  private cellSize(scene: Scene): number {
+    const p = this.resolved;
+    return !p.specialize && !p.majorantGrid ? Math.max(...scene.volume.dims) : p.majorantCellSize;
+  }
+
+  /** The lat-long map the kernel samples: the scene's, or (generic kernel) a constant sky as a constant map. */
+  private environmentMap(scene: Scene): LatLongEnvironment {
+    const env = scene.environment;
+    if (env.type === 'latlong') return env;
+    const key = JSON.stringify(env.radiance);
+    if (this.constantMapMemo?.key !== key) {
+      const [w, h] = CONSTANT_MAP_SIZE;
+      const data = new Float32Array(w * h * 3);
+      for (let k = 0; k < w * h; k++) data.set(env.radiance, 3 * k);
+      this.constantMapMemo = { key, map: { type: 'latlong', width: w, height: h, data } };
+    }
+    return this.constantMapMemo.map;
   }
 
   private environmentTables(env: LatLongEnvironment, key: string): EnvironmentSamplingTables {
@@ -143,5 +167,8 @@ export class McrtRenderer extends BaseRenderer<McrtParams> {
 
 const DEFAULT_FEATURES: McrtFeatures = {
   ENV_MAP: false, ENV_LIGHT: true, LIGHT_COUNT: 0, SINGLE_SCATTERING: false, MAJORANT_GRID: true,
-  TRACKING: 2, ENV_SAMPLING: 2, MIS_POWER: true, DEBUG_OUTPUT: 0,
+  TRACKING: 2, ENV_SAMPLING: 2, MIS_POWER: true, DEBUG_OUTPUT: 0, GENERIC: false,
 };
+
+/** A constant sky as a map for the generic kernel: small, since every texel is the same. */
+const CONSTANT_MAP_SIZE = [16, 8] as const;

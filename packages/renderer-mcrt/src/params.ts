@@ -33,6 +33,16 @@ export interface McrtParams {
    * scattering events, 1) per path. Default 'none'.
    */
   debugOutput?: 'none' | 'transmittance' | 'fetches';
+  /**
+   * Compile a kernel specialised to the scene (default true). false = one generic kernel for
+   * every scene, as a renderer without specialisation would have: the environment is always
+   * an importance-sampled lat-long map (a constant sky becomes a constant map), the lights
+   * are a loop over a runtime count, the scattering order is the runtime maxDepth and the
+   * majorant grid is always traversed (one cell when `majorantGrid` is false). The images
+   * agree in expectation; the benchmark `pnpm bench --suites specialization` measures the
+   * difference in speed.
+   */
+  specialize?: boolean;
 }
 
 export type ResolvedMcrtParams = Required<McrtParams>;
@@ -48,6 +58,7 @@ export const MCRT_DEFAULTS: ResolvedMcrtParams = {
   environmentSampling: 'mis',
   misHeuristic: 'power',
   debugOutput: 'none',
+  specialize: true,
 };
 
 /** The largest |g| accepted: HG's peak (1+g)/(4π(1−g)²) stays far from float32 overflow. */
@@ -66,6 +77,7 @@ export function resolveParams(p: McrtParams): ResolvedMcrtParams {
   oneOf('environmentSampling', r.environmentSampling, ['mis', 'light', 'phase'] as const);
   oneOf('misHeuristic', r.misHeuristic, ['power', 'balance'] as const);
   oneOf('debugOutput', r.debugOutput, ['none', 'transmittance', 'fetches'] as const);
+  if (typeof r.specialize !== 'boolean') throw new VptError('invalid-scene', `MCRT: specialize must be a boolean, got ${JSON.stringify(r.specialize)}`);
   if (typeof r.majorantGrid !== 'boolean') throw new VptError('invalid-scene', `MCRT: majorantGrid must be a boolean, got ${JSON.stringify(r.majorantGrid)}`);
   if (!Number.isInteger(r.maxDepth) || r.maxDepth < -1 || r.maxDepth === 0) throw new VptError('invalid-scene', `MCRT: maxDepth must be -1 (unlimited) or a positive integer, got ${r.maxDepth}`);
   if (!Number.isInteger(r.rouletteDepth) || r.rouletteDepth < 1) throw new VptError('invalid-scene', `MCRT: rouletteDepth must be a positive integer, got ${r.rouletteDepth}`);

@@ -30,7 +30,7 @@ function scene(over: Partial<Scene> = {}): Scene {
 describe('MCRT feature variants', () => {
   it('derives the flags from the scene and the parameters', () => {
     const f = computeFeatures(scene({ lights: [{ type: 'directional', direction: [0, 1, 0], irradiance: [1, 1, 1] }, { type: 'directional', direction: [1, 0, 0], irradiance: [0, 0, 0] }] }), resolveParams({}));
-    expect(f).toEqual({ ENV_MAP: false, ENV_LIGHT: true, LIGHT_COUNT: 1, SINGLE_SCATTERING: false, MAJORANT_GRID: true, TRACKING: 2, ENV_SAMPLING: 2, MIS_POWER: true, DEBUG_OUTPUT: 0 });
+    expect(f).toEqual({ ENV_MAP: false, ENV_LIGHT: true, LIGHT_COUNT: 1, SINGLE_SCATTERING: false, MAJORANT_GRID: true, TRACKING: 2, ENV_SAMPLING: 2, MIS_POWER: true, DEBUG_OUTPUT: 0, GENERIC: false });
     const black = computeFeatures(scene({ environment: { type: 'constant', radiance: [0, 0, 0] } }), resolveParams({ environmentSampling: 'light', misHeuristic: 'balance' }));
     expect(black.ENV_LIGHT).toBe(false);
     expect(black.ENV_SAMPLING).toBe(0); // irrelevant flags are canonical: no extra variants
@@ -41,7 +41,7 @@ describe('MCRT feature variants', () => {
     expect(darkMap.ENV_MAP).toBe(false);
   });
 
-  const base: McrtFeatures = { ENV_MAP: false, ENV_LIGHT: true, LIGHT_COUNT: 0, SINGLE_SCATTERING: false, MAJORANT_GRID: true, TRACKING: 2, ENV_SAMPLING: 2, MIS_POWER: true, DEBUG_OUTPUT: 0 };
+  const base: McrtFeatures = { ENV_MAP: false, ENV_LIGHT: true, LIGHT_COUNT: 0, SINGLE_SCATTERING: false, MAJORANT_GRID: true, TRACKING: 2, ENV_SAMPLING: 2, MIS_POWER: true, DEBUG_OUTPUT: 0, GENERIC: false };
   const both = (f: McrtFeatures) => { const k = generateKernel(f); return [k.glsl, k.wgsl]; };
 
   it('compiles only the code a variant needs, in both languages', () => {
@@ -105,6 +105,41 @@ describe('MCRT feature variants', () => {
     expect([cdf.width, cdf.height]).toEqual([3, 1]);
     r.setParams({ majorantGrid: false });
     expect(r.auxiliaryTextures(scene()).length).toBe(0);
+  });
+
+  it('specialize: false compiles one generic kernel for every scene, with the scene features as data', () => {
+    const light = { type: 'directional' as const, direction: [0, 1, 0] as [number, number, number], irradiance: [1, 1, 1] as [number, number, number] };
+    const scenes = [
+      scene(),
+      scene({ environment: { type: 'constant', radiance: [0, 0, 0] }, lights: [light, light] }),
+      scene({ environment: { type: 'latlong', width: 2, height: 1, data: new Float32Array([0, 0, 0, 1, 2, 3]) }, lights: [light] }),
+    ];
+    const specialised = new Set(scenes.map((s) => JSON.stringify(computeFeatures(s, resolveParams({})))));
+    expect(specialised.size).toBe(3);
+    for (const scattering of ['single', 'multiple'] as const) {
+      for (const majorantGrid of [true, false]) {
+        const keys = new Set(scenes.map((s) => JSON.stringify(computeFeatures(s, resolveParams({ specialize: false, scattering, majorantGrid })))));
+        expect(keys.size, `${scattering} grid=${majorantGrid}`).toBe(1);
+      }
+    }
+    const r = new McrtRenderer({ specialize: false, scattering: 'single', majorantGrid: false });
+    const f = r.features(scenes[1]);
+    expect(f).toMatchObject({ GENERIC: true, ENV_MAP: true, SINGLE_SCATTERING: false, MAJORANT_GRID: true, LIGHT_COUNT: 8 });
+    for (const src of both(f as unknown as McrtFeatures)) expect(src).toContain('u.lightCount');
+    for (const src of both({ ...base, LIGHT_COUNT: 2 })) expect(src).not.toContain('u.lightCount');
+    // The scene's features arrive as data: light count and depth as uniforms, a constant sky
+    // as a constant map, the global majorant as a one-cell grid.
+    const v = r.paramValues(scenes[1]);
+    expect([v.lightCount, v.maxDepth]).toEqual([2, 1]);
+    const aux = r.auxiliaryTextures(scenes[1]);
+    expect(aux.map((a) => a.name)).toEqual(['majorantGrid', 'envMap', 'envMarginal', 'envConditional']);
+    const grid = aux[0].create();
+    expect([grid.width, grid.height, grid.depth]).toEqual([1, 1, 1]);
+    expect(grid.data[0]).toBeCloseTo(r.majorantGrid(scenes[1]).globalMajorant, 5);
+    const map = aux[1].create().data as Float32Array;
+    expect(map.length).toBeGreaterThan(4);
+    for (let i = 0; i < map.length; i += 4) expect([map[i], map[i + 1], map[i + 2]]).toEqual([0, 0, 0]);
+    expect(() => new McrtRenderer({ specialize: 'no' as unknown as boolean })).toThrow(/specialize/);
   });
 
   it('rejects bad parameters with a typed error', () => {

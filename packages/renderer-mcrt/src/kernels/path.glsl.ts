@@ -46,6 +46,9 @@ vec3 directLight(vec3 x, vec3 w, inout uint rng) {
   vec3 Ld = vec3(0.0);
 #if LIGHT_COUNT > 0
   for (int i = 0; i < LIGHT_COUNT; i++) {
+#if GENERIC
+    if (i >= u.lightCount) break;
+#endif
     vec3 l = u.lightDirection[i].xyz;
     float ph = hgPhase(u.phaseG, dot(w, l));
     vec2 tb = intersectBox(x, l, u.boxMin, u.boxMax);

@@ -36,6 +36,9 @@ fn directLight(x: vec3f, w: vec3f, rng: ptr<function, u32>) -> vec3f {
   var Ld = vec3f(0.0);
 #if LIGHT_COUNT > 0
   for (var i = 0; i < LIGHT_COUNT; i++) {
+#if GENERIC
+    if (i >= u.lightCount) { break; }
+#endif
     let l = u.lightDirection[i].xyz;
     let ph = hgPhase(u.phaseG, dot(w, l));
     let tb = intersectBox(x, l, u.boxMin, u.boxMax);

@@ -64,6 +64,12 @@ class WebGPUBackend implements GpuBackend {
   private readonly restoredCallbacks: Array<() => void> = [];
   private restoreWaiters: Waiter[] = [];
 
+  /**
+   * The current GPUDevice (a new one after a restore), for tools that time or inspect the
+   * device, such as the benchmarks' timestamp queries. Rendering goes through the pass interface.
+   */
+  get device(): GPUDevice { return this.state.device; }
+
   constructor(readonly canvas: HTMLCanvasElement | OffscreenCanvas, private readonly options: BackendOptions, handle: GpuDeviceHandle) {
     const context = canvas.getContext('webgpu') as GPUCanvasContext | null;
     if (!context) {
