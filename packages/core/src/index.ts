@@ -16,7 +16,7 @@ export { createBackend } from './gpu/create-backend.js';
 export { createWebGL2Backend } from './gpu/webgl2/webgl2-backend.js';
 export { createWebGPUBackend, isWebGPUAvailable } from './gpu/webgpu/webgpu-backend.js';
 
-export type { Renderer, KernelSource, AuxiliaryTexture } from './renderer.js';
+export type { Renderer, KernelSource, AuxiliaryTexture, AuxiliaryPass } from './renderer.js';
 export { BaseRenderer } from './base-renderer.js';
 export { RUNNING_MEAN_INTEGRATE, COPY_ACCUMULATION_RENDER } from './shaders/accumulation-kernels.js';
 export type { PostStep } from './post-step.js';

@@ -1,6 +1,6 @@
-import type { TextureDescriptor, TextureFormat } from './gpu/backend.js';
+import type { PassTextureBinding, TextureDescriptor, TextureFormat } from './gpu/backend.js';
 import type { Scene } from './scene/scene.js';
-import type { UniformField, UniformValues } from './uniforms/layout.js';
+import type { UniformField, UniformLayout, UniformValues } from './uniforms/layout.js';
 
 /** A kernel in both shading languages; the context prepends the shared chunks and the prelude. */
 export interface KernelSource {
@@ -67,5 +67,29 @@ export interface AuxiliaryTexture {
   dimension: '2d' | '3d';
   /** Changes exactly when the content changes (e.g. a hash of the inputs). */
   key: string;
-  create(): TextureDescriptor;
+  /** Content made on the CPU and uploaded. Give this or `render`. */
+  create?(): TextureDescriptor;
+  /** Content made on the GPU by one full-screen pass (dimension '2d'): no CPU work and no read-back. */
+  render?: AuxiliaryPass;
+  /** Bound to the generate pass (default true); false for an input of a later AuxiliaryPass only. */
+  bind?: boolean;
+}
+
+/**
+ * A full-screen pass whose single output becomes an auxiliary texture. It runs when the
+ * texture's key changes, after the scene's volume and transfer function are uploaded, so
+ * it can read them (`volume`, `transferFunction`) and any auxiliary texture listed before
+ * it in `auxiliaryTextures()`.
+ */
+export interface AuxiliaryPass {
+  label: string;
+  width: number;
+  height: number;
+  format: TextureFormat;
+  /** Fragment sources as for GpuBackend.createPass (prelude, `u.` uniforms, vpt_out0 / VptOut). */
+  glsl: string;
+  wgsl: string;
+  uniforms: UniformLayout;
+  values: UniformValues;
+  inputs: readonly PassTextureBinding[];
 }

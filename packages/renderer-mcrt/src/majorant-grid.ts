@@ -18,8 +18,9 @@
  *  - the result is padded by a relative 1e-5, far above the few float32 ulps by which
  *    the kernel's lerps can exceed their inputs.
  * The volume-dependent part (per-cell value ranges, O(voxels)) is cached per Volume
- * object; a transfer-function or density change only redoes the O(cells) lookup. It
- * runs on the main thread (see docs/architecture.md).
+ * object and uploaded; the TF part runs on the GPU in the renderer (kernels/majorant-build.*,
+ * the same steps in float32), rerun on every transfer-function or density change. The
+ * CPU build here is its reference in tests and gives the global bound without a grid.
  */
 import { normalizedData, TF_RESOLUTION, type Volume } from '@vpt/core';
 

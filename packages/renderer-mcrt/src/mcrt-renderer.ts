@@ -1,11 +1,13 @@
 import {
-  BaseRenderer, buildEnvironmentSampling, COPY_ACCUMULATION_RENDER, rasterizeTransferFunction, TF_RESOLUTION,
+  BaseRenderer, buildEnvironmentSampling, COPY_ACCUMULATION_RENDER, gradientAtlasLayout, rasterizeTransferFunction, TF_RESOLUTION, UniformLayout,
   type AuxiliaryTexture, type EnvironmentSamplingTables, type KernelSource, type LatLongEnvironment, type Scene,
   type UniformField, type UniformValues, type Volume,
 } from '@vpt/core';
 import { activeLights, computeFeatures, featureKey, MAX_LIGHTS, type McrtFeatures } from './features.js';
 import { generateKernel, INTEGRATE_HALVES } from './kernel-sources.js';
-import { buildMajorantGrid, gridCells, volumeCellRanges, type MajorantGrid } from './majorant-grid.js';
+import { buildMajorantGrid, gridCells, volumeCellRanges, type CellValueRanges, type MajorantGrid } from './majorant-grid.js';
+import * as glslBuild from './kernels/majorant-build.glsl.js';
+import * as wgslBuild from './kernels/majorant-build.wgsl.js';
 import { resolveParams, type McrtParams, type ResolvedMcrtParams } from './params.js';
 
 export const MCRT_PARAM_FIELDS: readonly UniformField[] = [
@@ -14,6 +16,8 @@ export const MCRT_PARAM_FIELDS: readonly UniformField[] = [
   { name: 'rouletteDepth', type: 'i32' },
   { name: 'globalMajorant', type: 'f32' },
   { name: 'globalMinorant', type: 'f32' },
+  /** Majorant-grid cells per axis and the slice atlas's column count (gridTexel in tracking.*.ts). */
+  { name: 'gridCells', type: 'ivec4' },
   /** Lights in use; read only by the generic kernel (specialised kernels loop to LIGHT_COUNT). */
   { name: 'lightCount', type: 'i32' },
   { name: 'lightDirection', type: 'vec4', count: MAX_LIGHTS },
@@ -85,7 +89,10 @@ export class McrtRenderer extends BaseRenderer<McrtParams> {
 
   paramValues(scene: Scene): UniformValues {
     const p = this.resolved;
-    const grid = this.majorantGrid(scene);
+    // With the grid the bounds live on the GPU; one global bound is computed here only without it.
+    const onGpu = computeFeatures(scene, p).MAJORANT_GRID;
+    const grid = onGpu ? null : this.majorantGrid(scene);
+    const cells = gridCells(scene.volume.dims, this.cellSize(scene));
     const lights = activeLights(scene);
     const dirs = new Float32Array(4 * MAX_LIGHTS), irr = new Float32Array(4 * MAX_LIGHTS);
     lights.forEach((l, i) => { dirs.set(l.direction, 4 * i); irr.set(l.irradiance, 4 * i); });
@@ -93,8 +100,9 @@ export class McrtRenderer extends BaseRenderer<McrtParams> {
       phaseG: p.anisotropy,
       maxDepth: p.scattering === 'single' ? 1 : p.maxDepth,
       rouletteDepth: p.rouletteDepth,
-      globalMajorant: grid.globalMajorant,
-      globalMinorant: grid.globalMinorant,
+      globalMajorant: grid ? grid.globalMajorant : 0,
+      globalMinorant: grid ? grid.globalMinorant : 0,
+      gridCells: [...cells, gradientAtlasLayout(cells).columns],
       lightCount: lights.length,
       lightDirection: dirs,
       lightIrradiance: irr,
@@ -104,13 +112,7 @@ export class McrtRenderer extends BaseRenderer<McrtParams> {
   auxiliaryTextures(scene: Scene): readonly AuxiliaryTexture[] {
     const aux: AuxiliaryTexture[] = [];
     const f = computeFeatures(scene, this.resolved);
-    if (f.MAJORANT_GRID) {
-      const [gx, gy, gz] = gridCells(scene.volume.dims, this.cellSize(scene));
-      aux.push({
-        name: 'majorantGrid', dimension: '3d', key: this.gridKey(scene),
-        create: () => ({ dimension: '3d', width: gx, height: gy, depth: gz, format: 'rgba32float', data: this.majorantGrid(scene).data, label: 'majorant grid' }),
-      });
-    }
+    if (f.MAJORANT_GRID) aux.push(...this.majorantGridTextures(scene));
     if (f.ENV_MAP) {
       const env = this.environmentMap(scene);
       const key = `${idOf(env.data)}|${env.scale ?? 1}|${env.width}x${env.height}`;
@@ -124,7 +126,43 @@ export class McrtRenderer extends BaseRenderer<McrtParams> {
     return aux;
   }
 
-  /** The majorant grid of a scene (cached by volume, TF, density scale and cell size). */
+  /**
+   * The majorant grid as three auxiliary textures: the per-cell value ranges (CPU, once per
+   * volume and cell size), then two GPU passes that rerun whenever the transfer function or
+   * the density scale changes: each TF column's opacity bounds, and the grid itself. All
+   * three use the slice-atlas layout of the cell counts; only the grid is bound to the kernel.
+   */
+  private majorantGridTextures(scene: Scene): AuxiliaryTexture[] {
+    const cellSize = this.cellSize(scene);
+    const cells = gridCells(scene.volume.dims, cellSize);
+    const layout = gradientAtlasLayout(cells);
+    const tfKey = JSON.stringify(scene.transferFunction);
+    return [
+      {
+        name: 'majorantRanges', dimension: '2d', bind: false, key: `${idOf(scene.volume as Volume)}|${cellSize}`,
+        create: () => ({ dimension: '2d', width: layout.width, height: layout.height, format: 'rgba32float', data: rangesAtlas(volumeCellRanges(scene.volume, cellSize), layout.columns, layout.width, layout.height), label: 'majorant grid value ranges' }),
+      },
+      {
+        name: 'opacityBounds', dimension: '2d', bind: false, key: tfKey,
+        render: {
+          label: 'transfer function opacity bounds', width: TF_RESOLUTION, height: 1, format: 'rgba32float',
+          glsl: glslBuild.opacityBounds, wgsl: wgslBuild.opacityBounds, uniforms: BUILD_UNIFORMS, values: { gridCells: [0, 0, 0, 0], gridDensity: 0 },
+          inputs: [{ name: 'transferFunction', dimension: '2d' }],
+        },
+      },
+      {
+        name: 'majorantGrid', dimension: '2d', key: this.gridKey(scene),
+        render: {
+          label: 'majorant grid', width: layout.width, height: layout.height, format: 'rgba32float',
+          glsl: glslBuild.majorantGrid, wgsl: wgslBuild.majorantGrid, uniforms: BUILD_UNIFORMS,
+          values: { gridCells: [...cells, layout.columns], gridDensity: scene.densityScale },
+          inputs: [{ name: 'majorantRanges', dimension: '2d' }, { name: 'opacityBounds', dimension: '2d' }],
+        },
+      },
+    ];
+  }
+
+  /** The majorant grid of a scene computed on the CPU (cached by volume, TF, density scale and cell size): the reference the GPU build is tested against, and the global bounds without a grid. */
   majorantGrid(scene: Scene): MajorantGrid {
     const key = this.gridKey(scene);
     if (this.gridMemo?.key !== key) {
@@ -169,6 +207,28 @@ const DEFAULT_FEATURES: McrtFeatures = {
   ENV_MAP: false, ENV_LIGHT: true, LIGHT_COUNT: 0, SINGLE_SCATTERING: false, MAJORANT_GRID: true,
   TRACKING: 2, ENV_SAMPLING: 2, MIS_POWER: true, DEBUG_OUTPUT: 0, GENERIC: false,
 };
+
+const BUILD_UNIFORMS = new UniformLayout('MajorantBuild', [
+  { name: 'gridCells', type: 'ivec4' },
+  { name: 'gridDensity', type: 'f32' },
+]);
+
+/** Per-cell value ranges in the slice atlas of the cell counts: r = min, g = max. */
+function rangesAtlas(r: CellValueRanges, columns: number, width: number, height: number): Float32Array {
+  const [gx, gy, gz] = r.cells;
+  const out = new Float32Array(4 * width * height);
+  for (let z = 0; z < gz; z++) {
+    const ox = (z % columns) * gx, oy = Math.floor(z / columns) * gy;
+    for (let y = 0; y < gy; y++) {
+      for (let x = 0; x < gx; x++) {
+        const c = x + gx * (y + gy * z), t = 4 * (ox + x + width * (oy + y));
+        out[t] = r.vmin[c];
+        out[t + 1] = r.vmax[c];
+      }
+    }
+  }
+  return out;
+}
 
 /** A constant sky as a map for the generic kernel: small, since every texel is the same. */
 const CONSTANT_MAP_SIZE = [16, 8] as const;

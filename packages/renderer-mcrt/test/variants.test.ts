@@ -1,6 +1,6 @@
 import { describe, expect, it } from 'vitest';
 import { createProceduralVolume, isVptError, rampTransferFunction, type Scene } from '@vpt/core';
-import { computeFeatures, generateKernel, McrtRenderer, preprocess, resolveParams, type McrtFeatures } from '../src/index.js';
+import { computeFeatures, generateKernel, McrtRenderer, preprocess, resolveParams, volumeCellRanges, type McrtFeatures } from '../src/index.js';
 
 describe('preprocess', () => {
   const src = ['a', '#if X', 'x', '#elif Y == 2 && !Z', 'y', '#else', 'e', '#if Z', 'z', '#endif', '#endif', 'b'].join('\n');
@@ -88,20 +88,38 @@ describe('MCRT feature variants', () => {
     expect(r.kernels.generate).toBe(a);
   });
 
-  it('lists the majorant grid and environment tables as auxiliary textures with content keys', () => {
+  it('lists the majorant grid (value ranges, TF bounds, grid) and environment tables as auxiliary textures with content keys', () => {
     const r = new McrtRenderer();
-    const s = scene({ environment: { type: 'latlong', width: 4, height: 2, data: new Float32Array(24).fill(1) } });
+    const s = scene({ volume: createProceduralVolume('blob', 20), environment: { type: 'latlong', width: 4, height: 2, data: new Float32Array(24).fill(1) } });
     const aux = r.auxiliaryTextures(s);
-    expect(aux.map((a) => a.name)).toEqual(['majorantGrid', 'envMap', 'envMarginal', 'envConditional']);
-    const key = aux[0].key;
-    // A camera move keeps the key; density, TF or volume changes alter it.
-    expect(r.auxiliaryTextures({ ...s, camera: { ...s.camera, position: [1, 2, 3] } })[0].key).toBe(key);
-    expect(r.auxiliaryTextures({ ...s, densityScale: 11 })[0].key).not.toBe(key);
-    expect(r.auxiliaryTextures({ ...s, transferFunction: rampTransferFunction([1, 0, 0]) })[0].key).not.toBe(key);
-    expect(r.auxiliaryTextures({ ...s, volume: createProceduralVolume('blob', 8) })[0].key).not.toBe(key);
-    const grid = aux[0].create();
-    expect([grid.width, grid.height, grid.depth, grid.format]).toEqual([1, 1, 1, 'rgba32float']);
-    const cdf = aux[2].create();
+    expect(aux.map((a) => a.name)).toEqual(['majorantRanges', 'opacityBounds', 'majorantGrid', 'envMap', 'envMarginal', 'envConditional']);
+    expect(aux.map((a) => a.bind !== false)).toEqual([false, false, true, true, true, true]);
+    const keys = (x: Scene) => r.auxiliaryTextures(x).slice(0, 3).map((a) => a.key);
+    const [ranges, bounds, grid] = keys(s);
+    // A camera move keeps every key; the volume changes the ranges, the TF the bounds, and all of them the grid.
+    expect(keys({ ...s, camera: { ...s.camera, position: [1, 2, 3] } })).toEqual([ranges, bounds, grid]);
+    const dense = keys({ ...s, densityScale: 11 });
+    expect([dense[0], dense[1]]).toEqual([ranges, bounds]);
+    expect(dense[2]).not.toBe(grid);
+    const recoloured = keys({ ...s, transferFunction: rampTransferFunction([1, 0, 0]) });
+    expect(recoloured[0]).toBe(ranges);
+    expect(recoloured[1]).not.toBe(bounds);
+    expect(recoloured[2]).not.toBe(grid);
+    const other = keys({ ...s, volume: createProceduralVolume('blob', 20) });
+    expect(other[0]).not.toBe(ranges);
+    expect(other[2]).not.toBe(grid);
+    // 20³ voxels in cells of 8: 3³ cells in a 2 × 2 slice atlas of 3 × 3 tiles.
+    const atlas = aux[0].create!();
+    expect([atlas.width, atlas.height, atlas.format]).toEqual([6, 6, 'rgba32float']);
+    const cpu = volumeCellRanges(s.volume, 8);
+    const data = atlas.data as Float32Array;
+    expect([data[4 * (1 + 6 * 2)], data[4 * (1 + 6 * 2) + 1]]).toEqual([cpu.vmin[1 + 3 * 2], cpu.vmax[1 + 3 * 2]]); // cell (1, 2, 0)
+    const c = 2 + 3 * (0 + 3 * 1), t = 3 + 2 + 6 * 0; // cell (2, 0, 1): tile 1 at x offset 3
+    expect([data[4 * t], data[4 * t + 1]]).toEqual([cpu.vmin[c], cpu.vmax[c]]);
+    expect(aux[2].render!.values).toEqual({ gridCells: [3, 3, 3, 2], gridDensity: 10 });
+    expect(aux[1].render!.inputs.map((i) => i.name)).toEqual(['transferFunction']);
+    expect(aux[2].render!.inputs.map((i) => i.name)).toEqual(['majorantRanges', 'opacityBounds']);
+    const cdf = aux[4].create!();
     expect([cdf.width, cdf.height]).toEqual([3, 1]);
     r.setParams({ majorantGrid: false });
     expect(r.auxiliaryTextures(scene()).length).toBe(0);
@@ -132,11 +150,9 @@ describe('MCRT feature variants', () => {
     const v = r.paramValues(scenes[1]);
     expect([v.lightCount, v.maxDepth]).toEqual([2, 1]);
     const aux = r.auxiliaryTextures(scenes[1]);
-    expect(aux.map((a) => a.name)).toEqual(['majorantGrid', 'envMap', 'envMarginal', 'envConditional']);
-    const grid = aux[0].create();
-    expect([grid.width, grid.height, grid.depth]).toEqual([1, 1, 1]);
-    expect(grid.data[0]).toBeCloseTo(r.majorantGrid(scenes[1]).globalMajorant, 5);
-    const map = aux[1].create().data as Float32Array;
+    expect(aux.map((a) => a.name)).toEqual(['majorantRanges', 'opacityBounds', 'majorantGrid', 'envMap', 'envMarginal', 'envConditional']);
+    expect(aux[2].render!.values.gridCells).toEqual([1, 1, 1, 1]);
+    const map = aux[3].create!().data as Float32Array;
     expect(map.length).toBeGreaterThan(4);
     for (let i = 0; i < map.length; i += 4) expect([map[i], map[i + 1], map[i + 2]]).toEqual([0, 0, 0]);
     expect(() => new McrtRenderer({ specialize: 'no' as unknown as boolean })).toThrow(/specialize/);

@@ -2,7 +2,7 @@ import { VptError } from '../errors.js';
 import { createBackend } from '../gpu/create-backend.js';
 import type { BackendPreference, GpuBackend, GpuPass, GpuTexture, RenderTarget } from '../gpu/backend.js';
 import type { PostStep } from '../post-step.js';
-import type { AuxiliaryTexture, Renderer } from '../renderer.js';
+import type { AuxiliaryPass, AuxiliaryTexture, Renderer } from '../renderer.js';
 import type { Scene } from '../scene/scene.js';
 import { validateScene } from '../scene/scene.js';
 import { rasterizeTransferFunction, TF_RESOLUTION, transferFunctionSize } from '../scene/transfer-function.js';
@@ -62,7 +62,8 @@ export class RenderContext {
   // a renderer with needsGradient asks for it, kept until the volume changes.
   private gradient: GradientVolume | null = null;
   private gradientSource: Scene['volume'] | null = null;
-  private auxTextures = new Map<string, { key: string; texture: GpuTexture; dimension: '2d' | '3d' }>();
+  // Renderer-declared textures by name; `target` is set for GPU-made ones (AuxiliaryPass).
+  private auxTextures = new Map<string, AuxEntry>();
   private auxFor: { scene: Scene | null; renderer: Renderer | null; version: number } = { scene: null, renderer: null, version: -1 };
   private frame: RenderTarget | null = null;
   private accum: [RenderTarget, RenderTarget] | null = null;
@@ -197,7 +198,7 @@ export class RenderContext {
       textures.gradientMagnitude = this.gradient.atlas.textures[0];
       textures.gradientMax = this.gradient.max.textures[0];
     }
-    for (const [name, aux] of this.auxTextures) textures[name] = aux.texture;
+    for (const [name, aux] of this.auxTextures) if (aux.bind) textures[name] = aux.texture;
     for (let k = 0; k < n; k++) {
       const uniforms = this.uniforms(scene);
       this.backend.draw(passes.generate, { uniforms, textures, target: this.frame! });
@@ -281,6 +282,19 @@ export class RenderContext {
   async readFrame(index = 0): Promise<Float32Array> {
     if (!this.frame || this.iteration === 0) throw new VptError('invalid-scene', 'Nothing rendered yet: call setScene() and iterate first');
     return (await this.backend.readTexture(this.frame.textures[index])) as Float32Array;
+  }
+
+  /**
+   * An auxiliary texture of the renderer as its kernels see it (for tests and tools), read
+   * back as floats; built first if the scene changed since the last iteration.
+   */
+  async readAuxiliaryTexture(name: string): Promise<Float32Array> {
+    this.assertAlive();
+    if (!this.scene) throw new VptError('invalid-scene', 'readAuxiliaryTexture() before setScene()');
+    this.syncAuxiliaryTextures();
+    const aux = this.auxTextures.get(name);
+    if (!aux) throw new RangeError(`the renderer has no auxiliary texture "${name}" for this scene`);
+    return (await this.backend.readTexture(aux.texture)) as Float32Array;
   }
 
   /**
@@ -436,7 +450,7 @@ export class RenderContext {
     }
     this.syncGradient();
     this.syncAuxiliaryTextures();
-    const auxBindings = [...this.auxTextures].map(([name, a]) => ({ name, dimension: a.dimension }));
+    const auxBindings = [...this.auxTextures].filter(([, a]) => a.bind).map(([name, a]) => ({ name, dimension: a.dimension }));
     const gradientBindings = chunks.gradient ? [{ name: 'gradientMagnitude', dimension: '2d' as const }, { name: 'gradientMax', dimension: '2d' as const }] : [];
     const key = `${r.name}|${JSON.stringify(features)}|${auxBindings.map((b) => b.name).join(',')}`;
     if (!this.passes || key !== this.variantKey) {
@@ -477,15 +491,40 @@ export class RenderContext {
     const specs: readonly AuxiliaryTexture[] = r.auxiliaryTextures?.(this.scene!) ?? [];
     const wanted = new Set(specs.map((a) => a.name));
     for (const [name, aux] of this.auxTextures) {
-      if (!wanted.has(name)) { this.backend.destroyTexture(aux.texture); this.auxTextures.delete(name); }
+      if (!wanted.has(name)) { this.releaseAux(aux); this.auxTextures.delete(name); }
     }
     for (const spec of specs) {
       const have = this.auxTextures.get(spec.name);
       if (have && have.key === spec.key) continue;
-      if (have) this.backend.destroyTexture(have.texture);
-      this.auxTextures.set(spec.name, { key: spec.key, texture: this.backend.createTexture(spec.create()), dimension: spec.dimension });
+      if (have) { this.releaseAux(have); this.auxTextures.delete(spec.name); }
+      this.auxTextures.set(spec.name, spec.render ? this.renderAux(spec, spec.render) : { key: spec.key, texture: this.backend.createTexture(this.auxDescriptor(spec)), dimension: spec.dimension, bind: spec.bind !== false });
     }
     this.auxFor = { scene: this.scene, renderer: r, version: r.version };
+  }
+
+  private auxDescriptor(spec: AuxiliaryTexture) {
+    if (!spec.create) throw new RangeError(`auxiliary texture "${spec.name}" has neither create() nor render`);
+    return spec.create();
+  }
+
+  /** Run an AuxiliaryPass into a new 2D target, reading the scene's textures and earlier auxiliary ones. */
+  private renderAux(spec: AuxiliaryTexture, p: AuxiliaryPass): AuxEntry {
+    if (spec.dimension !== '2d') throw new RangeError(`auxiliary texture "${spec.name}": a GPU-made texture is 2D`);
+    const textures: Record<string, GpuTexture> = {};
+    for (const b of p.inputs) {
+      const t = b.name === 'volume' ? this.volumeTexture : b.name === 'transferFunction' ? this.tfTexture : this.auxTextures.get(b.name)?.texture;
+      if (!t) throw new RangeError(`auxiliary pass "${p.label}" reads "${b.name}", which is not the volume, the transfer function or an earlier auxiliary texture`);
+      textures[b.name] = t;
+    }
+    const pass = this.backend.createPass({ label: p.label, glsl: p.glsl, wgsl: p.wgsl, uniforms: p.uniforms, textures: p.inputs, outputs: [p.format] });
+    const target = this.backend.createRenderTarget(p.width, p.height, [p.format], p.label);
+    this.backend.draw(pass, { uniforms: p.uniforms.pack(p.values), textures, target });
+    return { key: spec.key, texture: target.textures[0], dimension: '2d', target, bind: spec.bind !== false };
+  }
+
+  private releaseAux(aux: AuxEntry): void {
+    if (aux.target) this.backend.destroyRenderTarget(aux.target);
+    else this.backend.destroyTexture(aux.texture);
   }
 
   private preparePost(): void {
@@ -535,7 +574,7 @@ export class RenderContext {
     this.volumeTexture = null;
     this.tfTexture = null;
     this.dropGradient();
-    this.auxTextures.forEach((a) => this.backend.destroyTexture(a.texture));
+    this.auxTextures.forEach((a) => this.releaseAux(a));
     this.auxTextures.clear();
     this.auxFor = { scene: null, renderer: null, version: -1 };
   }
@@ -555,6 +594,16 @@ export class RenderContext {
     this.reset();
     this.loop.resume();
   }
+}
+
+interface AuxEntry {
+  key: string;
+  texture: GpuTexture;
+  dimension: '2d' | '3d';
+  /** Bound to the generate pass (AuxiliaryTexture.bind). */
+  bind: boolean;
+  /** The render target a GPU-made texture lives in (destroyed with it). */
+  target?: RenderTarget;
 }
 
 // The volume/TF chunks read the `volume` and `transferFunction` (and gradient) textures,
