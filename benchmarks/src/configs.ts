@@ -16,7 +16,10 @@ export interface RendererConfig {
 }
 
 export interface SceneSpec {
-  volume: { kind: 'cloud' | 'head' | 'sphere' | 'blob' | 'cube' | 'ball'; size?: number; radius?: number };
+  volume:
+    | { kind: 'cloud' | 'head' | 'sphere' | 'blob' | 'cube' | 'ball'; size?: number; radius?: number }
+    /** A raw volume served by the headless server (a fetched dataset), described by its sidecar. */
+    | { kind: 'raw'; url: string; dims: number[]; type: string; valueRange: number[]; spacing: number[] };
   transferFunction: unknown;
   camera: { position: number[]; target: number[]; up: number[]; fovy: number };
   lights?: unknown[];
@@ -52,6 +55,30 @@ export function scenes(cloudSize: number): Record<string, SceneSpec> {
     },
   };
 }
+
+/** Normalized value of a CT number in the chest CT's value range [-1024, 1671]. */
+const hu = (h: number) => (h + 1024) / 2695;
+
+/**
+ * Fetched real volumes the error suite adds when `pnpm data:fetch` has put them in
+ * data/fetched/ (run.ts checks; absent ones are listed as skipped). Sidecar = the JSON
+ * next to the raw file; the scene around it is set here.
+ */
+export const FETCHED_SCENES: Record<string, { sidecar: string; scene: Omit<SceneSpec, 'volume'> }> = {
+  'ct-chest': {
+    sidecar: 'ct_chest_pyradiomics_lung2_512x512x61_int16.json',
+    scene: {
+      transferFunction: { dimensions: '1d', points: [
+        { value: hu(-400), color: [0.8, 0.5, 0.4], opacity: 0 }, { value: hu(-50), color: [0.85, 0.45, 0.35], opacity: 0.005 },
+        { value: hu(100), color: [0.9, 0.6, 0.5], opacity: 0.01 }, { value: hu(250), color: [1, 0.95, 0.85], opacity: 0.3 }, { value: 1, color: [1, 1, 1], opacity: 1 }] },
+      // LPS: anterior is −y, superior +z.
+      camera: { position: [0.4, -1.7, 0.5], target: [0, 0, 0], up: [0, 0, 1], fovy: 0.75 },
+      lights: [{ type: 'directional', direction: [0.3, -1, 0.6], irradiance: [3, 3, 3] }],
+      environment: { type: 'constant', radiance: [0.3, 0.3, 0.35] },
+      densityScale: 60,
+    },
+  },
+};
 
 /**
  * Renderer configurations. MCRT variants compare tracking estimators, the majorant grid,

@@ -50,9 +50,20 @@ export const PAGE_CODE = String.raw`
   }
 
   const volumes = new Map();
+  // A fetched dataset: raw voxels (x fastest, little-endian) as its sidecar describes them.
+  async function rawVolume(spec) {
+    const res = await fetch(spec.url);
+    if (!res.ok) throw new Error('cannot fetch ' + spec.url + ': HTTP ' + res.status);
+    const buf = await res.arrayBuffer();
+    const Arr = { uint8: Uint8Array, uint16: Uint16Array, int16: Int16Array, float32: Float32Array }[spec.type];
+    const vol = vpt.core.createVolume(spec.dims, spec.type, new Arr(buf), spec.spacing);
+    vol.valueRange = spec.valueRange;
+    return vol;
+  }
+
   async function volume(spec) {
     const key = JSON.stringify(spec);
-    if (!volumes.has(key)) volumes.set(key, spec.kind === 'head' ? await headVolume() : spec.kind === 'cloud' ? cloudVolume(spec.size) : spec.kind === 'ball' ? ballVolume(spec.size, spec.radius) : vpt.core.createProceduralVolume(spec.kind, spec.size));
+    if (!volumes.has(key)) volumes.set(key, spec.kind === 'raw' ? await rawVolume(spec) : spec.kind === 'head' ? await headVolume() : spec.kind === 'cloud' ? cloudVolume(spec.size) : spec.kind === 'ball' ? ballVolume(spec.size, spec.radius) : vpt.core.createProceduralVolume(spec.kind, spec.size));
     return volumes.get(key);
   }
 

@@ -3,11 +3,11 @@
  * Runs the suites in headless Chromium and writes benchmarks/results/<stamp>/results.json
  * and report.html. Nothing here asserts a time: comparisons are ratios within one run.
  */
-import { mkdirSync, writeFileSync } from 'node:fs';
+import { existsSync, mkdirSync, readFileSync, writeFileSync } from 'node:fs';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { openVptPage, CHROMIUM_FLAGS, WEBGPU_FLAGS } from '@vpt/headless';
-import { MCRT_VARIANTS, PRESETS, RENDERERS, type Backend } from './configs.js';
+import { FETCHED_SCENES, MCRT_VARIANTS, PRESETS, RENDERERS, type Backend, type SceneSpec } from './configs.js';
 import { machineRecord } from './environment.js';
 import { PAGE_CODE } from './page-code.js';
 import { htmlReport, type Results } from './report.js';
@@ -28,6 +28,24 @@ if (!preset) throw new Error(`unknown preset (use ${Object.keys(PRESETS).join(',
 const suites = arg('suites', 'error,frame,convergence,scaling,specialization').split(',');
 const backends = arg('backends', 'webgl2,webgpu').split(',') as Backend[];
 const only = arg('renderers', '');
+const sceneFilter = arg('scenes', '');
+if (sceneFilter) preset.errorScenes = sceneFilter.split(',');
+
+/** FETCHED_SCENES whose raw file `pnpm data:fetch` has put in data/fetched/, with their sidecar's geometry. */
+function fetchedScenes(): { present: Record<string, SceneSpec>; absent: string[] } {
+  const dir = fileURLToPath(new URL('../../data/fetched/', import.meta.url));
+  const present: Record<string, SceneSpec> = {}, absent: string[] = [];
+  for (const [name, f] of Object.entries(FETCHED_SCENES)) {
+    const sidecarPath = path.join(dir, f.sidecar);
+    const sidecar = existsSync(sidecarPath) ? JSON.parse(readFileSync(sidecarPath, 'utf8')) : null;
+    if (!sidecar || !existsSync(path.join(dir, sidecar.file))) { absent.push(`${name} (not fetched: pnpm data:fetch)`); continue; }
+    present[name] = {
+      ...f.scene,
+      volume: { kind: 'raw', url: `/data/fetched/${sidecar.file}`, dims: sidecar.dims, type: sidecar.voxel_type, valueRange: sidecar.value_range, spacing: sidecar.spacing ?? [1, 1, 1] },
+    };
+  }
+  return { present, absent };
+}
 
 const started = Date.now();
 const log = (line: string) => console.log(`[${((Date.now() - started) / 1000).toFixed(0).padStart(5)} s] ${line}`);
@@ -43,7 +61,9 @@ try {
     preset: preset.name,
     skipped,
   };
-  const ctx: SuiteContext = { page: session.page, preset, backends, renderers: RENDERERS.filter(keep), mcrtVariants: MCRT_VARIANTS.filter(keep), log };
+  const fetched = fetchedScenes();
+  results.skipped.push(...fetched.absent);
+  const ctx: SuiteContext = { page: session.page, preset, backends, renderers: RENDERERS.filter(keep), mcrtVariants: MCRT_VARIANTS.filter(keep), fetchedScenes: fetched.present, log };
   if (suites.includes('frame')) results.frameTime = await frameTime(ctx);
   if (suites.includes('error')) results.errorVsTime = await errorVsTime(ctx);
   if (suites.includes('convergence')) results.convergence = await convergence(ctx);

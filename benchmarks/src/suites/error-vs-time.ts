@@ -26,11 +26,11 @@ export async function errorVsTime(s: SuiteContext): Promise<ErrorCurveResult[]> 
   const out: ErrorCurveResult[] = [];
   const size = s.preset.errorSize;
   const all = [...s.renderers, ...s.mcrtVariants];
-  for (const [sceneName, spec] of Object.entries(scenes(s.preset.cloudSize))) {
+  for (const [sceneName, spec] of Object.entries({ ...scenes(s.preset.cloudSize), ...s.fetchedScenes })) {
     if (s.preset.errorScenes && !s.preset.errorScenes.includes(sceneName)) continue;
     for (const backend of s.backends) {
       for (const config of all) {
-        if (sceneName === 'head' && s.mcrtVariants.includes(config)) continue; // variants on the procedural scene only
+        if (sceneName !== 'cloud' && s.mcrtVariants.includes(config)) continue; // variants on the procedural scene only
         const refIterations = s.preset.referenceIterations[config.renderer];
         // One reference per configuration, made on the first backend: the backends give
         // bit-identical images (tests/*parity*), so it is the reference for both.

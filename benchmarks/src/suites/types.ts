@@ -1,5 +1,5 @@
 import type { Page } from 'puppeteer-core';
-import type { Backend, Preset, RendererConfig } from '../configs.js';
+import type { Backend, Preset, RendererConfig, SceneSpec } from '../configs.js';
 
 export interface SuiteContext {
   page: Page;
@@ -8,6 +8,8 @@ export interface SuiteContext {
   /** Renderer configurations whose package is in this build. */
   renderers: RendererConfig[];
   mcrtVariants: RendererConfig[];
+  /** Fetched real volumes present on this machine (FETCHED_SCENES), for the error suite. */
+  fetchedScenes: Record<string, SceneSpec>;
   log: (line: string) => void;
 }
 
