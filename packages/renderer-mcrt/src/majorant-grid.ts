@@ -17,10 +17,10 @@
  *    (value × gradient) is bounded over all gradient rows of those columns;
  *  - the result is padded by a relative 1e-5, far above the few float32 ulps by which
  *    the kernel's lerps can exceed their inputs.
- * The volume-dependent part (per-cell value ranges, O(voxels)) is cached per Volume
- * object and uploaded; the TF part runs on the GPU in the renderer (kernels/majorant-build.*,
- * the same steps in float32), rerun on every transfer-function or density change. The
- * CPU build here is its reference in tests and gives the global bound without a grid.
+ * The renderer builds the grid on the GPU (kernels/majorant-build.*: the same steps, the
+ * value ranges exactly, the TF part in float32), the ranges once per volume and the bounds
+ * on every transfer-function or density change. This CPU build is its reference in the
+ * tests and gives the one global bound of `majorantGrid: false` (cached per Volume object).
  */
 import { normalizedData, TF_RESOLUTION, type Volume } from '@vpt/core';
 

@@ -5,7 +5,7 @@ import {
 } from '@vpt/core';
 import { activeLights, computeFeatures, featureKey, MAX_LIGHTS, type McrtFeatures } from './features.js';
 import { generateKernel, INTEGRATE_HALVES } from './kernel-sources.js';
-import { buildMajorantGrid, gridCells, volumeCellRanges, type CellValueRanges, type MajorantGrid } from './majorant-grid.js';
+import { buildMajorantGrid, gridCells, volumeCellRanges, type MajorantGrid } from './majorant-grid.js';
 import * as glslBuild from './kernels/majorant-build.glsl.js';
 import * as wgslBuild from './kernels/majorant-build.wgsl.js';
 import { resolveParams, type McrtParams, type ResolvedMcrtParams } from './params.js';
@@ -127,10 +127,10 @@ export class McrtRenderer extends BaseRenderer<McrtParams> {
   }
 
   /**
-   * The majorant grid as three auxiliary textures: the per-cell value ranges (CPU, once per
-   * volume and cell size), then two GPU passes that rerun whenever the transfer function or
-   * the density scale changes: each TF column's opacity bounds, and the grid itself. All
-   * three use the slice-atlas layout of the cell counts; only the grid is bound to the kernel.
+   * The majorant grid as three GPU-made auxiliary textures, no voxel loop on the CPU: the
+   * per-cell value ranges (once per volume and cell size), each TF column's opacity bounds
+   * (on a TF change) and the grid itself (on a volume, TF or density change). All three use
+   * the slice-atlas layout of the cell counts; only the grid is bound to the kernel.
    */
   private majorantGridTextures(scene: Scene): AuxiliaryTexture[] {
     const cellSize = this.cellSize(scene);
@@ -140,7 +140,12 @@ export class McrtRenderer extends BaseRenderer<McrtParams> {
     return [
       {
         name: 'majorantRanges', dimension: '2d', bind: false, key: `${idOf(scene.volume as Volume)}|${cellSize}`,
-        create: () => ({ dimension: '2d', width: layout.width, height: layout.height, format: 'rgba32float', data: rangesAtlas(volumeCellRanges(scene.volume, cellSize), layout.columns, layout.width, layout.height), label: 'majorant grid value ranges' }),
+        render: {
+          label: 'majorant grid value ranges', width: layout.width, height: layout.height, format: 'rgba32float',
+          glsl: glslBuild.cellRanges, wgsl: wgslBuild.cellRanges, uniforms: BUILD_UNIFORMS,
+          values: { gridCells: [...cells, layout.columns], gridDensity: 0 },
+          inputs: [{ name: 'volume', dimension: '3d' }],
+        },
       },
       {
         name: 'opacityBounds', dimension: '2d', bind: false, key: tfKey,
@@ -212,23 +217,6 @@ const BUILD_UNIFORMS = new UniformLayout('MajorantBuild', [
   { name: 'gridCells', type: 'ivec4' },
   { name: 'gridDensity', type: 'f32' },
 ]);
-
-/** Per-cell value ranges in the slice atlas of the cell counts: r = min, g = max. */
-function rangesAtlas(r: CellValueRanges, columns: number, width: number, height: number): Float32Array {
-  const [gx, gy, gz] = r.cells;
-  const out = new Float32Array(4 * width * height);
-  for (let z = 0; z < gz; z++) {
-    const ox = (z % columns) * gx, oy = Math.floor(z / columns) * gy;
-    for (let y = 0; y < gy; y++) {
-      for (let x = 0; x < gx; x++) {
-        const c = x + gx * (y + gy * z), t = 4 * (ox + x + width * (oy + y));
-        out[t] = r.vmin[c];
-        out[t + 1] = r.vmax[c];
-      }
-    }
-  }
-  return out;
-}
 
 /** A constant sky as a map for the generic kernel: small, since every texel is the same. */
 const CONSTANT_MAP_SIZE = [16, 8] as const;

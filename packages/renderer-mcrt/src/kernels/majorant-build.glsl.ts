@@ -1,7 +1,49 @@
-// The majorant grid built on the GPU whenever the transfer function or density scale
-// changes (pbrt-v4's GridMedium majorants; Szirmay-Kalos et al. 2011): the same steps in
+// The majorant grid built on the GPU: per-cell value ranges once per volume, then the
+// bounds whenever the transfer function or density scale changes (pbrt-v4's GridMedium majorants; Szirmay-Kalos et al. 2011): the same steps in
 // the same order as majorant-grid.ts (OpacityRangeTable.valueRange, buildMajorantGrid),
 // in float32. Cells are laid out as a slice atlas (gradientAtlasLayout of the cell counts).
+
+/**
+ * Per cell: min and max of the normalized voxel values its points can blend (the cell's
+ * voxels, a one-voxel trilinear border and one voxel of margin: cellVoxelRange in
+ * majorant-grid.ts, in exact integer arithmetic). Runs once per volume and cell size.
+ */
+export const cellRanges = /* glsl */ `
+// floor(a / b) for b > 0 (GLSL's integer division truncates toward zero).
+int floorDiv(int a, int b) { return a >= 0 ? a / b : -((b - 1 - a) / b); }
+// Voxel index range [lo, hi] whose values reach the points of cell c of g along an axis of n voxels:
+// lo = floor(c·n/g − ½) − 1, hi = floor((c+1)·n/g − ½) + 2, clamped to the axis.
+ivec2 voxelRange(int c, int g, int n) {
+  int lo = floorDiv(2 * c * n - g, 2 * g) - 1;
+  int hi = floorDiv(2 * (c + 1) * n - g, 2 * g) + 2;
+  return ivec2(max(lo, 0), min(hi, n - 1));
+}
+void main() {
+  ivec2 p = vptPixel();
+  ivec3 cells = u.gridCells.xyz;
+  int tx = p.x / cells.x;
+  int ty = p.y / cells.y;
+  int z = tx + u.gridCells.w * ty;
+  if (z >= cells.z) { vpt_out0 = vec4(0.0); return; }
+  ivec3 c = ivec3(p.x - tx * cells.x, p.y - ty * cells.y, z);
+  ivec3 n = textureSize(volume, 0);
+  ivec2 rx = voxelRange(c.x, cells.x, n.x);
+  ivec2 ry = voxelRange(c.y, cells.y, n.y);
+  ivec2 rz = voxelRange(c.z, cells.z, n.z);
+  float lo = texelFetch(volume, ivec3(rx.x, ry.x, rz.x), 0).r;
+  float hi = lo;
+  for (int k = rz.x; k <= rz.y; k++) {
+    for (int j = ry.x; j <= ry.y; j++) {
+      for (int i = rx.x; i <= rx.y; i++) {
+        float v = texelFetch(volume, ivec3(i, j, k), 0).r;
+        lo = min(lo, v);
+        hi = max(hi, v);
+      }
+    }
+  }
+  vpt_out0 = vec4(lo, hi, 0.0, 1.0);
+}
+`;
 
 /** Per TF column: min and max opacity over every row, so a 2D TF's bound holds at any gradient. */
 export const opacityBounds = /* glsl */ `

@@ -1,6 +1,42 @@
 // Twin of majorant-build.glsl.ts: the majorant grid built on the GPU (pbrt-v4's GridMedium
 // majorants; Szirmay-Kalos et al. 2011), same arithmetic in the same order.
 
+export const cellRanges = /* wgsl */ `
+fn floorDiv(a: i32, b: i32) -> i32 { return select(-((b - 1 - a) / b), a / b, a >= 0); }
+fn voxelRange(c: i32, g: i32, n: i32) -> vec2i {
+  let lo = floorDiv(2 * c * n - g, 2 * g) - 1;
+  let hi = floorDiv(2 * (c + 1) * n - g, 2 * g) + 2;
+  return vec2i(max(lo, 0), min(hi, n - 1));
+}
+@fragment fn fs_main(@builtin(position) fragCoord: vec4f) -> VptOut {
+  let p = vptPixel(fragCoord);
+  let cells = u.gridCells.xyz;
+  let tx = p.x / cells.x;
+  let ty = p.y / cells.y;
+  let z = tx + u.gridCells.w * ty;
+  var o: VptOut;
+  if (z >= cells.z) { o.out0 = vec4f(0.0); return o; }
+  let c = vec3i(p.x - tx * cells.x, p.y - ty * cells.y, z);
+  let n = vec3i(textureDimensions(volume));
+  let rx = voxelRange(c.x, cells.x, n.x);
+  let ry = voxelRange(c.y, cells.y, n.y);
+  let rz = voxelRange(c.z, cells.z, n.z);
+  var lo = textureLoad(volume, vec3i(rx.x, ry.x, rz.x), 0).r;
+  var hi = lo;
+  for (var k = rz.x; k <= rz.y; k++) {
+    for (var j = ry.x; j <= ry.y; j++) {
+      for (var i = rx.x; i <= rx.y; i++) {
+        let v = textureLoad(volume, vec3i(i, j, k), 0).r;
+        lo = min(lo, v);
+        hi = max(hi, v);
+      }
+    }
+  }
+  o.out0 = vec4f(lo, hi, 0.0, 1.0);
+  return o;
+}
+`;
+
 export const opacityBounds = /* wgsl */ `
 @fragment fn fs_main(@builtin(position) fragCoord: vec4f) -> VptOut {
   let p = vptPixel(fragCoord);
