@@ -44,26 +44,24 @@ export const PAGE_CODE = String.raw`
     return vol;
   }
 
-  async function headVolume() {
-    const buf = await (await fetch('/data/mri_head_volpack_brainsmall_128x128x84_uint8.raw')).arrayBuffer();
-    return vpt.core.createVolume([128, 128, 84], 'uint8', new Uint8Array(buf));
-  }
 
   const volumes = new Map();
-  // A fetched dataset: raw voxels (x fastest, little-endian) as its sidecar describes them.
+  const BUNDLED_HEAD = { url: '/data/mri_head_volpack_brainsmall_128x128x84_uint8.raw', dims: [128, 128, 84], type: 'uint8', spacing: [1, 1, 1] };
+
+  // A bundled or fetched dataset: raw voxels (x fastest, little-endian) as its sidecar describes them.
   async function rawVolume(spec) {
     const res = await fetch(spec.url);
     if (!res.ok) throw new Error('cannot fetch ' + spec.url + ': HTTP ' + res.status);
     const buf = await res.arrayBuffer();
     const Arr = { uint8: Uint8Array, uint16: Uint16Array, int16: Int16Array, float32: Float32Array }[spec.type];
     const vol = vpt.core.createVolume(spec.dims, spec.type, new Arr(buf), spec.spacing);
-    vol.valueRange = spec.valueRange;
+    if (spec.valueRange) vol.valueRange = spec.valueRange;
     return vol;
   }
 
   async function volume(spec) {
     const key = JSON.stringify(spec);
-    if (!volumes.has(key)) volumes.set(key, spec.kind === 'raw' ? await rawVolume(spec) : spec.kind === 'head' ? await headVolume() : spec.kind === 'cloud' ? cloudVolume(spec.size) : spec.kind === 'ball' ? ballVolume(spec.size, spec.radius) : vpt.core.createProceduralVolume(spec.kind, spec.size));
+    if (!volumes.has(key)) volumes.set(key, spec.kind === 'raw' ? await rawVolume(spec) : spec.kind === 'head' ? await rawVolume(BUNDLED_HEAD) : spec.kind === 'cloud' ? cloudVolume(spec.size) : spec.kind === 'ball' ? ballVolume(spec.size, spec.radius) : vpt.core.createProceduralVolume(spec.kind, spec.size));
     return volumes.get(key);
   }
 

@@ -27,7 +27,7 @@ export { GLSL_RNG, GLSL_RAY, GLSL_VOLUME, GLSL_COMMON } from './shaders/glsl-com
 export { WGSL_RNG, WGSL_RAY, WGSL_VOLUME, WGSL_COMMON } from './shaders/wgsl-common.js';
 export { glslCommon, GLSL_GRADIENT, GLSL_TRANSFER_2D, type CommonChunkOptions } from './shaders/glsl-common.js';
 export { wgslCommon, WGSL_GRADIENT, WGSL_TRANSFER_2D } from './shaders/wgsl-common.js';
-export { gradientAtlasLayout, atlasTexel, type GradientAtlasLayout } from './gradient/atlas.js';
+export { gradientAtlasLayout, atlasTexel, GLSL_ATLAS, WGSL_ATLAS, type GradientAtlasLayout } from './gradient/atlas.js';
 export { gradientMagnitudes, maxGradientMagnitude } from './gradient/gradient-cpu.js';
 export { buildGradientVolume, destroyGradientVolume, type GradientVolume } from './gradient/gradient-volume.js';
 export { GLSL_SAMPLING, GLSL_ENVIRONMENT_MAP } from './shaders/glsl-sampling.js';

@@ -1,5 +1,5 @@
 import {
-  BaseRenderer, buildEnvironmentSampling, COPY_ACCUMULATION_RENDER, gradientAtlasLayout, rasterizeTransferFunction, TF_RESOLUTION, UniformLayout,
+  BaseRenderer, buildEnvironmentSampling, COPY_ACCUMULATION_RENDER, GLSL_ATLAS, gradientAtlasLayout, WGSL_ATLAS, rasterizeTransferFunction, TF_RESOLUTION, UniformLayout,
   type AuxiliaryTexture, type EnvironmentSamplingTables, type KernelSource, type LatLongEnvironment, type Scene,
   type UniformField, type UniformValues, type Volume,
 } from '@vpt/core';
@@ -16,7 +16,7 @@ export const MCRT_PARAM_FIELDS: readonly UniformField[] = [
   { name: 'rouletteDepth', type: 'i32' },
   { name: 'globalMajorant', type: 'f32' },
   { name: 'globalMinorant', type: 'f32' },
-  /** Majorant-grid cells per axis and the slice atlas's column count (gridTexel in tracking.*.ts). */
+  /** Majorant-grid cells per axis and the slice atlas's column count (atlasTexel in tracking.*.ts). */
   { name: 'gridCells', type: 'ivec4' },
   /** Lights in use; read only by the generic kernel (specialised kernels loop to LIGHT_COUNT). */
   { name: 'lightCount', type: 'i32' },
@@ -92,7 +92,6 @@ export class McrtRenderer extends BaseRenderer<McrtParams> {
     // With the grid the bounds live on the GPU; one global bound is computed here only without it.
     const onGpu = computeFeatures(scene, p).MAJORANT_GRID;
     const grid = onGpu ? null : this.majorantGrid(scene);
-    const cells = gridCells(scene.volume.dims, this.cellSize(scene));
     const lights = activeLights(scene);
     const dirs = new Float32Array(4 * MAX_LIGHTS), irr = new Float32Array(4 * MAX_LIGHTS);
     lights.forEach((l, i) => { dirs.set(l.direction, 4 * i); irr.set(l.irradiance, 4 * i); });
@@ -102,7 +101,7 @@ export class McrtRenderer extends BaseRenderer<McrtParams> {
       rouletteDepth: p.rouletteDepth,
       globalMajorant: grid ? grid.globalMajorant : 0,
       globalMinorant: grid ? grid.globalMinorant : 0,
-      gridCells: [...cells, gradientAtlasLayout(cells).columns],
+      gridCells: this.gridGeometry(scene),
       lightCount: lights.length,
       lightDirection: dirs,
       lightIrradiance: irr,
@@ -134,16 +133,16 @@ export class McrtRenderer extends BaseRenderer<McrtParams> {
    */
   private majorantGridTextures(scene: Scene): AuxiliaryTexture[] {
     const cellSize = this.cellSize(scene);
-    const cells = gridCells(scene.volume.dims, cellSize);
-    const layout = gradientAtlasLayout(cells);
+    const geometry = this.gridGeometry(scene);
+    const layout = gradientAtlasLayout(geometry.slice(0, 3));
     const tfKey = JSON.stringify(scene.transferFunction);
     return [
       {
         name: 'majorantRanges', dimension: '2d', bind: false, key: `${idOf(scene.volume as Volume)}|${cellSize}`,
         render: {
           label: 'majorant grid value ranges', width: layout.width, height: layout.height, format: 'rgba32float',
-          glsl: glslBuild.cellRanges, wgsl: wgslBuild.cellRanges, uniforms: BUILD_UNIFORMS,
-          values: { gridCells: [...cells, layout.columns], gridDensity: 0 },
+          glsl: GLSL_ATLAS + glslBuild.cellRanges, wgsl: WGSL_ATLAS + wgslBuild.cellRanges, uniforms: BUILD_UNIFORMS,
+          values: { gridCells: geometry, gridDensity: 0 },
           inputs: [{ name: 'volume', dimension: '3d' }],
         },
       },
@@ -159,8 +158,8 @@ export class McrtRenderer extends BaseRenderer<McrtParams> {
         name: 'majorantGrid', dimension: '2d', key: this.gridKey(scene),
         render: {
           label: 'majorant grid', width: layout.width, height: layout.height, format: 'rgba32float',
-          glsl: glslBuild.majorantGrid, wgsl: wgslBuild.majorantGrid, uniforms: BUILD_UNIFORMS,
-          values: { gridCells: [...cells, layout.columns], gridDensity: scene.densityScale },
+          glsl: GLSL_ATLAS + glslBuild.majorantGrid, wgsl: WGSL_ATLAS + wgslBuild.majorantGrid, uniforms: BUILD_UNIFORMS,
+          values: { gridCells: geometry, gridDensity: scene.densityScale },
           inputs: [{ name: 'majorantRanges', dimension: '2d' }, { name: 'opacityBounds', dimension: '2d' }],
         },
       },
@@ -180,6 +179,12 @@ export class McrtRenderer extends BaseRenderer<McrtParams> {
 
   private gridKey(scene: Scene): string {
     return `${idOf(scene.volume as Volume)}|${this.cellSize(scene)}|${scene.densityScale}|${JSON.stringify(scene.transferFunction)}`;
+  }
+
+  /** The `gridCells` uniform: cells per axis and the slice atlas's column count. */
+  private gridGeometry(scene: Scene): [number, number, number, number] {
+    const cells = gridCells(scene.volume.dims, this.cellSize(scene));
+    return [...cells, gradientAtlasLayout(cells).columns];
   }
 
   /** Majorant-grid cell edge in voxels: the generic kernel always walks a grid, of one cell when the grid is off. */

@@ -23,11 +23,9 @@ float axisDerivative(ivec3 v, ivec3 e, int i, int n) {
 void main() {
   ivec2 p = vptPixel();
   ivec3 dims = u.gradDims.xyz;
-  int tx = p.x / dims.x;
-  int ty = p.y / dims.y;
-  int z = tx + u.gradDims.w * ty;
-  if (z >= dims.z) { vpt_out0 = vec4(0.0); return; }
-  ivec3 v = ivec3(p.x - tx * dims.x, p.y - ty * dims.y, z);
+  ivec4 a = atlasVoxel(p, dims, u.gradDims.w);
+  if (a.w == 0) { vpt_out0 = vec4(0.0); return; }
+  ivec3 v = a.xyz;
   float gx = axisDerivative(v, ivec3(1, 0, 0), v.x, dims.x) * u.gradScale.x;
   float gy = axisDerivative(v, ivec3(0, 1, 0), v.y, dims.y) * u.gradScale.y;
   float gz = axisDerivative(v, ivec3(0, 0, 1), v.z, dims.z) * u.gradScale.z;
@@ -47,12 +45,10 @@ fn axisDerivative(v: vec3i, e: vec3i, i: i32, n: i32) -> f32 {
 @fragment fn fs_main(@builtin(position) fragCoord: vec4f) -> VptOut {
   let p = vptPixel(fragCoord);
   let dims = u.gradDims.xyz;
-  let tx = p.x / dims.x;
-  let ty = p.y / dims.y;
-  let z = tx + u.gradDims.w * ty;
+  let a = atlasVoxel(p, dims, u.gradDims.w);
   var o: VptOut;
-  if (z >= dims.z) { o.out0 = vec4f(0.0); return o; }
-  let v = vec3i(p.x - tx * dims.x, p.y - ty * dims.y, z);
+  if (a.w == 0) { o.out0 = vec4f(0.0); return o; }
+  let v = a.xyz;
   let gx = axisDerivative(v, vec3i(1, 0, 0), v.x, dims.x) * u.gradScale.x;
   let gy = axisDerivative(v, vec3i(0, 1, 0), v.y, dims.y) * u.gradScale.y;
   let gz = axisDerivative(v, vec3i(0, 0, 1), v.z, dims.z) * u.gradScale.z;

@@ -3,7 +3,7 @@ import type { GpuBackend, GpuTexture, RenderTarget } from '../gpu/backend.js';
 import type { Volume } from '../scene/volume.js';
 import { normalizationRange } from '../scene/volume.js';
 import { UniformLayout } from '../uniforms/layout.js';
-import { gradientAtlasLayout, type GradientAtlasLayout } from './atlas.js';
+import { GLSL_ATLAS, gradientAtlasLayout, WGSL_ATLAS, type GradientAtlasLayout } from './atlas.js';
 import { GRADIENT_GLSL, GRADIENT_WGSL, MAX_REDUCE_GLSL, MAX_REDUCE_WGSL, REDUCTION } from './gradient-kernels.js';
 
 /**
@@ -37,7 +37,7 @@ export function buildGradientVolume(backend: GpuBackend, volumeTexture: GpuTextu
   }
   const [lo, hi] = normalizationRange(volume);
   const gradientPass = backend.createPass({
-    label: 'gradient magnitude', glsl: GRADIENT_GLSL, wgsl: GRADIENT_WGSL, uniforms: GRADIENT_UNIFORMS,
+    label: 'gradient magnitude', glsl: GLSL_ATLAS + GRADIENT_GLSL, wgsl: WGSL_ATLAS + GRADIENT_WGSL, uniforms: GRADIENT_UNIFORMS,
     textures: [{ name: 'volume', dimension: '3d' }], outputs: ['r32float'],
   });
   const reducePass = backend.createPass({

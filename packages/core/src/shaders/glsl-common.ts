@@ -4,6 +4,7 @@
  * SwiftShader. Expects the scene uniform block as `u` (scene-uniforms.ts) and, for
  * the volume/TF helpers, textures named `volume` (sampler3D) and `transferFunction`.
  */
+import { GLSL_ATLAS } from '../gradient/atlas.js';
 
 /** PCG hash (Jarzynski & Olano 2020, "Hash Functions for GPU Rendering", pcg) and a uniform float stream. */
 export const GLSL_RNG = /* glsl */ `
@@ -110,9 +111,7 @@ vec4 transferAt(vec3 p) {
  */
 export const GLSL_GRADIENT = /* glsl */ `
 float gradientTexel(ivec3 v) {
-  int cols = u.gradientAtlasColumns;
-  ivec2 q = ivec2(v.x + (v.z % cols) * u.volumeDims.x, v.y + (v.z / cols) * u.volumeDims.y);
-  return texelFetch(gradientMagnitude, q, 0).r;
+  return texelFetch(gradientMagnitude, atlasTexel(v, u.volumeDims.xyz, u.gradientAtlasColumns), 0).r;
 }
 float sampleGradientMagnitude(vec3 p) {
   vec3 tc = (p - u.boxMin) / (u.boxMax - u.boxMin);
@@ -185,7 +184,7 @@ export interface CommonChunkOptions {
  */
 export function glslCommon(opts: CommonChunkOptions = {}): string {
   const gradient = opts.gradient || opts.tf2d;
-  return GLSL_RNG + GLSL_RAY + GLSL_VOLUME_SAMPLING + (gradient ? GLSL_GRADIENT : '') + (opts.tf2d ? GLSL_TRANSFER_2D : GLSL_TRANSFER_1D);
+  return GLSL_RNG + GLSL_RAY + GLSL_ATLAS + GLSL_VOLUME_SAMPLING + (gradient ? GLSL_GRADIENT : '') + (opts.tf2d ? GLSL_TRANSFER_2D : GLSL_TRANSFER_1D);
 }
 
 /** The 1D variant (no gradient code), as before 2D transfer functions existed. */

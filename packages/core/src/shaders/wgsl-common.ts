@@ -1,3 +1,4 @@
+import { WGSL_ATLAS } from '../gradient/atlas.js';
 import type { CommonChunkOptions } from './glsl-common.js';
 
 /**
@@ -96,9 +97,7 @@ fn transferAt(p: vec3f) -> vec4f {
 /** Gradient magnitude from the slice atlas, trilinear, and normalized (twin of GLSL_GRADIENT). */
 export const WGSL_GRADIENT = /* wgsl */ `
 fn gradientTexel(v: vec3i) -> f32 {
-  let cols = u.gradientAtlasColumns;
-  let q = vec2i(v.x + (v.z % cols) * u.volumeDims.x, v.y + (v.z / cols) * u.volumeDims.y);
-  return textureLoad(gradientMagnitude, q, 0).r;
+  return textureLoad(gradientMagnitude, atlasTexel(v, u.volumeDims.xyz, u.gradientAtlasColumns), 0).r;
 }
 fn sampleGradientMagnitude(p: vec3f) -> f32 {
   let tc = (p - u.boxMin) / (u.boxMax - u.boxMin);
@@ -154,7 +153,7 @@ export const WGSL_VOLUME = WGSL_VOLUME_SAMPLING + WGSL_TRANSFER_1D;
 /** The shared chunks for a generate pass (twin of glslCommon in glsl-common.ts). */
 export function wgslCommon(opts: CommonChunkOptions = {}): string {
   const gradient = opts.gradient || opts.tf2d;
-  return WGSL_RNG + WGSL_RAY + WGSL_VOLUME_SAMPLING + (gradient ? WGSL_GRADIENT : '') + (opts.tf2d ? WGSL_TRANSFER_2D : WGSL_TRANSFER_1D);
+  return WGSL_RNG + WGSL_RAY + WGSL_ATLAS + WGSL_VOLUME_SAMPLING + (gradient ? WGSL_GRADIENT : '') + (opts.tf2d ? WGSL_TRANSFER_2D : WGSL_TRANSFER_1D);
 }
 
 /** The 1D variant (no gradient code), as before 2D transfer functions existed. */

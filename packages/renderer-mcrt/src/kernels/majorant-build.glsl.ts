@@ -1,7 +1,8 @@
 // The majorant grid built on the GPU: per-cell value ranges once per volume, then the
 // bounds whenever the transfer function or density scale changes (pbrt-v4's GridMedium majorants; Szirmay-Kalos et al. 2011): the same steps in
 // the same order as majorant-grid.ts (OpacityRangeTable.valueRange, buildMajorantGrid),
-// in float32. Cells are laid out as a slice atlas (gradientAtlasLayout of the cell counts).
+// in float32. Cells are laid out as a slice atlas (gradientAtlasLayout of the cell counts;
+// GLSL_ATLAS, prepended by the renderer, addresses it).
 
 /**
  * Per cell: min and max of the normalized voxel values its points can blend (the cell's
@@ -21,11 +22,9 @@ ivec2 voxelRange(int c, int g, int n) {
 void main() {
   ivec2 p = vptPixel();
   ivec3 cells = u.gridCells.xyz;
-  int tx = p.x / cells.x;
-  int ty = p.y / cells.y;
-  int z = tx + u.gridCells.w * ty;
-  if (z >= cells.z) { vpt_out0 = vec4(0.0); return; }
-  ivec3 c = ivec3(p.x - tx * cells.x, p.y - ty * cells.y, z);
+  ivec4 a = atlasVoxel(p, cells, u.gridCells.w);
+  if (a.w == 0) { vpt_out0 = vec4(0.0); return; }
+  ivec3 c = a.xyz;
   ivec3 n = textureSize(volume, 0);
   ivec2 rx = voxelRange(c.x, cells.x, n.x);
   ivec2 ry = voxelRange(c.y, cells.y, n.y);
@@ -77,10 +76,7 @@ float columnBound(float x, int n1, bool upper) {
 }
 void main() {
   ivec2 p = vptPixel();
-  ivec3 cells = u.gridCells.xyz;
-  int tx = p.x / cells.x;
-  int ty = p.y / cells.y;
-  if (tx + u.gridCells.w * ty >= cells.z) { vpt_out0 = vec4(0.0); return; }
+  if (atlasVoxel(p, u.gridCells.xyz, u.gridCells.w).w == 0) { vpt_out0 = vec4(0.0); return; }
   vec2 range = texelFetch(majorantRanges, p, 0).rg;
   int n1 = textureSize(opacityBounds, 0).x - 1;
   float xa = clamp(range.x, 0.0, 1.0) * float(n1) * (1.0 - 1e-4);

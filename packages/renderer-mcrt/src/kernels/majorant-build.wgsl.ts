@@ -11,12 +11,10 @@ fn voxelRange(c: i32, g: i32, n: i32) -> vec2i {
 @fragment fn fs_main(@builtin(position) fragCoord: vec4f) -> VptOut {
   let p = vptPixel(fragCoord);
   let cells = u.gridCells.xyz;
-  let tx = p.x / cells.x;
-  let ty = p.y / cells.y;
-  let z = tx + u.gridCells.w * ty;
+  let a = atlasVoxel(p, cells, u.gridCells.w);
   var o: VptOut;
-  if (z >= cells.z) { o.out0 = vec4f(0.0); return o; }
-  let c = vec3i(p.x - tx * cells.x, p.y - ty * cells.y, z);
+  if (a.w == 0) { o.out0 = vec4f(0.0); return o; }
+  let c = a.xyz;
   let n = vec3i(textureDimensions(volume));
   let rx = voxelRange(c.x, cells.x, n.x);
   let ry = voxelRange(c.y, cells.y, n.y);
@@ -65,11 +63,8 @@ fn columnBound(x: f32, n1: i32, upper: bool) -> f32 {
 }
 @fragment fn fs_main(@builtin(position) fragCoord: vec4f) -> VptOut {
   let p = vptPixel(fragCoord);
-  let cells = u.gridCells.xyz;
-  let tx = p.x / cells.x;
-  let ty = p.y / cells.y;
   var o: VptOut;
-  if (tx + u.gridCells.w * ty >= cells.z) { o.out0 = vec4f(0.0); return o; }
+  if (atlasVoxel(p, u.gridCells.xyz, u.gridCells.w).w == 0) { o.out0 = vec4f(0.0); return o; }
   let range = textureLoad(majorantRanges, p, 0).rg;
   let n1 = i32(textureDimensions(opacityBounds).x) - 1;
   let xa = clamp(range.x, 0.0, 1.0) * f32(n1) * (1.0 - 1e-4);

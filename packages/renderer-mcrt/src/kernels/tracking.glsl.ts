@@ -22,11 +22,6 @@ vec4 mediumAt(vec3 p) {
 }
 
 #if MAJORANT_GRID
-// Cell c of the grid (u.gridCells = counts, atlas columns) in its 2D slice atlas.
-ivec2 gridTexel(ivec3 c) {
-  int cols = u.gridCells.w;
-  return ivec2(c.x + (c.z % cols) * u.gridCells.x, c.y + (c.z / cols) * u.gridCells.y);
-}
 struct Dda { vec3 tNext; vec3 tDelta; ivec3 cell; ivec3 stepDir; ivec3 cells; };
 Dda ddaStart(vec3 o, vec3 d, float t0) {
   Dda s;
@@ -44,7 +39,7 @@ Dda ddaStart(vec3 o, vec3 d, float t0) {
 // The current cell's (exit distance, majorant, minorant); then step into the next cell.
 vec3 ddaNext(inout Dda s) {
   cellVisits++;
-  vec4 m = texelFetch(majorantGrid, gridTexel(clamp(s.cell, ivec3(0), s.cells - 1)), 0);
+  vec4 m = texelFetch(majorantGrid, atlasTexel(clamp(s.cell, ivec3(0), s.cells - 1), s.cells, u.gridCells.w), 0);
   float tExit;
   if (s.tNext.x <= s.tNext.y && s.tNext.x <= s.tNext.z) {
     tExit = s.tNext.x; s.cell.x += s.stepDir.x; s.tNext.x += s.tDelta.x;

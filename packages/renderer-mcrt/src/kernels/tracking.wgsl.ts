@@ -15,10 +15,6 @@ fn mediumAt(p: vec3f) -> vec4f {
 }
 
 #if MAJORANT_GRID
-fn gridTexel(c: vec3i) -> vec2i {
-  let cols = u.gridCells.w;
-  return vec2i(c.x + (c.z % cols) * u.gridCells.x, c.y + (c.z / cols) * u.gridCells.y);
-}
 struct Dda { tNext: vec3f, tDelta: vec3f, cell: vec3i, stepDir: vec3i, cells: vec3i };
 fn ddaStart(o: vec3f, d: vec3f, t0: f32) -> Dda {
   var s: Dda;
@@ -35,7 +31,7 @@ fn ddaStart(o: vec3f, d: vec3f, t0: f32) -> Dda {
 }
 fn ddaNext(s: ptr<function, Dda>) -> vec3f {
   cellVisits++;
-  let m = textureLoad(majorantGrid, gridTexel(clamp((*s).cell, vec3i(0), (*s).cells - 1)), 0);
+  let m = textureLoad(majorantGrid, atlasTexel(clamp((*s).cell, vec3i(0), (*s).cells - 1), (*s).cells, u.gridCells.w), 0);
   var tExit: f32;
   if ((*s).tNext.x <= (*s).tNext.y && (*s).tNext.x <= (*s).tNext.z) {
     tExit = (*s).tNext.x; (*s).cell.x += (*s).stepDir.x; (*s).tNext.x += (*s).tDelta.x;
