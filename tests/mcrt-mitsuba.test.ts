@@ -8,7 +8,7 @@ import { usePage } from './helpers/session.js';
 /**
  * Agreement with an independent renderer: Mitsuba 3 (scalar_rgb, volpath, Russian roulette
  * off) rendered the scenes described in benchmarks/reference/*.json with
- * benchmarks/reference/make_reference.py, which states how each DESIGN.md convention maps
+ * benchmarks/reference/make_reference.py, which states how each docs/design.md convention maps
  * onto Mitsuba. Per pixel and channel, z = (vpt − Mitsuba) / √(se_vpt² + se_Mitsuba²), both
  * standard errors measured (vpt: from its N frames, floored by Mitsuba's per-sample spread
  * scaled to N; Mitsuba: over its independent runs).

@@ -3,7 +3,7 @@ import { usePage } from './helpers/session.js';
 
 const page = usePage();
 
-// DESIGN.md: with the same seed both backends produce the same image on SwiftShader, bit for
+// docs/design.md: with the same seed both backends produce the same image on SwiftShader, bit for
 // bit. One scene with everything (HDR lat-long environment, two directional lights, a
 // heterogeneous coloured medium), rendered by kernel variants that exercise every feature flag.
 const VARIANTS: Record<string, unknown>[] = [

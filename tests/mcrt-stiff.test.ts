@@ -4,7 +4,7 @@ import { installMcrtHelpers } from './helpers/mcrt-in-page.js';
 import { BACKENDS, usePage } from './helpers/session.js';
 
 /**
- * Stiff and extreme cases (DESIGN.md, "Numbers that matter"): very thin and very dense media,
+ * Stiff and extreme cases (docs/design.md, "Numbers that matter"): very thin and very dense media,
  * |g| = 0.999, albedo 0 and 1, an HDR environment spanning 1e-4 … 1e4, and a long
  * accumulation. No NaN or Inf may reach a frame or an accumulation, and where an answer is
  * known the image must show it.

@@ -3,7 +3,7 @@ import { usePage } from './helpers/session.js';
 
 const page = usePage();
 
-// DESIGN.md: with the same seed both backends produce the same image on SwiftShader, bit for bit.
+// docs/design.md: with the same seed both backends produce the same image on SwiftShader, bit for bit.
 describe('WebGL 2 / WebGPU parity', () => {
   it.each(['mip', 'eam'])('%s: HDR and LDR images are bit-identical', async (renderer) => {
     const result = await page().page.evaluate(async (renderer) => {

@@ -5,7 +5,7 @@ Reference images for the MCRT renderer from an independent renderer: Mitsuba 3
 
 Each scene is described once, in vpt's scene-description JSON (what `vpt-render` and the
 headless page read), written next to the images; this script builds the same scene in
-Mitsuba following DESIGN.md's conventions:
+Mitsuba following docs/design.md's conventions:
 
   * box: the volume fills [-0.5, 0.5]^3 (cubic volumes only here); Mitsuba's `cube`
     ([-1, 1]^3) scaled by 0.5 with a null BSDF bounds the medium;
@@ -16,7 +16,7 @@ Mitsuba following DESIGN.md's conventions:
     exactly) and one constant colour, so Mitsuba's sigma_t grid is the volume itself
     scaled by densityScale and its albedo that colour;
   * camera: `perspective`, fov_axis y, look_at(position, target, up), box pixel filter
-    (checked below against DESIGN.md's ray formula);
+    (checked below against docs/design.md's ray formula);
   * Henyey-Greenstein `hg` with the same g (both: g > 0 forward);
   * lights: `constant` environment radiance, `directional` with irradiance E and
     direction = -(vpt's direction toward the light);
@@ -89,7 +89,7 @@ def procedural(kind, n):
 
 
 def check_camera(sensor, cam, W, H):
-    """Mitsuba's rays must be DESIGN.md's: f + (2x-1) tan(fovy/2) (W/H) r + (1-2y) tan(fovy/2) u."""
+    """Mitsuba's rays must be docs/design.md's: f + (2x-1) tan(fovy/2) (W/H) r + (1-2y) tan(fovy/2) u."""
     f = np.subtract(cam['target'], cam['position'], dtype=float); f /= np.linalg.norm(f)
     r = np.cross(f, cam['up']); r /= np.linalg.norm(r)
     u = np.cross(r, f)

@@ -1,5 +1,5 @@
 /**
- * CPU expectations for the MCRT tests, derived from DESIGN.md's conventions (camera, box,
+ * CPU expectations for the MCRT tests, derived from docs/design.md's conventions (camera, box,
  * σ_t = densityScale · opacity, HG with cosθ between propagation directions) in float64:
  * box-filtered pixel footprints by a stratified sub-pixel grid, analytic or quadrature
  * optical depths, and the single-scattering integral under a directional light.

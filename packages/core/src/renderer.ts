@@ -10,7 +10,7 @@ export interface KernelSource {
 
 /**
  * A renderer plugin, declared rather than driven: the RenderContext runs its three
- * kernels as full-screen passes (DESIGN.md, "The pipeline"):
+ * kernels as full-screen passes (docs/design.md, "The pipeline"):
  *
  *  - generate:  textures `volume` (3D r32float, normalized) and `transferFunction`
  *               (2D rgba32float, tfSize x tfHeight: 1 row for a 1D TF, 256 for a 2D one),

@@ -19,9 +19,9 @@ function hgPhaseAB(g: number, a: number, b: number) {
   const d = g >= 0 ? (1 - g) * (1 - g) + 2 * g * a : (1 + g) * (1 + g) - 2 * g * b;
   return ((1 - g) * (1 + g)) / (4 * Math.PI) / (d * Math.sqrt(d));
 }
-/** DESIGN.md's HG, written as given. */
+/** docs/design.md's HG, written as given. */
 const hgDesign = (g: number, cos: number) => (1 - g * g) / (4 * Math.PI * Math.pow(1 + g * g - 2 * g * cos, 1.5));
-/** Analytic CDF of cosθ under HG (integral of the DESIGN.md density over the sphere, in closed form). */
+/** Analytic CDF of cosθ under HG (integral of the docs/design.md density over the sphere, in closed form). */
 const hgCdf = (g: number, mu: number) => (Math.abs(g) < 1e-12 ? (mu + 1) / 2 : ((1 - g * g) / (2 * g)) * (1 / Math.sqrt(1 + g * g - 2 * g * mu) - 1 / (1 + g)));
 
 describe('Henyey–Greenstein sampling (the kernels’ closed form)', () => {
@@ -36,7 +36,7 @@ describe('Henyey–Greenstein sampling (the kernels’ closed form)', () => {
       }
     }
   });
-  it('evaluates the DESIGN.md density, normalized over the sphere', () => {
+  it('evaluates the docs/design.md density, normalized over the sphere', () => {
     for (const g of gs) {
       for (const cos of [-1, -0.5, 0, 0.3, 0.99, 1]) {
         const ref = hgDesign(g, cos);

@@ -30,7 +30,7 @@ let nextId = 1;
 const idOf = (o: object) => { let i = ids.get(o); if (i === undefined) { i = nextId++; ids.set(o, i); } return i; };
 
 /**
- * Monte Carlo volumetric path tracer (DESIGN.md; issue 3). HDR = estimated radiance,
+ * Monte Carlo volumetric path tracer (docs/design.md; issue 3). HDR = estimated radiance,
  * a = 1 if the camera ray had a real collision (its mean is the opacity along the ray).
  * Accumulates the running mean of all iterations and of the even and odd ones
  * (`halfAccumulations`), so RenderContext.estimateError() works.

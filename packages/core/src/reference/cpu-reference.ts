@@ -35,7 +35,7 @@ export function intersectBox(o: Vec3, d: Vec3, min: Vec3, max: Vec3): [number, n
   return [tNear, tFar];
 }
 
-/** The ray through film point (fx, fy) ∈ [0,1]², y down (DESIGN.md camera convention). */
+/** The ray through film point (fx, fy) ∈ [0,1]², y down (docs/design.md camera convention). */
 export function cameraRay(scene: Scene, width: number, height: number, fx: number, fy: number): { origin: Vec3; dir: Vec3 } {
   const b = cameraBasis(scene.camera);
   const t = Math.tan(scene.camera.fovy / 2);

@@ -2,7 +2,7 @@ import { VptError } from '../errors.js';
 
 export type Vec3 = [number, number, number];
 
-/** A pinhole camera; fovy is the full vertical field of view in radians (DESIGN.md). */
+/** A pinhole camera; fovy is the full vertical field of view in radians (docs/design.md). */
 export interface Camera {
   position: Vec3;
   target: Vec3;

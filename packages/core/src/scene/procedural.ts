@@ -16,7 +16,7 @@ export function createProceduralVolume(kind: ProceduralKind, size = 32): Volume 
   for (let z = 0; z < size; z++) {
     for (let y = 0; y < size; y++) {
       for (let x = 0; x < size; x++) {
-        // Voxel centre in box units [-0.5, 0.5] (cell-centred, DESIGN.md).
+        // Voxel centre in box units [-0.5, 0.5] (cell-centred, docs/design.md).
         const px = (x + 0.5) / size - 0.5, py = (y + 0.5) / size - 0.5, pz = (z + 0.5) / size - 0.5;
         const r = Math.hypot(px, py, pz);
         let v: number;

@@ -15,7 +15,7 @@ export interface Volume {
   data: VoxelArray;
   /**
    * The value range mapped to [0, 1] for float32 and int16 data. uint8 maps value/255
-   * and uint16 value/65535 (DESIGN.md); when omitted for int16/float32 the data's own
+   * and uint16 value/65535 (docs/design.md); when omitted for int16/float32 the data's own
    * min..max is used.
    */
   valueRange?: [number, number];
@@ -50,7 +50,7 @@ export function validateVolume(v: Volume): void {
   }
 }
 
-/** The range that maps to [0, 1] for this volume (DESIGN.md conventions). */
+/** The range that maps to [0, 1] for this volume (docs/design.md conventions). */
 export function normalizationRange(v: Volume): [number, number] {
   if (v.type === 'uint8' && !v.valueRange) return [0, 255];
   if (v.type === 'uint16' && !v.valueRange) return [0, 65535];
@@ -81,7 +81,7 @@ export function normalizedData(v: Volume): Float32Array {
   return out;
 }
 
-/** Physical extent scaled so the longest side is 1, centred at the origin (DESIGN.md). */
+/** Physical extent scaled so the longest side is 1, centred at the origin (docs/design.md). */
 export function volumeBox(v: Pick<Volume, 'dims' | 'spacing'>): { min: [number, number, number]; max: [number, number, number]; size: [number, number, number] } {
   const ext = [0, 1, 2].map((i) => v.dims[i] * v.spacing[i]);
   const longest = Math.max(...ext);

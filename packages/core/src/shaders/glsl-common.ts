@@ -42,7 +42,7 @@ vec2 intersectBox(vec3 origin, vec3 dir, vec3 boxMin, vec3 boxMax) {
   float tFar = min(min(tmax.x, tmax.y), tmax.z);
   return vec2(tNear, tFar);
 }
-// Pinhole camera (DESIGN.md): film point (x, y) in [0,1]^2, y down.
+// Pinhole camera (docs/design.md): film point (x, y) in [0,1]^2, y down.
 vec3 cameraRayDirection(vec2 film) {
   float sx = (2.0 * film.x - 1.0) * u.tanHalfFovy * u.aspect;
   float sy = (1.0 - 2.0 * film.y) * u.tanHalfFovy;
@@ -179,7 +179,7 @@ export interface CommonChunkOptions {
 /**
  * The shared chunks for a generate pass: RNG, rays, volume sampling, the gradient helpers
  * when bound and the matching transferAt(). A scene with a 1D transfer function whose
- * renderer needs no gradient compiles no gradient code (DESIGN.md, "Leave out what a
+ * renderer needs no gradient compiles no gradient code (docs/design.md, "Leave out what a
  * scene does not need").
  */
 export function glslCommon(opts: CommonChunkOptions = {}): string {

@@ -30,7 +30,7 @@ vec3 sampleUniformSphere(float xi1, float xi2) {
   return vec3(r * cos(phi), r * sin(phi), z);
 }
 // Henyey–Greenstein phase function (Henyey & Greenstein 1941) from a = 1 − cosθ and b = 1 + cosθ,
-// cosθ between the propagation directions before and after scattering, g > 0 forward (DESIGN.md).
+// cosθ between the propagation directions before and after scattering, g > 0 forward (docs/design.md).
 // 1 + g² − 2g·cosθ is written (1−g)² + 2g·a for g ≥ 0 and (1+g)² − 2g·b for g < 0: no cancellation as |g| → 1.
 float hgPhaseAB(float g, float a, float b) {
   float d = g >= 0.0 ? (1.0 - g) * (1.0 - g) + 2.0 * g * a : (1.0 + g) * (1.0 + g) - 2.0 * g * b;

@@ -14,7 +14,7 @@ int trackingSteps = 0;
 int mediumLookups = 0;
 int cellVisits = 0;
 
-// (albedo in [0, 1], extinction σ_t) at a world point: σ_t = densityScale · opacity (DESIGN.md).
+// (albedo in [0, 1], extinction σ_t) at a world point: σ_t = densityScale · opacity (docs/design.md).
 vec4 mediumAt(vec3 p) {
   mediumLookups++;
   vec4 tf = transferAt(p);
