@@ -35,7 +35,7 @@ describe('MCRT majorant grid built on the GPU', () => {
           const gpu = await ctx.readAuxiliaryTexture('majorantGrid');
           const cpu = ctx.renderer.majorantGrid(scene);
           const [gx, gy, gz] = cpu.cells;
-          const layout = core.gradientAtlasLayout(cpu.cells);
+          const layout = core.sliceAtlasLayout(cpu.cells);
           let worst = 0, cells = 0, nonZero = 0;
           for (let z = 0; z < gz; z++) for (let y = 0; y < gy; y++) for (let x = 0; x < gx; x++) {
             const c = x + gx * (y + gy * z);

@@ -18,20 +18,24 @@ export { createWebGPUBackend, isWebGPUAvailable } from './gpu/webgpu/webgpu-back
 
 export type { Renderer, KernelSource, AuxiliaryTexture, AuxiliaryPass } from './renderer.js';
 export { BaseRenderer } from './base-renderer.js';
-export { RUNNING_MEAN_INTEGRATE, COPY_ACCUMULATION_RENDER } from './shaders/accumulation-kernels.js';
+export { RUNNING_MEAN_INTEGRATE, COPY_ACCUMULATION_RENDER } from './shaders/accumulation.js';
 export type { PostStep } from './post-step.js';
 export { RenderContext, type RenderContextOptions, type RenderStats } from './context/render-context.js';
 
 export { SCENE_UNIFORM_FIELDS, sceneUniformValues } from './shaders/scene-uniforms.js';
-export { GLSL_RNG, GLSL_RAY, GLSL_VOLUME, GLSL_COMMON } from './shaders/glsl-common.js';
-export { WGSL_RNG, WGSL_RAY, WGSL_VOLUME, WGSL_COMMON } from './shaders/wgsl-common.js';
-export { glslCommon, GLSL_GRADIENT, GLSL_TRANSFER_2D, type CommonChunkOptions } from './shaders/glsl-common.js';
-export { wgslCommon, WGSL_GRADIENT, WGSL_TRANSFER_2D } from './shaders/wgsl-common.js';
-export { gradientAtlasLayout, atlasTexel, GLSL_ATLAS, WGSL_ATLAS, type GradientAtlasLayout } from './gradient/atlas.js';
+// Shader chunks: each <name>.glsl.ts / <name>.wgsl.ts pair exports the same identifiers;
+// the public names carry the language as a prefix.
+export { RNG as GLSL_RNG, RAY as GLSL_RAY, GRADIENT as GLSL_GRADIENT, TRANSFER_2D as GLSL_TRANSFER_2D } from './shaders/common.glsl.js';
+export { RNG as WGSL_RNG, RAY as WGSL_RAY, GRADIENT as WGSL_GRADIENT, TRANSFER_2D as WGSL_TRANSFER_2D } from './shaders/common.wgsl.js';
+export { commonChunks, PASS_CHUNKS, type CommonChunkOptions } from './shaders/common.js';
+export { SAMPLING as GLSL_SAMPLING, ENVIRONMENT_MAP as GLSL_ENVIRONMENT_MAP } from './shaders/sampling.glsl.js';
+export { SAMPLING as WGSL_SAMPLING, ENVIRONMENT_MAP as WGSL_ENVIRONMENT_MAP } from './shaders/sampling.wgsl.js';
+export { SLICE_ATLAS as GLSL_SLICE_ATLAS } from './shaders/slice-atlas.glsl.js';
+export { SLICE_ATLAS as WGSL_SLICE_ATLAS } from './shaders/slice-atlas.wgsl.js';
+export { sliceAtlasLayout, atlasTexel, type SliceAtlasLayout } from './shaders/slice-atlas.js';
+export { preprocess, evalCondition, type Flags } from './shaders/preprocess.js';
 export { gradientMagnitudes, maxGradientMagnitude } from './gradient/gradient-cpu.js';
 export { buildGradientVolume, destroyGradientVolume, type GradientVolume } from './gradient/gradient-volume.js';
-export { GLSL_SAMPLING, GLSL_ENVIRONMENT_MAP } from './shaders/glsl-sampling.js';
-export { WGSL_SAMPLING, WGSL_ENVIRONMENT_MAP } from './shaders/wgsl-sampling.js';
 export * from './scene/environment-sampling.js';
 
 export * as reference from './reference/cpu-reference.js';

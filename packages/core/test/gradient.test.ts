@@ -1,5 +1,5 @@
 import { describe, expect, it } from 'vitest';
-import { atlasTexel, createVolume, gradientAtlasLayout, gradientMagnitudes, maxGradientMagnitude } from '../src/index.js';
+import { atlasTexel, createVolume, sliceAtlasLayout, gradientMagnitudes, maxGradientMagnitude } from '../src/index.js';
 
 /** A float32 volume from f(x, y, z) in physical units (voxel centre = index × spacing), normalized over valueRange. */
 function field(dims: [number, number, number], spacing: [number, number, number], f: (x: number, y: number, z: number) => number, valueRange: [number, number]) {
@@ -45,7 +45,7 @@ describe('gradient magnitude (CPU reference)', () => {
 describe('gradient slice atlas', () => {
   it('tiles every slice exactly once inside a near-square atlas', () => {
     for (const dims of [[128, 128, 84], [512, 512, 61], [301, 370, 316], [4, 4, 1], [1, 1, 1], [7, 3, 50]] as [number, number, number][]) {
-      const l = gradientAtlasLayout(dims);
+      const l = sliceAtlasLayout(dims);
       expect(l.columns * l.rows).toBeGreaterThanOrEqual(dims[2]);
       expect((l.rows - 1) * l.columns).toBeLessThan(dims[2]); // no empty row of tiles
       expect(l.width).toBe(l.columns * dims[0]);
@@ -59,7 +59,7 @@ describe('gradient slice atlas', () => {
       }
       expect(seen.size).toBe(dims[2]);
     }
-    const big = gradientAtlasLayout([301, 370, 316]);
+    const big = sliceAtlasLayout([301, 370, 316]);
     expect(Math.max(big.width, big.height) / Math.min(big.width, big.height)).toBeLessThan(1.5);
   });
 });

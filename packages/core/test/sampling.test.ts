@@ -5,7 +5,7 @@ import {
 } from '../src/index.js';
 
 /**
- * The Henyey–Greenstein sampling of shaders/glsl-sampling.ts (sampleHG / hgPhaseAB), transcribed
+ * The Henyey–Greenstein sampling of shaders/sampling.glsl.ts (sampleHG / hgPhaseAB), transcribed
  * with an optional rounding function so float32 arithmetic can be emulated (Math.fround per op).
  */
 function hgSample(g: number, xi: number, r: (x: number) => number = (x) => x) {

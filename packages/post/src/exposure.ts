@@ -1,6 +1,6 @@
 import { UniformLayout, VptError, type PostStep, type UniformValues } from '@vpt/core';
-import { exposureGlsl } from './exposure/exposure.glsl.js';
-import { exposureWgsl } from './exposure/exposure.wgsl.js';
+import * as glsl from './exposure.glsl.js';
+import * as wgsl from './exposure.wgsl.js';
 
 /**
  * Largest |exposure| accepted, in stops. 2^64 ≈ 1.8e19 keeps the packed f32 factor and
@@ -14,8 +14,8 @@ const EXPOSURE_UNIFORMS = /* @__PURE__ */ new UniformLayout('ExposureParams', [{
 /** Multiplies linear HDR colour by 2^exposure (photographic stops); alpha passes through. */
 export class ExposureStep implements PostStep {
   readonly name = 'exposure';
-  readonly glsl = exposureGlsl;
-  readonly wgsl = exposureWgsl;
+  readonly glsl = glsl.EXPOSURE;
+  readonly wgsl = wgsl.EXPOSURE;
   readonly uniforms = EXPOSURE_UNIFORMS;
   private _exposure = 0;
 

@@ -1,6 +1,6 @@
 // Exposure: scale linear radiance by 2^exposure (photographic stops). The host packs the
 // factor, so the kernel does one multiply and both backends round it the same way.
-export const exposureWgsl = /* wgsl */ `
+export const EXPOSURE = /* wgsl */ `
 @fragment fn fs_main(@builtin(position) fragCoord: vec4f) -> VptOut {
   let p = textureLoad(inputImage, vptPixel(fragCoord), 0);
   var o: VptOut;

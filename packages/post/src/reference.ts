@@ -7,7 +7,7 @@ import type { PostStep } from '@vpt/core';
 import { ExposureStep } from './exposure.js';
 import { SrgbEncodeStep } from './srgb.js';
 import { ToneMapStep } from './tone-mapping.js';
-import { ACES_INPUT_MAX, type ToneMapOperator } from './tonemap/operators.js';
+import { ACES_INPUT_MAX, type ToneMapOperator } from './tone-mapping-operators.js';
 
 export type Rgb = readonly [number, number, number];
 type MutableRgb = [number, number, number];

@@ -1,6 +1,6 @@
 import { UniformLayout, type PostStep, type UniformValues } from '@vpt/core';
-import { srgbGlsl } from './srgb/srgb.glsl.js';
-import { srgbWgsl } from './srgb/srgb.wgsl.js';
+import * as glsl from './srgb.glsl.js';
+import * as wgsl from './srgb.wgsl.js';
 
 // No parameters; the pad field exists because WGSL forbids empty structs.
 const SRGB_UNIFORMS = /* @__PURE__ */ new UniformLayout('SrgbParams', [{ name: 'pad', type: 'f32' }]);
@@ -8,8 +8,8 @@ const SRGB_UNIFORMS = /* @__PURE__ */ new UniformLayout('SrgbParams', [{ name: '
 /** Encodes linear [0, 1] colour with the sRGB OETF (IEC 61966-2-1), clamping first; alpha passes through. */
 export class SrgbEncodeStep implements PostStep {
   readonly name = 'srgb';
-  readonly glsl = srgbGlsl;
-  readonly wgsl = srgbWgsl;
+  readonly glsl = glsl.SRGB_ENCODE;
+  readonly wgsl = wgsl.SRGB_ENCODE;
   readonly uniforms = SRGB_UNIFORMS;
 
   uniformValues(): UniformValues {

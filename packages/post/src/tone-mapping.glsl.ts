@@ -1,10 +1,11 @@
-import { ACES_INPUT_MAX, TONE_MAP_DEFINE, TONE_MAP_OPERATOR_ID as ID } from './operators.js';
+import { ACES_INPUT_MAX, TONE_MAP_DEFINE, TONE_MAP_OPERATOR_ID as ID } from './tone-mapping-operators.js';
 
-// Tone mapping, one operator per compiled variant (the TONEMAP_OPERATOR define picks it).
-// Same structure and operation order as tonemap.wgsl.ts; every constant is one literal, so
+// Tone mapping, one operator per compiled variant: the core preprocessor keeps the branch of
+// the TONEMAP_OPERATOR flag (tone-mapping.ts). Same structure and operation order as
+// tone-mapping.wgsl.ts; every constant is one literal, so
 // no compiler folds constant expressions in a different precision on one backend.
 // Radiance is non-negative; negative noise is clamped to 0 before any curve.
-export const toneMapGlsl = /* glsl */ `
+export const TONE_MAP = /* glsl */ `
 #if ${TONE_MAP_DEFINE} == ${ID.clamp}
 // Clamp: no curve, values above 1 clip.
 vec3 toneMap(vec3 c) {
@@ -36,8 +37,6 @@ vec3 toneMap(vec3 color) {
   // mix(c, vec3(newPeak), g) written out, so both languages round it alike.
   return c * (1.0 - g) + vec3(newPeak * g);
 }
-#else
-#error unknown TONEMAP_OPERATOR
 #endif
 
 void main() {

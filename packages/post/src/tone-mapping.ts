@@ -1,9 +1,9 @@
-import { UniformLayout, VptError, type PostStep, type UniformValues } from '@vpt/core';
-import { TONE_MAP_DEFINE, TONE_MAP_OPERATOR_ID, TONE_MAP_OPERATORS, isToneMapOperator, type ToneMapOperator } from './tonemap/operators.js';
-import { toneMapGlsl } from './tonemap/tonemap.glsl.js';
-import { toneMapWgsl } from './tonemap/tonemap.wgsl.js';
+import { preprocess, UniformLayout, VptError, type PostStep, type UniformValues } from '@vpt/core';
+import { TONE_MAP_DEFINE, TONE_MAP_OPERATOR_ID, TONE_MAP_OPERATORS, isToneMapOperator, type ToneMapOperator } from './tone-mapping-operators.js';
+import * as glsl from './tone-mapping.glsl.js';
+import * as wgsl from './tone-mapping.wgsl.js';
 
-export { TONE_MAP_OPERATORS, isToneMapOperator, type ToneMapOperator } from './tonemap/operators.js';
+export { TONE_MAP_OPERATORS, isToneMapOperator, type ToneMapOperator } from './tone-mapping-operators.js';
 
 // The operator is compile-time; the layout only exists because WGSL forbids empty structs.
 const TONE_MAP_UNIFORMS = /* @__PURE__ */ new UniformLayout('ToneMapParams', [{ name: 'pad', type: 'f32' }]);
@@ -15,14 +15,17 @@ const TONE_MAP_UNIFORMS = /* @__PURE__ */ new UniformLayout('ToneMapParams', [{ 
  */
 export class ToneMapStep implements PostStep {
   readonly name = 'tonemap';
-  readonly glsl = toneMapGlsl;
+  readonly glsl: string;
   readonly wgsl: string;
   readonly uniforms = TONE_MAP_UNIFORMS;
   readonly operator: ToneMapOperator;
 
   constructor(operator: ToneMapOperator = 'aces') {
     this.operator = checkToneMapOperator(operator);
-    this.wgsl = toneMapWgsl(this.operator);
+    // Both languages keep only this operator's code, cut by the one core preprocessor.
+    const flags = this.defines();
+    this.glsl = preprocess(glsl.TONE_MAP, flags);
+    this.wgsl = preprocess(wgsl.TONE_MAP, flags);
   }
 
   uniformValues(): UniformValues {

@@ -141,7 +141,7 @@ describe('steps', () => {
     }
   });
 
-  it('tone map variants differ only by define, and each WGSL variant holds only its operator', () => {
+  it('tone map variants differ only by define, and each variant holds only its operator in both languages', () => {
     const ids = new Set<number>();
     for (const op of TONE_MAP_OPERATORS) {
       const s = new ToneMapStep(op);
@@ -149,11 +149,13 @@ describe('steps', () => {
       expect(Object.keys(d)).toEqual(['TONEMAP_OPERATOR']);
       ids.add(d.TONEMAP_OPERATOR as number);
       expect(s.wgsl.match(/fn toneMap\(/g)).toHaveLength(1);
-      expect(s.glsl).toContain('#if TONEMAP_OPERATOR ==');
+      expect(s.glsl.match(/vec3 toneMap\(/g)).toHaveLength(1);
+      expect(s.glsl + s.wgsl).not.toMatch(/#(if|elif|else|endif)\b/);
     }
     expect(ids.size).toBe(TONE_MAP_OPERATORS.length);
     expect(new ToneMapStep('aces').wgsl).toContain('2.51');
     expect(new ToneMapStep('reinhard').wgsl).not.toContain('2.51');
+    expect(new ToneMapStep('reinhard').glsl).not.toContain('2.51');
     expect(new ToneMapStep().operator).toBe('aces');
     expect(() => new ToneMapStep('filmic' as never)).toThrow(/unknown tone-mapping operator "filmic"/);
   });

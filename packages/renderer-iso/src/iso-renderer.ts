@@ -119,8 +119,8 @@ export class IsoRenderer extends BaseRenderer<IsoParams> {
   }
 
   /**
-   * The environment's lookup and sampling textures (shared chunk GLSL_ENVIRONMENT_MAP);
-   * a scene without a lat-long map binds 1-texel stand-ins, so one kernel source serves all.
+   * The environment's lookup and sampling textures (shared chunk GLSL_ENVIRONMENT_MAP), for
+   * a lat-long map only: other scenes compile the ISO_ENV < 2 variant, which names none.
    */
   auxiliaryTextures(scene: Scene): readonly AuxiliaryTexture[] {
     const env = scene.environment;
@@ -135,10 +135,6 @@ export class IsoRenderer extends BaseRenderer<IsoParams> {
         { name: 'envConditional', dimension: '2d', key, create: () => ({ dimension: '2d', width: e.width + 1, height: e.height, format: 'r32float', data: t().conditional, label: 'environment conditional CDFs' }) },
       ];
     }
-    return [
-      { name: 'envMap', dimension: '2d', key: 'none', create: () => ({ dimension: '2d', width: 1, height: 1, format: 'rgba32float', data: new Float32Array([0, 0, 0, 1]) }) },
-      { name: 'envMarginal', dimension: '2d', key: 'none', create: () => ({ dimension: '2d', width: 2, height: 1, format: 'r32float', data: new Float32Array([0, 1]) }) },
-      { name: 'envConditional', dimension: '2d', key: 'none', create: () => ({ dimension: '2d', width: 2, height: 1, format: 'r32float', data: new Float32Array([0, 1]) }) },
-    ];
+    return [];
   }
 }

@@ -1,5 +1,5 @@
 import { describe, expect, it } from 'vitest';
-import { createProceduralVolume, defaultCamera, isVptError, rampTransferFunction, type Scene } from '@vpt/core';
+import { createProceduralVolume, defaultCamera, isVptError, preprocess, rampTransferFunction, type Scene } from '@vpt/core';
 import { IsoRenderer, resolveIsoParams, type IsoParams } from '../src/index.js';
 
 function scene(overrides: Partial<Scene> = {}): Scene {
@@ -79,11 +79,14 @@ describe('IsoRenderer parameters', () => {
     expect(v.aoRadius).toBe(1e30);
   });
 
-  it('binds environment textures: 1-texel stand-ins for a constant sky, the map and its CDFs for a lat-long one', () => {
+  it('binds environment textures for a lat-long map only (the map and its CDFs); a constant sky compiles a variant that names none', () => {
     const r = new IsoRenderer();
-    const constant = r.auxiliaryTextures(scene());
-    expect(constant.map((a) => a.name)).toEqual(['envMap', 'envMarginal', 'envConditional']);
-    expect(constant.map((a) => a.create().width)).toEqual([1, 2, 2]);
+    expect(r.auxiliaryTextures(scene())).toEqual([]);
+    for (const lang of ['glsl', 'wgsl'] as const) {
+      const constantVariant = preprocess(r.kernels.generate[lang], { ...r.features(scene()), VPT_TF_2D: false, VPT_GRADIENT: false });
+      expect(constantVariant).not.toMatch(/envMap|envMarginal|envConditional/);
+      expect(constantVariant).toMatch(/u\.background/);
+    }
     const data = new Float32Array(4 * 2 * 3).fill(1);
     const latlong = r.auxiliaryTextures(scene({ environment: { type: 'latlong', width: 4, height: 2, data } }));
     expect(latlong.map((a) => [a.create().width, a.create().height])).toEqual([[4, 2], [3, 1], [5, 2]]);

@@ -6,7 +6,7 @@ export const MAX_LIGHTS = 8;
 
 /**
  * The compile-time feature set of a scene + parameters: one kernel variant per distinct set,
- * containing only the code it needs (preprocess.ts). Flags that cannot matter are set to a
+ * containing only the code it needs (core's shaders/preprocess.ts). Flags that cannot matter are set to a
  * canonical value so they do not multiply variants.
  */
 export interface McrtFeatures {

@@ -1,4 +1,4 @@
-import { GLSL_ENVIRONMENT_MAP, GLSL_SAMPLING, WGSL_ENVIRONMENT_MAP, WGSL_SAMPLING, type KernelSource } from '@vpt/core';
+import { GLSL_ENVIRONMENT_MAP, GLSL_SAMPLING, preprocess, WGSL_ENVIRONMENT_MAP, WGSL_SAMPLING, type Flags, type KernelSource } from '@vpt/core';
 import type { McrtFeatures } from './features.js';
 import * as glslAccumulate from './kernels/accumulate.glsl.js';
 import * as wgslAccumulate from './kernels/accumulate.wgsl.js';
@@ -6,7 +6,6 @@ import * as glslPath from './kernels/path.glsl.js';
 import * as wgslPath from './kernels/path.wgsl.js';
 import * as glslTracking from './kernels/tracking.glsl.js';
 import * as wgslTracking from './kernels/tracking.wgsl.js';
-import { preprocess, type Flags } from './preprocess.js';
 
 /**
  * The generate kernel of one feature variant, in both languages: the shared sampling chunks,

@@ -1,5 +1,5 @@
 import {
-  BaseRenderer, buildEnvironmentSampling, COPY_ACCUMULATION_RENDER, GLSL_ATLAS, gradientAtlasLayout, WGSL_ATLAS, rasterizeTransferFunction, TF_RESOLUTION, UniformLayout,
+  BaseRenderer, buildEnvironmentSampling, COPY_ACCUMULATION_RENDER, GLSL_SLICE_ATLAS, sliceAtlasLayout, WGSL_SLICE_ATLAS, rasterizeTransferFunction, TF_RESOLUTION, UniformLayout,
   type AuxiliaryTexture, type EnvironmentSamplingTables, type KernelSource, type LatLongEnvironment, type Scene,
   type UniformField, type UniformValues, type Volume,
 } from '@vpt/core';
@@ -134,14 +134,14 @@ export class McrtRenderer extends BaseRenderer<McrtParams> {
   private majorantGridTextures(scene: Scene): AuxiliaryTexture[] {
     const cellSize = this.cellSize(scene);
     const geometry = this.gridGeometry(scene);
-    const layout = gradientAtlasLayout(geometry.slice(0, 3));
+    const layout = sliceAtlasLayout(geometry.slice(0, 3));
     const tfKey = JSON.stringify(scene.transferFunction);
     return [
       {
         name: 'majorantRanges', dimension: '2d', bind: false, key: `${idOf(scene.volume as Volume)}|${cellSize}`,
         render: {
           label: 'majorant grid value ranges', width: layout.width, height: layout.height, format: 'rgba32float',
-          glsl: GLSL_ATLAS + glslBuild.cellRanges, wgsl: WGSL_ATLAS + wgslBuild.cellRanges, uniforms: BUILD_UNIFORMS,
+          glsl: GLSL_SLICE_ATLAS + glslBuild.cellRanges, wgsl: WGSL_SLICE_ATLAS + wgslBuild.cellRanges, uniforms: BUILD_UNIFORMS,
           values: { gridCells: geometry, gridDensity: 0 },
           inputs: [{ name: 'volume', dimension: '3d' }],
         },
@@ -158,7 +158,7 @@ export class McrtRenderer extends BaseRenderer<McrtParams> {
         name: 'majorantGrid', dimension: '2d', key: this.gridKey(scene),
         render: {
           label: 'majorant grid', width: layout.width, height: layout.height, format: 'rgba32float',
-          glsl: GLSL_ATLAS + glslBuild.majorantGrid, wgsl: WGSL_ATLAS + wgslBuild.majorantGrid, uniforms: BUILD_UNIFORMS,
+          glsl: GLSL_SLICE_ATLAS + glslBuild.majorantGrid, wgsl: WGSL_SLICE_ATLAS + wgslBuild.majorantGrid, uniforms: BUILD_UNIFORMS,
           values: { gridCells: geometry, gridDensity: scene.densityScale },
           inputs: [{ name: 'majorantRanges', dimension: '2d' }, { name: 'opacityBounds', dimension: '2d' }],
         },
@@ -184,7 +184,7 @@ export class McrtRenderer extends BaseRenderer<McrtParams> {
   /** The `gridCells` uniform: cells per axis and the slice atlas's column count. */
   private gridGeometry(scene: Scene): [number, number, number, number] {
     const cells = gridCells(scene.volume.dims, this.cellSize(scene));
-    return [...cells, gradientAtlasLayout(cells).columns];
+    return [...cells, sliceAtlasLayout(cells).columns];
   }
 
   /** Majorant-grid cell edge in voxels: the generic kernel always walks a grid, of one cell when the grid is off. */

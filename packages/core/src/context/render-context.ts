@@ -7,11 +7,11 @@ import type { Scene } from '../scene/scene.js';
 import { validateScene } from '../scene/scene.js';
 import { rasterizeTransferFunction, TF_RESOLUTION, transferFunctionSize } from '../scene/transfer-function.js';
 import { normalizedData } from '../scene/volume.js';
-import { gradientAtlasLayout } from '../gradient/atlas.js';
 import { buildGradientVolume, destroyGradientVolume, type GradientVolume } from '../gradient/gradient-volume.js';
-import { glslCommon, GLSL_RAY, GLSL_RNG, type CommonChunkOptions } from '../shaders/glsl-common.js';
+import { commonChunks, PASS_CHUNKS, type CommonChunkOptions } from '../shaders/common.js';
+import { preprocess } from '../shaders/preprocess.js';
 import { SCENE_UNIFORM_FIELDS, sceneUniformValues } from '../shaders/scene-uniforms.js';
-import { wgslCommon, WGSL_RAY, WGSL_RNG } from '../shaders/wgsl-common.js';
+import { sliceAtlasLayout } from '../shaders/slice-atlas.js';
 import { UniformLayout } from '../uniforms/layout.js';
 import { PRESENT_PASS } from './present-pass.js';
 import { ProgressiveLoop } from './progressive-loop.js';
@@ -137,7 +137,7 @@ export class RenderContext {
       throw new VptError('limit-exceeded', `Volume dims [${nx}, ${ny}, ${nz}] exceed this device's 3D texture limit of ${max3D} per side (maxTextureDimension3D)`);
     }
     if (this.wantsGradient(scene)) {
-      const atlas = gradientAtlasLayout(scene.volume.dims);
+      const atlas = sliceAtlasLayout(scene.volume.dims);
       const max2D = this.backend.limits.maxTextureDimension2D;
       if (atlas.width > max2D || atlas.height > max2D) {
         throw new VptError('limit-exceeded', `The gradient volume of a [${nx}, ${ny}, ${nz}] volume (needed by the 2D transfer function or the renderer) needs a ${atlas.width} x ${atlas.height} slice atlas; this device's 2D texture limit is ${max2D} (maxTextureDimension2D)`);
@@ -455,11 +455,15 @@ export class RenderContext {
     const key = `${r.name}|${JSON.stringify(features)}|${auxBindings.map((b) => b.name).join(',')}`;
     if (!this.passes || key !== this.variantKey) {
       this.layout = new UniformLayout('Params', [...SCENE_UNIFORM_FIELDS, ...r.paramFields]);
+      // The volume/TF chunks read the `volume` and `transferFunction` (and gradient) textures,
+      // which only the generate pass binds; integrate and render get the texture-free chunks.
+      const generateChunks = commonChunks(chunks);
       const mk = (stage: 'generate' | 'integrate' | 'render', textures: { name: string; dimension: '2d' | '3d' }[], outputs: typeof r.frameFormats) =>
         this.backend.createPass({
           label: `${r.name}.${stage}`,
-          glsl: GLSL_COMMON_FOR(stage, chunks) + r.kernels[stage].glsl,
-          wgsl: WGSL_COMMON_FOR(stage, chunks) + r.kernels[stage].wgsl,
+          // Kernels mark variants with #if lines on their feature flags; one preprocessor cuts both languages.
+          glsl: (stage === 'generate' ? generateChunks : PASS_CHUNKS).glsl + preprocess(r.kernels[stage].glsl, features),
+          wgsl: (stage === 'generate' ? generateChunks : PASS_CHUNKS).wgsl + preprocess(r.kernels[stage].wgsl, features),
           uniforms: this.layout,
           textures,
           outputs,
@@ -605,11 +609,6 @@ interface AuxEntry {
   /** The render target a GPU-made texture lives in (destroyed with it). */
   target?: RenderTarget;
 }
-
-// The volume/TF chunks read the `volume` and `transferFunction` (and gradient) textures,
-// which only the generate pass binds; integrate and render get the texture-free chunks.
-const GLSL_COMMON_FOR = (stage: string, o: CommonChunkOptions) => (stage === 'generate' ? glslCommon(o) : GLSL_RNG + GLSL_RAY);
-const WGSL_COMMON_FOR = (stage: string, o: CommonChunkOptions) => (stage === 'generate' ? wgslCommon(o) : WGSL_RNG + WGSL_RAY);
 
 function checkSize(width: number, height: number, backend: GpuBackend): void {
   const max = backend.limits.maxTextureDimension2D;

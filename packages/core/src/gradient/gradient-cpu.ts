@@ -2,7 +2,7 @@ import type { Volume } from '../scene/volume.js';
 import { normalizationRange, normalizedData } from '../scene/volume.js';
 
 /**
- * CPU reference of the gradient pass (gradient-kernels.ts), for tests and offline use:
+ * CPU reference of the gradient pass (gradient.glsl.ts / gradient.wgsl.ts), for tests and offline use:
  * per voxel, central differences of the normalized values (one-sided at the borders,
  * divided by the index distance actually spanned), scaled back to data units per
  * physical length: |∇f| with f in the volume's own units and lengths in spacing units.

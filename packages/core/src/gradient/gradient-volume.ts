@@ -3,16 +3,20 @@ import type { GpuBackend, GpuTexture, RenderTarget } from '../gpu/backend.js';
 import type { Volume } from '../scene/volume.js';
 import { normalizationRange } from '../scene/volume.js';
 import { UniformLayout } from '../uniforms/layout.js';
-import { GLSL_ATLAS, gradientAtlasLayout, WGSL_ATLAS, type GradientAtlasLayout } from './atlas.js';
-import { GRADIENT_GLSL, GRADIENT_WGSL, MAX_REDUCE_GLSL, MAX_REDUCE_WGSL, REDUCTION } from './gradient-kernels.js';
+import { sliceAtlasLayout, type SliceAtlasLayout } from '../shaders/slice-atlas.js';
+import * as glslAtlas from '../shaders/slice-atlas.glsl.js';
+import * as wgslAtlas from '../shaders/slice-atlas.wgsl.js';
+import * as glsl from './gradient.glsl.js';
+import * as wgsl from './gradient.wgsl.js';
+import { REDUCTION } from './reduction.js';
 
 /**
  * The gradient-magnitude volume of one scalar volume, on the GPU: `atlas` holds |∇f| per
- * voxel (atlas.ts layout), `max` (1 × 1) the largest value. Bound to renderer kernels as
- * `gradientMagnitude` and `gradientMax` (see the gradient chunk in glsl-common.ts).
+ * voxel (shaders/slice-atlas.ts layout), `max` (1 × 1) the largest value. Bound to renderer kernels as
+ * `gradientMagnitude` and `gradientMax` (see the gradient chunk in shaders/common.glsl.ts).
  */
 export interface GradientVolume {
-  readonly layout: GradientAtlasLayout;
+  readonly layout: SliceAtlasLayout;
   readonly atlas: RenderTarget;
   readonly max: RenderTarget;
 }
@@ -30,18 +34,18 @@ const REDUCE_UNIFORMS = new UniformLayout('ReduceParams', [{ name: 'srcSize', ty
  * Throws VptError('limit-exceeded') when the atlas would exceed the 2D texture limit.
  */
 export function buildGradientVolume(backend: GpuBackend, volumeTexture: GpuTexture, volume: Volume): GradientVolume {
-  const layout = gradientAtlasLayout(volume.dims);
+  const layout = sliceAtlasLayout(volume.dims);
   const max2D = backend.limits.maxTextureDimension2D;
   if (layout.width > max2D || layout.height > max2D) {
     throw new VptError('limit-exceeded', `The gradient volume of a [${volume.dims.join(', ')}] volume needs a ${layout.width} x ${layout.height} slice atlas; this device's 2D texture limit is ${max2D} (maxTextureDimension2D)`);
   }
   const [lo, hi] = normalizationRange(volume);
   const gradientPass = backend.createPass({
-    label: 'gradient magnitude', glsl: GLSL_ATLAS + GRADIENT_GLSL, wgsl: WGSL_ATLAS + GRADIENT_WGSL, uniforms: GRADIENT_UNIFORMS,
+    label: 'gradient magnitude', glsl: glslAtlas.SLICE_ATLAS + glsl.GRADIENT_MAGNITUDE, wgsl: wgslAtlas.SLICE_ATLAS + wgsl.GRADIENT_MAGNITUDE, uniforms: GRADIENT_UNIFORMS,
     textures: [{ name: 'volume', dimension: '3d' }], outputs: ['r32float'],
   });
   const reducePass = backend.createPass({
-    label: 'gradient max', glsl: MAX_REDUCE_GLSL, wgsl: MAX_REDUCE_WGSL, uniforms: REDUCE_UNIFORMS,
+    label: 'gradient max', glsl: glsl.MAX_REDUCE, wgsl: wgsl.MAX_REDUCE, uniforms: REDUCE_UNIFORMS,
     textures: [{ name: 'src', dimension: '2d' }], outputs: ['r32float'],
   });
   const atlas = backend.createRenderTarget(layout.width, layout.height, ['r32float'], 'gradient magnitude atlas');

@@ -1,17 +1,16 @@
 /**
- * Kernels of the gradient-magnitude build (both languages, same arithmetic in the same
- * order): one pass writes |∇f| per voxel into the slice atlas (atlas.ts), then max
+ * Kernels of the gradient-magnitude build (GLSL here, the WGSL twin in gradient.wgsl.ts with the
+ * same arithmetic in the same order): one pass writes |∇f| per voxel into the slice atlas (shaders/slice-atlas.ts), then max
  * reductions of REDUCTION × REDUCTION blocks shrink it to the 1 × 1 largest magnitude,
  * which normalizes the 2D transfer function's gradient axis without a read-back.
  */
 
-/** Side of the block each reduction texel takes the maximum of. */
-export const REDUCTION = 8;
+import { REDUCTION } from './reduction.js';
 
 // Central differences (one-sided at the borders, divided by the index distance spanned)
 // of the normalized volume, scaled by u.gradScale = (valueRange width) / spacing, so the
 // result is |∇f| in data units per physical length (Kniss et al. 2002, sec. 3).
-export const GRADIENT_GLSL = /* glsl */ `
+export const GRADIENT_MAGNITUDE = /* glsl */ `
 float axisDerivative(ivec3 v, ivec3 e, int i, int n) {
   int i0 = max(i - 1, 0);
   int i1 = min(i + 1, n - 1);
@@ -33,32 +32,8 @@ void main() {
 }
 `;
 
-export const GRADIENT_WGSL = /* wgsl */ `
-fn axisDerivative(v: vec3i, e: vec3i, i: i32, n: i32) -> f32 {
-  let i0 = max(i - 1, 0);
-  let i1 = min(i + 1, n - 1);
-  if (i1 == i0) { return 0.0; }
-  let a = textureLoad(volume, v + e * (i0 - i), 0).r;
-  let b = textureLoad(volume, v + e * (i1 - i), 0).r;
-  return (b - a) / f32(i1 - i0);
-}
-@fragment fn fs_main(@builtin(position) fragCoord: vec4f) -> VptOut {
-  let p = vptPixel(fragCoord);
-  let dims = u.gradDims.xyz;
-  let a = atlasVoxel(p, dims, u.gradDims.w);
-  var o: VptOut;
-  if (a.w == 0) { o.out0 = vec4f(0.0); return o; }
-  let v = a.xyz;
-  let gx = axisDerivative(v, vec3i(1, 0, 0), v.x, dims.x) * u.gradScale.x;
-  let gy = axisDerivative(v, vec3i(0, 1, 0), v.y, dims.y) * u.gradScale.y;
-  let gz = axisDerivative(v, vec3i(0, 0, 1), v.z, dims.z) * u.gradScale.z;
-  o.out0 = vec4f(sqrt(gx * gx + gy * gy + gz * gz), 0.0, 0.0, 1.0);
-  return o;
-}
-`;
-
 // Maximum over a REDUCTION x REDUCTION block of the source (exact, so both backends agree).
-export const MAX_REDUCE_GLSL = /* glsl */ `
+export const MAX_REDUCE = /* glsl */ `
 void main() {
   ivec2 p = vptPixel();
   float m = 0.0;
@@ -69,21 +44,5 @@ void main() {
     }
   }
   vpt_out0 = vec4(m, 0.0, 0.0, 1.0);
-}
-`;
-
-export const MAX_REDUCE_WGSL = /* wgsl */ `
-@fragment fn fs_main(@builtin(position) fragCoord: vec4f) -> VptOut {
-  let p = vptPixel(fragCoord);
-  var m = 0.0;
-  for (var j = 0; j < ${REDUCTION}; j++) {
-    for (var i = 0; i < ${REDUCTION}; i++) {
-      let q = p * ${REDUCTION} + vec2i(i, j);
-      if (q.x < u.srcSize.x && q.y < u.srcSize.y) { m = max(m, textureLoad(src, q, 0).r); }
-    }
-  }
-  var o: VptOut;
-  o.out0 = vec4f(m, 0.0, 0.0, 1.0);
-  return o;
 }
 `;

@@ -1,5 +1,5 @@
 /**
- * CPU twins of the shared shader chunks (shaders/glsl-common.ts), in float64 except
+ * CPU twins of the shared shader chunks (shaders/common.glsl.ts), in float64 except
  * where the kernel's integer arithmetic must be reproduced exactly (the PCG hash).
  * Tests use them to compute the image a kernel should produce, sample for sample.
  */

@@ -1,7 +1,7 @@
 /**
  * Lat-long environment maps: the direction mapping (Mitsuba 3's envmap convention, see
  * docs/architecture.md) and the importance-sampling tables the kernels read
- * (shaders/glsl-sampling.ts GLSL_ENVIRONMENT_MAP), plus CPU twins of the kernel's lookup
+ * (shaders/sampling.glsl.ts ENVIRONMENT_MAP), plus CPU twins of the kernel's lookup
  * and sampling for tests.
  *
  * Mapping: u = atan2(x, −z) / 2π wrapped to [0, 1), v = acos(y) / π. Column i covers

@@ -1,13 +1,13 @@
 /**
- * Shared GLSL ES 3.0 chunks. Every function here has a WGSL twin in wgsl-common.ts
+ * Shared GLSL ES 3.0 chunks. Every function here has a WGSL twin in common.wgsl.ts
  * with the same arithmetic in the same order, so both backends agree bit for bit on
  * SwiftShader. Expects the scene uniform block as `u` (scene-uniforms.ts) and, for
  * the volume/TF helpers, textures named `volume` (sampler3D) and `transferFunction`.
  */
-import { GLSL_ATLAS } from '../gradient/atlas.js';
+import { SLICE_ATLAS } from './slice-atlas.glsl.js';
 
 /** PCG hash (Jarzynski & Olano 2020, "Hash Functions for GPU Rendering", pcg) and a uniform float stream. */
-export const GLSL_RNG = /* glsl */ `
+export const RNG = /* glsl */ `
 uint pcgHash(uint v) {
   uint state = v * 747796405u + 2891336453u;
   uint word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
@@ -25,7 +25,7 @@ float rngNext(inout uint state) {
 `;
 
 /** Ray-box slab intersection (Kay & Kajiya 1986); returns (tNear, tFar), empty when tNear >= tFar. */
-export const GLSL_RAY = /* glsl */ `
+export const RAY = /* glsl */ `
 vec3 safeInverse(vec3 d) {
   // Avoid 0 * inf = NaN for axis-parallel rays: a tiny signed component is as good as zero.
   vec3 s = vec3(d.x < 0.0 ? -1.0 : 1.0, d.y < 0.0 ? -1.0 : 1.0, d.z < 0.0 ? -1.0 : 1.0);
@@ -58,7 +58,7 @@ vec3 jitteredCameraRay(ivec2 pixel, ivec2 size, inout uint rng) {
 `;
 
 /** Cell-centred trilinear volume sample with clamp-to-edge (GL LINEAR + CLAMP_TO_EDGE, computed in full float), and the 1D TF lookup. */
-export const GLSL_VOLUME_SAMPLING = /* glsl */ `
+export const VOLUME_SAMPLING = /* glsl */ `
 float lerp1(float a, float b, float t) { return a + (b - a) * t; }
 vec4 lerp4(vec4 a, vec4 b, float t) { return a + (b - a) * t; }
 float sampleVolume(vec3 p) {
@@ -94,7 +94,7 @@ vec4 transferLookup(float value) {
 `;
 
 /** transferAt for a 1D transfer function. */
-export const GLSL_TRANSFER_1D = /* glsl */ `
+export const TRANSFER_1D = /* glsl */ `
 // The transfer function at a world point: (linear RGB albedo/emission, opacity).
 // Renderers call this, not sampleVolume + transferLookup, so a 2D (value x gradient)
 // transfer function can change what it reads without touching any renderer.
@@ -109,7 +109,7 @@ vec4 transferAt(vec3 p) {
  * cell-centred trilinear filter as sampleVolume, and normalized by the volume's largest
  * magnitude (1 x 1 texture `gradientMax`). Only in kernels of scenes that need it.
  */
-export const GLSL_GRADIENT = /* glsl */ `
+export const GRADIENT = /* glsl */ `
 float gradientTexel(ivec3 v) {
   return texelFetch(gradientMagnitude, atlasTexel(v, u.volumeDims.xyz, u.gradientAtlasColumns), 0).r;
 }
@@ -144,7 +144,7 @@ float normalizedGradientAt(vec3 p) {
 `;
 
 /** transferAt for a 2D (value x normalized gradient magnitude) transfer function. */
-export const GLSL_TRANSFER_2D = /* glsl */ `
+export const TRANSFER_2D = /* glsl */ `
 // 2D transfer function (Kniss et al. 2002): texel (i, j) holds value i/(W-1) and normalized
 // gradient magnitude j/(H-1); bilinear between texels.
 vec4 transferLookup2D(float value, float gradient) {
@@ -165,27 +165,16 @@ vec4 transferAt(vec3 p) {
 }
 `;
 
-/** Volume sampling with the 1D transferAt() (the chunk as it was before 2D transfer functions). */
-export const GLSL_VOLUME = GLSL_VOLUME_SAMPLING + GLSL_TRANSFER_1D;
-
-/** Options of the generate pass's shared chunks, derived from the scene by RenderContext. */
-export interface CommonChunkOptions {
-  /** The transfer function is 2D: transferAt() reads value x normalized gradient magnitude. */
-  tf2d?: boolean;
-  /** The gradient textures are bound: sampleGradientMagnitude() / normalizedGradientAt() exist. */
-  gradient?: boolean;
-}
-
 /**
- * The shared chunks for a generate pass: RNG, rays, volume sampling, the gradient helpers
- * when bound and the matching transferAt(). A scene with a 1D transfer function whose
- * renderer needs no gradient compiles no gradient code (docs/design.md, "Leave out what a
- * scene does not need").
+ * The shared chunks of a generate pass, variants marked by `#if` lines that commonChunks()
+ * (common.ts) resolves with the core preprocessor: the gradient helpers only when the
+ * gradient textures are bound, and the transferAt() of a 1D or 2D transfer function.
  */
-export function glslCommon(opts: CommonChunkOptions = {}): string {
-  const gradient = opts.gradient || opts.tf2d;
-  return GLSL_RNG + GLSL_RAY + GLSL_ATLAS + GLSL_VOLUME_SAMPLING + (gradient ? GLSL_GRADIENT : '') + (opts.tf2d ? GLSL_TRANSFER_2D : GLSL_TRANSFER_1D);
-}
+export const GENERATE_CHUNKS = [
+  RNG, RAY, SLICE_ATLAS, VOLUME_SAMPLING,
+  '#if GRADIENT', GRADIENT, '#endif',
+  '#if TF_2D', TRANSFER_2D, '#else', TRANSFER_1D, '#endif',
+].join('\n');
 
-/** The 1D variant (no gradient code), as before 2D transfer functions existed. */
-export const GLSL_COMMON = glslCommon();
+/** The chunks of the integrate and render passes: texture-free RNG and rays. */
+export const PASS_CHUNKS = RNG + RAY;

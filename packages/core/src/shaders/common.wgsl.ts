@@ -1,13 +1,12 @@
-import { WGSL_ATLAS } from '../gradient/atlas.js';
-import type { CommonChunkOptions } from './glsl-common.js';
+import { SLICE_ATLAS } from './slice-atlas.wgsl.js';
 
 /**
- * Shared WGSL chunks: twins of glsl-common.ts, same arithmetic in the same order.
+ * Shared WGSL chunks: twins of common.glsl.ts, same arithmetic in the same order.
  * Expects `u` (scene uniforms) and textures `volume` (texture_3d) and `transferFunction`.
  */
 
 /** PCG hash (Jarzynski & Olano 2020, "Hash Functions for GPU Rendering", pcg) and a uniform float stream. */
-export const WGSL_RNG = /* wgsl */ `
+export const RNG = /* wgsl */ `
 fn pcgHash(v: u32) -> u32 {
   let state = v * 747796405u + 2891336453u;
   let word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
@@ -23,7 +22,7 @@ fn rngNext(state: ptr<function, u32>) -> f32 {
 `;
 
 /** Ray-box slab intersection (Kay & Kajiya 1986); returns (tNear, tFar), empty when tNear >= tFar. */
-export const WGSL_RAY = /* wgsl */ `
+export const RAY = /* wgsl */ `
 fn safeInverse(d: vec3f) -> vec3f {
   let s = vec3f(select(1.0, -1.0, d.x < 0.0), select(1.0, -1.0, d.y < 0.0), select(1.0, -1.0, d.z < 0.0));
   let m = max(abs(d), vec3f(1e-20));
@@ -53,7 +52,7 @@ fn jitteredCameraRay(pixel: vec2i, size: vec2i, rng: ptr<function, u32>) -> vec3
 `;
 
 /** Cell-centred trilinear volume sample with clamp-to-edge, computed in full float, and the 1D TF lookup. */
-export const WGSL_VOLUME_SAMPLING = /* wgsl */ `
+export const VOLUME_SAMPLING = /* wgsl */ `
 fn lerp1(a: f32, b: f32, t: f32) -> f32 { return a + (b - a) * t; }
 fn lerp4(a: vec4f, b: vec4f, t: f32) -> vec4f { return a + (b - a) * t; }
 fn sampleVolume(p: vec3f) -> f32 {
@@ -87,15 +86,15 @@ fn transferLookup(value: f32) -> vec4f {
 }
 `;
 
-/** transferAt for a 1D transfer function (see glsl-common.ts). */
-export const WGSL_TRANSFER_1D = /* wgsl */ `
+/** transferAt for a 1D transfer function (see common.glsl.ts). */
+export const TRANSFER_1D = /* wgsl */ `
 fn transferAt(p: vec3f) -> vec4f {
   return transferLookup(sampleVolume(p));
 }
 `;
 
 /** Gradient magnitude from the slice atlas, trilinear, and normalized (twin of GLSL_GRADIENT). */
-export const WGSL_GRADIENT = /* wgsl */ `
+export const GRADIENT = /* wgsl */ `
 fn gradientTexel(v: vec3i) -> f32 {
   return textureLoad(gradientMagnitude, atlasTexel(v, u.volumeDims.xyz, u.gradientAtlasColumns), 0).r;
 }
@@ -128,7 +127,7 @@ fn normalizedGradientAt(p: vec3f) -> f32 {
 `;
 
 /** transferAt for a 2D (value x normalized gradient magnitude) transfer function (twin of GLSL_TRANSFER_2D). */
-export const WGSL_TRANSFER_2D = /* wgsl */ `
+export const TRANSFER_2D = /* wgsl */ `
 fn transferLookup2D(value: f32, gradient: f32) -> vec4f {
   let x = clamp(value, 0.0, 1.0) * f32(u.tfSize - 1);
   let y = clamp(gradient, 0.0, 1.0) * f32(u.tfHeight - 1);
@@ -147,14 +146,16 @@ fn transferAt(p: vec3f) -> vec4f {
 }
 `;
 
-/** Volume sampling with the 1D transferAt() (the chunk as it was before 2D transfer functions). */
-export const WGSL_VOLUME = WGSL_VOLUME_SAMPLING + WGSL_TRANSFER_1D;
+/**
+ * The shared chunks of a generate pass, variants marked by `#if` lines that commonChunks()
+ * (common.ts) resolves with the core preprocessor: the gradient helpers only when the
+ * gradient textures are bound, and the transferAt() of a 1D or 2D transfer function.
+ */
+export const GENERATE_CHUNKS = [
+  RNG, RAY, SLICE_ATLAS, VOLUME_SAMPLING,
+  '#if GRADIENT', GRADIENT, '#endif',
+  '#if TF_2D', TRANSFER_2D, '#else', TRANSFER_1D, '#endif',
+].join('\n');
 
-/** The shared chunks for a generate pass (twin of glslCommon in glsl-common.ts). */
-export function wgslCommon(opts: CommonChunkOptions = {}): string {
-  const gradient = opts.gradient || opts.tf2d;
-  return WGSL_RNG + WGSL_RAY + WGSL_ATLAS + WGSL_VOLUME_SAMPLING + (gradient ? WGSL_GRADIENT : '') + (opts.tf2d ? WGSL_TRANSFER_2D : WGSL_TRANSFER_1D);
-}
-
-/** The 1D variant (no gradient code), as before 2D transfer functions existed. */
-export const WGSL_COMMON = wgslCommon();
+/** The chunks of the integrate and render passes: texture-free RNG and rays. */
+export const PASS_CHUNKS = RNG + RAY;

@@ -1,13 +1,13 @@
 /**
  * Shared GLSL ES 3.0 sampling chunks: directions, the Henyey–Greenstein phase function,
  * MIS heuristics, the lat-long environment mapping and environment importance sampling.
- * Every function has a WGSL twin in wgsl-sampling.ts with the same arithmetic in the same
+ * Every function has a WGSL twin in sampling.wgsl.ts with the same arithmetic in the same
  * order (bit-identical on SwiftShader). CPU twins live in scene/environment-sampling.ts
  * and reference/sampling-reference.ts.
  */
 
 /** Texture-free helpers: constants, orthonormal frames, uniform sphere, HG phase, MIS. */
-export const GLSL_SAMPLING = /* glsl */ `
+export const SAMPLING = /* glsl */ `
 const float VPT_PI = 3.14159265358979;
 const float VPT_INV_4PI = 0.0795774715459477;
 // The unit vector at polar (cosTheta, sinTheta) and azimuth phi about the unit axis n, in the
@@ -81,12 +81,12 @@ vec3 latLongToDirection(vec2 uv) {
 `;
 
 /**
- * Lat-long environment lookup and importance sampling. Needs GLSL_SAMPLING and three
+ * Lat-long environment lookup and importance sampling. Needs SAMPLING and three
  * textures built by `buildEnvironmentSampling` (scene/environment-sampling.ts):
  * `envMap` (W x H rgba32float: rgb radiance, a = pdf of the texel in (u, v) space),
  * `envMarginal` ((H+1) x 1, the row CDF) and `envConditional` ((W+1) x H, each row's column CDF).
  */
-export const GLSL_ENVIRONMENT_MAP = /* glsl */ `
+export const ENVIRONMENT_MAP = /* glsl */ `
 struct EnvSample { vec3 direction; float pdf; vec3 radiance; };
 // Radiance seen along d (nearest texel: the same piecewise-constant function the sampler draws from)
 // and the solid-angle pdf of sampleEnvironment for d: p(ω) = p(u, v) / (2π² sinθ).

@@ -1,9 +1,9 @@
 /**
- * Shared WGSL sampling chunks: twins of glsl-sampling.ts, same arithmetic in the same order.
+ * Shared WGSL sampling chunks: twins of sampling.glsl.ts, same arithmetic in the same order.
  */
 
 /** Texture-free helpers: constants, orthonormal frames, uniform sphere, HG phase, MIS. */
-export const WGSL_SAMPLING = /* wgsl */ `
+export const SAMPLING = /* wgsl */ `
 const VPT_PI: f32 = 3.14159265358979;
 const VPT_INV_4PI: f32 = 0.0795774715459477;
 // Duff et al. 2017, "Building an Orthonormal Basis, Revisited", listing 3.
@@ -23,7 +23,7 @@ fn sampleUniformSphere(xi1: f32, xi2: f32) -> vec3f {
   let phi = 2.0 * VPT_PI * xi2;
   return vec3f(r * cos(phi), r * sin(phi), z);
 }
-// Henyey & Greenstein 1941, cancellation-free for |g| → 1 (see glsl-sampling.ts).
+// Henyey & Greenstein 1941, cancellation-free for |g| → 1 (see sampling.glsl.ts).
 fn hgPhaseAB(g: f32, a: f32, b: f32) -> f32 {
   let d = select((1.0 + g) * (1.0 + g) - 2.0 * g * b, (1.0 - g) * (1.0 - g) + 2.0 * g * a, g >= 0.0);
   return (1.0 - g) * (1.0 + g) * VPT_INV_4PI / (d * sqrt(d));
@@ -31,7 +31,7 @@ fn hgPhaseAB(g: f32, a: f32, b: f32) -> f32 {
 fn hgPhase(g: f32, cosTheta: f32) -> f32 {
   return hgPhaseAB(g, 1.0 - cosTheta, 1.0 + cosTheta);
 }
-// HG sampling by closed-form CDF inversion, 1 ∓ cosθ computed directly (see glsl-sampling.ts).
+// HG sampling by closed-form CDF inversion, 1 ∓ cosθ computed directly (see sampling.glsl.ts).
 fn sampleHG(w: vec3f, g: f32, xi1: f32, xi2: f32) -> vec4f {
   let den = 1.0 - g + 2.0 * g * xi1;
   let q = 2.0 / (den * den);
@@ -52,7 +52,7 @@ fn misBalance(a: f32, b: f32) -> f32 {
   if (!(a > 0.0)) { return 0.0; }
   return 1.0 / (1.0 + b / a);
 }
-// Lat-long mapping of Mitsuba 3's envmap (see glsl-sampling.ts).
+// Lat-long mapping of Mitsuba 3's envmap (see sampling.glsl.ts).
 fn directionToLatLong(d: vec3f) -> vec2f {
   var u = select(atan2(d.x, -d.z) * (0.5 / VPT_PI), 0.0, d.x == 0.0 && d.z == 0.0);
   u = select(u, u + 1.0, u < 0.0);
@@ -67,8 +67,8 @@ fn latLongToDirection(uv: vec2f) -> vec3f {
 }
 `;
 
-/** Lat-long environment lookup and importance sampling (textures as in glsl-sampling.ts). */
-export const WGSL_ENVIRONMENT_MAP = /* wgsl */ `
+/** Lat-long environment lookup and importance sampling (textures as in sampling.glsl.ts). */
+export const ENVIRONMENT_MAP = /* wgsl */ `
 struct EnvSample { direction: vec3f, pdf: f32, radiance: vec3f };
 fn environmentLookup(d: vec3f) -> vec4f {
   let size = vec2i(textureDimensions(envMap));

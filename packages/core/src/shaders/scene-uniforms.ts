@@ -1,4 +1,4 @@
-import { gradientAtlasLayout } from '../gradient/atlas.js';
+import { sliceAtlasLayout } from './slice-atlas.js';
 import { cameraBasis } from '../scene/camera.js';
 import type { Scene } from '../scene/scene.js';
 import { transferFunctionSize } from '../scene/transfer-function.js';
@@ -27,7 +27,7 @@ export const SCENE_UNIFORM_FIELDS: readonly UniformField[] = [
   { name: 'background', type: 'vec4' },
   // Rows of the transfer-function texture: 1 for a 1D TF, the gradient axis of a 2D one.
   { name: 'tfHeight', type: 'i32' },
-  // Slice-atlas columns of the gradient-magnitude texture (gradient/atlas.ts).
+  // Slice-atlas columns of the gradient-magnitude texture (slice-atlas.ts).
   { name: 'gradientAtlasColumns', type: 'i32' },
   // A 2D TF's gradientMax (> 0), or 0: normalize by the volume's largest magnitude.
   { name: 'tfGradientMax', type: 'f32' },
@@ -55,7 +55,7 @@ export function sceneUniformValues(scene: Scene, width: number, height: number, 
     volumeDims: [...scene.volume.dims, 0],
     background: [bg[0], bg[1], bg[2], 1],
     tfHeight: transferFunctionSize(scene.transferFunction, tfSize)[1],
-    gradientAtlasColumns: gradientAtlasLayout(scene.volume.dims).columns,
+    gradientAtlasColumns: sliceAtlasLayout(scene.volume.dims).columns,
     tfGradientMax: scene.transferFunction.dimensions === '2d' ? scene.transferFunction.gradientMax ?? 0 : 0,
   };
 }

@@ -2,7 +2,7 @@ import { WGSL_ENVIRONMENT_MAP, WGSL_SAMPLING } from '@vpt/core';
 
 // Monte Carlo isosurface rendering (Lesar et al. 2018, the ISO renderer) with stochastic
 // transparency (Enderton et al. 2010): twin of iso.glsl.ts, same arithmetic in the same
-// order. Compile-time switches are WGSL constants (const-folded branches) where GLSL uses #if.
+// order. Compile-time switches are `#if` lines, resolved for both languages by core's preprocessor.
 
 const ISO_COMMON = /* wgsl */ `
 const ISO_REFINE_STEPS: i32 = 10;
@@ -95,8 +95,11 @@ fn isoBrdf(n: vec3f, wi: vec3f, wo: vec3f, albedo: vec3f) -> vec3f {
 }
 
 fn isoEnvironment(d: vec3f) -> vec3f {
-  if (ISO_ENV == 2) { return environmentLookup(d).rgb; }
+#if ISO_ENV == 2
+  return environmentLookup(d).rgb;
+#else
   return u.background.rgb;
+#endif
 }
 
 fn isoShade(p: vec3f, n: vec3f, wo: vec3f, albedo: vec3f, rng: ptr<function, u32>) -> vec3f {
@@ -105,62 +108,69 @@ fn isoShade(p: vec3f, n: vec3f, wo: vec3f, albedo: vec3f, rng: ptr<function, u32
   for (var l = 0; l < ISO_LIGHTS; l++) {
     let ld = u.isoLightDirection[l];
     var wi = ld.xyz;
-    if (ISO_SOFT_LIGHTS) {
-      let c1 = rngNext(rng);
-      let c2 = rngNext(rng);
-      let cosT = 1.0 - c1 * (1.0 - ld.w);
-      let sinT = sqrt(max((1.0 - cosT) * (1.0 + cosT), 0.0));
-      wi = directionAround(ld.xyz, cosT, sinT, 2.0 * VPT_PI * c2);
-    }
+#if ISO_SOFT_LIGHTS
+    let c1 = rngNext(rng);
+    let c2 = rngNext(rng);
+    let cosT = 1.0 - c1 * (1.0 - ld.w);
+    let sinT = sqrt(max((1.0 - cosT) * (1.0 + cosT), 0.0));
+    wi = directionAround(ld.xyz, cosT, sinT, 2.0 * VPT_PI * c2);
+#endif
     let cosI = dot(n, wi);
     if (cosI > 0.0) {
       var vis = 1.0;
-      if (ISO_SHADOWS) { vis = isoVisibility(origin, wi, 1e30, rng); }
+#if ISO_SHADOWS
+      vis = isoVisibility(origin, wi, 1e30, rng);
+#endif
       radiance += u.isoLightIrradiance[l].rgb * (cosI * vis) * isoBrdf(n, wi, wo, albedo);
     }
   }
-  if (ISO_ENV > 0) {
-    let e1 = rngNext(rng);
-    let e2 = rngNext(rng);
-    let cosC = sqrt(1.0 - e1);
-    let wc = directionAround(n, cosC, sqrt(e1), 2.0 * VPT_PI * e2);
-    var visC = 1.0;
-    if (ISO_AO) { visC = isoVisibility(origin, wc, u.aoRadius, rng); }
-    if (ISO_ENV == 2) {
-      let envC = environmentLookup(wc);
-      let pdfC = cosC * (1.0 / VPT_PI);
-      let wC = select(0.0, pdfC / (pdfC + envC.a), pdfC > 0.0);
-      radiance += envC.rgb * (visC * VPT_PI * wC) * isoBrdf(n, wc, wo, albedo);
-      let s1 = rngNext(rng);
-      let s2 = rngNext(rng);
-      let es = sampleEnvironment(s1, s2);
-      let cosE = dot(n, es.direction);
-      if (cosE > 0.0 && es.pdf > 0.0) {
-        var visE = 1.0;
-        if (ISO_AO) { visE = isoVisibility(origin, es.direction, u.aoRadius, rng); }
-        let pdfCE = cosE * (1.0 / VPT_PI);
-        let wE = es.pdf / (es.pdf + pdfCE);
-        radiance += es.radiance * (visE * cosE * wE / es.pdf) * isoBrdf(n, es.direction, wo, albedo);
-      }
-    } else {
-      radiance += u.background.rgb * (visC * VPT_PI) * isoBrdf(n, wc, wo, albedo);
-    }
+#if ISO_ENV > 0
+  let e1 = rngNext(rng);
+  let e2 = rngNext(rng);
+  let cosC = sqrt(1.0 - e1);
+  let wc = directionAround(n, cosC, sqrt(e1), 2.0 * VPT_PI * e2);
+  var visC = 1.0;
+#if ISO_AO
+  visC = isoVisibility(origin, wc, u.aoRadius, rng);
+#endif
+  // f L cos / pdf with pdf = cos / pi: the cosine cancels.
+#if ISO_ENV == 2
+  let envC = environmentLookup(wc);
+  let pdfC = cosC * (1.0 / VPT_PI);
+  let wC = select(0.0, pdfC / (pdfC + envC.a), pdfC > 0.0);
+  radiance += envC.rgb * (visC * VPT_PI * wC) * isoBrdf(n, wc, wo, albedo);
+  let s1 = rngNext(rng);
+  let s2 = rngNext(rng);
+  let es = sampleEnvironment(s1, s2);
+  let cosE = dot(n, es.direction);
+  if (cosE > 0.0 && es.pdf > 0.0) {
+    var visE = 1.0;
+#if ISO_AO
+    visE = isoVisibility(origin, es.direction, u.aoRadius, rng);
+#endif
+    let pdfCE = cosE * (1.0 / VPT_PI);
+    let wE = es.pdf / (es.pdf + pdfCE);
+    radiance += es.radiance * (visE * cosE * wE / es.pdf) * isoBrdf(n, es.direction, wo, albedo);
   }
+#else
+  radiance += u.background.rgb * (visC * VPT_PI) * isoBrdf(n, wc, wo, albedo);
+#endif
+#endif
   return radiance;
 }
 `;
 
-export const generate = WGSL_SAMPLING + WGSL_ENVIRONMENT_MAP + ISO_COMMON + /* wgsl */ `
+// The environment-map chunk names the envMap textures, bound for a lat-long map only.
+export const generate = WGSL_SAMPLING + '\n#if ISO_ENV == 2\n' + WGSL_ENVIRONMENT_MAP + '\n#endif\n' + ISO_COMMON + /* wgsl */ `
 @fragment fn fs_main(@builtin(position) fragCoord: vec4f) -> VptOut {
   let pixel = vptPixel(fragCoord);
   let size = vptTargetSize();
   var rng = rngInit(pixel, u.iteration, u.seed);
-  var dir: vec3f;
-  if (ISO_JITTER) {
-    dir = jitteredCameraRay(pixel, size, &rng);
-  } else {
-    dir = cameraRayDirection(vec2f((f32(pixel.x) + 0.5) / f32(size.x), (f32(pixel.y) + 0.5) / f32(size.y)));
-  }
+#if ISO_JITTER
+  let dir = jitteredCameraRay(pixel, size, &rng);
+#else
+  let dir = cameraRayDirection(vec2f((f32(pixel.x) + 0.5) / f32(size.x), (f32(pixel.y) + 0.5) / f32(size.y)));
+#endif
   let o = u.cameraPosition;
   let tb = intersectBox(o, dir, u.boxMin, u.boxMax);
   var hit = vec4f(-1.0);
@@ -205,13 +215,16 @@ export const render = /* wgsl */ `
 @fragment fn fs_main(@builtin(position) fragCoord: vec4f) -> VptOut {
   let p = vptPixel(fragCoord);
   var o: VptOut;
-  if (ISO_OUTPUT == 0) {
-    o.out0 = textureLoad(accum0, p, 0);
-    return o;
-  }
+#if ISO_OUTPUT == 0
+  o.out0 = textureLoad(accum0, p, 0);
+#else
   let a = textureLoad(accum1, p, 0);
-  if (!(a.x >= 0.0)) { o.out0 = vec4f(0.0); return o; }
-  if (ISO_OUTPUT == 1) { o.out0 = vec4f(a.x, a.x, a.x, 1.0); } else { o.out0 = vec4f(a.yzw, 1.0); }
+#if ISO_OUTPUT == 1
+  o.out0 = select(vec4f(0.0), vec4f(a.x, a.x, a.x, 1.0), a.x >= 0.0);
+#else
+  o.out0 = select(vec4f(0.0), vec4f(a.yzw, 1.0), a.x >= 0.0);
+#endif
+#endif
   return o;
 }
 `;

@@ -1,8 +1,8 @@
 // The majorant grid built on the GPU: per-cell value ranges once per volume, then the
 // bounds whenever the transfer function or density scale changes (pbrt-v4's GridMedium majorants; Szirmay-Kalos et al. 2011): the same steps in
 // the same order as majorant-grid.ts (OpacityRangeTable.valueRange, buildMajorantGrid),
-// in float32. Cells are laid out as a slice atlas (gradientAtlasLayout of the cell counts;
-// GLSL_ATLAS, prepended by the renderer, addresses it).
+// in float32. Cells are laid out as a slice atlas (sliceAtlasLayout of the cell counts;
+// core's slice-atlas chunk, prepended by the renderer, addresses it).
 
 /**
  * Per cell: min and max of the normalized voxel values its points can blend (the cell's

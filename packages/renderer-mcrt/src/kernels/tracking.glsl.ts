@@ -4,7 +4,7 @@
 // Media", §3–4, control = per-cell minorant), over a coarse grid of per-cell extinction bounds
 // walked by a 3D DDA (Amanatides & Woo 1987), as pbrt-v4's GridMedium. Exponential distances
 // are drawn once and their optical depth is carried across cells (memorylessness).
-// Preprocessed (see preprocess.ts) with MAJORANT_GRID, TRACKING, DEBUG_OUTPUT.
+// Preprocessed (core's shaders/preprocess.ts) with MAJORANT_GRID, TRACKING, DEBUG_OUTPUT.
 
 export const tracking = /* glsl */ `
 // Every path gets this many tracking steps (cells + tentative collisions); a path that would

@@ -1,0 +1,2 @@
+/** Side of the block each reduction texel takes the maximum of. */
+export const REDUCTION = 8;

@@ -1,0 +1,26 @@
+import type { KernelSource } from '../renderer.js';
+import * as glsl from './common.glsl.js';
+import * as wgsl from './common.wgsl.js';
+import { preprocess } from './preprocess.js';
+
+/** Options of the generate pass's shared chunks, derived from the scene by RenderContext. */
+export interface CommonChunkOptions {
+  /** The transfer function is 2D: transferAt() reads value x normalized gradient magnitude. */
+  tf2d?: boolean;
+  /** The gradient textures are bound: sampleGradientMagnitude() / normalizedGradientAt() exist. */
+  gradient?: boolean;
+}
+
+/**
+ * The shared chunks for a generate pass in both languages: RNG, rays, volume sampling, the
+ * gradient helpers when bound and the matching transferAt(). A scene with a 1D transfer
+ * function whose renderer needs no gradient compiles no gradient code (docs/design.md,
+ * "Leave out what a scene does not need").
+ */
+export function commonChunks(opts: CommonChunkOptions = {}): KernelSource {
+  const flags = { GRADIENT: !!(opts.gradient || opts.tf2d), TF_2D: !!opts.tf2d };
+  return { glsl: preprocess(glsl.GENERATE_CHUNKS, flags), wgsl: preprocess(wgsl.GENERATE_CHUNKS, flags) };
+}
+
+/** The integrate and render passes' shared chunks (texture-free RNG and rays). */
+export const PASS_CHUNKS: KernelSource = { glsl: glsl.PASS_CHUNKS, wgsl: wgsl.PASS_CHUNKS };
