@@ -3,20 +3,12 @@ import { defineConfig } from 'vitest/config';
 
 // Two projects: fast node-side unit tests next to each package, and end-to-end browser
 // tests (headless Chromium on SwiftShader) under tests/, which need `pnpm build` first.
-const src = (pkg: string) => fileURLToPath(new URL(`./packages/${pkg}/src/index.ts`, import.meta.url));
 
 export default defineConfig({
   // Node-side code imports the workspace packages from source; the browser side loads dist/.
   resolve: {
-    alias: {
-      '@vpt/core': src('core'),
-      '@vpt/renderer-mip': src('renderer-mip'),
-      '@vpt/renderer-eam': src('renderer-eam'),
-      '@vpt/renderer-iso': src('renderer-iso'),
-      '@vpt/renderer-mcrt': src('renderer-mcrt'),
-      '@vpt/post': src('post'),
-      '@vpt/loaders': src('loaders'),
-    },
+    // Core, post, loaders and every renderer package (renderer-*) by the package's folder name.
+    alias: [{ find: /^@vpt\/(core|post|loaders|renderer-[a-z0-9-]+)$/, replacement: `${fileURLToPath(new URL('./packages/', import.meta.url))}$1/src/index.ts` }],
   },
   test: {
     projects: [

@@ -79,9 +79,8 @@ export const PAGE_CODE = String.raw`
   }
 
   function renderer(config) {
-    const mod = { mip: vpt.mip && vpt.mip.MipRenderer, eam: vpt.eam && vpt.eam.EamRenderer, iso: vpt.iso && vpt.iso.IsoRenderer, mcrt: vpt.mcrt && vpt.mcrt.McrtRenderer }[config.renderer];
-    if (!mod) throw new Error('renderer ' + config.renderer + ' is not available in this build');
-    return new mod(config.params || {});
+    if (!vpt.renderers[config.renderer]) throw new Error('renderer ' + config.renderer + ' is not available in this build');
+    return vpt.createRenderer(config.renderer, config.params || {});
   }
 
   async function context(config, width, height) {
@@ -244,7 +243,7 @@ export const PAGE_CODE = String.raw`
       b.dispose();
       return info;
     },
-    available: () => ['mip', 'eam', 'iso', 'mcrt'].filter((r) => vpt[r]),
+    available: () => vpt.core.RENDERER_CATALOG.map((e) => e.name).filter((r) => vpt.renderers[r]),
   };
 })();
 `;

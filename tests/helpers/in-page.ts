@@ -5,11 +5,8 @@
 export const IN_PAGE_HELPERS = `
 window.t = {
   async context(opts) {
-    const { core, mip, eam, mcrt, iso, post } = window.vpt;
-    const renderer = opts.renderer === 'mip' ? new mip.MipRenderer(opts.params || {})
-      : opts.renderer === 'mcrt' ? new mcrt.McrtRenderer(opts.params || {})
-      : opts.renderer === 'iso' ? new iso.IsoRenderer(opts.params || {})
-      : new eam.EamRenderer(opts.params || {});
+    const { core, post } = window.vpt;
+    const renderer = window.vpt.createRenderer(opts.renderer || 'eam', opts.params || {});
     const steps = opts.post ? post.postChainFromJSON(opts.post) : [];
     return core.RenderContext.create({ backend: opts.backend, width: opts.width, height: opts.height, renderer, post: steps });
   },

@@ -39,3 +39,5 @@ export { buildGradientVolume, destroyGradientVolume, type GradientVolume } from 
 export * from './scene/environment-sampling.js';
 
 export * as reference from './reference/cpu-reference.js';
+
+export { RENDERER_CATALOG, rendererCatalogEntry, rendererNames, type RendererCatalogEntry, type RendererParamSpec } from './catalog/renderer-catalog.js';

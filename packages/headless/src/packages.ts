@@ -1,17 +1,19 @@
 import fs from 'node:fs';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
+import { RENDERER_CATALOG } from '@vpt/core';
 import type { StaticServer } from './server.js';
 
-/** The packages the headless page loads, by URL folder name under /packages/. */
+/**
+ * The packages the headless page loads, by URL folder name under /packages/: core, post,
+ * loaders and every renderer package of core's catalog (page/index.html's import map
+ * names the same folders).
+ */
 export const PAGE_PACKAGES: Record<string, string> = {
   core: '@vpt/core',
-  'renderer-mip': '@vpt/renderer-mip',
-  'renderer-eam': '@vpt/renderer-eam',
-  'renderer-iso': '@vpt/renderer-iso',
-  'renderer-mcrt': '@vpt/renderer-mcrt',
   post: '@vpt/post',
   loaders: '@vpt/loaders',
+  ...Object.fromEntries(RENDERER_CATALOG.map((e) => [e.packageName.replace(/^@vpt\//, ''), e.packageName])),
 };
 
 function readName(dir: string): string | undefined {

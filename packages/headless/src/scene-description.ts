@@ -10,7 +10,8 @@ import type { TransferWidget } from '@vpt/core';
 export type Vec3 = [number, number, number];
 export type VoxelTypeName = 'uint8' | 'uint16' | 'int16' | 'float32';
 export type BackendName = 'auto' | 'webgl2' | 'webgpu';
-export type RendererName = 'eam' | 'mip' | 'mcrt' | 'iso';
+/** A renderer of core's RENDERER_CATALOG (`'eam' | 'mip' | 'mcrt' | 'iso'` in this repository). */
+export type RendererName = string;
 
 /** Raw voxels at a URL (relative URLs resolve against the scene file's folder). */
 export interface RawVolumeDescription {
@@ -84,14 +85,17 @@ export const SCENE_DEFAULTS = {
   backend: 'auto' as BackendName,
 };
 
-export const RENDERER_NAMES: readonly RendererName[] = ['eam', 'mip', 'mcrt', 'iso'];
 export const BACKEND_NAMES: readonly BackendName[] = ['auto', 'webgl2', 'webgpu'];
 
 /**
  * Catch the mistakes a person makes when writing a scene file by hand, with a message
  * that names the field. (The scene model itself is validated again by core.)
  */
-export function checkSceneDescription(d: unknown): asserts d is SceneDescription {
+/**
+ * Check a description's shape; `rendererNames` (core's catalog names, which this pure
+ * module does not import) lets the caller reject an unknown renderer early.
+ */
+export function checkSceneDescription(d: unknown, rendererNames?: readonly string[]): asserts d is SceneDescription {
   const bad = (m: string): never => { throw new Error(`Scene description: ${m}`); };
   if (!d || typeof d !== 'object' || Array.isArray(d)) bad('must be a JSON object');
   const s = d as Record<string, unknown>;
@@ -100,7 +104,9 @@ export function checkSceneDescription(d: unknown): asserts d is SceneDescription
   };
   posInt('width'); posInt('height'); posInt('iterations');
   if (s.seed !== undefined && !(Number.isInteger(s.seed) && (s.seed as number) >= 0)) bad(`"seed" must be a non-negative integer, got ${JSON.stringify(s.seed)}`);
-  if (s.renderer !== undefined && !RENDERER_NAMES.includes(s.renderer as RendererName)) bad(`"renderer" must be one of ${RENDERER_NAMES.join(', ')}, got ${JSON.stringify(s.renderer)}`);
+  if (s.renderer !== undefined && (typeof s.renderer !== 'string' || (rendererNames && !rendererNames.includes(s.renderer)))) {
+    bad(`"renderer" must be ${rendererNames ? `one of ${rendererNames.join(', ')}` : 'a renderer name'}, got ${JSON.stringify(s.renderer)}`);
+  }
   if (s.backend !== undefined && !BACKEND_NAMES.includes(s.backend as BackendName)) bad(`"backend" must be one of ${BACKEND_NAMES.join(', ')}, got ${JSON.stringify(s.backend)}`);
   if (s.post !== undefined && !Array.isArray(s.post)) bad('"post" must be an array of steps');
   if (s.lights !== undefined && !Array.isArray(s.lights)) bad('"lights" must be an array');

@@ -1,5 +1,6 @@
 import fs from 'node:fs';
 import path from 'node:path';
+import { rendererNames } from '@vpt/core';
 import { checkSceneDescription, type SceneDescription, type VolumeDescription } from './scene-description.js';
 import type { StaticServer } from './server.js';
 
@@ -18,7 +19,7 @@ export function readSceneFile(file: string): { description: SceneDescription; ba
     throw new Error(`Scene file ${file} is not valid JSON: ${(e as Error).message}`);
   }
   try {
-    checkSceneDescription(json);
+    checkSceneDescription(json, rendererNames());
   } catch (e) {
     throw new Error(`${file}: ${(e as Error).message}`);
   }

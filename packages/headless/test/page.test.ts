@@ -47,7 +47,15 @@ describe.skipIf(!pageBuilt || !fs.existsSync(chromiumExecutable()))('the headles
 
   it('exposes window.vpt', async () => {
     const keys = await session.page.evaluate(() => Object.keys(window.vpt).sort());
-    expect(keys).toEqual(['buildScene', 'core', 'eam', 'iso', 'loadVolume', 'mcrt', 'mip', 'post', 'renderDescription']);
+    expect(keys).toEqual(['buildScene', 'core', 'createRenderer', 'eam', 'iso', 'loadVolume', 'mcrt', 'mip', 'post', 'renderDescription', 'renderers']);
+    // Renderers come from core's catalog, by name.
+    const made = await session.page.evaluate(() => {
+      const r = window.vpt.createRenderer('mcrt', { a: 1 }) as unknown as { kind: string; params: unknown };
+      let unknown = '';
+      try { window.vpt.createRenderer('nope'); } catch (e) { unknown = (e as Error).message; }
+      return { kind: r.kind, params: r.params, unknown };
+    });
+    expect(made).toEqual({ kind: 'mcrt', params: { a: 1 }, unknown: 'Unknown renderer "nope" (mip, iso, eam, mcrt)' });
   });
 
   it('fills in defaults and returns the images and timings', async () => {

@@ -4,31 +4,12 @@
  * with a message that says what to install. Applications add their own with
  * `registerRenderer()`.
  */
-import { VptError, type Renderer } from '@vpt/core';
+import { RENDERER_CATALOG, VptError, type Renderer, type RendererParamSpec } from '@vpt/core';
 
 /** A renderer class: constructed with its parameter object (unknown keys are the renderer's business). */
 export type RendererConstructor = new (params?: Record<string, unknown>) => Renderer;
 
-/**
- * A renderer parameter the quality panel offers. `undefined` in the parameter object
- * means the renderer's own default. `read`/`write` reach into nested parameters (the
- * first isosurface's value, say); without them the parameter is `params[name]`.
- */
-export interface RendererParamSpec {
-  name: string;
-  label: string;
-  kind?: 'number' | 'select' | 'boolean' | 'color';
-  min?: number;
-  max?: number;
-  step?: number;
-  options?: readonly string[];
-  /** Shown next to an empty field (the renderer's default, in words). */
-  placeholder?: string;
-  /** The renderer's default, shown by boolean and select controls when the parameter is unset. */
-  defaultValue?: unknown;
-  read?(params: Record<string, unknown>): unknown;
-  write?(params: Record<string, unknown>, value: unknown): Record<string, unknown>;
-}
+export type { RendererParamSpec };
 
 export interface RendererEntry {
   name: string;
@@ -86,55 +67,23 @@ export async function createRenderer(name: string, params: Record<string, unknow
   return new Ctor(params);
 }
 
-const step = (placeholder: string): RendererParamSpec => ({ name: 'stepSize', label: 'Step size', min: 0.0005, max: 0.05, step: 0.0005, placeholder });
-
-/** The first isosurface's fields, edited in place (the iso renderer takes a list of surfaces). */
-type Surface = { value: number; color: [number, number, number]; opacity?: number };
-const DEFAULT_SURFACE: Surface = { value: 0.5, color: [1, 1, 1], opacity: 1 };
-const firstSurface = (p: Record<string, unknown>): Surface => ((p.surfaces as Surface[] | undefined)?.[0] ?? DEFAULT_SURFACE);
-const withFirstSurface = (p: Record<string, unknown>, patch: Partial<Surface>) => {
-  const surfaces = [...((p.surfaces as Surface[] | undefined) ?? [DEFAULT_SURFACE])];
-  surfaces[0] = { ...surfaces[0], ...patch };
-  return { ...p, surfaces };
+// Bundlers include only what a literal import() names, so the viewer keeps one loader per
+// package of the catalog (the viewer's build replaces an uninstalled optional one with a
+// stub that says so: see rollup.config.mjs). A catalog entry without a loader here is
+// imported by its bare name, which works in a page with an import map.
+const PACKAGE_LOADERS: Record<string, () => Promise<Record<string, unknown>>> = {
+  '@vpt/renderer-mip': () => import('@vpt/renderer-mip'),
+  // @ts-ignore -- optional package, may be absent when this is type-checked
+  '@vpt/renderer-iso': () => import('@vpt/renderer-iso'),
+  '@vpt/renderer-eam': () => import('@vpt/renderer-eam'),
+  // @ts-ignore -- optional package, may be absent when this is type-checked
+  '@vpt/renderer-mcrt': () => import('@vpt/renderer-mcrt'),
 };
 
-// The renderers of this repository. The optional packages are imported by their literal
-// names so bundlers include them when installed; the viewer's build replaces an
-// uninstalled one with a stub that says so (see rollup.config.mjs).
-registerRenderer({
-  name: 'mip', label: 'Maximum intensity', packageName: '@vpt/renderer-mip',
-  load: () => import('@vpt/renderer-mip').then((m) => m.MipRenderer as unknown as RendererConstructor),
-  params: [step('half a voxel')],
-});
-registerRenderer({
-  name: 'iso', label: 'Isosurface', packageName: '@vpt/renderer-iso',
-  // @ts-ignore -- optional package, may be absent when this is type-checked
-  load: () => import('@vpt/renderer-iso').then((m: Record<string, unknown>) => exported<RendererConstructor>(m, 'IsoRenderer')),
-  params: [
-    { name: 'isoValue', label: 'Iso value', min: 0, max: 1, step: 0.01, placeholder: '0.5', read: (p) => firstSurface(p).value, write: (p, v) => withFirstSurface(p, { value: v as number }) },
-    { name: 'isoColor', label: 'Surface colour', kind: 'color', read: (p) => firstSurface(p).color, write: (p, v) => withFirstSurface(p, { color: v as Surface['color'] }) },
-    step('half a voxel'),
-    { name: 'specular', label: 'Specular', min: 0, max: 1, step: 0.05, placeholder: '0.1' },
-    { name: 'shininess', label: 'Shininess', min: 1, max: 1000, step: 1, placeholder: '40' },
-    { name: 'shadows', label: 'Shadows', kind: 'boolean', defaultValue: true },
-    { name: 'ambientOcclusion', label: 'Ambient occlusion', kind: 'boolean', defaultValue: true },
-  ],
-});
-registerRenderer({
-  name: 'eam', label: 'Emission–absorption', packageName: '@vpt/renderer-eam',
-  load: () => import('@vpt/renderer-eam').then((m) => m.EamRenderer as unknown as RendererConstructor),
-  params: [step('half a voxel'), { name: 'cutoff', label: 'Early-exit transmittance', min: 0, max: 0.1, step: 0.0001, placeholder: '1e-6' }],
-});
-registerRenderer({
-  name: 'mcrt', label: 'Path tracing (MCRT)', packageName: '@vpt/renderer-mcrt',
-  // @ts-ignore -- optional package, may be absent when this is type-checked
-  load: () => import('@vpt/renderer-mcrt').then((m: Record<string, unknown>) => exported<RendererConstructor>(m, 'McrtRenderer')),
-  params: [
-    { name: 'scattering', label: 'Scattering', kind: 'select', options: ['multiple', 'single'], defaultValue: 'multiple' },
-    { name: 'anisotropy', label: 'Anisotropy g', min: -0.99, max: 0.99, step: 0.05, placeholder: '0' },
-    { name: 'maxDepth', label: 'Max bounces', min: -1, max: 256, step: 1, placeholder: 'unlimited' },
-    { name: 'tracking', label: 'Shadow tracking', kind: 'select', options: ['residual', 'ratio', 'delta'], defaultValue: 'residual' },
-    { name: 'environmentSampling', label: 'Environment sampling', kind: 'select', options: ['mis', 'light', 'phase'], defaultValue: 'mis' },
-    { name: 'majorantGrid', label: 'Majorant grid', kind: 'boolean', defaultValue: true },
-  ],
-});
+// The renderers of the catalog (core's renderer-catalog.ts), each loaded on first use.
+for (const e of RENDERER_CATALOG) {
+  registerRenderer({
+    name: e.name, label: e.label, packageName: e.packageName, params: e.params,
+    load: () => (PACKAGE_LOADERS[e.packageName] ?? (() => import(/* @vite-ignore */ e.packageName)))().then((m) => exported<RendererConstructor>(m, e.exportName)),
+  });
+}

@@ -47,6 +47,10 @@ export interface PageRenderResult {
 
 export interface VptPageApi {
   core: typeof CoreModule;
+  /** Each renderer package of core's RENDERER_CATALOG, by renderer name (typed below for this repository's four). */
+  renderers: Record<string, Record<string, unknown>>;
+  /** A renderer of the catalog by name, constructed with its parameter object. */
+  createRenderer(name: string, params?: Record<string, unknown>): CoreModule.Renderer;
   mip: typeof MipModule;
   eam: typeof EamModule;
   iso: typeof IsoModule;

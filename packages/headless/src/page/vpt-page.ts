@@ -1,21 +1,20 @@
 /**
  * The in-browser side of @vpt/headless, loaded by page/index.html (whose import map
- * points the @vpt/* names at each package's dist/). It loads the packages, then exposes
- * `window.vpt = { core, mip, eam, mcrt, iso, post, renderDescription, buildScene, loadVolume }` and
+ * points the @vpt/* names at each package's dist/). It loads core, post and every renderer
+ * package of core's renderer catalog, then exposes `window.vpt = { core, post, createRenderer,
+ * renderers, <renderer name>: <its module>…, renderDescription, buildScene, loadVolume }` and
  * sets `window.__vptReady`, or `window.__vptError` when a package cannot be loaded.
  */
-import type { Environment, Scene, Volume } from '@vpt/core';
+import type { Environment, Renderer, Scene, Volume } from '@vpt/core';
 import { SCENE_DEFAULTS, checkSceneDescription, type SceneDescription, type VolumeDescription } from '../scene-description.js';
 import type { PageRenderResult, PostModule, VptPageApi } from './types.js';
 
 type CoreModule = VptPageApi['core'];
 
 let core!: CoreModule;
-let mip!: VptPageApi['mip'];
-let eam!: VptPageApi['eam'];
-let mcrt!: VptPageApi['mcrt'];
-let iso!: VptPageApi['iso'];
 let post!: PostModule;
+/** The renderer classes of the catalog, by renderer name. */
+const rendererClasses = new Map<string, new (params?: Record<string, unknown>) => Renderer>();
 
 const ARRAYS = { uint8: Uint8Array, uint16: Uint16Array, int16: Int16Array, float32: Float32Array } as const;
 
@@ -87,7 +86,7 @@ function environmentOf(d: SceneDescription): Environment {
 
 /** Build the core Scene for a description (defaults filled in). */
 async function buildScene(d: SceneDescription, baseUrl?: string): Promise<Scene> {
-  checkSceneDescription(d);
+  checkSceneDescription(d, [...rendererClasses.keys()]);
   const tf = d.transferFunction;
   return {
     volume: await loadVolume(d.volume ?? SCENE_DEFAULTS.volume, baseUrl),
@@ -100,14 +99,15 @@ async function buildScene(d: SceneDescription, baseUrl?: string): Promise<Scene>
   };
 }
 
-function makeRenderer(d: SceneDescription) {
-  const name = d.renderer ?? SCENE_DEFAULTS.renderer;
-  const params = d.rendererParams ?? {};
-  if (name === 'mip') return new mip.MipRenderer(params);
-  if (name === 'eam') return new eam.EamRenderer(params);
-  if (name === 'mcrt') return new mcrt.McrtRenderer(params);
-  if (name === 'iso') return new iso.IsoRenderer(params);
-  throw new core.VptError('invalid-scene', `Unknown renderer "${name as string}" (eam, mip, mcrt, iso)`);
+/** A renderer of the catalog by name, constructed with its parameter object. */
+function createRenderer(name: string, params: Record<string, unknown> = {}): Renderer {
+  const Ctor = rendererClasses.get(name);
+  if (!Ctor) throw new core.VptError('invalid-scene', `Unknown renderer "${name}" (${[...rendererClasses.keys()].join(', ')})`);
+  return new Ctor(params);
+}
+
+function makeRenderer(d: SceneDescription): Renderer {
+  return createRenderer(d.renderer ?? SCENE_DEFAULTS.renderer, d.rendererParams ?? {});
 }
 
 /** Base64 of a typed array's bytes, in chunks (String.fromCharCode takes limited arguments). */
@@ -126,7 +126,7 @@ function toBase64(a: ArrayBufferView): string {
  */
 async function renderDescription(desc: SceneDescription, options: { baseUrl?: string; warmup?: boolean } = {}): Promise<PageRenderResult> {
   const t0 = performance.now();
-  checkSceneDescription(desc);
+  checkSceneDescription(desc, [...rendererClasses.keys()]);
   const width = desc.width ?? SCENE_DEFAULTS.width;
   const height = desc.height ?? SCENE_DEFAULTS.height;
   const iterations = desc.iterations ?? SCENE_DEFAULTS.iterations;
@@ -168,15 +168,17 @@ async function load<T>(name: string): Promise<T> {
 }
 
 try {
-  [core, mip, eam, post, mcrt] = await Promise.all([
-    load<CoreModule>('@vpt/core'),
-    load<VptPageApi['mip']>('@vpt/renderer-mip'),
-    load<VptPageApi['eam']>('@vpt/renderer-eam'),
-    load<PostModule>('@vpt/post'),
-    load<VptPageApi['mcrt']>('@vpt/renderer-mcrt'),
-  ]);
-  iso = await load<VptPageApi['iso']>('@vpt/renderer-iso');
-  window.vpt = { core, mip, eam, mcrt, iso, post, renderDescription, buildScene, loadVolume };
+  [core, post] = await Promise.all([load<CoreModule>('@vpt/core'), load<PostModule>('@vpt/post')]);
+  // Every renderer of the catalog, imported by its package name (the import map resolves it).
+  const modules = await Promise.all(core.RENDERER_CATALOG.map((e) => load<Record<string, unknown>>(e.packageName)));
+  const renderers: Record<string, Record<string, unknown>> = {};
+  core.RENDERER_CATALOG.forEach((e, i) => {
+    const Ctor = modules[i][e.exportName];
+    if (typeof Ctor !== 'function') throw new Error(`${e.packageName} does not export ${e.exportName}`);
+    rendererClasses.set(e.name, Ctor as new (params?: Record<string, unknown>) => Renderer);
+    renderers[e.name] = modules[i];
+  });
+  window.vpt = { ...renderers, core, post, renderers, createRenderer, renderDescription, buildScene, loadVolume } as unknown as VptPageApi;
   window.__vptReady = true;
 } catch (e) {
   window.__vptError = (e as Error).message;
