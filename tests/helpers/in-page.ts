@@ -1,40 +1,81 @@
 /**
- * Code that runs inside the page (page.evaluate). Kept as one function source that
- * tests install once, so each test's evaluate body stays short.
+ * Helpers that run inside the headless page, installed once per page with
+ * `page.evaluate(installInPageHelpers)` so each test's evaluate body stays short. Typed
+ * TypeScript: puppeteer sends the function's compiled source, so it may use nothing from
+ * this module's scope, only `window.vpt` (the headless page's API).
  */
-export const IN_PAGE_HELPERS = `
-window.t = {
-  async context(opts) {
-    const { core, post } = window.vpt;
-    const renderer = window.vpt.createRenderer(opts.renderer || 'eam', opts.params || {});
-    const steps = opts.post ? post.postChainFromJSON(opts.post) : [];
-    return core.RenderContext.create({ backend: opts.backend, width: opts.width, height: opts.height, renderer, post: steps });
-  },
-  scene(spec) {
-    const { core } = window.vpt;
-    return {
-      volume: spec.volume,
-      transferFunction: spec.transferFunction || core.rampTransferFunction(),
-      camera: spec.camera || core.defaultCamera(),
-      lights: [],
-      environment: spec.environment || { type: 'constant', radiance: [0, 0, 0] },
-      densityScale: spec.densityScale ?? 1,
-      seed: spec.seed ?? 1,
-    };
-  },
-  async loadRaw(url, dims, type) {
-    const { core } = window.vpt;
-    const buf = await (await fetch(url)).arrayBuffer();
-    const C = { uint8: Uint8Array, uint16: Uint16Array, int16: Int16Array, float32: Float32Array }[type];
-    return core.createVolume(dims, type, new C(buf));
-  },
-  sameBits(a, b) {
-    const x = new Uint32Array(a.buffer, a.byteOffset, a.byteLength / 4), y = new Uint32Array(b.buffer, b.byteOffset, b.byteLength / 4);
-    if (x.length !== y.length) return -1;
-    let diff = 0;
-    for (let i = 0; i < x.length; i++) if (x[i] !== y[i]) diff++;
-    return diff;
-  },
-  hasNonFinite(a) { for (let i = 0; i < a.length; i++) if (!Number.isFinite(a[i])) return true; return false; },
-};
-`;
+import type { RenderContext, Scene, Volume, VoxelType, Camera, Environment, TransferFunction } from '@vpt/core';
+
+export interface TestContextOptions {
+  backend: 'webgl2' | 'webgpu' | 'auto';
+  /** A renderer of core's RENDERER_CATALOG (default 'eam'). */
+  renderer?: string;
+  width: number;
+  height: number;
+  params?: Record<string, unknown>;
+  /** A post chain as JSON (none when omitted). */
+  post?: unknown;
+}
+
+/** The shared test scene: a ramp TF, the default camera, no lights, a black sky, density 1, seed 1. */
+export interface TestSceneSpec {
+  volume: Volume;
+  transferFunction?: TransferFunction;
+  camera?: Camera;
+  environment?: Environment;
+  densityScale?: number;
+  seed?: number;
+}
+
+export interface InPageHelpers {
+  context(opts: TestContextOptions): Promise<RenderContext>;
+  scene(spec: TestSceneSpec): Scene;
+  loadRaw(url: string, dims: [number, number, number], type: VoxelType): Promise<Volume>;
+  /** How many 32-bit words differ (−1 when the lengths differ). */
+  sameBits(a: ArrayBufferView, b: ArrayBufferView): number;
+  hasNonFinite(a: ArrayLike<number>): boolean;
+}
+
+declare global {
+  interface Window {
+    t: InPageHelpers;
+  }
+}
+
+export function installInPageHelpers(): void {
+  window.t = {
+    async context(opts) {
+      const { core, post } = window.vpt;
+      const renderer = window.vpt.createRenderer(opts.renderer || 'eam', opts.params || {});
+      const steps = opts.post ? post.postChainFromJSON(opts.post) : [];
+      return core.RenderContext.create({ backend: opts.backend, width: opts.width, height: opts.height, renderer, post: steps });
+    },
+    scene(spec) {
+      const { core } = window.vpt;
+      return {
+        volume: spec.volume,
+        transferFunction: spec.transferFunction || core.rampTransferFunction(),
+        camera: spec.camera || core.defaultCamera(),
+        lights: [],
+        environment: spec.environment || { type: 'constant', radiance: [0, 0, 0] },
+        densityScale: spec.densityScale ?? 1,
+        seed: spec.seed ?? 1,
+      };
+    },
+    // The headless page's own raw reader (one place reads raw files in the page).
+    loadRaw(url, dims, type) {
+      return window.vpt.loadVolume({ raw: url, dims, type });
+    },
+    sameBits(a, b) {
+      const x = new Uint32Array(a.buffer, a.byteOffset, a.byteLength / 4), y = new Uint32Array(b.buffer, b.byteOffset, b.byteLength / 4);
+      if (x.length !== y.length) return -1;
+      let diff = 0;
+      for (let i = 0; i < x.length; i++) if (x[i] !== y[i]) diff++;
+      return diff;
+    },
+    hasNonFinite(a) {
+      for (let i = 0; i < a.length; i++) if (!Number.isFinite(a[i])) return true;
+      return false;
+    },
+  };
+}

@@ -4,13 +4,13 @@
  */
 import { afterAll, beforeAll } from 'vitest';
 import { openVptPage, type VptPageSession } from '../../packages/headless/src/index.js';
-import { IN_PAGE_HELPERS } from './in-page.js';
+import { installInPageHelpers } from './in-page.js';
 
 export function usePage(): () => VptPageSession {
   let session: VptPageSession | undefined;
   beforeAll(async () => {
     session = await openVptPage();
-    await session.page.evaluate(IN_PAGE_HELPERS);
+    await session.page.evaluate(installInPageHelpers);
   });
   afterAll(async () => { await session?.close(); });
   return () => {
