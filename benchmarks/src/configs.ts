@@ -4,7 +4,8 @@ export type Backend = 'webgl2' | 'webgpu';
 
 export interface RendererConfig {
   label: string;
-  renderer: 'mip' | 'eam' | 'iso' | 'mcrt';
+  /** A renderer of core's RENDERER_CATALOG. */
+  renderer: string;
   params?: Record<string, unknown>;
   /** Supports RenderContext.estimateError() (two half-accumulations). */
   halves?: boolean;
@@ -19,7 +20,7 @@ export interface SceneSpec {
   volume:
     | { kind: 'cloud' | 'head' | 'sphere' | 'blob' | 'cube' | 'ball'; size?: number; radius?: number }
     /** A raw volume served by the headless server (a fetched dataset), described by its sidecar. */
-    | { kind: 'raw'; url: string; dims: number[]; type: string; valueRange: number[]; spacing: number[] };
+    | { kind: 'raw'; url: string; dims: number[]; type: string; valueRange?: number[]; spacing: number[] };
   transferFunction: unknown;
   camera: { position: number[]; target: number[]; up: number[]; fovy: number };
   lights?: unknown[];

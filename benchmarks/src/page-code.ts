@@ -1,22 +1,43 @@
 /**
- * Code installed into the headless page (window.vpt = { core, mip, eam, post, … }).
+ * Code installed into the headless page with `page.evaluate(installBenchPage)` as
+ * `window.bench` (it uses the page's `window.vpt`: core, post, createRenderer, loadVolume).
  * Images stay in the page: only curves and timings travel back to Node.
  * Timing: every measured span ends with backend.finish() (a blocking 1-texel readback on
  * WebGL 2 — gl.finish() does not wait in Chrome — and onSubmittedWorkDone on WebGPU), and
  * read-backs for error measurement are excluded from the clock.
+ * Typed TypeScript sent by puppeteer as the function's source: it may use nothing from
+ * this module's scope (types only).
  */
-export const PAGE_CODE = String.raw`
-(() => {
+import type { VptPageApi } from '@vpt/headless';
+import type { RendererConfig, SceneSpec } from './configs.js';
+
+// Core's types as the page API exposes them (this package depends on @vpt/headless only).
+type Volume = Awaited<ReturnType<VptPageApi['loadVolume']>>;
+type Scene = Awaited<ReturnType<VptPageApi['buildScene']>>;
+type Renderer = ReturnType<VptPageApi['createRenderer']>;
+type RenderContext = Awaited<ReturnType<VptPageApi['core']['RenderContext']['create']>>;
+type VoxelType = Parameters<VptPageApi['core']['createVolume']>[1];
+
+type Vec3 = [number, number, number];
+type RawSpec = Extract<SceneSpec['volume'], { kind: 'raw' }>;
+/** A renderer configuration on one backend. */
+type PageConfig = RendererConfig & { backend: 'webgl2' | 'webgpu' };
+interface Reference { hdr: Float32Array; ldr: Uint8Array; peak: number; noiseMse: number; info: Record<string, unknown> }
+interface GpuTimer { kind: string; begin(): void; end(): void; result(): Promise<number | null>; dispose(): void }
+
+declare const window: Window & { vpt: VptPageApi };
+
+export function installBenchPage(): void {
   const vpt = window.vpt;
-  const refs = new Map();
+  const refs = new Map<string, Reference>();
 
   // A deterministic 128³-style test cloud: Gaussian blobs at positions from a fixed-seed
   // LCG, modulated by hashed value noise, about half of the box empty.
-  function cloudVolume(size, seed = 1234) {
+  function cloudVolume(size: number, seed = 1234): Volume {
     let s = seed >>> 0;
     const rnd = () => ((s = (Math.imul(s, 1664525) + 1013904223) >>> 0) / 4294967296);
     const blobs = Array.from({ length: 12 }, () => ({ c: [rnd() - 0.5, rnd() - 0.5, rnd() - 0.5].map((v) => v * 0.6), r: 0.06 + 0.12 * rnd(), w: 0.5 + 0.5 * rnd() }));
-    const hash = (x, y, z) => { let h = Math.imul(x, 374761393) ^ Math.imul(y, 668265263) ^ Math.imul(z, 2147483647) ^ seed; h = Math.imul(h ^ (h >>> 13), 1274126177); return ((h ^ (h >>> 16)) >>> 0) / 4294967296; };
+    const hash = (x: number, y: number, z: number) => { let h = Math.imul(x, 374761393) ^ Math.imul(y, 668265263) ^ Math.imul(z, 2147483647) ^ seed; h = Math.imul(h ^ (h >>> 13), 1274126177); return ((h ^ (h >>> 16)) >>> 0) / 4294967296; };
     const data = new Float32Array(size * size * size);
     for (let z = 0; z < size; z++) for (let y = 0; y < size; y++) for (let x = 0; x < size; x++) {
       const p = [(x + 0.5) / size - 0.5, (y + 0.5) / size - 0.5, (z + 0.5) / size - 0.5];
@@ -33,7 +54,7 @@ export const PAGE_CODE = String.raw`
   }
 
   // A solid ball of the given radius (box units): everything outside it is empty space.
-  function ballVolume(size, radius) {
+  function ballVolume(size: number, radius: number): Volume {
     const data = new Float32Array(size * size * size);
     for (let z = 0; z < size; z++) for (let y = 0; y < size; y++) for (let x = 0; x < size; x++) {
       const r = Math.hypot((x + 0.5) / size - 0.5, (y + 0.5) / size - 0.5, (z + 0.5) / size - 0.5);
@@ -45,49 +66,47 @@ export const PAGE_CODE = String.raw`
   }
 
 
-  const volumes = new Map();
-  const BUNDLED_HEAD = { url: '/data/mri_head_volpack_brainsmall_128x128x84_uint8.raw', dims: [128, 128, 84], type: 'uint8', spacing: [1, 1, 1] };
+  const volumes = new Map<string, Volume>();
+  const BUNDLED_HEAD: RawSpec = { kind: 'raw', url: '/data/mri_head_volpack_brainsmall_128x128x84_uint8.raw', dims: [128, 128, 84], type: 'uint8', spacing: [1, 1, 1] };
 
-  // A bundled or fetched dataset: raw voxels (x fastest, little-endian) as its sidecar describes them.
-  async function rawVolume(spec) {
-    const res = await fetch(spec.url);
-    if (!res.ok) throw new Error('cannot fetch ' + spec.url + ': HTTP ' + res.status);
-    const buf = await res.arrayBuffer();
-    const Arr = { uint8: Uint8Array, uint16: Uint16Array, int16: Int16Array, float32: Float32Array }[spec.type];
-    const vol = vpt.core.createVolume(spec.dims, spec.type, new Arr(buf), spec.spacing);
-    if (spec.valueRange) vol.valueRange = spec.valueRange;
-    return vol;
+  // A bundled or fetched dataset: raw voxels (x fastest) as its sidecar describes them, read
+  // by the headless page's one raw reader.
+  async function rawVolume(spec: RawSpec): Promise<Volume> {
+    return vpt.loadVolume({ raw: spec.url, dims: spec.dims as Vec3, type: spec.type as VoxelType, spacing: spec.spacing as Vec3, valueRange: spec.valueRange as [number, number] | undefined });
   }
 
-  async function volume(spec) {
+  async function volume(spec: SceneSpec['volume']): Promise<Volume> {
     const key = JSON.stringify(spec);
-    if (!volumes.has(key)) volumes.set(key, spec.kind === 'raw' ? await rawVolume(spec) : spec.kind === 'head' ? await rawVolume(BUNDLED_HEAD) : spec.kind === 'cloud' ? cloudVolume(spec.size) : spec.kind === 'ball' ? ballVolume(spec.size, spec.radius) : vpt.core.createProceduralVolume(spec.kind, spec.size));
-    return volumes.get(key);
+    if (!volumes.has(key)) {
+      volumes.set(key, spec.kind === 'raw' ? await rawVolume(spec) : spec.kind === 'head' ? await rawVolume(BUNDLED_HEAD) : spec.kind === 'cloud' ? cloudVolume(spec.size ?? 128)
+        : spec.kind === 'ball' ? ballVolume(spec.size ?? 64, spec.radius ?? 0.25) : vpt.core.createProceduralVolume(spec.kind, spec.size));
+    }
+    return volumes.get(key)!;
   }
 
-  async function scene(spec) {
+  async function scene(spec: SceneSpec): Promise<Scene> {
     const vol = await volume(spec.volume);
     return {
       volume: vol,
-      transferFunction: spec.transferFunction,
-      camera: spec.camera,
-      lights: spec.lights || [],
-      environment: spec.environment || { type: 'constant', radiance: [1, 1, 1] },
+      transferFunction: spec.transferFunction as Scene['transferFunction'],
+      camera: spec.camera as Scene['camera'],
+      lights: (spec.lights || []) as Scene['lights'],
+      environment: (spec.environment || { type: 'constant', radiance: [1, 1, 1] }) as Scene['environment'],
       densityScale: spec.densityScale,
       seed: spec.seed ?? 1,
     };
   }
 
-  function renderer(config) {
+  function renderer(config: PageConfig): Renderer {
     if (!vpt.renderers[config.renderer]) throw new Error('renderer ' + config.renderer + ' is not available in this build');
     return vpt.createRenderer(config.renderer, config.params || {});
   }
 
-  async function context(config, width, height) {
+  async function context(config: PageConfig, width: number, height: number): Promise<RenderContext> {
     return vpt.core.RenderContext.create({ backend: config.backend, width, height, renderer: renderer(config), post: vpt.post.postChainFromJSON([{ type: 'tonemap', operator: 'aces' }, { type: 'srgb' }]) });
   }
 
-  function errors(hdr, ldr, ref) {
+  function errors(hdr: Float32Array, ldr: Uint8Array, ref: Reference) {
     let se = 0, seL = 0, n = 0, nonFinite = 0;
     for (let i = 0; i < hdr.length; i += 4) for (let c = 0; c < 3; c++) {
       const d = hdr[i + c] - ref.hdr[i + c];
@@ -110,18 +129,19 @@ export const PAGE_CODE = String.raw`
    * compute pass writes a timestamp before the batch and another after it; the queue runs
    * submissions in order, so the difference spans the batch.
    */
-  function gpuTimer(backend) {
+  // eslint-disable-next-line @typescript-eslint/no-explicit-any -- reaches into the backends' own GL context / GPU device
+  function gpuTimer(backend: any): GpuTimer | null {
     if (backend.kind === 'webgl2') {
-      const gl = backend.canvas.getContext('webgl2');
+      const gl = backend.canvas.getContext('webgl2') as WebGL2RenderingContext | null;
       const ext = gl && gl.getExtension('EXT_disjoint_timer_query_webgl2');
       if (!ext) return null;
-      let query = null;
+      let query: WebGLQuery | null = null;
       return {
         kind: 'EXT_disjoint_timer_query_webgl2',
-        begin() { query = gl.createQuery(); gl.beginQuery(ext.TIME_ELAPSED_EXT, query); },
+        begin() { query = gl.createQuery(); gl.beginQuery(ext.TIME_ELAPSED_EXT, query!); },
         end() { gl.endQuery(ext.TIME_ELAPSED_EXT); },
         async result() {
-          const q = query; query = null;
+          const q = query!; query = null;
           for (let tries = 0; tries < 2000 && !gl.getQueryParameter(q, gl.QUERY_RESULT_AVAILABLE); tries++) await new Promise((r) => setTimeout(r, 1));
           const ok = gl.getQueryParameter(q, gl.QUERY_RESULT_AVAILABLE) && !gl.getParameter(ext.GPU_DISJOINT_EXT);
           const ns = ok ? gl.getQueryParameter(q, gl.QUERY_RESULT) : null;
@@ -131,12 +151,12 @@ export const PAGE_CODE = String.raw`
         dispose() {},
       };
     }
-    const device = backend.device;
+    const device = backend.device as GPUDevice | undefined;
     if (!device || !device.features.has('timestamp-query')) return null;
     const querySet = device.createQuerySet({ type: 'timestamp', count: 2 });
     const resolve = device.createBuffer({ size: 16, usage: GPUBufferUsage.QUERY_RESOLVE | GPUBufferUsage.COPY_SRC });
     const read = device.createBuffer({ size: 16, usage: GPUBufferUsage.MAP_READ | GPUBufferUsage.COPY_DST });
-    const stamp = (writes) => {
+    const stamp = (writes: Omit<GPUComputePassTimestampWrites, 'querySet'>) => {
       const enc = device.createCommandEncoder();
       enc.beginComputePass({ timestampWrites: { querySet, ...writes } }).end();
       return enc;
@@ -160,10 +180,10 @@ export const PAGE_CODE = String.raw`
     };
   }
 
-  window.bench = {
+  (window as unknown as { bench: unknown }).bench = {
     /** Render and keep a converged reference (HDR peak = max over RGB, for PSNR). */
-    async reference(key, config, sceneSpec, width, height, iterations) {
-      if (refs.has(key)) return refs.get(key).info;
+    async reference(key: string, config: PageConfig, sceneSpec: SceneSpec, width: number, height: number, iterations: number) {
+      if (refs.has(key)) return refs.get(key)!.info;
       const ctx = await context(config, width, height);
       ctx.setScene(await scene({ ...sceneSpec, seed: 987654 }));
       const t0 = performance.now();
@@ -182,13 +202,13 @@ export const PAGE_CODE = String.raw`
     },
 
     /** Error against wall-clock time and iterations, at doubling iteration checkpoints. */
-    async errorCurve(config, sceneSpec, width, height, refKey, maxIterations, budgetMs, withEstimate) {
-      const ref = refs.get(refKey);
+    async errorCurve(config: PageConfig, sceneSpec: SceneSpec, width: number, height: number, refKey: string, maxIterations: number, budgetMs: number, withEstimate: boolean) {
+      const ref = refs.get(refKey)!;
       const ctx = await context(config, width, height);
       ctx.setScene(await scene(sceneSpec));
       await ctx.renderIterations(1); // compile every kernel variant outside the clock
       ctx.reset();
-      const points = [];
+      const points: Record<string, number | null>[] = [];
       let clock = 0, done = 0, next = 1;
       while (done < maxIterations && clock < budgetMs) {
         const t0 = performance.now();
@@ -211,13 +231,13 @@ export const PAGE_CODE = String.raw`
      * Wall-clock samples always; GPU samples too where the backend offers a timer
      * (gpuTimer), the GPU time of the whole batch.
      */
-    async frameTime(config, sceneSpec, width, height, iterations, repeats) {
+    async frameTime(config: PageConfig, sceneSpec: SceneSpec, width: number, height: number, iterations: number, repeats: number) {
       const ctx = await context(config, width, height);
       ctx.setScene(await scene(sceneSpec));
       const tFirst = performance.now();
       await ctx.renderIterations(1); // compiles the kernels: outside the samples
       const firstMs = performance.now() - tFirst;
-      const samples = [], gpuSamples = [];
+      const samples: number[] = [], gpuSamples: number[] = [];
       const timer = gpuTimer(ctx.backend);
       for (let r = 0; r < repeats; r++) {
         ctx.reset();
@@ -237,7 +257,7 @@ export const PAGE_CODE = String.raw`
       return { samples, gpuSamples, gpuTimer: timer ? timer.kind : 'none', firstMs, device: info.renderer };
     },
 
-    backendInfo: async (backend) => {
+    backendInfo: async (backend: 'webgl2' | 'webgpu') => {
       const b = await vpt.core.createBackend({ backend });
       const info = { ...b.info, limits: b.limits };
       b.dispose();
@@ -245,5 +265,4 @@ export const PAGE_CODE = String.raw`
     },
     available: () => vpt.core.RENDERER_CATALOG.map((e) => e.name).filter((r) => vpt.renderers[r]),
   };
-})();
-`;
+}

@@ -9,7 +9,7 @@ import { fileURLToPath } from 'node:url';
 import { openVptPage, CHROMIUM_FLAGS, WEBGPU_FLAGS } from '@vpt/headless';
 import { FETCHED_SCENES, MCRT_VARIANTS, PRESETS, RENDERERS, type Backend, type SceneSpec } from './configs.js';
 import { machineRecord } from './environment.js';
-import { PAGE_CODE } from './page-code.js';
+import { installBenchPage } from './page-code.js';
 import { htmlReport, type Results } from './report.js';
 import { convergence } from './suites/convergence.js';
 import { errorVsTime } from './suites/error-vs-time.js';
@@ -51,7 +51,7 @@ const started = Date.now();
 const log = (line: string) => console.log(`[${((Date.now() - started) / 1000).toFixed(0).padStart(5)} s] ${line}`);
 const session = await openVptPage();
 try {
-  await session.page.evaluate(PAGE_CODE);
+  await session.page.evaluate(installBenchPage);
   const available = await session.page.evaluate(() => (window as unknown as { bench: { available(): string[] } }).bench.available());
   const keep = (r: { renderer: string; label: string }) => available.includes(r.renderer) && (!only || only.split(',').some((o) => r.label.startsWith(o)));
   const skipped = [...RENDERERS, ...MCRT_VARIANTS].filter((r) => !available.includes(r.renderer)).map((r) => `${r.label} (package not in this build)`);
