@@ -11,6 +11,10 @@ import { type GlLimits, acquireContext, readInfo, readLimits, requireColorBuffer
 import { ProgramCache, UNIFORM_BLOCK_BINDING } from './program-cache.js';
 import { WebGL2Pass, WebGL2RenderTarget, WebGL2Texture } from './resources.js';
 import { checkTextureData, glFormat } from './texture-formats.js';
+import {
+  checkBoundTexture, checkCanvasOutputs, checkCanvasSize, checkPassOutputs, checkReadable, checkTargetFormats, checkTargetOutputs,
+  checkTextureSize, checkUniformBytes, givenTexture, textureLabelAndDepth, type TextureSizeLimits,
+} from '../validation.js';
 
 export function createWebGL2Backend(canvas: HTMLCanvasElement | OffscreenCanvas): GpuBackend {
   return new WebGL2Backend(canvas);
@@ -68,12 +72,8 @@ class WebGL2Backend implements GpuBackend {
 
   createTexture(desc: TextureDescriptor): GpuTexture {
     this.assertNotDisposed();
-    const label = desc.label ?? `${desc.dimension} ${desc.format} texture`;
-    const depth = desc.dimension === '3d' ? desc.depth ?? 1 : 1;
-    if (desc.dimension === '2d' && desc.depth !== undefined && desc.depth !== 1) {
-      throw new RangeError(`texture "${label}": a 2D texture has depth 1, got ${desc.depth}`);
-    }
-    this.checkTextureSize(label, desc.dimension, desc.width, desc.height, depth);
+    const { label, depth } = textureLabelAndDepth(desc);
+    checkTextureSize(label, desc.dimension, desc.width, desc.height, depth, this.sizeLimits());
     if (desc.data) checkTextureData(label, desc.format, desc.width * desc.height * depth, desc.data);
     const tex = this.allocTexture(desc.dimension, desc.width, desc.height, depth, desc.format, label, desc.data ?? null);
     this.textures.add(tex);
@@ -108,11 +108,11 @@ class WebGL2Backend implements GpuBackend {
 
   createRenderTarget(width: number, height: number, formats: readonly TextureFormat[], label = 'render target'): RenderTarget {
     this.assertNotDisposed();
-    if (formats.length === 0) throw new RangeError(`render target "${label}" needs at least one format`);
+    checkTargetFormats(label, formats);
     if (formats.length > this.glLimits.maxColorAttachments) {
       throw new VptError('limit-exceeded', `Render target "${label}" has ${formats.length} colour attachments; this device allows ${this.glLimits.maxColorAttachments} (MAX_COLOR_ATTACHMENTS / MAX_DRAW_BUFFERS)`);
     }
-    this.checkTextureSize(label, '2d', width, height, 1);
+    checkTextureSize(label, '2d', width, height, 1, this.sizeLimits());
     const textures = formats.map((f, k) => this.allocTexture('2d', width, height, 1, f, `${label} [${k}]`, null));
     if (this.isLost) return new WebGL2RenderTarget(width, height, textures, label, null, this.generation);
 
@@ -147,7 +147,8 @@ class WebGL2Backend implements GpuBackend {
     if (desc.textures.length > this.glLimits.maxTextureUnits) {
       throw new VptError('limit-exceeded', `Pass "${desc.label}" reads ${desc.textures.length} textures; this device allows ${this.glLimits.maxTextureUnits} (MAX_TEXTURE_IMAGE_UNITS)`);
     }
-    if (desc.outputs.length === 0 || desc.outputs.length > this.glLimits.maxColorAttachments) {
+    checkPassOutputs(desc);
+    if (desc.outputs.length > this.glLimits.maxColorAttachments) {
       throw new VptError('limit-exceeded', `Pass "${desc.label}" writes ${desc.outputs.length} outputs; this device allows 1 to ${this.glLimits.maxColorAttachments} (MAX_DRAW_BUFFERS)`);
     }
     if (desc.uniforms.byteSize > this.glLimits.maxUniformBlockSize) {
@@ -170,7 +171,7 @@ class WebGL2Backend implements GpuBackend {
     let flipY: number;
     let targetTextures: readonly WebGL2Texture[] = [];
     if (call.target === 'canvas') {
-      if (desc.outputs.length !== 1) throw new RangeError(`pass "${desc.label}" draws to the canvas, so it must have one output, not ${desc.outputs.length}`);
+      checkCanvasOutputs(desc);
       gl.bindFramebuffer(gl.DRAW_FRAMEBUFFER, null);
       // The drawing buffer is the canvas size unless the browser had to clamp it.
       width = gl.drawingBufferWidth;
@@ -179,9 +180,7 @@ class WebGL2Backend implements GpuBackend {
     } else {
       const t = this.own(call.target, WebGL2RenderTarget, 'render target');
       this.assertCurrent(t, `render target "${t.label}"`);
-      if (t.textures.length !== desc.outputs.length || t.textures.some((tex, k) => tex.format !== desc.outputs[k])) {
-        throw new RangeError(`pass "${desc.label}" writes [${desc.outputs.join(', ')}] but render target "${t.label}" holds [${t.textures.map((x) => x.format).join(', ')}]`);
-      }
+      checkTargetOutputs(desc, t);
       gl.bindFramebuffer(gl.DRAW_FRAMEBUFFER, t.framebuffer);
       width = t.width;
       height = t.height;
@@ -196,9 +195,7 @@ class WebGL2Backend implements GpuBackend {
     gl.uniform1i(prog.flipY, flipY);
 
     if (prog.ubo) {
-      if (call.uniforms.byteLength < desc.uniforms.byteSize) {
-        throw new RangeError(`pass "${desc.label}": the uniform buffer has ${call.uniforms.byteLength} bytes, the layout needs ${desc.uniforms.byteSize}`);
-      }
+      checkUniformBytes(desc, call);
       gl.bindBuffer(gl.UNIFORM_BUFFER, prog.ubo);
       if (prog.uboSize === call.uniforms.byteLength) gl.bufferSubData(gl.UNIFORM_BUFFER, 0, call.uniforms);
       else {
@@ -209,16 +206,9 @@ class WebGL2Backend implements GpuBackend {
     }
 
     desc.textures.forEach((binding, k) => {
-      const given = call.textures[binding.name];
-      if (!given) throw new RangeError(`pass "${desc.label}" needs texture "${binding.name}"`);
-      const tex = this.own(given, WebGL2Texture, 'texture');
+      const tex = this.own(givenTexture(desc, binding, call), WebGL2Texture, 'texture');
       this.assertCurrent(tex, `texture "${tex.label}"`);
-      if (tex.dimension !== binding.dimension) {
-        throw new RangeError(`pass "${desc.label}": "${binding.name}" is a ${binding.dimension} texture, got ${tex.dimension} texture "${tex.label}"`);
-      }
-      if (targetTextures.includes(tex)) {
-        throw new RangeError(`pass "${desc.label}" reads texture "${tex.label}" while writing it (a feedback loop): ping-pong between two targets instead`);
-      }
+      checkBoundTexture(desc, binding, tex, targetTextures);
       gl.activeTexture(gl.TEXTURE0 + k);
       gl.bindTexture(tex.dimension === '3d' ? gl.TEXTURE_3D : gl.TEXTURE_2D, tex.handle);
     });
@@ -232,7 +222,7 @@ class WebGL2Backend implements GpuBackend {
   async readTexture(texture: GpuTexture): Promise<Float32Array | Uint8Array> {
     this.assertNotDisposed();
     const tex = this.own(texture, WebGL2Texture, 'texture');
-    if (tex.dimension !== '2d') throw new RangeError(`readTexture reads 2D textures only; "${tex.label}" is 3D`);
+    checkReadable(tex);
     if (this.isLost) throw new VptError('context-lost', `Cannot read texture "${tex.label}": the WebGL context is lost`);
     this.assertCurrent(tex, `texture "${tex.label}"`);
     const gl = this.gl;
@@ -284,9 +274,7 @@ class WebGL2Backend implements GpuBackend {
 
   resizeCanvas(width: number, height: number): void {
     this.assertNotDisposed();
-    if (!Number.isInteger(width) || !Number.isInteger(height) || width < 1 || height < 1) {
-      throw new RangeError(`canvas size must be positive integers, got ${width}x${height}`);
-    }
+    checkCanvasSize(width, height);
     if (this.canvas.width !== width) this.canvas.width = width;
     if (this.canvas.height !== height) this.canvas.height = height;
   }
@@ -441,22 +429,10 @@ class WebGL2Backend implements GpuBackend {
     return new WebGL2Texture(dimension, width, height, depth, format, label, handle, this.generation);
   }
 
-  private checkTextureSize(label: string, dimension: '2d' | '3d', width: number, height: number, depth: number): void {
-    for (const [name, v] of [['width', width], ['height', height], ['depth', depth]] as const) {
-      if (!Number.isInteger(v) || v < 1) throw new RangeError(`texture "${label}": ${name} must be a positive integer, got ${v}`);
-    }
-    if (dimension === '3d') {
-      const max = this.glLimits.maxTextureDimension3D;
-      if (width > max || height > max || depth > max) {
-        throw new VptError('limit-exceeded', `3D texture "${label}" is ${width}x${height}x${depth}, but this device's MAX_3D_TEXTURE_SIZE is ${max}`);
-      }
-    } else {
-      const max = this.glLimits.maxTextureDimension2D;
-      if (width > max || height > max) {
-        throw new VptError('limit-exceeded', `2D texture "${label}" is ${width}x${height}, but this device's MAX_TEXTURE_SIZE is ${max}`);
-      }
-    }
+  private sizeLimits(): TextureSizeLimits {
+    return { max2D: this.glLimits.maxTextureDimension2D, max3D: this.glLimits.maxTextureDimension3D, name2D: 'MAX_TEXTURE_SIZE', name3D: 'MAX_3D_TEXTURE_SIZE' };
   }
+
 
   private deleteTexture(tex: WebGL2Texture): void {
     // Objects of an older generation died with the lost context.

@@ -16,6 +16,10 @@ import type {
 import { DeferredErrors } from './deferred-errors.js';
 import { type GpuDeviceHandle, requestGpuDevice } from './device-setup.js';
 import { checkTextureData, colorAttachmentBytesPerSample, formatInfo, textureUsage } from './formats.js';
+import {
+  checkBoundTexture, checkCanvasOutputs, checkCanvasSize, checkPassOutputs, checkReadable, checkTargetFormats, checkTargetOutputs,
+  checkTextureSize, checkUniformBytes, givenTexture, textureLabelAndDepth, type TextureSizeLimits,
+} from '../validation.js';
 import { PipelineCache } from './pipeline-cache.js';
 import { submitReadback, unpackReadback } from './readback.js';
 import { WebGPUPass, WebGPURenderTarget, WebGPUTexture } from './resources.js';
@@ -99,13 +103,9 @@ class WebGPUBackend implements GpuBackend {
 
   createTexture(desc: TextureDescriptor): GpuTexture {
     this.assertNotDisposed();
-    const label = desc.label ?? `${desc.dimension} ${desc.format} texture`;
-    const depth = desc.dimension === '3d' ? desc.depth ?? 1 : 1;
-    if (desc.dimension === '2d' && desc.depth !== undefined && desc.depth !== 1) {
-      throw new RangeError(`texture "${label}": a 2D texture has depth 1, got ${desc.depth}`);
-    }
+    const { label, depth } = textureLabelAndDepth(desc);
     formatInfo(desc.format);
-    this.checkTextureSize(label, desc.dimension, desc.width, desc.height, depth);
+    checkTextureSize(label, desc.dimension, desc.width, desc.height, depth, this.sizeLimits());
     if (desc.data) checkTextureData(label, desc.format, desc.width * desc.height * depth, desc.data);
     const tex = this.allocTexture(desc.dimension, desc.width, desc.height, depth, desc.format, label);
     if (desc.data && tex.handle) this.upload(tex, desc.data);
@@ -134,10 +134,10 @@ class WebGPUBackend implements GpuBackend {
 
   createRenderTarget(width: number, height: number, formats: readonly TextureFormat[], label = 'render target'): RenderTarget {
     this.assertNotDisposed();
-    if (formats.length === 0) throw new RangeError(`render target "${label}" needs at least one format`);
+    checkTargetFormats(label, formats);
     formats.forEach((f) => formatInfo(f));
     this.checkColorAttachments(`Render target "${label}"`, formats);
-    this.checkTextureSize(label, '2d', width, height, 1);
+    checkTextureSize(label, '2d', width, height, 1, this.sizeLimits());
     const textures = formats.map((f, k) => this.allocTexture('2d', width, height, 1, f, `${label} [${k}]`));
     const target = new WebGPURenderTarget(width, height, textures, label, this.generation);
     this.targets.add(target);
@@ -159,7 +159,7 @@ class WebGPUBackend implements GpuBackend {
     if (desc.textures.length > limits.maxSampledTexturesPerShaderStage) {
       throw new VptError('limit-exceeded', `Pass "${desc.label}" reads ${desc.textures.length} textures; this device allows ${limits.maxSampledTexturesPerShaderStage} (maxSampledTexturesPerShaderStage)`);
     }
-    if (desc.outputs.length === 0) throw new RangeError(`pass "${desc.label}" has no outputs`);
+    checkPassOutputs(desc);
     desc.outputs.forEach((f) => formatInfo(f));
     this.checkColorAttachments(`Pass "${desc.label}"`, desc.outputs);
     if (desc.uniforms.byteSize > limits.maxUniformBufferBindingSize) {
@@ -179,9 +179,7 @@ class WebGPUBackend implements GpuBackend {
     if (entry.error) throw entry.error;
     const { device, pipelines, uniforms, errors } = this.state;
 
-    if (call.uniforms.byteLength < desc.uniforms.byteSize) {
-      throw new RangeError(`pass "${desc.label}": the uniform buffer has ${call.uniforms.byteLength} bytes, the layout needs ${desc.uniforms.byteSize}`);
-    }
+    checkUniformBytes(desc, call);
 
     let width: number;
     let height: number;
@@ -189,9 +187,7 @@ class WebGPUBackend implements GpuBackend {
     let pipeline: GPURenderPipeline;
     let targetTextures: readonly WebGPUTexture[] = [];
     if (call.target === 'canvas') {
-      if (desc.outputs.length !== 1 || desc.outputs[0] !== 'rgba8unorm') {
-        throw new RangeError(`pass "${desc.label}" draws to the canvas, so it must have one rgba8unorm output, not [${desc.outputs.join(', ')}]`);
-      }
+      checkCanvasOutputs(desc);
       const current = this.context.getCurrentTexture();
       width = current.width;
       height = current.height;
@@ -201,9 +197,7 @@ class WebGPUBackend implements GpuBackend {
     } else {
       const t = this.own(call.target, WebGPURenderTarget, 'render target');
       this.assertCurrent(t, `render target "${t.label}"`);
-      if (t.textures.length !== desc.outputs.length || t.textures.some((tex, k) => tex.format !== desc.outputs[k])) {
-        throw new RangeError(`pass "${desc.label}" writes [${desc.outputs.join(', ')}] but render target "${t.label}" holds [${t.textures.map((x) => x.format).join(', ')}]`);
-      }
+      checkTargetOutputs(desc, t);
       width = t.width;
       height = t.height;
       views = t.textures.map((tex) => tex.view());
@@ -212,16 +206,9 @@ class WebGPUBackend implements GpuBackend {
     }
 
     const textureEntries: GPUBindGroupEntry[] = desc.textures.map((binding, k) => {
-      const given = call.textures[binding.name];
-      if (!given) throw new RangeError(`pass "${desc.label}" needs texture "${binding.name}"`);
-      const tex = this.own(given, WebGPUTexture, 'texture');
+      const tex = this.own(givenTexture(desc, binding, call), WebGPUTexture, 'texture');
       this.assertCurrent(tex, `texture "${tex.label}"`);
-      if (tex.dimension !== binding.dimension) {
-        throw new RangeError(`pass "${desc.label}": "${binding.name}" is a ${binding.dimension} texture, got ${tex.dimension} texture "${tex.label}"`);
-      }
-      if (targetTextures.includes(tex)) {
-        throw new RangeError(`pass "${desc.label}" reads texture "${tex.label}" while writing it (a feedback loop): ping-pong between two targets instead`);
-      }
+      checkBoundTexture(desc, binding, tex, targetTextures);
       if (!tex.handle) throw new RangeError(`pass "${desc.label}": texture "${tex.label}" was destroyed`);
       return { binding: 1 + k, resource: tex.view() };
     });
@@ -271,7 +258,7 @@ class WebGPUBackend implements GpuBackend {
   async readTexture(texture: GpuTexture): Promise<Float32Array | Uint8Array> {
     this.assertNotDisposed();
     const tex = this.own(texture, WebGPUTexture, 'texture');
-    if (tex.dimension !== '2d') throw new RangeError(`readTexture reads 2D textures only; "${tex.label}" is 3D`);
+    checkReadable(tex);
     if (this.lost) throw new VptError('context-lost', `Cannot read texture "${tex.label}": the WebGPU device is lost`);
     this.assertCurrent(tex, `texture "${tex.label}"`);
     if (!tex.handle) throw new RangeError(`readTexture: texture "${tex.label}" was destroyed`);
@@ -304,9 +291,7 @@ class WebGPUBackend implements GpuBackend {
 
   resizeCanvas(width: number, height: number): void {
     this.assertNotDisposed();
-    if (!Number.isInteger(width) || !Number.isInteger(height) || width < 1 || height < 1) {
-      throw new RangeError(`canvas size must be positive integers, got ${width}x${height}`);
-    }
+    checkCanvasSize(width, height);
     // The configured context picks up the new size at the next getCurrentTexture().
     if (this.canvas.width !== width) this.canvas.width = width;
     if (this.canvas.height !== height) this.canvas.height = height;
@@ -442,24 +427,11 @@ class WebGPUBackend implements GpuBackend {
     this.state.device.queue.writeTexture({ texture: tex.handle }, view, { bytesPerRow, rowsPerImage: tex.height }, [tex.width, tex.height, tex.depth]);
   }
 
-  /** Sizes are checked against the device before createTexture, which would only report a validation error later. */
-  private checkTextureSize(label: string, dimension: '2d' | '3d', width: number, height: number, depth: number): void {
-    for (const [name, v] of [['width', width], ['height', height], ['depth', depth]] as const) {
-      if (!Number.isInteger(v) || v < 1) throw new RangeError(`texture "${label}": ${name} must be a positive integer, got ${v}`);
-    }
+  private sizeLimits(): TextureSizeLimits {
     const limits = this.state.device.limits;
-    if (dimension === '3d') {
-      const max = limits.maxTextureDimension3D;
-      if (width > max || height > max || depth > max) {
-        throw new VptError('limit-exceeded', `3D texture "${label}" is ${width}x${height}x${depth}, but this device's maxTextureDimension3D is ${max}`);
-      }
-    } else {
-      const max = limits.maxTextureDimension2D;
-      if (width > max || height > max) {
-        throw new VptError('limit-exceeded', `2D texture "${label}" is ${width}x${height}, but this device's maxTextureDimension2D is ${max}`);
-      }
-    }
+    return { max2D: limits.maxTextureDimension2D, max3D: limits.maxTextureDimension3D, name2D: 'maxTextureDimension2D', name3D: 'maxTextureDimension3D' };
   }
+
 
   private checkColorAttachments(what: string, formats: readonly TextureFormat[]): void {
     const limits = this.state.device.limits;
