@@ -2,12 +2,10 @@ import { VptError } from '../errors.js';
 import { createBackend } from '../gpu/create-backend.js';
 import type { BackendPreference, GpuBackend, GpuPass, GpuTexture, RenderTarget } from '../gpu/backend.js';
 import type { PostStep } from '../post-step.js';
-import type { AuxiliaryPass, AuxiliaryTexture, Renderer } from '../renderer.js';
+import type { Renderer } from '../renderer.js';
 import type { Scene } from '../scene/scene.js';
 import { validateScene } from '../scene/scene.js';
-import { rasterizeTransferFunction, TF_RESOLUTION, transferFunctionSize } from '../scene/transfer-function.js';
-import { normalizedData } from '../scene/volume.js';
-import { buildGradientVolume, destroyGradientVolume, type GradientVolume } from '../gradient/gradient-volume.js';
+import { TF_RESOLUTION } from '../scene/transfer-function.js';
 import { commonChunks, PASS_CHUNKS, type CommonChunkOptions } from '../shaders/common.js';
 import { preprocess } from '../shaders/preprocess.js';
 import { SCENE_UNIFORM_FIELDS, sceneUniformValues } from '../shaders/scene-uniforms.js';
@@ -15,6 +13,7 @@ import { sliceAtlasLayout } from '../shaders/slice-atlas.js';
 import { UniformLayout } from '../uniforms/layout.js';
 import { PRESENT_PASS } from './present-pass.js';
 import { ProgressiveLoop } from './progressive-loop.js';
+import { SceneResources } from './scene-resources.js';
 
 export interface RenderContextOptions {
   backend?: BackendPreference;
@@ -54,17 +53,8 @@ export class RenderContext {
   private postPasses: GpuPass[] = [];
   private presentPass: GpuPass | null = null;
 
-  private volumeTexture: GpuTexture | null = null;
-  private volumeSource: Scene['volume'] | null = null;
-  private tfTexture: GpuTexture | null = null;
-  private tfSource: string | null = null;
-  // The volume's gradient magnitude (gradient/), built on the GPU the first time a 2D TF or
-  // a renderer with needsGradient asks for it, kept until the volume changes.
-  private gradient: GradientVolume | null = null;
-  private gradientSource: Scene['volume'] | null = null;
-  // Renderer-declared textures by name; `target` is set for GPU-made ones (AuxiliaryPass).
-  private auxTextures = new Map<string, AuxEntry>();
-  private auxFor: { scene: Scene | null; renderer: Renderer | null; version: number } = { scene: null, renderer: null, version: -1 };
+  // Volume, transfer function, gradient and auxiliary textures, with their lifetimes.
+  private readonly resources: SceneResources;
   private frame: RenderTarget | null = null;
   private accum: [RenderTarget, RenderTarget] | null = null;
   private hdr: RenderTarget | null = null;
@@ -85,6 +75,7 @@ export class RenderContext {
   private constructor(backend: GpuBackend, opts: RenderContextOptions) {
     this.backend = backend;
     this._renderer = opts.renderer;
+    this.resources = new SceneResources(backend, () => ({ scene: this.scene, renderer: this._renderer }));
     this._post = opts.post ?? [];
     checkSize(opts.width, opts.height, backend);
     this.width = opts.width;
@@ -144,7 +135,7 @@ export class RenderContext {
       }
     }
     this.scene = scene;
-    this.syncSceneResources();
+    this.resources.sync();
     this.reset();
   }
 
@@ -193,12 +184,12 @@ export class RenderContext {
     this.prepare();
     const scene = this.scene;
     const passes = this.passes!;
-    const textures: Record<string, GpuTexture> = { volume: this.volumeTexture!, transferFunction: this.tfTexture! };
-    if (this.gradient && this.wantsGradient(scene)) {
-      textures.gradientMagnitude = this.gradient.atlas.textures[0];
-      textures.gradientMax = this.gradient.max.textures[0];
+    const textures: Record<string, GpuTexture> = { volume: this.resources.volumeTexture!, transferFunction: this.resources.tfTexture! };
+    if (this.resources.gradient && this.wantsGradient(scene)) {
+      textures.gradientMagnitude = this.resources.gradient.atlas.textures[0];
+      textures.gradientMax = this.resources.gradient.max.textures[0];
     }
-    for (const [name, aux] of this.auxTextures) if (aux.bind) textures[name] = aux.texture;
+    for (const [name, aux] of this.resources.auxTextures) if (aux.bind) textures[name] = aux.texture;
     for (let k = 0; k < n; k++) {
       const uniforms = this.uniforms(scene);
       this.backend.draw(passes.generate, { uniforms, textures, target: this.frame! });
@@ -291,8 +282,8 @@ export class RenderContext {
   async readAuxiliaryTexture(name: string): Promise<Float32Array> {
     this.assertAlive();
     if (!this.scene) throw new VptError('invalid-scene', 'readAuxiliaryTexture() before setScene()');
-    this.syncAuxiliaryTextures();
-    const aux = this.auxTextures.get(name);
+    this.resources.syncAuxiliaryTextures();
+    const aux = this.resources.auxTextures.get(name);
     if (!aux) throw new RangeError(`the renderer has no auxiliary texture "${name}" for this scene`);
     return (await this.backend.readTexture(aux.texture)) as Float32Array;
   }
@@ -306,12 +297,7 @@ export class RenderContext {
   async readGradientVolume(): Promise<{ magnitudes: Float32Array; max: number }> {
     this.assertAlive();
     if (!this.scene) throw new VptError('invalid-scene', 'readGradientVolume() before setScene()');
-    if (!this.gradient || this.gradientSource !== this.scene.volume) {
-      this.dropGradient();
-      this.gradient = buildGradientVolume(this.backend, this.volumeTexture!, this.scene.volume);
-      this.gradientSource = this.scene.volume;
-    }
-    const g = this.gradient;
+    const g = this.resources.ensureGradient();
     const [atlas, max] = await Promise.all([this.backend.readTexture(g.atlas.textures[0]), this.backend.readTexture(g.max.textures[0])]) as Float32Array[];
     const [nx, ny, nz] = this.scene.volume.dims;
     const magnitudes = new Float32Array(nx * ny * nz);
@@ -385,51 +371,9 @@ export class RenderContext {
     });
   }
 
-  /** Upload the volume and transfer function when they changed (by identity / content). */
-  private syncSceneResources(): void {
-    const scene = this.scene!;
-    if (this.volumeSource !== scene.volume || !this.volumeTexture) {
-      if (this.volumeTexture) this.backend.destroyTexture(this.volumeTexture);
-      this.volumeTexture = null;
-      this.dropGradient();
-      const [width, height, depth] = scene.volume.dims;
-      this.volumeTexture = this.backend.createTexture({ dimension: '3d', width, height, depth, format: 'r32float', data: normalizedData(scene.volume), label: 'volume' });
-      this.volumeSource = scene.volume;
-    }
-    const tfKey = JSON.stringify(scene.transferFunction);
-    if (this.tfSource !== tfKey || !this.tfTexture) {
-      const data = rasterizeTransferFunction(scene.transferFunction, TF_RESOLUTION);
-      const [width, height] = transferFunctionSize(scene.transferFunction, TF_RESOLUTION);
-      if (this.tfTexture && (this.tfTexture.width !== width || this.tfTexture.height !== height)) {
-        this.backend.destroyTexture(this.tfTexture);
-        this.tfTexture = null;
-      }
-      if (this.tfTexture) this.backend.writeTexture(this.tfTexture, data);
-      else this.tfTexture = this.backend.createTexture({ dimension: '2d', width, height, format: 'rgba32float', data, label: 'transfer function' });
-      this.tfSource = tfKey;
-    }
-    this.syncGradient();
-  }
-
   /** A 2D transfer function reads the gradient magnitude, and so does a renderer that asks for it. */
   private wantsGradient(scene: Scene): boolean {
-    return scene.transferFunction.dimensions === '2d' || this._renderer.needsGradient === true;
-  }
-
-  /** Build the gradient-magnitude volume when the scene first needs it (GPU passes, no read-back). */
-  private syncGradient(): void {
-    const scene = this.scene!;
-    if (!this.wantsGradient(scene) || !this.volumeTexture || this.backend.isLost) return;
-    if (this.gradient && this.gradientSource === scene.volume) return;
-    this.dropGradient();
-    this.gradient = buildGradientVolume(this.backend, this.volumeTexture, scene.volume);
-    this.gradientSource = scene.volume;
-  }
-
-  private dropGradient(): void {
-    if (this.gradient) destroyGradientVolume(this.backend, this.gradient);
-    this.gradient = null;
-    this.gradientSource = null;
+    return this.resources.wantsGradient(scene);
   }
 
   /** Which shared chunks (and defines) the generate pass needs for this scene. */
@@ -448,9 +392,9 @@ export class RenderContext {
       this.rendererVersion = r.version;
       this.reset();
     }
-    this.syncGradient();
-    this.syncAuxiliaryTextures();
-    const auxBindings = [...this.auxTextures].filter(([, a]) => a.bind).map(([name, a]) => ({ name, dimension: a.dimension }));
+    this.resources.syncGradient();
+    this.resources.syncAuxiliaryTextures();
+    const auxBindings = [...this.resources.auxTextures].filter(([, a]) => a.bind).map(([name, a]) => ({ name, dimension: a.dimension }));
     const gradientBindings = chunks.gradient ? [{ name: 'gradientMagnitude', dimension: '2d' as const }, { name: 'gradientMax', dimension: '2d' as const }] : [];
     const key = `${r.name}|${JSON.stringify(features)}|${auxBindings.map((b) => b.name).join(',')}`;
     if (!this.passes || key !== this.variantKey) {
@@ -486,49 +430,6 @@ export class RenderContext {
       ];
       this.hdr = this.backend.createRenderTarget(this.width, this.height, ['rgba32float'], 'HDR render');
     }
-  }
-
-  /** Build, reuse or free the renderer's auxiliary textures (only when scene or renderer changed). */
-  private syncAuxiliaryTextures(): void {
-    const r = this._renderer;
-    if (this.auxFor.scene === this.scene && this.auxFor.renderer === r && this.auxFor.version === r.version) return;
-    const specs: readonly AuxiliaryTexture[] = r.auxiliaryTextures?.(this.scene!) ?? [];
-    const wanted = new Set(specs.map((a) => a.name));
-    for (const [name, aux] of this.auxTextures) {
-      if (!wanted.has(name)) { this.releaseAux(aux); this.auxTextures.delete(name); }
-    }
-    for (const spec of specs) {
-      const have = this.auxTextures.get(spec.name);
-      if (have && have.key === spec.key) continue;
-      if (have) { this.releaseAux(have); this.auxTextures.delete(spec.name); }
-      this.auxTextures.set(spec.name, spec.render ? this.renderAux(spec, spec.render) : { key: spec.key, texture: this.backend.createTexture(this.auxDescriptor(spec)), dimension: spec.dimension, bind: spec.bind !== false });
-    }
-    this.auxFor = { scene: this.scene, renderer: r, version: r.version };
-  }
-
-  private auxDescriptor(spec: AuxiliaryTexture) {
-    if (!spec.create) throw new RangeError(`auxiliary texture "${spec.name}" has neither create() nor render`);
-    return spec.create();
-  }
-
-  /** Run an AuxiliaryPass into a new 2D target, reading the scene's textures and earlier auxiliary ones. */
-  private renderAux(spec: AuxiliaryTexture, p: AuxiliaryPass): AuxEntry {
-    if (spec.dimension !== '2d') throw new RangeError(`auxiliary texture "${spec.name}": a GPU-made texture is 2D`);
-    const textures: Record<string, GpuTexture> = {};
-    for (const b of p.inputs) {
-      const t = b.name === 'volume' ? this.volumeTexture : b.name === 'transferFunction' ? this.tfTexture : this.auxTextures.get(b.name)?.texture;
-      if (!t) throw new RangeError(`auxiliary pass "${p.label}" reads "${b.name}", which is not the volume, the transfer function or an earlier auxiliary texture`);
-      textures[b.name] = t;
-    }
-    const pass = this.backend.createPass({ label: p.label, glsl: p.glsl, wgsl: p.wgsl, uniforms: p.uniforms, textures: p.inputs, outputs: [p.format] });
-    const target = this.backend.createRenderTarget(p.width, p.height, [p.format], p.label);
-    this.backend.draw(pass, { uniforms: p.uniforms.pack(p.values), textures, target });
-    return { key: spec.key, texture: target.textures[0], dimension: '2d', target, bind: spec.bind !== false };
-  }
-
-  private releaseAux(aux: AuxEntry): void {
-    if (aux.target) this.backend.destroyRenderTarget(aux.target);
-    else this.backend.destroyTexture(aux.texture);
   }
 
   private preparePost(): void {
@@ -573,14 +474,7 @@ export class RenderContext {
   private releaseGpuResources(): void {
     this.destroyRendererTargets();
     this.destroyPostTargets();
-    if (this.volumeTexture) this.backend.destroyTexture(this.volumeTexture);
-    if (this.tfTexture) this.backend.destroyTexture(this.tfTexture);
-    this.volumeTexture = null;
-    this.tfTexture = null;
-    this.dropGradient();
-    this.auxTextures.forEach((a) => this.releaseAux(a));
-    this.auxTextures.clear();
-    this.auxFor = { scene: null, renderer: null, version: -1 };
+    this.resources.release();
   }
 
   /** After a context/device loss: every GPU object is gone; rebuild from the retained scene and continue. */
@@ -589,25 +483,13 @@ export class RenderContext {
     // The old handles belong to the lost context: forget them without calling destroy.
     this.frame = null; this.accum = null; this.hdr = null;
     this.postTargets = []; this.postPasses = []; this.presentPass = null;
-    this.volumeTexture = null; this.volumeSource = null; this.tfTexture = null; this.tfSource = null;
-    this.gradient = null; this.gradientSource = null;
+    this.resources.forget();
     this.passes = null; this.variantKey = ''; this.presentedVersion = -1;
-    this.auxTextures.clear(); this.auxFor = { scene: null, renderer: null, version: -1 };
     this.backend.resizeCanvas(this.width, this.height);
-    if (this.scene) this.syncSceneResources();
+    if (this.scene) this.resources.sync();
     this.reset();
     this.loop.resume();
   }
-}
-
-interface AuxEntry {
-  key: string;
-  texture: GpuTexture;
-  dimension: '2d' | '3d';
-  /** Bound to the generate pass (AuxiliaryTexture.bind). */
-  bind: boolean;
-  /** The render target a GPU-made texture lives in (destroyed with it). */
-  target?: RenderTarget;
 }
 
 function checkSize(width: number, height: number, backend: GpuBackend): void {
