@@ -129,7 +129,7 @@ export function installBenchPage(): void {
    * compute pass writes a timestamp before the batch and another after it; the queue runs
    * submissions in order, so the difference spans the batch.
    */
-  // eslint-disable-next-line @typescript-eslint/no-explicit-any -- reaches into the backends' own GL context / GPU device
+  // `any`: reaches into the backends' own GL context / GPU device.
   function gpuTimer(backend: any): GpuTimer | null {
     if (backend.kind === 'webgl2') {
       const gl = backend.canvas.getContext('webgl2') as WebGL2RenderingContext | null;
