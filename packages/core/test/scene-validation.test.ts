@@ -1,28 +1,11 @@
 import { describe, expect, it } from 'vitest';
-import { createProceduralVolume, defaultCamera, isVptError, rampTransferFunction, validateScene, volumeBox, normalizedData, createVolume, type Scene } from '../src/index.js';
+import { expectVptError, testScene } from '../../../tests/helpers/test-scene.js';
+import { defaultCamera, validateScene, volumeBox, normalizedData, createVolume, type Scene } from '../src/index.js';
 
-function scene(overrides: Partial<Scene> = {}): Scene {
-  return {
-    volume: createProceduralVolume('blob', 8),
-    transferFunction: rampTransferFunction(),
-    camera: defaultCamera(),
-    lights: [],
-    environment: { type: 'constant', radiance: [1, 1, 1] },
-    densityScale: 1,
-    seed: 0,
-    ...overrides,
-  };
-}
+const scene = testScene;
 
 function expectInvalid(s: Scene, pattern: RegExp): void {
-  try {
-    validateScene(s);
-  } catch (e) {
-    expect(isVptError(e, 'invalid-scene')).toBe(true);
-    expect((e as Error).message).toMatch(pattern);
-    return;
-  }
-  throw new Error('expected validateScene to throw');
+  expectVptError(() => validateScene(s), 'invalid-scene', pattern);
 }
 
 describe('scene validation', () => {

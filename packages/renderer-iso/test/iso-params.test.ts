@@ -1,29 +1,12 @@
 import { describe, expect, it } from 'vitest';
-import { createProceduralVolume, defaultCamera, isVptError, preprocess, rampTransferFunction, type Scene } from '@vpt/core';
+import { expectVptError, testScene } from '../../../tests/helpers/test-scene.js';
+import { createProceduralVolume, isVptError, preprocess, type Scene } from '@vpt/core';
 import { IsoRenderer, resolveIsoParams, type IsoParams } from '../src/index.js';
 
-function scene(overrides: Partial<Scene> = {}): Scene {
-  return {
-    volume: createProceduralVolume('sphere', 8),
-    transferFunction: rampTransferFunction(),
-    camera: defaultCamera(),
-    lights: [],
-    environment: { type: 'constant', radiance: [1, 1, 1] },
-    densityScale: 1,
-    seed: 0,
-    ...overrides,
-  };
-}
+const scene = (overrides: Partial<Scene> = {}): Scene => testScene({ volume: createProceduralVolume('sphere', 8), ...overrides });
 
 function expectInvalid(p: IsoParams, pattern: RegExp): void {
-  try {
-    resolveIsoParams(p);
-  } catch (e) {
-    expect(isVptError(e, 'invalid-scene')).toBe(true);
-    expect((e as Error).message).toMatch(pattern);
-    return;
-  }
-  throw new Error('expected a VptError');
+  expectVptError(() => resolveIsoParams(p), 'invalid-scene', pattern);
 }
 
 describe('IsoRenderer parameters', () => {

@@ -1,14 +1,10 @@
 import { describe, expect, it } from 'vitest';
+import { testScene } from '../../../tests/helpers/test-scene.js';
 import { createProceduralVolume, isVptError, rampTransferFunction, type Scene } from '@vpt/core';
 import { computeFeatures, generateKernel, McrtRenderer, resolveParams, type McrtFeatures } from '../src/index.js';
 
-function scene(over: Partial<Scene> = {}): Scene {
-  return {
-    volume: createProceduralVolume('blob', 8), transferFunction: rampTransferFunction(),
-    camera: { position: [0, 0, 2], target: [0, 0, 0], up: [0, 1, 0], fovy: 0.8 },
-    lights: [], environment: { type: 'constant', radiance: [1, 1, 1] }, densityScale: 10, seed: 1, ...over,
-  };
-}
+const scene = (over: Partial<Scene> = {}): Scene =>
+  testScene({ camera: { position: [0, 0, 2], target: [0, 0, 0], up: [0, 1, 0], fovy: 0.8 }, densityScale: 10, seed: 1, ...over });
 
 describe('MCRT feature variants', () => {
   it('derives the flags from the scene and the parameters', () => {

@@ -1,0 +1,32 @@
+/**
+ * The shared Node-side test scene (unit tests of core and the renderers): a small blob under
+ * a white sky, the ramp transfer function, the default camera, no lights. Tests override
+ * what they exercise. (The in-page twin is `window.t.scene()` in in-page.ts.)
+ */
+import { createProceduralVolume, defaultCamera, isVptError, rampTransferFunction, type Scene, type VptErrorCode } from '@vpt/core';
+
+export function testScene(overrides: Partial<Scene> = {}): Scene {
+  return {
+    volume: createProceduralVolume('blob', 8),
+    transferFunction: rampTransferFunction(),
+    camera: defaultCamera(),
+    lights: [],
+    environment: { type: 'constant', radiance: [1, 1, 1] },
+    densityScale: 1,
+    seed: 0,
+    ...overrides,
+  };
+}
+
+/** Run `fn` and expect a VptError with `code` whose message matches `pattern`. */
+export function expectVptError(fn: () => unknown, code: VptErrorCode, pattern: RegExp): void {
+  let error: unknown;
+  try {
+    fn();
+  } catch (e) {
+    error = e;
+  }
+  if (error === undefined) throw new Error(`expected a VptError ('${code}') matching ${pattern}`);
+  if (!isVptError(error) || error.code !== code) throw new Error(`expected a VptError ('${code}'), got ${String(error)}`);
+  if (!pattern.test((error as Error).message)) throw new Error(`expected the message to match ${pattern}, got "${(error as Error).message}"`);
+}
