@@ -2,12 +2,17 @@ import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { fileURLToPath } from 'node:url';
 import type { Browser } from 'puppeteer-core';
 import { launchChromium, startStaticServer, type StaticServer } from '../packages/headless/src/index.js';
+import { backendConformance } from './helpers/backend-conformance-page.js';
+import { BACKENDS, usePage } from './helpers/session.js';
+
+const page = usePage();
 
 /**
- * The backend conformance pages (tests/pages/*.html) check each GpuBackend against
- * values computed in JS: exact uniform packing (vec3/float/mat4), MRT outputs, the
- * top-row-first pixel convention, texture formats and readback, canvas presentation,
- * limits, shader-compile errors, loss/restore and dispose. They log a line per check.
+ * The backend conformance suite checks each GpuBackend against values computed in JS:
+ * exact uniform packing (vec3/float/mat4), MRT outputs, the top-row-first pixel convention,
+ * texture formats and readback, canvas presentation, the shared validation, limits,
+ * shader-compile errors, loss/restore and dispose, a line per check; the post page checks
+ * the post steps across backends and against the CPU references.
  */
 describe('backend conformance pages', () => {
   let server: StaticServer;
@@ -33,11 +38,12 @@ describe('backend conformance pages', () => {
     return { value, log };
   }
 
-  it.each(['webgl2', 'webgpu'])('%s backend passes every check', async (kind) => {
-    const { value, log } = await run(`tests/pages/${kind}-backend.html`, 'window.__failures');
-    expect(log.filter((l) => /FAIL|pageerror/.test(l))).toEqual([]);
+  // One suite (helpers/backend-conformance-page.ts), run once per backend in the headless page.
+  it.each(BACKENDS)('%s backend passes every check', async (kind) => {
+    const { failures, log } = await page().page.evaluate(backendConformance, kind);
+    expect(log.filter((l) => /FAIL/.test(l))).toEqual([]);
     expect(log.filter((l) => /PASS/.test(l)).length).toBeGreaterThan(10);
-    expect(value).toBe(0);
+    expect(failures).toBe(0);
   });
 
   it('post steps agree between the backends and with the CPU references', async () => {
