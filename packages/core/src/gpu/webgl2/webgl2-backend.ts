@@ -12,9 +12,10 @@ import { ProgramCache, UNIFORM_BLOCK_BINDING } from './program-cache.js';
 import { WebGL2Pass, WebGL2RenderTarget, WebGL2Texture } from './resources.js';
 import { checkTextureData, glFormat } from './texture-formats.js';
 import {
-  checkBoundTexture, checkCanvasOutputs, checkCanvasSize, checkPassOutputs, checkReadable, checkTargetFormats, checkTargetOutputs,
+  checkBoundTexture, checkCanvasOutputs, checkPassOutputs, checkReadable, checkTargetFormats, checkTargetOutputs,
   checkTextureSize, checkUniformBytes, givenTexture, textureLabelAndDepth, type TextureSizeLimits,
 } from '../validation.js';
+import { BackendBase, runCallbacks } from '../backend-base.js';
 
 export function createWebGL2Backend(canvas: HTMLCanvasElement | OffscreenCanvas): GpuBackend {
   return new WebGL2Backend(canvas);
@@ -25,15 +26,12 @@ const RESTORE_TIMEOUT_MS = 10_000;
 
 interface Waiter { resolve: () => void; reject: (e: unknown) => void }
 
-class WebGL2Backend implements GpuBackend {
+class WebGL2Backend extends BackendBase implements GpuBackend {
   readonly kind = 'webgl2' as const;
   readonly info: BackendInfo;
   private readonly gl: WebGL2RenderingContext;
   private glLimits: GlLimits;
-  /** Bumped on every restore: objects from an older generation point at GL objects that no longer exist. */
-  private generation = 0;
   private lost = false;
-  private disposed = false;
   private readonly programs: ProgramCache;
   private readonly textures = new Set<WebGL2Texture>();
   private readonly targets = new Set<WebGL2RenderTarget>();
@@ -42,11 +40,10 @@ class WebGL2Backend implements GpuBackend {
   private readonly syncPixel = new Uint8Array(4);
   private vao: WebGLVertexArrayObject | null = null;
   private loseContextExt: WEBGL_lose_context | null = null;
-  private readonly lostCallbacks: Array<() => void> = [];
-  private readonly restoredCallbacks: Array<() => void> = [];
   private restoreWaiters: Waiter[] = [];
 
   constructor(readonly canvas: HTMLCanvasElement | OffscreenCanvas) {
+    super({ backend: 'WebGL 2', lossTarget: 'WebGL context' });
     const gl = acquireContext(canvas);
     if (gl.isContextLost()) throw new VptError('context-lost', 'The WebGL 2 context was lost as soon as it was created');
     requireColorBufferFloat(gl);
@@ -272,22 +269,7 @@ class WebGL2Backend implements GpuBackend {
     gl.bindFramebuffer(gl.READ_FRAMEBUFFER, null);
   }
 
-  resizeCanvas(width: number, height: number): void {
-    this.assertNotDisposed();
-    checkCanvasSize(width, height);
-    if (this.canvas.width !== width) this.canvas.width = width;
-    if (this.canvas.height !== height) this.canvas.height = height;
-  }
-
   // ——— context loss ———
-
-  onLost(callback: () => void): void {
-    this.lostCallbacks.push(callback);
-  }
-
-  onRestored(callback: () => void): void {
-    this.restoredCallbacks.push(callback);
-  }
 
   simulateLoss(restoreAfterMs = 50): Promise<void> {
     if (this.disposed) return Promise.reject(new VptError('disposed', 'This WebGL 2 backend was disposed'));
@@ -444,31 +426,5 @@ class WebGL2Backend implements GpuBackend {
     if (t.framebuffer && t.generation === this.generation && !this.isLost) this.gl.deleteFramebuffer(t.framebuffer);
     t.framebuffer = null;
     t.textures.forEach((tex) => this.deleteTexture(tex));
-  }
-
-  private own<T>(obj: unknown, cls: abstract new (...args: never[]) => T, what: string): T {
-    if (!(obj instanceof cls)) throw new TypeError(`this ${what} was not made by this WebGL 2 backend`);
-    return obj;
-  }
-
-  private assertCurrent(obj: { generation: number }, what: string): void {
-    if (obj.generation !== this.generation) {
-      throw new VptError('context-lost', `${what} was made before the WebGL context was lost; re-create it after onRestored`);
-    }
-  }
-
-  private assertNotDisposed(): void {
-    if (this.disposed) throw new VptError('disposed', 'This WebGL 2 backend was disposed');
-  }
-}
-
-/** Run owner callbacks; one that throws must not stop the others or the backend's own bookkeeping. */
-function runCallbacks(callbacks: ReadonlyArray<() => void>): void {
-  for (const cb of callbacks) {
-    try {
-      cb();
-    } catch (e) {
-      console.error('vpt: a context-loss callback threw', e);
-    }
   }
 }

@@ -17,9 +17,10 @@ import { DeferredErrors } from './deferred-errors.js';
 import { type GpuDeviceHandle, requestGpuDevice } from './device-setup.js';
 import { checkTextureData, colorAttachmentBytesPerSample, formatInfo, textureUsage } from './formats.js';
 import {
-  checkBoundTexture, checkCanvasOutputs, checkCanvasSize, checkPassOutputs, checkReadable, checkTargetFormats, checkTargetOutputs,
+  checkBoundTexture, checkCanvasOutputs, checkPassOutputs, checkReadable, checkTargetFormats, checkTargetOutputs,
   checkTextureSize, checkUniformBytes, givenTexture, textureLabelAndDepth, type TextureSizeLimits,
 } from '../validation.js';
+import { BackendBase, runCallbacks } from '../backend-base.js';
 import { PipelineCache } from './pipeline-cache.js';
 import { submitReadback, unpackReadback } from './readback.js';
 import { WebGPUPass, WebGPURenderTarget, WebGPUTexture } from './resources.js';
@@ -48,24 +49,19 @@ interface DeviceState {
   readonly errors: DeferredErrors;
 }
 
-class WebGPUBackend implements GpuBackend {
+class WebGPUBackend extends BackendBase implements GpuBackend {
   readonly kind = 'webgpu' as const;
   private currentInfo: BackendInfo;
   private state: DeviceState;
   private readonly context: GPUCanvasContext;
   private readonly canvasFormat: GPUTextureFormat;
-  /** Bumped on every restore: objects from an older generation belong to a dead device. */
-  private generation = 0;
   private lost = false;
-  private disposed = false;
   /** Set by simulateLoss(): how long the lost handler waits before asking for a new device. */
   private restoreDelayMs: number | null = null;
   private readonly textures = new Set<WebGPUTexture>();
   private readonly targets = new Set<WebGPURenderTarget>();
   /** Readback buffers awaiting mapAsync, destroyed by dispose() (which aborts the map). */
   private readonly readbacks = new Set<GPUBuffer>();
-  private readonly lostCallbacks: Array<() => void> = [];
-  private readonly restoredCallbacks: Array<() => void> = [];
   private restoreWaiters: Waiter[] = [];
 
   /**
@@ -75,6 +71,7 @@ class WebGPUBackend implements GpuBackend {
   get device(): GPUDevice { return this.state.device; }
 
   constructor(readonly canvas: HTMLCanvasElement | OffscreenCanvas, private readonly options: BackendOptions, handle: GpuDeviceHandle) {
+    super({ backend: 'WebGPU', lossTarget: 'WebGPU device' });
     const context = canvas.getContext('webgpu') as GPUCanvasContext | null;
     if (!context) {
       handle.device.destroy();
@@ -289,23 +286,7 @@ class WebGPUBackend implements GpuBackend {
     if (this.state === state && !this.lost) await state.errors.flush();
   }
 
-  resizeCanvas(width: number, height: number): void {
-    this.assertNotDisposed();
-    checkCanvasSize(width, height);
-    // The configured context picks up the new size at the next getCurrentTexture().
-    if (this.canvas.width !== width) this.canvas.width = width;
-    if (this.canvas.height !== height) this.canvas.height = height;
-  }
-
   // ——— device loss ———
-
-  onLost(callback: () => void): void {
-    this.lostCallbacks.push(callback);
-  }
-
-  onRestored(callback: () => void): void {
-    this.restoredCallbacks.push(callback);
-  }
 
   simulateLoss(restoreAfterMs = 50): Promise<void> {
     if (this.disposed) return Promise.reject(new VptError('disposed', 'This WebGPU backend was disposed'));
@@ -330,7 +311,7 @@ class WebGPUBackend implements GpuBackend {
   private handleLost(state: DeviceState, info: GPUDeviceLostInfo): void {
     if (this.disposed || state !== this.state) return;
     this.lost = true;
-    runCallbacks(this.lostCallbacks);
+    runCallbacks(this.lostCallbacks, 'device-loss');
     const delay = this.restoreDelayMs ?? 0;
     this.restoreDelayMs = null;
     if (info.reason !== 'destroyed') console.warn(`vpt: the WebGPU device was lost (${info.message}); requesting a new one`);
@@ -369,7 +350,7 @@ class WebGPUBackend implements GpuBackend {
     this.currentInfo = handle.info;
     this.state = this.attach(handle);
     this.lost = false;
-    runCallbacks(this.restoredCallbacks);
+    runCallbacks(this.restoredCallbacks, 'device-loss');
     waiters.forEach((w) => w.resolve());
   }
 
@@ -449,34 +430,8 @@ class WebGPUBackend implements GpuBackend {
     if (this.lost || this.state !== state) return new VptError('context-lost', `Reading texture "${label}" failed: the WebGPU device was lost`, { cause });
     return new VptError('context-lost', `Reading texture "${label}" failed: mapAsync was rejected`, { cause });
   }
-
-  private own<T>(obj: unknown, cls: abstract new (...args: never[]) => T, what: string): T {
-    if (!(obj instanceof cls)) throw new TypeError(`this ${what} was not made by this WebGPU backend`);
-    return obj;
-  }
-
-  private assertCurrent(obj: { generation: number }, what: string): void {
-    if (obj.generation !== this.generation) {
-      throw new VptError('context-lost', `${what} was made before the WebGPU device was lost; re-create it after onRestored`);
-    }
-  }
-
-  private assertNotDisposed(): void {
-    if (this.disposed) throw new VptError('disposed', 'This WebGPU backend was disposed');
-  }
 }
 
 function sleep(ms: number): Promise<void> {
   return new Promise((r) => setTimeout(r, ms));
-}
-
-/** Run owner callbacks; one that throws must not stop the others or the backend's own bookkeeping. */
-function runCallbacks(callbacks: ReadonlyArray<() => void>): void {
-  for (const cb of callbacks) {
-    try {
-      cb();
-    } catch (e) {
-      console.error('vpt: a device-loss callback threw', e);
-    }
-  }
 }
