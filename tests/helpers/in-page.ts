@@ -11,7 +11,8 @@ window.t = {
       : opts.renderer === 'iso' ? new iso.IsoRenderer(opts.params || {})
       : new eam.EamRenderer(opts.params || {});
     const steps = opts.post ? post.postChainFromJSON(opts.post) : [];
-    return core.RenderContext.create({ backend: opts.backend, width: opts.width, height: opts.height, renderer, post: steps });
+    // sampling: 'exact' for tests that compare with CPU twins or across backends bit for bit.
+    return core.RenderContext.create({ backend: opts.backend, width: opts.width, height: opts.height, renderer, post: steps, sampling: opts.sampling, maxGpuBytes: opts.maxGpuBytes });
   },
   scene(spec) {
     const { core } = window.vpt;
@@ -23,6 +24,7 @@ window.t = {
       environment: spec.environment || { type: 'constant', radiance: [0, 0, 0] },
       densityScale: spec.densityScale ?? 1,
       seed: spec.seed ?? 1,
+      ...(spec.sampling ? { sampling: spec.sampling } : {}),
     };
   },
   async loadRaw(url, dims, type) {

@@ -65,6 +65,10 @@ export interface SceneDescription {
   environment?: EnvironmentDescription;
   densityScale?: number;
   seed?: number;
+  /** Volume sampling: 'fast' (default; compact texture, hardware filter) or 'exact' (r32float, manual trilinear). */
+  sampling?: 'fast' | 'exact';
+  /** GPU memory budget in bytes (RenderContext's maxGpuBytes): a larger volume is downsampled, with a warning. */
+  maxGpuBytes?: number;
   /** Post chain as JSON, for `postChainFromJSON` of @vpt/post. */
   post?: Record<string, unknown>[];
   iterations?: number;
@@ -100,6 +104,8 @@ export function checkSceneDescription(d: unknown): asserts d is SceneDescription
   };
   posInt('width'); posInt('height'); posInt('iterations');
   if (s.seed !== undefined && !(Number.isInteger(s.seed) && (s.seed as number) >= 0)) bad(`"seed" must be a non-negative integer, got ${JSON.stringify(s.seed)}`);
+  if (s.sampling !== undefined && s.sampling !== 'fast' && s.sampling !== 'exact') bad(`"sampling" must be "fast" or "exact", got ${JSON.stringify(s.sampling)}`);
+  if (s.maxGpuBytes !== undefined && !(typeof s.maxGpuBytes === 'number' && s.maxGpuBytes > 0)) bad(`"maxGpuBytes" must be a positive number of bytes, got ${JSON.stringify(s.maxGpuBytes)}`);
   if (s.renderer !== undefined && !RENDERER_NAMES.includes(s.renderer as RendererName)) bad(`"renderer" must be one of ${RENDERER_NAMES.join(', ')}, got ${JSON.stringify(s.renderer)}`);
   if (s.backend !== undefined && !BACKEND_NAMES.includes(s.backend as BackendName)) bad(`"backend" must be one of ${BACKEND_NAMES.join(', ')}, got ${JSON.stringify(s.backend)}`);
   if (s.post !== undefined && !Array.isArray(s.post)) bad('"post" must be an array of steps');

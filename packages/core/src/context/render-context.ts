@@ -2,11 +2,14 @@ import { VptError } from '../errors.js';
 import { createBackend } from '../gpu/create-backend.js';
 import type { BackendPreference, GpuBackend, GpuPass, GpuTexture, RenderTarget } from '../gpu/backend.js';
 import type { PostStep } from '../post-step.js';
-import type { AuxiliaryPass, AuxiliaryTexture, Renderer } from '../renderer.js';
+import type { AuxiliaryPass, AuxiliaryTexture, Renderer, VolumeBinding } from '../renderer.js';
 import type { Scene } from '../scene/scene.js';
 import { validateScene } from '../scene/scene.js';
 import { rasterizeTransferFunction, TF_RESOLUTION, transferFunctionSize } from '../scene/transfer-function.js';
-import { normalizedData } from '../scene/volume.js';
+import { voxelCount } from '../scene/volume.js';
+import { downsampleVolume, fitFactors } from '../scene/downsample.js';
+import { BYTES_PER_TEXEL } from '../gpu/backend.js';
+import { planVolumeUpload, volumeTextureData, volumeValueMapping, type VolumeSampling, type VolumeUpload } from '../gpu/volume-format.js';
 import { gradientAtlasLayout } from '../gradient/atlas.js';
 import { buildGradientVolume, destroyGradientVolume, type GradientVolume } from '../gradient/gradient-volume.js';
 import { glslCommon, GLSL_RAY, GLSL_RNG, type CommonChunkOptions } from '../shaders/glsl-common.js';
@@ -24,7 +27,49 @@ export interface RenderContextOptions {
   height: number;
   renderer: Renderer;
   post?: PostStep[];
+  /**
+   * Volume sampling when the scene does not say (Scene.sampling): 'fast' (default; compact
+   * texture, one hardware-filtered fetch) or 'exact' (r32float, manual trilinear).
+   */
+  sampling?: VolumeSampling;
+  /** float32 volumes may be stored as r16float on the fast path (half the memory, ~3 significant digits). Default false. */
+  allowHalfFloatVolumes?: boolean;
+  /**
+   * GPU memory budget in bytes for everything the context allocates. A volume that does not
+   * fit (with its gradient volume, the render targets and the transfer function) is
+   * downsampled to the largest resolution that does, with a warning (onWarning). Default:
+   * WebGPU's maxBufferSize clamped to [1 GiB, 4 GiB]; 1 GiB where the device reports nothing
+   * (WebGL 2).
+   */
+  maxGpuBytes?: number;
 }
+
+/** GPU memory the context holds, in bytes (texture sizes × bytes per texel, as allocated). */
+export interface GpuBytes {
+  /** The volume texture. */
+  volume: number;
+  /** The gradient-magnitude atlas and its maximum, when a scene needs them. */
+  gradient: number;
+  /** The transfer function and the renderer's auxiliary textures (majorant grid, environment…). */
+  auxiliary: number;
+  /** Frame, accumulation, HDR and post-chain targets. */
+  targets: number;
+  total: number;
+}
+
+/** Something the context changed to make a scene fit, reported through onWarning (and console.warn without a listener). */
+export interface RenderWarning {
+  code: 'volume-downsampled';
+  message: string;
+  /** Integer box-average factors per axis. */
+  factors: [number, number, number];
+  from: [number, number, number];
+  to: [number, number, number];
+}
+
+/** The default budget where the device reports nothing about its memory. */
+export const DEFAULT_GPU_BYTES = 1024 ** 3;
+const MAX_DEFAULT_GPU_BYTES = 4 * 1024 ** 3;
 
 export interface RenderStats {
   /** Iterations accumulated since the last reset. */
@@ -33,6 +78,8 @@ export interface RenderStats {
   samplesPerPixel: number;
   /** Mean wall-clock ms per iteration over the last measured batch (GPU synchronised). */
   msPerIteration: number;
+  /** GPU memory held now. */
+  gpuBytes: GpuBytes;
 }
 
 type RendererPasses = { generate: GpuPass; integrate: GpuPass; render: GpuPass };
@@ -46,7 +93,8 @@ export class RenderContext {
   readonly backend: GpuBackend;
   private _renderer: Renderer;
   private _post: PostStep[];
-  private scene: Scene | null = null;
+  private scene: Scene | null = null; // as rendered: its volume may be a downsampled copy (fitScene)
+  private input: Scene | null = null; // as given to setScene
   private width: number;
   private height: number;
   private layout!: UniformLayout;
@@ -56,12 +104,21 @@ export class RenderContext {
 
   private volumeTexture: GpuTexture | null = null;
   private volumeSource: Scene['volume'] | null = null;
+  private volumeUpload: VolumeUpload | null = null;
+  private volumeKey = 0; // bumped on every volume upload (VolumeBinding.key)
+  // The last budget fit: a scene volume → the volume actually uploaded (itself when it fits).
+  private fitted: { source: Scene['volume']; key: string; volume: Scene['volume'] } | null = null;
+  private readonly sampling: VolumeSampling;
+  private readonly allowHalfFloat: boolean;
+  readonly maxGpuBytes: number;
+  private readonly warningListeners = new Set<(w: RenderWarning) => void>();
   private tfTexture: GpuTexture | null = null;
   private tfSource: string | null = null;
   // The volume's gradient magnitude (gradient/), built on the GPU the first time a 2D TF or
   // a renderer with needsGradient asks for it, kept until the volume changes.
   private gradient: GradientVolume | null = null;
   private gradientSource: Scene['volume'] | null = null;
+  private gradientKey = '';
   // Renderer-declared textures by name; `target` is set for GPU-made ones (AuxiliaryPass).
   private auxTextures = new Map<string, AuxEntry>();
   private auxFor: { scene: Scene | null; renderer: Renderer | null; version: number } = { scene: null, renderer: null, version: -1 };
@@ -86,6 +143,11 @@ export class RenderContext {
     this.backend = backend;
     this._renderer = opts.renderer;
     this._post = opts.post ?? [];
+    this.sampling = opts.sampling ?? 'fast';
+    if (this.sampling !== 'fast' && this.sampling !== 'exact') throw new VptError('invalid-scene', `sampling must be 'fast' or 'exact', got ${JSON.stringify(opts.sampling)}`);
+    this.allowHalfFloat = opts.allowHalfFloatVolumes === true;
+    if (opts.maxGpuBytes !== undefined && !(opts.maxGpuBytes > 0)) throw new VptError('invalid-scene', `maxGpuBytes must be a positive number of bytes, got ${opts.maxGpuBytes}`);
+    this.maxGpuBytes = opts.maxGpuBytes ?? defaultGpuBytes(backend);
     checkSize(opts.width, opts.height, backend);
     this.width = opts.width;
     this.height = opts.height;
@@ -115,7 +177,26 @@ export class RenderContext {
   get size(): { width: number; height: number } { return { width: this.width, height: this.height }; }
 
   get stats(): RenderStats {
-    return { iterations: this.iteration, samplesPerPixel: this.iteration, msPerIteration: this.msPerIteration };
+    return { iterations: this.iteration, samplesPerPixel: this.iteration, msPerIteration: this.msPerIteration, gpuBytes: this.gpuBytes() };
+  }
+
+  /** Called when the context changes something to make a scene fit (a downsampled volume). */
+  onWarning(listener: (warning: RenderWarning) => void): () => void {
+    this.warningListeners.add(listener);
+    return () => this.warningListeners.delete(listener);
+  }
+
+  /** GPU memory held now, by kind (textures as allocated: width × height × depth × bytes per texel). */
+  gpuBytes(): GpuBytes {
+    const tex = (t: GpuTexture | null | undefined) => (t ? t.width * t.height * t.depth * BYTES_PER_TEXEL[t.format] : 0);
+    const target = (t: RenderTarget | null | undefined) => (t ? t.textures.reduce((a, x) => a + tex(x), 0) : 0);
+    const volume = tex(this.volumeTexture);
+    const gradient = this.gradient ? target(this.gradient.atlas) + target(this.gradient.max) : 0;
+    let auxiliary = tex(this.tfTexture);
+    for (const a of this.auxTextures.values()) auxiliary += tex(a.texture);
+    let targets = target(this.frame) + target(this.hdr) + (this.accum ? target(this.accum[0]) + target(this.accum[1]) : 0);
+    for (const t of this.postTargets) targets += target(t);
+    return { volume, gradient, auxiliary, targets, total: volume + gradient + auxiliary + targets };
   }
 
   /** Called with fresh stats after each progressive batch. */
@@ -128,14 +209,12 @@ export class RenderContext {
    * Replace the scene. The scene is validated first: an invalid scene throws
    * VptError('invalid-scene' | 'limit-exceeded') and the context keeps the previous one.
    */
-  setScene(scene: Scene): void {
+  setScene(input: Scene): void {
     this.assertAlive();
-    validateScene(scene);
+    validateScene(input);
+    const scene = this.fitScene(input);
+    this.input = input;
     const [nx, ny, nz] = scene.volume.dims;
-    const max3D = this.backend.limits.maxTextureDimension3D;
-    if (nx > max3D || ny > max3D || nz > max3D) {
-      throw new VptError('limit-exceeded', `Volume dims [${nx}, ${ny}, ${nz}] exceed this device's 3D texture limit of ${max3D} per side (maxTextureDimension3D)`);
-    }
     if (this.wantsGradient(scene)) {
       const atlas = gradientAtlasLayout(scene.volume.dims);
       const max2D = this.backend.limits.maxTextureDimension2D;
@@ -148,10 +227,53 @@ export class RenderContext {
     this.reset();
   }
 
+  /**
+   * The scene with a volume that fits the device: each side within the 3D texture limit and
+   * the whole within maxGpuBytes (volume + gradient at this scene's sampling, plus the render
+   * targets and the TF); otherwise downsampled by integer box averages (scene/downsample.ts)
+   * with a warning naming the factors. The fit is kept per source volume, so setting the same
+   * volume again neither recomputes nor warns again.
+   */
+  private fitScene(scene: Scene): Scene {
+    const sampling = scene.sampling ?? this.sampling;
+    const gradient = this.wantsGradient(scene);
+    const key = `${sampling}|${gradient}|${this.width}x${this.height}`;
+    if (this.fitted && this.fitted.source === scene.volume && this.fitted.key === key) {
+      return this.fitted.volume === scene.volume ? scene : { ...scene, volume: this.fitted.volume };
+    }
+    const upload = planVolumeUpload(scene.volume, this.backend.capabilities, { sampling, allowHalfFloat: this.allowHalfFloat });
+    const perVoxel = upload.bytesPerVoxel + (gradient ? (sampling === 'exact' ? 4 : 2) : 0);
+    const pixels = this.width * this.height;
+    const targetBytes = pixels * 16 * (this._renderer.frameFormats.length + 2 * this._renderer.accumulationFormats.length + 1 + this._post.length);
+    const budget = this.maxGpuBytes - targetBytes - TF_RESOLUTION * 16 * 256;
+    const max3D = this.backend.limits.maxTextureDimension3D;
+    const from = [...scene.volume.dims] as [number, number, number];
+    const factors = fitFactors(from, perVoxel, budget, max3D);
+    if (!factors) {
+      throw new VptError('limit-exceeded', `maxGpuBytes (${this.maxGpuBytes} bytes) leaves no room for a volume next to the ${this.width} x ${this.height} render targets`);
+    }
+    let volume = scene.volume;
+    if (factors.some((f) => f > 1)) {
+      volume = downsampleVolume(scene.volume, factors);
+      const over3D = from.some((d) => d > max3D);
+      const why = over3D
+        ? `a side exceeds this device's 3D texture limit of ${max3D} (maxTextureDimension3D)`
+        : `${voxelCount(from)} voxels x ${perVoxel} bytes exceed the GPU memory budget of ${this.maxGpuBytes} bytes (maxGpuBytes)`;
+      const warning: RenderWarning = {
+        code: 'volume-downsampled', factors, from, to: [...volume.dims] as [number, number, number],
+        message: `Volume [${from.join(', ')}] downsampled by [${factors.join(', ')}] to [${volume.dims.join(', ')}]: ${why}`,
+      };
+      if (this.warningListeners.size === 0) console.warn(`vpt: ${warning.message}`);
+      this.warningListeners.forEach((l) => l(warning));
+    }
+    this.fitted = { source: scene.volume, key, volume };
+    return volume === scene.volume ? scene : { ...scene, volume };
+  }
+
   /** Shallow-merge changes into the current scene (camera, lights, TF…) and reset. */
   updateScene(changes: Partial<Scene>): void {
-    if (!this.scene) throw new VptError('invalid-scene', 'updateScene() before setScene()');
-    this.setScene({ ...this.scene, ...changes });
+    if (!this.input) throw new VptError('invalid-scene', 'updateScene() before setScene()');
+    this.setScene({ ...this.input, ...changes });
   }
 
   getScene(): Scene | null { return this.scene; }
@@ -306,10 +428,11 @@ export class RenderContext {
   async readGradientVolume(): Promise<{ magnitudes: Float32Array; max: number }> {
     this.assertAlive();
     if (!this.scene) throw new VptError('invalid-scene', 'readGradientVolume() before setScene()');
-    if (!this.gradient || this.gradientSource !== this.scene.volume) {
+    if (!this.gradient || this.gradientSource !== this.scene.volume || this.gradientKey !== this.volumeBinding(this.scene).key) {
       this.dropGradient();
-      this.gradient = buildGradientVolume(this.backend, this.volumeTexture!, this.scene.volume);
+      this.gradient = buildGradientVolume(this.backend, this.volumeTexture!, this.scene.volume, this.gradientOptions(this.scene));
       this.gradientSource = this.scene.volume;
+      this.gradientKey = this.volumeBinding(this.scene).key;
     }
     const g = this.gradient;
     const [atlas, max] = await Promise.all([this.backend.readTexture(g.atlas.textures[0]), this.backend.readTexture(g.max.textures[0])]) as Float32Array[];
@@ -380,21 +503,43 @@ export class RenderContext {
 
   private uniforms(scene: Scene, iteration = this.iteration): ArrayBuffer {
     return this.layout.pack({
-      ...sceneUniformValues(scene, this.width, this.height, iteration, TF_RESOLUTION),
+      ...sceneUniformValues(scene, this.width, this.height, iteration, TF_RESOLUTION, this.volumeMapping(scene)),
       ...this._renderer.paramValues(scene),
     });
+  }
+
+  /** The texel → normalized value map of the uploaded volume (scene uniforms valueScale/valueOffset). */
+  private volumeMapping(scene: Scene): { valueScale: number; valueOffset: number } {
+    return volumeValueMapping(scene.volume, this.volumeUpload ?? { decodeScale: 1, decodeOffset: 0 });
+  }
+
+  /** What auxiliary passes need to read the volume texture's texels (Renderer.auxiliaryTextures). */
+  private volumeBinding(scene: Scene): VolumeBinding {
+    const m = this.volumeMapping(scene);
+    return { ...m, format: this.volumeUpload?.format ?? 'r32float', key: `${this.volumeKey}|${m.valueScale}|${m.valueOffset}` };
+  }
+
+  private samplingOf(scene: Scene): VolumeSampling {
+    return scene.sampling ?? this.sampling;
   }
 
   /** Upload the volume and transfer function when they changed (by identity / content). */
   private syncSceneResources(): void {
     const scene = this.scene!;
-    if (this.volumeSource !== scene.volume || !this.volumeTexture) {
+    const upload = planVolumeUpload(scene.volume, this.backend.capabilities, { sampling: this.samplingOf(scene), allowHalfFloat: this.allowHalfFloat });
+    const same = this.volumeUpload && this.volumeUpload.format === upload.format && this.volumeUpload.filter === upload.filter
+      && this.volumeUpload.decodeScale === upload.decodeScale && this.volumeUpload.decodeOffset === upload.decodeOffset;
+    if (this.volumeSource !== scene.volume || !this.volumeTexture || !same) {
       if (this.volumeTexture) this.backend.destroyTexture(this.volumeTexture);
       this.volumeTexture = null;
       this.dropGradient();
       const [width, height, depth] = scene.volume.dims;
-      this.volumeTexture = this.backend.createTexture({ dimension: '3d', width, height, depth, format: 'r32float', data: normalizedData(scene.volume), label: 'volume' });
+      this.volumeTexture = this.backend.createTexture({
+        dimension: '3d', width, height, depth, format: upload.format, filter: upload.filter, data: volumeTextureData(scene.volume, upload), label: 'volume',
+      });
       this.volumeSource = scene.volume;
+      this.volumeUpload = upload;
+      this.volumeKey++;
     }
     const tfKey = JSON.stringify(scene.transferFunction);
     if (this.tfSource !== tfKey || !this.tfTexture) {
@@ -420,22 +565,29 @@ export class RenderContext {
   private syncGradient(): void {
     const scene = this.scene!;
     if (!this.wantsGradient(scene) || !this.volumeTexture || this.backend.isLost) return;
-    if (this.gradient && this.gradientSource === scene.volume) return;
+    if (this.gradient && this.gradientSource === scene.volume && this.gradientKey === this.volumeBinding(scene).key) return;
     this.dropGradient();
-    this.gradient = buildGradientVolume(this.backend, this.volumeTexture, scene.volume);
+    this.gradient = buildGradientVolume(this.backend, this.volumeTexture, scene.volume, this.gradientOptions(scene));
     this.gradientSource = scene.volume;
+    this.gradientKey = this.volumeBinding(scene).key;
+  }
+
+  /** The gradient build reads texels through the scene's mapping; 16 bits on the fast path. */
+  private gradientOptions(scene: Scene) {
+    return { ...this.volumeMapping(scene), format: this.samplingOf(scene) === 'exact' ? 'r32float' as const : 'r16float' as const };
   }
 
   private dropGradient(): void {
     if (this.gradient) destroyGradientVolume(this.backend, this.gradient);
     this.gradient = null;
     this.gradientSource = null;
+    this.gradientKey = '';
   }
 
   /** Which shared chunks (and defines) the generate pass needs for this scene. */
   private chunkOptions(scene: Scene): Required<CommonChunkOptions> {
     const tf2d = scene.transferFunction.dimensions === '2d';
-    return { tf2d, gradient: this.wantsGradient(scene) };
+    return { tf2d, gradient: this.wantsGradient(scene), hardwareFilter: this.volumeUpload?.filter === 'linear' };
   }
 
   /** Compile the renderer's variant for the current scene and allocate its targets. */
@@ -452,7 +604,7 @@ export class RenderContext {
     this.syncAuxiliaryTextures();
     const auxBindings = [...this.auxTextures].filter(([, a]) => a.bind).map(([name, a]) => ({ name, dimension: a.dimension }));
     const gradientBindings = chunks.gradient ? [{ name: 'gradientMagnitude', dimension: '2d' as const }, { name: 'gradientMax', dimension: '2d' as const }] : [];
-    const key = `${r.name}|${JSON.stringify(features)}|${auxBindings.map((b) => b.name).join(',')}`;
+    const key = `${r.name}|${JSON.stringify(features)}|${auxBindings.map((b) => b.name).join(',')}|${chunks.hardwareFilter ? 'filtered' : 'exact'}`;
     if (!this.passes || key !== this.variantKey) {
       this.layout = new UniformLayout('Params', [...SCENE_UNIFORM_FIELDS, ...r.paramFields]);
       const mk = (stage: 'generate' | 'integrate' | 'render', textures: { name: string; dimension: '2d' | '3d' }[], outputs: typeof r.frameFormats) =>
@@ -468,7 +620,7 @@ export class RenderContext {
       const frameTex = r.frameFormats.map((_, i) => ({ name: `frame${i}`, dimension: '2d' as const }));
       const accTex = r.accumulationFormats.map((_, i) => ({ name: `accum${i}`, dimension: '2d' as const }));
       this.passes = {
-        generate: mk('generate', [{ name: 'volume', dimension: '3d' }, { name: 'transferFunction', dimension: '2d' }, ...gradientBindings, ...auxBindings], r.frameFormats),
+        generate: mk('generate', [{ name: 'volume', dimension: '3d', ...(chunks.hardwareFilter ? { filter: 'linear' as const } : {}) }, { name: 'transferFunction', dimension: '2d' }, ...gradientBindings, ...auxBindings], r.frameFormats),
         integrate: mk('integrate', [...frameTex, ...accTex], r.accumulationFormats),
         render: mk('render', accTex, ['rgba32float']),
       };
@@ -488,7 +640,7 @@ export class RenderContext {
   private syncAuxiliaryTextures(): void {
     const r = this._renderer;
     if (this.auxFor.scene === this.scene && this.auxFor.renderer === r && this.auxFor.version === r.version) return;
-    const specs: readonly AuxiliaryTexture[] = r.auxiliaryTextures?.(this.scene!) ?? [];
+    const specs: readonly AuxiliaryTexture[] = r.auxiliaryTextures?.(this.scene!, this.volumeBinding(this.scene!)) ?? [];
     const wanted = new Set(specs.map((a) => a.name));
     for (const [name, aux] of this.auxTextures) {
       if (!wanted.has(name)) { this.releaseAux(aux); this.auxTextures.delete(name); }
@@ -586,7 +738,8 @@ export class RenderContext {
     this.frame = null; this.accum = null; this.hdr = null;
     this.postTargets = []; this.postPasses = []; this.presentPass = null;
     this.volumeTexture = null; this.volumeSource = null; this.tfTexture = null; this.tfSource = null;
-    this.gradient = null; this.gradientSource = null;
+    this.gradient = null; this.gradientSource = null; this.gradientKey = '';
+    this.volumeUpload = null;
     this.passes = null; this.variantKey = ''; this.presentedVersion = -1;
     this.auxTextures.clear(); this.auxFor = { scene: null, renderer: null, version: -1 };
     this.backend.resizeCanvas(this.width, this.height);
@@ -610,6 +763,12 @@ interface AuxEntry {
 // which only the generate pass binds; integrate and render get the texture-free chunks.
 const GLSL_COMMON_FOR = (stage: string, o: CommonChunkOptions) => (stage === 'generate' ? glslCommon(o) : GLSL_RNG + GLSL_RAY);
 const WGSL_COMMON_FOR = (stage: string, o: CommonChunkOptions) => (stage === 'generate' ? wgslCommon(o) : WGSL_RNG + WGSL_RAY);
+
+/** maxGpuBytes when the caller gives none: WebGPU's maxBufferSize (one allocation the device admits) within [1 GiB, 4 GiB]; 1 GiB on WebGL 2, which reports no memory figure. */
+function defaultGpuBytes(backend: GpuBackend): number {
+  const m = backend.limits.maxBufferSize;
+  return m ? Math.min(MAX_DEFAULT_GPU_BYTES, Math.max(DEFAULT_GPU_BYTES, m)) : DEFAULT_GPU_BYTES;
+}
 
 function checkSize(width: number, height: number, backend: GpuBackend): void {
   const max = backend.limits.maxTextureDimension2D;

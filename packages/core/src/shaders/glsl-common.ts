@@ -57,11 +57,21 @@ vec3 jitteredCameraRay(ivec2 pixel, ivec2 size, inout uint rng) {
 }
 `;
 
-/** Cell-centred trilinear volume sample with clamp-to-edge (GL LINEAR + CLAMP_TO_EDGE, computed in full float), and the 1D TF lookup. */
-export const GLSL_VOLUME_SAMPLING = /* glsl */ `
+/**
+ * The volume value at a world point: cell-centred trilinear interpolation with clamp-to-edge
+ * (GL LINEAR + CLAMP_TO_EDGE) of the stored texels, then the value mapping of
+ * gpu/volume-format.ts, v = clamp(texel · u.valueScale + u.valueOffset, 0, 1) (value range,
+ * inversion and the format's decoding in one affine map; it commutes with the filter).
+ * `sampleVolumeTexel(p)` is the filtered texel: exact (8 texelFetches and lerps in full
+ * float, GLSL_EXACT_FILTER) or one hardware-filtered fetch (GLSL_HARDWARE_FILTER).
+ */
+const GLSL_LERP = /* glsl */ `
 float lerp1(float a, float b, float t) { return a + (b - a) * t; }
 vec4 lerp4(vec4 a, vec4 b, float t) { return a + (b - a) * t; }
-float sampleVolume(vec3 p) {
+float volumeValue(float texel) { return clamp(texel * u.valueScale + u.valueOffset, 0.0, 1.0); }
+`;
+export const GLSL_EXACT_FILTER = /* glsl */ `
+float sampleVolumeTexel(vec3 p) {
   vec3 tc = (p - u.boxMin) / (u.boxMax - u.boxMin);
   ivec3 dims = u.volumeDims.xyz;
   vec3 g = tc * vec3(dims) - 0.5;
@@ -83,6 +93,16 @@ float sampleVolume(vec3 p) {
   float c11 = lerp1(c011, c111, f.x);
   return lerp1(lerp1(c00, c10, f.y), lerp1(c01, c11, f.y), f.z);
 }
+`;
+// The texture unit's trilinear filter: texel centres at (i + ½)/n in normalized coordinates,
+// the same convention as the exact filter; the texture is LINEAR + CLAMP_TO_EDGE.
+export const GLSL_HARDWARE_FILTER = /* glsl */ `
+float sampleVolumeTexel(vec3 p) {
+  return texture(volume, (p - u.boxMin) / (u.boxMax - u.boxMin)).r;
+}
+`;
+const GLSL_SAMPLE_AND_LOOKUP = /* glsl */ `
+float sampleVolume(vec3 p) { return volumeValue(sampleVolumeTexel(p)); }
 // 1D transfer function: texel k holds value k/(N-1); linear between texels.
 vec4 transferLookup(float value) {
   float x = clamp(value, 0.0, 1.0) * float(u.tfSize - 1);
@@ -165,6 +185,11 @@ vec4 transferAt(vec3 p) {
 }
 `;
 
+/** Volume sampling (exact filter) and the TF lookup. */
+export const GLSL_VOLUME_SAMPLING = GLSL_LERP + GLSL_EXACT_FILTER + GLSL_SAMPLE_AND_LOOKUP;
+/** Volume sampling with one hardware-filtered fetch and the TF lookup. */
+export const GLSL_VOLUME_SAMPLING_FILTERED = GLSL_LERP + GLSL_HARDWARE_FILTER + GLSL_SAMPLE_AND_LOOKUP;
+
 /** Volume sampling with the 1D transferAt() (the chunk as it was before 2D transfer functions). */
 export const GLSL_VOLUME = GLSL_VOLUME_SAMPLING + GLSL_TRANSFER_1D;
 
@@ -174,6 +199,8 @@ export interface CommonChunkOptions {
   tf2d?: boolean;
   /** The gradient textures are bound: sampleGradientMagnitude() / normalizedGradientAt() exist. */
   gradient?: boolean;
+  /** The volume texture is bound with `filter: 'linear'`: sample it with one filtered fetch (volume-format.ts). */
+  hardwareFilter?: boolean;
 }
 
 /**
@@ -184,7 +211,7 @@ export interface CommonChunkOptions {
  */
 export function glslCommon(opts: CommonChunkOptions = {}): string {
   const gradient = opts.gradient || opts.tf2d;
-  return GLSL_RNG + GLSL_RAY + GLSL_ATLAS + GLSL_VOLUME_SAMPLING + (gradient ? GLSL_GRADIENT : '') + (opts.tf2d ? GLSL_TRANSFER_2D : GLSL_TRANSFER_1D);
+  return GLSL_RNG + GLSL_RAY + GLSL_ATLAS + (opts.hardwareFilter ? GLSL_VOLUME_SAMPLING_FILTERED : GLSL_VOLUME_SAMPLING) + (gradient ? GLSL_GRADIENT : '') + (opts.tf2d ? GLSL_TRANSFER_2D : GLSL_TRANSFER_1D);
 }
 
 /** The 1D variant (no gradient code), as before 2D transfer functions existed. */

@@ -52,11 +52,14 @@ fn jitteredCameraRay(pixel: vec2i, size: vec2i, rng: ptr<function, u32>) -> vec3
 }
 `;
 
-/** Cell-centred trilinear volume sample with clamp-to-edge, computed in full float, and the 1D TF lookup. */
-export const WGSL_VOLUME_SAMPLING = /* wgsl */ `
+/** Volume sampling: twins of glsl-common.ts (see there): value mapping, exact and hardware filters. */
+const WGSL_LERP = /* wgsl */ `
 fn lerp1(a: f32, b: f32, t: f32) -> f32 { return a + (b - a) * t; }
 fn lerp4(a: vec4f, b: vec4f, t: f32) -> vec4f { return a + (b - a) * t; }
-fn sampleVolume(p: vec3f) -> f32 {
+fn volumeValue(texel: f32) -> f32 { return clamp(texel * u.valueScale + u.valueOffset, 0.0, 1.0); }
+`;
+export const WGSL_EXACT_FILTER = /* wgsl */ `
+fn sampleVolumeTexel(p: vec3f) -> f32 {
   let tc = (p - u.boxMin) / (u.boxMax - u.boxMin);
   let dims = u.volumeDims.xyz;
   let g = tc * vec3f(dims) - 0.5;
@@ -78,6 +81,14 @@ fn sampleVolume(p: vec3f) -> f32 {
   let c11 = lerp1(c011, c111, f.x);
   return lerp1(lerp1(c00, c10, f.y), lerp1(c01, c11, f.y), f.z);
 }
+`;
+export const WGSL_HARDWARE_FILTER = /* wgsl */ `
+fn sampleVolumeTexel(p: vec3f) -> f32 {
+  return textureSampleLevel(volume, vptLinearSampler, (p - u.boxMin) / (u.boxMax - u.boxMin), 0.0).r;
+}
+`;
+const WGSL_SAMPLE_AND_LOOKUP = /* wgsl */ `
+fn sampleVolume(p: vec3f) -> f32 { return volumeValue(sampleVolumeTexel(p)); }
 fn transferLookup(value: f32) -> vec4f {
   let x = clamp(value, 0.0, 1.0) * f32(u.tfSize - 1);
   let x0 = floor(x);
@@ -147,13 +158,16 @@ fn transferAt(p: vec3f) -> vec4f {
 }
 `;
 
+export const WGSL_VOLUME_SAMPLING = WGSL_LERP + WGSL_EXACT_FILTER + WGSL_SAMPLE_AND_LOOKUP;
+export const WGSL_VOLUME_SAMPLING_FILTERED = WGSL_LERP + WGSL_HARDWARE_FILTER + WGSL_SAMPLE_AND_LOOKUP;
+
 /** Volume sampling with the 1D transferAt() (the chunk as it was before 2D transfer functions). */
 export const WGSL_VOLUME = WGSL_VOLUME_SAMPLING + WGSL_TRANSFER_1D;
 
 /** The shared chunks for a generate pass (twin of glslCommon in glsl-common.ts). */
 export function wgslCommon(opts: CommonChunkOptions = {}): string {
   const gradient = opts.gradient || opts.tf2d;
-  return WGSL_RNG + WGSL_RAY + WGSL_ATLAS + WGSL_VOLUME_SAMPLING + (gradient ? WGSL_GRADIENT : '') + (opts.tf2d ? WGSL_TRANSFER_2D : WGSL_TRANSFER_1D);
+  return WGSL_RNG + WGSL_RAY + WGSL_ATLAS + (opts.hardwareFilter ? WGSL_VOLUME_SAMPLING_FILTERED : WGSL_VOLUME_SAMPLING) + (gradient ? WGSL_GRADIENT : '') + (opts.tf2d ? WGSL_TRANSFER_2D : WGSL_TRANSFER_1D);
 }
 
 /** The 1D variant (no gradient code), as before 2D transfer functions existed. */

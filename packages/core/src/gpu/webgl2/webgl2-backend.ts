@@ -4,9 +4,10 @@
  */
 import { VptError } from '../../errors.js';
 import type {
-  BackendInfo, BackendLimits, DrawCall, GpuBackend, GpuPass, GpuTexture, PassDescriptor, RenderTarget,
-  TextureDescriptor, TextureFormat,
+  BackendCapabilities, BackendInfo, BackendLimits, DrawCall, GpuBackend, GpuPass, GpuTexture, PassDescriptor, RenderTarget,
+  TextureData, TextureDescriptor, TextureFormat,
 } from '../backend.js';
+import { isFilterable } from '../backend.js';
 import { type GlLimits, acquireContext, readInfo, readLimits, requireColorBufferFloat } from './context-setup.js';
 import { ProgramCache, UNIFORM_BLOCK_BINDING } from './program-cache.js';
 import { WebGL2Pass, WebGL2RenderTarget, WebGL2Texture } from './resources.js';
@@ -26,6 +27,7 @@ class WebGL2Backend implements GpuBackend {
   readonly info: BackendInfo;
   private readonly gl: WebGL2RenderingContext;
   private glLimits: GlLimits;
+  private caps: BackendCapabilities = { norm16: false, float32Filterable: false };
   /** Bumped on every restore: objects from an older generation point at GL objects that no longer exist. */
   private generation = 0;
   private lost = false;
@@ -60,6 +62,10 @@ class WebGL2Backend implements GpuBackend {
     return { maxTextureDimension2D: this.glLimits.maxTextureDimension2D, maxTextureDimension3D: this.glLimits.maxTextureDimension3D };
   }
 
+  get capabilities(): BackendCapabilities {
+    return this.caps;
+  }
+
   get isLost(): boolean {
     return this.lost || this.gl.isContextLost();
   }
@@ -75,12 +81,19 @@ class WebGL2Backend implements GpuBackend {
     }
     this.checkTextureSize(label, desc.dimension, desc.width, desc.height, depth);
     if (desc.data) checkTextureData(label, desc.format, desc.width * desc.height * depth, desc.data);
-    const tex = this.allocTexture(desc.dimension, desc.width, desc.height, depth, desc.format, label, desc.data ?? null);
+    if (desc.format === 'r16unorm' || desc.format === 'r16snorm') {
+      if (!this.caps.norm16) throw new VptError('missing-extension', `texture "${label}" is ${desc.format}, which needs EXT_texture_norm16`);
+    }
+    const linear = desc.filter === 'linear';
+    if (linear && !isFilterable(desc.format, this.caps)) {
+      throw new VptError('missing-extension', `texture "${label}" (${desc.format}) cannot be filtered here: that needs OES_texture_float_linear`);
+    }
+    const tex = this.allocTexture(desc.dimension, desc.width, desc.height, depth, desc.format, label, desc.data ?? null, linear);
     this.textures.add(tex);
     return tex;
   }
 
-  writeTexture(texture: GpuTexture, data: Float32Array | Uint8Array): void {
+  writeTexture(texture: GpuTexture, data: TextureData): void {
     this.assertNotDisposed();
     const tex = this.own(texture, WebGL2Texture, 'texture');
     checkTextureData(tex.label, tex.format, tex.width * tex.height * tex.depth, data);
@@ -113,7 +126,7 @@ class WebGL2Backend implements GpuBackend {
       throw new VptError('limit-exceeded', `Render target "${label}" has ${formats.length} colour attachments; this device allows ${this.glLimits.maxColorAttachments} (MAX_COLOR_ATTACHMENTS / MAX_DRAW_BUFFERS)`);
     }
     this.checkTextureSize(label, '2d', width, height, 1);
-    const textures = formats.map((f, k) => this.allocTexture('2d', width, height, 1, f, `${label} [${k}]`, null));
+    const textures = formats.map((f, k) => this.allocTexture('2d', width, height, 1, f, `${label} [${k}]`, null, false));
     if (this.isLost) return new WebGL2RenderTarget(width, height, textures, label, null, this.generation);
 
     const gl = this.gl;
@@ -244,7 +257,7 @@ class WebGL2Backend implements GpuBackend {
     const f = glFormat(tex.format);
     // GL returns row y = 0 first; texel row 0 is vpt's top row, so no flip is needed.
     let out: Float32Array | Uint8Array;
-    if (f.isFloat) {
+    if (f.readsAsFloat) {
       // RGBA/FLOAT is the one float read combination every float colour buffer supports.
       const rgba = new Float32Array(width * height * 4);
       gl.readPixels(0, 0, width, height, gl.RGBA, gl.FLOAT, rgba);
@@ -414,11 +427,13 @@ class WebGL2Backend implements GpuBackend {
     // The full-screen triangle reads no attributes; an empty VAO keeps it independent of other state.
     this.vao = gl.createVertexArray();
     this.loseContextExt = gl.getExtension('WEBGL_lose_context');
+    // Optional: compact 16-bit volumes and filtered float volumes (see BackendCapabilities).
+    this.caps = { norm16: !!gl.getExtension('EXT_texture_norm16'), float32Filterable: !!gl.getExtension('OES_texture_float_linear') };
   }
 
   private allocTexture(
     dimension: '2d' | '3d', width: number, height: number, depth: number, format: TextureFormat, label: string,
-    data: Float32Array | Uint8Array | null,
+    data: TextureData | null, linear: boolean,
   ): WebGL2Texture {
     if (this.isLost) return new WebGL2Texture(dimension, width, height, depth, format, label, null, this.generation);
     const gl = this.gl;
@@ -426,9 +441,11 @@ class WebGL2Backend implements GpuBackend {
     const target = dimension === '3d' ? gl.TEXTURE_3D : gl.TEXTURE_2D;
     const handle = gl.createTexture();
     gl.bindTexture(target, handle);
-    // Kernels use texelFetch only; NEAREST also keeps R32F/RGBA32F complete without OES_texture_float_linear.
-    gl.texParameteri(target, gl.TEXTURE_MIN_FILTER, gl.NEAREST);
-    gl.texParameteri(target, gl.TEXTURE_MAG_FILTER, gl.NEAREST);
+    // texelFetch ignores the filter; NEAREST also keeps R32F/RGBA32F complete without
+    // OES_texture_float_linear. LINEAR (no mipmaps) for textures read by texture().
+    const filter = linear ? gl.LINEAR : gl.NEAREST;
+    gl.texParameteri(target, gl.TEXTURE_MIN_FILTER, filter);
+    gl.texParameteri(target, gl.TEXTURE_MAG_FILTER, filter);
     gl.texParameteri(target, gl.TEXTURE_WRAP_S, gl.CLAMP_TO_EDGE);
     gl.texParameteri(target, gl.TEXTURE_WRAP_T, gl.CLAMP_TO_EDGE);
     if (dimension === '3d') {

@@ -10,8 +10,8 @@
  */
 import { VptError } from '../../errors.js';
 import type {
-  BackendInfo, BackendLimits, BackendOptions, DrawCall, GpuBackend, GpuPass, GpuTexture, PassDescriptor, RenderTarget,
-  TextureDescriptor, TextureFormat,
+  BackendCapabilities, BackendInfo, BackendLimits, BackendOptions, DrawCall, GpuBackend, GpuPass, GpuTexture, PassDescriptor, RenderTarget,
+  TextureData, TextureDescriptor, TextureFormat,
 } from '../backend.js';
 import { DeferredErrors } from './deferred-errors.js';
 import { type GpuDeviceHandle, requestGpuDevice } from './device-setup.js';
@@ -20,7 +20,8 @@ import { PipelineCache } from './pipeline-cache.js';
 import { submitReadback, unpackReadback } from './readback.js';
 import { WebGPUPass, WebGPURenderTarget, WebGPUTexture } from './resources.js';
 import { UniformBufferPool } from './uniform-pool.js';
-import { BUILTINS_BYTE_SIZE } from './wgsl-prelude.js';
+import { BUILTINS_BYTE_SIZE, linearSamplerBinding, usesLinearSampler } from './wgsl-prelude.js';
+import { isFilterable } from '../backend.js';
 
 export { isWebGPUAvailable } from './device-setup.js';
 
@@ -60,6 +61,8 @@ class WebGPUBackend implements GpuBackend {
   private readonly targets = new Set<WebGPURenderTarget>();
   /** Readback buffers awaiting mapAsync, destroyed by dispose() (which aborts the map). */
   private readonly readbacks = new Set<GPUBuffer>();
+  /** The clamp-to-edge linear sampler of filtered bindings, per device (made on first use). */
+  private sampler: { device: GPUDevice; sampler: GPUSampler } | null = null;
   private readonly lostCallbacks: Array<() => void> = [];
   private readonly restoredCallbacks: Array<() => void> = [];
   private restoreWaiters: Waiter[] = [];
@@ -88,7 +91,20 @@ class WebGPUBackend implements GpuBackend {
 
   get limits(): BackendLimits {
     const l = this.state.device.limits;
-    return { maxTextureDimension2D: l.maxTextureDimension2D, maxTextureDimension3D: l.maxTextureDimension3D };
+    return { maxTextureDimension2D: l.maxTextureDimension2D, maxTextureDimension3D: l.maxTextureDimension3D, maxBufferSize: l.maxBufferSize };
+  }
+
+  private linearSampler(): GPUSampler {
+    const device = this.state.device;
+    if (this.sampler?.device !== device) {
+      this.sampler = { device, sampler: device.createSampler({ label: 'vpt linear clamp', magFilter: 'linear', minFilter: 'linear', addressModeU: 'clamp-to-edge', addressModeV: 'clamp-to-edge', addressModeW: 'clamp-to-edge' }) };
+    }
+    return this.sampler.sampler;
+  }
+
+  get capabilities(): BackendCapabilities {
+    const f = this.state.device.features;
+    return { norm16: f.has('texture-formats-tier1'), float32Filterable: f.has('float32-filterable') };
   }
 
   get isLost(): boolean {
@@ -105,6 +121,12 @@ class WebGPUBackend implements GpuBackend {
       throw new RangeError(`texture "${label}": a 2D texture has depth 1, got ${desc.depth}`);
     }
     formatInfo(desc.format);
+    if ((desc.format === 'r16unorm' || desc.format === 'r16snorm') && !this.capabilities.norm16) {
+      throw new VptError('missing-extension', `texture "${label}" is ${desc.format}, which needs the 'texture-formats-tier1' feature`);
+    }
+    if (desc.filter === 'linear' && !isFilterable(desc.format, this.capabilities)) {
+      throw new VptError('missing-extension', `texture "${label}" (${desc.format}) cannot be filtered here: that needs the 'float32-filterable' feature`);
+    }
     this.checkTextureSize(label, desc.dimension, desc.width, desc.height, depth);
     if (desc.data) checkTextureData(label, desc.format, desc.width * desc.height * depth, desc.data);
     const tex = this.allocTexture(desc.dimension, desc.width, desc.height, depth, desc.format, label);
@@ -113,7 +135,7 @@ class WebGPUBackend implements GpuBackend {
     return tex;
   }
 
-  writeTexture(texture: GpuTexture, data: Float32Array | Uint8Array): void {
+  writeTexture(texture: GpuTexture, data: TextureData): void {
     this.assertNotDisposed();
     const tex = this.own(texture, WebGPUTexture, 'texture');
     checkTextureData(tex.label, tex.format, tex.width * tex.height * tex.depth, data);
@@ -237,7 +259,10 @@ class WebGPUBackend implements GpuBackend {
     const group0 = device.createBindGroup({
       label: desc.label,
       layout: entry.bindGroupLayout,
-      entries: [{ binding: 0, resource: { buffer, offset: 0, size: userSize } }, ...textureEntries],
+      entries: [
+        { binding: 0, resource: { buffer, offset: 0, size: userSize } }, ...textureEntries,
+        ...(usesLinearSampler(desc) ? [{ binding: linearSamplerBinding(desc), resource: this.linearSampler() }] : []),
+      ],
     });
     const group1 = device.createBindGroup({
       label: 'vpt builtins',
@@ -434,11 +459,11 @@ class WebGPUBackend implements GpuBackend {
     return new WebGPUTexture(dimension, width, height, depth, format, label, handle, this.generation);
   }
 
-  private upload(tex: WebGPUTexture, data: Float32Array | Uint8Array): void {
+  private upload(tex: WebGPUTexture, data: TextureData): void {
     if (!tex.handle) throw new RangeError(`texture "${tex.label}" was destroyed`);
     const bytesPerRow = tex.width * formatInfo(tex.format).bytesPerTexel;
     // The IDL takes [AllowShared] views; the typings only admit views over a plain ArrayBuffer.
-    const view = data as Float32Array<ArrayBuffer> | Uint8Array<ArrayBuffer>;
+    const view = data as Float32Array<ArrayBuffer> | Uint8Array<ArrayBuffer> | Uint16Array<ArrayBuffer> | Int16Array<ArrayBuffer>;
     this.state.device.queue.writeTexture({ texture: tex.handle }, view, { bytesPerRow, rowsPerImage: tex.height }, [tex.width, tex.height, tex.depth]);
   }
 
