@@ -168,7 +168,7 @@ describe.each(BACKENDS)('compact volumes on %s', (backend) => {
       ctx.setScene(t.scene({ volume, densityScale: 5 })); // the same volume again: no second warning
       await ctx.renderIterations(2);
       const hdr = await ctx.readHDR();
-      const out = { warnings, bytes: ctx.stats.gpuBytes, dims: ctx.getScene().volume.dims, budget, lit: Array.from(hdr).some((x: number) => x > 0.01), finite: !t.hasNonFinite(hdr) };
+      const out = { warnings, bytes: ctx.stats.gpuBytes, dims: ctx.getScene().volume.dims, budget, lit: (Array.from(hdr) as number[]).some((x) => x > 0.01), finite: !t.hasNonFinite(hdr) };
       ctx.dispose();
       return out;
     }, backend);
