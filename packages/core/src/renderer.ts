@@ -12,7 +12,7 @@ export interface KernelSource {
  * A renderer plugin, declared rather than driven: the RenderContext runs its three
  * kernels as full-screen passes (DESIGN.md, "The pipeline"):
  *
- *  - generate:  textures `volume` (3D r32float, normalized) and `transferFunction`
+ *  - generate:  textures `volume` (3D, compact format: gpu/volume-format.ts; read through sampleVolume()) and `transferFunction`
  *               (2D rgba32float, tfSize x tfHeight: 1 row for a 1D TF, 256 for a 2D one),
  *               plus the gradient textures when needed (see `needsGradient`)
  *               → `frameFormats` (the new sample). Kernels read the TF through the
