@@ -155,6 +155,38 @@ describe.each(BACKENDS)('compact volumes on %s', (backend) => {
     expect(Math.min(...ref.filter((p) => p.interior).map((p) => p.value[0]))).toBeLessThan(0.5);
   });
 
+  it('uploads a volume over one slab (16 M voxels) slab by slab, as the unconverted upload shows it', async () => {
+    // 256 x 256 x 260 voxels: the int16 copy is converted to r16float and written in slabs, the
+    // uint8 original uploaded as it is; with the range [0, 255] both hold the same values
+    // (integers ≤ 2048 are exact in half), so a misplaced slab would show as a gross difference.
+    const r = await page().page.evaluate(async (backend) => {
+      const { core } = (window as any).vpt;
+      const t = (window as any).t;
+      const dims = [256, 256, 260];
+      const u8 = new Uint8Array(dims[0] * dims[1] * dims[2]);
+      for (let z = 0; z < dims[2]; z++) for (let y = 0; y < dims[1]; y++) for (let x = 0; x < dims[0]; x++) {
+        const r2 = (x - 128) ** 2 + (y - 128) ** 2 + (z - 100) ** 2;
+        u8[x + 256 * (y + 256 * z)] = r2 < 90 ** 2 ? Math.min(255, 40 + z) : 0;
+      }
+      const a = core.createVolume(dims, 'uint8', u8);
+      const b = core.createVolume(dims, 'int16', Int16Array.from(u8));
+      b.valueRange = [0, 255];
+      const out: number[][] = [];
+      for (const volume of [a, b]) {
+        const ctx = await t.context({ backend, renderer: 'mip', width: 32, height: 32 });
+        ctx.setScene(t.scene({ volume, camera: { position: [2, 0.3, 0.2], target: [0, 0, 0], up: [0, 0, 1], fovy: 0.7 } }));
+        await ctx.renderIterations(16);
+        out.push(Array.from(await ctx.readHDR()));
+        ctx.dispose();
+      }
+      return out;
+    }, backend);
+    let worst = 0, peak = 0;
+    for (let i = 0; i < r[0].length; i++) { worst = Math.max(worst, Math.abs(r[0][i] - r[1][i])); peak = Math.max(peak, r[0][i]); }
+    expect(peak).toBeGreaterThan(0.3);
+    expect(worst).toBeLessThan(0.01);
+  });
+
   it('downsamples a volume over the memory budget, with a warning naming the factors', async () => {
     const r = await page().page.evaluate(async (backend) => {
       const { core } = (window as any).vpt;

@@ -12,14 +12,14 @@ export * from './scene/procedural.js';
 export { UniformLayout, type UniformField, type UniformType, type UniformValues, type UniformValue, type FieldPlacement } from './uniforms/layout.js';
 
 export type * from './gpu/backend.js';
-export { isFilterable, BYTES_PER_TEXEL } from './gpu/backend.js';
+export { isFilterable, sliceCount, BYTES_PER_TEXEL } from './gpu/backend.js';
 export { floatToHalf, halfToFloat, toHalfArray, fromHalfArray } from './gpu/half-float.js';
 export { createBackend } from './gpu/create-backend.js';
 export { createWebGL2Backend } from './gpu/webgl2/webgl2-backend.js';
 export { createWebGPUBackend, isWebGPUAvailable } from './gpu/webgpu/webgpu-backend.js';
 
 export type { Renderer, KernelSource, AuxiliaryTexture, AuxiliaryPass, VolumeBinding } from './renderer.js';
-export { planVolumeUpload, volumeTextureData, volumeValueMapping, type VolumeSampling, type VolumeUpload, type VolumeFormatOptions } from './gpu/volume-format.js';
+export { planVolumeUpload, uploadsDataAsIs, volumeTextureData, volumeTextureSlab, volumeValueMapping, type VolumeSampling, type VolumeUpload, type VolumeFormatOptions } from './gpu/volume-format.js';
 export { downsampleVolume, fitFactors } from './scene/downsample.js';
 export { BaseRenderer } from './base-renderer.js';
 export { RUNNING_MEAN_INTEGRATE, COPY_ACCUMULATION_RENDER } from './shaders/accumulation-kernels.js';

@@ -1,7 +1,7 @@
 import { describe, expect, it } from 'vitest';
 import { createVolume, normalizedData, validateVolume, VptError, type Volume } from '../src/index.js';
 import { floatToHalf, halfToFloat } from '../src/gpu/half-float.js';
-import { planVolumeUpload, volumeTextureData, volumeValueMapping } from '../src/gpu/volume-format.js';
+import { planVolumeUpload, volumeTextureData, volumeTextureSlab, volumeValueMapping } from '../src/gpu/volume-format.js';
 import { downsampleVolume, fitFactors } from '../src/scene/downsample.js';
 
 const NO_EXT = { norm16: false, float32Filterable: false };
@@ -75,9 +75,12 @@ describe('volume upload formats', () => {
 
   it('uploads uint8 and norm16 data without a copy', () => {
     const v8 = createVolume([2, 2, 2], 'uint8');
-    expect(volumeTextureData(v8, planVolumeUpload(v8, NO_EXT, { sampling: 'fast' }))).toBe(v8.data);
+    // A view of the volume's own buffer, not a copy.
+    const a = volumeTextureData(v8, planVolumeUpload(v8, NO_EXT, { sampling: 'fast' }));
+    expect([a.buffer, a.byteOffset, a.length]).toEqual([v8.data.buffer, 0, 8]);
     const s16 = createVolume([2, 2, 2], 'int16');
-    expect(volumeTextureData(s16, planVolumeUpload(s16, ALL_EXT, { sampling: 'fast' }))).toBe(s16.data);
+    const b = volumeTextureData(s16, planVolumeUpload(s16, ALL_EXT, { sampling: 'fast' }));
+    expect([b.buffer, b.byteOffset, b.length]).toEqual([s16.data.buffer, 0, 8]);
   });
 
   it('decodes every format to the CPU normalization, inverted ranges included', () => {
@@ -112,6 +115,19 @@ describe('volume upload formats', () => {
           for (let i = 0; i < n; i++) worst = Math.max(worst, Math.abs(got[i] - want[i]));
           expect(worst, `${v.type} ${JSON.stringify(v.valueRange)} ${u.format}`).toBeLessThanOrEqual(tol + 1e-6);
         }
+      }
+    }
+  });
+
+  it('converts slab by slab to exactly the whole-volume data', () => {
+    const i16 = createVolume([8, 4, 10], 'int16', Int16Array.from({ length: 320 }, (_, i) => i * 97 - 15000));
+    const f32 = createVolume([8, 4, 10], 'float32', Float32Array.from({ length: 320 }, (_, i) => (i % 7 === 0 ? NaN : i * 0.37)));
+    for (const v of [i16, f32]) {
+      for (const sampling of ['fast', 'exact'] as const) {
+        const u = planVolumeUpload(v, NO_EXT, { sampling, allowHalfFloat: true });
+        const whole = Array.from(volumeTextureData(v, u));
+        const slabs = [[0, 3], [3, 4], [4, 10]].flatMap(([z0, z1]) => Array.from(volumeTextureSlab(v, u, z0, z1)));
+        expect(slabs, `${v.type} ${sampling}`).toEqual(whole);
       }
     }
   });

@@ -9,7 +9,7 @@ import { rasterizeTransferFunction, TF_RESOLUTION, transferFunctionSize } from '
 import { voxelCount } from '../scene/volume.js';
 import { downsampleVolume, fitFactors } from '../scene/downsample.js';
 import { BYTES_PER_TEXEL } from '../gpu/backend.js';
-import { planVolumeUpload, volumeTextureData, volumeValueMapping, type VolumeSampling, type VolumeUpload } from '../gpu/volume-format.js';
+import { planVolumeUpload, uploadsDataAsIs, volumeTextureData, volumeTextureSlab, volumeValueMapping, type VolumeSampling, type VolumeUpload } from '../gpu/volume-format.js';
 import { gradientAtlasLayout } from '../gradient/atlas.js';
 import { buildGradientVolume, destroyGradientVolume, type GradientVolume } from '../gradient/gradient-volume.js';
 import { glslCommon, GLSL_RAY, GLSL_RNG, type CommonChunkOptions } from '../shaders/glsl-common.js';
@@ -70,6 +70,8 @@ export interface RenderWarning {
 /** The default budget where the device reports nothing about its memory. */
 export const DEFAULT_GPU_BYTES = 1024 ** 3;
 const MAX_DEFAULT_GPU_BYTES = 4 * 1024 ** 3;
+/** Voxels per converted upload slab (32 MiB of r16float, 64 MiB of r32float). */
+const SLAB_VOXELS = 1 << 24;
 
 export interface RenderStats {
   /** Iterations accumulated since the last reset. */
@@ -523,6 +525,24 @@ export class RenderContext {
     return scene.sampling ?? this.sampling;
   }
 
+  /**
+   * The volume texture: the volume's own array when the format takes it as is, else converted
+   * and written in slabs of about 16 M voxels, so a real-size volume never has a full-size
+   * converted copy next to it in memory.
+   */
+  private uploadVolume(volume: Scene['volume'], upload: VolumeUpload): GpuTexture {
+    const [width, height, depth] = volume.dims;
+    const desc = { dimension: '3d' as const, width, height, depth, format: upload.format, filter: upload.filter, label: 'volume' };
+    if (uploadsDataAsIs(upload) || width * height * depth <= SLAB_VOXELS) return this.backend.createTexture({ ...desc, data: volumeTextureData(volume, upload) });
+    const texture = this.backend.createTexture(desc);
+    const slabDepth = Math.max(1, Math.floor(SLAB_VOXELS / (width * height)));
+    for (let z = 0; z < depth; z += slabDepth) {
+      const z1 = Math.min(depth, z + slabDepth);
+      this.backend.writeTextureSlices(texture, z, volumeTextureSlab(volume, upload, z, z1));
+    }
+    return texture;
+  }
+
   /** Upload the volume and transfer function when they changed (by identity / content). */
   private syncSceneResources(): void {
     const scene = this.scene!;
@@ -534,9 +554,7 @@ export class RenderContext {
       this.volumeTexture = null;
       this.dropGradient();
       const [width, height, depth] = scene.volume.dims;
-      this.volumeTexture = this.backend.createTexture({
-        dimension: '3d', width, height, depth, format: upload.format, filter: upload.filter, data: volumeTextureData(scene.volume, upload), label: 'volume',
-      });
+      this.volumeTexture = this.uploadVolume(scene.volume, upload);
       this.volumeSource = scene.volume;
       this.volumeUpload = upload;
       this.volumeKey++;

@@ -147,6 +147,15 @@ export function isFilterable(format: TextureFormat, caps: BackendCapabilities): 
   return true;
 }
 
+/** The number of whole slices `texels` makes at zOffset of a 3D texture; throws when they do not fit. */
+export function sliceCount(tex: GpuTexture, zOffset: number, texels: number): number {
+  const depth = texels / (tex.width * tex.height);
+  if (tex.dimension !== '3d' || !Number.isInteger(zOffset) || zOffset < 0 || !Number.isInteger(depth) || depth < 1 || zOffset + depth > tex.depth) {
+    throw new RangeError(`texture "${tex.label}": ${texels} texels at slice ${zOffset} are not whole slices inside its ${tex.width}x${tex.height}x${tex.depth} (${tex.dimension})`);
+  }
+  return depth;
+}
+
 /** Bytes per texel of each format, as the device stores it (for the memory budget and stats). */
 export const BYTES_PER_TEXEL: Readonly<Record<TextureFormat, number>> = {
   r32float: 4, rgba32float: 16, rgba8unorm: 4, r8unorm: 1, r16unorm: 2, r16snorm: 2, r16float: 2,
@@ -169,6 +178,11 @@ export interface GpuBackend {
   createTexture(desc: TextureDescriptor): GpuTexture;
   /** Replace the whole content of a texture. */
   writeTexture(texture: GpuTexture, data: TextureData): void;
+  /**
+   * Replace slices [zOffset, zOffset + data's depth) of a 3D texture (whole slices, tightly
+   * packed): large volumes are converted and uploaded in slabs, so no full-size copy exists.
+   */
+  writeTextureSlices(texture: GpuTexture, zOffset: number, data: TextureData): void;
   destroyTexture(texture: GpuTexture): void;
 
   createRenderTarget(width: number, height: number, formats: readonly TextureFormat[], label?: string): RenderTarget;

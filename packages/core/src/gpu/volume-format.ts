@@ -68,13 +68,27 @@ export function planVolumeUpload(volume: Volume, caps: BackendCapabilities, opts
   }
 }
 
+/** The upload takes the volume's own array as it is (no conversion, no copy). */
+export function uploadsDataAsIs(upload: VolumeUpload): boolean {
+  return upload.format === 'r8unorm' || upload.format === 'r16unorm' || upload.format === 'r16snorm';
+}
+
 /** Texel data for a planned upload: the volume's own array where the format takes it as is. */
 export function volumeTextureData(volume: Volume, upload: VolumeUpload): TextureData {
-  const src = volume.data;
+  return volumeTextureSlab(volume, upload, 0, volume.dims[2]);
+}
+
+/**
+ * Texel data of slices [z0, z1) (RenderContext converts and uploads large volumes slab by
+ * slab, so no full-size converted copy exists): a view of the volume's own array where the
+ * format takes it as is, else a converted copy of just those slices.
+ */
+export function volumeTextureSlab(volume: Volume, upload: VolumeUpload, z0: number, z1: number): TextureData {
+  const slice = volume.dims[0] * volume.dims[1];
+  const src = volume.data.subarray(z0 * slice, z1 * slice);
   const fill = normalizationRange(volume)[0]; // non-finite voxels read as the value that maps to 0
+  if (uploadsDataAsIs(upload)) return src as TextureData; // Uint8Array / Uint16Array / Int16Array as stored
   switch (upload.format) {
-    case 'r8unorm': case 'r16unorm': case 'r16snorm':
-      return src as TextureData; // Uint8Array / Uint16Array / Int16Array as stored
     case 'r16float': {
       const out = new Uint16Array(src.length);
       if (volume.type === 'float32') {
@@ -84,8 +98,8 @@ export function volumeTextureData(volume: Volume, upload: VolumeUpload): Texture
           out[i] = floatToHalf(((Number.isFinite(x) ? x : fill) - upload.decodeOffset) * inv);
         }
       } else {
-        // 16-bit integers: one table lookup per voxel (the table holds every half conversion).
-        // Index = the integer plus a bias that makes it non-negative; entry = half(integer − decodeOffset).
+        // 16-bit integers: one table lookup per voxel. Index = the integer plus a bias that makes
+        // it non-negative; entry = half(integer − decodeOffset).
         const bias = volume.type === 'int16' ? 32768 : 0;
         const table = halfTable(bias + upload.decodeOffset);
         for (let i = 0; i < out.length; i++) out[i] = table[src[i] + bias];
@@ -120,10 +134,16 @@ export function volumeValueMapping(volume: Volume, upload: Pick<VolumeUpload, 'd
 // Half's largest finite value is 65504; from 65520 on, rounding gives Infinity.
 const HALF_OVERFLOW = 65520;
 
-/** Half bits of (i − shift) for i = 0..65535. */
+/** Half bits of (i − shift) for i = 0..65535 (the last two tables kept: slabs of one volume share one). */
+const tables = new Map<number, Uint16Array>();
 function halfTable(shift: number): Uint16Array {
-  const t = new Uint16Array(65536);
-  for (let i = 0; i < t.length; i++) t[i] = floatToHalf(i - shift);
+  let t = tables.get(shift);
+  if (!t) {
+    t = new Uint16Array(65536);
+    for (let i = 0; i < t.length; i++) t[i] = floatToHalf(i - shift);
+    if (tables.size >= 2) tables.clear();
+    tables.set(shift, t);
+  }
   return t;
 }
 

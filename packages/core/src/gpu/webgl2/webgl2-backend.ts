@@ -7,7 +7,7 @@ import type {
   BackendCapabilities, BackendInfo, BackendLimits, DrawCall, GpuBackend, GpuPass, GpuTexture, PassDescriptor, RenderTarget,
   TextureData, TextureDescriptor, TextureFormat,
 } from '../backend.js';
-import { isFilterable } from '../backend.js';
+import { isFilterable, sliceCount } from '../backend.js';
 import { type GlLimits, acquireContext, readInfo, readLimits, requireColorBufferFloat } from './context-setup.js';
 import { ProgramCache, UNIFORM_BLOCK_BINDING } from './program-cache.js';
 import { WebGL2Pass, WebGL2RenderTarget, WebGL2Texture } from './resources.js';
@@ -108,6 +108,19 @@ class WebGL2Backend implements GpuBackend {
       gl.bindTexture(gl.TEXTURE_2D, tex.handle);
       gl.texSubImage2D(gl.TEXTURE_2D, 0, 0, 0, tex.width, tex.height, f.format, f.type, data);
     }
+  }
+
+  writeTextureSlices(texture: GpuTexture, zOffset: number, data: TextureData): void {
+    this.assertNotDisposed();
+    const tex = this.own(texture, WebGL2Texture, 'texture');
+    const depth = sliceCount(tex, zOffset, data.length / glFormat(tex.format).channels);
+    checkTextureData(tex.label, tex.format, tex.width * tex.height * depth, data);
+    if (this.isLost) return;
+    this.assertCurrent(tex, `texture "${tex.label}"`);
+    const gl = this.gl;
+    const f = glFormat(tex.format);
+    gl.bindTexture(gl.TEXTURE_3D, tex.handle);
+    gl.texSubImage3D(gl.TEXTURE_3D, 0, 0, 0, zOffset, tex.width, tex.height, depth, f.format, f.type, data);
   }
 
   destroyTexture(texture: GpuTexture): void {

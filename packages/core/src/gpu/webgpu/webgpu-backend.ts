@@ -21,7 +21,7 @@ import { submitReadback, unpackReadback } from './readback.js';
 import { WebGPUPass, WebGPURenderTarget, WebGPUTexture } from './resources.js';
 import { UniformBufferPool } from './uniform-pool.js';
 import { BUILTINS_BYTE_SIZE, linearSamplerBinding, usesLinearSampler } from './wgsl-prelude.js';
-import { isFilterable } from '../backend.js';
+import { isFilterable, sliceCount } from '../backend.js';
 
 export { isWebGPUAvailable } from './device-setup.js';
 
@@ -142,6 +142,19 @@ class WebGPUBackend implements GpuBackend {
     if (this.lost) return;
     this.assertCurrent(tex, `texture "${tex.label}"`);
     this.upload(tex, data);
+  }
+
+  writeTextureSlices(texture: GpuTexture, zOffset: number, data: TextureData): void {
+    this.assertNotDisposed();
+    const tex = this.own(texture, WebGPUTexture, 'texture');
+    const depth = sliceCount(tex, zOffset, data.length / formatInfo(tex.format).channels);
+    checkTextureData(tex.label, tex.format, tex.width * tex.height * depth, data);
+    if (this.lost) return;
+    this.assertCurrent(tex, `texture "${tex.label}"`);
+    if (!tex.handle) throw new RangeError(`texture "${tex.label}" was destroyed`);
+    const bytesPerRow = tex.width * formatInfo(tex.format).bytesPerTexel;
+    const view = data as Float32Array<ArrayBuffer> | Uint8Array<ArrayBuffer> | Uint16Array<ArrayBuffer> | Int16Array<ArrayBuffer>;
+    this.state.device.queue.writeTexture({ texture: tex.handle, origin: [0, 0, zOffset] }, view, { bytesPerRow, rowsPerImage: tex.height }, [tex.width, tex.height, depth]);
   }
 
   destroyTexture(texture: GpuTexture): void {
