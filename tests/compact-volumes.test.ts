@@ -155,6 +155,36 @@ describe.each(BACKENDS)('compact volumes on %s', (backend) => {
     expect(Math.min(...ref.filter((p) => p.interior).map((p) => p.value[0]))).toBeLessThan(0.5);
   });
 
+  it('changes the value range (to an inverted one) without re-uploading the volume, as a fresh context renders it', async () => {
+    const r = await page().page.evaluate(async (backend, builder, tf, camera) => {
+      const { core } = (window as any).vpt;
+      const t = (window as any).t;
+      const mt = (window as any).mt;
+      const volume = (0, eval)(builder)(core, 'int16', false);
+      const inverted = { ...volume, valueRange: [volume.valueRange[1], volume.valueRange[0]] };
+      const scene = (v: unknown) => ({ volume: v, transferFunction: tf, camera, lights: [], environment: { type: 'constant', radiance: [1, 1, 1] }, densityScale: 6, seed: 5 });
+      const ctx = await t.context({ backend, renderer: 'mcrt', width: 16, height: 16, params: { majorantCellSize: 4 } });
+      let volumeUploads = 0;
+      const create = ctx.backend.createTexture.bind(ctx.backend);
+      ctx.backend.createTexture = (d: any) => { if (d.label === 'volume') volumeUploads++; return create(d); };
+      ctx.setScene(scene(volume));
+      await ctx.renderIterations(8);
+      ctx.setScene(scene(inverted));
+      await ctx.renderIterations(8);
+      const changed = Array.from(await ctx.readHDR());
+      ctx.dispose();
+      const fresh = await t.context({ backend, renderer: 'mcrt', width: 16, height: 16, params: { majorantCellSize: 4 } });
+      fresh.setScene(scene(inverted));
+      await fresh.renderIterations(8);
+      const want = Array.from(await fresh.readHDR());
+      fresh.dispose();
+      void mt;
+      return { volumeUploads, differing: t.sameBits(new Float32Array(changed as number[]), new Float32Array(want as number[])) };
+    }, backend, BLOB_AS, TF, camera);
+    expect(r.volumeUploads).toBe(1);
+    expect(r.differing).toBe(0); // the majorant grid and the mapping followed the new range
+  });
+
   it('uploads a volume over one slab (16 M voxels) slab by slab, as the unconverted upload shows it', async () => {
     // 256 x 256 x 260 voxels: the int16 copy is converted to r16float and written in slabs, the
     // uint8 original uploaded as it is; with the range [0, 255] both hold the same values

@@ -108,6 +108,8 @@ export class RenderContext {
   private volumeSource: Scene['volume'] | null = null;
   private volumeUpload: VolumeUpload | null = null;
   private volumeKey = 0; // bumped on every volume upload (VolumeBinding.key)
+  private planMemo: { volume: Scene['volume']; sampling: VolumeSampling; plan: VolumeUpload } | null = null;
+  private mappingMemo: { volume: Scene['volume']; upload: Pick<VolumeUpload, 'decodeScale' | 'decodeOffset'>; mapping: { valueScale: number; valueOffset: number } } | null = null;
   // The last budget fit: a scene volume → the volume actually uploaded (itself when it fits).
   private fitted: { source: Scene['volume']; key: string; volume: Scene['volume'] } | null = null;
   private readonly sampling: VolumeSampling;
@@ -240,10 +242,17 @@ export class RenderContext {
     const sampling = scene.sampling ?? this.sampling;
     const gradient = this.wantsGradient(scene);
     const key = `${sampling}|${gradient}|${this.width}x${this.height}`;
-    if (this.fitted && this.fitted.source === scene.volume && this.fitted.key === key) {
-      return this.fitted.volume === scene.volume ? scene : { ...scene, volume: this.fitted.volume };
+    const f = this.fitted;
+    if (f && f.key === key && f.source === scene.volume) {
+      return f.volume === scene.volume ? scene : { ...scene, volume: f.volume };
     }
-    const upload = planVolumeUpload(scene.volume, this.backend.capabilities, { sampling, allowHalfFloat: this.allowHalfFloat });
+    if (f && f.key === key && sameVoxels(f.source, scene.volume) && f.volume !== f.source) {
+      // The same voxels with another value range: keep the downsampled copy, take the new range.
+      const volume = { ...f.volume, valueRange: scene.volume.valueRange };
+      this.fitted = { source: scene.volume, key, volume };
+      return { ...scene, volume };
+    }
+    const upload = this.planUpload(scene.volume, sampling);
     const perVoxel = upload.bytesPerVoxel + (gradient ? (sampling === 'exact' ? 4 : 2) : 0);
     const pixels = this.width * this.height;
     const targetBytes = pixels * 16 * (this._renderer.frameFormats.length + 2 * this._renderer.accumulationFormats.length + 1 + this._post.length);
@@ -512,13 +521,29 @@ export class RenderContext {
 
   /** The texel → normalized value map of the uploaded volume (scene uniforms valueScale/valueOffset). */
   private volumeMapping(scene: Scene): { valueScale: number; valueOffset: number } {
-    return volumeValueMapping(scene.volume, this.volumeUpload ?? { decodeScale: 1, decodeOffset: 0 });
+    // Memoized: normalizationRange scans int16/float32 data without a valueRange, and this runs every iteration.
+    const upload = this.volumeUpload ?? EXACT_DECODE;
+    const m = this.mappingMemo;
+    if (m && m.volume === scene.volume && m.upload === upload) return m.mapping;
+    const mapping = volumeValueMapping(scene.volume, upload);
+    this.mappingMemo = { volume: scene.volume, upload, mapping };
+    return mapping;
   }
 
   /** What auxiliary passes need to read the volume texture's texels (Renderer.auxiliaryTextures). */
   private volumeBinding(scene: Scene): VolumeBinding {
     const m = this.volumeMapping(scene);
     return { ...m, format: this.volumeUpload?.format ?? 'r32float', key: `${this.volumeKey}|${m.valueScale}|${m.valueOffset}` };
+  }
+
+  /** The upload plan of a volume, kept per volume and sampling (a uint16 or half-float plan scans the data once). */
+  private planUpload(volume: Scene['volume'], sampling: VolumeSampling): VolumeUpload {
+    const memo = this.planMemo;
+    // The plan depends on the voxels alone, not on the value range.
+    if (memo && sameVoxels(memo.volume, volume) && memo.sampling === sampling) return memo.plan;
+    const plan = planVolumeUpload(volume, this.backend.capabilities, { sampling, allowHalfFloat: this.allowHalfFloat });
+    this.planMemo = { volume, sampling, plan };
+    return plan;
   }
 
   private samplingOf(scene: Scene): VolumeSampling {
@@ -536,9 +561,10 @@ export class RenderContext {
     if (uploadsDataAsIs(upload) || width * height * depth <= SLAB_VOXELS) return this.backend.createTexture({ ...desc, data: volumeTextureData(volume, upload) });
     const texture = this.backend.createTexture(desc);
     const slabDepth = Math.max(1, Math.floor(SLAB_VOXELS / (width * height)));
+    const scratch = new ArrayBuffer(slabDepth * width * height * 4); // one buffer for every slab
     for (let z = 0; z < depth; z += slabDepth) {
       const z1 = Math.min(depth, z + slabDepth);
-      this.backend.writeTextureSlices(texture, z, volumeTextureSlab(volume, upload, z, z1));
+      this.backend.writeTextureSlices(texture, z, volumeTextureSlab(volume, upload, z, z1, scratch));
     }
     return texture;
   }
@@ -546,9 +572,15 @@ export class RenderContext {
   /** Upload the volume and transfer function when they changed (by identity / content). */
   private syncSceneResources(): void {
     const scene = this.scene!;
-    const upload = planVolumeUpload(scene.volume, this.backend.capabilities, { sampling: this.samplingOf(scene), allowHalfFloat: this.allowHalfFloat });
+    const upload = this.planUpload(scene.volume, this.samplingOf(scene));
     const same = this.volumeUpload && this.volumeUpload.format === upload.format && this.volumeUpload.filter === upload.filter
       && this.volumeUpload.decodeScale === upload.decodeScale && this.volumeUpload.decodeOffset === upload.decodeOffset;
+    if (this.volumeTexture && same && this.volumeSource !== scene.volume && sameVoxels(this.volumeSource!, scene.volume)) {
+      // Only the value range (or name) changed: the kernels map it, so nothing is uploaded;
+      // the gradient volume and the majorant grid follow through their keys.
+      this.volumeSource = scene.volume;
+      this.dropGradient();
+    }
     if (this.volumeSource !== scene.volume || !this.volumeTexture || !same) {
       if (this.volumeTexture) this.backend.destroyTexture(this.volumeTexture);
       this.volumeTexture = null;
@@ -757,7 +789,7 @@ export class RenderContext {
     this.postTargets = []; this.postPasses = []; this.presentPass = null;
     this.volumeTexture = null; this.volumeSource = null; this.tfTexture = null; this.tfSource = null;
     this.gradient = null; this.gradientSource = null; this.gradientKey = '';
-    this.volumeUpload = null;
+    this.volumeUpload = null; this.planMemo = null;
     this.passes = null; this.variantKey = ''; this.presentedVersion = -1;
     this.auxTextures.clear(); this.auxFor = { scene: null, renderer: null, version: -1 };
     this.backend.resizeCanvas(this.width, this.height);
@@ -781,6 +813,13 @@ interface AuxEntry {
 // which only the generate pass binds; integrate and render get the texture-free chunks.
 const GLSL_COMMON_FOR = (stage: string, o: CommonChunkOptions) => (stage === 'generate' ? glslCommon(o) : GLSL_RNG + GLSL_RAY);
 const WGSL_COMMON_FOR = (stage: string, o: CommonChunkOptions) => (stage === 'generate' ? wgslCommon(o) : WGSL_RNG + WGSL_RAY);
+
+const EXACT_DECODE = { decodeScale: 1, decodeOffset: 0 };
+
+/** Two volumes with the same voxels (the same array, dims and type): they differ at most in value range or name. */
+function sameVoxels(a: Scene['volume'], b: Scene['volume']): boolean {
+  return a.data === b.data && a.type === b.type && a.dims.every((d, i) => d === b.dims[i]);
+}
 
 /** maxGpuBytes when the caller gives none: WebGPU's maxBufferSize (one allocation the device admits) within [1 GiB, 4 GiB]; 1 GiB on WebGL 2, which reports no memory figure. */
 function defaultGpuBytes(backend: GpuBackend): number {

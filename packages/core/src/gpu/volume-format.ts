@@ -81,16 +81,18 @@ export function volumeTextureData(volume: Volume, upload: VolumeUpload): Texture
 /**
  * Texel data of slices [z0, z1) (RenderContext converts and uploads large volumes slab by
  * slab, so no full-size converted copy exists): a view of the volume's own array where the
- * format takes it as is, else a converted copy of just those slices.
+ * format takes it as is, else a converted copy of just those slices — written into `scratch`
+ * when given and large enough (one buffer reused for every slab, since both backends copy
+ * the data when it is written to the texture).
  */
-export function volumeTextureSlab(volume: Volume, upload: VolumeUpload, z0: number, z1: number): TextureData {
+export function volumeTextureSlab(volume: Volume, upload: VolumeUpload, z0: number, z1: number, scratch?: ArrayBuffer): TextureData {
   const slice = volume.dims[0] * volume.dims[1];
   const src = volume.data.subarray(z0 * slice, z1 * slice);
   const fill = normalizationRange(volume)[0]; // non-finite voxels read as the value that maps to 0
   if (uploadsDataAsIs(upload)) return src as TextureData; // Uint8Array / Uint16Array / Int16Array as stored
   switch (upload.format) {
     case 'r16float': {
-      const out = new Uint16Array(src.length);
+      const out = scratch && scratch.byteLength >= src.length * 2 ? new Uint16Array(scratch, 0, src.length) : new Uint16Array(src.length);
       if (volume.type === 'float32') {
         const inv = upload.decodeScale > 0 ? 1 / upload.decodeScale : 0;
         for (let i = 0; i < out.length; i++) {
@@ -107,12 +109,15 @@ export function volumeTextureSlab(volume: Volume, upload: VolumeUpload, z0: numb
       return out;
     }
     case 'r32float': {
-      if (volume.type !== 'float32') return Float32Array.from(src);
+      const out = () => (scratch && scratch.byteLength >= src.length * 4 ? new Float32Array(scratch, 0, src.length) : new Float32Array(src.length));
+      if (volume.type !== 'float32') { const o = out(); o.set(src); return o; }
       const f = src as Float32Array;
       let clean = true;
       for (let i = 0; i < f.length && clean; i++) clean = Number.isFinite(f[i]);
       if (clean) return f;
-      return f.map((x) => (Number.isFinite(x) ? x : fill));
+      const o = out();
+      for (let i = 0; i < f.length; i++) o[i] = Number.isFinite(f[i]) ? f[i] : fill;
+      return o;
     }
     default:
       throw new RangeError(`no volume data for format ${upload.format}`);
