@@ -4,7 +4,8 @@ import { BACKENDS, usePage } from './helpers/session.js';
 const page = usePage();
 
 describe.each(BACKENDS)('bad scene input on %s', (backend) => {
-  it('rejects a NaN camera, a zero-size volume and dims above the device limit with clear typed errors, and stays usable', async () => {
+  // Dims above the device's 3D limit are downsampled with a warning, not refused (tests/compact-volumes.test.ts).
+  it('rejects a NaN camera and a zero-size volume with clear typed errors, and stays usable', async () => {
     const r = await page().page.evaluate(async (backend) => {
       const t = (window as any).t;
       const { core } = (window as any).vpt;
@@ -14,23 +15,19 @@ describe.each(BACKENDS)('bad scene input on %s', (backend) => {
       await ctx.renderIterations(2);
       const before: Float32Array = await ctx.readHDR();
       const attempt = (s: unknown) => { try { ctx.setScene(s); return { code: 'none', message: '' }; } catch (e: any) { return { code: e.code, message: e.message, isVpt: e instanceof core.VptError }; } };
-      const limit = ctx.backend.limits.maxTextureDimension3D;
       const results = {
         nanCamera: attempt({ ...good, camera: { ...good.camera, target: [0, NaN, 0] } }),
         zeroVolume: attempt({ ...good, volume: { dims: [0, 0, 0], spacing: [1, 1, 1], type: 'uint8', data: new Uint8Array(0) } }),
-        tooBig: attempt({ ...good, volume: core.createVolume([limit + 1, 1, 1], 'uint8') }),
       };
       await ctx.renderIterations(2);
       const after: Float32Array = await ctx.readHDR();
       ctx.dispose();
-      return { results, limit, unchanged: t.sameBits(before, after) };
+      return { results, unchanged: t.sameBits(before, after) };
     }, backend);
     expect(r.results.nanCamera).toMatchObject({ code: 'invalid-scene', isVpt: true });
     expect(r.results.nanCamera.message).toMatch(/Camera: target must be three finite numbers/);
     expect(r.results.zeroVolume).toMatchObject({ code: 'invalid-scene', isVpt: true });
     expect(r.results.zeroVolume.message).toMatch(/positive integer/);
-    expect(r.results.tooBig).toMatchObject({ code: 'limit-exceeded', isVpt: true });
-    expect(r.results.tooBig.message).toContain(String(r.limit));
     expect(r.unchanged).toBe(0); // the previous scene still renders, identically
   });
 

@@ -18,7 +18,9 @@ const page = usePage();
 beforeAll(async () => { await installMcrtHelpers(page().page); });
 
 const DIR = new URL('../benchmarks/reference/', import.meta.url);
-const SCENES = ['mitsuba-blob-multiple', 'mitsuba-ramp-single'];
+// mitsuba-blob-inverted: vpt stores the blob as int16 with an inverted value range
+// (`invertedStorage`), Mitsuba renders it with the range pre-applied (make_reference.py).
+const SCENES = ['mitsuba-blob-multiple', 'mitsuba-ramp-single', 'mitsuba-blob-inverted'];
 const N = 256;
 
 describe('MCRT vs Mitsuba 3 (webgl2)', () => {
@@ -29,8 +31,16 @@ describe('MCRT vs Mitsuba 3 (webgl2)', () => {
     expect([mean.width, mean.height]).toEqual([desc.width, desc.height]);
     const gpu = await page().page.evaluate(async (desc, N) => {
       const mt = (window as any).mt;
-      const { reference: _r, ...sceneDesc } = desc;
+      const { reference: _r, invertedStorage, ...sceneDesc } = desc;
       const scene = await (window as any).vpt.buildScene(sceneDesc);
+      if (invertedStorage) {
+        const { core } = (window as any).vpt;
+        const [lo, hi] = invertedStorage.valueRange;
+        const v = scene.volume;
+        const stored = Int16Array.from(v.data as Float32Array, (x: number) => Math.round(lo + (hi - lo) * x));
+        scene.volume = core.createVolume([...v.dims], 'int16', stored, [...v.spacing]);
+        scene.volume.valueRange = [lo, hi];
+      }
       return mt.run({ backend: 'webgl2', width: desc.width, height: desc.height, iterations: N, params: desc.rendererParams, scene });
     }, desc, N);
     expect(gpu.nonFinite).toBe(false);

@@ -38,17 +38,18 @@ const LARGE: Field = { dims: [70, 66, 65], spacing: [1, 1, 1.5], range: [-2, 2],
 
 const page = usePage();
 
-async function gpuGradient(backend: string, field: Field): Promise<{ magnitudes: number[]; max: number }> {
-  return page().page.evaluate(async (backend, field, builder) => {
+// CPU comparisons read the exact path's r32float gradient; the fast path's r16float is tested against its stated bound.
+async function gpuGradient(backend: string, field: Field, sampling: 'fast' | 'exact' = 'exact'): Promise<{ magnitudes: number[]; max: number }> {
+  return page().page.evaluate(async (backend, field, builder, sampling) => {
     const { core } = (window as any).vpt;
     const t = (window as any).t;
     const volume = (0, eval)(builder)(core, field);
-    const ctx = await t.context({ backend, renderer: 'eam', width: 4, height: 4 });
+    const ctx = await t.context({ backend, renderer: 'eam', width: 4, height: 4, sampling });
     ctx.setScene(t.scene({ volume, transferFunction: { dimensions: '2d', widgets: [{ type: 'box', min: [0, 0.5], max: [1, 1], color: [1, 1, 1], opacity: 1 }] } }));
     const g = await ctx.readGradientVolume();
     ctx.dispose();
     return { magnitudes: Array.from(g.magnitudes as Float32Array), max: g.max };
-  }, backend, field, BUILD_IN_PAGE);
+  }, backend, field, BUILD_IN_PAGE, sampling);
 }
 
 describe.each(BACKENDS)('gradient magnitude on the GPU (%s)', (backend) => {
@@ -82,6 +83,15 @@ describe.each(BACKENDS)('gradient magnitude on the GPU (%s)', (backend) => {
     expect(Math.abs(g.max - maxGradientMagnitude(cpu))).toBeLessThan(1e-5);
   });
 
+  it('keeps the fast path\'s 16-bit gradient within half precision of the CPU reference (relative 2^-11)', async () => {
+    const g = await gpuGradient(backend, LARGE, 'fast');
+    const cpu = gradientMagnitudes(build(LARGE));
+    let worst = 0;
+    for (let i = 0; i < cpu.length; i++) worst = Math.max(worst, Math.abs(g.magnitudes[i] - cpu[i]) - 2 ** -11 * cpu[i]);
+    expect(worst).toBeLessThan(1e-6); // |fast − cpu| ≤ 2^-11·cpu + float32 noise, at every voxel
+    expect(Math.abs(g.max - maxGradientMagnitude(cpu))).toBeLessThanOrEqual(2 ** -11 * g.max + 1e-6);
+  });
+
   it('is sampled trilinearly and normalized by the kernels of a renderer that sets needsGradient', async () => {
     // A probe renderer writes sampleGradientMagnitude(p) and normalizedGradientAt(p) at points
     // p spread over the box (through several atlas tiles of a non-cubic volume).
@@ -102,7 +112,7 @@ describe.each(BACKENDS)('gradient magnitude on the GPU (%s)', (backend) => {
         }
         paramValues() { return {}; }
       }
-      const ctx = await core.RenderContext.create({ backend, width: W, height: H, renderer: new Probe() });
+      const ctx = await core.RenderContext.create({ backend, width: W, height: H, renderer: new Probe(), sampling: 'exact' });
       ctx.setScene(t.scene({ volume })); // a 1D transfer function: the gradient is there for the renderer alone
       await ctx.renderIterations(1);
       const hdr = Array.from(await ctx.readHDR() as Float32Array);

@@ -71,6 +71,22 @@ SCENES = {
         'environment': {'type': 'constant', 'radiance': [0.15, 0.2, 0.3]},
         'densityScale': 6,
     },
+    # An inverted value range (issue 12): vpt renders the blob stored as int16
+    # x = round(15000 - 30000 v) with valueRange [15000, -15000] (dense matter dark, LO > HI);
+    # Mitsuba gets the range pre-applied, (x - 15000) / (-15000 - 15000), as its grid.
+    'mitsuba-blob-inverted': {
+        'width': 16, 'height': 16, 'renderer': 'mcrt',
+        'rendererParams': {'scattering': 'multiple', 'maxDepth': -1, 'anisotropy': 0.2},
+        'volume': {'procedural': 'blob', 'size': 16},
+        'invertedStorage': {'type': 'int16', 'valueRange': [15000, -15000]},
+        'transferFunction': {'dimensions': '1d', 'points': [
+            {'value': 0, 'color': [0.7, 0.85, 0.9], 'opacity': 0},
+            {'value': 1, 'color': [0.7, 0.85, 0.9], 'opacity': 1}]},
+        'camera': {'position': [-0.5, 0.7, 1.8], 'target': [0, 0, 0], 'up': [0, 1, 0], 'fovy': 0.62},
+        'lights': [{'type': 'directional', 'direction': [0.8, 1.2, 0.6], 'irradiance': [2.5, 2.4, 2.2]}],
+        'environment': {'type': 'constant', 'radiance': [0.5, 0.55, 0.6]},
+        'densityScale': 12,
+    },
 }
 
 
@@ -105,7 +121,14 @@ def mitsuba_scene(desc):
     pts = desc['transferFunction']['points']
     assert len(pts) == 2 and pts[0]['value'] == 0 and pts[0]['opacity'] == 0 and pts[1]['value'] == 1 and pts[1]['opacity'] == 1 and pts[0]['color'] == pts[1]['color'], 'ramp TF only'
     vol = desc['volume']
-    grid = procedural(vol['procedural'], vol['size'])[..., None]
+    grid = procedural(vol['procedural'], vol['size'])
+    inv = desc.get('invertedStorage')
+    if inv:
+        # The values vpt stores (int16) and then maps through the inverted range, pre-applied here.
+        lo, hi = inv['valueRange']
+        stored = np.round(lo + (hi - lo) * grid.astype(np.float64)).astype(np.int16)
+        grid = np.clip((stored.astype(np.float64) - lo) / (hi - lo), 0, 1).astype(np.float32)
+    grid = grid[..., None]
     params = desc['rendererParams']
     cam = desc['camera']
     to_box = mi.ScalarTransform4f().translate([-0.5, -0.5, -0.5])

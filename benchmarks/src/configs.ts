@@ -120,6 +120,10 @@ export interface Preset {
   specializationSize: number;
   /** Scenes of the error-vs-time suite (default: all). */
   errorScenes?: string[];
+  /** Framebuffer side of the compact suite's fast-vs-exact frame times. */
+  compactSize: number;
+  /** Depths N of the synthetic 512 x 512 x N int16 CT whose load time and JS heap the compact suite measures. */
+  ctDepths: number[];
 }
 
 export const PRESETS: Record<string, Preset> = {
@@ -128,12 +132,14 @@ export const PRESETS: Record<string, Preset> = {
     name: 'smoke', specializationSize: 16, errorSize: 16, referenceIterations: { mip: 16, eam: 16, iso: 16, mcrt: 32 }, curveIterations: 8, curveBudgetMs: 5_000,
     frameSizes: [16], frameVolumeSizes: [16], frameSizeAtVolume: 16, frameIterations: 1, frameRepeats: 2,
     convergenceSizes: [16], cloudSize: 16, scalingVolumeSizes: [16], scalingEmptyFractions: [0, 0.9],
+    compactSize: 16, ctDepths: [4],
   },
   /** Only the frame-time table at 256² and 512² on the 128³ cloud (the figures quoted in issue notes). */
   table: {
     name: 'table', specializationSize: 64, errorSize: 64, referenceIterations: { mip: 64, eam: 64, iso: 64, mcrt: 128 }, curveIterations: 32, curveBudgetMs: 20_000,
     frameSizes: [256, 512], frameVolumeSizes: [], frameSizeAtVolume: 256, frameIterations: 2, frameRepeats: 3,
     convergenceSizes: [64], cloudSize: 128, scalingVolumeSizes: [64], scalingEmptyFractions: [0],
+    compactSize: 256, ctDepths: [64],
   },
   /**
    * The MCRT figures of issue 3: time to 30/35 dB at 256² on the 128³ cloud
@@ -143,15 +149,18 @@ export const PRESETS: Record<string, Preset> = {
     name: 'mcrt256', specializationSize: 256, errorSize: 256, referenceIterations: { mip: 256, eam: 256, iso: 256, mcrt: 256 }, curveIterations: 256, curveBudgetMs: 360_000,
     frameSizes: [256], frameVolumeSizes: [], frameSizeAtVolume: 256, frameIterations: 2, frameRepeats: 3,
     convergenceSizes: [256], cloudSize: 128, scalingVolumeSizes: [128], scalingEmptyFractions: [0], errorScenes: ['cloud'],
+    compactSize: 256, ctDepths: [64],
   },
   quick: {
     name: 'quick', specializationSize: 96, errorSize: 64, referenceIterations: { mip: 128, eam: 128, iso: 256, mcrt: 384 }, curveIterations: 128, curveBudgetMs: 15_000,
     frameSizes: [64, 128, 256, 512], frameVolumeSizes: [64, 128, 256], frameSizeAtVolume: 128, frameIterations: 1, frameRepeats: 3,
     convergenceSizes: [64, 128], cloudSize: 128, scalingVolumeSizes: [32, 64, 128], scalingEmptyFractions: [0, 0.5, 0.9],
+    compactSize: 256, ctDepths: [64, 256, 1024],
   },
   full: {
     name: 'full', specializationSize: 256, errorSize: 256, referenceIterations: { mip: 512, eam: 512, iso: 1024, mcrt: 4096 }, curveIterations: 1024, curveBudgetMs: 300_000,
     frameSizes: [64, 128, 256, 512], frameVolumeSizes: [64, 128, 256], frameSizeAtVolume: 512, frameIterations: 4, frameRepeats: 5,
     convergenceSizes: [256, 512, 1024], cloudSize: 128, scalingVolumeSizes: [32, 64, 128, 256], scalingEmptyFractions: [0, 0.25, 0.5, 0.75, 0.9],
+    compactSize: 256, ctDepths: [64, 256, 1024],
   },
 };

@@ -20,8 +20,8 @@ type VoxelType = Parameters<VptPageApi['core']['createVolume']>[1];
 
 type Vec3 = [number, number, number];
 type RawSpec = Extract<SceneSpec['volume'], { kind: 'raw' }>;
-/** A renderer configuration on one backend. */
-type PageConfig = RendererConfig & { backend: 'webgl2' | 'webgpu' };
+/** A renderer configuration on one backend, with the context's volume sampling and GPU memory budget. */
+type PageConfig = RendererConfig & { backend: 'webgl2' | 'webgpu'; sampling?: 'fast' | 'exact'; maxGpuBytes?: number };
 interface Reference { hdr: Float32Array; ldr: Uint8Array; peak: number; noiseMse: number; info: Record<string, unknown> }
 interface GpuTimer { kind: string; begin(): void; end(): void; result(): Promise<number | null>; dispose(): void }
 
@@ -103,7 +103,10 @@ export function installBenchPage(): void {
   }
 
   async function context(config: PageConfig, width: number, height: number): Promise<RenderContext> {
-    return vpt.core.RenderContext.create({ backend: config.backend, width, height, renderer: renderer(config), post: vpt.post.postChainFromJSON([{ type: 'tonemap', operator: 'aces' }, { type: 'srgb' }]) });
+    return vpt.core.RenderContext.create({
+      backend: config.backend, width, height, renderer: renderer(config), post: vpt.post.postChainFromJSON([{ type: 'tonemap', operator: 'aces' }, { type: 'srgb' }]),
+      sampling: config.sampling, maxGpuBytes: config.maxGpuBytes,
+    });
   }
 
   function errors(hdr: Float32Array, ldr: Uint8Array, ref: Reference) {
@@ -255,6 +258,62 @@ export function installBenchPage(): void {
       if (timer) timer.dispose();
       ctx.dispose();
       return { samples, gpuSamples, gpuTimer: timer ? timer.kind : 'none', firstMs, device: info.renderer };
+    },
+
+    /** GPU bytes per voxel of the volume texture for each voxel type, fast (default) and exact sampling. */
+    async bytesPerVoxel(backend: 'webgl2' | 'webgpu', size: number) {
+      const rows: { backend: string; type: VoxelType; sampling: 'fast' | 'exact'; bytesPerVoxel: number; total: number }[] = [];
+      const C = { uint8: Uint8Array, uint16: Uint16Array, int16: Int16Array, float32: Float32Array };
+      for (const type of ['uint8', 'uint16', 'int16', 'float32'] as const) {
+        const data = new C[type](size * size * size);
+        for (let i = 0; i < data.length; i++) data[i] = (i * 7919) % 251;
+        const volume = vpt.core.createVolume([size, size, size], type, data);
+        for (const sampling of ['fast', 'exact'] as const) {
+          const ctx = await context({ label: 'eam', renderer: 'eam', backend, sampling }, 16, 16);
+          ctx.setScene({ volume, transferFunction: vpt.core.rampTransferFunction(), camera: vpt.core.defaultCamera(), lights: [], environment: { type: 'constant', radiance: [1, 1, 1] }, densityScale: 1, seed: 1 });
+          await ctx.renderIterations(1);
+          const b = ctx.stats.gpuBytes;
+          rows.push({ backend, type, sampling, bytesPerVoxel: b.volume / data.length, total: b.total });
+          ctx.dispose();
+        }
+      }
+      return rows;
+    },
+
+    /**
+     * A synthetic 512 x 512 x depth int16 CT (HU: air, an elliptic body of soft tissue, a bone
+     * ring, varying with z) generated in the page, then shown: setScene (upload) and the first
+     * image. Times of each stage; the caller samples the JS heap meanwhile.
+     */
+    async ctLoad(backend: 'webgl2' | 'webgpu', depth: number) {
+      const nx = 512, ny = 512, slice = nx * ny;
+      const t0 = performance.now();
+      const templates: Int16Array[] = [];
+      for (let k = 0; k < 16; k++) {
+        const t = new Int16Array(slice);
+        const ra = 200 + 4 * k, rb = 150 + 3 * k;
+        for (let y = 0; y < ny; y++) for (let x = 0; x < nx; x++) {
+          const e = ((x - 256) / ra) ** 2 + ((y - 256) / rb) ** 2;
+          t[x + nx * y] = e > 1 ? -1000 : e > 0.85 ? 700 + ((x * 31 + y * 17) % 200) : 40 + ((x * 13 + y * 7) % 60);
+        }
+        templates.push(t);
+      }
+      const data = new Int16Array(slice * depth);
+      for (let z = 0; z < depth; z++) data.set(templates[Math.floor(8 + 7.5 * Math.sin(z / 20))], z * slice);
+      const volume = vpt.core.createVolume([nx, ny, depth], 'int16', data, [0.7, 0.7, 1.25]);
+      volume.valueRange = [-1024, 3071];
+      const t1 = performance.now();
+      const ctx = await context({ label: 'eam', renderer: 'eam', backend }, 64, 64);
+      const warnings: string[] = [];
+      ctx.onWarning((w) => warnings.push(w.message));
+      const t2 = performance.now();
+      ctx.setScene({ volume, transferFunction: vpt.core.rampTransferFunction(), camera: vpt.core.defaultCamera(), lights: [], environment: { type: 'constant', radiance: [1, 1, 1] }, densityScale: 10, seed: 1 });
+      const t3 = performance.now();
+      await ctx.renderIterations(1);
+      const t4 = performance.now();
+      const out = { backend, depth, generateMs: t1 - t0, setSceneMs: t3 - t2, firstImageMs: t4 - t3, loadMs: t4 - t2, gpuBytes: ctx.stats.gpuBytes, uploadedDims: ctx.getScene()!.volume.dims, warnings };
+      ctx.dispose();
+      return out;
     },
 
     backendInfo: async (backend: 'webgl2' | 'webgpu') => {

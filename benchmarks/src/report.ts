@@ -6,6 +6,7 @@ import type { FrameTimeRow } from './suites/frame-time.js';
 import type { ConvergenceResult } from './suites/convergence.js';
 import type { ScalingRow } from './suites/scaling.js';
 import type { SpecializationRow } from './suites/specialization.js';
+import type { CompactResults } from './suites/compact.js';
 
 export interface Results {
   machine: Record<string, unknown>;
@@ -16,6 +17,7 @@ export interface Results {
   convergence?: ConvergenceResult[];
   scaling?: ScalingRow[];
   specialization?: SpecializationRow[];
+  compact?: CompactResults;
   skipped: string[];
 }
 
@@ -74,6 +76,20 @@ export function htmlReport(r: Results): string {
     const rows = r.specialization.map((x) => `<tr><td>${esc(x.scene)}</td><td>${x.scattering}</td><td>${x.backend}</td><td>${x.size}²</td><td>${x.specializedMs.toFixed(1)}</td><td>${x.genericMs.toFixed(1)}</td><td>${x.ratio.toFixed(2)}×</td><td>${fmt(x.specializedFirstMs)} / ${fmt(x.genericFirstMs)}</td></tr>`).join('');
     sections.push(`<h2>MCRT kernel specialization</h2><p>Median ms per iteration of the kernel compiled for the scene against the generic kernel (<code>specialize: false</code>: environment map, light loop, scattering order and majorant grid as runtime data), measured alternately in the same run. Ratio &gt; 1: specialization saves that factor. Last column: first iteration after a scene change (kernel compilation + one iteration), specialised / generic.</p>
 <table><tr><th>scene</th><th>scattering</th><th>backend</th><th>size</th><th>specialised ms/it</th><th>generic ms/it</th><th>generic / specialised</th><th>first iteration</th></tr>${rows}</table>`);
+  }
+
+  if (r.compact) {
+    const c = r.compact;
+    const bpv = c.bytesPerVoxel.map((x) => `<tr><td>${x.type}</td><td>${x.backend}</td><td>${x.sampling}</td><td>${x.bytesPerVoxel.toFixed(2)}</td></tr>`).join('');
+    const fe = c.fastVsExact.map((x) => `<tr><td>${esc(x.renderer)}</td><td>${x.backend}</td><td>${x.size}²</td><td>${x.fastMs.toFixed(1)}</td><td>${x.exactMs.toFixed(1)}</td><td>${x.ratio.toFixed(2)}×</td></tr>`).join('');
+    const ct = c.ctLoad.map((x) => `<tr><td>512×512×${x.depth}</td><td>${x.backend}</td><td>${fmt(x.generateMs)}</td><td>${fmt(x.setSceneMs)}</td><td>${fmt(x.firstImageMs)}</td><td>${fmt(x.loadMs)}</td><td>${x.baseHeapMiB.toFixed(0)} → ${x.peakHeapMiB.toFixed(0)}</td><td>${(x.gpuBytes.volume / 2 ** 20).toFixed(0)}</td><td>${x.uploadedDims.join('×')}</td></tr>`).join('');
+    sections.push(`<h2>Compact volumes: GPU bytes, fast vs exact sampling, CT load</h2><p>Load average at the start: ${c.loadAverage.map((x) => x.toFixed(2)).join(', ')}.</p>
+<table><tr><th>voxel type</th><th>backend</th><th>sampling</th><th>GPU bytes / voxel (volume)</th></tr>${bpv}</table>
+<p>Median ms per iteration on the bundled head, fast path (compact texture, one hardware-filtered fetch) and exact path (r32float, manual trilinear), measured alternately (A/B then B/A) in one run. Ratio = exact / fast.</p>
+<table><tr><th>renderer</th><th>backend</th><th>size</th><th>fast ms/it</th><th>exact ms/it</th><th>exact / fast</th></tr>${fe}</table>
+<p>Synthetic int16 CT: generated in the page, then setScene (upload) and the first image (EAM, 64²). JS heap: V8 heap + array-buffer backing stores, before → peak.</p>
+<table><tr><th>volume</th><th>backend</th><th>generate ms</th><th>setScene ms</th><th>first image ms</th><th>load ms</th><th>JS heap MiB</th><th>GPU volume MiB</th><th>uploaded</th></tr>${ct}</table>
+${c.ctSkipped.length ? `<p>Not measured: ${c.ctSkipped.map(esc).join('; ')}</p>` : ''}`);
   }
 
   return `<!doctype html><html lang="en"><head><meta charset="utf-8"><title>vpt benchmarks — ${esc(r.machine.date)}</title>

@@ -1,5 +1,5 @@
 /**
- * `pnpm bench [--preset quick|full] [--suites error,frame,convergence,scaling,specialization] [--backends webgl2,webgpu]`
+ * `pnpm bench [--preset quick|full] [--suites error,frame,convergence,scaling,specialization,compact] [--backends webgl2,webgpu]`
  * Runs the suites in headless Chromium and writes benchmarks/results/<stamp>/results.json
  * and report.html. Nothing here asserts a time: comparisons are ratios within one run.
  */
@@ -16,6 +16,7 @@ import { errorVsTime } from './suites/error-vs-time.js';
 import { frameTime } from './suites/frame-time.js';
 import { scaling } from './suites/scaling.js';
 import { specialization } from './suites/specialization.js';
+import { compact } from './suites/compact.js';
 import type { SuiteContext } from './suites/types.js';
 
 function arg(name: string, fallback: string): string {
@@ -25,7 +26,7 @@ function arg(name: string, fallback: string): string {
 
 const preset = PRESETS[arg('preset', 'quick')];
 if (!preset) throw new Error(`unknown preset (use ${Object.keys(PRESETS).join(', ')})`);
-const suites = arg('suites', 'error,frame,convergence,scaling,specialization').split(',');
+const suites = arg('suites', 'error,frame,convergence,scaling,specialization,compact').split(',');
 const backends = arg('backends', 'webgl2,webgpu').split(',') as Backend[];
 const only = arg('renderers', '');
 const sceneFilter = arg('scenes', '');
@@ -69,6 +70,7 @@ try {
   if (suites.includes('convergence')) results.convergence = await convergence(ctx);
   if (suites.includes('scaling')) results.scaling = await scaling(ctx);
   if (suites.includes('specialization') && available.includes('mcrt')) results.specialization = await specialization(ctx);
+  if (suites.includes('compact')) results.compact = await compact(ctx);
 
   const dir = path.join(fileURLToPath(new URL('..', import.meta.url)), 'results', new Date().toISOString().replace(/[:.]/g, '-'));
   mkdirSync(dir, { recursive: true });

@@ -4,7 +4,7 @@
  * TypeScript: puppeteer sends the function's compiled source, so it may use nothing from
  * this module's scope, only `window.vpt` (the headless page's API).
  */
-import type { RenderContext, Scene, Volume, VoxelType, Camera, Environment, TransferFunction } from '@vpt/core';
+import type { RenderContext, Scene, Volume, VoxelType, Camera, Environment, TransferFunction, VolumeSampling } from '@vpt/core';
 
 export interface TestContextOptions {
   backend: 'webgl2' | 'webgpu' | 'auto';
@@ -15,6 +15,10 @@ export interface TestContextOptions {
   params?: Record<string, unknown>;
   /** A post chain as JSON (none when omitted). */
   post?: unknown;
+  /** 'exact' for tests that compare with CPU twins or across backends bit for bit. */
+  sampling?: VolumeSampling;
+  /** The GPU memory budget in bytes (RenderContextOptions.maxGpuBytes). */
+  maxGpuBytes?: number;
 }
 
 /** The shared test scene: a ramp TF, the default camera, no lights, a black sky, density 1, seed 1. */
@@ -25,6 +29,7 @@ export interface TestSceneSpec {
   environment?: Environment;
   densityScale?: number;
   seed?: number;
+  sampling?: VolumeSampling;
 }
 
 export interface InPageHelpers {
@@ -48,7 +53,8 @@ export function installInPageHelpers(): void {
       const { core, post } = window.vpt;
       const renderer = window.vpt.createRenderer(opts.renderer || 'eam', opts.params || {});
       const steps = opts.post ? post.postChainFromJSON(opts.post) : [];
-      return core.RenderContext.create({ backend: opts.backend, width: opts.width, height: opts.height, renderer, post: steps });
+      // sampling: 'exact' for tests that compare with CPU twins or across backends bit for bit.
+      return core.RenderContext.create({ backend: opts.backend, width: opts.width, height: opts.height, renderer, post: steps, sampling: opts.sampling, maxGpuBytes: opts.maxGpuBytes });
     },
     scene(spec) {
       const { core } = window.vpt;
@@ -60,6 +66,7 @@ export function installInPageHelpers(): void {
         environment: spec.environment || { type: 'constant', radiance: [0, 0, 0] },
         densityScale: spec.densityScale ?? 1,
         seed: spec.seed ?? 1,
+        ...(spec.sampling ? { sampling: spec.sampling } : {}),
       };
     },
     // The headless page's own raw reader (one place reads raw files in the page).

@@ -12,15 +12,19 @@ export * from './scene/procedural.js';
 export { UniformLayout, type UniformField, type UniformType, type UniformValues, type UniformValue, type FieldPlacement } from './uniforms/layout.js';
 
 export type * from './gpu/backend.js';
+export { isFilterable, sliceCount, BYTES_PER_TEXEL } from './gpu/backend.js';
+export { floatToHalf, halfToFloat, toHalfArray, fromHalfArray } from './gpu/half-float.js';
 export { createBackend } from './gpu/create-backend.js';
 export { createWebGL2Backend } from './gpu/webgl2/webgl2-backend.js';
 export { createWebGPUBackend, isWebGPUAvailable } from './gpu/webgpu/webgpu-backend.js';
 
-export type { Renderer, KernelSource, AuxiliaryTexture, AuxiliaryPass } from './renderer.js';
+export type { Renderer, KernelSource, AuxiliaryTexture, AuxiliaryPass, VolumeBinding } from './renderer.js';
+export { planVolumeUpload, uploadsDataAsIs, volumeTextureData, volumeTextureSlab, volumeValueMapping, type VolumeSampling, type VolumeUpload, type VolumeFormatOptions } from './gpu/volume-format.js';
+export { downsampleVolume, fitFactors } from './scene/downsample.js';
 export { BaseRenderer } from './base-renderer.js';
 export { RUNNING_MEAN_INTEGRATE, COPY_ACCUMULATION_RENDER } from './shaders/accumulation.js';
 export type { PostStep } from './post-step.js';
-export { RenderContext, type RenderContextOptions, type RenderStats } from './context/render-context.js';
+export { RenderContext, DEFAULT_GPU_BYTES, type RenderContextOptions, type RenderStats, type GpuBytes, type RenderWarning } from './context/render-context.js';
 
 export { SCENE_UNIFORM_FIELDS, sceneUniformValues } from './shaders/scene-uniforms.js';
 // Shader chunks: each <name>.glsl.ts / <name>.wgsl.ts pair exports the same identifiers;

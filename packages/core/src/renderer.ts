@@ -12,7 +12,7 @@ export interface KernelSource {
  * A renderer plugin, declared rather than driven: the RenderContext runs its three
  * kernels as full-screen passes (docs/design.md, "The pipeline"):
  *
- *  - generate:  textures `volume` (3D r32float, normalized) and `transferFunction`
+ *  - generate:  textures `volume` (3D, compact format: gpu/volume-format.ts; read through sampleVolume()) and `transferFunction`
  *               (2D rgba32float, tfSize x tfHeight: 1 row for a 1D TF, 256 for a 2D one),
  *               plus the gradient textures when needed (see `needsGradient`)
  *               → `frameFormats` (the new sample). Kernels read the TF through the
@@ -45,7 +45,7 @@ export interface Renderer {
    * when its `key` changes (so a camera move rebuilds nothing), frees it when it is no
    * longer listed, and rebuilds all of them after a context loss.
    */
-  auxiliaryTextures?(scene: Scene): readonly AuxiliaryTexture[];
+  auxiliaryTextures?(scene: Scene, volume: VolumeBinding): readonly AuxiliaryTexture[];
   /**
    * Indices into `accumulationFormats` of two textures holding the running means of the
    * even and of the odd iterations. When present, `RenderContext.estimateError()` reports
@@ -73,6 +73,18 @@ export interface AuxiliaryTexture {
   render?: AuxiliaryPass;
   /** Bound to the generate pass (default true); false for an input of a later AuxiliaryPass only. */
   bind?: boolean;
+}
+
+/**
+ * How the bound volume texture reads: texel → normalized value v = clamp(texel · valueScale +
+ * valueOffset, 0, 1) (gpu/volume-format.ts), for auxiliary passes that read texels with
+ * texelFetch; `key` changes exactly when the texture or the mapping does.
+ */
+export interface VolumeBinding {
+  valueScale: number;
+  valueOffset: number;
+  format: string;
+  key: string;
 }
 
 /**

@@ -36,6 +36,9 @@ export interface RenderResult {
   ldr: Uint8Array | null;
   timings: RenderTimings;
   backend: BackendSummary;
+  gpuBytes: PageRenderResult['gpuBytes'];
+  volumeDims: [number, number, number];
+  warnings: string[];
 }
 
 export interface PageRenderOptions {
@@ -152,6 +155,9 @@ function decodeResult(r: PageRenderResult): RenderResult {
     ldr: r.ldr === null ? null : bytesOf(r.ldr),
     timings: r.timings,
     backend: r.backend,
+    gpuBytes: r.gpuBytes,
+    volumeDims: r.volumeDims,
+    warnings: r.warnings,
   };
 }
 

@@ -66,6 +66,10 @@ export interface SceneDescription {
   environment?: EnvironmentDescription;
   densityScale?: number;
   seed?: number;
+  /** Volume sampling: 'fast' (default; compact texture, hardware filter) or 'exact' (r32float, manual trilinear). */
+  sampling?: 'fast' | 'exact';
+  /** GPU memory budget in bytes (RenderContext's maxGpuBytes): a larger volume is downsampled, with a warning. */
+  maxGpuBytes?: number;
   /** Post chain as JSON, for `postChainFromJSON` of @vpt/post. */
   post?: Record<string, unknown>[];
   iterations?: number;
@@ -104,6 +108,8 @@ export function checkSceneDescription(d: unknown, rendererNames?: readonly strin
   };
   posInt('width'); posInt('height'); posInt('iterations');
   if (s.seed !== undefined && !(Number.isInteger(s.seed) && (s.seed as number) >= 0)) bad(`"seed" must be a non-negative integer, got ${JSON.stringify(s.seed)}`);
+  if (s.sampling !== undefined && s.sampling !== 'fast' && s.sampling !== 'exact') bad(`"sampling" must be "fast" or "exact", got ${JSON.stringify(s.sampling)}`);
+  if (s.maxGpuBytes !== undefined && !(typeof s.maxGpuBytes === 'number' && s.maxGpuBytes > 0)) bad(`"maxGpuBytes" must be a positive number of bytes, got ${JSON.stringify(s.maxGpuBytes)}`);
   if (s.renderer !== undefined && (typeof s.renderer !== 'string' || (rendererNames && !rendererNames.includes(s.renderer)))) {
     bad(`"renderer" must be ${rendererNames ? `one of ${rendererNames.join(', ')}` : 'a renderer name'}, got ${JSON.stringify(s.renderer)}`);
   }

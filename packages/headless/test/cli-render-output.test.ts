@@ -18,6 +18,9 @@ vi.mock('../src/render.js', () => ({
       ldr,
       timings: { totalMs: 12.5, iterations: options.iterations ?? 64, msPerIteration: 0.19, setupMs: 40 },
       backend: { kind: 'webgl2', renderer: 'SwiftShader' },
+      gpuBytes: { volume: 1000, gradient: 0, auxiliary: 16, targets: 64, total: 1080 },
+      volumeDims: [10, 10, 10],
+      warnings: [],
     };
   },
 }));
@@ -38,7 +41,10 @@ describe('vpt-render output', () => {
     expect(calls[0].desc).toEqual({ renderer: 'mip', width: 64 });
     expect(calls[0].options).toMatchObject({ baseDir: dir, iterations: 5, backend: 'webgl2', width: 2, height: 1, seed: 3 });
     expect(stdout).toHaveLength(1);
-    expect(JSON.parse(stdout[0])).toEqual({ totalMs: 12.5, iterations: 5, msPerIteration: 0.19, setupMs: 40, width: 2, height: 1, backend: 'webgl2', device: 'SwiftShader' });
+    expect(JSON.parse(stdout[0])).toEqual({
+      totalMs: 12.5, iterations: 5, msPerIteration: 0.19, setupMs: 40, width: 2, height: 1, backend: 'webgl2', device: 'SwiftShader',
+      gpuBytes: { volume: 1000, gradient: 0, auxiliary: 16, targets: 64, total: 1080 }, volumeDims: [10, 10, 10],
+    });
     const png = decodePNG(fs.readFileSync(path.join(dir, 'out', 'a.png')));
     expect(Array.from(png.rgba)).toEqual([255, 0, 0, 255, 0, 0, 255, 255]); // opaque by default
     const pfm = decodePFM(fs.readFileSync(path.join(dir, 'a.pfm')));

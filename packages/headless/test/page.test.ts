@@ -69,6 +69,10 @@ describe.skipIf(!pageBuilt || !fs.existsSync(chromiumExecutable()))('the headles
     expect(r.timings).toMatchObject({ iterations: 64, msPerIteration: 0.5 });
     expect(r.timings.totalMs).toBeGreaterThanOrEqual(0);
     expect(r.backend).toEqual({ kind: 'webgl2', renderer: 'stub eam' });
+    // The context's GPU memory and the uploaded dims pass through (the stub counts the volume's bytes).
+    expect(r.gpuBytes).toEqual({ volume: 32 ** 3 * 4, gradient: 0, auxiliary: 0, targets: 0, total: 32 ** 3 * 4 });
+    expect(r.volumeDims).toEqual([32, 32, 32]);
+    expect(r.warnings).toEqual([]);
     const s = await lastScene();
     expect(s.volume.dims).toEqual([32, 32, 32]);
     expect(s).toMatchObject({ environment: { type: 'constant', radiance: [1, 1, 1] }, densityScale: 10, seed: 1, lights: [], camera: { position: [0, 0, 2], fovy: 0.7 } });

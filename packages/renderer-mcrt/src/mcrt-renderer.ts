@@ -1,7 +1,7 @@
 import {
   BaseRenderer, buildEnvironmentSampling, COPY_ACCUMULATION_RENDER, GLSL_SLICE_ATLAS, sliceAtlasLayout, WGSL_SLICE_ATLAS, rasterizeTransferFunction, TF_RESOLUTION, UniformLayout,
   type AuxiliaryTexture, type EnvironmentSamplingTables, type KernelSource, type LatLongEnvironment, type Scene,
-  type UniformField, type UniformValues, type Volume,
+  type UniformField, type UniformValues, type Volume, type VolumeBinding, volumeValueMapping,
 } from '@vpt/core';
 import { activeLights, computeFeatures, featureKey, MAX_LIGHTS, type McrtFeatures } from './features.js';
 import { generateKernel, INTEGRATE_HALVES } from './kernel-sources.js';
@@ -108,10 +108,11 @@ export class McrtRenderer extends BaseRenderer<McrtParams> {
     };
   }
 
-  auxiliaryTextures(scene: Scene): readonly AuxiliaryTexture[] {
+  // Without a binding (a caller outside RenderContext): the exact path's r32float of data values.
+  auxiliaryTextures(scene: Scene, volume: VolumeBinding = { ...volumeValueMapping(scene.volume, { decodeScale: 1, decodeOffset: 0 }), format: 'r32float', key: '' }): readonly AuxiliaryTexture[] {
     const aux: AuxiliaryTexture[] = [];
     const f = computeFeatures(scene, this.resolved);
-    if (f.MAJORANT_GRID) aux.push(...this.majorantGridTextures(scene));
+    if (f.MAJORANT_GRID) aux.push(...this.majorantGridTextures(scene, volume));
     if (f.ENV_MAP) {
       const env = this.environmentMap(scene);
       const key = `${idOf(env.data)}|${env.scale ?? 1}|${env.width}x${env.height}`;
@@ -131,18 +132,19 @@ export class McrtRenderer extends BaseRenderer<McrtParams> {
    * (on a TF change) and the grid itself (on a volume, TF or density change). All three use
    * the slice-atlas layout of the cell counts; only the grid is bound to the kernel.
    */
-  private majorantGridTextures(scene: Scene): AuxiliaryTexture[] {
+  private majorantGridTextures(scene: Scene, volume: VolumeBinding): AuxiliaryTexture[] {
+    const map = { valueScale: volume.valueScale, valueOffset: volume.valueOffset };
     const cellSize = this.cellSize(scene);
     const geometry = this.gridGeometry(scene);
     const layout = sliceAtlasLayout(geometry.slice(0, 3));
     const tfKey = JSON.stringify(scene.transferFunction);
     return [
       {
-        name: 'majorantRanges', dimension: '2d', bind: false, key: `${idOf(scene.volume as Volume)}|${cellSize}`,
+        name: 'majorantRanges', dimension: '2d', bind: false, key: `${idOf(scene.volume as Volume)}|${cellSize}|${volume.format}|${volume.key.split('|')[0]}`,
         render: {
           label: 'majorant grid value ranges', width: layout.width, height: layout.height, format: 'rgba32float',
           glsl: GLSL_SLICE_ATLAS + glslBuild.cellRanges, wgsl: WGSL_SLICE_ATLAS + wgslBuild.cellRanges, uniforms: BUILD_UNIFORMS,
-          values: { gridCells: geometry, gridDensity: 0 },
+          values: { gridCells: geometry, gridDensity: 0, ...map },
           inputs: [{ name: 'volume', dimension: '3d' }],
         },
       },
@@ -150,16 +152,16 @@ export class McrtRenderer extends BaseRenderer<McrtParams> {
         name: 'opacityBounds', dimension: '2d', bind: false, key: tfKey,
         render: {
           label: 'transfer function opacity bounds', width: TF_RESOLUTION, height: 1, format: 'rgba32float',
-          glsl: glslBuild.opacityBounds, wgsl: wgslBuild.opacityBounds, uniforms: BUILD_UNIFORMS, values: { gridCells: [0, 0, 0, 0], gridDensity: 0 },
+          glsl: glslBuild.opacityBounds, wgsl: wgslBuild.opacityBounds, uniforms: BUILD_UNIFORMS, values: { gridCells: [0, 0, 0, 0], gridDensity: 0, ...map },
           inputs: [{ name: 'transferFunction', dimension: '2d' }],
         },
       },
       {
-        name: 'majorantGrid', dimension: '2d', key: this.gridKey(scene),
+        name: 'majorantGrid', dimension: '2d', key: `${this.gridKey(scene)}|${volume.key}`,
         render: {
           label: 'majorant grid', width: layout.width, height: layout.height, format: 'rgba32float',
           glsl: GLSL_SLICE_ATLAS + glslBuild.majorantGrid, wgsl: WGSL_SLICE_ATLAS + wgslBuild.majorantGrid, uniforms: BUILD_UNIFORMS,
-          values: { gridCells: geometry, gridDensity: scene.densityScale },
+          values: { gridCells: geometry, gridDensity: scene.densityScale, ...map },
           inputs: [{ name: 'majorantRanges', dimension: '2d' }, { name: 'opacityBounds', dimension: '2d' }],
         },
       },
@@ -221,6 +223,9 @@ const DEFAULT_FEATURES: McrtFeatures = {
 const BUILD_UNIFORMS = new UniformLayout('MajorantBuild', [
   { name: 'gridCells', type: 'ivec4' },
   { name: 'gridDensity', type: 'f32' },
+  // Volume texel → normalized value (RenderContext's VolumeBinding; gpu/volume-format.ts in core).
+  { name: 'valueScale', type: 'f32' },
+  { name: 'valueOffset', type: 'f32' },
 ]);
 
 /** A constant sky as a map for the generic kernel: small, since every texel is the same. */

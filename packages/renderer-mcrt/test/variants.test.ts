@@ -92,7 +92,8 @@ describe('MCRT feature variants', () => {
     expect([aux[0].render!.width, aux[0].render!.height, aux[2].render!.width, aux[2].render!.height]).toEqual([6, 6, 6, 6]);
     expect(aux[0].render!.inputs.map((i) => i.name)).toEqual(['volume']);
     expect(aux[0].render!.values.gridCells).toEqual([3, 3, 3, 2]);
-    expect(aux[2].render!.values).toEqual({ gridCells: [3, 3, 3, 2], gridDensity: 10 });
+    // Without a RenderContext's volume binding: the exact path's data values, here already in [0, 1].
+    expect(aux[2].render!.values).toEqual({ gridCells: [3, 3, 3, 2], gridDensity: 10, valueScale: 1, valueOffset: 0 });
     expect(aux[1].render!.inputs.map((i) => i.name)).toEqual(['transferFunction']);
     expect(aux[2].render!.inputs.map((i) => i.name)).toEqual(['majorantRanges', 'opacityBounds']);
     const cdf = aux[4].create!();

@@ -66,7 +66,7 @@ export function gradientSamples(v: Volume): GradientSamples {
     const i0 = Math.max(i - 1, 0), i1 = Math.min(i + 1, n - 1);
     return i1 === i0 ? 0 : (f(i1) - f(i0)) / (i1 - i0);
   };
-  const k = v.spacing.map((sp) => (hi - lo) / sp);
+  const k = v.spacing.map((sp) => Math.abs(hi - lo) / sp); // |hi − lo|: an inverted range keeps magnitudes
   const count = Math.ceil(nx / s) * Math.ceil(ny / s) * Math.ceil(nz / s);
   const values = new Float32Array(count), gradients = new Float32Array(count);
   let n = 0, max = 0;

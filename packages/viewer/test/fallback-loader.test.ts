@@ -13,6 +13,8 @@ beforeAll(async () => {
   const sidecar = (name: string, extra: object) => fs.writeFileSync(path.join(dir, `${name}.json`), JSON.stringify({ dims: [2, 2, 2], voxel_type: 'uint16', ...extra }));
   sidecar('ok', { endianness: 'big', spacing: [1, 2, 3], value_range: [0, 1000] });
   fs.writeFileSync(path.join(dir, 'ok.raw'), Buffer.from([0, 1, 0, 2, 0, 3, 0, 4, 0, 5, 0, 6, 0, 7, 1, 0]));
+  sidecar('inverted', { value_range: [1000, 0] });
+  fs.writeFileSync(path.join(dir, 'inverted.raw'), Buffer.alloc(16));
   sidecar('short', {});
   fs.writeFileSync(path.join(dir, 'short.raw'), Buffer.alloc(10));
   sidecar('nodims', { dims: [2, 2] });
@@ -44,6 +46,11 @@ describe('fallback sidecar loader', () => {
     expect(v.valueRange).toEqual([0, 1000]);
     expect(v.format).toBe('raw');
     expect(progress[progress.length - 1]).toBe(16);
+  });
+
+  it('keeps an inverted value range (LO > HI: dense matter stored dark)', async () => {
+    const v = await fallbackLoadVolume(new URL('inverted.json', server.url).href);
+    expect(v.valueRange).toEqual([1000, 0]);
   });
 
   it('names what is wrong: missing file, short raw, bad sidecar, other formats', async () => {

@@ -6,6 +6,10 @@ import type { Renderer } from '../renderer.js';
 import type { Scene } from '../scene/scene.js';
 import { validateScene } from '../scene/scene.js';
 import { TF_RESOLUTION } from '../scene/transfer-function.js';
+import { voxelCount } from '../scene/volume.js';
+import { downsampleVolume, fitFactors } from '../scene/downsample.js';
+import { BYTES_PER_TEXEL } from '../gpu/backend.js';
+import type { VolumeSampling } from '../gpu/volume-format.js';
 import { commonChunks, PASS_CHUNKS, type CommonChunkOptions } from '../shaders/common.js';
 import { preprocess } from '../shaders/preprocess.js';
 import { SCENE_UNIFORM_FIELDS, sceneUniformValues } from '../shaders/scene-uniforms.js';
@@ -13,7 +17,7 @@ import { sliceAtlasLayout } from '../shaders/slice-atlas.js';
 import { UniformLayout } from '../uniforms/layout.js';
 import { PRESENT_PASS } from './present-pass.js';
 import { ProgressiveLoop } from './progressive-loop.js';
-import { SceneResources } from './scene-resources.js';
+import { SceneResources, sameVoxels } from './scene-resources.js';
 
 export interface RenderContextOptions {
   backend?: BackendPreference;
@@ -23,7 +27,49 @@ export interface RenderContextOptions {
   height: number;
   renderer: Renderer;
   post?: PostStep[];
+  /**
+   * Volume sampling when the scene does not say (Scene.sampling): 'fast' (default; compact
+   * texture, one hardware-filtered fetch) or 'exact' (r32float, manual trilinear).
+   */
+  sampling?: VolumeSampling;
+  /** float32 volumes may be stored as r16float on the fast path (half the memory, ~3 significant digits). Default false. */
+  allowHalfFloatVolumes?: boolean;
+  /**
+   * GPU memory budget in bytes for everything the context allocates. A volume that does not
+   * fit (with its gradient volume, the render targets and the transfer function) is
+   * downsampled to the largest resolution that does, with a warning (onWarning). Default:
+   * WebGPU's maxBufferSize clamped to [1 GiB, 4 GiB]; 1 GiB where the device reports nothing
+   * (WebGL 2).
+   */
+  maxGpuBytes?: number;
 }
+
+/** GPU memory the context holds, in bytes (texture sizes × bytes per texel, as allocated). */
+export interface GpuBytes {
+  /** The volume texture. */
+  volume: number;
+  /** The gradient-magnitude atlas and its maximum, when a scene needs them. */
+  gradient: number;
+  /** The transfer function and the renderer's auxiliary textures (majorant grid, environment…). */
+  auxiliary: number;
+  /** Frame, accumulation, HDR and post-chain targets. */
+  targets: number;
+  total: number;
+}
+
+/** Something the context changed to make a scene fit, reported through onWarning (and console.warn without a listener). */
+export interface RenderWarning {
+  code: 'volume-downsampled';
+  message: string;
+  /** Integer box-average factors per axis. */
+  factors: [number, number, number];
+  from: [number, number, number];
+  to: [number, number, number];
+}
+
+/** The default budget where the device reports nothing about its memory. */
+export const DEFAULT_GPU_BYTES = 1024 ** 3;
+const MAX_DEFAULT_GPU_BYTES = 4 * 1024 ** 3;
 
 export interface RenderStats {
   /** Iterations accumulated since the last reset. */
@@ -32,6 +78,8 @@ export interface RenderStats {
   samplesPerPixel: number;
   /** Mean wall-clock ms per iteration over the last measured batch (GPU synchronised). */
   msPerIteration: number;
+  /** GPU memory held now. */
+  gpuBytes: GpuBytes;
 }
 
 type RendererPasses = { generate: GpuPass; integrate: GpuPass; render: GpuPass };
@@ -45,7 +93,8 @@ export class RenderContext {
   readonly backend: GpuBackend;
   private _renderer: Renderer;
   private _post: PostStep[];
-  private scene: Scene | null = null;
+  private scene: Scene | null = null; // as rendered: its volume may be a downsampled copy (fitScene)
+  private input: Scene | null = null; // as given to setScene
   private width: number;
   private height: number;
   private layout!: UniformLayout;
@@ -55,6 +104,11 @@ export class RenderContext {
 
   // Volume, transfer function, gradient and auxiliary textures, with their lifetimes.
   private readonly resources: SceneResources;
+  // The last budget fit: a scene volume → the volume actually uploaded (itself when it fits).
+  private fitted: { source: Scene['volume']; key: string; volume: Scene['volume'] } | null = null;
+  private readonly sampling: VolumeSampling;
+  readonly maxGpuBytes: number;
+  private readonly warningListeners = new Set<(w: RenderWarning) => void>();
   private frame: RenderTarget | null = null;
   private accum: [RenderTarget, RenderTarget] | null = null;
   private hdr: RenderTarget | null = null;
@@ -75,8 +129,12 @@ export class RenderContext {
   private constructor(backend: GpuBackend, opts: RenderContextOptions) {
     this.backend = backend;
     this._renderer = opts.renderer;
-    this.resources = new SceneResources(backend, () => ({ scene: this.scene, renderer: this._renderer }));
     this._post = opts.post ?? [];
+    this.sampling = opts.sampling ?? 'fast';
+    if (this.sampling !== 'fast' && this.sampling !== 'exact') throw new VptError('invalid-scene', `sampling must be 'fast' or 'exact', got ${JSON.stringify(opts.sampling)}`);
+    this.resources = new SceneResources(backend, () => ({ scene: this.scene, renderer: this._renderer }), { sampling: this.sampling, allowHalfFloat: opts.allowHalfFloatVolumes === true });
+    if (opts.maxGpuBytes !== undefined && !(opts.maxGpuBytes > 0)) throw new VptError('invalid-scene', `maxGpuBytes must be a positive number of bytes, got ${opts.maxGpuBytes}`);
+    this.maxGpuBytes = opts.maxGpuBytes ?? defaultGpuBytes(backend);
     checkSize(opts.width, opts.height, backend);
     this.width = opts.width;
     this.height = opts.height;
@@ -106,7 +164,27 @@ export class RenderContext {
   get size(): { width: number; height: number } { return { width: this.width, height: this.height }; }
 
   get stats(): RenderStats {
-    return { iterations: this.iteration, samplesPerPixel: this.iteration, msPerIteration: this.msPerIteration };
+    return { iterations: this.iteration, samplesPerPixel: this.iteration, msPerIteration: this.msPerIteration, gpuBytes: this.gpuBytes() };
+  }
+
+  /** Called when the context changes something to make a scene fit (a downsampled volume). */
+  onWarning(listener: (warning: RenderWarning) => void): () => void {
+    this.warningListeners.add(listener);
+    return () => this.warningListeners.delete(listener);
+  }
+
+  /** GPU memory held now, by kind (textures as allocated: width × height × depth × bytes per texel). */
+  gpuBytes(): GpuBytes {
+    const tex = (t: GpuTexture | null | undefined) => (t ? t.width * t.height * t.depth * BYTES_PER_TEXEL[t.format] : 0);
+    const target = (t: RenderTarget | null | undefined) => (t ? t.textures.reduce((a, x) => a + tex(x), 0) : 0);
+    const res = this.resources;
+    const volume = tex(res.volumeTexture);
+    const gradient = res.gradient ? target(res.gradient.atlas) + target(res.gradient.max) : 0;
+    let auxiliary = tex(res.tfTexture);
+    for (const a of res.auxTextures.values()) auxiliary += tex(a.texture);
+    let targets = target(this.frame) + target(this.hdr) + (this.accum ? target(this.accum[0]) + target(this.accum[1]) : 0);
+    for (const t of this.postTargets) targets += target(t);
+    return { volume, gradient, auxiliary, targets, total: volume + gradient + auxiliary + targets };
   }
 
   /** Called with fresh stats after each progressive batch. */
@@ -119,14 +197,12 @@ export class RenderContext {
    * Replace the scene. The scene is validated first: an invalid scene throws
    * VptError('invalid-scene' | 'limit-exceeded') and the context keeps the previous one.
    */
-  setScene(scene: Scene): void {
+  setScene(input: Scene): void {
     this.assertAlive();
-    validateScene(scene);
+    validateScene(input);
+    const scene = this.fitScene(input);
+    this.input = input;
     const [nx, ny, nz] = scene.volume.dims;
-    const max3D = this.backend.limits.maxTextureDimension3D;
-    if (nx > max3D || ny > max3D || nz > max3D) {
-      throw new VptError('limit-exceeded', `Volume dims [${nx}, ${ny}, ${nz}] exceed this device's 3D texture limit of ${max3D} per side (maxTextureDimension3D)`);
-    }
     if (this.wantsGradient(scene)) {
       const atlas = sliceAtlasLayout(scene.volume.dims);
       const max2D = this.backend.limits.maxTextureDimension2D;
@@ -139,10 +215,60 @@ export class RenderContext {
     this.reset();
   }
 
+  /**
+   * The scene with a volume that fits the device: each side within the 3D texture limit and
+   * the whole within maxGpuBytes (volume + gradient at this scene's sampling, plus the render
+   * targets and the TF); otherwise downsampled by integer box averages (scene/downsample.ts)
+   * with a warning naming the factors. The fit is kept per source volume, so setting the same
+   * volume again neither recomputes nor warns again.
+   */
+  private fitScene(scene: Scene): Scene {
+    const sampling = scene.sampling ?? this.sampling;
+    const gradient = this.wantsGradient(scene);
+    const key = `${sampling}|${gradient}|${this.width}x${this.height}`;
+    const f = this.fitted;
+    if (f && f.key === key && f.source === scene.volume) {
+      return f.volume === scene.volume ? scene : { ...scene, volume: f.volume };
+    }
+    if (f && f.key === key && sameVoxels(f.source, scene.volume) && f.volume !== f.source) {
+      // The same voxels with another value range: keep the downsampled copy, take the new range.
+      const volume = { ...f.volume, valueRange: scene.volume.valueRange };
+      this.fitted = { source: scene.volume, key, volume };
+      return { ...scene, volume };
+    }
+    const upload = this.resources.planUpload(scene.volume, sampling);
+    const perVoxel = upload.bytesPerVoxel + (gradient ? (sampling === 'exact' ? 4 : 2) : 0);
+    const pixels = this.width * this.height;
+    const targetBytes = pixels * 16 * (this._renderer.frameFormats.length + 2 * this._renderer.accumulationFormats.length + 1 + this._post.length);
+    const budget = this.maxGpuBytes - targetBytes - TF_RESOLUTION * 16 * 256;
+    const max3D = this.backend.limits.maxTextureDimension3D;
+    const from = [...scene.volume.dims] as [number, number, number];
+    const factors = fitFactors(from, perVoxel, budget, max3D);
+    if (!factors) {
+      throw new VptError('limit-exceeded', `maxGpuBytes (${this.maxGpuBytes} bytes) leaves no room for a volume next to the ${this.width} x ${this.height} render targets`);
+    }
+    let volume = scene.volume;
+    if (factors.some((f) => f > 1)) {
+      volume = downsampleVolume(scene.volume, factors);
+      const over3D = from.some((d) => d > max3D);
+      const why = over3D
+        ? `a side exceeds this device's 3D texture limit of ${max3D} (maxTextureDimension3D)`
+        : `${voxelCount(from)} voxels x ${perVoxel} bytes exceed the GPU memory budget of ${this.maxGpuBytes} bytes (maxGpuBytes)`;
+      const warning: RenderWarning = {
+        code: 'volume-downsampled', factors, from, to: [...volume.dims] as [number, number, number],
+        message: `Volume [${from.join(', ')}] downsampled by [${factors.join(', ')}] to [${volume.dims.join(', ')}]: ${why}`,
+      };
+      if (this.warningListeners.size === 0) console.warn(`vpt: ${warning.message}`);
+      this.warningListeners.forEach((l) => l(warning));
+    }
+    this.fitted = { source: scene.volume, key, volume };
+    return volume === scene.volume ? scene : { ...scene, volume };
+  }
+
   /** Shallow-merge changes into the current scene (camera, lights, TF…) and reset. */
   updateScene(changes: Partial<Scene>): void {
-    if (!this.scene) throw new VptError('invalid-scene', 'updateScene() before setScene()');
-    this.setScene({ ...this.scene, ...changes });
+    if (!this.input) throw new VptError('invalid-scene', 'updateScene() before setScene()');
+    this.setScene({ ...this.input, ...changes });
   }
 
   getScene(): Scene | null { return this.scene; }
@@ -366,7 +492,7 @@ export class RenderContext {
 
   private uniforms(scene: Scene, iteration = this.iteration): ArrayBuffer {
     return this.layout.pack({
-      ...sceneUniformValues(scene, this.width, this.height, iteration, TF_RESOLUTION),
+      ...sceneUniformValues(scene, this.width, this.height, iteration, TF_RESOLUTION, this.resources.volumeMapping(scene)),
       ...this._renderer.paramValues(scene),
     });
   }
@@ -379,7 +505,7 @@ export class RenderContext {
   /** Which shared chunks (and defines) the generate pass needs for this scene. */
   private chunkOptions(scene: Scene): Required<CommonChunkOptions> {
     const tf2d = scene.transferFunction.dimensions === '2d';
-    return { tf2d, gradient: this.wantsGradient(scene) };
+    return { tf2d, gradient: this.wantsGradient(scene), hardwareFilter: this.resources.volumeUpload?.filter === 'linear' };
   }
 
   /** Compile the renderer's variant for the current scene and allocate its targets. */
@@ -396,7 +522,7 @@ export class RenderContext {
     this.resources.syncAuxiliaryTextures();
     const auxBindings = [...this.resources.auxTextures].filter(([, a]) => a.bind).map(([name, a]) => ({ name, dimension: a.dimension }));
     const gradientBindings = chunks.gradient ? [{ name: 'gradientMagnitude', dimension: '2d' as const }, { name: 'gradientMax', dimension: '2d' as const }] : [];
-    const key = `${r.name}|${JSON.stringify(features)}|${auxBindings.map((b) => b.name).join(',')}`;
+    const key = `${r.name}|${JSON.stringify(features)}|${auxBindings.map((b) => b.name).join(',')}|${chunks.hardwareFilter ? 'filtered' : 'exact'}`;
     if (!this.passes || key !== this.variantKey) {
       this.layout = new UniformLayout('Params', [...SCENE_UNIFORM_FIELDS, ...r.paramFields]);
       // The volume/TF chunks read the `volume` and `transferFunction` (and gradient) textures,
@@ -416,7 +542,7 @@ export class RenderContext {
       const frameTex = r.frameFormats.map((_, i) => ({ name: `frame${i}`, dimension: '2d' as const }));
       const accTex = r.accumulationFormats.map((_, i) => ({ name: `accum${i}`, dimension: '2d' as const }));
       this.passes = {
-        generate: mk('generate', [{ name: 'volume', dimension: '3d' }, { name: 'transferFunction', dimension: '2d' }, ...gradientBindings, ...auxBindings], r.frameFormats),
+        generate: mk('generate', [{ name: 'volume', dimension: '3d', ...(chunks.hardwareFilter ? { filter: 'linear' as const } : {}) }, { name: 'transferFunction', dimension: '2d' }, ...gradientBindings, ...auxBindings], r.frameFormats),
         integrate: mk('integrate', [...frameTex, ...accTex], r.accumulationFormats),
         render: mk('render', accTex, ['rgba32float']),
       };
@@ -490,6 +616,12 @@ export class RenderContext {
     this.reset();
     this.loop.resume();
   }
+}
+
+/** maxGpuBytes when the caller gives none: WebGPU's maxBufferSize (one allocation the device admits) within [1 GiB, 4 GiB]; 1 GiB on WebGL 2, which reports no memory figure. */
+function defaultGpuBytes(backend: GpuBackend): number {
+  const m = backend.limits.maxBufferSize;
+  return m ? Math.min(MAX_DEFAULT_GPU_BYTES, Math.max(DEFAULT_GPU_BYTES, m)) : DEFAULT_GPU_BYTES;
 }
 
 function checkSize(width: number, height: number, backend: GpuBackend): void {

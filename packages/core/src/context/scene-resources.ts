@@ -1,13 +1,14 @@
 import type { GpuBackend, GpuTexture, RenderTarget } from '../gpu/backend.js';
-import type { AuxiliaryPass, AuxiliaryTexture, Renderer } from '../renderer.js';
+import type { AuxiliaryPass, AuxiliaryTexture, Renderer, VolumeBinding } from '../renderer.js';
 import type { Scene } from '../scene/scene.js';
 import { rasterizeTransferFunction, TF_RESOLUTION, transferFunctionSize } from '../scene/transfer-function.js';
-import { normalizedData } from '../scene/volume.js';
+import { planVolumeUpload, uploadsDataAsIs, volumeTextureData, volumeTextureSlab, volumeValueMapping, type VolumeSampling, type VolumeUpload } from '../gpu/volume-format.js';
 import { buildGradientVolume, destroyGradientVolume, type GradientVolume } from '../gradient/gradient-volume.js';
 
 /**
  * The GPU resources a scene needs beside the renderer's targets, and their lifetimes: the
- * volume texture (rebuilt when the volume changes, by identity), the transfer function
+ * volume texture (in the format of its upload plan, gpu/volume-format.ts; rebuilt when the
+ * voxels or the plan change, kept when only the value range does), the transfer function
  * (by content), the gradient-magnitude volume (when a 2D TF or the renderer asks for it,
  * until the volume changes) and the renderer's auxiliary textures (by key). RenderContext
  * owns one and asks it to sync before a frame, to release everything on dispose and to
@@ -16,31 +17,105 @@ import { buildGradientVolume, destroyGradientVolume, type GradientVolume } from 
 export class SceneResources {
   volumeTexture: GpuTexture | null = null;
   private volumeSource: Scene['volume'] | null = null;
+  volumeUpload: VolumeUpload | null = null;
+  private volumeKey = 0; // bumped on every volume upload (VolumeBinding.key)
+  private planMemo: { volume: Scene['volume']; sampling: VolumeSampling; plan: VolumeUpload } | null = null;
+  private mappingMemo: { volume: Scene['volume']; upload: Pick<VolumeUpload, 'decodeScale' | 'decodeOffset'>; mapping: { valueScale: number; valueOffset: number } } | null = null;
+  private readonly sampling: VolumeSampling;
+  private readonly allowHalfFloat: boolean;
   tfTexture: GpuTexture | null = null;
   private tfSource: string | null = null;
   // The volume's gradient magnitude (gradient/), built on the GPU the first time a 2D TF or
   // a renderer with needsGradient asks for it, kept until the volume changes.
   gradient: GradientVolume | null = null;
   private gradientSource: Scene['volume'] | null = null;
+  private gradientKey = '';
   // Renderer-declared textures by name; `target` is set for GPU-made ones (AuxiliaryPass).
   readonly auxTextures = new Map<string, AuxEntry>();
   private auxFor: { scene: Scene | null; renderer: Renderer | null; version: number } = { scene: null, renderer: null, version: -1 };
 
-  constructor(private readonly backend: GpuBackend, private readonly current: () => { scene: Scene | null; renderer: Renderer }) {}
+  constructor(
+    private readonly backend: GpuBackend,
+    private readonly current: () => { scene: Scene | null; renderer: Renderer },
+    opts: { sampling: VolumeSampling; allowHalfFloat: boolean },
+  ) {
+    this.sampling = opts.sampling;
+    this.allowHalfFloat = opts.allowHalfFloat;
+  }
 
   private get scene(): Scene | null { return this.current().scene; }
   private get _renderer(): Renderer { return this.current().renderer; }
 
+  /** The texel → normalized value map of the uploaded volume (scene uniforms valueScale/valueOffset). */
+  volumeMapping(scene: Scene): { valueScale: number; valueOffset: number } {
+    // Memoized: normalizationRange scans int16/float32 data without a valueRange, and this runs every iteration.
+    const upload = this.volumeUpload ?? EXACT_DECODE;
+    const m = this.mappingMemo;
+    if (m && m.volume === scene.volume && m.upload === upload) return m.mapping;
+    const mapping = volumeValueMapping(scene.volume, upload);
+    this.mappingMemo = { volume: scene.volume, upload, mapping };
+    return mapping;
+  }
+
+  /** What auxiliary passes need to read the volume texture's texels (Renderer.auxiliaryTextures). */
+  volumeBinding(scene: Scene): VolumeBinding {
+    const m = this.volumeMapping(scene);
+    return { ...m, format: this.volumeUpload?.format ?? 'r32float', key: `${this.volumeKey}|${m.valueScale}|${m.valueOffset}` };
+  }
+
+  /** The upload plan of a volume, kept per volume and sampling (a uint16 or half-float plan scans the data once). */
+  planUpload(volume: Scene['volume'], sampling: VolumeSampling): VolumeUpload {
+    const memo = this.planMemo;
+    // The plan depends on the voxels alone, not on the value range.
+    if (memo && sameVoxels(memo.volume, volume) && memo.sampling === sampling) return memo.plan;
+    const plan = planVolumeUpload(volume, this.backend.capabilities, { sampling, allowHalfFloat: this.allowHalfFloat });
+    this.planMemo = { volume, sampling, plan };
+    return plan;
+  }
+
+  private samplingOf(scene: Scene): VolumeSampling {
+    return scene.sampling ?? this.sampling;
+  }
+
+  /**
+   * The volume texture: the volume's own array when the format takes it as is, else converted
+   * and written in slabs of about 16 M voxels, so a real-size volume never has a full-size
+   * converted copy next to it in memory.
+   */
+  private uploadVolume(volume: Scene['volume'], upload: VolumeUpload): GpuTexture {
+    const [width, height, depth] = volume.dims;
+    const desc = { dimension: '3d' as const, width, height, depth, format: upload.format, filter: upload.filter, label: 'volume' };
+    if (uploadsDataAsIs(upload) || width * height * depth <= SLAB_VOXELS) return this.backend.createTexture({ ...desc, data: volumeTextureData(volume, upload) });
+    const texture = this.backend.createTexture(desc);
+    const slabDepth = Math.max(1, Math.floor(SLAB_VOXELS / (width * height)));
+    const scratch = new ArrayBuffer(slabDepth * width * height * 4); // one buffer for every slab
+    for (let z = 0; z < depth; z += slabDepth) {
+      const z1 = Math.min(depth, z + slabDepth);
+      this.backend.writeTextureSlices(texture, z, volumeTextureSlab(volume, upload, z, z1, scratch));
+    }
+    return texture;
+  }
+
   /** Upload the volume and transfer function when they changed (by identity / content). */
   sync(): void {
     const scene = this.scene!;
-    if (this.volumeSource !== scene.volume || !this.volumeTexture) {
+    const upload = this.planUpload(scene.volume, this.samplingOf(scene));
+    const same = this.volumeUpload && this.volumeUpload.format === upload.format && this.volumeUpload.filter === upload.filter
+      && this.volumeUpload.decodeScale === upload.decodeScale && this.volumeUpload.decodeOffset === upload.decodeOffset;
+    if (this.volumeTexture && same && this.volumeSource !== scene.volume && sameVoxels(this.volumeSource!, scene.volume)) {
+      // Only the value range (or name) changed: the kernels map it, so nothing is uploaded;
+      // the gradient volume and the majorant grid follow through their keys.
+      this.volumeSource = scene.volume;
+      this.dropGradient();
+    }
+    if (this.volumeSource !== scene.volume || !this.volumeTexture || !same) {
       if (this.volumeTexture) this.backend.destroyTexture(this.volumeTexture);
       this.volumeTexture = null;
       this.dropGradient();
-      const [width, height, depth] = scene.volume.dims;
-      this.volumeTexture = this.backend.createTexture({ dimension: '3d', width, height, depth, format: 'r32float', data: normalizedData(scene.volume), label: 'volume' });
+      this.volumeTexture = this.uploadVolume(scene.volume, upload);
       this.volumeSource = scene.volume;
+      this.volumeUpload = upload;
+      this.volumeKey++;
     }
     const tfKey = JSON.stringify(scene.transferFunction);
     if (this.tfSource !== tfKey || !this.tfTexture) {
@@ -66,25 +141,33 @@ export class SceneResources {
   syncGradient(): void {
     const scene = this.scene!;
     if (!this.wantsGradient(scene) || !this.volumeTexture || this.backend.isLost) return;
-    if (this.gradient && this.gradientSource === scene.volume) return;
+    if (this.gradient && this.gradientSource === scene.volume && this.gradientKey === this.volumeBinding(scene).key) return;
     this.dropGradient();
-    this.gradient = buildGradientVolume(this.backend, this.volumeTexture, scene.volume);
+    this.gradient = buildGradientVolume(this.backend, this.volumeTexture, scene.volume, this.gradientOptions(scene));
     this.gradientSource = scene.volume;
+    this.gradientKey = this.volumeBinding(scene).key;
+  }
+
+  /** The gradient build reads texels through the scene's mapping; 16 bits on the fast path. */
+  private gradientOptions(scene: Scene) {
+    return { ...this.volumeMapping(scene), format: this.samplingOf(scene) === 'exact' ? 'r32float' as const : 'r16float' as const };
   }
 
   dropGradient(): void {
     if (this.gradient) destroyGradientVolume(this.backend, this.gradient);
     this.gradient = null;
     this.gradientSource = null;
+    this.gradientKey = '';
   }
 
   /** The gradient volume of the current scene, built now if the scene had not needed it yet. */
   ensureGradient(): GradientVolume {
     const scene = this.scene!;
-    if (!this.gradient || this.gradientSource !== scene.volume) {
+    if (!this.gradient || this.gradientSource !== scene.volume || this.gradientKey !== this.volumeBinding(scene).key) {
       this.dropGradient();
-      this.gradient = buildGradientVolume(this.backend, this.volumeTexture!, scene.volume);
+      this.gradient = buildGradientVolume(this.backend, this.volumeTexture!, scene.volume, this.gradientOptions(scene));
       this.gradientSource = scene.volume;
+      this.gradientKey = this.volumeBinding(scene).key;
     }
     return this.gradient;
   }
@@ -93,7 +176,7 @@ export class SceneResources {
   syncAuxiliaryTextures(): void {
     const r = this._renderer;
     if (this.auxFor.scene === this.scene && this.auxFor.renderer === r && this.auxFor.version === r.version) return;
-    const specs: readonly AuxiliaryTexture[] = r.auxiliaryTextures?.(this.scene!) ?? [];
+    const specs: readonly AuxiliaryTexture[] = r.auxiliaryTextures?.(this.scene!, this.volumeBinding(this.scene!)) ?? [];
     const wanted = new Set(specs.map((a) => a.name));
     for (const [name, aux] of this.auxTextures) {
       if (!wanted.has(name)) { this.releaseAux(aux); this.auxTextures.delete(name); }
@@ -147,7 +230,8 @@ export class SceneResources {
   /** After a context/device loss: the old handles belong to the lost context; forget them without calling destroy. */
   forget(): void {
     this.volumeTexture = null; this.volumeSource = null; this.tfTexture = null; this.tfSource = null;
-    this.gradient = null; this.gradientSource = null;
+    this.gradient = null; this.gradientSource = null; this.gradientKey = '';
+    this.volumeUpload = null; this.planMemo = null;
     this.auxTextures.clear(); this.auxFor = { scene: null, renderer: null, version: -1 };
   }
 }
@@ -160,4 +244,13 @@ export interface AuxEntry {
   bind: boolean;
   /** The render target a GPU-made texture lives in (destroyed with it). */
   target?: RenderTarget;
+}
+
+const EXACT_DECODE = { decodeScale: 1, decodeOffset: 0 };
+/** Voxels per converted upload slab (32 MiB of r16float, 64 MiB of r32float). */
+const SLAB_VOXELS = 1 << 24;
+
+/** Two volumes with the same voxels (the same array, dims and type): they differ at most in value range or name. */
+export function sameVoxels(a: Scene['volume'], b: Scene['volume']): boolean {
+  return a.data === b.data && a.type === b.type && a.dims.every((d, i) => d === b.dims[i]);
 }

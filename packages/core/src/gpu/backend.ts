@@ -1,7 +1,8 @@
 /**
  * The GPU backend interface. vpt's kernels are full-screen fragment passes: every
- * pass reads textures (with exact integer texel loads, never hardware filtering, so
- * both backends compute bit-identical results on SwiftShader) and writes one or more
+ * pass reads textures (with exact integer texel loads, so both backends compute
+ * bit-identical results on SwiftShader; only the volume's fast sampling path uses the
+ * texture unit's filter, see PassTextureBinding.filter) and writes one or more
  * colour targets. This tiny surface is all a renderer or post step needs, and it
  * maps one-to-one onto WebGL 2 (program + framebuffer + draw) and WebGPU (render
  * pipeline + render pass).
@@ -16,8 +17,20 @@ import type { UniformLayout } from '../uniforms/layout.js';
 export type BackendKind = 'webgl2' | 'webgpu';
 export type BackendPreference = BackendKind | 'auto';
 
-/** Texture formats vpt uses. All are sampled with texelFetch / textureLoad. */
-export type TextureFormat = 'r32float' | 'rgba32float' | 'rgba8unorm';
+/**
+ * Texture formats vpt uses. Passes read them with texelFetch / textureLoad, except a
+ * binding declared `filter: 'linear'` (the volume's fast path), read with one filtered fetch.
+ * The 8/16-bit single-channel formats hold volumes (volume-format.ts): r8unorm, r16unorm /
+ * r16snorm (WebGL 2 EXT_texture_norm16, WebGPU 'texture-formats-tier1'; see
+ * BackendCapabilities.norm16) and r16float (everywhere; also a render target).
+ */
+export type TextureFormat = 'r32float' | 'rgba32float' | 'rgba8unorm' | 'r8unorm' | 'r16unorm' | 'r16snorm' | 'r16float';
+
+/**
+ * Texel data: Float32Array for r32float/rgba32float, Uint8Array for rgba8unorm/r8unorm,
+ * Uint16Array for r16unorm and for r16float (IEEE half bits), Int16Array for r16snorm.
+ */
+export type TextureData = Float32Array | Uint8Array | Uint16Array | Int16Array;
 
 export interface TextureDescriptor {
   dimension: '2d' | '3d';
@@ -26,9 +39,15 @@ export interface TextureDescriptor {
   /** 1 for 2D textures. */
   depth?: number;
   format: TextureFormat;
-  /** Tightly packed texel data, x fastest, then y, then z. Float32Array for float formats, Uint8Array for rgba8unorm. */
-  data?: Float32Array | Uint8Array;
+  /** Tightly packed texel data, x fastest, then y, then z (element type: see TextureData). */
+  data?: TextureData;
   label?: string;
+  /**
+   * 'linear' lets passes read the texture with one filtered fetch (a binding with
+   * `filter: 'linear'`); only for formats `BackendCapabilities.filterable` admits. Integer
+   * texel loads work either way. Default 'nearest'.
+   */
+  filter?: 'nearest' | 'linear';
 }
 
 export interface GpuTexture {
@@ -51,6 +70,13 @@ export interface RenderTarget {
 export interface PassTextureBinding {
   name: string;
   dimension: '2d' | '3d';
+  /**
+   * 'linear': the kernel may also read it with one filtered fetch: GLSL `texture(name, uvw)`
+   * (the texture must have been made with `filter: 'linear'`), WGSL
+   * `textureSampleLevel(name, vptLinearSampler, uvw, 0.0)` (the prelude declares the
+   * clamp-to-edge linear sampler `vptLinearSampler` when any binding asks for it).
+   */
+  filter?: 'linear';
 }
 
 /**
@@ -103,7 +129,37 @@ export interface DrawCall {
 export interface BackendLimits {
   maxTextureDimension2D: number;
   maxTextureDimension3D: number;
+  /** WebGPU's maxBufferSize (a hint of the device's memory class); undefined on WebGL 2, which reports none. */
+  maxBufferSize?: number;
 }
+
+/** Optional formats and filtering the device offers. */
+export interface BackendCapabilities {
+  /** r16unorm / r16snorm textures (WebGL 2 EXT_texture_norm16; WebGPU 'texture-formats-tier1'). */
+  norm16: boolean;
+  /** r32float can be filtered (WebGL 2 OES_texture_float_linear; WebGPU 'float32-filterable'). */
+  float32Filterable: boolean;
+}
+
+/** Whether a format can be read with a linear filter on a device with these capabilities. */
+export function isFilterable(format: TextureFormat, caps: BackendCapabilities): boolean {
+  if (format === 'r32float' || format === 'rgba32float') return caps.float32Filterable;
+  return true;
+}
+
+/** The number of whole slices `texels` makes at zOffset of a 3D texture; throws when they do not fit. */
+export function sliceCount(tex: GpuTexture, zOffset: number, texels: number): number {
+  const depth = texels / (tex.width * tex.height);
+  if (tex.dimension !== '3d' || !Number.isInteger(zOffset) || zOffset < 0 || !Number.isInteger(depth) || depth < 1 || zOffset + depth > tex.depth) {
+    throw new RangeError(`texture "${tex.label}": ${texels} texels at slice ${zOffset} are not whole slices inside its ${tex.width}x${tex.height}x${tex.depth} (${tex.dimension})`);
+  }
+  return depth;
+}
+
+/** Bytes per texel of each format, as the device stores it (for the memory budget and stats). */
+export const BYTES_PER_TEXEL: Readonly<Record<TextureFormat, number>> = {
+  r32float: 4, rgba32float: 16, rgba8unorm: 4, r8unorm: 1, r16unorm: 2, r16snorm: 2, r16float: 2,
+};
 
 export interface BackendInfo {
   kind: BackendKind;
@@ -116,11 +172,17 @@ export interface GpuBackend {
   readonly kind: BackendKind;
   readonly info: BackendInfo;
   readonly limits: BackendLimits;
+  readonly capabilities: BackendCapabilities;
   readonly canvas: HTMLCanvasElement | OffscreenCanvas;
 
   createTexture(desc: TextureDescriptor): GpuTexture;
   /** Replace the whole content of a texture. */
-  writeTexture(texture: GpuTexture, data: Float32Array | Uint8Array): void;
+  writeTexture(texture: GpuTexture, data: TextureData): void;
+  /**
+   * Replace slices [zOffset, zOffset + data's depth) of a 3D texture (whole slices, tightly
+   * packed): large volumes are converted and uploaded in slabs, so no full-size copy exists.
+   */
+  writeTextureSlices(texture: GpuTexture, zOffset: number, data: TextureData): void;
   destroyTexture(texture: GpuTexture): void;
 
   createRenderTarget(width: number, height: number, formats: readonly TextureFormat[], label?: string): RenderTarget;
@@ -133,7 +195,7 @@ export interface GpuBackend {
 
   /**
    * Read a whole 2D texture back, top row first, tightly packed.
-   * Float32Array for float formats, Uint8Array for rgba8unorm. Waits for the GPU.
+   * Float32Array for float formats (r16float converted), Uint8Array for rgba8unorm. Waits for the GPU.
    */
   readTexture(texture: GpuTexture): Promise<Float32Array | Uint8Array>;
   /** Resolve when all submitted work has finished (a 1-texel readback on WebGL 2). */

@@ -6,7 +6,8 @@
  * (ownership of objects, loss generations, device-specific limits).
  */
 import { VptError } from '../errors.js';
-import type { DrawCall, GpuTexture, PassDescriptor, PassTextureBinding, TextureDescriptor, TextureFormat } from './backend.js';
+import type { BackendCapabilities, DrawCall, GpuTexture, PassDescriptor, PassTextureBinding, TextureDescriptor, TextureFormat } from './backend.js';
+import { isFilterable } from './backend.js';
 
 /** The device's texture size limits, with the names each API gives them (for messages). */
 export interface TextureSizeLimits {
@@ -37,6 +38,25 @@ export function checkTextureSize(label: string, dimension: '2d' | '3d', width: n
     }
   } else if (width > limits.max2D || height > limits.max2D) {
     throw new VptError('limit-exceeded', `2D texture "${label}" is ${width}x${height}, but this device's ${limits.name2D} is ${limits.max2D}`);
+  }
+}
+
+/** What each backend names as the requirement of an optional capability (for messages). */
+export interface CapabilityNames {
+  norm16: string;
+  float32Filterable: string;
+}
+
+/**
+ * The optional capabilities a texture needs are present: r16unorm/r16snorm need norm16, a
+ * `filter: 'linear'` float32 texture needs float32Filterable (VptError('missing-extension')).
+ */
+export function checkTextureCapabilities(label: string, desc: TextureDescriptor, caps: BackendCapabilities, names: CapabilityNames): void {
+  if ((desc.format === 'r16unorm' || desc.format === 'r16snorm') && !caps.norm16) {
+    throw new VptError('missing-extension', `texture "${label}" is ${desc.format}, which needs ${names.norm16}`);
+  }
+  if (desc.filter === 'linear' && !isFilterable(desc.format, caps)) {
+    throw new VptError('missing-extension', `texture "${label}" (${desc.format}) cannot be filtered here: that needs ${names.float32Filterable}`);
   }
 }
 

@@ -12,7 +12,7 @@ import { normalizationRange, normalizedData } from '../scene/volume.js';
 export function gradientMagnitudes(volume: Volume, normalized: Float32Array = normalizedData(volume)): Float32Array {
   const [nx, ny, nz] = volume.dims;
   const [lo, hi] = normalizationRange(volume);
-  const scale = volume.spacing.map((s) => (hi - lo) / s);
+  const scale = volume.spacing.map((s) => Math.abs(hi - lo) / s);
   const out = new Float32Array(nx * ny * nz);
   const at = (x: number, y: number, z: number) => normalized[x + nx * (y + ny * z)];
   const deriv = (i: number, n: number, f: (j: number) => number) => {

@@ -24,16 +24,30 @@ export interface GradientVolume {
 const GRADIENT_UNIFORMS = new UniformLayout('GradientParams', [
   { name: 'gradDims', type: 'ivec4' },
   { name: 'gradScale', type: 'vec3' },
+  // Texel → normalized value, as the scene uniforms of the same names (gpu/volume-format.ts).
+  { name: 'valueScale', type: 'f32' },
+  { name: 'valueOffset', type: 'f32' },
 ]);
+
+/** How the volume texture's texels map to normalized values, and the atlas's precision. */
+export interface GradientBuildOptions {
+  valueScale: number;
+  valueOffset: number;
+  /** r16float (the fast path: 2 bytes per voxel, relative error ≤ 2^-11) or r32float (exact). */
+  format: 'r16float' | 'r32float';
+}
 const REDUCE_UNIFORMS = new UniformLayout('ReduceParams', [{ name: 'srcSize', type: 'ivec4' }]);
 
 /**
- * Build the gradient volume from the uploaded, normalized volume texture: one pass over
+ * Build the gradient volume from the uploaded volume texture: one pass over
  * the atlas, then ⌈log₈⌉ max reductions. Everything stays on the GPU (no read-back, no
  * main-thread work), so setScene() stays synchronous for volumes of any size.
  * Throws VptError('limit-exceeded') when the atlas would exceed the 2D texture limit.
  */
-export function buildGradientVolume(backend: GpuBackend, volumeTexture: GpuTexture, volume: Volume): GradientVolume {
+export function buildGradientVolume(
+  backend: GpuBackend, volumeTexture: GpuTexture, volume: Volume,
+  opts: GradientBuildOptions = { valueScale: 1, valueOffset: 0, format: 'r32float' },
+): GradientVolume {
   const layout = sliceAtlasLayout(volume.dims);
   const max2D = backend.limits.maxTextureDimension2D;
   if (layout.width > max2D || layout.height > max2D) {
@@ -42,17 +56,20 @@ export function buildGradientVolume(backend: GpuBackend, volumeTexture: GpuTextu
   const [lo, hi] = normalizationRange(volume);
   const gradientPass = backend.createPass({
     label: 'gradient magnitude', glsl: glslAtlas.SLICE_ATLAS + glsl.GRADIENT_MAGNITUDE, wgsl: wgslAtlas.SLICE_ATLAS + wgsl.GRADIENT_MAGNITUDE, uniforms: GRADIENT_UNIFORMS,
-    textures: [{ name: 'volume', dimension: '3d' }], outputs: ['r32float'],
+    textures: [{ name: 'volume', dimension: '3d' }], outputs: [opts.format],
   });
   const reducePass = backend.createPass({
     label: 'gradient max', glsl: glsl.MAX_REDUCE, wgsl: wgsl.MAX_REDUCE, uniforms: REDUCE_UNIFORMS,
     textures: [{ name: 'src', dimension: '2d' }], outputs: ['r32float'],
   });
-  const atlas = backend.createRenderTarget(layout.width, layout.height, ['r32float'], 'gradient magnitude atlas');
+  const atlas = backend.createRenderTarget(layout.width, layout.height, [opts.format], 'gradient magnitude atlas');
   backend.draw(gradientPass, {
     uniforms: GRADIENT_UNIFORMS.pack({
       gradDims: [...volume.dims, layout.columns],
-      gradScale: volume.spacing.map((s) => (hi - lo) / s),
+      // |hi − lo|: an inverted range flips the sign of every derivative, not the magnitude.
+      gradScale: volume.spacing.map((s) => Math.abs(hi - lo) / s),
+      valueScale: opts.valueScale,
+      valueOffset: opts.valueOffset,
     }),
     textures: { volume: volumeTexture },
     target: atlas,

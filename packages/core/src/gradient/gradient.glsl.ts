@@ -8,15 +8,16 @@
 import { REDUCTION } from './reduction.js';
 
 // Central differences (one-sided at the borders, divided by the index distance spanned)
-// of the normalized volume, scaled by u.gradScale = (valueRange width) / spacing, so the
+// of the normalized volume (each texel mapped by u.valueScale/valueOffset and clamped, as
+// volumeValue() in the shared chunks does), scaled by u.gradScale = (valueRange width) / spacing, so the
 // result is |∇f| in data units per physical length (Kniss et al. 2002, sec. 3).
 export const GRADIENT_MAGNITUDE = /* glsl */ `
 float axisDerivative(ivec3 v, ivec3 e, int i, int n) {
   int i0 = max(i - 1, 0);
   int i1 = min(i + 1, n - 1);
   if (i1 == i0) return 0.0;
-  float a = texelFetch(volume, v + e * (i0 - i), 0).r;
-  float b = texelFetch(volume, v + e * (i1 - i), 0).r;
+  float a = clamp(texelFetch(volume, v + e * (i0 - i), 0).r * u.valueScale + u.valueOffset, 0.0, 1.0);
+  float b = clamp(texelFetch(volume, v + e * (i1 - i), 0).r * u.valueScale + u.valueOffset, 0.0, 1.0);
   return (b - a) / float(i1 - i0);
 }
 void main() {

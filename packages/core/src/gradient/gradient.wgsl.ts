@@ -2,15 +2,16 @@
 import { REDUCTION } from './reduction.js';
 
 // Central differences (one-sided at the borders, divided by the index distance spanned)
-// of the normalized volume, scaled by u.gradScale = (valueRange width) / spacing, so the
+// of the normalized volume (each texel mapped by u.valueScale/valueOffset and clamped, as
+// volumeValue() in the shared chunks does), scaled by u.gradScale = (valueRange width) / spacing, so the
 // result is |∇f| in data units per physical length (Kniss et al. 2002, sec. 3).
 export const GRADIENT_MAGNITUDE = /* wgsl */ `
 fn axisDerivative(v: vec3i, e: vec3i, i: i32, n: i32) -> f32 {
   let i0 = max(i - 1, 0);
   let i1 = min(i + 1, n - 1);
   if (i1 == i0) { return 0.0; }
-  let a = textureLoad(volume, v + e * (i0 - i), 0).r;
-  let b = textureLoad(volume, v + e * (i1 - i), 0).r;
+  let a = clamp(textureLoad(volume, v + e * (i0 - i), 0).r * u.valueScale + u.valueOffset, 0.0, 1.0);
+  let b = clamp(textureLoad(volume, v + e * (i1 - i), 0).r * u.valueScale + u.valueOffset, 0.0, 1.0);
   return (b - a) / f32(i1 - i0);
 }
 @fragment fn fs_main(@builtin(position) fragCoord: vec4f) -> VptOut {

@@ -5,7 +5,7 @@
  */
 import { cameraBasis, type Vec3 } from '../scene/camera.js';
 import type { Scene } from '../scene/scene.js';
-import { normalizedData, volumeBox } from '../scene/volume.js';
+import { normalizationRange, volumeBox } from '../scene/volume.js';
 
 export function pcgHash(v: number): number {
   const state = (Math.imul(v >>> 0, 747796405) + 2891336453) >>> 0;
@@ -45,13 +45,23 @@ export function cameraRay(scene: Scene, width: number, height: number, fx: numbe
   return { origin: scene.camera.position, dir: [d[0] / l, d[1] / l, d[2] / l] };
 }
 
-/** Cell-centred trilinear sampling with clamp-to-edge of a normalized volume, in world coordinates. */
+/**
+ * Cell-centred trilinear sampling with clamp-to-edge, in world coordinates, of the data
+ * mapped by the value range (LO → 0, HI → 1; LO > HI inverts) and then clamped to [0, 1],
+ * as the kernels do (gpu/volume-format.ts: the clamp follows the filter). Non-finite voxels read as 0.
+ */
 export class CpuVolumeSampler {
   readonly data: Float32Array;
   readonly dims: [number, number, number];
   readonly box: ReturnType<typeof volumeBox>;
   constructor(scene: Pick<Scene, 'volume'>) {
-    this.data = normalizedData(scene.volume);
+    const [lo, hi] = normalizationRange(scene.volume);
+    const src = scene.volume.data;
+    this.data = new Float32Array(src.length);
+    for (let i = 0; i < src.length; i++) {
+      const x = (src[i] - lo) / (hi - lo);
+      this.data[i] = Number.isFinite(x) ? x : 0;
+    }
     this.dims = scene.volume.dims;
     this.box = volumeBox(scene.volume);
   }
@@ -68,6 +78,6 @@ export class CpuVolumeSampler {
     const c10 = l(at(x0, y1, z0), at(x1, y1, z0), f[0]);
     const c01 = l(at(x0, y0, z1), at(x1, y0, z1), f[0]);
     const c11 = l(at(x0, y1, z1), at(x1, y1, z1), f[0]);
-    return l(l(c00, c10, f[1]), l(c01, c11, f[1]), f[2]);
+    return Math.min(1, Math.max(0, l(l(c00, c10, f[1]), l(c01, c11, f[1]), f[2])));
   }
 }

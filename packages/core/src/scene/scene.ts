@@ -15,6 +15,12 @@ export interface Scene {
   densityScale: number;
   /** User seed mixed into the RNG, so runs are reproducible and independent runs differ. */
   seed: number;
+  /**
+   * How kernels sample the volume (gpu/volume-format.ts): 'fast' (compact texture, one
+   * hardware-filtered fetch) or 'exact' (r32float, manual trilinear in full float: the
+   * reference for CPU twins and bit parity). Default: the context's `sampling` option ('fast').
+   */
+  sampling?: 'fast' | 'exact';
 }
 
 export function validateScene(s: Scene): void {
@@ -26,4 +32,5 @@ export function validateScene(s: Scene): void {
   validateEnvironment(s.environment);
   if (!Number.isFinite(s.densityScale) || s.densityScale < 0) throw new VptError('invalid-scene', `Scene: densityScale must be finite and non-negative, got ${s.densityScale}`);
   if (!Number.isInteger(s.seed) || s.seed < 0 || s.seed > 0xffffffff) throw new VptError('invalid-scene', `Scene: seed must be an integer in [0, 2^32), got ${s.seed}`);
+  if (s.sampling !== undefined && s.sampling !== 'fast' && s.sampling !== 'exact') throw new VptError('invalid-scene', `Scene: sampling must be 'fast' or 'exact', got ${JSON.stringify(s.sampling)}`);
 }

@@ -29,8 +29,8 @@ const DEFAULT_HU_RANGE: [number, number] = [-1024, 3071];
  */
 export function transferFunctionPreset(name: TransferFunctionPresetName, volume?: Volume): TransferFunction2D {
   switch (name) {
-    case 'ct-bone': return ctBone(huScale(volume));
-    case 'ct-soft-tissue': return ctSoftTissue(huScale(volume));
+    case 'ct-bone': return mirrorIfInverted(ctBone(huScale(volume)), volume);
+    case 'ct-soft-tissue': return mirrorIfInverted(ctSoftTissue(huScale(volume)), volume);
     case 'mri-brain': return mriBrain(relativeScale(volume));
     case 'microscopy': return microscopy(relativeScale(volume));
     default: throw new VptError('invalid-scene', `Unknown transfer-function preset "${name as string}" (${TRANSFER_FUNCTION_PRESETS.join(', ')})`);
@@ -46,10 +46,26 @@ interface Scale {
 
 const clamp01 = (x: number) => Math.min(1, Math.max(0, x));
 
-/** CT: HU → normalized value; the gradient axis spans 0..1000 HU/mm. */
+/**
+ * CT: HU → normalized value of the range taken ascending; the gradient axis spans 0..1000
+ * HU/mm. With an inverted range (LO > HI) the widgets are then mirrored (mirrorIfInverted),
+ * since the normalized value is 1 − that: bone stays bone.
+ */
 function huScale(volume?: Volume): Scale {
-  const [lo, hi] = volume ? normalizationRange(volume) : DEFAULT_HU_RANGE;
+  const [a, b] = volume ? normalizationRange(volume) : DEFAULT_HU_RANGE;
+  const lo = Math.min(a, b), hi = Math.max(a, b);
   return { v: (hu) => clamp01((hu - lo) / (hi - lo)), gradientMax: 1000 };
+}
+
+/** Mirror the widgets along the value axis (v → 1 − v) when the volume's range is inverted. */
+function mirrorIfInverted(tf: TransferFunction2D, volume?: Volume): TransferFunction2D {
+  if (!volume) return tf;
+  const [lo, hi] = normalizationRange(volume);
+  if (lo < hi) return tf;
+  const widgets = tf.widgets.map((w): TransferWidget => (w.type === 'box'
+    ? { ...w, min: [1 - w.max[0], w.min[1]], max: [1 - w.min[0], w.max[1]] }
+    : { ...w, center: [1 - w.center[0], w.center[1]] }));
+  return { ...tf, widgets };
 }
 
 /**
@@ -58,6 +74,7 @@ function huScale(volume?: Volume): Scale {
  */
 function relativeScale(volume?: Volume): Scale {
   if (!volume) return { v: (q) => q, gradientMax: 0.25 };
+  // Normalized values already carry an inverted range's flip: the foreground is what maps high.
   const [lo, hi] = normalizationRange(volume);
   const n = volume.data.length;
   const stride = Math.max(1, Math.floor(n / (1 << 20)));
@@ -71,7 +88,7 @@ function relativeScale(volume?: Volume): Scale {
   const m = sorted.length;
   return {
     v: (q) => sorted[Math.min(m - 1, Math.max(0, Math.round(q * (m - 1))))],
-    gradientMax: (0.25 * (hi - lo)) / Math.min(...volume.spacing),
+    gradientMax: (0.25 * Math.abs(hi - lo)) / Math.min(...volume.spacing),
   };
 }
 

@@ -14,9 +14,11 @@ export interface Volume {
   type: VoxelType;
   data: VoxelArray;
   /**
-   * The value range mapped to [0, 1] for float32 and int16 data. uint8 maps value/255
-   * and uint16 value/65535 (docs/design.md); when omitted for int16/float32 the data's own
-   * min..max is used.
+   * The value range [LO, HI] mapped to [0, 1]: LO → 0, HI → 1, linear between, clamped
+   * outside. LO > HI inverts (dense matter stored as dark values, as in cryo-ET); LO = HI is
+   * invalid. Without it, uint8 maps value/255 and uint16 value/65535 (docs/design.md), and
+   * int16/float32 the data's own min..max. The kernels apply it (gpu/volume-format.ts), so
+   * changing it re-uploads nothing.
    */
   valueRange?: [number, number];
   name?: string;
@@ -45,12 +47,12 @@ export function validateVolume(v: Volume): void {
   if (!(v.data instanceof ARRAY_OF[v.type])) bad(`data must be a ${ARRAY_OF[v.type].name} for type ${v.type}`);
   const n = voxelCount(v.dims);
   if (v.data.length !== n) bad(`dims [${v.dims.join(', ')}] need ${n} voxels, data has ${v.data.length}`);
-  if (v.valueRange && (!v.valueRange.every(Number.isFinite) || !(v.valueRange[1] > v.valueRange[0]))) {
-    bad(`valueRange must be two finite numbers with min < max, got [${v.valueRange}]`);
+  if (v.valueRange && (!Array.isArray(v.valueRange) || v.valueRange.length !== 2 || !v.valueRange.every(Number.isFinite) || v.valueRange[0] === v.valueRange[1])) {
+    bad(`valueRange must be two different finite numbers [LO, HI] (LO > HI inverts), got [${v.valueRange}]`);
   }
 }
 
-/** The range that maps to [0, 1] for this volume (docs/design.md conventions). */
+/** The range [LO, HI] that maps to [0, 1] for this volume (docs/design.md conventions); LO > HI when inverted. */
 export function normalizationRange(v: Volume): [number, number] {
   if (v.type === 'uint8' && !v.valueRange) return [0, 255];
   if (v.type === 'uint16' && !v.valueRange) return [0, 65535];
@@ -67,8 +69,8 @@ export function normalizationRange(v: Volume): [number, number] {
 }
 
 /**
- * Normalized float32 copy of the data in [0, 1]; NaN and ±Inf become 0 so they never
- * reach a kernel (an accumulation buffer must never see NaN).
+ * Normalized float32 copy of the data in [0, 1] (per voxel; CPU twins and histograms); NaN
+ * and ±Inf become 0, as on the GPU (gpu/volume-format.ts), so they never reach a kernel.
  */
 export function normalizedData(v: Volume): Float32Array {
   const [lo, hi] = normalizationRange(v);

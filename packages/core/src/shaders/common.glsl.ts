@@ -57,11 +57,21 @@ vec3 jitteredCameraRay(ivec2 pixel, ivec2 size, inout uint rng) {
 }
 `;
 
-/** Cell-centred trilinear volume sample with clamp-to-edge (GL LINEAR + CLAMP_TO_EDGE, computed in full float), and the 1D TF lookup. */
-export const VOLUME_SAMPLING = /* glsl */ `
+/**
+ * The volume value at a world point: cell-centred trilinear interpolation with clamp-to-edge
+ * (GL LINEAR + CLAMP_TO_EDGE) of the stored texels, then the value mapping of
+ * gpu/volume-format.ts, v = clamp(texel · u.valueScale + u.valueOffset, 0, 1) (value range,
+ * inversion and the format's decoding in one affine map; it commutes with the filter).
+ * `sampleVolumeTexel(p)` is the filtered texel: exact (8 texelFetches and lerps in full
+ * float, EXACT_FILTER) or one hardware-filtered fetch (HARDWARE_FILTER).
+ */
+export const LERP = /* glsl */ `
 float lerp1(float a, float b, float t) { return a + (b - a) * t; }
 vec4 lerp4(vec4 a, vec4 b, float t) { return a + (b - a) * t; }
-float sampleVolume(vec3 p) {
+float volumeValue(float texel) { return clamp(texel * u.valueScale + u.valueOffset, 0.0, 1.0); }
+`;
+export const EXACT_FILTER = /* glsl */ `
+float sampleVolumeTexel(vec3 p) {
   vec3 tc = (p - u.boxMin) / (u.boxMax - u.boxMin);
   ivec3 dims = u.volumeDims.xyz;
   vec3 g = tc * vec3(dims) - 0.5;
@@ -83,6 +93,17 @@ float sampleVolume(vec3 p) {
   float c11 = lerp1(c011, c111, f.x);
   return lerp1(lerp1(c00, c10, f.y), lerp1(c01, c11, f.y), f.z);
 }
+`;
+// The texture unit's trilinear filter: texel centres at (i + ½)/n in normalized coordinates,
+// the same convention as the exact filter; the texture is LINEAR + CLAMP_TO_EDGE.
+export const HARDWARE_FILTER = /* glsl */ `
+float sampleVolumeTexel(vec3 p) {
+  return texture(volume, (p - u.boxMin) / (u.boxMax - u.boxMin)).r;
+}
+`;
+/** sampleVolume() (the filtered texel, value-mapped) and the 1D TF lookup. */
+export const SAMPLE_AND_LOOKUP = /* glsl */ `
+float sampleVolume(vec3 p) { return volumeValue(sampleVolumeTexel(p)); }
 // 1D transfer function: texel k holds value k/(N-1); linear between texels.
 vec4 transferLookup(float value) {
   float x = clamp(value, 0.0, 1.0) * float(u.tfSize - 1);
@@ -167,11 +188,14 @@ vec4 transferAt(vec3 p) {
 
 /**
  * The shared chunks of a generate pass, variants marked by `#if` lines that commonChunks()
- * (common.ts) resolves with the core preprocessor: the gradient helpers only when the
- * gradient textures are bound, and the transferAt() of a 1D or 2D transfer function.
+ * (common.ts) resolves with the core preprocessor: the exact or hardware volume filter, the
+ * gradient helpers only when the gradient textures are bound, and the transferAt() of a 1D
+ * or 2D transfer function.
  */
 export const GENERATE_CHUNKS = [
-  RNG, RAY, SLICE_ATLAS, VOLUME_SAMPLING,
+  RNG, RAY, SLICE_ATLAS, LERP,
+  '#if HARDWARE_FILTER', HARDWARE_FILTER, '#else', EXACT_FILTER, '#endif',
+  SAMPLE_AND_LOOKUP,
   '#if GRADIENT', GRADIENT, '#endif',
   '#if TF_2D', TRANSFER_2D, '#else', TRANSFER_1D, '#endif',
 ].join('\n');

@@ -9,16 +9,18 @@ export interface CommonChunkOptions {
   tf2d?: boolean;
   /** The gradient textures are bound: sampleGradientMagnitude() / normalizedGradientAt() exist. */
   gradient?: boolean;
+  /** The volume texture is bound with `filter: 'linear'`: sample it with one filtered fetch (volume-format.ts). */
+  hardwareFilter?: boolean;
 }
 
 /**
- * The shared chunks for a generate pass in both languages: RNG, rays, volume sampling, the
- * gradient helpers when bound and the matching transferAt(). A scene with a 1D transfer
+ * The shared chunks for a generate pass in both languages: RNG, rays, volume sampling (exact
+ * or hardware-filtered), the gradient helpers when bound and the matching transferAt(). A scene with a 1D transfer
  * function whose renderer needs no gradient compiles no gradient code (docs/design.md,
  * "Leave out what a scene does not need").
  */
 export function commonChunks(opts: CommonChunkOptions = {}): KernelSource {
-  const flags = { GRADIENT: !!(opts.gradient || opts.tf2d), TF_2D: !!opts.tf2d };
+  const flags = { GRADIENT: !!(opts.gradient || opts.tf2d), TF_2D: !!opts.tf2d, HARDWARE_FILTER: !!opts.hardwareFilter };
   return { glsl: preprocess(glsl.GENERATE_CHUNKS, flags), wgsl: preprocess(wgsl.GENERATE_CHUNKS, flags) };
 }
 

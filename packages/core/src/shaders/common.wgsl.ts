@@ -51,11 +51,14 @@ fn jitteredCameraRay(pixel: vec2i, size: vec2i, rng: ptr<function, u32>) -> vec3
 }
 `;
 
-/** Cell-centred trilinear volume sample with clamp-to-edge, computed in full float, and the 1D TF lookup. */
-export const VOLUME_SAMPLING = /* wgsl */ `
+/** Volume sampling: twins of common.glsl.ts (see there): value mapping, exact and hardware filters. */
+export const LERP = /* wgsl */ `
 fn lerp1(a: f32, b: f32, t: f32) -> f32 { return a + (b - a) * t; }
 fn lerp4(a: vec4f, b: vec4f, t: f32) -> vec4f { return a + (b - a) * t; }
-fn sampleVolume(p: vec3f) -> f32 {
+fn volumeValue(texel: f32) -> f32 { return clamp(texel * u.valueScale + u.valueOffset, 0.0, 1.0); }
+`;
+export const EXACT_FILTER = /* wgsl */ `
+fn sampleVolumeTexel(p: vec3f) -> f32 {
   let tc = (p - u.boxMin) / (u.boxMax - u.boxMin);
   let dims = u.volumeDims.xyz;
   let g = tc * vec3f(dims) - 0.5;
@@ -77,6 +80,14 @@ fn sampleVolume(p: vec3f) -> f32 {
   let c11 = lerp1(c011, c111, f.x);
   return lerp1(lerp1(c00, c10, f.y), lerp1(c01, c11, f.y), f.z);
 }
+`;
+export const HARDWARE_FILTER = /* wgsl */ `
+fn sampleVolumeTexel(p: vec3f) -> f32 {
+  return textureSampleLevel(volume, vptLinearSampler, (p - u.boxMin) / (u.boxMax - u.boxMin), 0.0).r;
+}
+`;
+export const SAMPLE_AND_LOOKUP = /* wgsl */ `
+fn sampleVolume(p: vec3f) -> f32 { return volumeValue(sampleVolumeTexel(p)); }
 fn transferLookup(value: f32) -> vec4f {
   let x = clamp(value, 0.0, 1.0) * f32(u.tfSize - 1);
   let x0 = floor(x);
@@ -152,7 +163,9 @@ fn transferAt(p: vec3f) -> vec4f {
  * gradient textures are bound, and the transferAt() of a 1D or 2D transfer function.
  */
 export const GENERATE_CHUNKS = [
-  RNG, RAY, SLICE_ATLAS, VOLUME_SAMPLING,
+  RNG, RAY, SLICE_ATLAS, LERP,
+  '#if HARDWARE_FILTER', HARDWARE_FILTER, '#else', EXACT_FILTER, '#endif',
+  SAMPLE_AND_LOOKUP,
   '#if GRADIENT', GRADIENT, '#endif',
   '#if TF_2D', TRANSFER_2D, '#else', TRANSFER_1D, '#endif',
 ].join('\n');

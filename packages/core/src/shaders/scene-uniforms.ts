@@ -1,4 +1,5 @@
 import { sliceAtlasLayout } from './slice-atlas.js';
+import { volumeValueMapping } from '../gpu/volume-format.js';
 import { cameraBasis } from '../scene/camera.js';
 import type { Scene } from '../scene/scene.js';
 import { transferFunctionSize } from '../scene/transfer-function.js';
@@ -31,10 +32,19 @@ export const SCENE_UNIFORM_FIELDS: readonly UniformField[] = [
   { name: 'gradientAtlasColumns', type: 'i32' },
   // A 2D TF's gradientMax (> 0), or 0: normalize by the volume's largest magnitude.
   { name: 'tfGradientMax', type: 'f32' },
+  // Texel → normalized value: v = clamp(texel · valueScale + valueOffset, 0, 1) (gpu/volume-format.ts;
+  // the value range, its inversion and the texture format's decoding).
+  { name: 'valueScale', type: 'f32' },
+  { name: 'valueOffset', type: 'f32' },
 ];
 
-/** Values of SCENE_UNIFORM_FIELDS for one iteration at a given image size. */
-export function sceneUniformValues(scene: Scene, width: number, height: number, iteration: number, tfSize: number): UniformValues {
+/**
+ * Values of SCENE_UNIFORM_FIELDS for one iteration at a given image size. `mapping` is the
+ * uploaded volume's texel → value map (volumeValueMapping); without it, texels are taken to
+ * hold the data values (the exact path's r32float).
+ */
+export function sceneUniformValues(scene: Scene, width: number, height: number, iteration: number, tfSize: number, mapping?: { valueScale: number; valueOffset: number }): UniformValues {
+  const map = mapping ?? volumeValueMapping(scene.volume, { decodeScale: 1, decodeOffset: 0 });
   const basis = cameraBasis(scene.camera);
   const box = volumeBox(scene.volume);
   const env = scene.environment;
@@ -57,5 +67,7 @@ export function sceneUniformValues(scene: Scene, width: number, height: number, 
     tfHeight: transferFunctionSize(scene.transferFunction, tfSize)[1],
     gradientAtlasColumns: sliceAtlasLayout(scene.volume.dims).columns,
     tfGradientMax: scene.transferFunction.dimensions === '2d' ? scene.transferFunction.gradientMax ?? 0 : 0,
+    valueScale: map.valueScale,
+    valueOffset: map.valueOffset,
   };
 }

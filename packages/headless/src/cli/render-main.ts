@@ -45,7 +45,11 @@ export async function runRender(argv: string[], io: CliIO = processIO): Promise<
       height: result.height,
       backend: result.backend.kind,
       device: result.backend.renderer,
+      gpuBytes: result.gpuBytes,
+      volumeDims: result.volumeDims,
+      ...(result.warnings.length > 0 ? { warnings: result.warnings } : {}),
     }));
+    for (const w of result.warnings) io.err(`vpt-render: warning: ${w}`);
     return 0;
   } catch (e) {
     io.err(`vpt-render: ${oneLine(e)}`);

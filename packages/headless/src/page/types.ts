@@ -43,6 +43,12 @@ export interface PageRenderResult {
   ldr: string | null;
   timings: RenderTimings;
   backend: BackendSummary;
+  /** GPU memory the context held after rendering (RenderContext.stats.gpuBytes). */
+  gpuBytes: { volume: number; gradient: number; auxiliary: number; targets: number; total: number };
+  /** The dims of the volume as uploaded (smaller than the scene's when it was downsampled to fit). */
+  volumeDims: [number, number, number];
+  /** The context's warnings (a downsampled volume). */
+  warnings: string[];
 }
 
 export interface VptPageApi {

@@ -96,6 +96,7 @@ async function buildScene(d: SceneDescription, baseUrl?: string): Promise<Scene>
     environment: environmentOf(d),
     densityScale: d.densityScale ?? SCENE_DEFAULTS.densityScale,
     seed: d.seed ?? SCENE_DEFAULTS.seed,
+    ...(d.sampling ? { sampling: d.sampling } : {}),
   };
 }
 
@@ -135,7 +136,12 @@ async function renderDescription(desc: SceneDescription, options: { baseUrl?: st
   const canvas = document.createElement('canvas');
   canvas.width = width;
   canvas.height = height;
-  const ctx = await core.RenderContext.create({ canvas, backend: desc.backend ?? SCENE_DEFAULTS.backend, width, height, renderer: makeRenderer(desc), post: steps });
+  const ctx = await core.RenderContext.create({
+    canvas, backend: desc.backend ?? SCENE_DEFAULTS.backend, width, height, renderer: makeRenderer(desc), post: steps,
+    ...(desc.maxGpuBytes ? { maxGpuBytes: desc.maxGpuBytes } : {}),
+  });
+  const warnings: string[] = [];
+  ctx.onWarning((w) => warnings.push(w.message));
   try {
     ctx.setScene(scene);
     if (options.warmup !== false) await ctx.renderIterations(1);
@@ -153,6 +159,9 @@ async function renderDescription(desc: SceneDescription, options: { baseUrl?: st
       ldr: ldr ? toBase64(ldr) : null,
       timings: { totalMs, iterations: stats.iterations, msPerIteration: stats.msPerIteration, setupMs: t1 - t0 },
       backend: { kind: ctx.backend.kind, renderer: ctx.backend.info.renderer },
+      gpuBytes: stats.gpuBytes,
+      volumeDims: [...ctx.getScene()!.volume.dims] as [number, number, number],
+      warnings,
     };
   } finally {
     ctx.dispose();

@@ -5,7 +5,9 @@
 // core's slice-atlas chunk, prepended by the renderer, addresses it).
 
 /**
- * Per cell: min and max of the normalized voxel values its points can blend (the cell's
+ * Per cell: min and max of the volume texels its points can blend (majorantGrid maps them to
+ * normalized values with u.valueScale / u.valueOffset; a filtered value, hardware or exact, is
+ * a convex combination of 8 texels, so it stays inside) (the cell's
  * voxels, a one-voxel trilinear border and one voxel of margin: cellVoxelRange in
  * majorant-grid.ts, in exact integer arithmetic). Runs once per volume and cell size.
  */
@@ -77,7 +79,9 @@ float columnBound(float x, int n1, bool upper) {
 void main() {
   ivec2 p = vptPixel();
   if (atlasVoxel(p, u.gridCells.xyz, u.gridCells.w).w == 0) { vpt_out0 = vec4(0.0); return; }
-  vec2 range = texelFetch(majorantRanges, p, 0).rg;
+  // Texel range → normalized value range (an inverted value range swaps the ends).
+  vec2 t = texelFetch(majorantRanges, p, 0).rg * u.valueScale + u.valueOffset;
+  vec2 range = vec2(min(t.x, t.y), max(t.x, t.y));
   int n1 = textureSize(opacityBounds, 0).x - 1;
   float xa = clamp(range.x, 0.0, 1.0) * float(n1) * (1.0 - 1e-4);
   float xb = min(float(n1), clamp(range.y, 0.0, 1.0) * float(n1) * (1.0 + 1e-4));

@@ -65,7 +65,8 @@ fn columnBound(x: f32, n1: i32, upper: bool) -> f32 {
   let p = vptPixel(fragCoord);
   var o: VptOut;
   if (atlasVoxel(p, u.gridCells.xyz, u.gridCells.w).w == 0) { o.out0 = vec4f(0.0); return o; }
-  let range = textureLoad(majorantRanges, p, 0).rg;
+  let t = textureLoad(majorantRanges, p, 0).rg * u.valueScale + u.valueOffset;
+  let range = vec2f(min(t.x, t.y), max(t.x, t.y));
   let n1 = i32(textureDimensions(opacityBounds).x) - 1;
   let xa = clamp(range.x, 0.0, 1.0) * f32(n1) * (1.0 - 1e-4);
   let xb = min(f32(n1), clamp(range.y, 0.0, 1.0) * f32(n1) * (1.0 + 1e-4));

@@ -83,7 +83,7 @@ async function loadSidecar(url: string, options: LoadOptions): Promise<LoadedVol
   }
   const volume: Volume = createVolume(dims, type, new Ctor(bytes.buffer as ArrayBuffer, 0, expected / Ctor.BYTES_PER_ELEMENT), spacing);
   const range = meta.value_range;
-  if (Array.isArray(range) && range.length === 2 && range.every(Number.isFinite) && range[1] > range[0]) {
+  if (Array.isArray(range) && range.length === 2 && range.every(Number.isFinite) && range[1] !== range[0] /* LO > HI inverts */) {
     // As the headless page does: the sidecar's range maps to [0, 1] for every voxel type.
     volume.valueRange = range as [number, number];
   }

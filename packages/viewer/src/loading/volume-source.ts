@@ -46,7 +46,7 @@ export async function loadVolumeSource(source: VolumeSource, options: LoadOption
   // (vpt-render) reads scene files; @vpt/loaders keeps it in meta only. Applying it here
   // makes the element show exactly what vpt-render renders for the same scene.
   const range = volume.meta?.value_range;
-  if (!volume.valueRange && Array.isArray(range) && range.length === 2 && range.every(Number.isFinite) && range[1] > range[0]) {
+  if (!volume.valueRange && Array.isArray(range) && range.length === 2 && range.every(Number.isFinite) && range[1] !== range[0] /* LO > HI inverts */) {
     volume.valueRange = [range[0], range[1]];
   }
   return volume;

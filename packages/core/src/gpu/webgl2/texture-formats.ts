@@ -1,5 +1,5 @@
 /** vpt texture formats → WebGL 2 (internal format, format, type) and their texel layout. */
-import type { TextureFormat } from '../backend.js';
+import type { TextureData, TextureFormat } from '../backend.js';
 
 export interface GlFormat {
   internalFormat: number;
@@ -7,23 +7,37 @@ export interface GlFormat {
   type: number;
   /** Components per texel in the uploaded/read data. */
   channels: number;
-  /** Float formats take/return Float32Array; rgba8unorm Uint8Array. */
-  isFloat: boolean;
+  /** The typed array uploads take (see TextureData). */
+  array: typeof Float32Array | typeof Uint8Array | typeof Uint16Array | typeof Int16Array;
+  /** Read back as floats (RGBA/FLOAT readPixels); otherwise as RGBA8 bytes. */
+  readsAsFloat: boolean;
 }
 
 // WebGL 2 enum values (fixed by the spec), so this table needs no context to build.
 const GL_RED = 0x1903;
 const GL_RGBA = 0x1908;
 const GL_FLOAT = 0x1406;
+const GL_HALF_FLOAT = 0x140b;
 const GL_UNSIGNED_BYTE = 0x1401;
+const GL_UNSIGNED_SHORT = 0x1403;
+const GL_SHORT = 0x1402;
 const GL_R32F = 0x822e;
+const GL_R16F = 0x822d;
+const GL_R8 = 0x8229;
 const GL_RGBA32F = 0x8814;
 const GL_RGBA8 = 0x8058;
+// EXT_texture_norm16.
+const GL_R16_EXT = 0x822a;
+const GL_R16_SNORM_EXT = 0x8f98;
 
 const FORMATS: Record<TextureFormat, GlFormat> = {
-  r32float: { internalFormat: GL_R32F, format: GL_RED, type: GL_FLOAT, channels: 1, isFloat: true },
-  rgba32float: { internalFormat: GL_RGBA32F, format: GL_RGBA, type: GL_FLOAT, channels: 4, isFloat: true },
-  rgba8unorm: { internalFormat: GL_RGBA8, format: GL_RGBA, type: GL_UNSIGNED_BYTE, channels: 4, isFloat: false },
+  r32float: { internalFormat: GL_R32F, format: GL_RED, type: GL_FLOAT, channels: 1, array: Float32Array, readsAsFloat: true },
+  rgba32float: { internalFormat: GL_RGBA32F, format: GL_RGBA, type: GL_FLOAT, channels: 4, array: Float32Array, readsAsFloat: true },
+  rgba8unorm: { internalFormat: GL_RGBA8, format: GL_RGBA, type: GL_UNSIGNED_BYTE, channels: 4, array: Uint8Array, readsAsFloat: false },
+  r8unorm: { internalFormat: GL_R8, format: GL_RED, type: GL_UNSIGNED_BYTE, channels: 1, array: Uint8Array, readsAsFloat: true },
+  r16float: { internalFormat: GL_R16F, format: GL_RED, type: GL_HALF_FLOAT, channels: 1, array: Uint16Array, readsAsFloat: true },
+  r16unorm: { internalFormat: GL_R16_EXT, format: GL_RED, type: GL_UNSIGNED_SHORT, channels: 1, array: Uint16Array, readsAsFloat: true },
+  r16snorm: { internalFormat: GL_R16_SNORM_EXT, format: GL_RED, type: GL_SHORT, channels: 1, array: Int16Array, readsAsFloat: true },
 };
 
 export function glFormat(format: TextureFormat): GlFormat {
@@ -33,10 +47,9 @@ export function glFormat(format: TextureFormat): GlFormat {
 }
 
 /** Check that `data` has the right element type and length for a whole texture. */
-export function checkTextureData(label: string, format: TextureFormat, texels: number, data: Float32Array | Uint8Array): void {
+export function checkTextureData(label: string, format: TextureFormat, texels: number, data: TextureData): void {
   const f = glFormat(format);
-  if (f.isFloat && !(data instanceof Float32Array)) throw new TypeError(`texture "${label}" (${format}) needs a Float32Array`);
-  if (!f.isFloat && !(data instanceof Uint8Array)) throw new TypeError(`texture "${label}" (${format}) needs a Uint8Array`);
+  if (!(data instanceof f.array)) throw new TypeError(`texture "${label}" (${format}) needs a ${f.array.name}`);
   const expected = texels * f.channels;
   if (data.length !== expected) {
     throw new RangeError(`texture "${label}" (${format}) needs ${expected} values (${texels} texels x ${f.channels}), got ${data.length}`);

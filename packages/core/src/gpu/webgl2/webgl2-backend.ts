@@ -4,16 +4,17 @@
  */
 import { VptError } from '../../errors.js';
 import type {
-  BackendInfo, BackendLimits, DrawCall, GpuBackend, GpuPass, GpuTexture, PassDescriptor, RenderTarget,
-  TextureDescriptor, TextureFormat,
+  BackendCapabilities, BackendInfo, BackendLimits, DrawCall, GpuBackend, GpuPass, GpuTexture, PassDescriptor, RenderTarget,
+  TextureData, TextureDescriptor, TextureFormat,
 } from '../backend.js';
+import { sliceCount } from '../backend.js';
 import { type GlLimits, acquireContext, readInfo, readLimits, requireColorBufferFloat } from './context-setup.js';
 import { ProgramCache, UNIFORM_BLOCK_BINDING } from './program-cache.js';
 import { WebGL2Pass, WebGL2RenderTarget, WebGL2Texture } from './resources.js';
 import { checkTextureData, glFormat } from './texture-formats.js';
 import {
   checkBoundTexture, checkCanvasOutputs, checkPassOutputs, checkReadable, checkTargetFormats, checkTargetOutputs,
-  checkTextureSize, checkUniformBytes, givenTexture, textureLabelAndDepth, type TextureSizeLimits,
+  checkTextureCapabilities, checkTextureSize, checkUniformBytes, givenTexture, textureLabelAndDepth, type TextureSizeLimits,
 } from '../validation.js';
 import { BackendBase, runCallbacks } from '../backend-base.js';
 
@@ -31,6 +32,7 @@ class WebGL2Backend extends BackendBase implements GpuBackend {
   readonly info: BackendInfo;
   private readonly gl: WebGL2RenderingContext;
   private glLimits: GlLimits;
+  private caps: BackendCapabilities = { norm16: false, float32Filterable: false };
   private lost = false;
   private readonly programs: ProgramCache;
   private readonly textures = new Set<WebGL2Texture>();
@@ -61,6 +63,10 @@ class WebGL2Backend extends BackendBase implements GpuBackend {
     return { maxTextureDimension2D: this.glLimits.maxTextureDimension2D, maxTextureDimension3D: this.glLimits.maxTextureDimension3D };
   }
 
+  get capabilities(): BackendCapabilities {
+    return this.caps;
+  }
+
   get isLost(): boolean {
     return this.lost || this.gl.isContextLost();
   }
@@ -72,12 +78,14 @@ class WebGL2Backend extends BackendBase implements GpuBackend {
     const { label, depth } = textureLabelAndDepth(desc);
     checkTextureSize(label, desc.dimension, desc.width, desc.height, depth, this.sizeLimits());
     if (desc.data) checkTextureData(label, desc.format, desc.width * desc.height * depth, desc.data);
-    const tex = this.allocTexture(desc.dimension, desc.width, desc.height, depth, desc.format, label, desc.data ?? null);
+    checkTextureCapabilities(label, desc, this.caps, { norm16: 'EXT_texture_norm16', float32Filterable: 'OES_texture_float_linear' });
+    const linear = desc.filter === 'linear';
+    const tex = this.allocTexture(desc.dimension, desc.width, desc.height, depth, desc.format, label, desc.data ?? null, linear);
     this.textures.add(tex);
     return tex;
   }
 
-  writeTexture(texture: GpuTexture, data: Float32Array | Uint8Array): void {
+  writeTexture(texture: GpuTexture, data: TextureData): void {
     this.assertNotDisposed();
     const tex = this.own(texture, WebGL2Texture, 'texture');
     checkTextureData(tex.label, tex.format, tex.width * tex.height * tex.depth, data);
@@ -92,6 +100,19 @@ class WebGL2Backend extends BackendBase implements GpuBackend {
       gl.bindTexture(gl.TEXTURE_2D, tex.handle);
       gl.texSubImage2D(gl.TEXTURE_2D, 0, 0, 0, tex.width, tex.height, f.format, f.type, data);
     }
+  }
+
+  writeTextureSlices(texture: GpuTexture, zOffset: number, data: TextureData): void {
+    this.assertNotDisposed();
+    const tex = this.own(texture, WebGL2Texture, 'texture');
+    const depth = sliceCount(tex, zOffset, data.length / glFormat(tex.format).channels);
+    checkTextureData(tex.label, tex.format, tex.width * tex.height * depth, data);
+    if (this.isLost) return;
+    this.assertCurrent(tex, `texture "${tex.label}"`);
+    const gl = this.gl;
+    const f = glFormat(tex.format);
+    gl.bindTexture(gl.TEXTURE_3D, tex.handle);
+    gl.texSubImage3D(gl.TEXTURE_3D, 0, 0, 0, zOffset, tex.width, tex.height, depth, f.format, f.type, data);
   }
 
   destroyTexture(texture: GpuTexture): void {
@@ -110,7 +131,7 @@ class WebGL2Backend extends BackendBase implements GpuBackend {
       throw new VptError('limit-exceeded', `Render target "${label}" has ${formats.length} colour attachments; this device allows ${this.glLimits.maxColorAttachments} (MAX_COLOR_ATTACHMENTS / MAX_DRAW_BUFFERS)`);
     }
     checkTextureSize(label, '2d', width, height, 1, this.sizeLimits());
-    const textures = formats.map((f, k) => this.allocTexture('2d', width, height, 1, f, `${label} [${k}]`, null));
+    const textures = formats.map((f, k) => this.allocTexture('2d', width, height, 1, f, `${label} [${k}]`, null, false));
     if (this.isLost) return new WebGL2RenderTarget(width, height, textures, label, null, this.generation);
 
     const gl = this.gl;
@@ -231,7 +252,7 @@ class WebGL2Backend extends BackendBase implements GpuBackend {
     const f = glFormat(tex.format);
     // GL returns row y = 0 first; texel row 0 is vpt's top row, so no flip is needed.
     let out: Float32Array | Uint8Array;
-    if (f.isFloat) {
+    if (f.readsAsFloat) {
       // RGBA/FLOAT is the one float read combination every float colour buffer supports.
       const rgba = new Float32Array(width * height * 4);
       gl.readPixels(0, 0, width, height, gl.RGBA, gl.FLOAT, rgba);
@@ -384,11 +405,13 @@ class WebGL2Backend extends BackendBase implements GpuBackend {
     // The full-screen triangle reads no attributes; an empty VAO keeps it independent of other state.
     this.vao = gl.createVertexArray();
     this.loseContextExt = gl.getExtension('WEBGL_lose_context');
+    // Optional: compact 16-bit volumes and filtered float volumes (see BackendCapabilities).
+    this.caps = { norm16: !!gl.getExtension('EXT_texture_norm16'), float32Filterable: !!gl.getExtension('OES_texture_float_linear') };
   }
 
   private allocTexture(
     dimension: '2d' | '3d', width: number, height: number, depth: number, format: TextureFormat, label: string,
-    data: Float32Array | Uint8Array | null,
+    data: TextureData | null, linear: boolean,
   ): WebGL2Texture {
     if (this.isLost) return new WebGL2Texture(dimension, width, height, depth, format, label, null, this.generation);
     const gl = this.gl;
@@ -396,9 +419,11 @@ class WebGL2Backend extends BackendBase implements GpuBackend {
     const target = dimension === '3d' ? gl.TEXTURE_3D : gl.TEXTURE_2D;
     const handle = gl.createTexture();
     gl.bindTexture(target, handle);
-    // Kernels use texelFetch only; NEAREST also keeps R32F/RGBA32F complete without OES_texture_float_linear.
-    gl.texParameteri(target, gl.TEXTURE_MIN_FILTER, gl.NEAREST);
-    gl.texParameteri(target, gl.TEXTURE_MAG_FILTER, gl.NEAREST);
+    // texelFetch ignores the filter; NEAREST also keeps R32F/RGBA32F complete without
+    // OES_texture_float_linear. LINEAR (no mipmaps) for textures read by texture().
+    const filter = linear ? gl.LINEAR : gl.NEAREST;
+    gl.texParameteri(target, gl.TEXTURE_MIN_FILTER, filter);
+    gl.texParameteri(target, gl.TEXTURE_MAG_FILTER, filter);
     gl.texParameteri(target, gl.TEXTURE_WRAP_S, gl.CLAMP_TO_EDGE);
     gl.texParameteri(target, gl.TEXTURE_WRAP_T, gl.CLAMP_TO_EDGE);
     if (dimension === '3d') {

@@ -38,7 +38,10 @@ const RAISED_LIMITS = [
   'maxColorAttachmentBytesPerSample',
   'maxSampledTexturesPerShaderStage',
   'maxUniformBufferBindingSize',
+  'maxBufferSize',
 ] as const;
+
+const OPTIONAL_FEATURES = ['timestamp-query', 'texture-formats-tier1', 'float32-filterable'];
 
 /** Request an adapter and a device, or throw VptError('no-backend'). */
 export async function requestGpuDevice(options: Pick<BackendOptions, 'powerPreference'> = {}): Promise<GpuDeviceHandle> {
@@ -59,8 +62,10 @@ export async function requestGpuDevice(options: Pick<BackendOptions, 'powerPrefe
     const v = adapter.limits[name];
     if (typeof v === 'number') requiredLimits[name] = v;
   }
-  // Timestamp queries let benchmarks time passes on the GPU; optional, so only asked for when offered.
-  const requiredFeatures: GPUFeatureName[] = adapter.features.has('timestamp-query') ? ['timestamp-query'] : [];
+  // Optional features, asked for only when offered: timestamp queries let benchmarks time
+  // passes on the GPU; 16-bit normalized textures ('texture-formats-tier1': r16unorm/r16snorm)
+  // and filterable r32float ('float32-filterable') serve the volume's compact fast path.
+  const requiredFeatures = OPTIONAL_FEATURES.filter((f) => adapter.features.has(f)) as GPUFeatureName[];
   let device: GPUDevice;
   try {
     device = await adapter.requestDevice({ label: 'vpt', requiredFeatures, requiredLimits });

@@ -1,12 +1,14 @@
 /** vpt texture formats → WebGPU: texel size, components, usage flags, and data checks. */
-import type { TextureFormat } from '../backend.js';
+import type { TextureData, TextureFormat } from '../backend.js';
 
 export interface GpuFormatInfo {
   /** Bytes per texel in uploaded and read-back data (tightly packed). */
   bytesPerTexel: number;
   /** Components per texel in the uploaded/read data. */
   channels: number;
-  /** Float formats take/return Float32Array; rgba8unorm Uint8Array. */
+  /** The typed array uploads take (see TextureData). */
+  array: typeof Float32Array | typeof Uint8Array | typeof Uint16Array | typeof Int16Array;
+  /** Read back as Float32Array (r16float converted from half bits); rgba8unorm reads as bytes. */
   isFloat: boolean;
   /**
    * Colour-attachment byte cost and alignment, from the WebGPU spec's "render target pixel
@@ -17,9 +19,14 @@ export interface GpuFormatInfo {
 }
 
 const FORMATS: Record<TextureFormat, GpuFormatInfo> = {
-  r32float: { bytesPerTexel: 4, channels: 1, isFloat: true, renderByteCost: 4, renderByteAlign: 4 },
-  rgba32float: { bytesPerTexel: 16, channels: 4, isFloat: true, renderByteCost: 16, renderByteAlign: 4 },
-  rgba8unorm: { bytesPerTexel: 4, channels: 4, isFloat: false, renderByteCost: 8, renderByteAlign: 1 },
+  r32float: { bytesPerTexel: 4, channels: 1, array: Float32Array, isFloat: true, renderByteCost: 4, renderByteAlign: 4 },
+  rgba32float: { bytesPerTexel: 16, channels: 4, array: Float32Array, isFloat: true, renderByteCost: 16, renderByteAlign: 4 },
+  rgba8unorm: { bytesPerTexel: 4, channels: 4, array: Uint8Array, isFloat: false, renderByteCost: 8, renderByteAlign: 1 },
+  // Volume formats (r16float is also the fast path's gradient target). r8unorm/r16* are only sampled.
+  r8unorm: { bytesPerTexel: 1, channels: 1, array: Uint8Array, isFloat: true, renderByteCost: 1, renderByteAlign: 1 },
+  r16unorm: { bytesPerTexel: 2, channels: 1, array: Uint16Array, isFloat: true, renderByteCost: 2, renderByteAlign: 2 },
+  r16snorm: { bytesPerTexel: 2, channels: 1, array: Int16Array, isFloat: true, renderByteCost: 2, renderByteAlign: 2 },
+  r16float: { bytesPerTexel: 2, channels: 1, array: Uint16Array, isFloat: true, renderByteCost: 2, renderByteAlign: 2 },
 };
 
 export function formatInfo(format: TextureFormat): GpuFormatInfo {
@@ -49,10 +56,9 @@ export function colorAttachmentBytesPerSample(formats: readonly TextureFormat[])
 }
 
 /** Check that `data` has the right element type and length for a whole texture. */
-export function checkTextureData(label: string, format: TextureFormat, texels: number, data: Float32Array | Uint8Array): void {
+export function checkTextureData(label: string, format: TextureFormat, texels: number, data: TextureData): void {
   const f = formatInfo(format);
-  if (f.isFloat && !(data instanceof Float32Array)) throw new TypeError(`texture "${label}" (${format}) needs a Float32Array`);
-  if (!f.isFloat && !(data instanceof Uint8Array)) throw new TypeError(`texture "${label}" (${format}) needs a Uint8Array`);
+  if (!(data instanceof f.array)) throw new TypeError(`texture "${label}" (${format}) needs a ${f.array.name}`);
   const expected = texels * f.channels;
   if (data.length !== expected) {
     throw new RangeError(`texture "${label}" (${format}) needs ${expected} values (${texels} texels x ${f.channels}), got ${data.length}`);

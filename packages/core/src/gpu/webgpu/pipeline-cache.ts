@@ -15,7 +15,7 @@ import { VptError } from '../../errors.js';
 import type { PassDescriptor } from '../backend.js';
 import { formatCompileError } from './compile-errors.js';
 import type { DeferredErrors } from './deferred-errors.js';
-import { BUILTINS_BYTE_SIZE, FRAGMENT_ENTRY, FULLSCREEN_VERTEX_WGSL, VERTEX_ENTRY, buildWgslSource } from './wgsl-prelude.js';
+import { BUILTINS_BYTE_SIZE, FRAGMENT_ENTRY, FULLSCREEN_VERTEX_WGSL, VERTEX_ENTRY, buildWgslSource, linearSamplerBinding, usesLinearSampler } from './wgsl-prelude.js';
 
 export interface PipelineEntry {
   readonly label: string;
@@ -65,12 +65,14 @@ export class PipelineCache {
       label: desc.label,
       entries: [
         { binding: 0, visibility: GPUShaderStage.FRAGMENT, buffer: { type: 'uniform', minBindingSize: desc.uniforms.byteSize } },
-        // Float textures are not filterable in core WebGPU; kernels only use textureLoad.
+        // Kernels read with textureLoad, so 'unfilterable-float' admits every format (r32float
+        // included); a filtered binding (the volume's fast path) needs a filterable format.
         ...desc.textures.map((t, k): GPUBindGroupLayoutEntry => ({
           binding: 1 + k,
           visibility: GPUShaderStage.FRAGMENT,
-          texture: { sampleType: 'unfilterable-float', viewDimension: t.dimension },
+          texture: { sampleType: t.filter === 'linear' ? 'float' : 'unfilterable-float', viewDimension: t.dimension },
         })),
+        ...(usesLinearSampler(desc) ? [{ binding: linearSamplerBinding(desc), visibility: GPUShaderStage.FRAGMENT, sampler: { type: 'filtering' as const } }] : []),
       ],
     });
     const pipelineLayout = device.createPipelineLayout({ label: desc.label, bindGroupLayouts: [bindGroupLayout, this.builtinsLayout] });

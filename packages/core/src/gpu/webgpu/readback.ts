@@ -3,6 +3,7 @@
  * bytesPerRow alignment copyTextureToBuffer requires) and unpack it tightly, top row first.
  */
 import type { TextureFormat } from '../backend.js';
+import { fromHalfArray } from '../half-float.js';
 import { formatInfo } from './formats.js';
 
 const ROW_ALIGN = 256;
@@ -34,5 +35,7 @@ export function unpackReadback(mapped: ArrayBuffer, bytesPerRow: number, width: 
   const src = new Uint8Array(mapped);
   const bytes = new Uint8Array(tight * height);
   for (let y = 0; y < height; y++) bytes.set(src.subarray(y * bytesPerRow, y * bytesPerRow + tight), y * tight);
+  if (format === 'r16float') return fromHalfArray(new Uint16Array(bytes.buffer));
+  if (format === 'r8unorm') return Float32Array.from(bytes, (b) => b / 255);
   return info.isFloat ? new Float32Array(bytes.buffer) : bytes;
 }

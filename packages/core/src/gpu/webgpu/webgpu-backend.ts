@@ -10,22 +10,23 @@
  */
 import { VptError } from '../../errors.js';
 import type {
-  BackendInfo, BackendLimits, BackendOptions, DrawCall, GpuBackend, GpuPass, GpuTexture, PassDescriptor, RenderTarget,
-  TextureDescriptor, TextureFormat,
+  BackendCapabilities, BackendInfo, BackendLimits, BackendOptions, DrawCall, GpuBackend, GpuPass, GpuTexture, PassDescriptor, RenderTarget,
+  TextureData, TextureDescriptor, TextureFormat,
 } from '../backend.js';
 import { DeferredErrors } from './deferred-errors.js';
 import { type GpuDeviceHandle, requestGpuDevice } from './device-setup.js';
 import { checkTextureData, colorAttachmentBytesPerSample, formatInfo, textureUsage } from './formats.js';
 import {
   checkBoundTexture, checkCanvasOutputs, checkPassOutputs, checkReadable, checkTargetFormats, checkTargetOutputs,
-  checkTextureSize, checkUniformBytes, givenTexture, textureLabelAndDepth, type TextureSizeLimits,
+  checkTextureCapabilities, checkTextureSize, checkUniformBytes, givenTexture, textureLabelAndDepth, type TextureSizeLimits,
 } from '../validation.js';
 import { BackendBase, runCallbacks } from '../backend-base.js';
 import { PipelineCache } from './pipeline-cache.js';
 import { submitReadback, unpackReadback } from './readback.js';
 import { WebGPUPass, WebGPURenderTarget, WebGPUTexture } from './resources.js';
 import { UniformBufferPool } from './uniform-pool.js';
-import { BUILTINS_BYTE_SIZE } from './wgsl-prelude.js';
+import { BUILTINS_BYTE_SIZE, linearSamplerBinding, usesLinearSampler } from './wgsl-prelude.js';
+import { sliceCount } from '../backend.js';
 
 export { isWebGPUAvailable } from './device-setup.js';
 
@@ -62,6 +63,8 @@ class WebGPUBackend extends BackendBase implements GpuBackend {
   private readonly targets = new Set<WebGPURenderTarget>();
   /** Readback buffers awaiting mapAsync, destroyed by dispose() (which aborts the map). */
   private readonly readbacks = new Set<GPUBuffer>();
+  /** The clamp-to-edge linear sampler of filtered bindings, per device (made on first use). */
+  private sampler: { device: GPUDevice; sampler: GPUSampler } | null = null;
   private restoreWaiters: Waiter[] = [];
 
   /**
@@ -89,7 +92,20 @@ class WebGPUBackend extends BackendBase implements GpuBackend {
 
   get limits(): BackendLimits {
     const l = this.state.device.limits;
-    return { maxTextureDimension2D: l.maxTextureDimension2D, maxTextureDimension3D: l.maxTextureDimension3D };
+    return { maxTextureDimension2D: l.maxTextureDimension2D, maxTextureDimension3D: l.maxTextureDimension3D, maxBufferSize: l.maxBufferSize };
+  }
+
+  private linearSampler(): GPUSampler {
+    const device = this.state.device;
+    if (this.sampler?.device !== device) {
+      this.sampler = { device, sampler: device.createSampler({ label: 'vpt linear clamp', magFilter: 'linear', minFilter: 'linear', addressModeU: 'clamp-to-edge', addressModeV: 'clamp-to-edge', addressModeW: 'clamp-to-edge' }) };
+    }
+    return this.sampler.sampler;
+  }
+
+  get capabilities(): BackendCapabilities {
+    const f = this.state.device.features;
+    return { norm16: f.has('texture-formats-tier1'), float32Filterable: f.has('float32-filterable') };
   }
 
   get isLost(): boolean {
@@ -102,6 +118,7 @@ class WebGPUBackend extends BackendBase implements GpuBackend {
     this.assertNotDisposed();
     const { label, depth } = textureLabelAndDepth(desc);
     formatInfo(desc.format);
+    checkTextureCapabilities(label, desc, this.capabilities, { norm16: "the 'texture-formats-tier1' feature", float32Filterable: "the 'float32-filterable' feature" });
     checkTextureSize(label, desc.dimension, desc.width, desc.height, depth, this.sizeLimits());
     if (desc.data) checkTextureData(label, desc.format, desc.width * desc.height * depth, desc.data);
     const tex = this.allocTexture(desc.dimension, desc.width, desc.height, depth, desc.format, label);
@@ -110,13 +127,26 @@ class WebGPUBackend extends BackendBase implements GpuBackend {
     return tex;
   }
 
-  writeTexture(texture: GpuTexture, data: Float32Array | Uint8Array): void {
+  writeTexture(texture: GpuTexture, data: TextureData): void {
     this.assertNotDisposed();
     const tex = this.own(texture, WebGPUTexture, 'texture');
     checkTextureData(tex.label, tex.format, tex.width * tex.height * tex.depth, data);
     if (this.lost) return;
     this.assertCurrent(tex, `texture "${tex.label}"`);
     this.upload(tex, data);
+  }
+
+  writeTextureSlices(texture: GpuTexture, zOffset: number, data: TextureData): void {
+    this.assertNotDisposed();
+    const tex = this.own(texture, WebGPUTexture, 'texture');
+    const depth = sliceCount(tex, zOffset, data.length / formatInfo(tex.format).channels);
+    checkTextureData(tex.label, tex.format, tex.width * tex.height * depth, data);
+    if (this.lost) return;
+    this.assertCurrent(tex, `texture "${tex.label}"`);
+    if (!tex.handle) throw new RangeError(`texture "${tex.label}" was destroyed`);
+    const bytesPerRow = tex.width * formatInfo(tex.format).bytesPerTexel;
+    const view = data as Float32Array<ArrayBuffer> | Uint8Array<ArrayBuffer> | Uint16Array<ArrayBuffer> | Int16Array<ArrayBuffer>;
+    this.state.device.queue.writeTexture({ texture: tex.handle, origin: [0, 0, zOffset] }, view, { bytesPerRow, rowsPerImage: tex.height }, [tex.width, tex.height, depth]);
   }
 
   destroyTexture(texture: GpuTexture): void {
@@ -221,7 +251,10 @@ class WebGPUBackend extends BackendBase implements GpuBackend {
     const group0 = device.createBindGroup({
       label: desc.label,
       layout: entry.bindGroupLayout,
-      entries: [{ binding: 0, resource: { buffer, offset: 0, size: userSize } }, ...textureEntries],
+      entries: [
+        { binding: 0, resource: { buffer, offset: 0, size: userSize } }, ...textureEntries,
+        ...(usesLinearSampler(desc) ? [{ binding: linearSamplerBinding(desc), resource: this.linearSampler() }] : []),
+      ],
     });
     const group1 = device.createBindGroup({
       label: 'vpt builtins',
@@ -400,11 +433,11 @@ class WebGPUBackend extends BackendBase implements GpuBackend {
     return new WebGPUTexture(dimension, width, height, depth, format, label, handle, this.generation);
   }
 
-  private upload(tex: WebGPUTexture, data: Float32Array | Uint8Array): void {
+  private upload(tex: WebGPUTexture, data: TextureData): void {
     if (!tex.handle) throw new RangeError(`texture "${tex.label}" was destroyed`);
     const bytesPerRow = tex.width * formatInfo(tex.format).bytesPerTexel;
     // The IDL takes [AllowShared] views; the typings only admit views over a plain ArrayBuffer.
-    const view = data as Float32Array<ArrayBuffer> | Uint8Array<ArrayBuffer>;
+    const view = data as Float32Array<ArrayBuffer> | Uint8Array<ArrayBuffer> | Uint16Array<ArrayBuffer> | Int16Array<ArrayBuffer>;
     this.state.device.queue.writeTexture({ texture: tex.handle }, view, { bytesPerRow, rowsPerImage: tex.height }, [tex.width, tex.height, tex.depth]);
   }
 

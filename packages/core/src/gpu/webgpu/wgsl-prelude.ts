@@ -48,6 +48,16 @@ export function wgslDefines(defines: PassDescriptor['defines']): string {
   return Object.keys(defines).sort().map((name) => wgslDefine(name, defines[name])).join('');
 }
 
+/** A pass with a `filter: 'linear'` binding gets the clamp-to-edge linear sampler `vptLinearSampler`. */
+export function usesLinearSampler(desc: PassDescriptor): boolean {
+  return desc.textures.some((t) => t.filter === 'linear');
+}
+
+/** The sampler's binding: right after the textures (1 + texture count). */
+export function linearSamplerBinding(desc: PassDescriptor): number {
+  return 1 + desc.textures.length;
+}
+
 /** The full fragment module: prelude followed by the kernel's source. */
 export function buildWgslSource(desc: PassDescriptor): string {
   const parts: string[] = [wgslDefines(desc.defines)];
@@ -61,6 +71,7 @@ export function buildWgslSource(desc: PassDescriptor): string {
     if (!IDENT.test(t.name)) throw new RangeError(`bad texture name "${t.name}" in pass "${desc.label}"`);
     parts.push(`@group(0) @binding(${1 + k}) var ${t.name}: ${t.dimension === '3d' ? 'texture_3d<f32>' : 'texture_2d<f32>'};\n`);
   });
+  if (usesLinearSampler(desc)) parts.push(`@group(0) @binding(${linearSamplerBinding(desc)}) var vptLinearSampler: sampler;\n`);
   parts.push('struct VptBuiltins { targetSize: vec2i, flipY: i32, pad: i32 };\n');
   parts.push('@group(1) @binding(0) var<uniform> vpt: VptBuiltins;\n');
   if (desc.outputs.length === 0) throw new RangeError(`pass "${desc.label}" has no outputs`);
