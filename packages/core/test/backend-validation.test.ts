@@ -1,7 +1,8 @@
 import { describe, expect, it } from 'vitest';
 import { UniformLayout, isVptError, type GpuTexture, type PassDescriptor } from '../src/index.js';
 import {
-  checkBoundTexture, checkCanvasOutputs, checkCanvasSize, checkPassOutputs, checkTargetOutputs, checkTextureSize, checkUniformBytes, givenTexture, textureLabelAndDepth,
+  checkBoundTexture, checkCanvasOutputs, checkCanvasSize, checkPassOutputs, checkTargetOutputs, checkTextureCapabilities, checkTextureSize, checkUniformBytes, givenTexture,
+  textureLabelAndDepth,
 } from '../src/gpu/validation.js';
 
 const layout = new UniformLayout('P', [{ name: 'a', type: 'vec4' }]);
@@ -10,6 +11,18 @@ const tex = (format: GpuTexture['format'], dimension: '2d' | '3d' = '2d'): GpuTe
 const limits = { max2D: 16, max3D: 8, name2D: 'MAX2D', name3D: 'MAX3D' };
 
 describe('backend validation shared by WebGL 2 and WebGPU', () => {
+  it('16-bit normalized and filtered float32 textures need their capabilities', () => {
+    const names = { norm16: 'NORM16', float32Filterable: 'F32LINEAR' };
+    const none = { norm16: false, float32Filterable: false }, all = { norm16: true, float32Filterable: true };
+    const d = (format: GpuTexture['format'], filter?: 'linear') => ({ dimension: '3d' as const, width: 2, height: 2, depth: 2, format, ...(filter ? { filter } : {}) });
+    expect(() => checkTextureCapabilities('v', d('r16unorm'), none, names)).toThrow(/needs NORM16/);
+    expect(() => checkTextureCapabilities('v', d('r16snorm', 'linear'), all, names)).not.toThrow();
+    expect(() => checkTextureCapabilities('v', d('r32float', 'linear'), none, names)).toThrow(/cannot be filtered here: that needs F32LINEAR/);
+    expect(() => checkTextureCapabilities('v', d('r32float'), none, names)).not.toThrow();
+    expect(() => checkTextureCapabilities('v', d('r8unorm', 'linear'), none, names)).not.toThrow();
+    try { checkTextureCapabilities('v', d('r16unorm'), none, names); } catch (e) { expect(isVptError(e) && e.code).toBe('missing-extension'); }
+  });
+
   it('a canvas draw has exactly one rgba8unorm output', () => {
     expect(() => checkCanvasOutputs(pass(['rgba8unorm']))).not.toThrow();
     expect(() => checkCanvasOutputs(pass(['rgba32float']))).toThrow(/one rgba8unorm output, not \[rgba32float\]/);

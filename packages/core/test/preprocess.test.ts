@@ -1,5 +1,5 @@
 import { describe, expect, it } from 'vitest';
-import { preprocess } from '../src/index.js';
+import { commonChunks, preprocess } from '../src/index.js';
 
 describe('preprocess', () => {
   const src = ['a', '#if X', 'x', '#elif Y == 2 && !Z', 'y', '#else', 'e', '#if Z', 'z', '#endif', '#endif', 'b'].join('\n');
@@ -15,5 +15,17 @@ describe('preprocess', () => {
     expect(() => preprocess('#if NOPE\n#endif', {})).toThrow(/unknown flag "NOPE"/);
     expect(() => preprocess('#if A\n', { A: true })).toThrow(/unterminated/);
     expect(() => preprocess('#endif', {})).toThrow(/without #if/);
+  });
+  it('picks the exact or hardware volume filter in the common chunks (one sampleVolumeTexel each)', () => {
+    const exact = commonChunks({}), filtered = commonChunks({ hardwareFilter: true });
+    for (const src of [exact.glsl, exact.wgsl, filtered.glsl, filtered.wgsl]) {
+      expect(src.match(/(float|fn) sampleVolumeTexel/g)).toHaveLength(1);
+      expect(src).toContain('volumeValue(sampleVolumeTexel(p))');
+    }
+    expect(exact.glsl).toContain('texelFetch(volume');
+    expect(filtered.glsl).not.toContain('texelFetch(volume');
+    expect(filtered.glsl).toContain('texture(volume');
+    expect(exact.wgsl).not.toContain('vptLinearSampler');
+    expect(filtered.wgsl).toContain('textureSampleLevel(volume, vptLinearSampler');
   });
 });
