@@ -150,6 +150,28 @@ describe('<vpt-viewer> attributes', () => {
     expect(r.kept.maxSamples).toBe(4);
     expect(r.kept.banner).toMatch(/max-samples/);
   });
+
+  it('number attributes above their maximum (seed 2^32, exposure 100, resolution-scale 5) are refused, keeping the last valid value', async () => {
+    const r = await vp.page.evaluate(async (attrs) => {
+      const vt = (window as any).vt;
+      const el = vt.create({ ...attrs, seed: '7', exposure: '0.5', 'resolution-scale': '1' });
+      await el.whenSettled();
+      const errors: { code: string; source: string; message: string }[] = [];
+      el.addEventListener('error', (e: CustomEvent) => errors.push({ code: e.detail.code, source: e.detail.source, message: e.detail.message }));
+      for (const [name, value] of [['seed', '4294967296'], ['exposure', '100'], ['resolution-scale', '5']]) {
+        el.setAttribute(name, value);
+        await el.updateComplete;
+      }
+      const kept = { seed: el.seed, exposure: el.exposure, resolutionScale: el.resolutionScale };
+      el.remove();
+      return { errors, kept };
+    }, BLOB);
+    expect(r.errors.map((e) => [e.code, e.source])).toEqual([['invalid-scene', 'attribute'], ['invalid-scene', 'attribute'], ['invalid-scene', 'attribute']]);
+    expect(r.errors[0].message).toMatch(/seed: must be an integer in \[0, 4294967295\]/);
+    expect(r.errors[1].message).toMatch(/exposure: must be a number in \[-64, 64\]/);
+    expect(r.errors[2].message).toMatch(/resolution-scale: must be a number in \[0.05, 4\]/);
+    expect(r.kept).toEqual({ seed: 7, exposure: 0.5, resolutionScale: 1 });
+  });
 });
 
 describe('<vpt-viewer> size', () => {
