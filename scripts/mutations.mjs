@@ -17,7 +17,7 @@
  * Options: --only a,b (run the named mutations), --list (print the table), --baseline (first
  * run every test selection unmutated; a selection that fails then makes "caught" meaningless).
  */
-import { spawnSync } from 'node:child_process';
+import { spawn, spawnSync } from 'node:child_process';
 import fs from 'node:fs';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
@@ -116,6 +116,7 @@ if (only && selected.length !== only.length) {
 
 // 2. Restore on every way out.
 let pending = null; // { file, text } while a mutation is applied
+let child = null; // the build or test run in progress
 const staleDist = new Set(); // packages whose dist/ was built from mutated source
 function restore() {
   if (!pending) return;
@@ -125,6 +126,7 @@ function restore() {
 }
 for (const sig of ['SIGINT', 'SIGTERM', 'SIGHUP']) {
   process.on(sig, () => {
+    child?.kill('SIGTERM');
     restore();
     console.error(`\nmutations: interrupted (${sig}); source restored.${staleDist.size ? ` Rebuild ${[...staleDist].join(', ')} (pnpm run build) before browser tests.` : ''}`);
     process.exit(130);
@@ -133,13 +135,28 @@ for (const sig of ['SIGINT', 'SIGTERM', 'SIGHUP']) {
 process.on('uncaughtException', (e) => { restore(); console.error(e); process.exit(1); });
 process.on('exit', restore);
 
-function build(pkg) {
-  const r = sh('pnpm', ['--filter', pkg, 'run', 'build']);
+/** Run a command asynchronously, so a signal reaches the handlers above while it runs. */
+function run(cmd, cmdArgs) {
+  return new Promise((resolve) => {
+    let stdout = '', stderr = '';
+    child = spawn(cmd, cmdArgs, { cwd: root });
+    child.stdout.on('data', (d) => { stdout += d; });
+    child.stderr.on('data', (d) => { stderr += d; });
+    child.on('close', (status, signal) => {
+      child = null;
+      if (signal) { restore(); console.error(`mutations: ${cmd} ended by ${signal}; stopping.`); process.exit(130); }
+      resolve({ status, stdout, stderr });
+    });
+  });
+}
+
+async function build(pkg) {
+  const r = await run('pnpm', ['--filter', pkg, 'run', 'build']);
   return r.status === 0;
 }
 
-function runTests(m) {
-  const r = sh('pnpm', ['exec', 'vitest', 'run', ...m.tests, ...(m.only ? ['-t', m.only] : [])]);
+async function runTests(m) {
+  const r = await run('pnpm', ['exec', 'vitest', 'run', ...m.tests, ...(m.only ? ['-t', m.only] : [])]);
   const out = `${r.stdout}\n${r.stderr}`;
   // Strip colour codes for the summary lines.
   const plain = out.replace(/\x1b\[[0-9;]*m/g, '');
@@ -154,7 +171,7 @@ if (flag('baseline')) {
   console.log('baseline: every test selection unmutated');
   for (const key of new Set(selected.map((m) => JSON.stringify([m.tests, m.only ?? null])))) {
     const [tests, o] = JSON.parse(key);
-    const r = runTests({ tests, only: o ?? undefined });
+    const r = await runTests({ tests, only: o ?? undefined });
     console.log(`  ${r.passed ? 'pass' : 'FAIL'}  ${tests.join(' ')}${o ? ` -t "${o}"` : ''}  (${r.summary})`);
     if (!r.passed) { console.error('mutations: a selection fails without any mutation; fix that first.'); process.exit(1); }
   }
@@ -173,16 +190,16 @@ for (const m of selected) {
       result = 'stale'; detail = `find string occurs ${count} times`;
     } else {
       // Packages left built from an earlier mutation: rebuild before this run uses them.
-      for (const pkg of [...staleDist]) if (pkg !== m.build) { build(pkg); staleDist.delete(pkg); }
+      for (const pkg of [...staleDist]) if (pkg !== m.build) { await build(pkg); staleDist.delete(pkg); }
       pending = { file: m.file, text };
       fs.writeFileSync(abs, text.replace(m.find, m.replace));
       try {
         if (m.build) {
           staleDist.add(m.build);
-          if (!build(m.build)) { result = 'caught'; detail = 'build fails'; }
+          if (!(await build(m.build))) { result = 'caught'; detail = 'build fails'; }
         }
         if (!result) {
-          const r = runTests(m);
+          const r = await runTests(m);
           result = r.noTests ? 'no-tests' : r.passed ? 'MISSED' : 'caught';
           detail = r.summary;
         }
@@ -196,7 +213,7 @@ for (const m of selected) {
   console.log(`${result.padEnd(8)} ${m.name.padEnd(38)} ${s.padStart(4)} s  ${m.why}  [${detail}]`);
 }
 
-for (const pkg of staleDist) build(pkg);
+for (const pkg of staleDist) await build(pkg);
 staleDist.clear();
 
 const caught = results.filter((r) => r.result === 'caught').length;
