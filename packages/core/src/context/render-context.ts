@@ -5,6 +5,7 @@ import type { PostStep } from '../post-step.js';
 import type { AuxiliaryPass, AuxiliaryTexture, Renderer } from '../renderer.js';
 import type { Scene } from '../scene/scene.js';
 import { validateScene } from '../scene/scene.js';
+import { validateSceneForDevice } from '../validation/device.js';
 import { rasterizeTransferFunction, TF_RESOLUTION, transferFunctionSize } from '../scene/transfer-function.js';
 import { normalizedData } from '../scene/volume.js';
 import { gradientAtlasLayout } from '../gradient/atlas.js';
@@ -131,6 +132,7 @@ export class RenderContext {
   setScene(scene: Scene): void {
     this.assertAlive();
     validateScene(scene);
+    validateSceneForDevice(scene, this.renderer, this.backend.limits);
     const [nx, ny, nz] = scene.volume.dims;
     const max3D = this.backend.limits.maxTextureDimension3D;
     if (nx > max3D || ny > max3D || nz > max3D) {
