@@ -92,7 +92,7 @@ describe('declared renderer parameters', () => {
   it('a step below MIN_STEP_VOXELS voxels of the scene is refused at setScene', () => {
     const s = scene({ volume: createVolume([128, 64, 32], 'uint8') });
     const renderer = (stepSize: number) => ({ name: 'eam', paramSpecs: specs, getParams: () => ({ stepSize }) }) as unknown as Renderer;
-    expect(thrown(() => validateSceneForDevice(s, renderer(1e-4), { maxTextureDimension2D: 8192 })).message).toMatch(/eam\.stepSize: 0\.0001 is below the smallest step .* 0\.00078125 world units/);
+    expect(thrown(() => validateSceneForDevice(s, renderer(1e-4), { maxTextureDimension2D: 8192 })).message).toMatch(/EAM\.stepSize: 0\.0001 is below the smallest step .* 0\.00078125 world units/);
     expect(() => validateSceneForDevice(s, renderer(0.1 / 128), { maxTextureDimension2D: 8192 })).not.toThrow();
   });
 });

@@ -18,5 +18,5 @@ export function validateSceneForDevice(scene: Scene, renderer: Renderer, limits:
       fail('Environment', `a ${env.width} x ${env.height} lat-long map needs ${env.width + 1} x ${env.height + 1} texel tables; this device's 2D texture limit is ${max} (maxTextureDimension2D)`, 'limit-exceeded');
     }
   }
-  validateStepParams(renderer.name, renderer.paramSpecs, renderer.getParams?.() as Record<string, unknown> | undefined, scene.volume.dims);
+  validateStepParams(renderer.name.toUpperCase(), renderer.paramSpecs, renderer.getParams?.() as Record<string, unknown> | undefined, scene.volume.dims);
 }
