@@ -196,3 +196,66 @@ export function sameValue(a: unknown, b: unknown): boolean {
 }
 
 export const hasChanged = (value: unknown, old: unknown): boolean => !sameValue(value, old);
+
+/** The element's checked properties and the parser each one's value goes through. */
+export type CheckedProperty =
+  | 'transferFunction' | 'camera' | 'lights' | 'environment' | 'rendererParams' | 'backend' | 'toneMapper'
+  | 'exposure' | 'maxSamples' | 'targetError' | 'densityScale' | 'seed' | 'resolutionScale';
+
+function propertyParsers(volume: Volume | undefined): Record<CheckedProperty, (v: unknown) => unknown> {
+  return {
+    transferFunction: (v) => parseTransferFunction(v, volume),
+    camera: parseCamera,
+    lights: parseLights,
+    environment: parseEnvironment,
+    rendererParams: parseRendererParams,
+    backend: parseBackend,
+    toneMapper: parseToneMapper,
+    exposure: (v) => parseNumber('exposure', v, { min: -64, max: 64 }),
+    maxSamples: (v) => parseNumber('max-samples', v, { min: 1, integer: true }),
+    targetError: (v) => parseNumber('target-error', v, { min: 0 }),
+    densityScale: (v) => parseNumber('density-scale', v, { min: 0 }),
+    seed: (v) => parseNumber('seed', v, { min: 0, max: 0xffffffff, integer: true }),
+    resolutionScale: (v) => parseNumber('resolution-scale', v, { min: 0.05, max: 4 }),
+  };
+}
+
+export const CHECKED_PROPERTIES = Object.keys(propertyParsers(undefined)) as CheckedProperty[];
+
+/**
+ * Validates the element's properties as they change, keeping each one's last valid
+ * value: an invalid value (an InvalidAttribute from the converter, or a property set to
+ * something that does not parse) is reported and replaced by the last valid one, so the
+ * element keeps rendering what it rendered.
+ */
+export class AttributeValidator {
+  private readonly lastValid = new Map<CheckedProperty, unknown>();
+
+  /** Seed each property's "last valid value" with its default, for a first value that is invalid. */
+  constructor(defaults: Record<CheckedProperty, unknown>) {
+    for (const key of CHECKED_PROPERTIES) this.lastValid.set(key, defaults[key]);
+  }
+
+  /**
+   * Check the properties in `changed` on `target`. Strings set as properties become the
+   * parsed objects; objects (from an attribute's converter or a property) are only
+   * validated, so an attribute's own text is not rewritten. `volume` fits the 2D presets.
+   */
+  validate(target: Record<CheckedProperty, unknown>, changed: { has(key: string): boolean }, volume: Volume | undefined, report: (error: unknown) => void): void {
+    const parsers = propertyParsers(volume);
+    for (const key of CHECKED_PROPERTIES) {
+      if (!changed.has(key)) continue;
+      const value = target[key];
+      if (value === null || value === undefined) { this.lastValid.set(key, value); continue; }
+      try {
+        if (value instanceof InvalidAttribute) throw value.error;
+        const parsed = parsers[key](value);
+        if (typeof value === 'string' && typeof parsed === 'object') target[key] = parsed;
+        this.lastValid.set(key, typeof parsed === 'object' && typeof value !== 'string' ? value : parsed);
+      } catch (e) {
+        target[key] = this.lastValid.get(key);
+        report(e);
+      }
+    }
+  }
+}

@@ -15,9 +15,10 @@
 import { LitElement, html, nothing, type PropertyValues } from 'lit';
 import { isVptError, VptError, type Camera, type Environment, type Light, type Renderer, type Scene, type TransferFunction, type Volume } from '@vpt/core';
 import { defaultPostChain, type ToneMapOperator } from '@vpt/post';
+import { AdaptiveResolution } from './adaptive-resolution.js';
 import {
-  hasChanged, InvalidAttribute, isFittedPreset, jsonConverter, parseBackend, parseCamera, parseEnvironment, parseLights, parseNumber, parseRendererParams,
-  parseToneMapper, parseTransferFunction, sameValue, type BackendName, type EnvironmentValue,
+  AttributeValidator, hasChanged, isFittedPreset, jsonConverter, parseCamera, parseEnvironment, parseLights, parseRendererParams,
+  parseTransferFunction, sameValue, type BackendName, type CheckedProperty, type EnvironmentValue,
 } from './attributes.js';
 import { fitCamera } from './camera-fit.js';
 import { download, encodeExr, encodePfm, encodePngBlob } from './export.js';
@@ -48,10 +49,6 @@ export interface ViewerLoadDetail { volume: Volume; format: string; dims: [numbe
 export interface ViewerChangeDetail { property: string }
 
 const DEFAULT_ENVIRONMENT: Environment = { type: 'constant', radiance: [1, 1, 1] };
-/** Interaction should leave time for at least one iteration per 60 Hz frame. */
-const INTERACTION_BUDGET_MS = 14;
-/** Full resolution returns this long after the last camera movement. */
-const SETTLE_MS = 180;
 
 /** Fields whose change goes straight to the GPU scene/post/stopping (no async work). */
 const SYNC_FIELDS = ['transferFunction', 'camera', 'lights', 'densityScale', 'seed', 'exposure', 'toneMapper', 'maxSamples', 'targetError', 'resolutionScale'] as const;
@@ -132,16 +129,12 @@ export class VptViewer extends LitElement {
   private cameraIsAuto = true;
   private homeCamera: Camera | null = null;
   private internalChange = new Set<string>();
-  private cssSize = { width: 0, height: 0 };
-  private interacting = false;
-  private settleTimer: ReturnType<typeof setTimeout> | null = null;
-  private resizeObserver: ResizeObserver | null = null;
-  private dprQuery: MediaQueryList | null = null;
+  private readonly resolution = new AdaptiveResolution(this, () => this.applySize());
+  private readonly validator: AttributeValidator;
   private pending = new Set<Promise<unknown>>();
   private tokens = { session: 0, renderer: 0, src: 0, environment: 0 };
   private srcAbort: AbortController | null = null;
   private postKey = '';
-  private lastValid = new Map<string, unknown>();
   private connected = false;
 
   constructor() {
@@ -169,14 +162,11 @@ export class VptViewer extends LitElement {
     this._stats = null;
     this._histogram = null;
     this._dragOver = false;
-    // Seed the "last valid value" of each checked property with its default, for a first value that is invalid.
-    for (const key of ['transferFunction', 'camera', 'lights', 'environment', 'rendererParams', 'backend', 'toneMapper', 'exposure', 'maxSamples', 'targetError', 'densityScale', 'seed', 'resolutionScale'] as const) {
-      this.lastValid.set(key, this[key]);
-    }
+    this.validator = new AttributeValidator(this as unknown as Record<CheckedProperty, unknown>);
     this.orbit = new OrbitCamera({
       start: () => { /* a click without movement must not drop resolution: see change */ },
       change: (camera) => this.onUserCamera(camera),
-      end: () => this.scheduleSettle(),
+      end: () => this.resolution.interactionEnded(),
     });
   }
 
@@ -239,20 +229,13 @@ export class VptViewer extends LitElement {
   override connectedCallback(): void {
     super.connectedCallback();
     this.connected = true;
-    this.watchDevicePixelRatio();
     // Re-attached after a removal: the GPU context was released, open a new one.
-    if (this.hasUpdated) {
-      const view = this.renderRoot.querySelector('.view');
-      if (view) this.resizeObserver?.observe(view);
-      if (!this.session) this.track(this.openSession());
-    }
+    if (this.hasUpdated && !this.session) this.track(this.openSession());
   }
 
   override disconnectedCallback(): void {
     super.disconnectedCallback();
     this.connected = false;
-    this.resizeObserver?.disconnect();
-    this.dprQuery?.removeEventListener('change', this.onDprChange);
     this.srcAbort?.abort();
     this.tokens.session++;
     this.session?.dispose();
@@ -260,59 +243,17 @@ export class VptViewer extends LitElement {
   }
 
   protected override firstUpdated(): void {
-    const view = this.renderRoot.querySelector('.view') as HTMLElement;
-    this.resizeObserver = new ResizeObserver((entries) => {
-      const e = entries[0];
-      this.cssSize = { width: e.contentRect.width, height: e.contentRect.height };
-      this.applySize();
-    });
-    try {
-      // The device-pixel box changes with the DPR too (zoom, moving to another screen): a callback then.
-      this.resizeObserver.observe(view, { box: 'device-pixel-content-box' });
-    } catch {
-      this.resizeObserver.observe(view);
-    }
-    const r = view.getBoundingClientRect();
-    this.cssSize = { width: r.width, height: r.height };
+    this.resolution.observe(this.renderRoot.querySelector('.view') as HTMLElement);
   }
 
   protected override willUpdate(changed: PropertyValues<this>): void {
-    // Normalize and validate what changed; an invalid value is reported and the last valid one restored.
-    const self = this as unknown as Record<string, unknown>;
-    const check = (key: string, parse: (v: unknown) => unknown) => {
-      if (!changed.has(key as keyof VptViewer)) return;
-      const value = self[key];
-      if (value === null || value === undefined) { this.lastValid.set(key, value); return; }
-      try {
-        if (value instanceof InvalidAttribute) throw value.error;
-        const parsed = parse(value);
-        // Strings set as properties become objects; objects (from an attribute or a
-        // property) are only validated, so an attribute's own text is not rewritten.
-        if (typeof value === 'string' && typeof parsed === 'object') self[key] = parsed;
-        this.lastValid.set(key, typeof parsed === 'object' && typeof value !== 'string' ? value : parsed);
-      } catch (e) {
-        self[key] = this.lastValid.get(key);
-        this.fail(e, 'attribute');
-      }
-    };
     if (changed.has('transferFunction') && !this.keepFittedPreset) {
       // A fitted preset's name is kept until a volume is loaded, then refitted to each new one.
       this.fittedPreset = isFittedPreset(this.transferFunction) ? (this.transferFunction as string).trim() : null;
     }
     this.keepFittedPreset = false;
-    check('transferFunction', (v) => parseTransferFunction(v, this.volume ?? undefined));
-    check('camera', parseCamera);
-    check('lights', parseLights);
-    check('environment', parseEnvironment);
-    check('rendererParams', parseRendererParams);
-    check('backend', parseBackend);
-    check('toneMapper', parseToneMapper);
-    check('exposure', (v) => parseNumber('exposure', v, { min: -64, max: 64 }));
-    check('maxSamples', (v) => parseNumber('max-samples', v, { min: 1, integer: true }));
-    check('targetError', (v) => parseNumber('target-error', v, { min: 0 }));
-    check('densityScale', (v) => parseNumber('density-scale', v, { min: 0 }));
-    check('seed', (v) => parseNumber('seed', v, { min: 0, max: 0xffffffff, integer: true }));
-    check('resolutionScale', (v) => parseNumber('resolution-scale', v, { min: 0.05, max: 4 }));
+    // Normalize and validate what changed; an invalid value is reported and the last valid one restored.
+    this.validator.validate(this as unknown as Record<CheckedProperty, unknown>, changed as Map<PropertyKey, unknown>, this.volume ?? undefined, (e) => this.fail(e, 'attribute'));
     if (changed.has('camera') && !this.internalChange.has('camera')) {
       // A camera given from outside becomes "home" for resetCamera().
       this.cameraIsAuto = this.camera === null;
@@ -501,7 +442,7 @@ export class VptViewer extends LitElement {
     canvas.setAttribute('part', 'canvas');
     canvas.setAttribute('role', 'img');
     canvas.setAttribute('aria-label', 'Volume rendering. Drag or use the arrow keys to orbit; right-drag or Shift+arrows to pan; wheel, +/- to zoom.');
-    const { width, height } = this.renderSize(Infinity);
+    const { width, height } = this.resolution.renderSize(Infinity);
     let session: RenderSession;
     try {
       session = await RenderSession.create(
@@ -655,77 +596,27 @@ export class VptViewer extends LitElement {
     }
   }
 
-  /** Device-pixel size of the render: element size × DPR × resolution-scale (× the interaction factor while moving). */
-  private renderSize(maxDim: number): { width: number; height: number } {
-    const dpr = globalThis.devicePixelRatio || 1;
-    const base = { width: this.cssSize.width * dpr, height: this.cssSize.height * dpr };
-    let k = Number.isFinite(this.resolutionScale) ? this.resolutionScale : 1;
-    if (this.interacting) k *= this.interactionFactor();
-    const fit = (px: number) => Math.max(1, Math.min(maxDim, Math.round(px * k)));
-    return { width: fit(base.width || 1), height: fit(base.height || 1) };
-  }
-
-
-  /**
-   * While the camera moves, shrink the image so one iteration fits the frame budget:
-   * the cost scales with the pixel count, so the side scales with the square root.
-   */
-  private interactionFactor(): number {
-    const ms = this.fullResMs;
-    if (!(ms > 0)) return 0.5;
-    return Math.min(1, Math.max(0.25, Math.sqrt(INTERACTION_BUDGET_MS / ms)));
-  }
-
-  private fullResMs = 0;
-
   private applySize(): void {
     const s = this.session;
     if (!s) return;
     const max = s.ctx.backend.limits.maxTextureDimension2D;
-    const { width, height } = this.renderSize(max);
+    const { width, height } = this.resolution.renderSize(max);
     try {
       s.setSize(width, height);
     } catch (e) { this.fail(e, 'context'); }
   }
 
   private onProgress(s: RefinementStats): void {
-    if (!this.interacting) this.fullResMs = s.msPerIteration;
+    this.resolution.recordIteration(s.msPerIteration);
     this._stats = s;
     this.dispatchEvent(new CustomEvent<ViewerProgressDetail>('progress', { detail: { phase: 'refining', ...s } }));
   }
 
   private onUserCamera(camera: Camera): void {
-    if (!this.interacting) {
-      this.interacting = true;
-      this.applySize();
-    }
-    if (this.settleTimer) clearTimeout(this.settleTimer);
-    this.settleTimer = null;
+    this.resolution.interactionStarted();
     this.cameraIsAuto = false;
     this.setInternal('camera', camera);
   }
-
-  private scheduleSettle(): void {
-    if (!this.interacting) return;
-    if (this.settleTimer) clearTimeout(this.settleTimer);
-    this.settleTimer = setTimeout(() => {
-      this.settleTimer = null;
-      this.interacting = false;
-      this.applySize();
-    }, SETTLE_MS);
-  }
-
-  private watchDevicePixelRatio(): void {
-    this.dprQuery?.removeEventListener('change', this.onDprChange);
-    if (typeof matchMedia !== 'function') return;
-    this.dprQuery = matchMedia(`(resolution: ${globalThis.devicePixelRatio || 1}dppx)`);
-    this.dprQuery.addEventListener('change', this.onDprChange);
-  }
-
-  private readonly onDprChange = (): void => {
-    this.watchDevicePixelRatio();
-    this.applySize();
-  };
 
   // ——— errors ———
 
