@@ -5,7 +5,7 @@
  * message that names the attribute. Nothing here touches the GPU.
  */
 import {
-  VptError, validateCamera, validateEnvironment, validateLights, validateTransferFunction,
+  MAX_DENSITY_SCALE, VptError, validateCamera, validateEnvironment, validateLights, validateTransferFunction,
   TRANSFER_FUNCTION_PRESETS as CORE_TF_PRESETS, transferFunctionPreset as coreTransferFunctionPreset,
   type Camera, type Environment, type Light, type TransferFunction, type TransferFunctionPresetName, type Volume,
 } from '@vpt/core';
@@ -200,7 +200,7 @@ export const hasChanged = (value: unknown, old: unknown): boolean => !sameValue(
 /** The element's checked properties and the parser each one's value goes through. */
 export type CheckedProperty =
   | 'transferFunction' | 'camera' | 'lights' | 'environment' | 'rendererParams' | 'backend' | 'toneMapper'
-  | 'exposure' | 'maxSamples' | 'targetError' | 'densityScale' | 'seed' | 'resolutionScale';
+  | 'exposure' | 'maxSamples' | 'targetError' | 'densityScale' | 'seed' | 'resolutionScale' | 'renderer';
 
 function propertyParsers(volume: Volume | undefined): Record<CheckedProperty, (v: unknown) => unknown> {
   return {
@@ -214,9 +214,11 @@ function propertyParsers(volume: Volume | undefined): Record<CheckedProperty, (v
     exposure: (v) => parseNumber('exposure', v, { min: -64, max: 64 }),
     maxSamples: (v) => parseNumber('max-samples', v, { min: 1, integer: true }),
     targetError: (v) => parseNumber('target-error', v, { min: 0 }),
-    densityScale: (v) => parseNumber('density-scale', v, { min: 0 }),
+    densityScale: (v) => parseNumber('density-scale', v, { min: 0, max: MAX_DENSITY_SCALE }),
     seed: (v) => parseNumber('seed', v, { min: 0, max: 0xffffffff, integer: true }),
     resolutionScale: (v) => parseNumber('resolution-scale', v, { min: 0.05, max: 4 }),
+    // The name is checked against the registry when it loads; here only its form.
+    renderer: (v) => (typeof v === 'string' && v.trim() !== '' ? v : bad('renderer', `must be a renderer name, got ${JSON.stringify(v)}`)),
   };
 }
 
@@ -230,10 +232,17 @@ export const CHECKED_PROPERTIES = Object.keys(propertyParsers(undefined)) as Che
  */
 export class AttributeValidator {
   private readonly lastValid = new Map<CheckedProperty, unknown>();
+  private readonly defaults = new Map<CheckedProperty, unknown>();
 
-  /** Seed each property's "last valid value" with its default, for a first value that is invalid. */
+  /**
+   * Seed each property's "last valid value" with its default, for a first value that is
+   * invalid; a removed attribute (null) returns the property to this default.
+   */
   constructor(defaults: Record<CheckedProperty, unknown>) {
-    for (const key of CHECKED_PROPERTIES) this.lastValid.set(key, defaults[key]);
+    for (const key of CHECKED_PROPERTIES) {
+      this.lastValid.set(key, defaults[key]);
+      this.defaults.set(key, defaults[key]);
+    }
   }
 
   /**
@@ -246,7 +255,13 @@ export class AttributeValidator {
     for (const key of CHECKED_PROPERTIES) {
       if (!changed.has(key)) continue;
       const value = target[key];
-      if (value === null || value === undefined) { this.lastValid.set(key, value); continue; }
+      if (value === null || value === undefined) {
+        // removeAttribute(): back to the default (null itself for camera, lights… whose default is "automatic").
+        const fallback = this.defaults.get(key);
+        if (fallback !== value && fallback !== null && fallback !== undefined) target[key] = fallback;
+        this.lastValid.set(key, fallback);
+        continue;
+      }
       try {
         if (value instanceof InvalidAttribute) throw value.error;
         const parsed = parsers[key](value);
