@@ -80,7 +80,8 @@ function mutateOnce(root: Record<string, Json>, rnd: () => number): string {
     if (rnd() < 0.5) old.pop(); else old.push(pick(rnd, [0, 1, 1e39, 'x']));
     return `resize ${path.join('.')}`;
   }
-  parent[key] = pick(rnd, [...WRONG_TYPES, pick(rnd, EXTREME_NUMBERS)]);
+  // A fresh copy: a shared object placed twice could be mutated into a cycle.
+  parent[key] = structuredClone(pick(rnd, [...WRONG_TYPES, pick(rnd, EXTREME_NUMBERS)]));
   return `${path.join('.')} -> ${JSON.stringify(parent[key])}`;
 }
 

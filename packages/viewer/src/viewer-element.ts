@@ -77,6 +77,7 @@ export class VptViewer extends LitElement {
     _error: { state: true },
     _status: { state: true },
     _lost: { state: true },
+    _lostGaveUp: { state: true },
     _stats: { state: true },
     _histogram: { state: true },
     _dragOver: { state: true },
@@ -114,6 +115,11 @@ export class VptViewer extends LitElement {
   declare private _error: ViewerErrorDetail | null;
   declare private _status: string;
   declare private _lost: boolean;
+  /** The lost context did not come back within contextRestoreTimeoutMs: `error` fired, Retry offered. */
+  declare private _lostGaveUp: boolean;
+  /** How long a lost GPU context may take to be restored before `error` (code `context-lost`) fires. */
+  contextRestoreTimeoutMs = 10_000;
+  private lostTimer: ReturnType<typeof setTimeout> | undefined;
   declare private _stats: RefinementStats | null;
   declare private _histogram: Histogram1D | null;
   declare private _dragOver: boolean;
@@ -159,6 +165,7 @@ export class VptViewer extends LitElement {
     this._error = null;
     this._status = '';
     this._lost = false;
+    this._lostGaveUp = false;
     this._stats = null;
     this._histogram = null;
     this._dragOver = false;
@@ -240,6 +247,7 @@ export class VptViewer extends LitElement {
     this.tokens.session++;
     this.session?.dispose();
     this.session = null;
+    this.stopLostTimer();
   }
 
   protected override firstUpdated(): void {
@@ -295,8 +303,8 @@ export class VptViewer extends LitElement {
               @click=${() => { this.collapsed = !this.collapsed; }}>${showAside ? 'Hide panels' : 'Panels'}</button>
           </div>` : nothing}
           ${this._lost ? html`<div class="overlay lost" role="alert">
-            <p>The GPU context was lost. Restoring…</p>
-            <div><button type="button" @click=${() => this.track(this.openSession())}>Restart renderer</button></div>
+            <p>${this._lostGaveUp ? 'The GPU context was lost and was not restored.' : 'The GPU context was lost. Restoring…'}</p>
+            <div><button type="button" @click=${() => this.track(this.openSession())}>${this._lostGaveUp ? 'Retry' : 'Restart renderer'}</button></div>
           </div>` : nothing}
           ${this._error ? html`<div class="overlay error" part="error" role="alert">
             <p>${this._error.message}</p>
@@ -424,6 +432,7 @@ export class VptViewer extends LitElement {
     this.session?.dispose();
     this.session = null;
     this._lost = false;
+    this.stopLostTimer();
     await this.updateComplete;
     const view = this.renderRoot.querySelector('.view') as HTMLElement | null;
     if (!view || token !== this.tokens.session) return;
@@ -450,8 +459,8 @@ export class VptViewer extends LitElement {
         {
           progress: (s) => this.onProgress(s),
           converged: (s) => this.dispatchEvent(new CustomEvent<ViewerConvergedDetail>('converged', { detail: s })),
-          lost: () => { this._lost = true; },
-          restored: () => { this._lost = false; },
+          lost: () => { this._lost = true; this.startLostTimer(); },
+          restored: () => { this._lost = false; this.stopLostTimer(); this.clearError('context'); },
         },
       );
     } catch (e) {
@@ -625,6 +634,23 @@ export class VptViewer extends LitElement {
     const detail: ViewerErrorDetail = { error, code: error.code, message: error.message, source };
     this._error = detail;
     this.dispatchEvent(new CustomEvent<ViewerErrorDetail>('error', { detail }));
+  }
+
+  /** A loss that is never restored must not leave "Restoring…" up forever: report it and offer Retry. */
+  private startLostTimer(): void {
+    this.stopLostTimer();
+    this.lostTimer = setTimeout(() => {
+      this.lostTimer = undefined;
+      if (!this._lost) return;
+      this._lostGaveUp = true;
+      this.fail(new VptError('context-lost', `The GPU context was lost and not restored within ${this.contextRestoreTimeoutMs} ms; press Retry to start a new one`), 'context');
+    }, this.contextRestoreTimeoutMs);
+  }
+
+  private stopLostTimer(): void {
+    if (this.lostTimer !== undefined) clearTimeout(this.lostTimer);
+    this.lostTimer = undefined;
+    this._lostGaveUp = false;
   }
 
   private clearError(source: ViewerErrorDetail['source']): void {
