@@ -45,6 +45,38 @@ describe('<vpt-viewer> attribute removal', () => {
   });
 });
 
+describe('<vpt-viewer> renderer-params', () => {
+  it('an EAM stepSize of 1e-9, 0 or -1 fires a typed error naming the parameter and the element keeps rendering', async () => {
+    const r = await vp.page.evaluate(async () => {
+      const vt = (window as any).vt;
+      const el = vt.create({ src: 'procedural:blob?size=16', renderer: 'eam', backend: 'webgl2', panels: 'none', 'max-samples': '2' });
+      await vt.converged(el);
+      const out: any[] = [];
+      for (const step of ['1e-9', '0', '-1']) {
+        const error = vt.next(el, 'error', 20000);
+        el.setAttribute('renderer-params', `{"stepSize":${step}}`);
+        const d = await error;
+        out.push({ code: d.code, message: d.message });
+      }
+      el.setAttribute('renderer-params', '{"stepSize":0.02}');
+      el.setAttribute('seed', '5'); // a new accumulation
+      await el.whenSettled();
+      await vt.converged(el);
+      const hdr = await el.context.readHDR();
+      let alpha = 0;
+      for (let i = 3; i < hdr.length; i += 4) alpha = Math.max(alpha, hdr[i]);
+      el.remove();
+      return { out, alpha, finite: hdr.every(Number.isFinite) };
+    });
+    for (const e of r.out) {
+      expect(e.code).toBe('invalid-scene');
+      expect(e.message).toMatch(/EAM\.stepSize/);
+    }
+    expect(r.finite).toBe(true);
+    expect(r.alpha).toBeGreaterThan(0);
+  });
+});
+
 describe('<vpt-viewer> context loss that is never restored', () => {
   it('fires error with code context-lost after the timeout, shows Retry, and Retry renders again', async () => {
     const r = await vp.page.evaluate(async () => {
