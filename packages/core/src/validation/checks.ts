@@ -102,9 +102,3 @@ export function checkKnownKeys(field: string, obj: Record<string, unknown>, know
     if (!known.includes(k)) fail(field, `unknown key ${JSON.stringify(k)} (known: ${known.join(', ')})`);
   }
 }
-
-/** A required field: present (not undefined). */
-export function required(field: string, obj: Record<string, unknown>, key: string): unknown {
-  if (obj[key] === undefined) fail(`${field}.${key}`, 'is required');
-  return obj[key];
-}
