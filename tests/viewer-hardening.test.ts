@@ -42,7 +42,7 @@ describe('<vpt-viewer> attribute removal', () => {
     expect(r.newErrors).toEqual([]);
     expect(r.samples).toBeGreaterThanOrEqual(2); // it rendered on after the removals
     expect(vp.errors).toEqual([]);
-  });
+  }, Math.max(240_000, CASES * 150));
 });
 
 describe('<vpt-viewer> renderer-params', () => {
@@ -153,13 +153,15 @@ describe('<vpt-viewer> attribute fuzz', () => {
       const name = NAMES[Math.floor(rnd() * NAMES.length)];
       steps.push({ name, value: attributeValue(name, rnd) });
     }
-    const r = await vp.page.evaluate(async (steps) => {
-      const vt = (window as any).vt;
-      const withTimeout = (p: Promise<unknown>, ms: number, what: string) => Promise.race([p, new Promise((_, reject) => setTimeout(() => reject(new Error(`HANG: ${what} not settled within ${ms} ms`)), ms))]);
-      const el = vt.create({ src: 'procedural:blob?size=16', renderer: 'eam', backend: 'webgl2', panels: 'all', 'max-samples': '2' }, 'width:24px;height:24px');
-      await vt.converged(el);
-      const problems: string[] = [];
-      const usable = async (label: string) => {
+    // In chunks: one page.evaluate must stay well below the protocol timeout.
+    await vp.page.evaluate(async () => {
+      const w = window as any;
+      const vt = w.vt;
+      w.__fuzz = { el: vt.create({ src: 'procedural:blob?size=16', renderer: 'eam', backend: 'webgl2', panels: 'all', 'max-samples': '2' }, 'width:24px;height:24px'), problems: [] };
+      await vt.converged(w.__fuzz.el);
+      w.__fuzz.withTimeout = (p: Promise<unknown>, ms: number, what: string) => Promise.race([p, new Promise((_, reject) => setTimeout(() => reject(new Error(`HANG: ${what} not settled within ${ms} ms`)), ms))]);
+      w.__fuzz.usable = async (label: string) => {
+        const { el, problems, withTimeout } = w.__fuzz;
         // Back to a valid state: the element must render a finite image again.
         for (const [k, v] of [['src', 'procedural:blob?size=16'], ['renderer', 'eam'], ['renderer-params', '{}'], ['camera', '{"position":[0,0.5,2],"target":[0,0,0],"up":[0,1,0],"fovy":0.7}'], ['density-scale', '10'], ['max-samples', '2'], ['target-error', '0'], ['resolution-scale', '1'], ['environment', '{"type":"constant","radiance":[1,1,1]}'], ['lights', 'none'], ['transfer-function', 'ramp']]) el.setAttribute(k, v);
         try {
@@ -168,26 +170,36 @@ describe('<vpt-viewer> attribute fuzz', () => {
           if (!hdr.every(Number.isFinite)) problems.push(`${label}: non-finite image`);
         } catch (e: any) { problems.push(`${label}: ${e.message}`); }
       };
-      for (let i = 0; i < steps.length; i++) {
-        const { name, value } = steps[i];
-        const label = `step ${i}: ${name}=${value === null ? '(removed)' : JSON.stringify(value)}`;
-        try {
-          if (value === null) el.removeAttribute(name); else el.setAttribute(name, value);
-          await withTimeout(el.whenSettled(), 60000, label);
-          await vt.frames(1);
-        } catch (e: any) { problems.push(`${label}: ${e.message}`); }
-        if (i % 20 === 19) await usable(label);
-      }
+    });
+    for (let at = 0; at < steps.length; at += 200) {
+      await vp.page.evaluate(async (chunk, offset) => {
+        const w = window as any;
+        const { el, problems, withTimeout, usable } = w.__fuzz;
+        for (let j = 0; j < chunk.length; j++) {
+          const i = offset + j;
+          const { name, value } = chunk[j];
+          const label = `step ${i}: ${name}=${value === null ? '(removed)' : JSON.stringify(value)}`;
+          try {
+            if (value === null) el.removeAttribute(name); else el.setAttribute(name, value);
+            await withTimeout(el.whenSettled(), 60000, label);
+            await w.vt.frames(1);
+          } catch (e: any) { problems.push(`${label}: ${e.message}`); }
+          if (i % 20 === 19) await usable(label);
+        }
+      }, steps.slice(at, at + 200), at);
+    }
+    const r = await vp.page.evaluate(async () => {
+      const { el, problems, usable } = (window as any).__fuzz;
       await usable('the end');
       const errors = el.__events.filter((e: any) => e.type === 'error');
       const untyped = errors.filter((e: any) => !['invalid-scene', 'limit-exceeded', 'load-failed', 'context-lost', 'missing-extension'].includes(e.code));
       el.remove();
       return { problems, errorCount: errors.length, untyped: untyped.map((e: any) => `${e.code}: ${e.message}`), codes: [...new Set(errors.map((e: any) => e.code))] };
-    }, steps);
+    });
     console.log(`attribute fuzz seed ${SEED}, ${CASES} steps: ${r.errorCount} typed error events (${r.codes.join(', ')})`);
     expect(r.problems).toEqual([]);
     expect(r.untyped).toEqual([]);
     expect(r.errorCount).toBeGreaterThan(CASES / 10); // the fuzz does reach the error paths
     expect(vp.errors).toEqual([]);
-  });
+  }, Math.max(240_000, CASES * 150));
 });
