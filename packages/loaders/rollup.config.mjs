@@ -21,7 +21,7 @@ const worker = {
     { name: 'no-zlib', resolveId: (id) => (id === 'zlib' ? '\0zlib' : null), load: (id) => (id === '\0zlib' ? 'export default {};' : null) },
     nodeResolve({ browser: true, exportConditions: ['browser', 'import', 'default'] }),
     commonjs(),
-    typescript({ tsconfig: './tsconfig.worker.json' }),
+    typescript({ tsconfig: './tsconfig.worker.json', compilerOptions: { sourceMap: false, declarationMap: false } }),
   ],
   onwarn(warning, warn) {
     if (warning.code === 'THIS_IS_UNDEFINED' || warning.code === 'CIRCULAR_DEPENDENCY') return;
