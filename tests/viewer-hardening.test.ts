@@ -38,7 +38,7 @@ describe('<vpt-viewer> attribute removal', () => {
       el.remove();
       return out;
     });
-    expect(r.values).toEqual({ exposure: 0, densityScale: 10, seed: 1, renderer: 'eam', toneMapper: 'aces' });
+    expect(r.values).toEqual({ exposure: 0, densityScale: null, seed: 1, renderer: 'eam', toneMapper: 'aces' }); // density-scale's default: the renderer's own
     expect(r.newErrors).toEqual([]);
     expect(r.samples).toBeGreaterThanOrEqual(2); // it rendered on after the removals
     expect(vp.errors).toEqual([]);

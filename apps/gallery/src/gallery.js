@@ -121,7 +121,7 @@ async function select(id, renderer, overrides = {}, push = false) {
   updateUrl(push);
 }
 
-viewer.addEventListener('change', () => {
+viewer.addEventListener('vpt-change', () => {
   clearTimeout(updateUrl.timer);
   updateUrl.timer = setTimeout(() => updateUrl(false), 250);
 });

@@ -61,7 +61,7 @@ function tfPanel(v: VptViewer) {
         ? html`<vpt-tf-editor .value=${tf} .histogram=${st.histogram} @input=${onTf} @change=${onTf}></vpt-tf-editor>`
         : html`<vpt-tf2d-editor .value=${tf} .samples=${v.gradientSamples()} @input=${onTf} @change=${onTf}></vpt-tf2d-editor>`}
       <div class="row"><label for=${densityId}>Density scale</label>
-        <input id=${densityId} type="number" min="0" step="1" .value=${String(v.densityScale)} @change=${(e: Event) => v.setInternal('densityScale', num(e))}></div>
+        <input id=${densityId} type="number" min="0" step="1" .value=${String(v.panelState.densityScale)} @change=${(e: Event) => v.setInternal('densityScale', num(e))}></div>
     </div>
   </details>`;
 }

@@ -4,8 +4,9 @@
  * Attributes (all reflected, all also properties): src, renderer, backend,
  * transfer-function, camera, lights, environment, exposure, tone-mapper, max-samples,
  * target-error, density-scale, seed, renderer-params, resolution-scale, panels, collapsed.
- * Events: load, progress (loading and refinement), converged, error, change (the user
- * edited something through the element: camera drag, panels).
+ * Events (typed through HTMLElementEventMap, prefixed so none collides with a native
+ * event): vpt-load, vpt-progress (loading and refinement), vpt-converged, vpt-error,
+ * vpt-change (the user edited something through the element: camera drag, panels).
  *
  * Async work (loading a renderer package, a volume, an environment image, opening a GPU
  * context) runs in the background and applies the *current* attribute values when it
@@ -21,6 +22,7 @@ import {
   parseTransferFunction, sameValue, type BackendName, type CheckedProperty, type EnvironmentValue,
 } from './attributes.js';
 import { fitCamera } from './camera-fit.js';
+import { autoTransferFunction, defaultRendererParams, rendererLook } from './defaults.js';
 import { download, encodeExr, encodePfm, encodePngBlob } from './export.js';
 import { gradientSamples, valueHistogram, type GradientSamples, type Histogram1D } from './histogram.js';
 import { loadEnvironment } from './loading/environment-loader.js';
@@ -48,7 +50,9 @@ export type ViewerConvergedDetail = RefinementStats & { reason: 'max-samples' | 
 export interface ViewerLoadDetail { volume: Volume; format: string; dims: [number, number, number]; type: string }
 export interface ViewerChangeDetail { property: string }
 
-const DEFAULT_ENVIRONMENT: Environment = { type: 'constant', radiance: [1, 1, 1] };
+
+/** Below a sidebar's width plus this much image, the panels become an overlay. */
+const NARROW_MIN_IMAGE_PX = 320;
 
 /** Fields whose change goes straight to the GPU scene/post/stopping (no async work). */
 const SYNC_FIELDS = ['transferFunction', 'camera', 'lights', 'densityScale', 'seed', 'exposure', 'toneMapper', 'maxSamples', 'targetError', 'resolutionScale'] as const;
@@ -74,6 +78,11 @@ export class VptViewer extends LitElement {
     resolutionScale: { attribute: 'resolution-scale', type: Number, reflect: true },
     panels: { type: String, reflect: true },
     collapsed: { type: Boolean, reflect: true },
+    hideProgress: { attribute: 'hide-progress', type: Boolean, reflect: true },
+    hideStats: { attribute: 'hide-stats', type: Boolean, reflect: true },
+    _loading: { state: true },
+    _narrow: { state: true },
+    _overlayOpen: { state: true },
     _error: { state: true },
     _status: { state: true },
     _lost: { state: true },
@@ -101,8 +110,8 @@ export class VptViewer extends LitElement {
   declare maxSamples: number;
   /** Refinement stops when the estimated relative RMSE falls below this (0: off; needs a renderer with half accumulations). */
   declare targetError: number;
-  /** Extinction per world unit at opacity 1. */
-  declare densityScale: number;
+  /** Extinction per world unit at opacity 1; null: the renderer's default for the automatic transfer function. */
+  declare densityScale: number | null;
   declare seed: number;
   declare rendererParams: Record<string, unknown> | string | null;
   /** Render resolution relative to the element's device pixels (1 = full). */
@@ -111,6 +120,15 @@ export class VptViewer extends LitElement {
   declare panels: string;
   /** Panels sidebar closed (the toolbar button opens it). */
   declare collapsed: boolean;
+  /** No progress bar on the image. */
+  declare hideProgress: boolean;
+  /** No stats line on the image. */
+  declare hideStats: boolean;
+  /** Loading progress in [0, 1] (null: not loading; NaN: size unknown). */
+  declare private _loading: number | null;
+  /** The element is too narrow for panels beside the image: they become an overlay. */
+  declare private _narrow: boolean;
+  declare private _overlayOpen: boolean;
 
   declare private _error: ViewerErrorDetail | null;
   declare private _status: string;
@@ -130,7 +148,12 @@ export class VptViewer extends LitElement {
   private rendererKey = '';
   private volume: LoadedVolumeLike | null = null;
   private loadedSource: VolumeSource | null = null;
-  private resolvedEnvironment: Environment = DEFAULT_ENVIRONMENT;
+  /** The environment attribute's value once loaded (a URL becomes a lat-long image); null: the renderer's default. */
+  private resolvedEnvironment: Environment | null = null;
+  /** The transfer function fitted to the loaded volume's histogram (used while transfer-function is unset). */
+  private autoTransferFunction: TransferFunction | null = null;
+  /** The camera the default lights are placed for (the framing camera when the volume loaded). */
+  private lightCamera: Camera | null = null;
   private readonly orbit: OrbitCamera;
   private cameraIsAuto = true;
   private homeCamera: Camera | null = null;
@@ -156,12 +179,17 @@ export class VptViewer extends LitElement {
     this.toneMapper = 'aces';
     this.maxSamples = 1024;
     this.targetError = 0;
-    this.densityScale = 10;
+    this.densityScale = null;
     this.seed = 1;
     this.rendererParams = null;
     this.resolutionScale = 1;
     this.panels = 'all';
     this.collapsed = false;
+    this.hideProgress = false;
+    this.hideStats = false;
+    this._loading = null;
+    this._narrow = false;
+    this._overlayOpen = false;
     this._error = null;
     this._status = '';
     this._lost = false;
@@ -237,12 +265,14 @@ export class VptViewer extends LitElement {
     super.connectedCallback();
     this.connected = true;
     // Re-attached after a removal: the GPU context was released, open a new one.
+    if (this.hasUpdated) this.observeHostWidth();
     if (this.hasUpdated && !this.session) this.track(this.openSession());
   }
 
   override disconnectedCallback(): void {
     super.disconnectedCallback();
     this.connected = false;
+    this.hostObserver?.disconnect();
     this.srcAbort?.abort();
     this.tokens.session++;
     this.session?.dispose();
@@ -252,6 +282,7 @@ export class VptViewer extends LitElement {
 
   protected override firstUpdated(): void {
     this.resolution.observe(this.renderRoot.querySelector('.view') as HTMLElement);
+    this.observeHostWidth();
   }
 
   protected override willUpdate(changed: PropertyValues<this>): void {
@@ -292,15 +323,22 @@ export class VptViewer extends LitElement {
 
   protected override render() {
     const panels = this.panelSet;
-    const showAside = panels.size > 0 && !this.collapsed;
+    // Wide: a sidebar beside the image (the collapsed attribute closes it). Narrow: an
+    // overlay over the image, closed at rest and opened by the toolbar button.
+    const showAside = panels.size > 0 && (this._narrow ? this._overlayOpen : !this.collapsed);
+    const toggle = () => {
+      if (this._narrow) this._overlayOpen = !this._overlayOpen;
+      else this.collapsed = !this.collapsed;
+    };
     return html`
-      <div class="layout">
+      <div class="layout ${this._narrow ? 'narrow' : ''}" @keydown=${this.onLayoutKey}>
         <div class="view" part="view"
           @dragover=${this.onDragOver} @dragleave=${() => { this._dragOver = false; }} @drop=${this.onDrop}>
           ${this._status ? html`<p class="overlay status" part="status" role="status">${this._status}</p>` : nothing}
+          ${this.renderHud()}
           ${panels.size ? html`<div class="toolbar">
             <button type="button" part="panels-toggle" aria-expanded=${showAside ? 'true' : 'false'} aria-controls="panels"
-              @click=${() => { this.collapsed = !this.collapsed; }}>${showAside ? 'Hide panels' : 'Panels'}</button>
+              @click=${toggle}>${showAside ? (this._narrow ? 'Close' : 'Hide panels') : (this._narrow ? 'Settings' : 'Panels')}</button>
           </div>` : nothing}
           ${this._lost ? html`<div class="overlay lost" role="alert">
             <p>${this._lostGaveUp ? 'The GPU context was lost and was not restored.' : 'The GPU context was lost. Restoring…'}</p>
@@ -316,6 +354,68 @@ export class VptViewer extends LitElement {
       </div>`;
   }
 
+  /** The thin progress bar (loading bytes; refining toward max-samples or target-error) and the stats line. */
+  private renderHud() {
+    const bar = this.hideProgress ? null : this.progressFraction();
+    const stats = this.hideStats ? null : this.statsLine();
+    return html`
+      ${stats ? html`<p class="stats-line" part="stats" aria-live="off">${stats}</p>` : nothing}
+      ${bar === null ? nothing : html`<div class="progress ${Number.isNaN(bar) ? 'indeterminate' : ''}" part="progress" role="progressbar"
+        aria-label=${this._loading !== null ? 'Loading' : 'Refining'} aria-valuemin="0" aria-valuemax="100" aria-valuenow=${Number.isNaN(bar) ? nothing : Math.round(100 * bar)}>
+        <div style="width: ${Number.isNaN(bar) ? 100 : (100 * bar).toFixed(2)}%"></div></div>`}`;
+  }
+
+  /**
+   * Progress in [0, 1], NaN when unknown, null when there is nothing to show. Refining:
+   * samples / max-samples, or with a target error (target / error)² when larger — the
+   * error of a mean falls as 1/√n, so that is the fraction of the samples needed.
+   */
+  private progressFraction(): number | null {
+    if (this._loading !== null) return this._loading;
+    const s = this._stats;
+    if (!s || !this.volume || this.converged) return null;
+    let p = s.samples / Math.max(1, this.maxSamples);
+    if (this.targetError > 0 && s.error !== null && s.error > 0) p = Math.max(p, (this.targetError / s.error) ** 2);
+    return Math.min(1, p);
+  }
+
+  private statsLine(): string | null {
+    const s = this._stats;
+    if (!s || !this.volume) return null;
+    const parts = [`${s.samples} / ${this.maxSamples} spp`, `${s.msPerIteration < 10 ? s.msPerIteration.toFixed(1) : Math.round(s.msPerIteration)} ms/it`];
+    if (s.error !== null) parts.push(`err ${(100 * s.error).toFixed(1)}%${this.targetError > 0 ? ` → ${(100 * this.targetError).toFixed(1)}%` : ''}`);
+    parts.push(`${s.width}×${s.height}`);
+    if (this.converged) parts.push('done');
+    return parts.join(' · ');
+  }
+
+  /** Escape closes the panel overlay (narrow layout) and returns focus to the image. */
+  private onLayoutKey = (e: KeyboardEvent): void => {
+    if (e.key !== 'Escape' || !this._narrow || !this._overlayOpen) return;
+    this._overlayOpen = false;
+    this.canvas?.focus();
+  };
+
+  /** Narrow: panels and the image cannot share the element (a sidebar plus at least 320 px of image). */
+  private hostObserver: ResizeObserver | null = null;
+  private observeHostWidth(): void {
+    this.hostObserver ??= new ResizeObserver(() => this.updateNarrow());
+    this.hostObserver.observe(this);
+    this.updateNarrow();
+  }
+
+  private updateNarrow(): void {
+    const width = this.getBoundingClientRect().width;
+    const w = getComputedStyle(this).getPropertyValue('--vpt-panel-width').trim();
+    const rootFont = parseFloat(getComputedStyle(document.documentElement).fontSize) || 16;
+    const panelPx = (w.endsWith('px') ? parseFloat(w) : parseFloat(w) * rootFont) || 304;
+    const narrow = width > 0 && width < panelPx + NARROW_MIN_IMAGE_PX;
+    if (narrow !== this._narrow) {
+      this._narrow = narrow;
+      this._overlayOpen = false;
+    }
+  }
+
   // ——— state the panels read and write ———
 
   /** @internal for the panels */
@@ -323,8 +423,9 @@ export class VptViewer extends LitElement {
     return {
       transferFunction: this.currentTransferFunction(),
       histogram: this._histogram,
-      lights: (this.lights as Light[] | null) ?? [],
-      environment: this.environment as EnvironmentValue | null,
+      lights: this.effectiveLights(),
+      environment: (this.environment as EnvironmentValue | null) ?? rendererLook(this.renderer).environment,
+      densityScale: this.effectiveDensityScale(),
       stats: this._stats,
       backendKind: this.session?.ctx.backend.kind ?? null,
       volume: this.volume,
@@ -337,7 +438,7 @@ export class VptViewer extends LitElement {
     if (sameValue(this[property], value)) return;
     (this as Record<string, unknown>)[property] = value;
     if (property === 'camera') this.internalChange.add('camera');
-    this.dispatchEvent(new CustomEvent<ViewerChangeDetail>('change', { detail: { property } }));
+    this.dispatchEvent(new CustomEvent<ViewerChangeDetail>('vpt-change', { detail: { property } }));
   }
 
   private gradientCache: { volume: Volume; samples: GradientSamples } | null = null;
@@ -387,7 +488,7 @@ export class VptViewer extends LitElement {
     const key = this.desiredRendererKey();
     if (this.rendererInstance && key === this.rendererKey) return this.rendererInstance;
     try {
-      const r = await createRenderer(this.renderer, (this.rendererParams as Record<string, unknown> | null) ?? {});
+      const r = await createRenderer(this.renderer, this.effectiveRendererParams());
       this.rendererInstance = r;
       this.rendererKey = key;
       this.failedRendererKey = '';
@@ -405,6 +506,7 @@ export class VptViewer extends LitElement {
       if (token !== this.tokens.renderer || !this.session) return;
       if (this.session.ctx.renderer !== r) this.session.setRenderer(r);
       this.clearError('renderer');
+      this.applySync(); // the defaults of unset attributes depend on the renderer
       this.requestUpdate();
     } catch (e) {
       if (token === this.tokens.renderer) this.fail(e, 'renderer');
@@ -424,7 +526,7 @@ export class VptViewer extends LitElement {
   private failedRendererKey = '';
 
   private desiredRendererKey(): string {
-    return `${this.renderer}|${JSON.stringify(this.rendererParams ?? {})}`;
+    return `${this.renderer}|${JSON.stringify(this.effectiveRendererParams())}`;
   }
 
   private async openSessionNow(token: number): Promise<void> {
@@ -458,7 +560,7 @@ export class VptViewer extends LitElement {
         { canvas, backend: this.backend, renderer, post: this.makePost(), width, height },
         {
           progress: (s) => this.onProgress(s),
-          converged: (s) => this.dispatchEvent(new CustomEvent<ViewerConvergedDetail>('converged', { detail: s })),
+          converged: (s) => this.dispatchEvent(new CustomEvent<ViewerConvergedDetail>('vpt-converged', { detail: s })),
           lost: () => { this._lost = true; this.startLostTimer(); },
           restored: () => { this._lost = false; this.stopLostTimer(); this.clearError('context'); },
         },
@@ -490,6 +592,7 @@ export class VptViewer extends LitElement {
     const abort = new AbortController();
     this.srcAbort = abort;
     this._status = 'Loading…';
+    this._loading = NaN;
     try {
       const limits = this.session ? { maxTextureDimension3D: this.session.ctx.backend.limits.maxTextureDimension3D } : undefined;
       const volume = await loadVolumeSource(source, {
@@ -498,14 +601,17 @@ export class VptViewer extends LitElement {
         onProgress: (p) => {
           if (token !== this.tokens.src) return;
           this._status = p.total ? `Loading… ${Math.round((100 * p.loaded) / p.total)}%` : `Loading… ${(p.loaded / 1048576).toFixed(1)} MB`;
-          this.dispatchEvent(new CustomEvent<ViewerProgressDetail>('progress', { detail: { phase: 'loading', ...p } }));
+          this._loading = p.total ? Math.min(1, p.loaded / p.total) : NaN;
+          this.dispatchEvent(new CustomEvent<ViewerProgressDetail>('vpt-progress', { detail: { phase: 'loading', ...p } }));
         },
       });
       if (token !== this.tokens.src) return;
       this.volume = volume;
       this.loadedSource = source;
       this._status = '';
+      this._loading = null;
       this._histogram = valueHistogram(volume);
+      this.autoTransferFunction = autoTransferFunction(volume);
       if (this.fittedPreset) {
         const name = this.fittedPreset;
         this.transferFunction = parseTransferFunction(name, volume);
@@ -519,12 +625,16 @@ export class VptViewer extends LitElement {
         this.cameraIsAuto = true;
         this.orbit.set(fit);
       }
+      this.lightCamera = (this.camera as Camera | null) ?? null;
       this.clearError('src');
       this.applySync();
-      this.dispatchEvent(new CustomEvent<ViewerLoadDetail>('load', { detail: { volume, format: volume.format, dims: [...volume.dims], type: volume.type } }));
+      // Renderer parameters that follow the data (iso's default surface) may have changed.
+      if (this.session && this.desiredRendererKey() !== this.rendererKey) this.track(this.switchRenderer());
+      this.dispatchEvent(new CustomEvent<ViewerLoadDetail>('vpt-load', { detail: { volume, format: volume.format, dims: [...volume.dims], type: volume.type } }));
     } catch (e) {
       if (token !== this.tokens.src) return;
       this._status = '';
+      this._loading = null;
       this.fail(e, 'src');
     }
   }
@@ -532,7 +642,7 @@ export class VptViewer extends LitElement {
   private async resolveEnvironment(): Promise<void> {
     const token = ++this.tokens.environment;
     const env = this.environment as EnvironmentValue | null;
-    if (!env) this.resolvedEnvironment = DEFAULT_ENVIRONMENT;
+    if (!env) this.resolvedEnvironment = null;
     else if (env.type !== 'url') this.resolvedEnvironment = env;
     else {
       try {
@@ -552,7 +662,27 @@ export class VptViewer extends LitElement {
 
   private currentTransferFunction(): TransferFunction {
     const tf = this.transferFunction;
-    return tf && typeof tf === 'object' ? tf : transferFunctionPreset(DEFAULT_TRANSFER_FUNCTION)!;
+    if (tf && typeof tf === 'object') return tf;
+    if (this.autoTransferFunction) return rendererLook(this.renderer).transferFunction(this.autoTransferFunction);
+    return transferFunctionPreset(DEFAULT_TRANSFER_FUNCTION)!;
+  }
+
+  // ——— defaults for unset attributes (defaults.ts) ———
+
+  private effectiveDensityScale(): number {
+    return this.densityScale ?? rendererLook(this.renderer).densityScale;
+  }
+
+  private effectiveLights(): Light[] {
+    if (Array.isArray(this.lights)) return this.lights;
+    const camera = this.lightCamera ?? (this.camera && typeof this.camera === 'object' ? this.camera : null);
+    return camera ? rendererLook(this.renderer).lights(camera) : [];
+  }
+
+  private effectiveRendererParams(): Record<string, unknown> {
+    const p = this.rendererParams;
+    if (p && typeof p === 'object') return p;
+    return defaultRendererParams(this.renderer, this.autoTransferFunction);
   }
 
   private makePost() {
@@ -571,9 +701,9 @@ export class VptViewer extends LitElement {
       volume: this.volume,
       transferFunction: this.currentTransferFunction(),
       camera,
-      lights: Array.isArray(this.lights) ? this.lights : [],
-      environment: this.resolvedEnvironment,
-      densityScale: this.densityScale,
+      lights: this.effectiveLights(),
+      environment: this.resolvedEnvironment ?? rendererLook(this.renderer).environment,
+      densityScale: this.effectiveDensityScale(),
       seed: this.seed,
     };
   }
@@ -618,7 +748,7 @@ export class VptViewer extends LitElement {
   private onProgress(s: RefinementStats): void {
     this.resolution.recordIteration(s.msPerIteration);
     this._stats = s;
-    this.dispatchEvent(new CustomEvent<ViewerProgressDetail>('progress', { detail: { phase: 'refining', ...s } }));
+    this.dispatchEvent(new CustomEvent<ViewerProgressDetail>('vpt-progress', { detail: { phase: 'refining', ...s } }));
   }
 
   private onUserCamera(camera: Camera): void {
@@ -633,7 +763,7 @@ export class VptViewer extends LitElement {
     const error = isVptError(e) ? e : new VptError(source === 'src' ? 'load-failed' : 'invalid-scene', (e as Error)?.message ?? String(e), { cause: e });
     const detail: ViewerErrorDetail = { error, code: error.code, message: error.message, source };
     this._error = detail;
-    this.dispatchEvent(new CustomEvent<ViewerErrorDetail>('error', { detail }));
+    this.dispatchEvent(new CustomEvent<ViewerErrorDetail>('vpt-error', { detail }));
   }
 
   /** A loss that is never restored must not leave "Restoring…" up forever: report it and offer Retry. */

@@ -5,6 +5,7 @@ import type { LoadedVolume, RawOptions } from '../types.js';
 import { finishVolume } from '../convert/finish.js';
 import { checkDims, checkFits, SOURCE_BYTES } from '../convert/size.js';
 import { OUTPUT_BYTES, readSamples, toVoxelArray } from '../convert/voxels.js';
+import { orientationFromAxisCodes } from './orientation.js';
 
 const RAW_TYPES: readonly VoxelType[] = ['uint8', 'uint16', 'int16', 'float32'];
 
@@ -70,6 +71,14 @@ export function parseSidecar(text: string, ctx: LoadContext): RawDescription {
   for (const key of ['title', 'modality', 'units', 'spacing_units', 'orientation', 'value_range', 'sha256', 'license', 'source']) {
     if (json[key] !== undefined) meta[key === 'spacing_units' ? 'spacingUnits' : key] = json[key];
   }
+  if (json.axes !== undefined) {
+    // "axes": 'PIR'… — the anatomical direction each index axis runs toward (RAS+ world).
+    if (typeof json.axes !== 'string' || !orientationFromAxisCodes(json.axes)) {
+      throw new LoaderError('bad-header', `${ctx.name}: sidecar axes ${JSON.stringify(json.axes)} must be three letters, one of R/L, A/P and S/I each (like "RAS" or "PIR")`);
+    }
+    meta.axisCodes = json.axes.toUpperCase();
+    meta.space = 'RAS';
+  }
   const file = typeof json.file === 'string' && json.file ? json.file : undefined;
   return { ...raw, file, meta };
 }
@@ -100,6 +109,7 @@ export function decodeRaw(bytes: Uint8Array, raw: Required<RawOptions>, ctx: Loa
   ctx.progress('convert', count, count);
   return finishVolume({
     format: 'raw', dims: [...dims], spacing: [...raw.spacing], type, data,
+    orientation: typeof meta.axisCodes === 'string' ? orientationFromAxisCodes(meta.axisCodes) ?? undefined : undefined,
     meta: { ...meta, endianness: raw.endianness },
   }, ctx);
 }
