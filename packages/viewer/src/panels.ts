@@ -1,7 +1,7 @@
 /**
  * The viewer's side panels, as template functions over the element: transfer function,
  * lights and environment, renderer and quality, a live readout, and export. Each control
- * writes through `setInternal`, so the matching attribute is reflected and a `change`
+ * writes through `setInternal`, so the matching attribute is reflected and a `vpt-change`
  * event announces it. Native <details>, labelled controls and buttons keep it all
  * reachable and operable from the keyboard.
  */
