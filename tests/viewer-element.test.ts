@@ -473,3 +473,31 @@ describe('<vpt-viewer> small and narrow', () => {
     expect(r.wide.view).toBeLessThan(900);
   });
 });
+
+describe('<vpt-viewer> renderer changes while a renderer package loads', () => {
+  it('a slow renderer load that lands after the page chose another renderer never renders (the gallery deep-link race)', async () => {
+    const r = await vp.page.evaluate(async () => {
+      const vt = (window as any).vt;
+      const viewer = (window as any).ref.viewer;
+      // "slow" is EAM behind a load that resolves only when the test says so.
+      let release!: () => void;
+      const gate = new Promise<void>((res) => { release = res; });
+      const eam = viewer.rendererEntry('eam');
+      viewer.registerRenderer({ ...eam, name: 'slow', label: 'Slow', load: async () => { await gate; return eam.load(); } });
+      const el = vt.create({ src: 'procedural:blob?size=16', renderer: 'slow', backend: 'webgl2', panels: 'none', 'max-samples': '3' });
+      await vt.frames(3);
+      el.renderer = 'mip'; // while the context still waits for "slow"
+      await vt.frames(2);
+      release();
+      const seen: string[] = [];
+      const record = () => { if (el.context && el.samples > 0) seen.push(el.context.renderer.name); };
+      el.addEventListener('vpt-progress', record);
+      await vt.converged(el);
+      record();
+      el.remove();
+      return { seen: [...new Set(seen)], final: el.renderer };
+    });
+    expect(r.final).toBe('mip');
+    expect(r.seen).toEqual(['mip']);
+  });
+});

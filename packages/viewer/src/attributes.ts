@@ -151,7 +151,7 @@ export function parseNumber(attribute: string, v: unknown, { min = -Infinity, ma
   return n as number;
 }
 
-/** An attribute value that did not parse; the element reports `error` and keeps the last valid value. */
+/** An attribute value that did not parse; the element reports `vpt-error` and keeps the last valid value. */
 export class InvalidAttribute {
   constructor(readonly error: unknown) {}
 }

@@ -27,6 +27,7 @@ export const viewerStyles = css`
   /* Narrow (set by the element from its width): the panels are an overlay over the image, opened by the toolbar button. */
   .layout.narrow aside { position: absolute; inset: 0; z-index: 2; border-left: 0; padding-top: 34px; flex: none; }
   .toolbar { z-index: 3; }
+  .toolbar button { font-size: 12px; }
   .stats-line { position: absolute; left: 0; bottom: 3px; margin: 0; padding: 2px 6px; max-width: calc(100% - 12px); box-sizing: border-box;
     font-size: 11px; font-variant-numeric: tabular-nums; color: #e8e8e8; background: #000a; border-top-right-radius: 4px;
     white-space: nowrap; overflow: hidden; text-overflow: ellipsis; pointer-events: none; }
@@ -38,7 +39,7 @@ export const viewerStyles = css`
   details { border-bottom: 1px solid #2c2c32; }
   summary { cursor: pointer; padding: 7px 10px; font-weight: 600; user-select: none; }
   .panel { padding: 0 10px 10px; display: grid; grid-template-columns: minmax(0, 1fr); gap: 6px; }
-  .row { display: grid; grid-template-columns: 7.5rem minmax(0, 1fr); align-items: center; gap: 6px; }
+  .row { display: grid; grid-template-columns: 6.2rem minmax(0, 1fr); align-items: center; gap: 6px; }
   .row > span.value { font-variant-numeric: tabular-nums; }
   select, input[type='number'], input[type='text'] { background: #1c1c20; border: 1px solid #555; border-radius: 3px; padding: 2px 4px; min-width: 0; }
   input[type='range'] { min-width: 0; accent-color: var(--vpt-accent); }

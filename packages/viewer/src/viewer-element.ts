@@ -337,6 +337,7 @@ export class VptViewer extends LitElement {
           ${this._status ? html`<p class="overlay status" part="status" role="status">${this._status}</p>` : nothing}
           ${this.renderHud()}
           ${panels.size ? html`<div class="toolbar">
+            ${panels.has('export') && this.volume && !showAside ? html`<button type="button" part="screenshot" title="Download the image as PNG" @click=${() => this.downloadScreenshot()}>PNG</button>` : nothing}
             <button type="button" part="panels-toggle" aria-expanded=${showAside ? 'true' : 'false'} aria-controls="panels"
               @click=${toggle}>${showAside ? (this._narrow ? 'Close' : 'Hide panels') : (this._narrow ? 'Settings' : 'Panels')}</button>
           </div>` : nothing}
@@ -484,11 +485,17 @@ export class VptViewer extends LitElement {
     return ctx;
   }
 
+  /**
+   * The renderer the attributes ask for now. A load that lands after the attributes moved
+   * on (a renderer package is a dynamic import: slow under load) is returned but not
+   * remembered, so a stale renderer never replaces the current one's key.
+   */
   private async loadRendererInstance(): Promise<Renderer> {
     const key = this.desiredRendererKey();
     if (this.rendererInstance && key === this.rendererKey) return this.rendererInstance;
     try {
       const r = await createRenderer(this.renderer, this.effectiveRendererParams());
+      if (key !== this.desiredRendererKey()) return r;
       this.rendererInstance = r;
       this.rendererKey = key;
       this.failedRendererKey = '';
@@ -540,7 +547,13 @@ export class VptViewer extends LitElement {
     if (!view || token !== this.tokens.session) return;
     let renderer: Renderer;
     try {
-      renderer = await this.loadRendererInstance();
+      // Until the renderer that landed is the one the attributes still ask for: the context
+      // must not start (and report samples) with a renderer the page already replaced.
+      for (;;) {
+        const key = this.desiredRendererKey();
+        renderer = await this.loadRendererInstance();
+        if (token !== this.tokens.session || key === this.desiredRendererKey()) break;
+      }
     } catch (e) {
       if (token !== this.tokens.session) return;
       this.fail(e, 'renderer');
