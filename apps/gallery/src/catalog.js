@@ -19,12 +19,19 @@ const PROCEDURAL = [
   { id: 'ramp', title: 'Linear ramp along x (procedural, 32³)', url: 'procedural:ramp?size=32', modality: 'procedural', dims: [32, 32, 32], type: 'float32' },
 ];
 
+/** About the build: a development build shows developer hints (`pnpm data:fetch`). */
+export const catalogInfo = { development: false };
+
 /** Every dataset: the build's manifest (bundled + fetched files) and the procedural ones. */
 export async function loadCatalog() {
   let datasets = [];
   try {
     const res = await fetch('data/manifest.json');
-    if (res.ok) datasets = (await res.json()).datasets;
+    if (res.ok) {
+      const manifest = await res.json();
+      datasets = manifest.datasets;
+      catalogInfo.development = manifest.development !== false;
+    }
   } catch {
     // Without a manifest (not built?) the procedural volumes still work.
   }

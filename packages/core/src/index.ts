@@ -35,3 +35,8 @@ export { WGSL_SAMPLING, WGSL_ENVIRONMENT_MAP } from './shaders/wgsl-sampling.js'
 export * from './scene/environment-sampling.js';
 
 export * as reference from './reference/cpu-reference.js';
+
+export * from './validation/limits.js';
+export { describeValue, checkNumber, checkNumbers, checkOneOf, checkBoolean, checkString, checkObject, checkKnownKeys, type NumberRule } from './validation/checks.js';
+export { validateParams, validateStepParams, minStepSize, STEP_RULE, type ParamSpec, type ParamSpecs } from './validation/params.js';
+export { validateSceneForDevice } from './validation/device.js';

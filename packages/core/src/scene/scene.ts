@@ -3,6 +3,8 @@ import { validateCamera, type Camera } from './camera.js';
 import { validateEnvironment, validateLights, type Environment, type Light } from './lights.js';
 import { validateTransferFunction, type TransferFunction } from './transfer-function.js';
 import { validateVolume, type Volume } from './volume.js';
+import { checkNumber, checkObject } from '../validation/checks.js';
+import { MAX_DENSITY_SCALE } from '../validation/limits.js';
 
 /** Everything that determines the image. Changing any part resets accumulation. */
 export interface Scene {
@@ -19,11 +21,13 @@ export interface Scene {
 
 export function validateScene(s: Scene): void {
   if (!s || typeof s !== 'object') throw new VptError('invalid-scene', 'Scene: missing');
+  checkObject('Scene', s);
   validateVolume(s.volume);
   validateTransferFunction(s.transferFunction);
   validateCamera(s.camera);
   validateLights(s.lights ?? []);
   validateEnvironment(s.environment);
-  if (!Number.isFinite(s.densityScale) || s.densityScale < 0) throw new VptError('invalid-scene', `Scene: densityScale must be finite and non-negative, got ${s.densityScale}`);
-  if (!Number.isInteger(s.seed) || s.seed < 0 || s.seed > 0xffffffff) throw new VptError('invalid-scene', `Scene: seed must be an integer in [0, 2^32), got ${s.seed}`);
+  // Bounded so extinction (densityScale × opacity) and the free-flight steps stay finite in float32.
+  checkNumber('Scene: densityScale', s.densityScale, { min: 0, max: MAX_DENSITY_SCALE, unit: 'extinction per world unit; MAX_DENSITY_SCALE' });
+  if (typeof s.seed !== 'number' || !Number.isInteger(s.seed) || s.seed < 0 || s.seed > 0xffffffff) throw new VptError('invalid-scene', `Scene: seed must be an integer in [0, 2^32), got ${s.seed}`);
 }
