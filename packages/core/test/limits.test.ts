@@ -47,6 +47,10 @@ describe('numbers the GPU cannot represent (float32) are refused, naming the fie
   it('densityScale and opacity 1e39', () => {
     expect(thrown(() => validateScene(scene({ densityScale: 1e39 }))).message).toMatch(/densityScale: 1e\+39 exceeds the float32 range/);
     expect(thrown(() => validateScene(scene({ densityScale: 2 * MAX_DENSITY_SCALE }))).message).toContain(String(MAX_DENSITY_SCALE));
+    // Extinction = densityScale × opacity is bounded too: free flights must stay above float32 resolution.
+    const dense = { dimensions: '1d' as const, points: [{ value: 0, color: [1, 1, 1] as [number, number, number], opacity: 1000 }] };
+    expect(thrown(() => validateScene(scene({ densityScale: 1e6, transferFunction: dense }))).message).toMatch(/1000000 × the transfer function's largest opacity 1000 = 1000000000 exceeds the limit 100000000 \(MAX_EXTINCTION/);
+    expect(() => validateScene(scene({ densityScale: 1e5, transferFunction: dense }))).not.toThrow();
     const tf = { dimensions: '1d' as const, points: [{ value: 0, color: [1, 1, 1] as [number, number, number], opacity: 1e39 }] };
     expect(thrown(() => validateScene(scene({ transferFunction: tf }))).message).toMatch(/opacity 1e\+39 exceeds the limit/);
   });

@@ -4,7 +4,7 @@ import { validateEnvironment, validateLights, type Environment, type Light } fro
 import { validateTransferFunction, type TransferFunction } from './transfer-function.js';
 import { validateVolume, type Volume } from './volume.js';
 import { checkNumber, checkObject } from '../validation/checks.js';
-import { MAX_DENSITY_SCALE } from '../validation/limits.js';
+import { MAX_DENSITY_SCALE, MAX_EXTINCTION } from '../validation/limits.js';
 
 /** Everything that determines the image. Changing any part resets accumulation. */
 export interface Scene {
@@ -29,5 +29,11 @@ export function validateScene(s: Scene): void {
   validateEnvironment(s.environment);
   // Bounded so extinction (densityScale × opacity) and the free-flight steps stay finite in float32.
   checkNumber('Scene: densityScale', s.densityScale, { min: 0, max: MAX_DENSITY_SCALE, unit: 'extinction per world unit; MAX_DENSITY_SCALE' });
+  const maxOpacity = s.transferFunction.dimensions === '2d'
+    ? Math.max(...s.transferFunction.widgets.map((w) => w.opacity))
+    : Math.max(...s.transferFunction.points.map((p) => p.opacity));
+  if (s.densityScale * maxOpacity > MAX_EXTINCTION) {
+    throw new VptError('invalid-scene', `Scene: densityScale ${s.densityScale} × the transfer function's largest opacity ${maxOpacity} = ${s.densityScale * maxOpacity} exceeds the limit ${MAX_EXTINCTION} (MAX_EXTINCTION: shorter free flights fall below float32 resolution)`);
+  }
   if (typeof s.seed !== 'number' || !Number.isInteger(s.seed) || s.seed < 0 || s.seed > 0xffffffff) throw new VptError('invalid-scene', `Scene: seed must be an integer in [0, 2^32), got ${s.seed}`);
 }
