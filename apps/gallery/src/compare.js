@@ -13,6 +13,7 @@ const views = RENDERERS.map((r) => {
   const figure = document.createElement('figure');
   const el = document.createElement('vpt-viewer');
   el.panels = 'none';
+  el.hideStats = true; // the caption below reads the same numbers
   el.renderer = r.name;
   if (page.backend) el.backend = page.backend;
   if (page.scale) el.resolutionScale = page.scale;
