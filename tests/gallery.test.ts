@@ -63,7 +63,7 @@ describe('gallery build', () => {
 });
 
 describe('gallery pages', () => {
-  it.each(['webgl2', 'webgpu'])('the gallery page renders the bundled head on %s without console errors', async (backend) => {
+  it.each(['webgl2', 'webgpu'])('smoke: the gallery page renders the bundled head on %s without console errors (not flat: > 20 colours)', async (backend) => {
     const { page, errors } = await open(`index.html?backend=${backend}&${FAST}`, 'window.__galleryReady === true && window.gallery.viewer.samples >= 2');
     const r = await page.evaluate(`(${imageSummary})(window.gallery.viewer)`) as { distinct: number; kind: string; renderer: string };
     const state = await page.evaluate(() => ({ search: location.search, pressed: document.querySelector('[aria-pressed="true"]')?.getAttribute('data-id') }));
@@ -76,7 +76,7 @@ describe('gallery pages', () => {
     expect(state.search).toMatch(/dataset=mri_head_volpack_brainsmall_128x128x84_uint8&renderer=eam&tf=tissue&camera=/);
   });
 
-  it('the comparison page renders the same dataset with all four renderers without console errors', async () => {
+  it('smoke: the comparison page renders the same dataset with all four renderers without console errors (not flat)', async () => {
     const { page, errors } = await open(`compare.html?dataset=blob&${FAST}`, 'window.__compareReady === true && window.compare.views.every((v) => v.samples >= 1)');
     const r = await page.evaluate(`Promise.all(window.compare.views.map(${imageSummary}))`) as { distinct: number; renderer: string }[];
     const cameras = await page.evaluate(() => (window as any).compare.views.map((v: any) => JSON.stringify(v.camera)));

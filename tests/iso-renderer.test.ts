@@ -334,7 +334,7 @@ describe('ISO renderer: WebGL 2 / WebGPU parity', () => {
 });
 
 describe('ISO gallery scene', () => {
-  it('renders apps/gallery/scenes/head-iso.json through the headless page (renderer "iso" with its parameters)', async () => {
+  it('smoke: renders apps/gallery/scenes/head-iso.json through the headless page (renderer "iso" with its parameters)', async () => {
     const { description, baseDir } = readSceneFile('apps/gallery/scenes/head-iso.json');
     expect(description.renderer).toBe('iso');
     const r = await page().render({ ...description, width: 24, height: 24, iterations: 2, backend: 'webgl2' }, { baseDir });

@@ -1,4 +1,7 @@
 import { beforeAll, describe, expect, it } from 'vitest';
+import { createVolume, sliceAtlasLayout, reference, type TransferFunction, type Vec3 } from '../packages/core/src/index.js';
+import { gridCells } from '../packages/renderer-mcrt/src/index.js';
+import { opacityLookup } from './helpers/mcrt-reference.js';
 import { installMcrtHelpers } from './helpers/mcrt-in-page.js';
 import { usePage } from './helpers/session.js';
 
@@ -8,7 +11,10 @@ import { usePage } from './helpers/session.js';
  * build (majorant-grid.ts), whose bounds the unit tests prove true, up to float32 rounding
  * (far below the 1e-5 padding both add): for a 1D TF, then on the same context after a
  * density change, a switch to a 2D TF and a new volume that the cells do not divide
- * (13³ voxels in cells of 4), on both backends.
+ * (13³ voxels in cells of 4), on both backends. And, independently of the CPU build, the
+ * GPU grid must itself be a true bound: σ_t sampled at random points of each cell (by the
+ * CPU twin of the kernel's trilinear + TF lookup) never exceeds the cell's GPU majorant, on
+ * smooth data whose cells have narrow value ranges (so a dropped cell border shows).
  */
 const page = usePage();
 beforeAll(async () => { await installMcrtHelpers(page().page); });
@@ -47,7 +53,10 @@ describe('MCRT majorant grid built on the GPU', () => {
             }
             cells++;
           }
-          out.push({ worst, cells, nonZero, max: cpu.globalMajorant });
+          // The GPU grid's own largest majorant (not the CPU build's).
+          let gpuMax = 0;
+          for (let i = 0; i < gpu.length; i += 4) gpuMax = Math.max(gpuMax, gpu[i]);
+          out.push({ worst, cells, nonZero, max: gpuMax });
         }
         ctx.dispose();
         return out;
@@ -57,9 +66,61 @@ describe('MCRT majorant grid built on the GPU', () => {
         expect(r.nonZero).toBeGreaterThan(r.cells / 2); // a grid with content, not zeros compared to zeros
         expect(r.worst, JSON.stringify(r)).toBeLessThan(1e-6);
       }
-      // The density change and the 2D TF reached the GPU grid (it is not the first one again).
+      // The density change and the 2D TF reached the GPU grid (it is not the first one again): GPU maxima.
       expect(results[1].max).toBeCloseTo(results[0].max * 4000 / 30, 2);
       expect(results[2].max).not.toBeCloseTo(results[0].max, 3);
+    });
+  }
+
+  // A smooth field, rising along every axis plus a gentle wave: each 2-voxel cell spans a
+  // narrow value range, and its points near the upper faces blend in larger values.
+  const dims: [number, number, number] = [19, 14, 17];
+  const smooth = Array.from({ length: dims[0] * dims[1] * dims[2] }, (_, n) => {
+    const x = n % dims[0], y = Math.floor(n / dims[0]) % dims[1], z = Math.floor(n / (dims[0] * dims[1]));
+    return 0.05 + 0.9 * (x / dims[0] + y / dims[1] + z / dims[2]) / 3 + 0.04 * Math.sin(0.7 * x + 0.3 * y);
+  });
+  const linearTf: TransferFunction = { dimensions: '1d', points: [{ value: 0, color: [1, 1, 1], opacity: 0 }, { value: 1, color: [1, 1, 1], opacity: 1 }] };
+  const DENSITY = 20, CELL = 2;
+
+  for (const backend of ['webgl2', 'webgpu']) {
+    it(`is itself a true upper bound of σ_t at random points of every cell, on smooth data (${backend})`, async () => {
+      const gpu = await page().page.evaluate(async (backend, dims, smooth, tf, density, cell) => {
+        const { core } = (window as any).vpt;
+        const ctx = await (window as any).t.context({ backend, renderer: 'mcrt', width: 4, height: 4, params: { majorantCellSize: cell } });
+        const volume = core.createVolume(dims, 'float32', new Float32Array(smooth));
+        volume.valueRange = [0, 1];
+        ctx.setScene({ volume, transferFunction: tf, camera: { position: [0, 0, 2], target: [0, 0, 0], up: [0, 1, 0], fovy: 0.8 }, lights: [], environment: { type: 'constant', radiance: [1, 1, 1] }, densityScale: density, seed: 1 });
+        ctx.iterate(1);
+        const gpu = Array.from(await ctx.readAuxiliaryTexture('majorantGrid') as Float32Array);
+        ctx.dispose();
+        return gpu;
+      }, backend, dims, smooth, linearTf, DENSITY, CELL);
+      const volume = createVolume(dims, 'float32', new Float32Array(smooth));
+      volume.valueRange = [0, 1];
+      const sampler = new reference.CpuVolumeSampler({ volume });
+      const opacity = opacityLookup(linearTf);
+      const cells = gridCells(dims, CELL);
+      const { columns, width } = sliceAtlasLayout(cells); // the grid's slice-atlas texture
+      let state = 12345;
+      const rand = () => ((state = (Math.imul(state, 1664525) + 1013904223) >>> 0) / 4294967296);
+      let checked = 0, violations = 0, tightest = Infinity;
+      for (let cz = 0; cz < cells[2]; cz++) for (let cy = 0; cy < cells[1]; cy++) for (let cx = 0; cx < cells[0]; cx++) {
+        const t = cx + (cz % columns) * cells[0] + width * (cy + Math.floor(cz / columns) * cells[1]);
+        const majorant = gpu[4 * t];
+        for (let k = 0; k < 24; k++) {
+          // Uniform points, and every third on the cell's upper face along one axis.
+          const f = [rand(), rand(), rand()];
+          if (k % 3 === 0) f[k % 9 === 0 ? 0 : k % 9 === 3 ? 1 : 2] = 1;
+          const p = [0, 1, 2].map((a) => sampler.box.min[a] + sampler.box.size[a] * ([cx, cy, cz][a] + f[a]) / cells[a]) as Vec3;
+          const sigma = DENSITY * opacity(sampler.sample(p));
+          checked++;
+          if (sigma > majorant) violations++;
+          tightest = Math.min(tightest, majorant - sigma);
+        }
+      }
+      expect(checked).toBe(cells[0] * cells[1] * cells[2] * 24);
+      expect(violations, `${violations} of ${checked} points above their cell's GPU majorant`).toBe(0);
+      expect(tightest).toBeLessThan(0.5); // a tight bound, not a huge constant
     });
   }
 });

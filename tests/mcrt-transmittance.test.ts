@@ -105,3 +105,43 @@ describe('MCRT shadow-ray estimators on a heterogeneous medium (webgl2)', () => 
     expect(minT).toBeLessThan(0.5);
   });
 });
+
+describe.each(BACKENDS)('MCRT ratio tracking in a dense medium (Russian roulette) on %s', (backend) => {
+  // Density 60: most shadow-ray estimates fall below 0.1 and go through the roulette, whose
+  // survivors must be rescaled to 0.1 (unbiased: E = P(survive)·0.1 = T). A pixel's estimate
+  // is then a sum of draws of 0 or about 0.1, so its sample variance can be 0 when 64 draws
+  // agree: the per-pixel σ has a floor of √(E·(0.1 − E)/N), the spread of a 0/0.1 draw with mean E.
+  const tf: TransferFunction = {
+    dimensions: '1d',
+    points: [{ value: 0, color: [1, 1, 1], opacity: 0 }, { value: 0.3, color: [1, 1, 1], opacity: 0.2 }, { value: 0.55, color: [1, 1, 1], opacity: 1 }, { value: 1, color: [1, 1, 1], opacity: 0.6 }],
+  };
+  const DENSE_N = 128; // cheap at 16×16, and it sharpens the aggregate
+  const denseCamera = { position: [0.6, 0.4, 2.2] as Vec3, target: [0, 0, 0] as Vec3, up: [0, 1, 0] as Vec3, fovy: 0.55 };
+  const scene: Scene = { volume: createProceduralVolume('blob', 16), transferFunction: tf, camera: denseCamera, lights: [], environment: { type: 'constant', radiance: [1, 1, 1] }, densityScale: 60, seed: 5 };
+  const tau = opticalDepth(scene, 1000);
+  const ref = pixelExpectations(scene, W, H, (o, d, t0, t1) => { const T = Math.exp(-tau(o, d, t0, t1)); return [T, T, T]; });
+
+  it.each(['ratio', 'residual'] as const)('%s tracking (majorant grid) estimates exp(−∫σ_t) without bias where roulette decides', async (tracking) => {
+    const gpu = await page().page.evaluate((backend, W, H, N, scene, tracking) => {
+      const mt = (window as any).mt;
+      const { core } = (window as any).vpt;
+      return mt.run({ backend, width: W, height: H, iterations: N, params: { debugOutput: 'transmittance', tracking, majorantGrid: true, majorantCellSize: 4 }, scene: { ...scene, volume: core.createProceduralVolume('blob', 16) } });
+    }, backend, W, H, DENSE_N, { ...scene, volume: null }, tracking);
+    expect(gpu.nonFinite).toBe(false);
+    const z: number[] = [];
+    let dense = 0;
+    ref.forEach((p, k) => {
+      if (!p.interior) return;
+      const E = p.value[0];
+      if (E < 0.1) dense++;
+      const rouletteFloor = Math.sqrt(Math.max(0, E * (0.1 - E)) / DENSE_N);
+      z.push((gpu.mean[4 * k] - E) / Math.max(gpu.se[4 * k], rouletteFloor, FLOOR));
+    });
+    const s = zSummary(z, 1);
+    const msg = `${tracking} ${backend}: ${JSON.stringify(s)}, ${dense} pixels below 0.1`;
+    expect(dense, msg).toBeGreaterThan(40); // the roulette really decides most pixels
+    expect(Math.abs(s.meanScaled), msg).toBeLessThan(3);
+    expect(s.maxAbs, msg).toBeLessThan(5);
+    expect(s.over3 / s.n, msg).toBeLessThan(0.03);
+  });
+});

@@ -31,6 +31,8 @@ describe('<vpt-viewer> renders what the headless renderer renders', () => {
       'transfer-function': JSON.stringify(desc.transferFunction), camera: JSON.stringify(desc.camera),
       environment: JSON.stringify(desc.environment), 'density-scale': String(desc.densityScale), seed: String(desc.seed),
       exposure: '0', 'tone-mapper': 'aces', 'max-samples': String(SAMPLES),
+      // The screenshot below compares the canvas alone: no progress bar or stats line over it.
+      'hide-progress': '', 'hide-stats': '',
     };
     const got = await vp.page.evaluate(async (attrs, size) => {
       const vt = (window as any).vt;
@@ -123,7 +125,7 @@ describe('<vpt-viewer> attributes', () => {
       await el.updateComplete;
       const reflected = { camera: JSON.parse(el.getAttribute('camera')), exposure: el.getAttribute('exposure'), lights: JSON.parse(el.getAttribute('lights')) };
       const errors: unknown[] = [];
-      el.addEventListener('error', (e: CustomEvent) => errors.push({ code: e.detail.code, message: e.detail.message, source: e.detail.source, isVptError: e.detail.error.name }));
+      el.addEventListener('vpt-error', (e: CustomEvent) => errors.push({ code: e.detail.code, message: e.detail.message, source: e.detail.source, isVptError: e.detail.error.name }));
       el.setAttribute('transfer-function', '{"dimensions":"1d","points":[{"value":2}]');
       await el.updateComplete;
       el.setAttribute('transfer-function', 'no-such-preset');
@@ -149,6 +151,28 @@ describe('<vpt-viewer> attributes', () => {
     expect(r.kept.tf).toBe(2); // still the ramp
     expect(r.kept.maxSamples).toBe(4);
     expect(r.kept.banner).toMatch(/max-samples/);
+  });
+
+  it('number attributes above their maximum (seed 2^32, exposure 100, resolution-scale 5) are refused, keeping the last valid value', async () => {
+    const r = await vp.page.evaluate(async (attrs) => {
+      const vt = (window as any).vt;
+      const el = vt.create({ ...attrs, seed: '7', exposure: '0.5', 'resolution-scale': '1' });
+      await el.whenSettled();
+      const errors: { code: string; source: string; message: string }[] = [];
+      el.addEventListener('error', (e: CustomEvent) => errors.push({ code: e.detail.code, source: e.detail.source, message: e.detail.message }));
+      for (const [name, value] of [['seed', '4294967296'], ['exposure', '100'], ['resolution-scale', '5']]) {
+        el.setAttribute(name, value);
+        await el.updateComplete;
+      }
+      const kept = { seed: el.seed, exposure: el.exposure, resolutionScale: el.resolutionScale };
+      el.remove();
+      return { errors, kept };
+    }, BLOB);
+    expect(r.errors.map((e) => [e.code, e.source])).toEqual([['invalid-scene', 'attribute'], ['invalid-scene', 'attribute'], ['invalid-scene', 'attribute']]);
+    expect(r.errors[0].message).toMatch(/seed: must be an integer in \[0, 4294967295\]/);
+    expect(r.errors[1].message).toMatch(/exposure: must be a number in \[-64, 64\]/);
+    expect(r.errors[2].message).toMatch(/resolution-scale: must be a number in \[0.05, 4\]/);
+    expect(r.kept).toEqual({ seed: 7, exposure: 0.5, resolutionScale: 1 });
   });
 });
 
@@ -273,6 +297,15 @@ describe('<vpt-viewer> keyboard', () => {
     expect(Math.acos(Math.min(1, cos))).toBeCloseTo((5 * Math.PI / 180) * horizontal, 2);
     expect(dist(zoom)).toBeCloseTo(dist(orbit) / 1.1, 4);
 
+    // 380 px is too narrow for a sidebar: the panels are a closed overlay; the button opens it.
+    const overlay = await vp.page.evaluate(async () => {
+      const el = document.getElementById('keys') as any;
+      const before = { aside: !!el.shadowRoot.querySelector('aside'), button: el.shadowRoot.querySelector('[part=panels-toggle]').textContent.trim() };
+      el.shadowRoot.querySelector('[part=panels-toggle]').click();
+      await el.updateComplete;
+      return { before, aside: !!el.shadowRoot.querySelector('aside'), button: el.shadowRoot.querySelector('[part=panels-toggle]').textContent.trim() };
+    });
+    expect(overlay).toEqual({ before: { aside: false, button: 'Settings' }, aside: true, button: 'Close' });
     // The third control point of the "tissue" preset: value 0.3, opacity 0.02.
     await vp.page.evaluate(() => {
       const el = document.getElementById('keys') as any;
@@ -415,5 +448,78 @@ describe('<vpt-viewer> export', () => {
     for (let c = 0; c < 3; c++) expect(r.pfmFirst[c]).toBeCloseTo(r.hdrBottomLeft[c], 6);
     expect(r.exrMagic).toBe(20000630); // OpenEXR magic number
     expect(r.exrBytes).toBeGreaterThan(300);
+  });
+});
+
+describe('<vpt-viewer> small and narrow', () => {
+  it('a 400x300 element shows only its image at rest (panels an overlay behind a button), with a progress bar and a stats line that attributes hide; Escape closes the overlay', async () => {
+    const r = await vp.page.evaluate(async () => {
+      const vt = (window as any).vt;
+      const el = vt.create({ src: 'procedural:blob?size=16', renderer: 'eam', backend: 'webgl2', 'max-samples': '100000', 'resolution-scale': '0.1' }, 'width:400px;height:300px;position:absolute;left:0;top:0');
+      await vt.next(el, 'progress');
+      while (!el.stats) await vt.frames(1);
+      await el.updateComplete;
+      const q = (sel: string) => el.shadowRoot.querySelector(sel);
+      const view = q('.view').getBoundingClientRect();
+      const atRest = { aside: !!q('aside'), view: [view.width, view.height], bar: !!q('[part=progress]'), stats: q('[part=stats]')?.textContent ?? '' };
+      const barValue = Number(q('[part=progress]')?.getAttribute('aria-valuenow'));
+      q('[part=panels-toggle]').click();
+      await el.updateComplete;
+      const opened = q('aside')?.getBoundingClientRect();
+      q('aside').dispatchEvent(new KeyboardEvent('keydown', { key: 'Escape', bubbles: true, composed: true }));
+      await el.updateComplete;
+      const closed = !q('aside');
+      el.setAttribute('hide-progress', '');
+      el.setAttribute('hide-stats', '');
+      await el.updateComplete;
+      const hidden = { bar: !!q('[part=progress]'), stats: !!q('[part=stats]') };
+      // Wide: the panels sit beside the image again.
+      el.style.width = '900px';
+      await vt.frames(3);
+      await el.updateComplete;
+      const wide = { aside: !!q('aside'), view: q('.view').getBoundingClientRect().width };
+      el.remove();
+      return { atRest, barValue, opened: opened && [opened.width, opened.height], closed, hidden, wide };
+    });
+    expect(r.atRest.aside).toBe(false);
+    expect(r.atRest.view).toEqual([400, 300]); // the image has the whole element
+    expect(r.atRest.bar).toBe(true);
+    expect(r.barValue).toBeGreaterThanOrEqual(0);
+    expect(r.barValue).toBeLessThan(100);
+    expect(r.atRest.stats).toMatch(/^\d+ \/ 100000 spp · [\d.]+ ms\/it · \d+×\d+/);
+    expect(r.opened).toEqual([400, 300]); // the overlay covers the element only when opened
+    expect(r.closed).toBe(true);
+    expect(r.hidden).toEqual({ bar: false, stats: false });
+    expect(r.wide.aside).toBe(true);
+    expect(r.wide.view).toBeGreaterThan(500);
+    expect(r.wide.view).toBeLessThan(900);
+  });
+});
+
+describe('<vpt-viewer> renderer changes while a renderer package loads', () => {
+  it('a slow renderer load that lands after the page chose another renderer never renders (the gallery deep-link race)', async () => {
+    const r = await vp.page.evaluate(async () => {
+      const vt = (window as any).vt;
+      const viewer = (window as any).ref.viewer;
+      // "slow" is EAM behind a load that resolves only when the test says so.
+      let release!: () => void;
+      const gate = new Promise<void>((res) => { release = res; });
+      const eam = viewer.rendererEntry('eam');
+      viewer.registerRenderer({ ...eam, name: 'slow', label: 'Slow', load: async () => { await gate; return eam.load(); } });
+      const el = vt.create({ src: 'procedural:blob?size=16', renderer: 'slow', backend: 'webgl2', panels: 'none', 'max-samples': '3' });
+      await vt.frames(3);
+      el.renderer = 'mip'; // while the context still waits for "slow"
+      await vt.frames(2);
+      release();
+      const seen: string[] = [];
+      const record = () => { if (el.context && el.samples > 0) seen.push(el.context.renderer.name); };
+      el.addEventListener('vpt-progress', record);
+      await vt.converged(el);
+      record();
+      el.remove();
+      return { seen: [...new Set(seen)], final: el.renderer };
+    });
+    expect(r.final).toBe('mip');
+    expect(r.seen).toEqual(['mip']);
   });
 });

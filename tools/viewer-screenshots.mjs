@@ -5,14 +5,18 @@ import { launchChromium, startStaticServer } from '../packages/headless/dist/ind
 
 const SHOTS = {
   // The gallery page as README's first command shows it.
-  'gallery-head-eam': { url: 'apps/gallery/dist/index.html?dataset=mri_head_volpack_brainsmall_128x128x84_uint8&renderer=eam&max=48', size: [1280, 800], ready: 'window.__galleryReady && window.gallery.viewer.samples >= 48' },
+  'gallery-head-eam': { url: 'apps/gallery/dist/index.html?dataset=mri_head_volpack_brainsmall_128x128x84_uint8&renderer=eam&max=16', size: [1280, 800], ready: 'window.__galleryReady && window.gallery.viewer.samples >= 16' },
   'gallery-head-mcrt': { url: 'apps/gallery/dist/index.html?dataset=mri_head_volpack_brainsmall_128x128x84_uint8&renderer=mcrt&max=64&scale=0.6', size: [1280, 800], ready: 'window.__galleryReady && window.gallery.viewer.samples >= 64' },
   'gallery-ct-head-iso': { url: 'apps/gallery/dist/index.html?dataset=ct_head_invesalius_256x256x108_int16&renderer=iso&max=32&scale=0.75', size: [1280, 800], ready: 'window.__galleryReady && window.gallery.viewer.samples >= 32' },
-  'gallery-compare': { url: 'apps/gallery/dist/compare.html?dataset=mri_head_volpack_brainsmall_128x128x84_uint8&max=48&scale=0.6', size: [1100, 1060], ready: 'window.__compareReady && window.compare.views.every((v) => v.samples >= 48)' },
+  'gallery-compare': { url: 'apps/gallery/dist/compare.html?dataset=mri_head_volpack_brainsmall_128x128x84_uint8&max=12&scale=0.5', size: [1100, 1060], ready: 'window.__compareReady && window.compare.views.every((v) => v.samples >= 12)' },
+  // What a newcomer sees: README's page snippet as written (mcrt, 800x600), a 400x300 element at rest, a 320x240 one.
+  'newcomer-readme-page': { url: 'tools/newcomer.html?renderer=mcrt&w=800&h=600', size: [800, 600], ready: 'window.viewer?.samples >= 4' },
+  'newcomer-400x300': { url: 'tools/newcomer.html?w=400&h=300', size: [400, 300], ready: 'window.viewer?.samples >= 24' },
+  'newcomer-320x240': { url: 'tools/newcomer.html?w=320&h=240&renderer=iso', size: [320, 240], ready: 'window.viewer?.samples >= 16' },
   // The element alone with every panel open and a 2D transfer function.
   'viewer-element-2d-tf': {
-    url: 'apps/gallery/dist/index.html?dataset=mri_head_volpack_brainsmall_128x128x84_uint8&renderer=eam&tf=boundaries&density=60&max=32', size: [1280, 1180],
-    ready: 'window.__galleryReady && window.gallery.viewer.samples >= 32',
+    url: 'apps/gallery/dist/index.html?dataset=mri_head_volpack_brainsmall_128x128x84_uint8&renderer=eam&tf=boundaries&density=60&max=12', size: [1280, 1180],
+    ready: 'window.__galleryReady && window.gallery.viewer.samples >= 12',
     before: `document.querySelector('#viewer').style.height = '1000px'; document.querySelector('#viewer').shadowRoot.querySelectorAll('details').forEach((d) => { d.open = true; });`,
     clip: '#viewer',
   },
@@ -20,7 +24,7 @@ const SHOTS = {
 
 const names = process.argv.slice(2).length ? process.argv.slice(2) : Object.keys(SHOTS);
 const server = await startStaticServer(new URL('..', import.meta.url).pathname);
-const browser = await launchChromium();
+const browser = await launchChromium({ webgpu: true });
 try {
   for (const name of names) {
     const s = SHOTS[name];

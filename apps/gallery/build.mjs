@@ -6,7 +6,8 @@
 //                                      (linked: up to hundreds of MB; `cp -rL dist …` to deploy)
 //   dist/data/manifest.json            what is there: every sidecar and real-format file found
 //   dist/scenes/                       the CLI's scene files (the bundled head's presets)
-// Usage: node build.mjs   (pnpm --filter @vpt/gallery run build)
+// Usage: node build.mjs [--production]   (pnpm --filter @vpt/gallery run build[:production])
+// A production build (the site visitors see) leaves out developer hints such as `pnpm data:fetch`.
 import fs from 'node:fs';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
@@ -99,6 +100,7 @@ const fetchedDir = path.join(dataDir, 'fetched');
 const fetched = scan(fetchedDir, 'data/fetched/', false).filter((d) => !bundled.some((b) => b.id === d.id));
 if (fetched.length) fs.symlinkSync(path.relative(path.join(dist, 'data'), fetchedDir), path.join(dist, 'data', 'fetched'), 'dir');
 
-const manifest = { generated: new Date().toISOString(), datasets: [...bundled, ...fetched] };
+const development = !process.argv.includes('--production');
+const manifest = { generated: new Date().toISOString(), development, datasets: [...bundled, ...fetched] };
 fs.writeFileSync(path.join(dist, 'data', 'manifest.json'), JSON.stringify(manifest, null, 1));
 console.log(`gallery: ${path.relative(root, dist)}/ with ${bundled.length} bundled and ${fetched.length} fetched datasets${fetched.length ? '' : ' (run `pnpm data:fetch` for more)'}`);

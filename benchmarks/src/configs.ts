@@ -116,6 +116,8 @@ export interface Preset {
   cloudSize: number;
   scalingVolumeSizes: number[];
   scalingEmptyFractions: number[];
+  /** Framebuffer side of the scaling suite (default 128). */
+  scalingFramebuffer?: number;
   /** Framebuffer side of the specialization suite (MCRT specialised vs generic kernel). */
   specializationSize: number;
   /** Scenes of the error-vs-time suite (default: all). */
@@ -131,7 +133,7 @@ export const PRESETS: Record<string, Preset> = {
   smoke: {
     name: 'smoke', specializationSize: 16, errorSize: 16, referenceIterations: { mip: 16, eam: 16, iso: 16, mcrt: 32 }, curveIterations: 8, curveBudgetMs: 5_000,
     frameSizes: [16], frameVolumeSizes: [16], frameSizeAtVolume: 16, frameIterations: 1, frameRepeats: 2,
-    convergenceSizes: [16], cloudSize: 16, scalingVolumeSizes: [16], scalingEmptyFractions: [0, 0.9],
+    convergenceSizes: [16], cloudSize: 16, scalingVolumeSizes: [16], scalingEmptyFractions: [0, 0.9], scalingFramebuffer: 16,
     compactSize: 16, ctDepths: [4],
   },
   /** Only the frame-time table at 256² and 512² on the 128³ cloud (the figures quoted in issue notes). */

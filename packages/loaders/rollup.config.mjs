@@ -13,13 +13,15 @@ fs.rmSync('dist/worker/chunks', { recursive: true, force: true });
 
 const worker = {
   input: { 'loader-worker': 'src/worker/loader-worker.ts' },
-  output: { dir: 'dist/worker', format: 'es', sourcemap: true, chunkFileNames: 'chunks/[name]-[hash].js' },
+  // No sourcemap: the worker inlines core and third-party parsers, whose sources lie
+  // outside this package; the library build above maps the loaders' own code.
+  output: { dir: 'dist/worker', format: 'es', sourcemap: false, chunkFileNames: 'chunks/[name]-[hash].js' },
   plugins: [
     // dicom-parser's UMD build names Node's zlib; the worker passes its own inflater (fflate).
     { name: 'no-zlib', resolveId: (id) => (id === 'zlib' ? '\0zlib' : null), load: (id) => (id === '\0zlib' ? 'export default {};' : null) },
     nodeResolve({ browser: true, exportConditions: ['browser', 'import', 'default'] }),
     commonjs(),
-    typescript({ tsconfig: './tsconfig.worker.json' }),
+    typescript({ tsconfig: './tsconfig.worker.json', compilerOptions: { sourceMap: false, declarationMap: false } }),
   ],
   onwarn(warning, warn) {
     if (warning.code === 'THIS_IS_UNDEFINED' || warning.code === 'CIRCULAR_DEPENDENCY') return;

@@ -17,7 +17,7 @@ window.vt = {
     const el = document.createElement('vpt-viewer');
     el.__events = [];
     for (const type of ['load', 'progress', 'converged', 'error', 'change']) {
-      el.addEventListener(type, (e) => {
+      el.addEventListener('vpt-' + type, (e) => {
         const d = e.detail || {};
         el.__events.push({ type, phase: d.phase, samples: d.samples, reason: d.reason, code: d.code, message: d.message, source: d.source, property: d.property });
       });
@@ -27,11 +27,11 @@ window.vt = {
     document.body.append(el);
     return el;
   },
-  /** The next event of this type after now (rejects after timeoutMs). */
+  /** The next event of this type ('load' for vpt-load…) after now (rejects after timeoutMs). */
   next(el, type, timeoutMs = 90000) {
     return new Promise((resolve, reject) => {
       const t = setTimeout(() => reject(new Error('no ' + type + ' event within ' + timeoutMs + ' ms; events: ' + JSON.stringify(el.__events.slice(-8)))), timeoutMs);
-      el.addEventListener(type, (e) => { clearTimeout(t); resolve(e.detail); }, { once: true });
+      el.addEventListener('vpt-' + type, (e) => { clearTimeout(t); resolve(e.detail); }, { once: true });
     });
   },
   /** Resolves when the element has converged (now or later). */

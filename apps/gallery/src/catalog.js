@@ -4,7 +4,10 @@
 // so the gallery and `pnpm render` show the same thing; the other datasets get presets
 // from their modality and orientation, and an automatic transfer function from the
 // histogram where nothing better is known.
-import { fitCamera, valueHistogram } from './vpt-viewer.bundle.js';
+// The automatic transfer function, albedo conversion, isovalue and key light are the
+// viewer's own defaults (packages/viewer/src/defaults.ts), so the gallery and a bare
+// <vpt-viewer src> agree.
+import { asAlbedo, autoTransferFunction, fitCamera, isoValueOf, keyLight } from './vpt-viewer.bundle.js';
 
 export const RENDERERS = [
   { name: 'mip', label: 'MIP' },
@@ -19,12 +22,19 @@ const PROCEDURAL = [
   { id: 'ramp', title: 'Linear ramp along x (procedural, 32³)', url: 'procedural:ramp?size=32', modality: 'procedural', dims: [32, 32, 32], type: 'float32' },
 ];
 
+/** About the build: a development build shows developer hints (`pnpm data:fetch`). */
+export const catalogInfo = { development: false };
+
 /** Every dataset: the build's manifest (bundled + fetched files) and the procedural ones. */
 export async function loadCatalog() {
   let datasets = [];
   try {
     const res = await fetch('data/manifest.json');
-    if (res.ok) datasets = (await res.json()).datasets;
+    if (res.ok) {
+      const manifest = await res.json();
+      datasets = manifest.datasets;
+      catalogInfo.development = manifest.development !== false;
+    }
   } catch {
     // Without a manifest (not built?) the procedural volumes still work.
   }
@@ -74,51 +84,6 @@ function tunedTransferFunction(d) {
   return null;
 }
 
-const PALETTES = {
-  warm: [[0.8, 0.45, 0.3], [1.0, 0.8, 0.65], [2.2, 2.1, 1.9]],
-  hot: [[1.2, 0.15, 0.02], [2.4, 1.1, 0.1], [4, 3.4, 2.4]],
-  cool: [[0.1, 0.3, 1.0], [0.4, 1.2, 1.6], [2.5, 2.6, 2.8]],
-};
-
-/**
- * A transfer function from the histogram: clear below the median of the non-background
- * voxels, rising to opaque at the 99.5th percentile. Good enough to see any volume.
- */
-export function autoTransferFunction(volume, palette = 'warm') {
-  const h = valueHistogram(volume, 256);
-  let total = 0;
-  for (let i = 1; i < h.bins.length; i++) total += h.bins[i];
-  const quantile = (q) => {
-    let acc = 0;
-    for (let i = 1; i < h.bins.length; i++) {
-      acc += h.bins[i];
-      if (acc >= q * total) return (i + 0.5) / h.bins.length;
-    }
-    return 1;
-  };
-  const [c0, c1, c2] = PALETTES[palette];
-  const lo = quantile(0.5), mid = quantile(0.9), hi = Math.max(quantile(0.995), mid + 0.02);
-  const r = (x) => Math.round(Math.min(1, x) * 1e4) / 1e4;
-  return { dimensions: '1d', points: [
-    { value: r(lo), color: c0, opacity: 0 },
-    { value: r(mid), color: c1, opacity: 0.15 },
-    { value: r(hi), color: c2, opacity: 1 },
-  ] };
-}
-
-/** Colours as albedos in [0, 1] for the path tracer (emission-style colours above 1 are not albedos). */
-function asAlbedo(tf) {
-  if (tf.dimensions !== '1d') return tf;
-  return { ...tf, points: tf.points.map((p) => ({ ...p, color: p.color.map((c) => Math.min(0.98, c / Math.max(1, ...p.color))) })) };
-}
-
-/** The value where the transfer function first reaches a third of its largest opacity: a sensible isovalue. */
-function isoValueOf(tf) {
-  if (tf.dimensions !== '1d') return 0.5;
-  const max = Math.max(...tf.points.map((p) => p.opacity));
-  return tf.points.find((p) => p.opacity >= max / 3)?.value ?? 0.5;
-}
-
 function paletteOf(d) {
   if (/tomogra|cryo/i.test(d.modality) || d.modality === 'procedural') return 'cool';
   if (/microscopy/i.test(d.modality)) return 'hot';
@@ -133,16 +98,6 @@ function viewCamera(d, volume) {
   const dist = Math.hypot(...fit.position);
   const len = Math.hypot(...view.dir);
   return { position: view.dir.map((x) => Math.round((x / len) * dist * 1e4) / 1e4), target: [0, 0, 0], up: view.up, fovy: 0.7 };
-}
-
-/** A light from above the camera's left shoulder, in the dataset's own "up". */
-function keyLight(camera, irradiance) {
-  const [px, py, pz] = camera.position;
-  const [ux, uy, uz] = camera.up;
-  const len = Math.hypot(px, py, pz) || 1;
-  const dir = [px / len + 1.2 * ux, py / len + 1.2 * uy, pz / len + 1.2 * uz];
-  const l = Math.hypot(...dir) || 1;
-  return [{ type: 'directional', direction: dir.map((x) => Math.round((x / l) * 1e4) / 1e4), irradiance }];
 }
 
 /** Properties of a scene file (scenes/*.json) as <vpt-viewer> properties. */

@@ -13,6 +13,7 @@ const views = RENDERERS.map((r) => {
   const figure = document.createElement('figure');
   const el = document.createElement('vpt-viewer');
   el.panels = 'none';
+  el.hideStats = true; // the caption below reads the same numbers
   el.renderer = r.name;
   if (page.backend) el.backend = page.backend;
   if (page.scale) el.resolutionScale = page.scale;
@@ -23,7 +24,7 @@ const views = RENDERERS.map((r) => {
   const stats = document.createElement('span');
   stats.className = 'stats';
   caption.append(name, ' ', stats);
-  el.addEventListener('progress', (e) => {
+  el.addEventListener('vpt-progress', (e) => {
     if (e.detail.phase === 'refining') stats.textContent = `${e.detail.samples} spp · ${e.detail.msPerIteration.toFixed(1)} ms/it${e.detail.error != null ? ` · err ${(e.detail.error * 100).toFixed(1)} %` : ''}`;
   });
   figure.append(el, caption);
@@ -38,7 +39,7 @@ let syncing = false;
 
 // One camera for all: a user's move in one view is copied to the others.
 for (const v of views) {
-  v.el.addEventListener('change', (e) => {
+  v.el.addEventListener('vpt-change', (e) => {
     if (e.detail.property !== 'camera' || syncing) return;
     syncing = true;
     for (const o of views) if (o !== v) o.el.camera = v.el.camera;
@@ -64,7 +65,7 @@ async function show(id, camera) {
   select.value = d.id;
   await Promise.all(views.map(async (v) => {
     if (v.el.src !== d.url || !v.el.loadedVolume) {
-      const done = new Promise((r) => { v.el.addEventListener('load', r, { once: true }); v.el.addEventListener('error', r, { once: true }); });
+      const done = new Promise((r) => { v.el.addEventListener('vpt-load', r, { once: true }); v.el.addEventListener('vpt-error', r, { once: true }); });
       v.el.src = d.url;
       await done;
     }

@@ -2,7 +2,7 @@
 // state (dataset, renderer, transfer function, camera, exposure, tone mapper, density)
 // lives in the URL, so any view can be linked to; the link restores it.
 import './vpt-viewer.bundle.js';
-import { loadCatalog, presetFor, RENDERERS } from './catalog.js';
+import { catalogInfo, loadCatalog, presetFor, RENDERERS } from './catalog.js';
 import { overridesOf, readState, stateQuery } from './state.js';
 
 const $ = (id) => document.getElementById(id);
@@ -23,7 +23,7 @@ function formatBytes(n) {
 function renderDatasetList() {
   const groups = [
     ['Bundled with vpt', catalog.filter((d) => d.bundled && d.format !== 'procedural')],
-    ['Fetched (pnpm data:fetch)', catalog.filter((d) => !d.bundled)],
+    [catalogInfo.development ? 'Fetched (pnpm data:fetch)' : 'More datasets', catalog.filter((d) => !d.bundled)],
     ['Procedural', catalog.filter((d) => d.format === 'procedural')],
   ];
   const list = $('dataset-list');
@@ -33,6 +33,8 @@ function renderDatasetList() {
     h.textContent = title;
     list.append(h);
     if (!items.length) {
+      // Site visitors cannot run the fetch: a production build shows no empty group.
+      if (!catalogInfo.development) { h.remove(); continue; }
       const p = document.createElement('p');
       p.className = 'empty';
       p.textContent = 'None here yet: `pnpm data:fetch` downloads the larger datasets, then rebuild the gallery.';
@@ -109,19 +111,22 @@ async function select(id, renderer, overrides = {}, push = false) {
   renderRendererChoice();
   describe(d);
   if (viewer.src !== d.url || !viewer.loadedVolume) {
-    const loaded = once(viewer, ['load', 'error']);
+    const loaded = once(viewer, ['vpt-load', 'vpt-error']);
     viewer.src = d.url;
     const e = await loaded;
-    if (e.type === 'error' || mine !== token) return;
+    if (e.type === 'vpt-error' || mine !== token) return;
   }
   const preset = await presetFor(d, renderer, viewer.loadedVolume);
   if (mine !== token) return;
   Object.assign(viewer, preset, overrides, { renderer });
-  await viewer.updateComplete;
+  // Settled, not just updated: the renderer package (a dynamic import) has landed and
+  // renders, so "ready" means the view the link asked for is the one on screen.
+  await viewer.whenSettled();
+  if (mine !== token) return;
   updateUrl(push);
 }
 
-viewer.addEventListener('change', () => {
+viewer.addEventListener('vpt-change', () => {
   clearTimeout(updateUrl.timer);
   updateUrl.timer = setTimeout(() => updateUrl(false), 250);
 });

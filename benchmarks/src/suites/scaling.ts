@@ -10,7 +10,7 @@ export interface ScalingRow { axis: 'volume-size' | 'empty-fraction'; label: str
  */
 export async function scaling(s: SuiteContext): Promise<ScalingRow[]> {
   const rows: ScalingRow[] = [];
-  const size = 128;
+  const size = s.preset.scalingFramebuffer ?? 128;
   const backend = s.backends[0];
   const per = async (axis: ScalingRow['axis'], x: number, spec: ReturnType<typeof scenes>['cloud']) => {
     for (const config of s.renderers) {

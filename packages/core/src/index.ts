@@ -45,3 +45,7 @@ export * from './scene/environment-sampling.js';
 export * as reference from './reference/cpu-reference.js';
 
 export { RENDERER_CATALOG, rendererCatalogEntry, rendererNames, type RendererCatalogEntry, type RendererParamSpec } from './catalog/renderer-catalog.js';
+export * from './validation/limits.js';
+export { describeValue, checkNumber, checkNumbers, checkOneOf, checkBoolean, checkString, checkObject, checkKnownKeys, type NumberRule } from './validation/checks.js';
+export { validateParams, validateStepParams, minStepSize, STEP_RULE, type ParamSpec, type ParamSpecs } from './validation/params.js';
+export { validateSceneForDevice } from './validation/device.js';

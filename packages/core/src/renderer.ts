@@ -1,6 +1,7 @@
 import type { PassTextureBinding, TextureDescriptor, TextureFormat } from './gpu/backend.js';
 import type { Scene } from './scene/scene.js';
 import type { UniformField, UniformLayout, UniformValues } from './uniforms/layout.js';
+import type { ParamSpecs } from './validation/params.js';
 
 /** A kernel in both shading languages; the context prepends the shared chunks and the prelude. */
 export interface KernelSource {
@@ -60,6 +61,14 @@ export interface Renderer {
    * does the same on its own (and defines VPT_TF_2D), whatever this flag says.
    */
   readonly needsGradient?: boolean;
+  /**
+   * The renderer's parameters and their ranges (core's validateParams): unknown keys and
+   * out-of-range values are refused by the constructor and setParams; 'step' parameters are
+   * checked against the scene's voxel size by RenderContext.setScene.
+   */
+  readonly paramSpecs?: ParamSpecs;
+  /** The current parameter values (as given, defaults not filled in). */
+  getParams?(): object;
 }
 
 export interface AuxiliaryTexture {

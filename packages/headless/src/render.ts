@@ -4,6 +4,7 @@ import { PAGE_PATH, mountPagePackages, workspaceRoot } from './packages.js';
 import type { BackendSummary, PageRenderResult, RenderTimings } from './page/types.js';
 import type { BackendName, SceneDescription } from './scene-description.js';
 import { mountSceneFiles, resolveSceneFiles } from './scene-files.js';
+import { validateSceneDescription } from './validate-description.js';
 import { startStaticServer, type StaticServer } from './server.js';
 
 export interface VptPageOptions {
@@ -46,6 +47,11 @@ export interface PageRenderOptions {
   baseDir?: string;
   /** One untimed iteration first, so kernel compilation is not in totalMs (default true). */
   warmup?: boolean;
+  /**
+   * Confine the files the description names to this folder (`vpt-render --root`): paths
+   * outside it, URLs and server URL paths are refused (see resolveSceneFiles).
+   */
+  sceneRoot?: string;
 }
 
 export interface VptPageSession {
@@ -132,7 +138,7 @@ export async function openVptPage(options: VptPageOptions = {}): Promise<VptPage
 }
 
 async function renderInPage(page: Page, server: StaticServer, desc: SceneDescription, options: PageRenderOptions): Promise<RenderResult> {
-  const mounted = mountSceneFiles(desc, options.baseDir ?? process.cwd(), server);
+  const mounted = mountSceneFiles(desc, options.baseDir ?? process.cwd(), server, { root: options.sceneRoot });
   // Errors come back as data: a rejected evaluate would lose VptError's code.
   type Outcome = { ok: PageRenderResult; error?: undefined } | { ok?: undefined; error: { message: string; code?: string } };
   const out: Outcome = await page.evaluate(async (d, o) => {
@@ -184,17 +190,19 @@ export interface RenderSceneOptions extends PageRenderOptions {
 }
 
 /**
- * Render a scene description headless: launch Chromium, serve the packages, render,
- * read the images back, close. Options override the description's own fields.
+ * Render a scene description headless: launch Chromium, serve the packages and exactly the
+ * files the scene names (no folder, no workspace root), render, read the images back,
+ * close. Options override the description's own fields. The description is validated and
+ * its files checked (sizes from their metadata) before a browser starts.
  */
 export async function renderScene(desc: SceneDescription, options: RenderSceneOptions = {}): Promise<RenderResult> {
   const overrides: Partial<SceneDescription> = {};
   for (const key of ['backend', 'iterations', 'width', 'height', 'seed'] as const) {
     if (options[key] !== undefined) (overrides as Record<string, unknown>)[key] = options[key];
   }
-  // Missing files fail here, before a browser is started.
-  const full = resolveSceneFiles({ ...desc, ...overrides }, options.baseDir ?? process.cwd());
-  const session = options.session ?? await openVptPage({ chromium: options.chromium, onConsole: options.onConsole, packageDirs: options.packageDirs });
+  // Bad fields, missing files and size mismatches fail here, before a browser is started.
+  const full = resolveSceneFiles(validateSceneDescription({ ...desc, ...overrides }), options.baseDir ?? process.cwd(), { root: options.sceneRoot });
+  const session = options.session ?? await openVptPage({ root: null, chromium: options.chromium, onConsole: options.onConsole, packageDirs: options.packageDirs });
   try {
     return await session.render(full, options);
   } finally {

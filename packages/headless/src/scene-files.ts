@@ -1,65 +1,161 @@
 import fs from 'node:fs';
 import path from 'node:path';
-import { rendererNames } from '@vpt/core';
-import { checkSceneDescription, type SceneDescription, type VolumeDescription } from './scene-description.js';
+import { checkNumbers, checkOneOf, VptError } from '@vpt/core';
+import type { RawVolumeDescription, SceneDescription, VolumeDescription } from './scene-description.js';
 import type { StaticServer } from './server.js';
+import { validateSceneDescription } from './validate-description.js';
+
+/** Largest scene or sidecar file read (a lat-long environment inline in JSON can be large). */
+const MAX_SCENE_FILE_BYTES = 256 * 1024 * 1024;
+const MAX_SIDECAR_BYTES = 1024 * 1024;
+const VOXEL_BYTES = { uint8: 1, uint16: 2, int16: 2, float32: 4 } as const;
+
+export interface SceneFileOptions {
+  /**
+   * Confine every file the scene names to this folder (after following symlinks): paths that
+   * leave it, URLs with a scheme and server URL paths are refused. For services that render
+   * untrusted scene files (`vpt-render --root DIR`).
+   */
+  root?: string;
+}
 
 /** Read and check a scene file; errors name the file. */
 export function readSceneFile(file: string): { description: SceneDescription; baseDir: string } {
   let text: string;
   try {
+    const size = fs.statSync(file).size;
+    if (size > MAX_SCENE_FILE_BYTES) throw new VptError('limit-exceeded', `${size} bytes exceed the limit of ${MAX_SCENE_FILE_BYTES} for a scene file`);
     text = fs.readFileSync(file, 'utf8');
   } catch (e) {
+    if (e instanceof VptError) throw new VptError(e.code, `Scene file ${file}: ${e.message}`);
     throw new Error(`Cannot read scene file ${file}: ${(e as NodeJS.ErrnoException).code === 'ENOENT' ? 'no such file' : (e as Error).message}`);
   }
   let json: unknown;
   try {
     json = JSON.parse(text);
   } catch (e) {
-    throw new Error(`Scene file ${file} is not valid JSON: ${(e as Error).message}`);
+    throw new VptError('invalid-scene', `Scene file ${file} is not valid JSON: ${(e as Error).message}`);
   }
   try {
-    checkSceneDescription(json, rendererNames());
+    validateSceneDescription(json);
   } catch (e) {
+    if (e instanceof VptError) throw new VptError(e.code, `${file}: ${e.message}`, { cause: e });
     throw new Error(`${file}: ${(e as Error).message}`);
   }
-  return { description: json, baseDir: path.dirname(path.resolve(file)) };
+  return { description: json as SceneDescription, baseDir: path.dirname(path.resolve(file)) };
 }
 
 const HAS_SCHEME = /^[a-z][a-z0-9+.-]*:/i;
 
 /** Apply `map` to each file reference of the description (the volume's raw or sidecar). */
-function mapVolumeRefs(desc: SceneDescription, map: (ref: string) => string): SceneDescription {
+function mapVolumeRefs(desc: SceneDescription, map: (ref: string, volume: VolumeDescription) => string): SceneDescription {
   const volume = desc.volume;
   if (!volume || 'procedural' in volume) return desc;
-  const mapped: VolumeDescription = 'sidecar' in volume ? { ...volume, sidecar: map(volume.sidecar) } : { ...volume, raw: map(volume.raw) };
+  const mapped: VolumeDescription = 'sidecar' in volume ? { ...volume, sidecar: map(volume.sidecar, volume) } : { ...volume, raw: map(volume.raw, volume) };
   return { ...desc, volume: mapped };
+}
+
+function insideRoot(file: string, root: string): boolean {
+  const real = fs.realpathSync(file), base = fs.realpathSync(root);
+  return real === base || real.startsWith(base + path.sep);
+}
+
+function statFile(file: string): fs.Stats | null {
+  try {
+    const st = fs.statSync(file);
+    return st.isFile() ? st : null;
+  } catch {
+    return null;
+  }
+}
+
+/** The byte count dims × type needs, compared with the file's size from its metadata (nothing is read). */
+function checkRawSize(file: string, dims: readonly number[], type: keyof typeof VOXEL_BYTES, size: number): void {
+  const need = dims[0] * dims[1] * dims[2] * VOXEL_BYTES[type];
+  if (size !== need) {
+    throw new VptError('load-failed', `${file}: dims [${dims.join(', ')}] of ${type} need ${need} bytes, the file has ${size}${size > need ? ` (${size - need} bytes past the declared size)` : ''}`);
+  }
+}
+
+/**
+ * A sidecar as the page reads it, checked in Node before a browser starts: dims (integers,
+ * not strings), voxel_type, spacing, value_range (two finite, different numbers), endianness;
+ * returns the raw file beside it, whose size is checked against the dims from its metadata.
+ */
+export function checkSidecarFile(sidecar: string): { rawFile: string } {
+  const size = statFile(sidecar)?.size ?? 0;
+  if (size > MAX_SIDECAR_BYTES) throw new VptError('limit-exceeded', `${sidecar}: ${size} bytes exceed the limit of ${MAX_SIDECAR_BYTES} for a sidecar`);
+  let meta: Record<string, unknown>;
+  try {
+    meta = JSON.parse(fs.readFileSync(sidecar, 'utf8'));
+  } catch (e) {
+    throw new VptError('load-failed', `${sidecar}: not valid JSON (${(e as Error).message})`);
+  }
+  try {
+    if (!meta || typeof meta !== 'object' || Array.isArray(meta)) throw new VptError('load-failed', 'must be a JSON object');
+    const dims = checkNumbers('dims', meta.dims, 3, { min: 1, integer: true });
+    const type = checkOneOf('voxel_type', meta.voxel_type, ['uint8', 'uint16', 'int16', 'float32'] as const);
+    if (meta.spacing !== undefined) checkNumbers('spacing', meta.spacing, 3, { min: 0, exclusiveMin: true });
+    if (meta.value_range !== undefined) {
+      const [lo, hi] = checkNumbers('value_range', meta.value_range, 2);
+      if (lo === hi) throw new VptError('invalid-scene', `value_range: min and max are equal (${lo}), an empty range`);
+    }
+    if (meta.endianness !== undefined) checkOneOf('endianness', meta.endianness, ['little', 'big'] as const);
+    const name = typeof meta.file === 'string' && meta.file && !/[\\/]/.test(meta.file) ? meta.file : path.basename(sidecar).replace(/\.json$/i, '') + '.raw';
+    const rawFile = path.join(path.dirname(sidecar), name);
+    const st = statFile(rawFile);
+    if (!st) throw new VptError('load-failed', `its raw file ${rawFile} was not found`);
+    checkRawSize(rawFile, dims, type, st.size);
+    return { rawFile };
+  } catch (e) {
+    if (e instanceof VptError) throw new VptError(e.code === 'limit-exceeded' ? e.code : 'load-failed', `Sidecar ${sidecar}: ${e.message}`, { cause: e });
+    throw e;
+  }
 }
 
 /**
  * Resolve the description's file paths against baseDir to absolute paths, failing early
- * (before a browser starts) when a file is missing. URLs with a scheme are left alone,
- * and so is an absolute path that is not a file on this machine: it is taken as a URL
- * path under the server root.
+ * (before a browser starts) when a file is missing or its size from the file's metadata
+ * does not match the declared dims. Without `options.root`, URLs with a scheme are left
+ * alone, and so is an absolute path that is not a file on this machine (a URL path for the
+ * page's server). With `root`, every reference must be a file inside it.
  */
-export function resolveSceneFiles(desc: SceneDescription, baseDir: string): SceneDescription {
-  return mapVolumeRefs(desc, (ref) => {
-    if (HAS_SCHEME.test(ref)) return ref;
+export function resolveSceneFiles(desc: SceneDescription, baseDir: string, options: SceneFileOptions = {}): SceneDescription {
+  return mapVolumeRefs(desc, (ref, volume) => {
+    const confined = options.root !== undefined;
+    if (HAS_SCHEME.test(ref)) {
+      if (confined) throw new VptError('invalid-scene', `Volume reference ${ref}: URLs are refused when scene paths are confined to ${options.root}`);
+      return ref;
+    }
     const file = path.resolve(baseDir, ref);
-    if (fs.existsSync(file) && fs.statSync(file).isFile()) return file;
-    if (ref.startsWith('/')) return ref;
-    throw new Error(`Volume file not found: ${file}`);
+    const st = statFile(file);
+    if (!st) {
+      if (ref.startsWith('/') && !confined) return ref;
+      throw new VptError('load-failed', `Volume file not found: ${file}`);
+    }
+    if (confined && !insideRoot(file, options.root!)) {
+      throw new VptError('invalid-scene', `Volume file ${file} is outside ${path.resolve(options.root!)}, the folder scene paths are confined to (--root)`);
+    }
+    if ('sidecar' in volume) {
+      const { rawFile } = checkSidecarFile(file);
+      if (confined && !insideRoot(rawFile, options.root!)) throw new VptError('invalid-scene', `Raw file ${rawFile} of sidecar ${file} is outside ${path.resolve(options.root!)} (--root)`);
+    } else {
+      const v = volume as RawVolumeDescription;
+      checkRawSize(file, v.dims, v.type, st.size);
+    }
+    return file;
   });
 }
 
 /**
- * Make the files a description refers to reachable from the page: each existing file's
- * folder is mounted on the server and the path replaced by its URL (see
- * resolveSceneFiles for what counts as a file).
+ * Make the files a description refers to reachable from the page: exactly those files (a
+ * sidecar with its raw file), each set under its own `/__files/<n>/`, never their folders;
+ * the path is replaced by its URL (see resolveSceneFiles for what counts as a file).
  */
-export function mountSceneFiles(desc: SceneDescription, baseDir: string, server: StaticServer): SceneDescription {
-  return mapVolumeRefs(resolveSceneFiles(desc, baseDir), (ref) => {
-    if (!path.isAbsolute(ref) || !fs.existsSync(ref)) return ref;
-    return server.mount(path.dirname(ref)) + encodeURIComponent(path.basename(ref));
+export function mountSceneFiles(desc: SceneDescription, baseDir: string, server: StaticServer, options: SceneFileOptions = {}): SceneDescription {
+  return mapVolumeRefs(resolveSceneFiles(desc, baseDir, options), (ref, volume) => {
+    if (!path.isAbsolute(ref) || !statFile(ref)) return ref;
+    const files = 'sidecar' in volume ? [ref, checkSidecarFile(ref).rawFile] : [ref];
+    return server.mountFiles(files) + encodeURIComponent(path.basename(ref));
   });
 }

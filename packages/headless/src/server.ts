@@ -17,6 +17,12 @@ export interface StaticServer {
    * path. Returns the URL path, with a trailing slash.
    */
   mount(dir: string, urlPath?: string): string;
+  /**
+   * Serve exactly these files (nothing else of their folders) under a fresh
+   * `/__files/<n>/`, each by its base name; returns that URL path. Files sharing a base
+   * name must be mounted separately.
+   */
+  mountFiles(files: readonly string[]): string;
   close(): Promise<void>;
 }
 
@@ -67,14 +73,17 @@ export function resolveInside(dir: string, relUrlPath: string): string | null {
  * precedence over the root, the longest matching prefix first.
  */
 export async function startStaticServer(root: string | null, options: StaticServerOptions = {}): Promise<StaticServer> {
-  const mounts = new Map<string, string>(); // url prefix -> absolute dir
+  const mounts = new Map<string, string | Map<string, string>>(); // url prefix -> absolute dir, or base name -> file
   let mountCount = 0;
+  let fileMountCount = 0;
 
   const lookup = (urlPath: string): string | null => {
     const prefixes = [...mounts.keys()].sort((a, b) => b.length - a.length);
     for (const prefix of prefixes) {
       if (urlPath.startsWith(prefix) || `${urlPath}/` === prefix) {
-        return resolveInside(mounts.get(prefix)!, urlPath.slice(prefix.length));
+        const target = mounts.get(prefix)!;
+        if (typeof target !== 'string') return target.get(urlPath.slice(prefix.length)) ?? null;
+        return resolveInside(target, urlPath.slice(prefix.length));
       }
     }
     return root === null ? null : resolveInside(root, urlPath);
@@ -137,6 +146,18 @@ export async function startStaticServer(root: string | null, options: StaticServ
       }
       const prefix = normalizePrefix(urlPath);
       mounts.set(prefix, abs);
+      return prefix;
+    },
+    mountFiles(files: readonly string[]): string {
+      const byName = new Map<string, string>();
+      for (const f of files) {
+        const abs = path.resolve(f);
+        const name = path.basename(abs);
+        if (byName.has(name) && byName.get(name) !== abs) throw new Error(`mountFiles: two files named ${name}`);
+        byName.set(name, abs);
+      }
+      const prefix = `/__files/${fileMountCount++}/`;
+      mounts.set(prefix, byName);
       return prefix;
     },
     close: () => new Promise<void>((resolve) => {

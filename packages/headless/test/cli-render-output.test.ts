@@ -34,12 +34,12 @@ describe('vpt-render output', () => {
     const scene = path.join(dir, 'scene.json');
     fs.writeFileSync(scene, JSON.stringify({ renderer: 'mip', width: 64 }));
     const stdout: string[] = [], stderr: string[] = [];
-    const code = await runRender([scene, '-o', path.join(dir, 'out', 'a.png'), '--pfm', path.join(dir, 'a.pfm'), '--iterations', '5', '--backend', 'webgl2', '--width', '2', '--height', '1', '--seed', '3'],
+    const code = await runRender([scene, '-o', path.join(dir, 'out', 'a.png'), '--pfm', path.join(dir, 'a.pfm'), '--iterations', '5', '--backend', 'webgl2', '--width', '2', '--height', '1', '--seed', '3', '--root', dir],
       { out: (l) => stdout.push(l), err: (l) => stderr.push(l) });
     expect(stderr).toEqual([]);
     expect(code).toBe(0);
     expect(calls[0].desc).toEqual({ renderer: 'mip', width: 64 });
-    expect(calls[0].options).toMatchObject({ baseDir: dir, iterations: 5, backend: 'webgl2', width: 2, height: 1, seed: 3 });
+    expect(calls[0].options).toMatchObject({ baseDir: dir, iterations: 5, backend: 'webgl2', width: 2, height: 1, seed: 3, sceneRoot: dir });
     expect(stdout).toHaveLength(1);
     expect(JSON.parse(stdout[0])).toEqual({
       totalMs: 12.5, iterations: 5, msPerIteration: 0.19, setupMs: 40, width: 2, height: 1, backend: 'webgl2', device: 'SwiftShader',

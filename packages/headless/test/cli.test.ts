@@ -56,7 +56,7 @@ describe('vpt-render failures exit 1 with one line on stderr', () => {
   });
   it('a scene description with a bad field', async () => {
     fs.writeFileSync(path.join(dir, 'field.json'), JSON.stringify({ renderer: 'pathtracer' }));
-    await expectFailure([path.join(dir, 'field.json'), '-o', 'o.png'], /"renderer" must be one of mip, iso, eam, mcrt, got "pathtracer"/);
+    await expectFailure([path.join(dir, 'field.json'), '-o', 'o.png'], /renderer: must be one of "mip", "iso", "eam", "mcrt", got "pathtracer"/);
   });
   it('a volume file that does not exist', async () => {
     fs.writeFileSync(path.join(dir, 'vol.json'), JSON.stringify({ volume: { raw: 'missing.raw', dims: [2, 2, 2], type: 'uint8' } }));

@@ -4,6 +4,7 @@ import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { chromiumExecutable } from '../src/chromium.js';
+import { VptError } from '@vpt/core';
 import { openVptPage, PageError, type VptPageSession } from '../src/render.js';
 
 // The page module is built output (dist/page/vpt-page.js): this runs after `pnpm run build`
@@ -101,9 +102,12 @@ describe.skipIf(!pageBuilt || !fs.existsSync(chromiumExecutable()))('the headles
   it('reports page-side failures as PageError with the VptError code', async () => {
     const fail = (d: object, baseDir?: string) => session.render(d, { baseDir }).then(() => null, (e: PageError) => e);
     const sizeMismatch = await fail({ volume: { raw: 'data/small.raw', dims: [2, 2, 2], type: 'int16' } }, tmp);
-    expect(sizeMismatch).toBeInstanceOf(PageError);
+    // Checked in Node from the file's size before the page reads anything (issue 15).
+    expect(sizeMismatch).toBeInstanceOf(VptError);
     expect(sizeMismatch).toMatchObject({ code: 'load-failed', message: expect.stringMatching(/need 16 bytes, the file has 6/) });
-    expect(await fail({ volume: { raw: '/not/served.raw', dims: [1, 1, 1], type: 'uint8' } })).toMatchObject({ code: 'load-failed', message: expect.stringMatching(/HTTP 404/) });
+    const notServed = await fail({ volume: { raw: '/not/served.raw', dims: [1, 1, 1], type: 'uint8' } });
+    expect(notServed).toBeInstanceOf(PageError);
+    expect(notServed).toMatchObject({ code: 'load-failed', message: expect.stringMatching(/HTTP 404/) });
     expect(await fail({ backend: 'webgpu' })).toMatchObject({ code: 'no-backend' });
     await expect(session.render({ volume: { raw: 'data/missing.raw', dims: [1, 1, 1], type: 'uint8' } }, { baseDir: tmp })).rejects.toThrow(/Volume file not found/);
     expect(await session.page.evaluate(() => (window as unknown as { stubContexts: number }).stubContexts)).toBe(0);

@@ -21,7 +21,7 @@ describe.skipIf(!built || !fs.existsSync(chromiumExecutable()))('vpt-render end 
   const scene = path.join(dir, 'scene.json');
   fs.writeFileSync(scene, JSON.stringify({ width: 16, height: 12, renderer: 'mip', volume: { procedural: 'sphere', size: 16 }, environment: { type: 'constant', radiance: [0, 0, 0] } }));
 
-  it.each(['webgl2', 'webgpu'])('renders a MIP sphere on %s to PNG and PFM', async (backend) => {
+  it.each(['webgl2', 'webgpu'])('smoke: vpt-render renders a MIP sphere on %s to PNG and PFM (centre bright, corner empty)', async (backend) => {
     const png = path.join(dir, `${backend}.png`), pfm = path.join(dir, `${backend}.pfm`);
     const { stdout } = await run(process.execPath, [path.join(pkg, 'dist/cli/render.js'), scene, '-o', png, '--pfm', pfm, '--backend', backend, '--iterations', '2'], { timeout: 180_000 });
     const lines = stdout.trim().split('\n');
@@ -38,7 +38,7 @@ describe.skipIf(!built || !fs.existsSync(chromiumExecutable()))('vpt-render end 
     expect(ldr.rgba[centre]).toBeGreaterThan(ldr.rgba[0]);
   }, 240_000);
 
-  it('vpt-serve --check finds the headless page and everything it imports', async () => {
+  it('smoke: vpt-serve --check finds the headless page and everything it imports', async () => {
     const { stdout } = await run(process.execPath, [path.join(pkg, 'dist/cli/serve.js'), '--check', '--open', 'packages/headless/page/index.html'], { timeout: 30_000 });
     expect(stdout).toMatch(/^ok http:\/\/127\.0\.0\.1:\d+\/packages\/headless\/page\/index\.html/);
   });

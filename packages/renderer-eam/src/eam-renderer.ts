@@ -1,4 +1,4 @@
-import { BaseRenderer, COPY_ACCUMULATION_RENDER, RUNNING_MEAN_INTEGRATE, type Scene, type UniformField, type UniformValues } from '@vpt/core';
+import { BaseRenderer, COPY_ACCUMULATION_RENDER, RUNNING_MEAN_INTEGRATE, type ParamSpecs, type Scene, type UniformField, type UniformValues } from '@vpt/core';
 import * as glsl from './kernels/eam.glsl.js';
 import * as wgsl from './kernels/eam.wgsl.js';
 
@@ -11,6 +11,12 @@ export interface EamParams {
    */
   cutoff?: number;
 }
+
+/** EAM's parameters and their ranges (core's validateParams; steps also ≥ MIN_STEP_VOXELS voxels per scene). */
+export const EAM_PARAM_SPECS: ParamSpecs = {
+  stepSize: { kind: 'step' },
+  cutoff: { kind: 'number', min: 0, max: 1 },
+};
 
 /** Emission-absorption: HDR = emitted colour + transmittance x background, a = 1 - transmittance. */
 export class EamRenderer extends BaseRenderer<EamParams> {
@@ -28,7 +34,7 @@ export class EamRenderer extends BaseRenderer<EamParams> {
   ];
 
   constructor(params: EamParams = {}) {
-    super(params);
+    super(params, EAM_PARAM_SPECS, 'EAM');
   }
 
   paramValues(scene: Scene): UniformValues {

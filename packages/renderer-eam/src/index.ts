@@ -1,1 +1,1 @@
-export { EamRenderer, type EamParams } from './eam-renderer.js';
+export { EamRenderer, EAM_PARAM_SPECS, type EamParams } from './eam-renderer.js';

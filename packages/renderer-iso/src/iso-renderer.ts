@@ -4,7 +4,7 @@ import {
 } from '@vpt/core';
 import * as glsl from './kernels/iso.glsl.js';
 import * as wgsl from './kernels/iso.wgsl.js';
-import { MAX_ISO_LIGHTS, MAX_ISO_SURFACES, resolveIsoParams, type IsoParams, type ResolvedIsoParams } from './params.js';
+import { ISO_PARAM_SPECS, MAX_ISO_LIGHTS, MAX_ISO_SURFACES, resolveIsoParams, type IsoParams, type ResolvedIsoParams } from './params.js';
 
 export const ISO_PARAM_FIELDS: readonly UniformField[] = [
   { name: 'isoValues', type: 'vec4' },
@@ -53,7 +53,7 @@ export class IsoRenderer extends BaseRenderer<IsoParams> {
 
   constructor(params: IsoParams = {}) {
     const resolved = resolveIsoParams(params);
-    super(params);
+    super(params, ISO_PARAM_SPECS, 'ISO');
     this.resolved = resolved;
   }
 

@@ -1,4 +1,4 @@
-import { VptError } from '@vpt/core';
+import { VptError, type ParamSpecs } from '@vpt/core';
 
 /** One isosurface: where the normalized value crosses `value`, with its own colour and opacity. */
 export interface IsoSurface {
@@ -64,6 +64,20 @@ export interface ResolvedIsoParams {
 }
 
 const OUTPUTS: readonly IsoOutput[] = ['shaded', 'depth', 'normal'];
+
+/** ISO's parameters and their ranges (core's validateParams; resolveIsoParams adds the surface rules). */
+export const ISO_PARAM_SPECS: ParamSpecs = {
+  surfaces: { kind: 'custom' },
+  stepSize: { kind: 'step' },
+  specular: { kind: 'number', min: 0, max: 1 },
+  shininess: { kind: 'number', min: 0, exclusiveMin: true, max: 1e4 },
+  shadows: { kind: 'boolean' },
+  ambientOcclusion: { kind: 'boolean' },
+  aoRadius: { kind: 'number', min: 0, exclusiveMin: true, allowInfinity: true, unit: 'world units' },
+  lightAngularRadius: { kind: 'number', min: 0, max: Math.PI / 2, exclusiveMax: true, unit: 'radians' },
+  jitter: { kind: 'boolean' },
+  output: { kind: 'enum', values: OUTPUTS },
+};
 
 /** Defaults filled in and every value checked; throws VptError('invalid-scene') naming the parameter. */
 export function resolveIsoParams(p: IsoParams): ResolvedIsoParams {

@@ -72,7 +72,7 @@ describe('IsoRenderer parameters', () => {
     }
     const data = new Float32Array(4 * 2 * 3).fill(1);
     const latlong = r.auxiliaryTextures(scene({ environment: { type: 'latlong', width: 4, height: 2, data } }));
-    expect(latlong.map((a) => [a.create().width, a.create().height])).toEqual([[4, 2], [3, 1], [5, 2]]);
+    expect(latlong.map((a) => [a.create!().width, a.create!().height])).toEqual([[4, 2], [3, 1], [5, 2]]);
     // The key follows the image's identity, so a camera move rebuilds nothing.
     expect(r.auxiliaryTextures(scene({ environment: { type: 'latlong', width: 4, height: 2, data } }))[0].key).toBe(latlong[0].key);
     expect(r.auxiliaryTextures(scene({ environment: { type: 'latlong', width: 4, height: 2, data: data.slice() } }))[0].key).not.toBe(latlong[0].key);

@@ -1,5 +1,5 @@
 import {
-  BaseRenderer, buildEnvironmentSampling, COPY_ACCUMULATION_RENDER, GLSL_SLICE_ATLAS, sliceAtlasLayout, WGSL_SLICE_ATLAS, rasterizeTransferFunction, TF_RESOLUTION, UniformLayout,
+  BaseRenderer, validateParams, buildEnvironmentSampling, COPY_ACCUMULATION_RENDER, GLSL_SLICE_ATLAS, sliceAtlasLayout, WGSL_SLICE_ATLAS, rasterizeTransferFunction, TF_RESOLUTION, UniformLayout,
   type AuxiliaryTexture, type EnvironmentSamplingTables, type KernelSource, type LatLongEnvironment, type Scene,
   type UniformField, type UniformValues, type Volume, type VolumeBinding, volumeValueMapping,
 } from '@vpt/core';
@@ -8,7 +8,7 @@ import { generateKernel, INTEGRATE_HALVES } from './kernel-sources.js';
 import { buildMajorantGrid, gridCells, volumeCellRanges, type MajorantGrid } from './majorant-grid.js';
 import * as glslBuild from './kernels/majorant-build.glsl.js';
 import * as wgslBuild from './kernels/majorant-build.wgsl.js';
-import { resolveParams, type McrtParams, type ResolvedMcrtParams } from './params.js';
+import { MCRT_PARAM_SPECS, resolveParams, type McrtParams, type ResolvedMcrtParams } from './params.js';
 
 export const MCRT_PARAM_FIELDS: readonly UniformField[] = [
   { name: 'phaseG', type: 'f32' },
@@ -53,8 +53,9 @@ export class McrtRenderer extends BaseRenderer<McrtParams> {
   private constantMapMemo: { key: string; map: LatLongEnvironment } | null = null;
 
   constructor(params: McrtParams = {}) {
+    validateParams('MCRT', MCRT_PARAM_SPECS, params);
     const resolved = resolveParams(params);
-    super(params);
+    super(params, MCRT_PARAM_SPECS, 'MCRT');
     this.resolved = resolved;
   }
 

@@ -1,4 +1,4 @@
-import { VptError } from '@vpt/core';
+import { VptError, type ParamSpecs } from '@vpt/core';
 
 /** Shadow-ray (transmittance) estimator. Free flights always use delta tracking. */
 export type TrackingMode = 'delta' | 'ratio' | 'residual';
@@ -63,6 +63,21 @@ export const MCRT_DEFAULTS: ResolvedMcrtParams = {
 
 /** The largest |g| accepted: HG's peak (1+g)/(4π(1−g)²) stays far from float32 overflow. */
 export const MAX_ANISOTROPY = 0.9999;
+
+/** MCRT's parameters and their ranges (core's validateParams; resolveParams adds the rules across them). */
+export const MCRT_PARAM_SPECS: ParamSpecs = {
+  scattering: { kind: 'enum', values: ['single', 'multiple'] },
+  maxDepth: { kind: 'number', integer: true, min: -1, max: 1 << 20 },
+  rouletteDepth: { kind: 'number', integer: true, min: 1, max: 1 << 20 },
+  anisotropy: { kind: 'number', min: -MAX_ANISOTROPY, max: MAX_ANISOTROPY },
+  tracking: { kind: 'enum', values: ['delta', 'ratio', 'residual'] },
+  majorantGrid: { kind: 'boolean' },
+  majorantCellSize: { kind: 'number', integer: true, min: 1, max: 4096, unit: 'voxels' },
+  environmentSampling: { kind: 'enum', values: ['mis', 'light', 'phase'] },
+  misHeuristic: { kind: 'enum', values: ['power', 'balance'] },
+  debugOutput: { kind: 'enum', values: ['none', 'transmittance', 'fetches'] },
+  specialize: { kind: 'boolean' },
+};
 
 const oneOf = <T extends string>(name: string, v: unknown, allowed: readonly T[]) => {
   if (!allowed.includes(v as T)) throw new VptError('invalid-scene', `MCRT: ${name} must be one of ${allowed.join(', ')}, got ${JSON.stringify(v)}`);

@@ -104,17 +104,48 @@ describe('majorant grid', () => {
     }
   });
 
-  it('needs the one-voxel border: a naive bound from the cell’s own voxels is violated on the same data', () => {
-    // A single bright voxel next to empty cells: points of the neighbour cell blend it in.
+  it('is a true bound on smooth data whose cells have narrow value ranges (rising and falling ramps, both borders matter)', () => {
+    // On a smooth field a cell's own voxels span a narrow range, so points near either face,
+    // which blend in the neighbour cell's voxels, exceed it: a dropped upper or lower border
+    // shows at once. Ramps rising and falling along each axis, plus a gentle wave.
+    const dims: [number, number, number] = [19, 14, 17];
+    const tf: TransferFunction = { dimensions: '1d', points: [{ value: 0, color: [1, 1, 1], opacity: 0 }, { value: 1, color: [1, 1, 1], opacity: 1 }] };
+    for (const sign of [1, -1]) {
+      const data = new Float32Array(dims[0] * dims[1] * dims[2]);
+      for (let z = 0; z < dims[2]; z++) for (let y = 0; y < dims[1]; y++) for (let x = 0; x < dims[0]; x++) {
+        const ramp = (x / dims[0] + y / dims[1] + z / dims[2]) / 3;
+        data[x + dims[0] * (y + dims[1] * z)] = 0.5 + sign * (ramp - 0.5) * 0.9 + 0.04 * Math.sin(0.7 * x + 0.3 * y);
+      }
+      const volume = createVolume(dims, 'float32', data);
+      volume.valueRange = [0, 1];
+      for (const cellSize of [2, 3, 5]) {
+        const r = checkBounds(volume, tf, 20, cellSize, 150, 31 + cellSize);
+        expect(r.checked).toBeGreaterThan(5000);
+        expect(r.violations, `sign ${sign}, cell size ${cellSize}`).toBe(0);
+        // The naive bound fails here, so this data does exercise the borders.
+        expect(r.naiveViolations, `sign ${sign}, cell size ${cellSize}`).toBeGreaterThan(0);
+      }
+    }
+  });
+
+  // A single bright voxel next to empty cells: points of the neighbour cell blend it in.
+  // Voxel 7 sits at the top of cell 0 (voxels 0..7), so cell 1 needs it through its lower
+  // border; voxel 8 sits at the bottom of cell 1, so cell 0 needs it through its upper border.
+  it.each([
+    ['low side of the cell boundary (cell 1 needs its lower border)', 7],
+    ['high side of the cell boundary (cell 0 needs its upper border)', 8],
+  ])('needs the one-voxel border: bright voxel on the %s; a naive bound from the cell’s own voxels is violated', (_side, at) => {
     const dims: [number, number, number] = [16, 16, 16];
     const data = new Float32Array(16 ** 3);
-    data[7 + 16 * (7 + 16 * 7)] = 1;
+    data[at + 16 * (at + 16 * at)] = 1;
     const volume = createVolume(dims, 'float32', data);
     volume.valueRange = [0, 1];
     const tf: TransferFunction = { dimensions: '1d', points: [{ value: 0, color: [1, 1, 1], opacity: 0 }, { value: 1, color: [1, 1, 1], opacity: 1 }] };
     const r = checkBounds(volume, tf, 10, 8, 2000, 5);
     expect(r.violations).toBe(0);
     expect(r.naiveViolations).toBeGreaterThan(0);
+    // Every one of the 8 cells touches the bright voxel's trilinear footprint, so none may be empty.
+    for (let c = 0; c < 8; c++) expect(r.grid.data[4 * c], `cell ${c}`).toBeGreaterThan(0);
   });
 
   it('bounds a 2D (value × gradient) transfer function over every gradient row', () => {
@@ -124,10 +155,11 @@ describe('majorant grid', () => {
     const volume = createVolume(dims, 'float32', data);
     volume.valueRange = [0, 1];
     const tf = { dimensions: '2d', widgets: [{ type: 'gaussian', center: [0.5, 0.8], width: [0.05, 0.05], color: [1, 1, 1], opacity: 2 }] } as unknown as TransferFunction;
-    let texels: Float32Array;
-    try { texels = rasterizeTransferFunction(tf, TF_RESOLUTION); } catch { return; } // core without 2D TFs: nothing to check
+    const texels = rasterizeTransferFunction(tf, TF_RESOLUTION);
+    const rows = texels.length / (4 * TF_RESOLUTION);
+    expect(rows).toBeGreaterThan(1); // really a 2D table: every row must be bounded
     const r = checkBounds(volume, tf, 5, 4, 100, 2);
-    expect(texels.length).toBe(4 * TF_RESOLUTION * (texels.length / (4 * TF_RESOLUTION)));
+    expect(r.checked).toBe(27 * 100 * rows);
     expect(r.violations).toBe(0);
   });
 

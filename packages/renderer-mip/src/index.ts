@@ -1,1 +1,1 @@
-export { MipRenderer, defaultStepSize, type MipParams } from './mip-renderer.js';
+export { MipRenderer, MIP_PARAM_SPECS, defaultStepSize, type MipParams } from './mip-renderer.js';

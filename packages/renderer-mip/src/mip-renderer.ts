@@ -1,4 +1,4 @@
-import { BaseRenderer, type Scene, type UniformField, type UniformValues } from '@vpt/core';
+import { BaseRenderer, type ParamSpecs, type Scene, type UniformField, type UniformValues } from '@vpt/core';
 import * as glsl from './kernels/mip.glsl.js';
 import * as wgsl from './kernels/mip.wgsl.js';
 
@@ -6,6 +6,9 @@ export interface MipParams {
   /** Distance between samples along a ray, in world units (box longest side = 1). Default: half a voxel. */
   stepSize?: number;
 }
+
+/** MIP's parameters and their ranges (core's validateParams; steps also ≥ MIN_STEP_VOXELS voxels per scene). */
+export const MIP_PARAM_SPECS: ParamSpecs = { stepSize: { kind: 'step' } };
 
 /** Maximum intensity projection. HDR output: the maximum normalized value as grey, a = coverage. */
 export class MipRenderer extends BaseRenderer<MipParams> {
@@ -20,7 +23,7 @@ export class MipRenderer extends BaseRenderer<MipParams> {
   readonly paramFields: readonly UniformField[] = [{ name: 'stepSize', type: 'f32' }];
 
   constructor(params: MipParams = {}) {
-    super(params);
+    super(params, MIP_PARAM_SPECS, 'MIP');
   }
 
   paramValues(scene: Scene): UniformValues {

@@ -5,7 +5,7 @@
  * message that names the attribute. Nothing here touches the GPU.
  */
 import {
-  VptError, validateCamera, validateEnvironment, validateLights, validateTransferFunction,
+  MAX_DENSITY_SCALE, VptError, validateCamera, validateEnvironment, validateLights, validateTransferFunction,
   TRANSFER_FUNCTION_PRESETS as CORE_TF_PRESETS, transferFunctionPreset as coreTransferFunctionPreset,
   type Camera, type Environment, type Light, type TransferFunction, type TransferFunctionPresetName, type Volume,
 } from '@vpt/core';
@@ -151,7 +151,7 @@ export function parseNumber(attribute: string, v: unknown, { min = -Infinity, ma
   return n as number;
 }
 
-/** An attribute value that did not parse; the element reports `error` and keeps the last valid value. */
+/** An attribute value that did not parse; the element reports `vpt-error` and keeps the last valid value. */
 export class InvalidAttribute {
   constructor(readonly error: unknown) {}
 }
@@ -196,3 +196,81 @@ export function sameValue(a: unknown, b: unknown): boolean {
 }
 
 export const hasChanged = (value: unknown, old: unknown): boolean => !sameValue(value, old);
+
+/** The element's checked properties and the parser each one's value goes through. */
+export type CheckedProperty =
+  | 'transferFunction' | 'camera' | 'lights' | 'environment' | 'rendererParams' | 'backend' | 'toneMapper'
+  | 'exposure' | 'maxSamples' | 'targetError' | 'densityScale' | 'seed' | 'resolutionScale' | 'renderer';
+
+function propertyParsers(volume: Volume | undefined): Record<CheckedProperty, (v: unknown) => unknown> {
+  return {
+    transferFunction: (v) => parseTransferFunction(v, volume),
+    camera: parseCamera,
+    lights: parseLights,
+    environment: parseEnvironment,
+    rendererParams: parseRendererParams,
+    backend: parseBackend,
+    toneMapper: parseToneMapper,
+    exposure: (v) => parseNumber('exposure', v, { min: -64, max: 64 }),
+    maxSamples: (v) => parseNumber('max-samples', v, { min: 1, integer: true }),
+    targetError: (v) => parseNumber('target-error', v, { min: 0 }),
+    densityScale: (v) => parseNumber('density-scale', v, { min: 0, max: MAX_DENSITY_SCALE }),
+    seed: (v) => parseNumber('seed', v, { min: 0, max: 0xffffffff, integer: true }),
+    resolutionScale: (v) => parseNumber('resolution-scale', v, { min: 0.05, max: 4 }),
+    // The name is checked against the registry when it loads; here only its form.
+    renderer: (v) => (typeof v === 'string' && v.trim() !== '' ? v : bad('renderer', `must be a renderer name, got ${JSON.stringify(v)}`)),
+  };
+}
+
+export const CHECKED_PROPERTIES = Object.keys(propertyParsers(undefined)) as CheckedProperty[];
+
+/**
+ * Validates the element's properties as they change, keeping each one's last valid
+ * value: an invalid value (an InvalidAttribute from the converter, or a property set to
+ * something that does not parse) is reported and replaced by the last valid one, so the
+ * element keeps rendering what it rendered.
+ */
+export class AttributeValidator {
+  private readonly lastValid = new Map<CheckedProperty, unknown>();
+  private readonly defaults = new Map<CheckedProperty, unknown>();
+
+  /**
+   * Seed each property's "last valid value" with its default, for a first value that is
+   * invalid; a removed attribute (null) returns the property to this default.
+   */
+  constructor(defaults: Record<CheckedProperty, unknown>) {
+    for (const key of CHECKED_PROPERTIES) {
+      this.lastValid.set(key, defaults[key]);
+      this.defaults.set(key, defaults[key]);
+    }
+  }
+
+  /**
+   * Check the properties in `changed` on `target`. Strings set as properties become the
+   * parsed objects; objects (from an attribute's converter or a property) are only
+   * validated, so an attribute's own text is not rewritten. `volume` fits the 2D presets.
+   */
+  validate(target: Record<CheckedProperty, unknown>, changed: { has(key: string): boolean }, volume: Volume | undefined, report: (error: unknown) => void): void {
+    const parsers = propertyParsers(volume);
+    for (const key of CHECKED_PROPERTIES) {
+      if (!changed.has(key)) continue;
+      const value = target[key];
+      if (value === null || value === undefined) {
+        // removeAttribute(): back to the default (null itself for camera, lights… whose default is "automatic").
+        const fallback = this.defaults.get(key);
+        if (fallback !== value && fallback !== null && fallback !== undefined) target[key] = fallback;
+        this.lastValid.set(key, fallback);
+        continue;
+      }
+      try {
+        if (value instanceof InvalidAttribute) throw value.error;
+        const parsed = parsers[key](value);
+        if (typeof value === 'string' && typeof parsed === 'object') target[key] = parsed;
+        this.lastValid.set(key, typeof parsed === 'object' && typeof value !== 'string' ? value : parsed);
+      } catch (e) {
+        target[key] = this.lastValid.get(key);
+        report(e);
+      }
+    }
+  }
+}

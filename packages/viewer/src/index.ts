@@ -5,7 +5,7 @@
  */
 import { VptTfEditor } from './tf-editor-1d.js';
 import { VptTf2dEditor } from './tf-editor-2d.js';
-import { VptViewer } from './viewer-element.js';
+import { VptViewer, type ViewerChangeDetail, type ViewerConvergedDetail, type ViewerErrorDetail, type ViewerLoadDetail, type ViewerProgressDetail } from './viewer-element.js';
 
 export { VptViewer, VptTfEditor, VptTf2dEditor };
 export type { ViewerErrorDetail, ViewerProgressDetail, ViewerConvergedDetail, ViewerLoadDetail, ViewerChangeDetail, PanelName } from './viewer-element.js';
@@ -15,7 +15,8 @@ export { TRANSFER_FUNCTION_PRESETS, transferFunctionPreset } from './presets.js'
 export { parseTransferFunction, parseCamera, parseLights, parseEnvironment } from './attributes.js';
 export { valueHistogram, gradientSamples, valueGradientHistogram, type Histogram1D, type Histogram2D, type GradientSamples } from './histogram.js';
 export { encodePfm, encodeExr, encodePngBlob } from './export.js';
-export { fitCamera } from './camera-fit.js';
+export { fitCamera, anatomicalFrame, type AnatomicalFrame, type OrientedVolume } from './camera-fit.js';
+export { autoTransferFunction, asAlbedo, isoValueOf, keyLight, rendererLook, defaultRendererParams, type RendererLook, type Palette } from './defaults.js';
 export { volumeLoader } from './loading/volume-source.js';
 export type { VolumeSource, LoadOptions, LoadedVolumeLike } from './loading/types.js';
 
@@ -28,6 +29,18 @@ define('vpt-tf-editor', VptTfEditor);
 define('vpt-tf2d-editor', VptTf2dEditor);
 
 declare global {
+  /**
+   * The element's events, typed: `el.addEventListener('vpt-progress', (e) => e.detail.phase)`
+   * compiles in strict mode. The `vpt-` prefix keeps them apart from native events
+   * (`progress`, `error`, `load` and `change` exist on HTMLElement with other types).
+   */
+  interface HTMLElementEventMap {
+    'vpt-load': CustomEvent<ViewerLoadDetail>;
+    'vpt-progress': CustomEvent<ViewerProgressDetail>;
+    'vpt-converged': CustomEvent<ViewerConvergedDetail>;
+    'vpt-error': CustomEvent<ViewerErrorDetail>;
+    'vpt-change': CustomEvent<ViewerChangeDetail>;
+  }
   interface HTMLElementTagNameMap {
     'vpt-viewer': VptViewer;
     'vpt-tf-editor': VptTfEditor;

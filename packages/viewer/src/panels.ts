@@ -1,7 +1,7 @@
 /**
  * The viewer's side panels, as template functions over the element: transfer function,
  * lights and environment, renderer and quality, a live readout, and export. Each control
- * writes through `setInternal`, so the matching attribute is reflected and a `change`
+ * writes through `setInternal`, so the matching attribute is reflected and a `vpt-change`
  * event announces it. Native <details>, labelled controls and buttons keep it all
  * reachable and operable from the keyboard.
  */
@@ -61,7 +61,7 @@ function tfPanel(v: VptViewer) {
         ? html`<vpt-tf-editor .value=${tf} .histogram=${st.histogram} @input=${onTf} @change=${onTf}></vpt-tf-editor>`
         : html`<vpt-tf2d-editor .value=${tf} .samples=${v.gradientSamples()} @input=${onTf} @change=${onTf}></vpt-tf2d-editor>`}
       <div class="row"><label for=${densityId}>Density scale</label>
-        <input id=${densityId} type="number" min="0" step="1" .value=${String(v.densityScale)} @change=${(e: Event) => v.setInternal('densityScale', num(e))}></div>
+        <input id=${densityId} type="number" min="0" step="1" .value=${String(v.panelState.densityScale)} @change=${(e: Event) => v.setInternal('densityScale', num(e))}></div>
     </div>
   </details>`;
 }
@@ -131,7 +131,7 @@ function qualityPanel(v: VptViewer) {
       ${(entry?.params ?? []).map((spec) => paramControl(v, spec, params))}
       <div class="row"><label for=${ids.b}>Backend</label>
         <select id=${ids.b} .value=${v.backend} @change=${(e: Event) => v.setInternal('backend', str(e))}>
-          ${BACKEND_NAMES.map((b) => html`<option value=${b} ?selected=${b === v.backend}>${b === 'auto' ? 'auto (WebGPU if available)' : b === 'webgpu' ? 'WebGPU' : 'WebGL 2'}</option>`)}
+          ${BACKEND_NAMES.map((b) => html`<option value=${b} ?selected=${b === v.backend}>${b === 'auto' ? 'auto' : b === 'webgpu' ? 'WebGPU' : 'WebGL 2'}</option>`)}
         </select></div>
       <div class="row"><label for=${ids.x}>Exposure ${v.exposure.toFixed(1)} EV</label>
         <input id=${ids.x} type="range" min="-6" max="6" step="0.1" .value=${String(v.exposure)} @input=${(e: Event) => v.setInternal('exposure', num(e))}></div>

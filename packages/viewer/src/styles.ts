@@ -24,13 +24,22 @@ export const viewerStyles = css`
   button:hover { background: #3a3a42; }
   button:focus-visible, select:focus-visible, input:focus-visible, summary:focus-visible { outline: 2px solid var(--vpt-accent); outline-offset: 1px; }
   aside { flex: 0 0 var(--vpt-panel-width); max-width: 100%; overflow-y: auto; background: var(--vpt-panel-bg); border-left: 1px solid #333; box-sizing: border-box; }
-  @container (max-width: 560px) {
-    aside { position: absolute; right: 0; top: 0; bottom: 0; z-index: 2; box-shadow: -4px 0 12px #0008; }
-  }
+  /* Narrow (set by the element from its width): the panels are an overlay over the image, opened by the toolbar button. */
+  .layout.narrow aside { position: absolute; inset: 0; z-index: 2; border-left: 0; padding-top: 34px; flex: none; }
+  .toolbar { z-index: 3; }
+  .toolbar button { font-size: 12px; }
+  .stats-line { position: absolute; left: 0; bottom: 3px; margin: 0; padding: 2px 6px; max-width: calc(100% - 12px); box-sizing: border-box;
+    font-size: 11px; font-variant-numeric: tabular-nums; color: #e8e8e8; background: #000a; border-top-right-radius: 4px;
+    white-space: nowrap; overflow: hidden; text-overflow: ellipsis; pointer-events: none; }
+  .progress { position: absolute; left: 0; right: 0; bottom: 0; height: 3px; background: #fff2; pointer-events: none; }
+  .progress > div { height: 100%; background: var(--vpt-accent); transition: width 0.2s linear; }
+  .progress.indeterminate > div { opacity: 0.5; animation: vpt-pulse 1s ease-in-out infinite alternate; }
+  @keyframes vpt-pulse { from { opacity: 0.2; } to { opacity: 0.8; } }
+  @media (pointer: coarse) { button { min-height: 32px; min-width: 32px; } }
   details { border-bottom: 1px solid #2c2c32; }
   summary { cursor: pointer; padding: 7px 10px; font-weight: 600; user-select: none; }
   .panel { padding: 0 10px 10px; display: grid; grid-template-columns: minmax(0, 1fr); gap: 6px; }
-  .row { display: grid; grid-template-columns: 7.5rem minmax(0, 1fr); align-items: center; gap: 6px; }
+  .row { display: grid; grid-template-columns: 6.2rem minmax(0, 1fr); align-items: center; gap: 6px; }
   .row > span.value { font-variant-numeric: tabular-nums; }
   select, input[type='number'], input[type='text'] { background: #1c1c20; border: 1px solid #555; border-radius: 3px; padding: 2px 4px; min-width: 0; }
   input[type='range'] { min-width: 0; accent-color: var(--vpt-accent); }

@@ -4,8 +4,9 @@
  * Attributes (all reflected, all also properties): src, renderer, backend,
  * transfer-function, camera, lights, environment, exposure, tone-mapper, max-samples,
  * target-error, density-scale, seed, renderer-params, resolution-scale, panels, collapsed.
- * Events: load, progress (loading and refinement), converged, error, change (the user
- * edited something through the element: camera drag, panels).
+ * Events (typed through HTMLElementEventMap, prefixed so none collides with a native
+ * event): vpt-load, vpt-progress (loading and refinement), vpt-converged, vpt-error,
+ * vpt-change (the user edited something through the element: camera drag, panels).
  *
  * Async work (loading a renderer package, a volume, an environment image, opening a GPU
  * context) runs in the background and applies the *current* attribute values when it
@@ -15,11 +16,13 @@
 import { LitElement, html, nothing, type PropertyValues } from 'lit';
 import { isVptError, VptError, type Camera, type Environment, type Light, type Renderer, type Scene, type TransferFunction, type Volume } from '@vpt/core';
 import { defaultPostChain, type ToneMapOperator } from '@vpt/post';
+import { AdaptiveResolution } from './adaptive-resolution.js';
 import {
-  hasChanged, InvalidAttribute, isFittedPreset, jsonConverter, parseBackend, parseCamera, parseEnvironment, parseLights, parseNumber, parseRendererParams,
-  parseToneMapper, parseTransferFunction, sameValue, type BackendName, type EnvironmentValue,
+  AttributeValidator, hasChanged, isFittedPreset, jsonConverter, parseCamera, parseEnvironment, parseLights, parseRendererParams,
+  parseTransferFunction, sameValue, type BackendName, type CheckedProperty, type EnvironmentValue,
 } from './attributes.js';
 import { fitCamera } from './camera-fit.js';
+import { autoTransferFunction, defaultRendererParams, rendererLook } from './defaults.js';
 import { download, encodeExr, encodePfm, encodePngBlob } from './export.js';
 import { gradientSamples, valueHistogram, type GradientSamples, type Histogram1D } from './histogram.js';
 import { loadEnvironment } from './loading/environment-loader.js';
@@ -47,11 +50,9 @@ export type ViewerConvergedDetail = RefinementStats & { reason: 'max-samples' | 
 export interface ViewerLoadDetail { volume: Volume; format: string; dims: [number, number, number]; type: string }
 export interface ViewerChangeDetail { property: string }
 
-const DEFAULT_ENVIRONMENT: Environment = { type: 'constant', radiance: [1, 1, 1] };
-/** Interaction should leave time for at least one iteration per 60 Hz frame. */
-const INTERACTION_BUDGET_MS = 14;
-/** Full resolution returns this long after the last camera movement. */
-const SETTLE_MS = 180;
+
+/** Below a sidebar's width plus this much image, the panels become an overlay. */
+const NARROW_MIN_IMAGE_PX = 320;
 
 /** Fields whose change goes straight to the GPU scene/post/stopping (no async work). */
 const SYNC_FIELDS = ['transferFunction', 'camera', 'lights', 'densityScale', 'seed', 'exposure', 'toneMapper', 'maxSamples', 'targetError', 'resolutionScale'] as const;
@@ -77,9 +78,15 @@ export class VptViewer extends LitElement {
     resolutionScale: { attribute: 'resolution-scale', type: Number, reflect: true },
     panels: { type: String, reflect: true },
     collapsed: { type: Boolean, reflect: true },
+    hideProgress: { attribute: 'hide-progress', type: Boolean, reflect: true },
+    hideStats: { attribute: 'hide-stats', type: Boolean, reflect: true },
+    _loading: { state: true },
+    _narrow: { state: true },
+    _overlayOpen: { state: true },
     _error: { state: true },
     _status: { state: true },
     _lost: { state: true },
+    _lostGaveUp: { state: true },
     _stats: { state: true },
     _histogram: { state: true },
     _dragOver: { state: true },
@@ -103,8 +110,8 @@ export class VptViewer extends LitElement {
   declare maxSamples: number;
   /** Refinement stops when the estimated relative RMSE falls below this (0: off; needs a renderer with half accumulations). */
   declare targetError: number;
-  /** Extinction per world unit at opacity 1. */
-  declare densityScale: number;
+  /** Extinction per world unit at opacity 1; null: the renderer's default for the automatic transfer function. */
+  declare densityScale: number | null;
   declare seed: number;
   declare rendererParams: Record<string, unknown> | string | null;
   /** Render resolution relative to the element's device pixels (1 = full). */
@@ -113,10 +120,24 @@ export class VptViewer extends LitElement {
   declare panels: string;
   /** Panels sidebar closed (the toolbar button opens it). */
   declare collapsed: boolean;
+  /** No progress bar on the image. */
+  declare hideProgress: boolean;
+  /** No stats line on the image. */
+  declare hideStats: boolean;
+  /** Loading progress in [0, 1] (null: not loading; NaN: size unknown). */
+  declare private _loading: number | null;
+  /** The element is too narrow for panels beside the image: they become an overlay. */
+  declare private _narrow: boolean;
+  declare private _overlayOpen: boolean;
 
   declare private _error: ViewerErrorDetail | null;
   declare private _status: string;
   declare private _lost: boolean;
+  /** The lost context did not come back within contextRestoreTimeoutMs: `error` fired, Retry offered. */
+  declare private _lostGaveUp: boolean;
+  /** How long a lost GPU context may take to be restored before `error` (code `context-lost`) fires. */
+  contextRestoreTimeoutMs = 10_000;
+  private lostTimer: ReturnType<typeof setTimeout> | undefined;
   declare private _stats: RefinementStats | null;
   declare private _histogram: Histogram1D | null;
   declare private _dragOver: boolean;
@@ -127,21 +148,22 @@ export class VptViewer extends LitElement {
   private rendererKey = '';
   private volume: LoadedVolumeLike | null = null;
   private loadedSource: VolumeSource | null = null;
-  private resolvedEnvironment: Environment = DEFAULT_ENVIRONMENT;
+  /** The environment attribute's value once loaded (a URL becomes a lat-long image); null: the renderer's default. */
+  private resolvedEnvironment: Environment | null = null;
+  /** The transfer function fitted to the loaded volume's histogram (used while transfer-function is unset). */
+  private autoTransferFunction: TransferFunction | null = null;
+  /** The camera the default lights are placed for (the framing camera when the volume loaded). */
+  private lightCamera: Camera | null = null;
   private readonly orbit: OrbitCamera;
   private cameraIsAuto = true;
   private homeCamera: Camera | null = null;
   private internalChange = new Set<string>();
-  private cssSize = { width: 0, height: 0 };
-  private interacting = false;
-  private settleTimer: ReturnType<typeof setTimeout> | null = null;
-  private resizeObserver: ResizeObserver | null = null;
-  private dprQuery: MediaQueryList | null = null;
+  private readonly resolution = new AdaptiveResolution(this, () => this.applySize());
+  private readonly validator: AttributeValidator;
   private pending = new Set<Promise<unknown>>();
   private tokens = { session: 0, renderer: 0, src: 0, environment: 0 };
   private srcAbort: AbortController | null = null;
   private postKey = '';
-  private lastValid = new Map<string, unknown>();
   private connected = false;
 
   constructor() {
@@ -157,26 +179,29 @@ export class VptViewer extends LitElement {
     this.toneMapper = 'aces';
     this.maxSamples = 1024;
     this.targetError = 0;
-    this.densityScale = 10;
+    this.densityScale = null;
     this.seed = 1;
     this.rendererParams = null;
     this.resolutionScale = 1;
     this.panels = 'all';
     this.collapsed = false;
+    this.hideProgress = false;
+    this.hideStats = false;
+    this._loading = null;
+    this._narrow = false;
+    this._overlayOpen = false;
     this._error = null;
     this._status = '';
     this._lost = false;
+    this._lostGaveUp = false;
     this._stats = null;
     this._histogram = null;
     this._dragOver = false;
-    // Seed the "last valid value" of each checked property with its default, for a first value that is invalid.
-    for (const key of ['transferFunction', 'camera', 'lights', 'environment', 'rendererParams', 'backend', 'toneMapper', 'exposure', 'maxSamples', 'targetError', 'densityScale', 'seed', 'resolutionScale'] as const) {
-      this.lastValid.set(key, this[key]);
-    }
+    this.validator = new AttributeValidator(this as unknown as Record<CheckedProperty, unknown>);
     this.orbit = new OrbitCamera({
       start: () => { /* a click without movement must not drop resolution: see change */ },
       change: (camera) => this.onUserCamera(camera),
-      end: () => this.scheduleSettle(),
+      end: () => this.resolution.interactionEnded(),
     });
   }
 
@@ -239,80 +264,35 @@ export class VptViewer extends LitElement {
   override connectedCallback(): void {
     super.connectedCallback();
     this.connected = true;
-    this.watchDevicePixelRatio();
     // Re-attached after a removal: the GPU context was released, open a new one.
-    if (this.hasUpdated) {
-      const view = this.renderRoot.querySelector('.view');
-      if (view) this.resizeObserver?.observe(view);
-      if (!this.session) this.track(this.openSession());
-    }
+    if (this.hasUpdated) this.observeHostWidth();
+    if (this.hasUpdated && !this.session) this.track(this.openSession());
   }
 
   override disconnectedCallback(): void {
     super.disconnectedCallback();
     this.connected = false;
-    this.resizeObserver?.disconnect();
-    this.dprQuery?.removeEventListener('change', this.onDprChange);
+    this.hostObserver?.disconnect();
     this.srcAbort?.abort();
     this.tokens.session++;
     this.session?.dispose();
     this.session = null;
+    this.stopLostTimer();
   }
 
   protected override firstUpdated(): void {
-    const view = this.renderRoot.querySelector('.view') as HTMLElement;
-    this.resizeObserver = new ResizeObserver((entries) => {
-      const e = entries[0];
-      this.cssSize = { width: e.contentRect.width, height: e.contentRect.height };
-      this.applySize();
-    });
-    try {
-      // The device-pixel box changes with the DPR too (zoom, moving to another screen): a callback then.
-      this.resizeObserver.observe(view, { box: 'device-pixel-content-box' });
-    } catch {
-      this.resizeObserver.observe(view);
-    }
-    const r = view.getBoundingClientRect();
-    this.cssSize = { width: r.width, height: r.height };
+    this.resolution.observe(this.renderRoot.querySelector('.view') as HTMLElement);
+    this.observeHostWidth();
   }
 
   protected override willUpdate(changed: PropertyValues<this>): void {
-    // Normalize and validate what changed; an invalid value is reported and the last valid one restored.
-    const self = this as unknown as Record<string, unknown>;
-    const check = (key: string, parse: (v: unknown) => unknown) => {
-      if (!changed.has(key as keyof VptViewer)) return;
-      const value = self[key];
-      if (value === null || value === undefined) { this.lastValid.set(key, value); return; }
-      try {
-        if (value instanceof InvalidAttribute) throw value.error;
-        const parsed = parse(value);
-        // Strings set as properties become objects; objects (from an attribute or a
-        // property) are only validated, so an attribute's own text is not rewritten.
-        if (typeof value === 'string' && typeof parsed === 'object') self[key] = parsed;
-        this.lastValid.set(key, typeof parsed === 'object' && typeof value !== 'string' ? value : parsed);
-      } catch (e) {
-        self[key] = this.lastValid.get(key);
-        this.fail(e, 'attribute');
-      }
-    };
     if (changed.has('transferFunction') && !this.keepFittedPreset) {
       // A fitted preset's name is kept until a volume is loaded, then refitted to each new one.
       this.fittedPreset = isFittedPreset(this.transferFunction) ? (this.transferFunction as string).trim() : null;
     }
     this.keepFittedPreset = false;
-    check('transferFunction', (v) => parseTransferFunction(v, this.volume ?? undefined));
-    check('camera', parseCamera);
-    check('lights', parseLights);
-    check('environment', parseEnvironment);
-    check('rendererParams', parseRendererParams);
-    check('backend', parseBackend);
-    check('toneMapper', parseToneMapper);
-    check('exposure', (v) => parseNumber('exposure', v, { min: -64, max: 64 }));
-    check('maxSamples', (v) => parseNumber('max-samples', v, { min: 1, integer: true }));
-    check('targetError', (v) => parseNumber('target-error', v, { min: 0 }));
-    check('densityScale', (v) => parseNumber('density-scale', v, { min: 0 }));
-    check('seed', (v) => parseNumber('seed', v, { min: 0, max: 0xffffffff, integer: true }));
-    check('resolutionScale', (v) => parseNumber('resolution-scale', v, { min: 0.05, max: 4 }));
+    // Normalize and validate what changed; an invalid value is reported and the last valid one restored.
+    this.validator.validate(this as unknown as Record<CheckedProperty, unknown>, changed as Map<PropertyKey, unknown>, this.volume ?? undefined, (e) => this.fail(e, 'attribute'));
     if (changed.has('camera') && !this.internalChange.has('camera')) {
       // A camera given from outside becomes "home" for resetCamera().
       this.cameraIsAuto = this.camera === null;
@@ -343,19 +323,27 @@ export class VptViewer extends LitElement {
 
   protected override render() {
     const panels = this.panelSet;
-    const showAside = panels.size > 0 && !this.collapsed;
+    // Wide: a sidebar beside the image (the collapsed attribute closes it). Narrow: an
+    // overlay over the image, closed at rest and opened by the toolbar button.
+    const showAside = panels.size > 0 && (this._narrow ? this._overlayOpen : !this.collapsed);
+    const toggle = () => {
+      if (this._narrow) this._overlayOpen = !this._overlayOpen;
+      else this.collapsed = !this.collapsed;
+    };
     return html`
-      <div class="layout">
+      <div class="layout ${this._narrow ? 'narrow' : ''}" @keydown=${this.onLayoutKey}>
         <div class="view" part="view"
           @dragover=${this.onDragOver} @dragleave=${() => { this._dragOver = false; }} @drop=${this.onDrop}>
           ${this._status ? html`<p class="overlay status" part="status" role="status">${this._status}</p>` : nothing}
+          ${this.renderHud()}
           ${panels.size ? html`<div class="toolbar">
+            ${panels.has('export') && this.volume && !showAside ? html`<button type="button" part="screenshot" title="Download the image as PNG" @click=${() => this.downloadScreenshot()}>PNG</button>` : nothing}
             <button type="button" part="panels-toggle" aria-expanded=${showAside ? 'true' : 'false'} aria-controls="panels"
-              @click=${() => { this.collapsed = !this.collapsed; }}>${showAside ? 'Hide panels' : 'Panels'}</button>
+              @click=${toggle}>${showAside ? (this._narrow ? 'Close' : 'Hide panels') : (this._narrow ? 'Settings' : 'Panels')}</button>
           </div>` : nothing}
           ${this._lost ? html`<div class="overlay lost" role="alert">
-            <p>The GPU context was lost. Restoring…</p>
-            <div><button type="button" @click=${() => this.track(this.openSession())}>Restart renderer</button></div>
+            <p>${this._lostGaveUp ? 'The GPU context was lost and was not restored.' : 'The GPU context was lost. Restoring…'}</p>
+            <div><button type="button" @click=${() => this.track(this.openSession())}>${this._lostGaveUp ? 'Retry' : 'Restart renderer'}</button></div>
           </div>` : nothing}
           ${this._error ? html`<div class="overlay error" part="error" role="alert">
             <p>${this._error.message}</p>
@@ -367,6 +355,68 @@ export class VptViewer extends LitElement {
       </div>`;
   }
 
+  /** The thin progress bar (loading bytes; refining toward max-samples or target-error) and the stats line. */
+  private renderHud() {
+    const bar = this.hideProgress ? null : this.progressFraction();
+    const stats = this.hideStats ? null : this.statsLine();
+    return html`
+      ${stats ? html`<p class="stats-line" part="stats" aria-live="off">${stats}</p>` : nothing}
+      ${bar === null ? nothing : html`<div class="progress ${Number.isNaN(bar) ? 'indeterminate' : ''}" part="progress" role="progressbar"
+        aria-label=${this._loading !== null ? 'Loading' : 'Refining'} aria-valuemin="0" aria-valuemax="100" aria-valuenow=${Number.isNaN(bar) ? nothing : Math.round(100 * bar)}>
+        <div style="width: ${Number.isNaN(bar) ? 100 : (100 * bar).toFixed(2)}%"></div></div>`}`;
+  }
+
+  /**
+   * Progress in [0, 1], NaN when unknown, null when there is nothing to show. Refining:
+   * samples / max-samples, or with a target error (target / error)² when larger — the
+   * error of a mean falls as 1/√n, so that is the fraction of the samples needed.
+   */
+  private progressFraction(): number | null {
+    if (this._loading !== null) return this._loading;
+    const s = this._stats;
+    if (!s || !this.volume || this.converged) return null;
+    let p = s.samples / Math.max(1, this.maxSamples);
+    if (this.targetError > 0 && s.error !== null && s.error > 0) p = Math.max(p, (this.targetError / s.error) ** 2);
+    return Math.min(1, p);
+  }
+
+  private statsLine(): string | null {
+    const s = this._stats;
+    if (!s || !this.volume) return null;
+    const parts = [`${s.samples} / ${this.maxSamples} spp`, `${s.msPerIteration < 10 ? s.msPerIteration.toFixed(1) : Math.round(s.msPerIteration)} ms/it`];
+    if (s.error !== null) parts.push(`err ${(100 * s.error).toFixed(1)}%${this.targetError > 0 ? ` → ${(100 * this.targetError).toFixed(1)}%` : ''}`);
+    parts.push(`${s.width}×${s.height}`);
+    if (this.converged) parts.push('done');
+    return parts.join(' · ');
+  }
+
+  /** Escape closes the panel overlay (narrow layout) and returns focus to the image. */
+  private onLayoutKey = (e: KeyboardEvent): void => {
+    if (e.key !== 'Escape' || !this._narrow || !this._overlayOpen) return;
+    this._overlayOpen = false;
+    this.canvas?.focus();
+  };
+
+  /** Narrow: panels and the image cannot share the element (a sidebar plus at least 320 px of image). */
+  private hostObserver: ResizeObserver | null = null;
+  private observeHostWidth(): void {
+    this.hostObserver ??= new ResizeObserver(() => this.updateNarrow());
+    this.hostObserver.observe(this);
+    this.updateNarrow();
+  }
+
+  private updateNarrow(): void {
+    const width = this.getBoundingClientRect().width;
+    const w = getComputedStyle(this).getPropertyValue('--vpt-panel-width').trim();
+    const rootFont = parseFloat(getComputedStyle(document.documentElement).fontSize) || 16;
+    const panelPx = (w.endsWith('px') ? parseFloat(w) : parseFloat(w) * rootFont) || 304;
+    const narrow = width > 0 && width < panelPx + NARROW_MIN_IMAGE_PX;
+    if (narrow !== this._narrow) {
+      this._narrow = narrow;
+      this._overlayOpen = false;
+    }
+  }
+
   // ——— state the panels read and write ———
 
   /** @internal for the panels */
@@ -374,8 +424,9 @@ export class VptViewer extends LitElement {
     return {
       transferFunction: this.currentTransferFunction(),
       histogram: this._histogram,
-      lights: (this.lights as Light[] | null) ?? [],
-      environment: this.environment as EnvironmentValue | null,
+      lights: this.effectiveLights(),
+      environment: (this.environment as EnvironmentValue | null) ?? rendererLook(this.renderer).environment,
+      densityScale: this.effectiveDensityScale(),
       stats: this._stats,
       backendKind: this.session?.ctx.backend.kind ?? null,
       volume: this.volume,
@@ -388,7 +439,7 @@ export class VptViewer extends LitElement {
     if (sameValue(this[property], value)) return;
     (this as Record<string, unknown>)[property] = value;
     if (property === 'camera') this.internalChange.add('camera');
-    this.dispatchEvent(new CustomEvent<ViewerChangeDetail>('change', { detail: { property } }));
+    this.dispatchEvent(new CustomEvent<ViewerChangeDetail>('vpt-change', { detail: { property } }));
   }
 
   private gradientCache: { volume: Volume; samples: GradientSamples } | null = null;
@@ -434,11 +485,17 @@ export class VptViewer extends LitElement {
     return ctx;
   }
 
+  /**
+   * The renderer the attributes ask for now. A load that lands after the attributes moved
+   * on (a renderer package is a dynamic import: slow under load) is returned but not
+   * remembered, so a stale renderer never replaces the current one's key.
+   */
   private async loadRendererInstance(): Promise<Renderer> {
     const key = this.desiredRendererKey();
     if (this.rendererInstance && key === this.rendererKey) return this.rendererInstance;
     try {
-      const r = await createRenderer(this.renderer, (this.rendererParams as Record<string, unknown> | null) ?? {});
+      const r = await createRenderer(this.renderer, this.effectiveRendererParams());
+      if (key !== this.desiredRendererKey()) return r;
       this.rendererInstance = r;
       this.rendererKey = key;
       this.failedRendererKey = '';
@@ -456,6 +513,7 @@ export class VptViewer extends LitElement {
       if (token !== this.tokens.renderer || !this.session) return;
       if (this.session.ctx.renderer !== r) this.session.setRenderer(r);
       this.clearError('renderer');
+      this.applySync(); // the defaults of unset attributes depend on the renderer
       this.requestUpdate();
     } catch (e) {
       if (token === this.tokens.renderer) this.fail(e, 'renderer');
@@ -475,7 +533,7 @@ export class VptViewer extends LitElement {
   private failedRendererKey = '';
 
   private desiredRendererKey(): string {
-    return `${this.renderer}|${JSON.stringify(this.rendererParams ?? {})}`;
+    return `${this.renderer}|${JSON.stringify(this.effectiveRendererParams())}`;
   }
 
   private async openSessionNow(token: number): Promise<void> {
@@ -483,12 +541,19 @@ export class VptViewer extends LitElement {
     this.session?.dispose();
     this.session = null;
     this._lost = false;
+    this.stopLostTimer();
     await this.updateComplete;
     const view = this.renderRoot.querySelector('.view') as HTMLElement | null;
     if (!view || token !== this.tokens.session) return;
     let renderer: Renderer;
     try {
-      renderer = await this.loadRendererInstance();
+      // Until the renderer that landed is the one the attributes still ask for: the context
+      // must not start (and report samples) with a renderer the page already replaced.
+      for (;;) {
+        const key = this.desiredRendererKey();
+        renderer = await this.loadRendererInstance();
+        if (token !== this.tokens.session || key === this.desiredRendererKey()) break;
+      }
     } catch (e) {
       if (token !== this.tokens.session) return;
       this.fail(e, 'renderer');
@@ -501,16 +566,16 @@ export class VptViewer extends LitElement {
     canvas.setAttribute('part', 'canvas');
     canvas.setAttribute('role', 'img');
     canvas.setAttribute('aria-label', 'Volume rendering. Drag or use the arrow keys to orbit; right-drag or Shift+arrows to pan; wheel, +/- to zoom.');
-    const { width, height } = this.renderSize(Infinity);
+    const { width, height } = this.resolution.renderSize(Infinity);
     let session: RenderSession;
     try {
       session = await RenderSession.create(
         { canvas, backend: this.backend, renderer, post: this.makePost(), width, height },
         {
           progress: (s) => this.onProgress(s),
-          converged: (s) => this.dispatchEvent(new CustomEvent<ViewerConvergedDetail>('converged', { detail: s })),
-          lost: () => { this._lost = true; },
-          restored: () => { this._lost = false; },
+          converged: (s) => this.dispatchEvent(new CustomEvent<ViewerConvergedDetail>('vpt-converged', { detail: s })),
+          lost: () => { this._lost = true; this.startLostTimer(); },
+          restored: () => { this._lost = false; this.stopLostTimer(); this.clearError('context'); },
         },
       );
     } catch (e) {
@@ -540,6 +605,7 @@ export class VptViewer extends LitElement {
     const abort = new AbortController();
     this.srcAbort = abort;
     this._status = 'Loading…';
+    this._loading = NaN;
     try {
       const limits = this.session ? { maxTextureDimension3D: this.session.ctx.backend.limits.maxTextureDimension3D } : undefined;
       const volume = await loadVolumeSource(source, {
@@ -548,14 +614,17 @@ export class VptViewer extends LitElement {
         onProgress: (p) => {
           if (token !== this.tokens.src) return;
           this._status = p.total ? `Loading… ${Math.round((100 * p.loaded) / p.total)}%` : `Loading… ${(p.loaded / 1048576).toFixed(1)} MB`;
-          this.dispatchEvent(new CustomEvent<ViewerProgressDetail>('progress', { detail: { phase: 'loading', ...p } }));
+          this._loading = p.total ? Math.min(1, p.loaded / p.total) : NaN;
+          this.dispatchEvent(new CustomEvent<ViewerProgressDetail>('vpt-progress', { detail: { phase: 'loading', ...p } }));
         },
       });
       if (token !== this.tokens.src) return;
       this.volume = volume;
       this.loadedSource = source;
       this._status = '';
+      this._loading = null;
       this._histogram = valueHistogram(volume);
+      this.autoTransferFunction = autoTransferFunction(volume);
       if (this.fittedPreset) {
         const name = this.fittedPreset;
         this.transferFunction = parseTransferFunction(name, volume);
@@ -569,12 +638,16 @@ export class VptViewer extends LitElement {
         this.cameraIsAuto = true;
         this.orbit.set(fit);
       }
+      this.lightCamera = (this.camera as Camera | null) ?? null;
       this.clearError('src');
       this.applySync();
-      this.dispatchEvent(new CustomEvent<ViewerLoadDetail>('load', { detail: { volume, format: volume.format, dims: [...volume.dims], type: volume.type } }));
+      // Renderer parameters that follow the data (iso's default surface) may have changed.
+      if (this.session && this.desiredRendererKey() !== this.rendererKey) this.track(this.switchRenderer());
+      this.dispatchEvent(new CustomEvent<ViewerLoadDetail>('vpt-load', { detail: { volume, format: volume.format, dims: [...volume.dims], type: volume.type } }));
     } catch (e) {
       if (token !== this.tokens.src) return;
       this._status = '';
+      this._loading = null;
       this.fail(e, 'src');
     }
   }
@@ -582,7 +655,7 @@ export class VptViewer extends LitElement {
   private async resolveEnvironment(): Promise<void> {
     const token = ++this.tokens.environment;
     const env = this.environment as EnvironmentValue | null;
-    if (!env) this.resolvedEnvironment = DEFAULT_ENVIRONMENT;
+    if (!env) this.resolvedEnvironment = null;
     else if (env.type !== 'url') this.resolvedEnvironment = env;
     else {
       try {
@@ -602,7 +675,27 @@ export class VptViewer extends LitElement {
 
   private currentTransferFunction(): TransferFunction {
     const tf = this.transferFunction;
-    return tf && typeof tf === 'object' ? tf : transferFunctionPreset(DEFAULT_TRANSFER_FUNCTION)!;
+    if (tf && typeof tf === 'object') return tf;
+    if (this.autoTransferFunction) return rendererLook(this.renderer).transferFunction(this.autoTransferFunction);
+    return transferFunctionPreset(DEFAULT_TRANSFER_FUNCTION)!;
+  }
+
+  // ——— defaults for unset attributes (defaults.ts) ———
+
+  private effectiveDensityScale(): number {
+    return this.densityScale ?? rendererLook(this.renderer).densityScale;
+  }
+
+  private effectiveLights(): Light[] {
+    if (Array.isArray(this.lights)) return this.lights;
+    const camera = this.lightCamera ?? (this.camera && typeof this.camera === 'object' ? this.camera : null);
+    return camera ? rendererLook(this.renderer).lights(camera) : [];
+  }
+
+  private effectiveRendererParams(): Record<string, unknown> {
+    const p = this.rendererParams;
+    if (p && typeof p === 'object') return p;
+    return defaultRendererParams(this.renderer, this.autoTransferFunction);
   }
 
   private makePost() {
@@ -621,9 +714,9 @@ export class VptViewer extends LitElement {
       volume: this.volume,
       transferFunction: this.currentTransferFunction(),
       camera,
-      lights: Array.isArray(this.lights) ? this.lights : [],
-      environment: this.resolvedEnvironment,
-      densityScale: this.densityScale,
+      lights: this.effectiveLights(),
+      environment: this.resolvedEnvironment ?? rendererLook(this.renderer).environment,
+      densityScale: this.effectiveDensityScale(),
       seed: this.seed,
     };
   }
@@ -655,77 +748,27 @@ export class VptViewer extends LitElement {
     }
   }
 
-  /** Device-pixel size of the render: element size × DPR × resolution-scale (× the interaction factor while moving). */
-  private renderSize(maxDim: number): { width: number; height: number } {
-    const dpr = globalThis.devicePixelRatio || 1;
-    const base = { width: this.cssSize.width * dpr, height: this.cssSize.height * dpr };
-    let k = Number.isFinite(this.resolutionScale) ? this.resolutionScale : 1;
-    if (this.interacting) k *= this.interactionFactor();
-    const fit = (px: number) => Math.max(1, Math.min(maxDim, Math.round(px * k)));
-    return { width: fit(base.width || 1), height: fit(base.height || 1) };
-  }
-
-
-  /**
-   * While the camera moves, shrink the image so one iteration fits the frame budget:
-   * the cost scales with the pixel count, so the side scales with the square root.
-   */
-  private interactionFactor(): number {
-    const ms = this.fullResMs;
-    if (!(ms > 0)) return 0.5;
-    return Math.min(1, Math.max(0.25, Math.sqrt(INTERACTION_BUDGET_MS / ms)));
-  }
-
-  private fullResMs = 0;
-
   private applySize(): void {
     const s = this.session;
     if (!s) return;
     const max = s.ctx.backend.limits.maxTextureDimension2D;
-    const { width, height } = this.renderSize(max);
+    const { width, height } = this.resolution.renderSize(max);
     try {
       s.setSize(width, height);
     } catch (e) { this.fail(e, 'context'); }
   }
 
   private onProgress(s: RefinementStats): void {
-    if (!this.interacting) this.fullResMs = s.msPerIteration;
+    this.resolution.recordIteration(s.msPerIteration);
     this._stats = s;
-    this.dispatchEvent(new CustomEvent<ViewerProgressDetail>('progress', { detail: { phase: 'refining', ...s } }));
+    this.dispatchEvent(new CustomEvent<ViewerProgressDetail>('vpt-progress', { detail: { phase: 'refining', ...s } }));
   }
 
   private onUserCamera(camera: Camera): void {
-    if (!this.interacting) {
-      this.interacting = true;
-      this.applySize();
-    }
-    if (this.settleTimer) clearTimeout(this.settleTimer);
-    this.settleTimer = null;
+    this.resolution.interactionStarted();
     this.cameraIsAuto = false;
     this.setInternal('camera', camera);
   }
-
-  private scheduleSettle(): void {
-    if (!this.interacting) return;
-    if (this.settleTimer) clearTimeout(this.settleTimer);
-    this.settleTimer = setTimeout(() => {
-      this.settleTimer = null;
-      this.interacting = false;
-      this.applySize();
-    }, SETTLE_MS);
-  }
-
-  private watchDevicePixelRatio(): void {
-    this.dprQuery?.removeEventListener('change', this.onDprChange);
-    if (typeof matchMedia !== 'function') return;
-    this.dprQuery = matchMedia(`(resolution: ${globalThis.devicePixelRatio || 1}dppx)`);
-    this.dprQuery.addEventListener('change', this.onDprChange);
-  }
-
-  private readonly onDprChange = (): void => {
-    this.watchDevicePixelRatio();
-    this.applySize();
-  };
 
   // ——— errors ———
 
@@ -733,7 +776,24 @@ export class VptViewer extends LitElement {
     const error = isVptError(e) ? e : new VptError(source === 'src' ? 'load-failed' : 'invalid-scene', (e as Error)?.message ?? String(e), { cause: e });
     const detail: ViewerErrorDetail = { error, code: error.code, message: error.message, source };
     this._error = detail;
-    this.dispatchEvent(new CustomEvent<ViewerErrorDetail>('error', { detail }));
+    this.dispatchEvent(new CustomEvent<ViewerErrorDetail>('vpt-error', { detail }));
+  }
+
+  /** A loss that is never restored must not leave "Restoring…" up forever: report it and offer Retry. */
+  private startLostTimer(): void {
+    this.stopLostTimer();
+    this.lostTimer = setTimeout(() => {
+      this.lostTimer = undefined;
+      if (!this._lost) return;
+      this._lostGaveUp = true;
+      this.fail(new VptError('context-lost', `The GPU context was lost and not restored within ${this.contextRestoreTimeoutMs} ms; press Retry to start a new one`), 'context');
+    }, this.contextRestoreTimeoutMs);
+  }
+
+  private stopLostTimer(): void {
+    if (this.lostTimer !== undefined) clearTimeout(this.lostTimer);
+    this.lostTimer = undefined;
+    this._lostGaveUp = false;
   }
 
   private clearError(source: ViewerErrorDetail['source']): void {

@@ -51,6 +51,19 @@ describe('attribute parsing', () => {
     expectError(() => parseNumber('exposure', NaN), /exposure: must be a number/);
   });
 
+  it('numbers above their maximum are refused (seed > 2^32 − 1, exposure 100, resolution-scale 5), the maximum itself is not', () => {
+    // The ranges <vpt-viewer> gives these attributes (tests/viewer-element.test.ts sets them on the element).
+    const seed = { min: 0, max: 0xffffffff, integer: true };
+    expect(parseNumber('seed', '4294967295', seed)).toBe(0xffffffff);
+    expectError(() => parseNumber('seed', '4294967296', seed), /seed: must be an integer in \[0, 4294967295\], got "4294967296"/);
+    expect(parseNumber('exposure', 64, { min: -64, max: 64 })).toBe(64);
+    expectError(() => parseNumber('exposure', '100', { min: -64, max: 64 }), /exposure: must be a number in \[-64, 64\]/);
+    expectError(() => parseNumber('exposure', Infinity, { min: -64, max: 64 }), /exposure: must be a number/);
+    expect(parseNumber('resolution-scale', '4', { min: 0.05, max: 4 })).toBe(4);
+    expectError(() => parseNumber('resolution-scale', '5', { min: 0.05, max: 4 }), /resolution-scale: must be a number in \[0.05, 4\]/);
+    expectError(() => parseNumber('resolution-scale', '0.01', { min: 0.05, max: 4 }), /resolution-scale: must be a number in \[0.05, 4\]/);
+  });
+
   it('the attribute converter parses on the way in and marks what does not parse', () => {
     const c = jsonConverter(parseTransferFunction);
     expect(c.fromAttribute('hot')).toEqual(TRANSFER_FUNCTION_PRESETS.hot);

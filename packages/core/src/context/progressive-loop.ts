@@ -29,6 +29,8 @@ export class ProgressiveLoop {
   constructor(private readonly hooks: ProgressiveLoopHooks) {}
 
   get running(): boolean { return this.active && !this.paused; }
+  /** The iteration count the running loop stops at (Infinity when unlimited). */
+  get maxIterations(): number { return this.options.maxIterations ?? Infinity; }
 
   start(options: LoopOptions = {}): void {
     this.options = options;

@@ -12,6 +12,7 @@ import { BYTES_PER_TEXEL } from '../gpu/backend.js';
 import type { VolumeSampling } from '../gpu/volume-format.js';
 import { commonChunks, PASS_CHUNKS, type CommonChunkOptions } from '../shaders/common.js';
 import { preprocess } from '../shaders/preprocess.js';
+import { validateSceneForDevice } from '../validation/device.js';
 import { SCENE_UNIFORM_FIELDS, sceneUniformValues } from '../shaders/scene-uniforms.js';
 import { sliceAtlasLayout } from '../shaders/slice-atlas.js';
 import { UniformLayout } from '../uniforms/layout.js';
@@ -200,6 +201,7 @@ export class RenderContext {
   setScene(input: Scene): void {
     this.assertAlive();
     validateScene(input);
+    validateSceneForDevice(input, this.renderer, this.backend.limits);
     const scene = this.fitScene(input);
     this.input = input;
     const [nx, ny, nz] = scene.volume.dims;
@@ -378,15 +380,45 @@ export class RenderContext {
     this.presentedVersion = this.imageVersion;
   }
 
-  /** The HDR render output (linear RGB, a = coverage), RGBA float, top row first. */
+  /**
+   * Resolves once the current image has at least `n` samples per pixel, rendered and
+   * post-processed (so readHDR/readLDR see them). While `start()` refines in the
+   * background this waits for it; otherwise it runs the missing iterations itself, so it
+   * never waits for work nobody will do. Rejects when the context is disposed, and when
+   * the running loop's `maxIterations` stops short of `n`.
+   */
+  async whenSamples(n: number): Promise<RenderStats> {
+    this.assertAlive();
+    if (!Number.isInteger(n) || n < 1) throw new VptError('invalid-scene', `whenSamples needs a positive integer, got ${n}`);
+    if (!this.scene) throw new VptError('invalid-scene', 'whenSamples: there is no scene to render; call setScene() first');
+    const limit = this.loop.maxIterations;
+    if (this.loop.running && limit < n) throw new VptError('invalid-scene', `whenSamples(${n}): the progressive loop stops at maxIterations = ${limit}`);
+    for (;;) {
+      this.assertAlive();
+      if (this.iteration >= n) break;
+      // Not refining in the background (never started, stopped): do the rest here.
+      if (!this.loop.running && !this.backend.isLost) this.iterate(n - this.iteration);
+      else await new Promise((resolve) => setTimeout(resolve, 10));
+    }
+    this.renderImage();
+    await this.backend.finish();
+    return this.stats;
+  }
+
+  /**
+   * The HDR render output (linear RGB, a = coverage), RGBA float, top row first. Right
+   * after setScene()/updateScene() it waits for the first sample (see whenSamples).
+   */
   async readHDR(): Promise<Float32Array> {
+    if (this.scene && this.iteration === 0) await this.whenSamples(1);
     this.renderImage();
     if (!this.hdr) throw new VptError('invalid-scene', 'Nothing rendered yet: call setScene() and iterate first');
     return (await this.backend.readTexture(this.hdr.textures[0])) as Float32Array;
   }
 
-  /** The LDR image after the post chain, RGBA8, top row first. */
+  /** The LDR image after the post chain, RGBA8, top row first (waits for the first sample like readHDR). */
   async readLDR(): Promise<Uint8Array> {
+    if (this.scene && this.iteration === 0) await this.whenSamples(1);
     this.renderImage();
     if (!this.hdr) throw new VptError('invalid-scene', 'Nothing rendered yet: call setScene() and iterate first');
     return (await this.backend.readTexture(this.ldrTexture())) as Uint8Array;

@@ -1,4 +1,5 @@
 import { VptError } from '../errors.js';
+import { FLOAT32_MAX, MAX_CAMERA_COORDINATE } from '../validation/limits.js';
 
 export type Vec3 = [number, number, number];
 
@@ -27,9 +28,13 @@ export function validateCamera(c: Camera): void {
   if (!c || typeof c !== 'object') bad('missing');
   for (const key of ['position', 'target', 'up'] as const) {
     const v = c[key];
-    if (!Array.isArray(v) || v.length !== 3 || !v.every(Number.isFinite)) bad(`${key} must be three finite numbers, got ${JSON.stringify(v)}`);
+    if (!Array.isArray(v) || v.length !== 3 || !v.every((x) => typeof x === 'number' && Number.isFinite(x))) bad(`${key} must be three finite numbers, got ${JSON.stringify(v)}`);
+    // A coordinate finite in float64 but not in float32 would reach the kernels as Infinity;
+    // far positions lose the box to float32 rounding (MAX_CAMERA_COORDINATE).
+    const limit = key === 'up' ? FLOAT32_MAX : MAX_CAMERA_COORDINATE;
+    v.forEach((x, i) => { if (Math.abs(x) > limit) bad(`${key}[${i}] = ${x} exceeds the limit ±${limit}${key === 'up' ? ' (float32 range)' : ' (MAX_CAMERA_COORDINATE: the box has a longest side of 1; float32 ray arithmetic loses it further out)'}`); });
   }
-  if (!Number.isFinite(c.fovy) || c.fovy <= 0 || c.fovy >= Math.PI) bad(`fovy must be in (0, π) radians, got ${c.fovy}`);
+  if (typeof c.fovy !== 'number' || !Number.isFinite(c.fovy) || c.fovy <= 0 || c.fovy >= Math.PI) bad(`fovy must be in (0, π) radians, got ${c.fovy}`);
   const f = sub(c.target, c.position);
   if (Math.hypot(...f) < 1e-9) bad('position and target coincide');
   const side = cross(normalize(f), c.up);

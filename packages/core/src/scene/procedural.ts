@@ -1,5 +1,6 @@
 import { VptError } from '../errors.js';
 import { createVolume, type Volume } from './volume.js';
+import { MAX_PROCEDURAL_SIZE } from '../validation/limits.js';
 
 export type ProceduralKind = 'sphere' | 'cube' | 'ramp' | 'blob';
 
@@ -12,6 +13,8 @@ export type ProceduralKind = 'sphere' | 'cube' | 'ramp' | 'blob';
  */
 export function createProceduralVolume(kind: ProceduralKind, size = 32): Volume {
   if (!Number.isInteger(size) || size < 2) throw new VptError('invalid-scene', `Procedural volume size must be an integer >= 2, got ${size}`);
+  if (size > MAX_PROCEDURAL_SIZE) throw new VptError('limit-exceeded', `Procedural volume size ${size} exceeds the limit of ${MAX_PROCEDURAL_SIZE} voxels per side (MAX_PROCEDURAL_SIZE)`);
+  if (!['sphere', 'cube', 'ramp', 'blob'].includes(kind)) throw new VptError('invalid-scene', `Unknown procedural volume "${kind as string}" (sphere, cube, ramp, blob)`);
   const data = new Float32Array(size * size * size);
   for (let z = 0; z < size; z++) {
     for (let y = 0; y < size; y++) {

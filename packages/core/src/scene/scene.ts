@@ -3,6 +3,8 @@ import { validateCamera, type Camera } from './camera.js';
 import { validateEnvironment, validateLights, type Environment, type Light } from './lights.js';
 import { validateTransferFunction, type TransferFunction } from './transfer-function.js';
 import { validateVolume, type Volume } from './volume.js';
+import { checkNumber, checkObject } from '../validation/checks.js';
+import { MAX_DENSITY_SCALE, MAX_EXTINCTION } from '../validation/limits.js';
 
 /** Everything that determines the image. Changing any part resets accumulation. */
 export interface Scene {
@@ -25,12 +27,20 @@ export interface Scene {
 
 export function validateScene(s: Scene): void {
   if (!s || typeof s !== 'object') throw new VptError('invalid-scene', 'Scene: missing');
+  checkObject('Scene', s);
   validateVolume(s.volume);
   validateTransferFunction(s.transferFunction);
   validateCamera(s.camera);
   validateLights(s.lights ?? []);
   validateEnvironment(s.environment);
-  if (!Number.isFinite(s.densityScale) || s.densityScale < 0) throw new VptError('invalid-scene', `Scene: densityScale must be finite and non-negative, got ${s.densityScale}`);
-  if (!Number.isInteger(s.seed) || s.seed < 0 || s.seed > 0xffffffff) throw new VptError('invalid-scene', `Scene: seed must be an integer in [0, 2^32), got ${s.seed}`);
+  // Bounded so extinction (densityScale × opacity) and the free-flight steps stay finite in float32.
+  checkNumber('Scene: densityScale', s.densityScale, { min: 0, max: MAX_DENSITY_SCALE, unit: 'extinction per world unit; MAX_DENSITY_SCALE' });
+  const maxOpacity = s.transferFunction.dimensions === '2d'
+    ? Math.max(...s.transferFunction.widgets.map((w) => w.opacity))
+    : Math.max(...s.transferFunction.points.map((p) => p.opacity));
+  if (s.densityScale * maxOpacity > MAX_EXTINCTION) {
+    throw new VptError('invalid-scene', `Scene: densityScale ${s.densityScale} × the transfer function's largest opacity ${maxOpacity} = ${s.densityScale * maxOpacity} exceeds the limit ${MAX_EXTINCTION} (MAX_EXTINCTION: shorter free flights fall below float32 resolution)`);
+  }
+  if (typeof s.seed !== 'number' || !Number.isInteger(s.seed) || s.seed < 0 || s.seed > 0xffffffff) throw new VptError('invalid-scene', `Scene: seed must be an integer in [0, 2^32), got ${s.seed}`);
   if (s.sampling !== undefined && s.sampling !== 'fast' && s.sampling !== 'exact') throw new VptError('invalid-scene', `Scene: sampling must be 'fast' or 'exact', got ${JSON.stringify(s.sampling)}`);
 }

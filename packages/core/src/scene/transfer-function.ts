@@ -1,4 +1,5 @@
 import { VptError } from '../errors.js';
+import { FLOAT32_MAX, MAX_OPACITY, MAX_RADIANCE } from '../validation/limits.js';
 
 /** A 1D control point: value in [0, 1] → linear RGB colour and opacity (extinction per unit density scale). */
 export interface TransferPoint {
@@ -84,21 +85,27 @@ export function transferFunctionSize(tf: TransferFunction, resolution = TF_RESOL
 
 type Bad = (m: string) => never;
 
+/** Most control points (1D) or widgets (2D) of a transfer function: rasterizing stays cheap. */
+export const MAX_TF_POINTS = 4096;
+
 const describe = (x: unknown) => (typeof x === 'number' ? String(x) : JSON.stringify(x) ?? String(x));
 
 function checkColor(c: unknown, where: string, bad: Bad): void {
   if (!Array.isArray(c) || c.length !== 3 || !c.every((x) => typeof x === 'number' && Number.isFinite(x) && x >= 0)) {
     bad(`${where}: color must be three finite non-negative numbers, got ${describe(c)}`);
   }
+  // Emission (EAM) multiplies the colour like a radiance: the same float32 bound.
+  if ((c as number[]).some((x) => x > MAX_RADIANCE)) bad(`${where}: color ${describe(c)} exceeds the limit ${MAX_RADIANCE} (MAX_RADIANCE keeps float32 kernel arithmetic finite)`);
 }
 
 function checkOpacity(o: unknown, where: string, bad: Bad): void {
   if (typeof o !== 'number' || !Number.isFinite(o)) bad(`${where}: opacity must be a finite number, got ${describe(o)}`);
   if ((o as number) < 0) bad(`${where}: opacity must be non-negative, got ${describe(o)}`);
+  if ((o as number) > MAX_OPACITY) bad(`${where}: opacity ${describe(o)} exceeds the limit ${MAX_OPACITY} (MAX_OPACITY: extinction densityScale × opacity must stay finite in float32)`);
 }
 
 function checkPair(p: unknown, where: string, name: string, bad: Bad, rule?: (x: number) => boolean, ruleText?: string): void {
-  if (!Array.isArray(p) || p.length !== 2 || !p.every((x) => typeof x === 'number' && Number.isFinite(x))) {
+  if (!Array.isArray(p) || p.length !== 2 || !p.every((x) => typeof x === 'number' && Number.isFinite(x) && Math.abs(x) <= FLOAT32_MAX)) {
     bad(`${where}: ${name} must be two finite numbers [value, gradient], got ${describe(p)}`);
   }
   if (rule && !(p as number[]).every(rule)) bad(`${where}: ${name} must be ${ruleText}, got ${describe(p)}`);
@@ -128,15 +135,17 @@ export function validateTransferFunction(tf: TransferFunction): void {
   if (!tf || typeof tf !== 'object') bad(`must be an object, got ${describe(tf)}`);
   if (tf.dimensions === '2d') {
     if (!Array.isArray(tf.widgets) || tf.widgets.length === 0) bad('a 2D transfer function needs at least one widget');
-    if (tf.gradientMax !== undefined && !(typeof tf.gradientMax === 'number' && Number.isFinite(tf.gradientMax) && tf.gradientMax > 0)) {
+    if (tf.gradientMax !== undefined && !(typeof tf.gradientMax === 'number' && Number.isFinite(tf.gradientMax) && tf.gradientMax > 0 && tf.gradientMax <= FLOAT32_MAX)) {
       bad(`gradientMax must be a positive finite number (or left out), got ${describe(tf.gradientMax)}`);
     }
+    if (tf.widgets.length > MAX_TF_POINTS) bad(`${tf.widgets.length} widgets exceed the limit of ${MAX_TF_POINTS}`);
     tf.widgets.forEach((w, i) => validateWidget(w, i, bad));
     return;
   }
   if (tf.dimensions !== '1d') bad(`unknown dimensions ${describe((tf as { dimensions?: unknown }).dimensions)} (supported: "1d", "2d")`);
   if (!Array.isArray(tf.points) || tf.points.length === 0) bad('needs at least one control point');
   let last = -Infinity;
+  if (tf.points.length > MAX_TF_POINTS) bad(`${tf.points.length} control points exceed the limit of ${MAX_TF_POINTS}`);
   tf.points.forEach((p, i) => {
     if (!p || typeof p !== 'object') bad(`point ${i}: must be an object, got ${describe(p)}`);
     if (typeof p.value !== 'number' || !Number.isFinite(p.value) || p.value < 0 || p.value > 1) bad(`point ${i}: value must be in [0, 1], got ${describe(p.value)}`);

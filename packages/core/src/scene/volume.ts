@@ -1,4 +1,5 @@
 import { VptError } from '../errors.js';
+import { FLOAT32_MAX } from '../validation/limits.js';
 
 export type VoxelType = 'uint8' | 'uint16' | 'int16' | 'float32';
 export type VoxelArray = Uint8Array | Uint16Array | Int16Array | Float32Array;
@@ -38,10 +39,10 @@ export function validateVolume(v: Volume): void {
   if (!v || typeof v !== 'object') bad('missing');
   if (!Array.isArray(v.dims) || v.dims.length !== 3) bad('dims must be [NX, NY, NZ]');
   for (const d of v.dims) {
-    if (!Number.isInteger(d) || d < 1) bad(`every dimension must be a positive integer, got [${v.dims.join(', ')}]`);
+    if (typeof d !== 'number' || !Number.isInteger(d) || d < 1) bad(`every dimension must be a positive integer, got [${v.dims.join(', ')}]`);
   }
-  if (!Array.isArray(v.spacing) || v.spacing.length !== 3 || v.spacing.some((s) => !Number.isFinite(s) || s <= 0)) {
-    bad(`spacing must be three positive finite numbers, got [${v.spacing}]`);
+  if (!Array.isArray(v.spacing) || v.spacing.length !== 3 || v.spacing.some((s) => typeof s !== 'number' || !Number.isFinite(s) || s <= 0 || s > FLOAT32_MAX)) {
+    bad(`spacing must be three positive finite (float32) numbers, got [${v.spacing}]`);
   }
   if (!(v.type in ARRAY_OF)) bad(`unknown voxel type "${v.type}"`);
   if (!(v.data instanceof ARRAY_OF[v.type])) bad(`data must be a ${ARRAY_OF[v.type].name} for type ${v.type}`);
@@ -65,7 +66,14 @@ export function normalizationRange(v: Volume): [number, number] {
     if (x > hi) hi = x;
   }
   if (!Number.isFinite(lo)) return [0, 1];
-  return hi > lo ? [lo, hi] : [lo, lo + 1];
+  if (hi > lo) return [lo, hi];
+  // A constant volume has no range of its own. It is mapped as if its range reached 0:
+  // a positive constant c normalizes to 1 ([0, c]: a homogeneous medium at the TF's top),
+  // zero and negative constants to 0 ([c, 0] / [0, 1]: empty). So a constant float32 or
+  // int16 volume renders as the box it fills instead of nothing.
+  if (lo > 0) return [0, lo];
+  if (lo < 0) return [lo, 0];
+  return [0, 1];
 }
 
 /**

@@ -2,8 +2,10 @@ import { parseArgs } from 'node:util';
 import { BACKEND_NAMES, type BackendName } from '../scene-description.js';
 
 export const RENDER_USAGE = `Usage: vpt-render scene.json -o out.png [--pfm out.pfm] [--backend auto|webgl2|webgpu]
-                  [--iterations N] [--width W --height H] [--seed N] [--keep-alpha] [--verbose]
+                  [--iterations N] [--width W --height H] [--seed N] [--root DIR] [--keep-alpha] [--verbose]
 Renders a scene description in headless Chromium and prints the timings as one JSON line.
+Only the files the scene names are served to the page. --root DIR refuses any scene path
+outside DIR (and URLs): use it when rendering scene files you do not trust.
 The PNG is opaque (its RGB already shows the background) unless --keep-alpha writes the
 coverage as alpha; the PFM holds the linear HDR RGB.`;
 
@@ -16,6 +18,7 @@ export interface RenderArgs {
   width?: number;
   height?: number;
   seed?: number;
+  root?: string;
   keepAlpha: boolean;
   verbose: boolean;
   help: boolean;
@@ -44,6 +47,7 @@ export function parseRenderArgs(argv: string[]): RenderArgs {
       width: { type: 'string' },
       height: { type: 'string' },
       seed: { type: 'string' },
+      root: { type: 'string' },
       'keep-alpha': { type: 'boolean', default: false },
       verbose: { type: 'boolean', short: 'v', default: false },
       help: { type: 'boolean', short: 'h', default: false },
@@ -64,6 +68,7 @@ export function parseRenderArgs(argv: string[]): RenderArgs {
     width: integer('width', values.width, 1),
     height: integer('height', values.height, 1),
     seed: integer('seed', values.seed, 0),
+    root: values.root,
     keepAlpha: values['keep-alpha'],
     verbose: values.verbose,
     help: false,

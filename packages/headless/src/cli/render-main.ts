@@ -32,6 +32,7 @@ export async function runRender(argv: string[], io: CliIO = processIO): Promise<
       width: args.width,
       height: args.height,
       seed: args.seed,
+      sceneRoot: args.root,
       onConsole: args.verbose ? (line) => io.err(line) : undefined,
     });
     if (args.output !== undefined) {

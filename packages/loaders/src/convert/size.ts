@@ -48,7 +48,7 @@ export function checkFits(dims: readonly number[], bytesPerVoxel: number, ctx: L
 /** The file holds fewer bytes than the header announces. */
 export function checkAvailable(have: number, need: number, ctx: LoadContext, what = 'voxel data'): void {
   if (have < need) {
-    throw new LoaderError('truncated', `${ctx.name}: the ${what} needs ${need} bytes but only ${have} are there; the file is cut short, or its header gives the wrong dims or type`);
+    throw new LoaderError('truncated', `${ctx.name}: the ${what} needs ${need} bytes but only ${Math.max(0, have)} are there; the file is cut short, or its header gives the wrong dims or type`);
   }
 }
 

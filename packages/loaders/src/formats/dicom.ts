@@ -43,6 +43,8 @@ interface Slice {
   photometric: string;
   scaling: Scaling;
   pixelSpacing?: [number, number];
+  /** The PixelSpacing text when present but not two positive finite numbers (reported, then 1 used). */
+  badPixelSpacing?: string;
   ipp?: number[];
   iop?: number[];
   series: string;
@@ -75,6 +77,14 @@ function reader(ds: DataSet) {
     num: (tag: string, i?: number) => safe(() => ds.floatString(tag, i)),
     int: (tag: string) => safe(() => ds.intString(tag)),
   };
+}
+
+/** The raw text of a present element (undefined when absent), for messages. */
+function presentText(ds: DataSet, tag: string): string | undefined {
+  const el = (ds as unknown as { elements: Record<string, unknown> }).elements?.[tag];
+  if (!el) return undefined;
+  const text = safe(() => ds.string(tag));
+  return typeof text === 'string' ? text : '';
 }
 
 function numbersOf(ds: DataSet, tag: string, n: number): number[] | undefined {
@@ -169,6 +179,7 @@ function parseFile(file: DicomFile, parser: Parser, inflateRaw: (b: Uint8Array) 
     photometric: (r.str('x00280004') ?? '').trim(),
     scaling: { slope, inter },
     pixelSpacing: ps && ps[0] > 0 && ps[1] > 0 ? [ps[0], ps[1]] : undefined,
+    badPixelSpacing: ps && ps[0] > 0 && ps[1] > 0 ? undefined : presentText(ds, 'x00280030'),
     ipp: numbersOf(ds, 'x00200032', 3),
     iop: numbersOf(ds, 'x00200037', 6),
     series: (r.str('x0020000e') ?? '').trim(),
@@ -309,7 +320,8 @@ export async function decodeDicom(files: DicomFile[], ctx: LoadContext): Promise
     ctx.progress('convert', k + 1, frames.length);
   });
 
-  if (!first.pixelSpacing) ctx.warnings.push('no PixelSpacing; 1 used in-plane');
+  if (first.badPixelSpacing !== undefined) ctx.warnings.push(`invalid PixelSpacing "${first.badPixelSpacing}" (must be two positive numbers); 1 used in-plane`);
+  else if (!first.pixelSpacing) ctx.warnings.push('no PixelSpacing; 1 used in-plane');
   const [rowSpacing, colSpacing] = first.pixelSpacing ?? [1, 1];
   const spacing: [number, number, number] = [colSpacing, rowSpacing, geometry.zSpacing];
   const meta: Record<string, unknown> = {

@@ -152,7 +152,8 @@ export async function decodeNifti(input: Uint8Array, ctx: LoadContext): Promise<
     // Inflate in steps: once the header is out it is checked, so a lying or oversize file
     // stops before the rest is inflated, and the output is allocated once at its exact size.
     bytes = await gunzip(input, ctx, {
-      maxOutput: ctx.downsample ? Number.MAX_SAFE_INTEGER : 2 * ctx.limits.maxBytes + (1 << 20),
+      // Peak inflated memory: at most limits.maxBytes of voxel data plus the header and extensions (≤ 1 MiB).
+      maxOutput: ctx.downsample ? Number.MAX_SAFE_INTEGER : ctx.limits.maxBytes + (1 << 20),
       headBytes: MIN_OFFSET,
       onHead: (head) => {
         if (!hasNiftiMagic(head) && head.length >= HEADER && !isNifti2(head)) {
@@ -170,6 +171,8 @@ export async function decodeNifti(input: Uint8Array, ctx: LoadContext): Promise<
   const scaling = scalingOf(header, ctx);
   const integral = integralScaling(scaling);
   checkAvailable(bytes.length - offset, count * SOURCE_BYTES[source], ctx);
+  const extra = bytes.length - offset - count * SOURCE_BYTES[source] * Math.max(1, plan.extraVolumes);
+  if (bytes === input && extra > 0) ctx.warnings.push(`${extra} bytes past the data the header declares are ignored; check the dims and datatype`);
   earlyFits(plan, ctx);
   ctx.progress('convert', 0, count);
   const samples = readSamples(bytes, offset, count, source, header.littleEndian);

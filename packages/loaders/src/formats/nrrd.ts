@@ -73,6 +73,11 @@ export function parseNrrdHeader(bytes: Uint8Array, ctx: LoadContext): NrrdHeader
   return { fields, keyValues, dataStart };
 }
 
+/** Data past the size the header declares is ignored, with a warning (it may mean wrong dims). */
+function warnExtra(extra: number, ctx: LoadContext): void {
+  if (extra > 0) ctx.warnings.push(`${extra} bytes past the data the header declares are ignored; check the sizes and type`);
+}
+
 function numbers(text: string | undefined): number[] {
   return text === undefined ? [] : text.trim().split(/\s+/).map(Number);
 }
@@ -170,17 +175,20 @@ export async function decodeNrrd(bytes: Uint8Array, ctx: LoadContext, resolve?: 
       data = data.subarray(data.length - dataBytes);
     } else {
       checkAvailable(data.length - byteSkip, dataBytes, ctx);
+      warnExtra(data.length - byteSkip - dataBytes, ctx);
       data = data.subarray(byteSkip);
     }
     samples = readSamples(data, 0, count, source, endian === 'little');
   } else if (encoding === 'gzip' || encoding === 'gz') {
     const inflated = await gunzip(data, ctx, {
-      maxOutput: ctx.downsample ? Number.MAX_SAFE_INTEGER : Math.max(dataBytes, 2 * ctx.limits.maxBytes),
+      // Peak inflated memory is bounded by limits.maxBytes (plus the skipped bytes), whatever the stream holds.
+      maxOutput: ctx.downsample ? Number.MAX_SAFE_INTEGER : ctx.limits.maxBytes + Math.max(0, byteSkip),
       // The header already says the size: allocate once, and stop at it.
       headBytes: 0,
       onHead: () => (byteSkip > 0 ? byteSkip : 0) + dataBytes,
     });
     const from = byteSkip === -1 ? inflated.length - dataBytes : byteSkip;
+    if (byteSkip !== -1) warnExtra(inflated.length - Math.max(0, from) - dataBytes, ctx);
     checkAvailable(inflated.length - Math.max(0, from), dataBytes, ctx);
     samples = readSamples(inflated, Math.max(0, from), count, source, endian === 'little');
   } else if (encoding === 'ascii' || encoding === 'text' || encoding === 'txt') {
@@ -212,11 +220,22 @@ export async function decodeNrrd(bytes: Uint8Array, ctx: LoadContext, resolve?: 
     if (spatial.length < 3) cols[2] = cross(cols[0], cols[1]); // a 2D image: its normal, unit length
     const cos = directionCosines(cols);
     if (!cos) throw new LoaderError('bad-header', `${ctx.name}: NRRD space directions has a zero-length axis`);
+    // Collinear (or coplanar) axes span no volume: index → world is not invertible.
+    const o = cos.orientation;
+    const det = o[0] * (o[4] * o[8] - o[5] * o[7]) - o[1] * (o[3] * o[8] - o[5] * o[6]) + o[2] * (o[3] * o[7] - o[4] * o[6]);
+    if (!(Math.abs(det) > 1e-6)) throw new LoaderError('bad-header', `${ctx.name}: NRRD space directions "${fields['space directions'].slice(0, 80)}" are collinear or coplanar (the axes span no volume)`);
     orientation = cos.orientation;
     spacing = cos.lengths.map((l, i) => (i < spatial.length ? l : 1)) as [number, number, number];
   } else if (fields.spacings) {
     const s = numbers(fields.spacings);
-    spacing = [0, 1, 2].map((i) => (i < axes.length && Number.isFinite(Math.abs(s[axes[i]])) && Math.abs(s[axes[i]]) > 0 ? Math.abs(s[axes[i]]) : 1)) as [number, number, number];
+    spacing = [0, 1, 2].map((i) => {
+      if (i >= axes.length) return 1;
+      const v = Math.abs(s[axes[i]]);
+      if (Number.isFinite(v) && v > 0) return v;
+      // As NIfTI does for pixdim: say so rather than silently use 1.
+      if (dims[i] > 1 || s[axes[i]] !== undefined) ctx.warnings.push(`NRRD spacings[${axes[i]}] = ${s[axes[i]]} is not a positive finite size; 1 used`);
+      return 1;
+    }) as [number, number, number];
   }
   if (fields['space origin']) {
     const o = vectors(fields['space origin'], ctx, 'space origin')[0];

@@ -5,6 +5,7 @@ import type { LoadedVolume, RawOptions } from '../types.js';
 import { finishVolume } from '../convert/finish.js';
 import { checkDims, checkFits, SOURCE_BYTES } from '../convert/size.js';
 import { OUTPUT_BYTES, readSamples, toVoxelArray } from '../convert/voxels.js';
+import { orientationFromAxisCodes } from './orientation.js';
 
 const RAW_TYPES: readonly VoxelType[] = ['uint8', 'uint16', 'int16', 'float32'];
 
@@ -20,12 +21,16 @@ export function checkRawOptions(raw: Partial<RawOptions> | undefined, ctx: LoadC
   if (!raw || typeof raw !== 'object') {
     throw new LoaderError('bad-header', `${ctx.name}: raw data has no header; pass options.raw = { dims: [NX, NY, NZ], type } or a JSON sidecar next to it`);
   }
+  // Numbers only: "dims": ["256", …] is a mistake to report, not to convert silently.
+  if (Array.isArray(raw.dims) && raw.dims.some((d) => typeof d !== 'number')) {
+    throw new LoaderError('bad-header', `${ctx.name}: ${source} dims ${JSON.stringify(raw.dims)} must be numbers, not strings`);
+  }
   const dims = Array.isArray(raw.dims) ? raw.dims.map(Number) : [];
   checkDims(dims, ctx, source);
   if (!RAW_TYPES.includes(raw.type as VoxelType)) {
     throw new LoaderError('bad-header', `${ctx.name}: ${source} type "${String(raw.type)}" is not one of ${RAW_TYPES.join(', ')}`);
   }
-  const spacing = raw.spacing === undefined ? [1, 1, 1] : Array.isArray(raw.spacing) ? raw.spacing.map(Number) : [];
+  const spacing = raw.spacing === undefined ? [1, 1, 1] : Array.isArray(raw.spacing) && raw.spacing.every((x) => typeof x === 'number') ? raw.spacing.map(Number) : [];
   if (spacing.length !== 3 || spacing.some((s) => !Number.isFinite(s) || s <= 0)) {
     throw new LoaderError('bad-header', `${ctx.name}: ${source} spacing [${String(raw.spacing)}] must be three positive numbers`);
   }
@@ -57,9 +62,22 @@ export function parseSidecar(text: string, ctx: LoadContext): RawDescription {
     spacing: json.spacing as RawOptions['spacing'],
     endianness: json.endianness as RawOptions['endianness'],
   }, ctx, 'sidecar');
+  const vr = json.value_range;
+  // An inverted range (min > max) is a deliberate inverted mapping; an empty or non-numeric one is a mistake.
+  if (vr !== undefined && (!Array.isArray(vr) || vr.length !== 2 || !vr.every((x) => typeof x === 'number' && Number.isFinite(x)) || vr[0] === vr[1])) {
+    throw new LoaderError('bad-header', `${ctx.name}: sidecar value_range ${JSON.stringify(vr)} must be two different finite numbers`);
+  }
   const meta: Record<string, unknown> = {};
   for (const key of ['title', 'modality', 'units', 'spacing_units', 'orientation', 'value_range', 'sha256', 'license', 'source']) {
     if (json[key] !== undefined) meta[key === 'spacing_units' ? 'spacingUnits' : key] = json[key];
+  }
+  if (json.axes !== undefined) {
+    // "axes": 'PIR'… — the anatomical direction each index axis runs toward (RAS+ world).
+    if (typeof json.axes !== 'string' || !orientationFromAxisCodes(json.axes)) {
+      throw new LoaderError('bad-header', `${ctx.name}: sidecar axes ${JSON.stringify(json.axes)} must be three letters, one of R/L, A/P and S/I each (like "RAS" or "PIR")`);
+    }
+    meta.axisCodes = json.axes.toUpperCase();
+    meta.space = 'RAS';
   }
   const file = typeof json.file === 'string' && json.file ? json.file : undefined;
   return { ...raw, file, meta };
@@ -91,6 +109,7 @@ export function decodeRaw(bytes: Uint8Array, raw: Required<RawOptions>, ctx: Loa
   ctx.progress('convert', count, count);
   return finishVolume({
     format: 'raw', dims: [...dims], spacing: [...raw.spacing], type, data,
+    orientation: typeof meta.axisCodes === 'string' ? orientationFromAxisCodes(meta.axisCodes) ?? undefined : undefined,
     meta: { ...meta, endianness: raw.endianness },
   }, ctx);
 }

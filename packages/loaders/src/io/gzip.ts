@@ -16,9 +16,23 @@ export interface GunzipOptions {
    */
   headBytes?: number;
   onHead?: (head: Uint8Array) => number | undefined;
+  /** Filled in with the most inflated bytes held at once (kept output plus the chunk in flight). */
+  stats?: { peakBytes: number };
 }
 
-const STEP = 1 << 16; // input per push: bounds the output of one push to ~64 MiB even for a bomb
+const MAX_STEP = 1 << 16; // input per push: bounds the output of one push to ~64 MiB even for a bomb
+const MIN_STEP = 64;
+/** Deflate's largest expansion (a 258-byte match per ~2 bits): ~1032:1. */
+const MAX_RATIO = 1032;
+
+/**
+ * Input bytes per push so one push inflates to at most ~cap/8: the peak (the kept output,
+ * at most the cap, plus one chunk) then stays within 9/8 of the cap even for a bomb.
+ */
+export function gunzipStep(cap: number): number {
+  const step = Math.floor(cap / MAX_RATIO / 8);
+  return Math.max(MIN_STEP, Math.min(MAX_STEP, step));
+}
 const MAX_DISCARD = 64 << 20; // inflate at most this much past the kept bytes just to verify the CRC
 
 // CRC-32 (IEEE 802.3, the gzip trailer's checksum; RFC 1952 §8), table-driven.
@@ -70,8 +84,10 @@ export async function gunzip(input: Uint8Array, ctx: LoadContext, options: Gunzi
     }
   };
 
+  const stats = options.stats ?? { peakBytes: 0 };
   const inflater = new Gunzip((chunk, final) => {
     if (final) ended = true;
+    stats.peakBytes = Math.max(stats.peakBytes, (out ? out.length : produced) + chunk.length);
     crc = crc32(crc, chunk);
     total += chunk.length;
     if (produced + chunk.length > cap) {
@@ -87,6 +103,7 @@ export async function gunzip(input: Uint8Array, ctx: LoadContext, options: Gunzi
 
   ctx.progress('parse', 0, input.length);
   let stoppedEarly = false;
+  const STEP = gunzipStep(cap);
   for (let at = 0; at < input.length; at += STEP) {
     ctx.checkAborted();
     if (out && produced >= out.length && total - produced > MAX_DISCARD) { stoppedEarly = true; break; }
@@ -120,5 +137,6 @@ export async function gunzip(input: Uint8Array, ctx: LoadContext, options: Gunzi
     throw new LoaderError('truncated', `${ctx.name}: the gzip trailer announces ${read32(tail + 4)} bytes but ${total} came out; the file is cut short or corrupt`);
   }
   if (read32(tail) !== crc) throw new LoaderError('invalid-data', `${ctx.name}: the gzip checksum (CRC-32) does not match; the file is corrupt`);
+  if (out && total > produced) ctx.warnings.push(`${total - produced} inflated bytes past the data the header declares are ignored`);
   return out ?? concat(chunks, produced);
 }

@@ -1,3 +1,5 @@
+import { MAX_MARCH_STEPS } from '@vpt/core';
+
 // Emission-absorption (Max 1995, "Optical models for direct volume rendering", eq. 4-5)
 // by a stratified, randomly offset ray march; alpha = 1 - exp(-sigma_t * segment length),
 // so a homogeneous medium yields exactly c·(1 - exp(-sigma_t·L)).
@@ -13,7 +15,7 @@ void main() {
   if (t.x < t.y) {
     float offset = rngNext(rng);
     float len = t.y - t.x;
-    int n = max(1, int(ceil(len / u.stepSize)));
+    int n = max(1, int(min(ceil(len / u.stepSize), ${MAX_MARCH_STEPS}.0)));
     float seg = len / float(n);
     for (int k = 0; k < n; k++) {
       float s = t.x + (float(k) + offset) * seg;

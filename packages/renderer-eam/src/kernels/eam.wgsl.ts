@@ -1,3 +1,5 @@
+import { MAX_MARCH_STEPS } from '@vpt/core';
+
 // Emission-absorption (Max 1995, "Optical models for direct volume rendering", eq. 4-5)
 // by a stratified, randomly offset ray march; alpha = 1 - exp(-sigma_t * segment length).
 
@@ -12,7 +14,7 @@ export const generate = /* wgsl */ `
   if (t.x < t.y) {
     let offset = rngNext(&rng);
     let len = t.y - t.x;
-    let n = max(1, i32(ceil(len / u.stepSize)));
+    let n = max(1, i32(min(ceil(len / u.stepSize), ${MAX_MARCH_STEPS}.0)));
     let seg = len / f32(n);
     for (var k = 0; k < n; k++) {
       let s = t.x + (f32(k) + offset) * seg;

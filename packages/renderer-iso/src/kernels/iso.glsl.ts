@@ -1,4 +1,4 @@
-import { GLSL_ENVIRONMENT_MAP, GLSL_SAMPLING } from '@vpt/core';
+import { GLSL_ENVIRONMENT_MAP, GLSL_SAMPLING, MAX_MARCH_STEPS } from '@vpt/core';
 
 // Monte Carlo isosurface rendering (Lesar et al. 2018, "Real-Time Interactive Platform-
 // Agnostic Volumetric Path Tracing in WebGL 2.0", the ISO renderer): each iteration finds
@@ -29,7 +29,7 @@ float isoRefine(vec3 o, vec3 d, float ta, float fa, float tb, float iso) {
 // any visible surface, whatever the coin said (the depth buffer).
 vec4 isoTrace(vec3 o, vec3 d, float t0, float t1, inout uint rng) {
   float offset = rngNext(rng);
-  int n = max(1, int(ceil((t1 - t0) / u.stepSize)));
+  int n = max(1, int(min(ceil((t1 - t0) / u.stepSize), ${MAX_MARCH_STEPS}.0)));
   float seg = (t1 - t0) / float(n);
   float tPrev = t0;
   float vPrev = sampleVolume(o + d * t0);
@@ -63,7 +63,7 @@ float isoVisibility(vec3 o, vec3 d, float maxDist, inout uint rng) {
   if (!(tb.x < t1)) { return 1.0; }
   float t0 = tb.x;
   float offset = rngNext(rng);
-  int n = max(1, int(ceil((t1 - t0) / u.stepSize)));
+  int n = max(1, int(min(ceil((t1 - t0) / u.stepSize), ${MAX_MARCH_STEPS}.0)));
   float seg = (t1 - t0) / float(n);
   float vPrev = sampleVolume(o + d * t0);
   for (int i = 0; i <= n; i++) {

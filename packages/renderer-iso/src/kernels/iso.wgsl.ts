@@ -1,4 +1,4 @@
-import { WGSL_ENVIRONMENT_MAP, WGSL_SAMPLING } from '@vpt/core';
+import { WGSL_ENVIRONMENT_MAP, WGSL_SAMPLING, MAX_MARCH_STEPS } from '@vpt/core';
 
 // Monte Carlo isosurface rendering (Lesar et al. 2018, the ISO renderer) with stochastic
 // transparency (Enderton et al. 2010): twin of iso.glsl.ts, same arithmetic in the same
@@ -21,7 +21,7 @@ fn isoRefine(o: vec3f, d: vec3f, ta0: f32, fa0: f32, tb0: f32, iso: f32) -> f32 
 
 fn isoTrace(o: vec3f, d: vec3f, t0: f32, t1: f32, rng: ptr<function, u32>) -> vec4f {
   let offset = rngNext(rng);
-  let n = max(1, i32(ceil((t1 - t0) / u.stepSize)));
+  let n = max(1, i32(min(ceil((t1 - t0) / u.stepSize), ${MAX_MARCH_STEPS}.0)));
   let seg = (t1 - t0) / f32(n);
   var tPrev = t0;
   var vPrev = sampleVolume(o + d * t0);
@@ -53,7 +53,7 @@ fn isoVisibility(o: vec3f, d: vec3f, maxDist: f32, rng: ptr<function, u32>) -> f
   if (!(tb.x < t1)) { return 1.0; }
   let t0 = tb.x;
   let offset = rngNext(rng);
-  let n = max(1, i32(ceil((t1 - t0) / u.stepSize)));
+  let n = max(1, i32(min(ceil((t1 - t0) / u.stepSize), ${MAX_MARCH_STEPS}.0)));
   let seg = (t1 - t0) / f32(n);
   var vPrev = sampleVolume(o + d * t0);
   for (var i = 0; i <= n; i++) {

@@ -1,3 +1,5 @@
+import { MAX_MARCH_STEPS } from '@vpt/core';
+
 // Monte Carlo maximum intensity projection (Lesar, Bohak, Marolt 2018, §4.1): each
 // iteration marches a jittered ray with a random offset; the accumulation keeps the max.
 
@@ -13,7 +15,7 @@ void main() {
     coverage = 1.0;
     float offset = rngNext(rng);
     float len = t.y - t.x;
-    int n = max(1, int(ceil(len / u.stepSize)));
+    int n = max(1, int(min(ceil(len / u.stepSize), ${MAX_MARCH_STEPS}.0)));
     float seg = len / float(n);
     for (int k = 0; k < n; k++) {
       float s = t.x + (float(k) + offset) * seg;

@@ -1,3 +1,5 @@
+import { MAX_MARCH_STEPS } from '@vpt/core';
+
 // Monte Carlo maximum intensity projection (Lesar, Bohak, Marolt 2018, §4.1): each
 // iteration marches a jittered ray with a random offset; the accumulation keeps the max.
 
@@ -13,7 +15,7 @@ export const generate = /* wgsl */ `
     coverage = 1.0;
     let offset = rngNext(&rng);
     let len = t.y - t.x;
-    let n = max(1, i32(ceil(len / u.stepSize)));
+    let n = max(1, i32(min(ceil(len / u.stepSize), ${MAX_MARCH_STEPS}.0)));
     let seg = len / f32(n);
     for (var k = 0; k < n; k++) {
       let s = t.x + (f32(k) + offset) * seg;

@@ -88,7 +88,9 @@ async function loadSidecar(url: string, options: LoadOptions): Promise<LoadedVol
     volume.valueRange = range as [number, number];
   }
   volume.name = file;
-  return Object.assign(volume, { format: 'raw' });
+  // A sidecar's "axes" ('PIR'…): the anatomical direction of each index axis, for the default camera.
+  const axisCodes = typeof meta.axes === 'string' ? meta.axes.toUpperCase() : undefined;
+  return Object.assign(volume, { format: 'raw', meta: axisCodes ? { axisCodes, space: 'RAS' } : {} });
 }
 
 export async function fallbackLoadVolume(source: VolumeSource, options: LoadOptions = {}): Promise<LoadedVolumeLike> {

@@ -1,0 +1,130 @@
+/**
+ * The full check of a scene description, before any file is read or a browser started:
+ * every field through core's shared validators (float32 range, limits, required fields,
+ * unknown keys at every level, renderer parameters against the renderer's declared ranges),
+ * so a bad scene file fails at once with a VptError naming the field and the limit.
+ * Loaded by the CLI in Node and by the headless page (after its packages loaded).
+ */
+import { BACKEND_NAMES, SCENE_DEFAULTS, type RendererName, type SceneDescription } from './scene-description.js';
+import {
+  checkKnownKeys, checkNumber, checkNumbers, checkObject, checkOneOf, checkString, defaultCamera, FLOAT32_MAX,
+  MAX_DENSITY_SCALE, MAX_ITERATIONS, rendererNames, MAX_PROCEDURAL_SIZE, MAX_RENDER_SIDE, MAX_TEXTURE_SIDE_2D, transferFunctionFromJSON,
+  validateCamera, validateEnvironment, validateLights, validateParams, VptError, type Camera, type Environment, type Light,
+} from '@vpt/core';
+import { postChainFromJSON } from '@vpt/post';
+import { EAM_PARAM_SPECS } from '@vpt/renderer-eam';
+import { MIP_PARAM_SPECS } from '@vpt/renderer-mip';
+import { ISO_PARAM_SPECS, resolveIsoParams } from '@vpt/renderer-iso';
+import { MCRT_PARAM_SPECS, resolveParams as resolveMcrtParams } from '@vpt/renderer-mcrt';
+
+const TOP_KEYS = ['width', 'height', 'renderer', 'rendererParams', 'volume', 'transferFunction', 'camera', 'lights', 'environment', 'densityScale', 'seed', 'sampling', 'maxGpuBytes', 'post', 'iterations', 'backend'];
+const VOXEL_TYPES = ['uint8', 'uint16', 'int16', 'float32'] as const;
+const PROCEDURAL_KINDS = ['sphere', 'cube', 'ramp', 'blob'] as const;
+/** Largest volume side a description may name; the device's maxTextureDimension3D is checked at setScene. */
+export const MAX_VOLUME_SIDE = 2048;
+
+/**
+ * Renderer parameters of each renderer of core's RENDERER_CATALOG: declared ranges and
+ * unknown keys, then the renderer's own rules across them.
+ */
+export const RENDERER_PARAM_CHECKS: Record<RendererName, (params: unknown) => void> = {
+  eam: (p) => validateParams('EAM', EAM_PARAM_SPECS, p),
+  mip: (p) => validateParams('MIP', MIP_PARAM_SPECS, p),
+  iso: (p) => { validateParams('ISO', ISO_PARAM_SPECS, p); resolveIsoParams(p as object); },
+  mcrt: (p) => { validateParams('MCRT', MCRT_PARAM_SPECS, p); resolveMcrtParams(p as object); },
+};
+
+function checkVolume(v: unknown): void {
+  const vol = checkObject('volume', v);
+  if ('raw' in vol) {
+    checkKnownKeys('volume', vol, ['raw', 'dims', 'type', 'spacing', 'valueRange', 'endianness']);
+    checkString('volume.raw', vol.raw);
+    checkNumbers('volume.dims', vol.dims, 3, { min: 1, max: MAX_VOLUME_SIDE, integer: true, maxCode: 'limit-exceeded', unit: 'voxels' });
+    checkOneOf('volume.type', vol.type, VOXEL_TYPES);
+    if (vol.spacing !== undefined) checkNumbers('volume.spacing', vol.spacing, 3, { min: 0, exclusiveMin: true });
+    if (vol.valueRange !== undefined) {
+      const [lo, hi] = checkNumbers('volume.valueRange', vol.valueRange, 2);
+      if (lo === hi) throw new VptError('invalid-scene', `volume.valueRange: min and max are equal (${lo}), an empty range`);
+    }
+    if (vol.endianness !== undefined) checkOneOf('volume.endianness', vol.endianness, ['little', 'big'] as const);
+  } else if ('sidecar' in vol) {
+    checkKnownKeys('volume', vol, ['sidecar']);
+    checkString('volume.sidecar', vol.sidecar);
+  } else if ('procedural' in vol) {
+    checkKnownKeys('volume', vol, ['procedural', 'size']);
+    checkOneOf('volume.procedural', vol.procedural, PROCEDURAL_KINDS);
+    if (vol.size !== undefined) checkNumber('volume.size', vol.size, { min: 2, max: MAX_PROCEDURAL_SIZE, integer: true, maxCode: 'limit-exceeded', unit: 'voxels per side' });
+  } else {
+    throw new VptError('invalid-scene', 'volume: needs one of "raw" (with dims and type), "sidecar" or "procedural"');
+  }
+}
+
+function checkEnvironment(e: unknown): Environment {
+  const env = checkObject('environment', e);
+  const type = checkOneOf('environment.type', env.type, ['constant', 'latlong'] as const);
+  if (type === 'constant') {
+    checkKnownKeys('environment', env, ['type', 'radiance']);
+    return env as unknown as Environment;
+  }
+  checkKnownKeys('environment', env, ['type', 'width', 'height', 'data', 'scale']);
+  const side = { min: 1, max: MAX_TEXTURE_SIDE_2D - 1, integer: true, maxCode: 'limit-exceeded' as const, unit: 'texels' };
+  const width = checkNumber('environment.width', env.width, side);
+  const height = checkNumber('environment.height', env.height, side);
+  if (!Array.isArray(env.data) || env.data.length !== width * height * 3) {
+    throw new VptError('invalid-scene', `environment.data: must be an array of width*height*3 = ${width * height * 3} numbers, got ${Array.isArray(env.data) ? `${env.data.length}` : typeof env.data}`);
+  }
+  env.data.forEach((x, i) => { if (typeof x !== 'number' || !Number.isFinite(x) || Math.abs(x) > FLOAT32_MAX) throw new VptError('invalid-scene', `environment.data[${i}]: must be a finite float32 number, got ${JSON.stringify(x)}`); });
+  return { ...(env as object), data: Float32Array.from(env.data as number[]) } as Environment;
+}
+
+function checkLights(l: unknown): Light[] {
+  if (!Array.isArray(l)) throw new VptError('invalid-scene', `lights: must be an array, got ${JSON.stringify(l)}`);
+  l.forEach((light, i) => {
+    const o = checkObject(`lights[${i}]`, light);
+    checkKnownKeys(`lights[${i}]`, o, ['type', 'direction', 'irradiance']);
+    for (const k of ['type', 'direction', 'irradiance']) if (o[k] === undefined) throw new VptError('invalid-scene', `lights[${i}].${k}: is required`);
+  });
+  return l as Light[];
+}
+
+/**
+ * Validate a scene description; throws VptError ('invalid-scene', or 'limit-exceeded' for a
+ * value above a limit) whose message names the field. Returns the description, typed.
+ */
+export function validateSceneDescription(d: unknown): SceneDescription {
+  try {
+    const s = checkObject('scene', d);
+    checkKnownKeys('scene', s, TOP_KEYS);
+    for (const k of ['width', 'height'] as const) if (s[k] !== undefined) checkNumber(k, s[k], { min: 1, max: MAX_RENDER_SIDE, integer: true, maxCode: 'limit-exceeded', unit: 'pixels' });
+    if (s.iterations !== undefined) checkNumber('iterations', s.iterations, { min: 1, max: MAX_ITERATIONS, integer: true, maxCode: 'limit-exceeded' });
+    if (s.seed !== undefined) checkNumber('seed', s.seed, { min: 0, max: 0xffffffff, integer: true });
+    if (s.densityScale !== undefined) checkNumber('densityScale', s.densityScale, { min: 0, max: MAX_DENSITY_SCALE, unit: 'extinction per world unit; MAX_DENSITY_SCALE' });
+    const renderer = s.renderer === undefined ? SCENE_DEFAULTS.renderer : checkOneOf('renderer', s.renderer, rendererNames());
+    if (s.backend !== undefined) checkOneOf('backend', s.backend, BACKEND_NAMES);
+    if (s.sampling !== undefined) checkOneOf('sampling', s.sampling, ['fast', 'exact'] as const);
+    if (s.maxGpuBytes !== undefined) checkNumber('maxGpuBytes', s.maxGpuBytes, { min: 0, exclusiveMin: true, unit: 'bytes' });
+    if (s.rendererParams !== undefined) {
+      const params = checkObject('rendererParams', s.rendererParams);
+      const check = RENDERER_PARAM_CHECKS[renderer];
+      if (!check) throw new VptError('invalid-scene', `rendererParams: no parameter checks for renderer "${renderer}" (add it to RENDERER_PARAM_CHECKS)`);
+      check(params);
+    }
+    if (s.volume !== undefined) checkVolume(s.volume);
+    if (s.transferFunction !== undefined) {
+      const tf = checkObject('transferFunction', s.transferFunction);
+      transferFunctionFromJSON(tf.dimensions === undefined ? { dimensions: '1d', ...tf } : tf);
+    }
+    if (s.camera !== undefined) {
+      const cam = checkObject('camera', s.camera);
+      checkKnownKeys('camera', cam, ['position', 'target', 'up', 'fovy']);
+      validateCamera({ ...defaultCamera(), ...cam } as Camera);
+    }
+    if (s.lights !== undefined) validateLights(checkLights(s.lights));
+    if (s.environment !== undefined) validateEnvironment(checkEnvironment(s.environment));
+    if (s.post !== undefined) postChainFromJSON(s.post);
+  } catch (e) {
+    if (e instanceof VptError) throw new VptError(e.code, `Scene description: ${e.message}`, { cause: e });
+    throw new VptError('invalid-scene', `Scene description: ${(e as Error).message}`, { cause: e });
+  }
+  return d as SceneDescription;
+}
