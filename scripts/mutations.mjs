@@ -158,7 +158,8 @@ async function build(pkg) {
 async function runTests(m) {
   const r = await run('pnpm', ['exec', 'vitest', 'run', ...m.tests, ...(m.only ? ['-t', m.only] : [])]);
   const out = `${r.stdout}\n${r.stderr}`;
-  // Strip colour codes for the summary lines.
+  // Strip colour codes (ESC [ … m) for the summary lines.
+  // eslint-disable-next-line no-control-regex -- matching the escape character is the point
   const plain = out.replace(/\x1b\[[0-9;]*m/g, '');
   const summary = (plain.match(/Tests\s+[^\n]+/) ?? ['(no summary)'])[0].trim();
   return { passed: r.status === 0, summary, noTests: /No test files found|No test found/.test(plain) || /Tests\s+\d+ skipped/.test(summary) };

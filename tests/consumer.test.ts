@@ -28,7 +28,7 @@ const NO_FAVICON = '<link rel="icon" href="data:,">';
 
 let tmp = '';
 let app = '';
-let tarballs: Record<string, string> = {};
+const tarballs: Record<string, string> = {};
 let server: StaticServer | null = null;
 let browser: Browser | null = null;
 let bundleOutput: { fileName: string; code: string }[] = [];
