@@ -63,7 +63,7 @@ export const MUTATIONS = [
     find: 'let offset = rngNext(&rng);', replace: 'let offset = 0.5;',
     build: '@vpt/renderer-eam', tests: ['tests/eam.test.ts'], only: 'CPU twin' },
   // Post
-  { name: 'aces-typo-wgsl', why: 'ACES fit coefficient typo (2.43 → 2.34) in WGSL', file: 'packages/post/src/tonemap/tonemap.wgsl.ts',
+  { name: 'aces-typo-wgsl', why: 'ACES fit coefficient typo (2.43 → 2.34) in WGSL', file: 'packages/post/src/tone-mapping.wgsl.ts',
     find: '(x * (2.43 * x + 0.59) + 0.14)', replace: '(x * (2.34 * x + 0.59) + 0.14)',
     build: '@vpt/post', tests: ['tests/post.test.ts'] },
   // Loaders
