@@ -61,6 +61,13 @@ describe('scene description validation (CLI and page)', () => {
     expect(e.message).toMatch(pattern);
     expect(e.code).toBe(code);
   });
+  it('accepts compact\'s fields and an inverted valueRange (issue 12); refuses bad sampling and budgets and unknown renderers', () => {
+    expect(() => validateSceneDescription({ volume: { raw: 'x.raw', dims: [1, 1, 1], type: 'int16', valueRange: [1000, -1000] }, sampling: 'exact', maxGpuBytes: 1 << 20 })).not.toThrow();
+    expect(() => validateSceneDescription({ sampling: 'fast' })).not.toThrow();
+    expect(thrown(() => validateSceneDescription({ sampling: 'nearest' })).message).toMatch(/sampling: must be one of "fast", "exact"/);
+    expect(thrown(() => validateSceneDescription({ maxGpuBytes: 0 })).message).toMatch(/maxGpuBytes/);
+    expect(thrown(() => validateSceneDescription({ renderer: 'pathtracer' })).message).toMatch(/renderer: must be one of "mip", "iso", "eam", "mcrt"/);
+  });
   it('accepts the gallery scenes', () => {
     for (const f of fs.readdirSync('apps/gallery/scenes').filter((n) => n.endsWith('.json'))) {
       expect(() => validateSceneDescription(JSON.parse(fs.readFileSync(path.join('apps/gallery/scenes', f), 'utf8'))), f).not.toThrow();
