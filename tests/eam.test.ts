@@ -154,7 +154,8 @@ describe.each(BACKENDS)('EAM on %s against a CPU twin', (backend) => {
     const gpu: number[] = await page().page.evaluate(async (backend, W, H, ITER, STEP, camera, tf, bg) => {
       const { core } = (window as any).vpt;
       const t = (window as any).t;
-      const ctx = await t.context({ backend, renderer: 'eam', width: W, height: H, params: { cutoff: 0, stepSize: STEP } });
+      // sampling: 'exact': the twin samples with float64 trilinear weights (a hardware filter's are coarser).
+      const ctx = await t.context({ backend, renderer: 'eam', width: W, height: H, params: { cutoff: 0, stepSize: STEP }, sampling: 'exact' });
       ctx.setScene(t.scene({ volume: core.createProceduralVolume('blob', 16), camera, transferFunction: tf, densityScale: 12, seed: 9, environment: { type: 'constant', radiance: bg } }));
       await ctx.renderIterations(ITER);
       const hdr = await ctx.readHDR();
