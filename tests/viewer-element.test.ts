@@ -1,6 +1,6 @@
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { decodePNG, openVptPage, readSceneFile, type VptPageSession } from '../packages/headless/src/index.js';
-import { compareRgba, distinctGreys, HEAD_SIDECAR, openViewerPage, VIEWER_HELPERS, type ViewerPage } from './helpers/viewer-page.js';
+import { compareRgba, distinctGreys, HEAD_SIDECAR, openViewerPage, installViewerHelpers, type ViewerPage } from './helpers/viewer-page.js';
 
 // <vpt-viewer> from its one-file bundle in a plain page, against the headless renderer.
 let vp: ViewerPage;
@@ -159,7 +159,7 @@ describe('<vpt-viewer> attributes', () => {
       const el = vt.create({ ...attrs, seed: '7', exposure: '0.5', 'resolution-scale': '1' });
       await el.whenSettled();
       const errors: { code: string; source: string; message: string }[] = [];
-      el.addEventListener('error', (e: CustomEvent) => errors.push({ code: e.detail.code, source: e.detail.source, message: e.detail.message }));
+      el.addEventListener('vpt-error', (e: CustomEvent) => errors.push({ code: e.detail.code, source: e.detail.source, message: e.detail.message }));
       for (const [name, value] of [['seed', '4294967296'], ['exposure', '100'], ['resolution-scale', '5']]) {
         el.setAttribute(name, value);
         await el.updateComplete;
@@ -197,7 +197,7 @@ describe('<vpt-viewer> size', () => {
     await hi.setViewport({ width: 400, height: 300, deviceScaleFactor: 2 });
     await hi.goto(vp.page.url());
     await hi.waitForFunction('window.__ready === true');
-    await hi.evaluate(VIEWER_HELPERS);
+    await hi.evaluate(installViewerHelpers);
     const at2 = await sizes(hi);
     await hi.close();
     await vp.page.bringToFront();

@@ -10,41 +10,64 @@ import { launchChromium, startStaticServer, type StaticServer } from '../../pack
 export const ROOT = fileURLToPath(new URL('../..', import.meta.url));
 export const HEAD_SIDECAR = '/data/mri_head_volpack_brainsmall_128x128x84_uint8.json';
 
-export const VIEWER_HELPERS = `
-window.vt = {
+/** One recorded `vpt-*` event of an element made by `vt.create`. */
+export interface RecordedViewerEvent {
+  type: string; phase?: string; samples?: number; reason?: string; code?: string; message?: string; source?: string; property?: string;
+}
+
+/** `window.vt`: helpers for driving <vpt-viewer> elements from page.evaluate. */
+export interface ViewerHelpers {
   /** A <vpt-viewer> with these attributes and a record of its events (el.__events). */
-  create(attrs, style = 'width:24px;height:24px') {
-    const el = document.createElement('vpt-viewer');
-    el.__events = [];
-    for (const type of ['load', 'progress', 'converged', 'error', 'change']) {
-      el.addEventListener('vpt-' + type, (e) => {
-        const d = e.detail || {};
-        el.__events.push({ type, phase: d.phase, samples: d.samples, reason: d.reason, code: d.code, message: d.message, source: d.source, property: d.property });
-      });
-    }
-    for (const [k, v] of Object.entries(attrs)) el.setAttribute(k, v);
-    el.setAttribute('style', style);
-    document.body.append(el);
-    return el;
-  },
+  create(attrs: Record<string, string>, style?: string): any;
   /** The next event of this type ('load' for vpt-load…) after now (rejects after timeoutMs). */
-  next(el, type, timeoutMs = 90000) {
-    return new Promise((resolve, reject) => {
-      const t = setTimeout(() => reject(new Error('no ' + type + ' event within ' + timeoutMs + ' ms; events: ' + JSON.stringify(el.__events.slice(-8)))), timeoutMs);
-      el.addEventListener('vpt-' + type, (e) => { clearTimeout(t); resolve(e.detail); }, { once: true });
-    });
-  },
+  next(el: HTMLElement, type: string, timeoutMs?: number): Promise<any>;
   /** Resolves when the element has converged (now or later). */
-  async converged(el, timeoutMs = 90000) {
-    await el.whenSettled();
-    if (el.converged) return;
-    await this.next(el, 'converged', timeoutMs);
-  },
-  async ldr(el) { return Array.from(await el.context.readLDR()); },
-  frames(n = 4) { return new Promise((r) => { const f = () => (n-- <= 0 ? r() : requestAnimationFrame(f)); f(); }); },
-  shadowText(el, selector) { const n = el.shadowRoot.querySelector(selector); return n ? n.textContent.trim() : null; },
-};
-`;
+  converged(el: any, timeoutMs?: number): Promise<void>;
+  ldr(el: any): Promise<number[]>;
+  frames(n?: number): Promise<void>;
+  shadowText(el: HTMLElement, selector: string): string | null;
+}
+
+declare global {
+  interface Window {
+    vt: ViewerHelpers;
+  }
+}
+
+/** Installs `window.vt`; sent with `page.evaluate(installViewerHelpers)` (typed page code, no strings). */
+export function installViewerHelpers(): void {
+  window.vt = {
+    create(attrs, style = 'width:24px;height:24px') {
+      const el = document.createElement('vpt-viewer') as unknown as HTMLElement & { __events: RecordedViewerEvent[] };
+      el.__events = [];
+      for (const type of ['load', 'progress', 'converged', 'error', 'change']) {
+        el.addEventListener('vpt-' + type, (e) => {
+          const d = (e as CustomEvent).detail || {};
+          el.__events.push({ type, phase: d.phase, samples: d.samples, reason: d.reason, code: d.code, message: d.message, source: d.source, property: d.property });
+        });
+      }
+      for (const [k, v] of Object.entries(attrs)) el.setAttribute(k, v);
+      el.setAttribute('style', style);
+      document.body.append(el);
+      return el;
+    },
+    next(el, type, timeoutMs = 90000) {
+      return new Promise((resolve, reject) => {
+        const events = (el as HTMLElement & { __events?: RecordedViewerEvent[] }).__events ?? [];
+        const t = setTimeout(() => reject(new Error('no ' + type + ' event within ' + timeoutMs + ' ms; events: ' + JSON.stringify(events.slice(-8)))), timeoutMs);
+        el.addEventListener('vpt-' + type, (e) => { clearTimeout(t); resolve((e as CustomEvent).detail); }, { once: true });
+      });
+    },
+    async converged(el, timeoutMs = 90000) {
+      await el.whenSettled();
+      if (el.converged) return;
+      await this.next(el, 'converged', timeoutMs);
+    },
+    async ldr(el) { return Array.from(await el.context.readLDR() as Uint8Array); },
+    frames(n = 4) { return new Promise<void>((r) => { const f = () => (n-- <= 0 ? r() : requestAnimationFrame(f)); f(); }); },
+    shadowText(el, selector) { const n = el.shadowRoot?.querySelector(selector); return n ? (n.textContent ?? '').trim() : null; },
+  };
+}
 
 /** Per-pixel comparison of two RGBA8 images (alpha ignored). */
 export function compareRgba(a: ArrayLike<number>, b: ArrayLike<number>): { maxDiff: number; meanDiff: number; differingPixels: number } {
@@ -87,7 +110,7 @@ export async function openViewerPage(browser?: Browser): Promise<ViewerPage> {
   await page.setViewport({ width: 400, height: 300, deviceScaleFactor: 1 });
   await page.goto(new URL('tests/pages/viewer.html', server.url).href);
   await page.waitForFunction('window.__ready === true', { timeout: 60_000 });
-  await page.evaluate(VIEWER_HELPERS);
+  await page.evaluate(installViewerHelpers);
   return {
     browser: b, server, page, errors,
     async close() {
