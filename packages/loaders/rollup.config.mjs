@@ -8,8 +8,10 @@ import { libraryConfig } from '../../rollup.lib.mjs';
 // worker (dist/worker/loader-worker.js), which bundles its parsers because a module worker
 // gets no import map; the heavy ones (nifti-reader-js, dicom-parser) stay separate chunks
 // loaded on first use.
-// Chunk names carry content hashes: drop the previous build's chunks.
+// Chunk names carry content hashes: drop the previous build's chunks, and a sourcemap left by
+// an older build that mapped the worker (it would point outside the package when packed).
 fs.rmSync('dist/worker/chunks', { recursive: true, force: true });
+fs.rmSync('dist/worker/loader-worker.js.map', { force: true });
 
 const worker = {
   input: { 'loader-worker': 'src/worker/loader-worker.ts' },
