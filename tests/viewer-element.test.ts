@@ -17,6 +17,12 @@ afterAll(async () => {
   await vp?.close();
 });
 
+/** The exposure step of a scene file's post chain (the element takes it as an attribute). */
+function sceneExposure(desc: { post?: unknown }): number {
+  const steps = (Array.isArray(desc.post) ? desc.post : []) as { type?: string; exposure?: number }[];
+  return steps.find((s) => s.type === 'exposure')?.exposure ?? 0;
+}
+
 const SIZE = 32;
 const SAMPLES = 8;
 
@@ -30,7 +36,7 @@ describe('<vpt-viewer> renders what the headless renderer renders', () => {
       src: HEAD_SIDECAR, renderer: 'eam', backend, panels: 'none',
       'transfer-function': JSON.stringify(desc.transferFunction), camera: JSON.stringify(desc.camera),
       environment: JSON.stringify(desc.environment), 'density-scale': String(desc.densityScale), seed: String(desc.seed),
-      exposure: '0', 'tone-mapper': 'aces', 'max-samples': String(SAMPLES),
+      exposure: String(sceneExposure(desc)), 'tone-mapper': 'aces', 'max-samples': String(SAMPLES),
       // The screenshot below compares the canvas alone: no progress bar or stats line over it.
       'hide-progress': '', 'hide-stats': '',
     };

@@ -8,16 +8,16 @@ import type { TransferFunction } from '@vpt/core';
 export const TRANSFER_FUNCTION_PRESETS: Readonly<Record<string, TransferFunction>> = {
   /** Grey, opacity and brightness growing linearly with the value. */
   ramp: { dimensions: '1d', points: [{ value: 0, color: [1, 1, 1], opacity: 0 }, { value: 1, color: [1, 1, 1], opacity: 1 }] },
-  /** Low values transparent, a soft shell around the middle, dense bright highs (soft tissue → bone). */
+  /** Low values transparent, a soft warm shell around the middle, dense white highs (soft tissue → bone); colours stay ≤ 1 so EAM does not blow out to white. */
   tissue: {
     dimensions: '1d',
     points: [
       { value: 0.0, color: [0, 0, 0], opacity: 0 },
       { value: 0.15, color: [0.5, 0.2, 0.1], opacity: 0 },
-      { value: 0.3, color: [0.9, 0.5, 0.35], opacity: 0.02 },
-      { value: 0.5, color: [1.0, 0.85, 0.7], opacity: 0.08 },
-      { value: 0.7, color: [2.0, 1.9, 1.8], opacity: 0.5 },
-      { value: 1.0, color: [3, 3, 3], opacity: 1 },
+      { value: 0.3, color: [0.85, 0.45, 0.3], opacity: 0.02 },
+      { value: 0.5, color: [0.95, 0.7, 0.55], opacity: 0.1 },
+      { value: 0.7, color: [1.0, 0.9, 0.8], opacity: 0.4 },
+      { value: 1.0, color: [1, 1, 1], opacity: 1 },
     ],
   },
   /** Only the top of the range: dense white structures (bone in CT). */
