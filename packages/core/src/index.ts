@@ -8,6 +8,7 @@ export * from './scene/transfer-function-json.js';
 export * from './scene/transfer-function-presets.js';
 export * from './scene/scene.js';
 export * from './scene/procedural.js';
+export * from './scene/raw-sidecar.js';
 
 export { UniformLayout, type UniformField, type UniformType, type UniformValues, type UniformValue, type FieldPlacement } from './uniforms/layout.js';
 
