@@ -137,7 +137,7 @@ fn normalizedGradientAt(p: vec3f) -> f32 {
 }
 `;
 
-/** transferAt for a 2D (value x normalized gradient magnitude) transfer function (twin of GLSL_TRANSFER_2D). */
+/** transferAt for a 2D (value x normalized gradient magnitude) transfer function (Kniss, Kindlmann, Hansen 2002; twin of GLSL_TRANSFER_2D). */
 export const TRANSFER_2D = /* wgsl */ `
 fn transferLookup2D(value: f32, gradient: f32) -> vec4f {
   let x = clamp(value, 0.0, 1.0) * f32(u.tfSize - 1);
