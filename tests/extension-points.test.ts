@@ -6,45 +6,13 @@ const page = usePage();
 /**
  * A probe renderer defined in the page exercises the Renderer extension points:
  * its frame is aux0.r + ξ with ξ ~ U(0,1) i.i.d. per pixel and iteration, and it keeps
- * the full, even and odd running means. Its kernels (shader sources) are below; the class
- * is defined in the page (typed code sent with page.evaluate).
+ * the full, even and odd running means (core's HALF_MEANS_INTEGRATE). Its generate kernel
+ * (shader source) is below; the class is defined in the page (typed code sent with page.evaluate).
  */
 const PROBE_KERNELS = {
   generate: {
     glsl: 'void main() { ivec2 p = vptPixel(); uint s = rngInit(p, u.iteration, u.seed); float v = texelFetch(aux0, ivec2(0, 0), 0).r + rngNext(s); vpt_out0 = vec4(v, v, v, 1.0); }',
     wgsl: '@fragment fn fs_main(@builtin(position) fragCoord: vec4f) -> VptOut { let p = vptPixel(fragCoord); var s = rngInit(p, u.iteration, u.seed); let v = textureLoad(aux0, vec2i(0, 0), 0).r + rngNext(&s); var r: VptOut; r.out0 = vec4f(v, v, v, 1.0); return r; }',
-  },
-  integrate: {
-    glsl: `
-void main() {
-  ivec2 p = vptPixel();
-  vec4 f = texelFetch(frame0, p, 0);
-  uint n = u.iteration;
-  if (n == 0u) { vpt_out0 = f; vpt_out1 = f; vpt_out2 = vec4(0.0); return; }
-  vec4 a = texelFetch(accum0, p, 0);
-  vec4 e = texelFetch(accum1, p, 0);
-  vec4 o = texelFetch(accum2, p, 0);
-  vpt_out0 = a + (f - a) * (1.0 / float(n + 1u));
-  uint k = n / 2u;
-  if (n % 2u == 0u) { vpt_out1 = e + (f - e) * (1.0 / float(k + 1u)); vpt_out2 = o; }
-  else { vpt_out1 = e; vpt_out2 = o + (f - o) * (1.0 / float(k + 1u)); }
-}`,
-    wgsl: `
-@fragment fn fs_main(@builtin(position) fragCoord: vec4f) -> VptOut {
-  let p = vptPixel(fragCoord);
-  let f = textureLoad(frame0, p, 0);
-  let n = u.iteration;
-  var r: VptOut;
-  if (n == 0u) { r.out0 = f; r.out1 = f; r.out2 = vec4f(0.0); return r; }
-  let a = textureLoad(accum0, p, 0);
-  let e = textureLoad(accum1, p, 0);
-  let o = textureLoad(accum2, p, 0);
-  r.out0 = a + (f - a) * (1.0 / f32(n + 1u));
-  let k = n / 2u;
-  if (n % 2u == 0u) { r.out1 = e + (f - e) * (1.0 / f32(k + 1u)); r.out2 = o; }
-  else { r.out1 = e; r.out2 = o + (f - o) * (1.0 / f32(k + 1u)); }
-  return r;
-}`,
   },
 };
 
@@ -60,7 +28,7 @@ describe.each(BACKENDS)('renderer extension points on %s', (backend) => {
           Object.assign(this, {
             name: 'probe', frameFormats: ['rgba32float'], accumulationFormats: ['rgba32float', 'rgba32float', 'rgba32float'],
             halfAccumulations: [1, 2], paramFields: [],
-            kernels: { ...kernels, render: core.COPY_ACCUMULATION_RENDER },
+            kernels: { ...kernels, integrate: core.HALF_MEANS_INTEGRATE, render: core.COPY_ACCUMULATION_RENDER },
           });
         }
         paramValues() { return {}; }
