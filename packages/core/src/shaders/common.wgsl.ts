@@ -5,7 +5,7 @@ import { SLICE_ATLAS } from './slice-atlas.wgsl.js';
  * Expects `u` (scene uniforms) and textures `volume` (texture_3d) and `transferFunction`.
  */
 
-/** PCG hash (Jarzynski & Olano 2020, "Hash Functions for GPU Rendering", pcg) and a uniform float stream. */
+/** PCG hash (Jarzynski & Olano 2020, "Hash Functions for GPU Rendering", JCGT 9(3), its pcg) and a uniform float stream. */
 export const RNG = /* wgsl */ `
 fn pcgHash(v: u32) -> u32 {
   let state = v * 747796405u + 2891336453u;
