@@ -32,7 +32,7 @@ describe('backend conformance pages', () => {
     page.on('console', (m) => log.push(m.text()));
     page.on('pageerror', (e) => log.push(`pageerror: ${(e as Error).message}`));
     await page.goto(new URL(pagePath, server.url).href);
-    await page.waitForFunction('window.__done === true', { timeout: 180_000 });
+    await page.waitForFunction(() => (window as any).__done === true, { timeout: 180_000 });
     const value = await page.evaluate(result);
     await page.close();
     return { value, log };

@@ -4,6 +4,7 @@ import { installMcrtHelpers } from './helpers/mcrt-in-page.js';
 import { zSummary } from './helpers/mcrt-stats.js';
 import { opticalDepth, pixelExpectations } from './helpers/mcrt-reference.js';
 import { BACKENDS, usePage } from './helpers/session.js';
+import { testVolumes } from './helpers/test-volumes.js';
 
 /**
  * Compact volume textures and the hardware-filtered fast path (gpu/volume-format.ts):
@@ -17,24 +18,9 @@ beforeAll(async () => { await installMcrtHelpers(page().page); });
 /**
  * The 16³ blob (values in [0, 1]) stored as each voxel type, with the value range that maps it
  * back to the blob: `inverted` stores dense matter as low values and inverts the range.
- * Returned as a builder string so the page can make the same volume.
  */
-const BLOB_AS = `(core, type, inverted) => {
-  const blob = core.createProceduralVolume('blob', 16);
-  const span = { uint8: [0, 255], uint16: [0, 60000], int16: [-15000, 15000], float32: [-300, 700] }[type];
-  const [a, b] = inverted ? [span[1], span[0]] : span;
-  const C = { uint8: Uint8Array, uint16: Uint16Array, int16: Int16Array, float32: Float32Array }[type];
-  const data = new C(blob.data.length);
-  for (let i = 0; i < data.length; i++) {
-    const x = a + (b - a) * blob.data[i];
-    data[i] = type === 'float32' ? x : Math.round(x);
-  }
-  const v = core.createVolume([...blob.dims], type, data, [...blob.spacing]);
-  v.valueRange = [a, b];
-  return v;
-}`;
 function blobAs(type: Volume['type'], inverted: boolean): Volume {
-  return (0, eval)(BLOB_AS)({ createProceduralVolume, createVolume }, type, inverted) as Volume;
+  return testVolumes({ createProceduralVolume, createVolume }).blobAs(type, inverted);
 }
 
 const TF: TransferFunction = {
@@ -52,10 +38,9 @@ const TYPES = ['uint8', 'uint16', 'int16', 'float32'] as const;
 
 describe.each(BACKENDS)('compact volumes on %s', (backend) => {
   it.each(TYPES)('%s: compact bytes per voxel, and the fast path agrees with the exact path (EAM, MIP)', async (type) => {
-    const r = await page().page.evaluate(async (backend, type, builder, tf, camera) => {
-      const { core } = (window as any).vpt;
+    const r = await page().page.evaluate(async (backend, type, tf, camera) => {
       const t = (window as any).t;
-      const volume = (0, eval)(builder)(core, type, false);
+      const volume = window.tv.blobAs(type, false);
       const out: Record<string, { hdr: number[]; bytes: number }> = {};
       for (const renderer of ['eam', 'mip']) {
         for (const sampling of ['fast', 'exact']) {
@@ -68,7 +53,7 @@ describe.each(BACKENDS)('compact volumes on %s', (backend) => {
         }
       }
       return out;
-    }, backend, type, BLOB_AS, TF, camera);
+    }, backend, type, TF, camera);
     const voxels = 16 ** 3;
     // SwiftShader offers no 16-bit normalized textures: 16-bit types go to r16float; float32 stays r32float.
     expect(r['eam-fast'].bytes / voxels).toBe({ uint8: 1, uint16: 2, int16: 2, float32: 4 }[type]);
@@ -92,10 +77,9 @@ describe.each(BACKENDS)('compact volumes on %s', (backend) => {
   });
 
   it('MCRT: the fast path is unbiased against the exact path (multiple scattering, z-scores)', async () => {
-    const r = await page().page.evaluate(async (backend, builder, tf, camera) => {
-      const { core } = (window as any).vpt;
+    const r = await page().page.evaluate(async (backend, tf, camera) => {
       const mt = (window as any).mt;
-      const volume = (0, eval)(builder)(core, 'int16', false);
+      const volume = window.tv.blobAs('int16', false);
       const scene = (sampling: string, seed: number) => ({
         volume, transferFunction: tf, camera, lights: [{ type: 'directional', direction: [0.3, 0.8, 0.5], irradiance: [2, 2, 2] }],
         environment: { type: 'constant', radiance: [0.5, 0.5, 0.5] }, densityScale: 10, seed, sampling,
@@ -103,7 +87,7 @@ describe.each(BACKENDS)('compact volumes on %s', (backend) => {
       const fast = await mt.run({ backend, width: 16, height: 16, iterations: 96, scene: scene('fast', 11) });
       const exact = await mt.run({ backend, width: 16, height: 16, iterations: 96, scene: scene('exact', 12) });
       return { fast, exact };
-    }, backend, BLOB_AS, TF, camera);
+    }, backend, TF, camera);
     const z: number[] = [];
     for (let k = 0; k < 16 * 16; k++) {
       for (let c = 0; c < 3; c++) {
@@ -120,18 +104,17 @@ describe.each(BACKENDS)('compact volumes on %s', (backend) => {
 
   it.each(['fast', 'exact'] as const)('an inverted value range (int16, LO > HI) renders as the range pre-applied and matches the CPU expectation (%s sampling; MCRT transmittance over the majorant grid)', async (sampling) => {
     const W = 16, H = 16, N = 64;
-    const gpu = await page().page.evaluate(async (backend, builder, tf, camera, W, H, N, sampling) => {
-      const { core } = (window as any).vpt;
+    const gpu = await page().page.evaluate(async (backend, tf, camera, W, H, N, sampling) => {
       const mt = (window as any).mt;
       const t = (window as any).t;
       const run = (inverted: boolean) => mt.run({
         backend, width: W, height: H, iterations: N, params: { debugOutput: 'transmittance', tracking: 'residual', majorantCellSize: 4 },
-        scene: { volume: (0, eval)(builder)(core, 'int16', inverted), transferFunction: tf, camera, lights: [], environment: { type: 'constant', radiance: [1, 1, 1] }, densityScale: 6, seed: 3, sampling },
+        scene: { volume: window.tv.blobAs('int16', inverted), transferFunction: tf, camera, lights: [], environment: { type: 'constant', radiance: [1, 1, 1] }, densityScale: 6, seed: 3, sampling },
       });
       const inverted = await run(true);
       const preApplied = await run(false); // the same medium stored the usual way: dense = high values
       return { ...inverted, differingFromPreApplied: t.sameBits(new Float32Array(inverted.hdr), new Float32Array(preApplied.hdr)) };
-    }, backend, BLOB_AS, TF, camera, W, H, N, sampling);
+    }, backend, TF, camera, W, H, N, sampling);
     expect(gpu.nonFinite).toBe(false);
     // Data stored as −x with the range [hi, lo] reads exactly as x with [lo, hi] (sign flips are exact), grid included.
     expect(gpu.differingFromPreApplied).toBe(0);
@@ -156,11 +139,10 @@ describe.each(BACKENDS)('compact volumes on %s', (backend) => {
   });
 
   it('changes the value range (to an inverted one) without re-uploading the volume, as a fresh context renders it', async () => {
-    const r = await page().page.evaluate(async (backend, builder, tf, camera) => {
-      const { core } = (window as any).vpt;
+    const r = await page().page.evaluate(async (backend, tf, camera) => {
       const t = (window as any).t;
       const mt = (window as any).mt;
-      const volume = (0, eval)(builder)(core, 'int16', false);
+      const volume = window.tv.blobAs('int16', false);
       const inverted = { ...volume, valueRange: [volume.valueRange[1], volume.valueRange[0]] };
       const scene = (v: unknown) => ({ volume: v, transferFunction: tf, camera, lights: [], environment: { type: 'constant', radiance: [1, 1, 1] }, densityScale: 6, seed: 5 });
       const ctx = await t.context({ backend, renderer: 'mcrt', width: 16, height: 16, params: { majorantCellSize: 4 } });
@@ -180,7 +162,7 @@ describe.each(BACKENDS)('compact volumes on %s', (backend) => {
       fresh.dispose();
       void mt;
       return { volumeUploads, differing: t.sameBits(new Float32Array(changed as number[]), new Float32Array(want as number[])) };
-    }, backend, BLOB_AS, TF, camera);
+    }, backend, TF, camera);
     expect(r.volumeUploads).toBe(1);
     expect(r.differing).toBe(0); // the majorant grid and the mapping followed the new range
   });

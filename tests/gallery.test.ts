@@ -25,7 +25,16 @@ afterAll(async () => {
   await server?.close();
 });
 
-async function open(path: string, ready: string): Promise<{ page: Page; errors: string[] }> {
+type GalleryPage = 'gallery' | 'compare';
+
+/** Page code: the gallery or comparison page has started, and each of its viewers has `samples` samples. */
+function pageReady(which: GalleryPage, samples: number): boolean {
+  const w = window as any;
+  if (which === 'gallery') return w.__galleryReady === true && w.gallery.viewer.samples >= samples;
+  return w.__compareReady === true && w.compare.views.every((v: { samples: number }) => v.samples >= samples);
+}
+
+async function open(path: string, which: GalleryPage, samples = 0): Promise<{ page: Page; errors: string[] }> {
   const page = await browser.newPage();
   const errors: string[] = [];
   page.on('console', (m) => { if (m.type() === 'error') errors.push(m.text()); });
@@ -34,20 +43,27 @@ async function open(path: string, ready: string): Promise<{ page: Page; errors: 
   await page.setViewport({ width: 1000, height: 700 });
   await page.goto(new URL(`apps/gallery/dist/${path}`, server.url).href);
   try {
-    await page.waitForFunction(ready, { timeout: 90_000, polling: 100 });
+    await page.waitForFunction(pageReady, { timeout: 90_000, polling: 100 }, which, samples);
   } catch (e) {
-    throw new Error(`${path}: not ready (${ready}); console errors: ${JSON.stringify(errors)}`, { cause: e });
+    throw new Error(`${path}: not ready (${which}, ${samples} samples); console errors: ${JSON.stringify(errors)}`, { cause: e });
   }
   return { page, errors };
 }
 
 /** Distinct colours in a viewer's displayed image, and its sample count. */
-const imageSummary = `async (el) => {
-  const ldr = await el.context.readLDR();
-  const s = new Set();
-  for (let i = 0; i < ldr.length; i += 4) s.add(ldr[i] * 65536 + ldr[i + 1] * 256 + ldr[i + 2]);
-  return { distinct: s.size, samples: el.samples, kind: el.context.backend.kind, renderer: el.context.renderer.name };
-}`;
+interface ImageSummary { distinct: number; samples: number; kind: string; renderer: string }
+
+/** Page code: the summary of the gallery's viewer or of each comparison view. */
+function imageSummaries(which: GalleryPage): Promise<ImageSummary[]> {
+  const summary = async (el: any): Promise<ImageSummary> => {
+    const ldr: Uint8Array = await el.context.readLDR();
+    const s = new Set<number>();
+    for (let i = 0; i < ldr.length; i += 4) s.add(ldr[i] * 65536 + ldr[i + 1] * 256 + ldr[i + 2]);
+    return { distinct: s.size, samples: el.samples, kind: el.context.backend.kind, renderer: el.context.renderer.name };
+  };
+  const w = window as any;
+  return Promise.all((which === 'gallery' ? [w.gallery.viewer] : w.compare.views).map(summary));
+}
 
 describe('gallery build', () => {
   it('builds the site with one command: pages, the viewer bundle with its loader worker, the data and a manifest listing it', () => {
@@ -64,8 +80,8 @@ describe('gallery build', () => {
 
 describe('gallery pages', () => {
   it.each(['webgl2', 'webgpu'])('smoke: the gallery page renders the bundled head on %s without console errors (not flat: > 20 colours)', async (backend) => {
-    const { page, errors } = await open(`index.html?backend=${backend}&${FAST}`, 'window.__galleryReady === true && window.gallery.viewer.samples >= 2');
-    const r = await page.evaluate(`(${imageSummary})(window.gallery.viewer)`) as { distinct: number; kind: string; renderer: string };
+    const { page, errors } = await open(`index.html?backend=${backend}&${FAST}`, 'gallery', 2);
+    const [r] = await page.evaluate(imageSummaries, 'gallery' as GalleryPage);
     const state = await page.evaluate(() => ({ search: location.search, pressed: document.querySelector('[aria-pressed="true"]')?.getAttribute('data-id') }));
     await page.close();
     expect(errors).toEqual([]);
@@ -77,8 +93,8 @@ describe('gallery pages', () => {
   });
 
   it('smoke: the comparison page renders the same dataset with all four renderers without console errors (not flat)', async () => {
-    const { page, errors } = await open(`compare.html?dataset=blob&${FAST}`, 'window.__compareReady === true && window.compare.views.every((v) => v.samples >= 1)');
-    const r = await page.evaluate(`Promise.all(window.compare.views.map(${imageSummary}))`) as { distinct: number; renderer: string }[];
+    const { page, errors } = await open(`compare.html?dataset=blob&${FAST}`, 'compare', 1);
+    const r = await page.evaluate(imageSummaries, 'compare' as GalleryPage);
     const cameras = await page.evaluate(() => (window as any).compare.views.map((v: any) => JSON.stringify(v.camera)));
     await page.close();
     expect(errors).toEqual([]);
@@ -94,7 +110,7 @@ describe('gallery deep links', () => {
 
   it('a link restores dataset, renderer, transfer function, camera, exposure, tone mapper and density', async () => {
     const { page, errors } = await open(`index.html?dataset=blob&renderer=mip&tf=hot&camera=${cam}&exposure=1.5&tone=reinhard&density=33&${FAST}`,
-      'window.__galleryReady === true && window.gallery.viewer.samples >= 1');
+      'gallery', 1);
     const s = await page.evaluate(() => {
       const v = (window as any).gallery.viewer;
       return { src: v.src, renderer: v.context.renderer.name, tf: v.transferFunction, camera: v.camera, exposure: v.exposure, tone: v.toneMapper, density: v.densityScale,
@@ -116,7 +132,7 @@ describe('gallery deep links', () => {
   });
 
   it('after changing the view (drag, renderer, transfer function), the page URL reopens the same view', async () => {
-    const { page, errors } = await open(`index.html?dataset=ramp&renderer=eam&${FAST}`, 'window.__galleryReady === true && window.gallery.viewer.samples >= 1');
+    const { page, errors } = await open(`index.html?dataset=ramp&renderer=eam&${FAST}`, 'gallery', 1);
     // Drag on the canvas, switch the renderer with the radio button, pick a TF preset in the panel.
     const box = await page.evaluate(() => {
       const r = (window as any).gallery.viewer.shadowRoot.querySelector('canvas').getBoundingClientRect();
@@ -127,7 +143,7 @@ describe('gallery deep links', () => {
     for (let i = 1; i <= 5; i++) await page.mouse.move(box.x + 12 * i, box.y + 4 * i);
     await page.mouse.up();
     await page.click('input[name="renderer"][value="mcrt"]');
-    await page.waitForFunction('window.gallery.viewer.context.renderer.name === "mcrt"', { timeout: 60_000 });
+    await page.waitForFunction(() => (window as any).gallery.viewer.context.renderer.name === 'mcrt', { timeout: 60_000 });
     await page.evaluate(() => {
       const v = (window as any).gallery.viewer;
       const select = v.shadowRoot.querySelector('details select') as HTMLSelectElement; // the preset list
@@ -135,7 +151,7 @@ describe('gallery deep links', () => {
       select.dispatchEvent(new Event('change'));
     });
     // The URL follows changes 250 ms after the last one (longer while SwiftShader compiles).
-    await page.waitForFunction('location.search.includes("tf=cool")', { timeout: 60_000 });
+    await page.waitForFunction(() => location.search.includes('tf=cool'), { timeout: 60_000 });
     const before = await page.evaluate(() => {
       const v = (window as any).gallery.viewer;
       return { url: location.href, renderer: v.renderer, tf: v.transferFunction, camera: v.camera, density: v.densityScale };
@@ -145,7 +161,7 @@ describe('gallery deep links', () => {
     expect(before.url).toMatch(/renderer=mcrt/);
     expect(before.url).toMatch(/tf=cool/);
 
-    const again = await open(before.url.split('/apps/gallery/dist/')[1], 'window.__galleryReady === true');
+    const again = await open(before.url.split('/apps/gallery/dist/')[1], 'gallery');
     const after = await again.page.evaluate(() => {
       const v = (window as any).gallery.viewer;
       return { renderer: v.renderer, tf: v.transferFunction, camera: v.camera, density: v.densityScale, dataset: (window as any).gallery.current.dataset.id };
@@ -163,7 +179,7 @@ describe('gallery deep links', () => {
   });
 
   it('a comparison link sets one camera on all four views', async () => {
-    const { page, errors } = await open(`compare.html?dataset=sphere&camera=${cam}&${FAST}`, 'window.__compareReady === true');
+    const { page, errors } = await open(`compare.html?dataset=sphere&camera=${cam}&${FAST}`, 'compare');
     const cameras = await page.evaluate(() => (window as any).compare.views.map((v: any) => v.camera));
     await page.close();
     expect(errors).toEqual([]);

@@ -13,29 +13,18 @@ const VOXEL = 1 / N;
 const W = 24, H = 24;
 const CAMERA = { position: [0.35, 0.25, 1.5] as Vec3, target: [0, 0, 0] as Vec3, up: [0, 1, 0] as Vec3, fovy: 0.55 };
 
-/** Source of a function that builds the distance-field volume inside the page. */
-const SPHERE_FIELD = `(core, n) => {
-  const data = new Float32Array(n * n * n);
-  for (let z = 0; z < n; z++) for (let y = 0; y < n; y++) for (let x = 0; x < n; x++)
-    data[x + n * (y + n * z)] = Math.hypot((x + 0.5) / n - 0.5, (y + 0.5) / n - 0.5, (z + 0.5) / n - 0.5);
-  const v = core.createVolume([n, n, n], 'float32', data);
-  v.valueRange = [0, 1];
-  return v;
-}`;
-
 /** Render in the page: `params` for the IsoRenderer, `scene` merged over a default scene of the sphere field. */
 async function renderIso(page: ReturnType<typeof usePage>, backend: string, params: object, scene: object, iterations: number, size = [W, H]): Promise<number[]> {
-  return page().page.evaluate(async (backend, params, scene, iterations, field, n, camera, size) => {
-    const { core } = (window as any).vpt;
+  return page().page.evaluate(async (backend, params, scene, iterations, n, camera, size) => {
     const t = (window as any).t;
-    const volume = (0, eval)(field)(core, n);
+    const volume = window.tv.sphereDistance(n);
     const ctx = await t.context({ backend, renderer: 'iso', width: size[0], height: size[1], params });
     ctx.setScene({ ...t.scene({ volume, camera }), ...scene });
     await ctx.renderIterations(iterations);
     const hdr = await ctx.readHDR();
     ctx.dispose();
     return Array.from(hdr as Float32Array);
-  }, backend, params, scene, iterations, SPHERE_FIELD, N, CAMERA, size);
+  }, backend, params, scene, iterations, N, CAMERA, size);
 }
 
 /** Analytic ray–sphere intersection: the nearer t, and the ray's closest distance to the centre. */
@@ -232,16 +221,15 @@ describe.each(BACKENDS)('ISO renderer on %s', (backend) => {
     const L: Vec3 = [1.5, 1, 2];
     const ITER = 24;
     const env = { type: 'latlong', width: 16, height: 8, data: Array.from({ length: 16 * 8 * 3 }, (_, i) => L[i % 3]) };
-    const img: number[] = await page().page.evaluate(async (backend, albedo, env, ITER, field, n, camera) => {
-      const { core } = (window as any).vpt;
+    const img: number[] = await page().page.evaluate(async (backend, albedo, env, ITER, n, camera) => {
       const t = (window as any).t;
       const ctx = await t.context({ backend, renderer: 'iso', width: 24, height: 24, params: { surfaces: [{ value: 0.3, color: albedo }], specular: 0 } });
-      ctx.setScene({ ...t.scene({ volume: (0, eval)(field)(core, n), camera }), environment: { ...env, data: Float32Array.from(env.data) } });
+      ctx.setScene({ ...t.scene({ volume: window.tv.sphereDistance(n), camera }), environment: { ...env, data: Float32Array.from(env.data) } });
       await ctx.renderIterations(ITER);
       const hdr = await ctx.readHDR();
       ctx.dispose();
       return Array.from(hdr as Float32Array);
-    }, backend, albedo, env, ITER, SPHERE_FIELD, N, CAMERA);
+    }, backend, albedo, env, ITER, N, CAMERA);
     const sum = [0, 0, 0];
     let interior = 0;
     for (let y = 0; y < H; y++) {
@@ -301,10 +289,9 @@ describe.each(BACKENDS)('ISO renderer on %s', (backend) => {
 
 describe('ISO renderer: WebGL 2 / WebGPU parity', () => {
   it('gives bit-identical images and depth buffers (2 surfaces, transparency, soft shadows, lat-long environment)', async () => {
-    const r = await page().page.evaluate(async (field, camera) => {
-      const { core } = (window as any).vpt;
+    const r = await page().page.evaluate(async (camera) => {
       const t = (window as any).t;
-      const volume = (0, eval)(field)(core, 20);
+      const volume = window.tv.sphereDistance(20);
       const env = { type: 'latlong', width: 8, height: 4, data: Float32Array.from({ length: 96 }, (_, i) => ((i * 37) % 11) / 4) };
       const out: Record<string, Float32Array[]> = {};
       for (const backend of ['webgl2', 'webgpu']) {
@@ -325,7 +312,7 @@ describe('ISO renderer: WebGL 2 / WebGPU parity', () => {
       let varied = 0;
       for (let i = 4; i < a.length; i += 4) if (a[i] !== a[0]) varied++;
       return { shadedDiff: t.sameBits(out.webgl2[0], out.webgpu[0]), depthDiff: t.sameBits(out.webgl2[1], out.webgpu[1]), varied, n: a.length / 4, finite: !t.hasNonFinite(a) };
-    }, SPHERE_FIELD, CAMERA);
+    }, CAMERA);
     expect(r.varied).toBeGreaterThan(r.n / 4);
     expect(r.finite).toBe(true);
     expect(r.shadedDiff).toBe(0);

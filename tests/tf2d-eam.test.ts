@@ -1,9 +1,10 @@
 import { describe, expect, it } from 'vitest';
 import {
-  createVolume, gradientMagnitudes, maxGradientMagnitude, normalizedData, rasterizeTransferFunction, reference, volumeBox,
+  createProceduralVolume, createVolume, gradientMagnitudes, maxGradientMagnitude, normalizedData, rasterizeTransferFunction, reference, volumeBox,
   type Scene, type TransferFunction2D, type Vec3, type Volume,
 } from '../packages/core/src/index.js';
 import { BACKENDS, usePage } from './helpers/session.js';
+import { testVolumes } from './helpers/test-volumes.js';
 
 /**
  * A 2D transfer function on a rendered image: a homogeneous block (value 1 inside
@@ -20,20 +21,8 @@ const DENSITY = 4;
 const W = 20, H = 20;
 const CAMERA = { position: [0.7, 0.55, 1.5] as Vec3, target: [0, 0, 0] as Vec3, up: [0, 1, 0] as Vec3, fovy: 0.6 };
 
-const BLOCK_IN_PAGE = `(core, n, half) => {
-  const data = new Float32Array(n * n * n);
-  for (let z = 0; z < n; z++) for (let y = 0; y < n; y++) for (let x = 0; x < n; x++) {
-    const c = [x, y, z].map((i) => Math.abs((i + 0.5) / n - 0.5));
-    data[x + n * (y + n * z)] = Math.max(...c) < half ? 1 : 0;
-  }
-  const v = core.createVolume([n, n, n], 'float32', data);
-  v.valueRange = [0, 1];
-  return v;
-}`;
-
 function block(): Volume {
-  const v = (0, eval)(BLOCK_IN_PAGE)({ createVolume }, N, HALF) as Volume;
-  return v;
+  return testVolumes({ createVolume, createProceduralVolume }).block(N, HALF);
 }
 
 /** CPU model of transferAt() for a 2D TF: trilinear value and gradient, bilinear lookup. */
@@ -79,16 +68,15 @@ function cpuModel(volume: Volume, tf: TransferFunction2D) {
 const page = usePage();
 
 async function renderAlpha(backend: string, tf: object, iterations: number): Promise<number[]> {
-  return page().page.evaluate(async (backend, tf, iterations, builder, n, half, camera, density, W, H) => {
-    const { core } = (window as any).vpt;
+  return page().page.evaluate(async (backend, tf, iterations, n, half, camera, density, W, H) => {
     const t = (window as any).t;
     const ctx = await t.context({ backend, renderer: 'eam', width: W, height: H, params: { cutoff: 0 } });
-    ctx.setScene(t.scene({ volume: (0, eval)(builder)(core, n, half), camera, densityScale: density, transferFunction: tf }));
+    ctx.setScene(t.scene({ volume: window.tv.block(n, half), camera, densityScale: density, transferFunction: tf }));
     await ctx.renderIterations(iterations);
     const hdr: Float32Array = await ctx.readHDR();
     ctx.dispose();
     return Array.from(hdr.filter((_, i) => i % 4 === 3));
-  }, backend, tf, iterations, BLOCK_IN_PAGE, N, HALF, CAMERA, DENSITY, W, H);
+  }, backend, tf, iterations, N, HALF, CAMERA, DENSITY, W, H);
 }
 
 describe.each(BACKENDS)('EAM with a 2D transfer function on %s', (backend) => {

@@ -1,6 +1,7 @@
 import { describe, expect, it } from 'vitest';
-import { createVolume, gradientMagnitudes, maxGradientMagnitude, volumeBox, type Volume } from '../packages/core/src/index.js';
+import { createProceduralVolume, createVolume, gradientMagnitudes, maxGradientMagnitude, volumeBox, type Volume } from '../packages/core/src/index.js';
 import { BACKENDS, usePage } from './helpers/session.js';
+import { testVolumes, type FieldSpec } from './helpers/test-volumes.js';
 
 /**
  * The gradient-magnitude volume computed on the GPU (RenderContext.readGradientVolume) against
@@ -8,48 +9,31 @@ import { BACKENDS, usePage } from './helpers/session.js';
  * transfer function, reached here through a renderer with `needsGradient`) against a CPU
  * trilinear interpolation of the CPU gradients.
  */
-type Field = { dims: [number, number, number]; spacing: [number, number, number]; range: [number, number]; f: string };
+type Field = FieldSpec;
 
-/** Volume from a field f(x, y, z) of physical voxel-centre coordinates (index × spacing), given as source so the page builds the same one. */
+/** The field's volume in Node (the page builds the same one with window.tv.field). */
 function build(field: Field): Volume {
-  const f = (0, eval)(field.f) as (x: number, y: number, z: number) => number;
-  const [nx, ny, nz] = field.dims;
-  const data = new Float32Array(nx * ny * nz);
-  for (let z = 0; z < nz; z++) for (let y = 0; y < ny; y++) for (let x = 0; x < nx; x++) data[x + nx * (y + ny * z)] = f(x * field.spacing[0], y * field.spacing[1], z * field.spacing[2]);
-  const v = createVolume(field.dims, 'float32', data, field.spacing);
-  v.valueRange = field.range;
-  return v;
+  return testVolumes({ createVolume, createProceduralVolume }).field(field);
 }
 
-const BUILD_IN_PAGE = `(core, field) => {
-  const f = (0, eval)(field.f);
-  const [nx, ny, nz] = field.dims;
-  const data = new Float32Array(nx * ny * nz);
-  for (let z = 0; z < nz; z++) for (let y = 0; y < ny; y++) for (let x = 0; x < nx; x++) data[x + nx * (y + ny * z)] = f(x * field.spacing[0], y * field.spacing[1], z * field.spacing[2]);
-  const v = core.createVolume(field.dims, 'float32', data, field.spacing);
-  v.valueRange = field.range;
-  return v;
-}`;
-
-const RAMP: Field = { dims: [9, 7, 5], spacing: [1, 2, 0.5], range: [-10, 10], f: '(x, y, z) => 0.3 * x - 0.2 * y + 0.5 * z' };
-const SPHERE: Field = { dims: [33, 33, 33], spacing: [1, 1, 1], range: [0, 30], f: '(x, y, z) => Math.hypot(x - 16, y - 16, z - 16)' };
+const RAMP: Field = { dims: [9, 7, 5], spacing: [1, 2, 0.5], range: [-10, 10], kind: 'ramp' };
+const SPHERE: Field = { dims: [33, 33, 33], spacing: [1, 1, 1], range: [0, 30], kind: 'sphere16' };
 // Over 64³ (the size above which gradients must not be computed on the main thread) and not cubic.
-const LARGE: Field = { dims: [70, 66, 65], spacing: [1, 1, 1.5], range: [-2, 2], f: '(x, y, z) => Math.sin(x / 7) * Math.cos(y / 9) + z / 100' };
+const LARGE: Field = { dims: [70, 66, 65], spacing: [1, 1, 1.5], range: [-2, 2], kind: 'waves' };
 
 const page = usePage();
 
 // CPU comparisons read the exact path's r32float gradient; the fast path's r16float is tested against its stated bound.
 async function gpuGradient(backend: string, field: Field, sampling: 'fast' | 'exact' = 'exact'): Promise<{ magnitudes: number[]; max: number }> {
-  return page().page.evaluate(async (backend, field, builder, sampling) => {
-    const { core } = (window as any).vpt;
+  return page().page.evaluate(async (backend, field, sampling) => {
     const t = (window as any).t;
-    const volume = (0, eval)(builder)(core, field);
+    const volume = window.tv.field(field);
     const ctx = await t.context({ backend, renderer: 'eam', width: 4, height: 4, sampling });
     ctx.setScene(t.scene({ volume, transferFunction: { dimensions: '2d', widgets: [{ type: 'box', min: [0, 0.5], max: [1, 1], color: [1, 1, 1], opacity: 1 }] } }));
     const g = await ctx.readGradientVolume();
     ctx.dispose();
     return { magnitudes: Array.from(g.magnitudes as Float32Array), max: g.max };
-  }, backend, field, BUILD_IN_PAGE, sampling);
+  }, backend, field, sampling);
 }
 
 describe.each(BACKENDS)('gradient magnitude on the GPU (%s)', (backend) => {
@@ -95,12 +79,12 @@ describe.each(BACKENDS)('gradient magnitude on the GPU (%s)', (backend) => {
   it('is sampled trilinearly and normalized by the kernels of a renderer that sets needsGradient', async () => {
     // A probe renderer writes sampleGradientMagnitude(p) and normalizedGradientAt(p) at points
     // p spread over the box (through several atlas tiles of a non-cubic volume).
-    const field: Field = { dims: [20, 12, 9], spacing: [1, 1, 2], range: [-3, 3], f: '(x, y, z) => Math.sin(x / 3) + Math.cos(y / 4) * z / 9' };
+    const field: Field = { dims: [20, 12, 9], spacing: [1, 1, 2], range: [-3, 3], kind: 'probe' };
     const W = 16, H = 12, Z = 0.37;
-    const out: number[] = await page().page.evaluate(async (backend, field, builder, W, H, Z) => {
+    const out: number[] = await page().page.evaluate(async (backend, field, W, H, Z) => {
       const { core } = (window as any).vpt;
       const t = (window as any).t;
-      const volume = (0, eval)(builder)(core, field);
+      const volume = window.tv.field(field);
       const body = (g: boolean) => g
         ? 'void main() { ivec2 q = vptPixel(); vec3 f = vec3((float(q.x) + 0.5) / ' + W + '.0, (float(q.y) + 0.5) / ' + H + '.0, ' + Z + '); vec3 p = u.boxMin + (u.boxMax - u.boxMin) * f; vpt_out0 = vec4(sampleGradientMagnitude(p), normalizedGradientAt(p), VPT_GRADIENT, VPT_TF_2D); }'
         : '@fragment fn fs_main(@builtin(position) fragCoord: vec4f) -> VptOut { let q = vptPixel(fragCoord); let f = vec3f((f32(q.x) + 0.5) / ' + W + '.0, (f32(q.y) + 0.5) / ' + H + '.0, ' + Z + '); let p = u.boxMin + (u.boxMax - u.boxMin) * f; var r: VptOut; r.out0 = vec4f(sampleGradientMagnitude(p), normalizedGradientAt(p), select(0.0, 1.0, VPT_GRADIENT), select(0.0, 1.0, VPT_TF_2D)); return r; }';
@@ -122,7 +106,7 @@ describe.each(BACKENDS)('gradient magnitude on the GPU (%s)', (backend) => {
       const fixed = Array.from(await ctx.readHDR() as Float32Array);
       ctx.dispose();
       return [...hdr, ...fixed];
-    }, backend, field, BUILD_IN_PAGE, W, H, Z);
+    }, backend, field, W, H, Z);
     const vol = build(field);
     const g = gradientMagnitudes(vol);
     const gmax = maxGradientMagnitude(g);

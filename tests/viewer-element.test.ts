@@ -202,7 +202,7 @@ describe('<vpt-viewer> size', () => {
     const hi = await vp.browser.newPage();
     await hi.setViewport({ width: 400, height: 300, deviceScaleFactor: 2 });
     await hi.goto(vp.page.url());
-    await hi.waitForFunction('window.__ready === true');
+    await hi.waitForFunction(() => (window as any).__ready === true);
     await hi.evaluate(installViewerHelpers);
     const at2 = await sizes(hi);
     await hi.close();

@@ -6,17 +6,7 @@
 
 export type Json = null | boolean | number | string | Json[] | { [k: string]: Json };
 
-/** mulberry32: a small, well-mixed 32-bit PRNG; the same seed gives the same cases everywhere. */
-export function seededRandom(seed: number): () => number {
-  let a = seed >>> 0;
-  return () => {
-    a = (a + 0x6d2b79f5) >>> 0;
-    let t = a;
-    t = Math.imul(t ^ (t >>> 15), t | 1);
-    t ^= t + Math.imul(t ^ (t >>> 7), t | 61);
-    return ((t ^ (t >>> 14)) >>> 0) / 4294967296;
-  };
-}
+export { seededRandom } from './seeded-random.js';
 
 /** Values that break a number: float32 overflow, just-finite float32, tiny, zero, negative, huge integers, fractions. */
 export const EXTREME_NUMBERS = [1e39, -1e39, 3e38, 3.4028234663852886e38, 1e308, -1e308, 1e-45, 1e-9, 0, -0, -1, -1e-9, 0.5, 1.5, 2 ** 31, 2 ** 53, 100000, 65536, 8193, 1e18, 1e19];

@@ -109,7 +109,7 @@ export async function openViewerPage(browser?: Browser): Promise<ViewerPage> {
   page.on('pageerror', (e) => errors.push((e as Error).message));
   await page.setViewport({ width: 400, height: 300, deviceScaleFactor: 1 });
   await page.goto(new URL('tests/pages/viewer.html', server.url).href);
-  await page.waitForFunction('window.__ready === true', { timeout: 60_000 });
+  await page.waitForFunction(() => (window as any).__ready === true, { timeout: 60_000 });
   await page.evaluate(installViewerHelpers);
   return {
     browser: b, server, page, errors,

@@ -8,6 +8,7 @@ export * from './scene/transfer-function-json.js';
 export * from './scene/transfer-function-presets.js';
 export * from './scene/scene.js';
 export * from './scene/procedural.js';
+export * from './scene/raw-sidecar.js';
 
 export { UniformLayout, type UniformField, type UniformType, type UniformValues, type UniformValue, type FieldPlacement } from './uniforms/layout.js';
 
@@ -22,7 +23,7 @@ export type { Renderer, KernelSource, AuxiliaryTexture, AuxiliaryPass, VolumeBin
 export { planVolumeUpload, uploadsDataAsIs, volumeTextureData, volumeTextureSlab, volumeValueMapping, type VolumeSampling, type VolumeUpload, type VolumeFormatOptions } from './gpu/volume-format.js';
 export { downsampleVolume, fitFactors } from './scene/downsample.js';
 export { BaseRenderer } from './base-renderer.js';
-export { RUNNING_MEAN_INTEGRATE, COPY_ACCUMULATION_RENDER } from './shaders/accumulation.js';
+export { RUNNING_MEAN_INTEGRATE, HALF_MEANS_INTEGRATE, COPY_ACCUMULATION_RENDER } from './shaders/accumulation.js';
 export type { PostStep } from './post-step.js';
 export { RenderContext, DEFAULT_GPU_BYTES, type RenderContextOptions, type RenderStats, type GpuBytes, type RenderWarning } from './context/render-context.js';
 

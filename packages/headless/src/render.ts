@@ -107,7 +107,7 @@ export async function openVptPage(options: VptPageOptions = {}): Promise<VptPage
     await page.goto(url);
     const timeout = options.loadTimeoutMs ?? 60_000;
     try {
-      await page.waitForFunction('window.__vptReady === true || typeof window.__vptError === "string"', { timeout, polling: 50 });
+      await page.waitForFunction(() => window.__vptReady === true || typeof window.__vptError === 'string', { timeout, polling: 50 });
     } catch {
       throw new Error(`The vpt page did not load within ${timeout} ms${problems.length ? `: ${problems.join('; ')}` : ''}`);
     }

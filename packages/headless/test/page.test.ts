@@ -24,6 +24,12 @@ describe.skipIf(!pageBuilt || !fs.existsSync(chromiumExecutable()))('the headles
       fs.copyFileSync(path.join(here, 'fixtures', 'stub-packages', name, 'index.js'), path.join(tmp, 'packages', name, 'dist', 'index.js'));
       packageDirs[name] = path.join(tmp, 'packages', name);
     }
+    // The stub core re-exports core's real errors and raw reader (scene/raw-sidecar.ts, built).
+    const coreDist = path.join(here, '..', '..', 'core', 'dist');
+    for (const file of ['errors.js', 'scene/raw-sidecar.js']) {
+      fs.mkdirSync(path.dirname(path.join(tmp, 'packages', 'core', 'dist', file)), { recursive: true });
+      fs.copyFileSync(path.join(coreDist, file), path.join(tmp, 'packages', 'core', 'dist', file));
+    }
     // A big-endian uint16 volume with its sidecar, and a little-endian int16 raw.
     fs.mkdirSync(path.join(tmp, 'data'));
     const be = Buffer.alloc(2 * 2 * 2 * 2);

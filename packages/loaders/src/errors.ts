@@ -1,4 +1,4 @@
-import { VptError } from '@vpt/core';
+import { RawReadError, VptError } from '@vpt/core';
 
 /** Why a load failed; one value per thing a person can do something about. */
 export type LoaderErrorReason =
@@ -29,6 +29,16 @@ export class LoaderError extends VptError {
     super(reason === 'limit' ? 'limit-exceeded' : 'load-failed', message, options);
     this.name = 'LoaderError';
     this.reason = reason;
+  }
+}
+
+/** Run core's raw reader, turning its RawReadError into a LoaderError with the same reason and message. */
+export function asLoaderError<T>(read: () => T): T {
+  try {
+    return read();
+  } catch (e) {
+    if (e instanceof RawReadError) throw new LoaderError(e.reason, e.message, { cause: e });
+    throw e;
   }
 }
 

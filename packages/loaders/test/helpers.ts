@@ -73,16 +73,7 @@ export function checkOutcome(outcome: { volume?: LoadedVolume; error?: unknown }
 }
 
 /** A deterministic PRNG (mulberry32) for reproducible fuzzing. */
-export function rng(seed: number): () => number {
-  let a = seed >>> 0;
-  return () => {
-    a = (a + 0x6d2b79f5) >>> 0;
-    let t = a;
-    t = Math.imul(t ^ (t >>> 15), t | 1);
-    t ^= t + Math.imul(t ^ (t >>> 7), t | 61);
-    return ((t ^ (t >>> 14)) >>> 0) / 4294967296;
-  };
-}
+export { seededRandom as rng } from '../../../tests/helpers/seeded-random.js';
 
 // ---------------------------------------------------------------- NIfTI-1 writer
 

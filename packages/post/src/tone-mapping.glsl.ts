@@ -12,7 +12,7 @@ vec3 toneMap(vec3 c) {
   return min(c, vec3(1.0));
 }
 #elif ${TONE_MAP_DEFINE} == ${ID.reinhard}
-// Reinhard per channel, c / (1 + c), as in Lesar, Bohak, Marolt, Web3D 2018.
+// Reinhard per channel, c / (1 + c) (Reinhard et al. 2002, "Photographic Tone Reproduction for Digital Images"), as in Lesar, Bohak, Marolt, Web3D 2018.
 vec3 toneMap(vec3 c) {
   return c / (1.0 + c);
 }

@@ -11,7 +11,7 @@ fn toneMap(c: vec3f) -> vec3f {
   return min(c, vec3f(1.0));
 }
 #elif ${TONE_MAP_DEFINE} == ${ID.reinhard}
-// Reinhard per channel, c / (1 + c), as in Lesar, Bohak, Marolt, Web3D 2018.
+// Reinhard per channel, c / (1 + c) (Reinhard et al. 2002, "Photographic Tone Reproduction for Digital Images"), as in Lesar, Bohak, Marolt, Web3D 2018.
 fn toneMap(c: vec3f) -> vec3f {
   return c / (1.0 + c);
 }

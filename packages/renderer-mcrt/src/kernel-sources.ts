@@ -1,7 +1,5 @@
-import { GLSL_ENVIRONMENT_MAP, GLSL_SAMPLING, preprocess, WGSL_ENVIRONMENT_MAP, WGSL_SAMPLING, type Flags, type KernelSource } from '@vpt/core';
+import { GLSL_ENVIRONMENT_MAP, GLSL_SAMPLING, HALF_MEANS_INTEGRATE, preprocess, WGSL_ENVIRONMENT_MAP, WGSL_SAMPLING, type Flags, type KernelSource } from '@vpt/core';
 import type { McrtFeatures } from './features.js';
-import * as glslAccumulate from './kernels/accumulate.glsl.js';
-import * as wgslAccumulate from './kernels/accumulate.wgsl.js';
 import * as glslPath from './kernels/path.glsl.js';
 import * as wgslPath from './kernels/path.wgsl.js';
 import * as glslTracking from './kernels/tracking.glsl.js';
@@ -19,5 +17,5 @@ export function generateKernel(f: McrtFeatures): KernelSource {
   return { glsl: preprocess(glsl, flags), wgsl: preprocess(wgsl, flags) };
 }
 
-/** Running means of all, even and odd iterations (three rgba32float accumulation targets). */
-export const INTEGRATE_HALVES: KernelSource = { glsl: glslAccumulate.integrate, wgsl: wgslAccumulate.integrate };
+/** Running means of all, even and odd iterations (core's, three rgba32float accumulation targets). */
+export const INTEGRATE_HALVES: KernelSource = HALF_MEANS_INTEGRATE;

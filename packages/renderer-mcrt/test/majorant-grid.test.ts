@@ -1,18 +1,7 @@
 import { describe, expect, it } from 'vitest';
 import { createVolume, rasterizeTransferFunction, reference, TF_RESOLUTION, type TransferFunction, type Vec3, type Volume } from '@vpt/core';
+import { seededRandom as rng } from '../../../tests/helpers/seeded-random.js';
 import { buildMajorantGrid, cellVoxelRange, computeCellValueRanges, gridCells, volumeCellRanges } from '../src/index.js';
-
-/** A deterministic PRNG for test data (mulberry32). */
-function rng(seed: number) {
-  let a = seed >>> 0;
-  return () => {
-    a = (a + 0x6d2b79f5) >>> 0;
-    let t = a;
-    t = Math.imul(t ^ (t >>> 15), t | 1);
-    t ^= t + Math.imul(t ^ (t >>> 7), t | 61);
-    return ((t ^ (t >>> 14)) >>> 0) / 4294967296;
-  };
-}
 
 /** The kernel's opacity lookup (linear between texels at coordinate v·(N−1)), in float64. */
 function opacityAt(tf: Float32Array, v: number, width = TF_RESOLUTION, row = 0): number {

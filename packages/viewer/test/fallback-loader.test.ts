@@ -56,7 +56,7 @@ describe('fallback sidecar loader', () => {
   it('names what is wrong: missing file, short raw, bad sidecar, other formats', async () => {
     expect(await reason('missing.json')).toMatchObject({ reason: 'not-found', message: expect.stringMatching(/missing\.json was not found \(HTTP 404\)/) });
     expect(await reason('short.json')).toMatchObject({ reason: 'truncated', message: expect.stringMatching(/need 16 bytes, the file has 10/) });
-    expect(await reason('nodims.json')).toMatchObject({ reason: 'bad-header', message: expect.stringMatching(/"dims" is missing or malformed/) });
+    expect(await reason('nodims.json')).toMatchObject({ reason: 'bad-header', message: expect.stringMatching(/gives dims \[2 × 2\]; they must be three whole numbers/) });
     expect(await reason('bad.json')).toMatchObject({ reason: 'bad-header', message: expect.stringMatching(/not valid JSON/) });
     expect(await reason('head.nrrd')).toMatchObject({ reason: 'unsupported', message: expect.stringMatching(/needs @vpt\/loaders/) });
   });

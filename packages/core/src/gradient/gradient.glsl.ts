@@ -10,7 +10,7 @@ import { REDUCTION } from './reduction.js';
 // Central differences (one-sided at the borders, divided by the index distance spanned)
 // of the normalized volume (each texel mapped by u.valueScale/valueOffset and clamped, as
 // volumeValue() in the shared chunks does), scaled by u.gradScale = (valueRange width) / spacing, so the
-// result is |∇f| in data units per physical length (Kniss et al. 2002, sec. 3).
+// result is |∇f| in data units per physical length (Kniss, Kindlmann, Hansen 2002, "Multidimensional Transfer Functions for Interactive Volume Rendering").
 export const GRADIENT_MAGNITUDE = /* glsl */ `
 float axisDerivative(ivec3 v, ivec3 e, int i, int n) {
   int i0 = max(i - 1, 0);

@@ -4,7 +4,7 @@ import { REDUCTION } from './reduction.js';
 // Central differences (one-sided at the borders, divided by the index distance spanned)
 // of the normalized volume (each texel mapped by u.valueScale/valueOffset and clamped, as
 // volumeValue() in the shared chunks does), scaled by u.gradScale = (valueRange width) / spacing, so the
-// result is |∇f| in data units per physical length (Kniss et al. 2002, sec. 3).
+// result is |∇f| in data units per physical length (Kniss, Kindlmann, Hansen 2002, "Multidimensional Transfer Functions for Interactive Volume Rendering").
 export const GRADIENT_MAGNITUDE = /* wgsl */ `
 fn axisDerivative(v: vec3i, e: vec3i, i: i32, n: i32) -> f32 {
   let i0 = max(i - 1, 0);

@@ -6,7 +6,7 @@
  */
 import { SLICE_ATLAS } from './slice-atlas.glsl.js';
 
-/** PCG hash (Jarzynski & Olano 2020, "Hash Functions for GPU Rendering", pcg) and a uniform float stream. */
+/** PCG hash (Jarzynski & Olano 2020, "Hash Functions for GPU Rendering", JCGT 9(3), its pcg) and a uniform float stream. */
 export const RNG = /* glsl */ `
 uint pcgHash(uint v) {
   uint state = v * 747796405u + 2891336453u;

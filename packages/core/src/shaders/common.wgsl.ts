@@ -5,7 +5,7 @@ import { SLICE_ATLAS } from './slice-atlas.wgsl.js';
  * Expects `u` (scene uniforms) and textures `volume` (texture_3d) and `transferFunction`.
  */
 
-/** PCG hash (Jarzynski & Olano 2020, "Hash Functions for GPU Rendering", pcg) and a uniform float stream. */
+/** PCG hash (Jarzynski & Olano 2020, "Hash Functions for GPU Rendering", JCGT 9(3), its pcg) and a uniform float stream. */
 export const RNG = /* wgsl */ `
 fn pcgHash(v: u32) -> u32 {
   let state = v * 747796405u + 2891336453u;
@@ -137,7 +137,7 @@ fn normalizedGradientAt(p: vec3f) -> f32 {
 }
 `;
 
-/** transferAt for a 2D (value x normalized gradient magnitude) transfer function (twin of GLSL_TRANSFER_2D). */
+/** transferAt for a 2D (value x normalized gradient magnitude) transfer function (Kniss, Kindlmann, Hansen 2002; twin of GLSL_TRANSFER_2D). */
 export const TRANSFER_2D = /* wgsl */ `
 fn transferLookup2D(value: f32, gradient: f32) -> vec4f {
   let x = clamp(value, 0.0, 1.0) * f32(u.tfSize - 1);

@@ -11,7 +11,7 @@ export const SAMPLING = /* glsl */ `
 const float VPT_PI = 3.14159265358979;
 const float VPT_INV_4PI = 0.0795774715459477;
 // The unit vector at polar (cosTheta, sinTheta) and azimuth phi about the unit axis n, in the
-// branchless orthonormal basis of Duff et al. 2017 ("Building an Orthonormal Basis, Revisited", listing 3).
+// branchless orthonormal basis of Duff et al. 2017 ("Building an Orthonormal Basis, Revisited", JCGT 6(1)).
 vec3 directionAround(vec3 n, float cosTheta, float sinTheta, float phi) {
   float s = n.z >= 0.0 ? 1.0 : -1.0;
   float a = -1.0 / (s + n.z);
@@ -29,7 +29,7 @@ vec3 sampleUniformSphere(float xi1, float xi2) {
   float phi = 2.0 * VPT_PI * xi2;
   return vec3(r * cos(phi), r * sin(phi), z);
 }
-// Henyey–Greenstein phase function (Henyey & Greenstein 1941) from a = 1 − cosθ and b = 1 + cosθ,
+// Henyey–Greenstein phase function (Henyey & Greenstein 1941, "Diffuse radiation in the Galaxy", ApJ 93) from a = 1 − cosθ and b = 1 + cosθ,
 // cosθ between the propagation directions before and after scattering, g > 0 forward (docs/design.md).
 // 1 + g² − 2g·cosθ is written (1−g)² + 2g·a for g ≥ 0 and (1+g)² − 2g·b for g < 0: no cancellation as |g| → 1.
 float hgPhaseAB(float g, float a, float b) {
@@ -54,7 +54,7 @@ vec4 sampleHG(vec3 w, float g, float xi1, float xi2) {
   vec3 dir = directionAround(w, cosTheta, sinTheta, 2.0 * VPT_PI * xi2);
   return vec4(dir, hgPhaseAB(g, a, b));
 }
-// Multiple importance sampling weights for strategy pdf a against b (Veach & Guibas 1995, eq. 9 and β = 2).
+// MIS weights for strategy pdf a against b: the power heuristic with β = 2 and the balance heuristic (Veach & Guibas 1995, "Optimally Combining Sampling Techniques for Monte Carlo Rendering").
 float misPower(float a, float b) {
   if (!(a > 0.0)) return 0.0;
   float r = b / a;
@@ -100,7 +100,7 @@ vec4 environmentLookup(vec3 d) {
   float pdf = sinTheta > 0.0 ? texel.a / (2.0 * VPT_PI * VPT_PI * sinTheta) : 0.0;
   return vec4(texel.rgb, pdf);
 }
-// Importance sampling by luminance × sinθ (Pharr, Jakob, Humphreys, PBR 3rd ed., §14.2.4): a row from
+// Importance sampling by luminance × sinθ (Pharr, Jakob, Humphreys, PBR 3rd ed., §14.2 "Sampling Light Sources", infinite area lights): a row from
 // the marginal CDF, a column from that row's conditional CDF (binary searches for the largest
 // entry <= ξ, which skips zero-width bins), then a uniform point inside the texel.
 EnvSample sampleEnvironment(float xi1, float xi2) {

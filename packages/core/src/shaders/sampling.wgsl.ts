@@ -6,7 +6,7 @@
 export const SAMPLING = /* wgsl */ `
 const VPT_PI: f32 = 3.14159265358979;
 const VPT_INV_4PI: f32 = 0.0795774715459477;
-// Duff et al. 2017, "Building an Orthonormal Basis, Revisited", listing 3.
+// Duff et al. 2017, "Building an Orthonormal Basis, Revisited", JCGT 6(1).
 fn directionAround(n: vec3f, cosTheta: f32, sinTheta: f32, phi: f32) -> vec3f {
   let s = select(-1.0, 1.0, n.z >= 0.0);
   let a = -1.0 / (s + n.z);
@@ -42,7 +42,7 @@ fn sampleHG(w: vec3f, g: f32, xi1: f32, xi2: f32) -> vec4f {
   let dir = directionAround(w, cosTheta, sinTheta, 2.0 * VPT_PI * xi2);
   return vec4f(dir, hgPhaseAB(g, a, b));
 }
-// Veach & Guibas 1995, eq. 9 and β = 2.
+// The power (β = 2) and balance heuristics (Veach & Guibas 1995, "Optimally Combining Sampling Techniques…").
 fn misPower(a: f32, b: f32) -> f32 {
   if (!(a > 0.0)) { return 0.0; }
   let r = b / a;
@@ -80,7 +80,7 @@ fn environmentLookup(d: vec3f) -> vec4f {
   let pdf = select(0.0, texel.a / (2.0 * VPT_PI * VPT_PI * sinTheta), sinTheta > 0.0);
   return vec4f(texel.rgb, pdf);
 }
-// PBR 3rd ed., §14.2.4: marginal row, conditional column, uniform inside the texel.
+// PBR 3rd ed., §14.2 "Sampling Light Sources" (infinite area lights): marginal row, conditional column, uniform inside the texel.
 fn sampleEnvironment(xi1: f32, xi2: f32) -> EnvSample {
   let size = vec2i(textureDimensions(envMap));
   var lo = 0;

@@ -16,8 +16,6 @@ let post!: PostModule;
 /** The renderer classes of the catalog, by renderer name. */
 const rendererClasses = new Map<string, new (params?: Record<string, unknown>) => Renderer>();
 
-const ARRAYS = { uint8: Uint8Array, uint16: Uint16Array, int16: Int16Array, float32: Float32Array } as const;
-
 async function fetchOk(url: string): Promise<Response> {
   let res: Response;
   try {
@@ -29,49 +27,17 @@ async function fetchOk(url: string): Promise<Response> {
   return res;
 }
 
-async function loadRaw(url: string, dims: [number, number, number], type: keyof typeof ARRAYS, endianness = 'little'): Promise<Volume['data']> {
-  const Ctor = ARRAYS[type];
-  if (!Ctor) throw new core.VptError('load-failed', `${url}: unknown voxel type "${type}" (uint8, uint16, int16, float32)`);
-  const bytes = new Uint8Array(await (await fetchOk(url)).arrayBuffer());
-  const expected = dims[0] * dims[1] * dims[2] * Ctor.BYTES_PER_ELEMENT;
-  if (bytes.byteLength !== expected) {
-    throw new core.VptError('load-failed', `${url}: dims [${dims.join(', ')}] of ${type} need ${expected} bytes, the file has ${bytes.byteLength}`);
-  }
-  // Typed arrays use the host's byte order, which is little-endian on every browser
-  // platform vpt targets; swap big-endian files in place.
-  if (endianness === 'big' && Ctor.BYTES_PER_ELEMENT > 1) {
-    const n = Ctor.BYTES_PER_ELEMENT;
-    for (let i = 0; i < bytes.length; i += n) bytes.subarray(i, i + n).reverse();
-  }
-  return new Ctor(bytes.buffer, 0, bytes.byteLength / Ctor.BYTES_PER_ELEMENT);
-}
-
 /** Turn a volume description into a core Volume; relative URLs resolve against baseUrl. */
 async function loadVolume(desc: VolumeDescription, baseUrl: string = document.baseURI): Promise<Volume> {
   if ('procedural' in desc) return core.createProceduralVolume(desc.procedural, desc.size ?? 32);
   if ('sidecar' in desc) {
+    // core's raw reader parses the sidecar (as @vpt/loaders and the viewer's fallback do).
     const sidecarUrl = new URL(desc.sidecar, baseUrl).href;
-    let meta: Record<string, unknown>;
-    try {
-      meta = await (await fetchOk(sidecarUrl)).json();
-    } catch (e) {
-      if (core.isVptError(e)) throw e;
-      throw new core.VptError('load-failed', `${sidecarUrl}: not valid JSON (${(e as Error).message})`, { cause: e });
-    }
-    // The .raw sits beside the sidecar with the same base name (the sidecar's own
-    // "file" field, when present, names it explicitly).
-    const file = typeof meta.file === 'string' && !meta.file.includes('/') ? meta.file : sidecarUrl.split('/').pop()!.replace(/\.json$/i, '') + '.raw';
-    return loadVolume({
-      raw: new URL(file, sidecarUrl).href,
-      dims: meta.dims as [number, number, number],
-      type: meta.voxel_type as keyof typeof ARRAYS,
-      spacing: meta.spacing as [number, number, number] | undefined,
-      valueRange: meta.value_range as [number, number] | undefined,
-      endianness: meta.endianness as 'little' | 'big' | undefined,
-    }, sidecarUrl);
+    const sidecar = core.parseRawSidecar(await (await fetchOk(sidecarUrl)).text(), sidecarUrl);
+    return loadVolume({ raw: core.rawFileBeside(sidecarUrl, sidecar), ...sidecar }, sidecarUrl);
   }
   const url = new URL(desc.raw, baseUrl).href;
-  const data = await loadRaw(url, desc.dims, desc.type, desc.endianness);
+  const data = core.rawVoxels(new Uint8Array(await (await fetchOk(url)).arrayBuffer()), desc, url);
   const volume = core.createVolume(desc.dims, desc.type, data, desc.spacing ?? [1, 1, 1]);
   if (desc.valueRange) volume.valueRange = desc.valueRange;
   volume.name = url.split('/').pop();

@@ -1,4 +1,5 @@
-import { LoaderError } from '../errors.js';
+import { MAX_RAW_VOXELS, checkRawDims } from '@vpt/core';
+import { LoaderError, asLoaderError } from '../errors.js';
 import type { LoadContext } from '../context.js';
 
 /** Voxel types found in files; they are converted to core's four on load. */
@@ -9,23 +10,11 @@ export const SOURCE_BYTES: Record<SourceType, number> = {
 };
 
 /** 2^32 voxels: past this, 32-bit sizes (GPU APIs, C readers) wrap; a header claiming it lies or is beyond reach. */
-export const MAX_VOXELS = 0x100000000;
+export const MAX_VOXELS = MAX_RAW_VOXELS;
 
-/**
- * Dims straight from a header: every one a positive integer, and a voxel count that can
- * be addressed. Zero is 'empty' (nothing to draw), a product ≥ 2^32 is 'overflow'.
- */
+/** Dims straight from a header (core's checkRawDims: positive integers, an addressable count), as a LoaderError. */
 export function checkDims(dims: readonly number[], ctx: LoadContext, source = 'header'): asserts dims is [number, number, number] {
-  const shown = `[${dims.join(' × ')}]`;
-  if (dims.length !== 3 || dims.some((d) => typeof d !== 'number' || !Number.isFinite(d) || !Number.isInteger(d))) {
-    throw new LoaderError('bad-header', `${ctx.name}: the ${source} gives dims ${shown}; they must be three whole numbers`);
-  }
-  if (dims.some((d) => d < 0)) throw new LoaderError('bad-header', `${ctx.name}: the ${source} gives negative dims ${shown}`);
-  if (dims.some((d) => d === 0)) throw new LoaderError('empty', `${ctx.name}: the ${source} gives dims ${shown}: the volume is empty`);
-  const count = dims[0] * dims[1] * dims[2];
-  if (count >= MAX_VOXELS) {
-    throw new LoaderError('overflow', `${ctx.name}: the ${source} gives dims ${shown} = ${count.toExponential(3)} voxels, past the 2^32 a volume can address; the header is probably corrupt`);
-  }
+  asLoaderError(() => checkRawDims(dims, ctx.name, source));
 }
 
 /**

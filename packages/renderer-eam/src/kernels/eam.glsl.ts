@@ -1,6 +1,6 @@
 import { MAX_MARCH_STEPS } from '@vpt/core';
 
-// Emission-absorption (Max 1995, "Optical models for direct volume rendering", eq. 4-5)
+// Emission-absorption (Max 1995, "Optical models for direct volume rendering", IEEE TVCG 1(2), the emission + absorption model)
 // by a stratified, randomly offset ray march; alpha = 1 - exp(-sigma_t * segment length),
 // so a homogeneous medium yields exactly c·(1 - exp(-sigma_t·L)).
 

@@ -96,7 +96,7 @@ vec3 isoNormal(vec3 p, vec3 d) {
 }
 
 // Lambert plus the energy-normalized Blinn-Phong lobe (s + 8)/(8 pi) (n.h)^s (Akenine-Moller,
-// Haines & Hoffman, Real-Time Rendering 3rd ed., sec. 7.6), mixed by u.specular.
+// Haines & Hoffman, Real-Time Rendering 3rd ed., 2008, ch. 7 "Advanced Shading"), mixed by u.specular.
 vec3 isoBrdf(vec3 n, vec3 wi, vec3 wo, vec3 albedo) {
   vec3 hs = wi + wo;
   float lobe = 0.0;

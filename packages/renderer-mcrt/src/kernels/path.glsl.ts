@@ -1,4 +1,4 @@
-// Volumetric path tracing (Kajiya 1986; Pharr, Jakob, Humphreys, PBR 4th ed., ch. 14): free
+// Volumetric path tracing (Kajiya 1986, "The Rendering Equation"; Pharr, Jakob, Humphreys, PBR 4th ed., ch. 14 "Light Transport II: Volume Rendering"): free
 // flights by delta tracking, Henyey–Greenstein phase sampling, next-event estimation to the
 // directional lights and the environment combined with phase sampling by multiple importance
 // sampling (Veach & Guibas 1995), Russian roulette on the path throughput. Real collisions

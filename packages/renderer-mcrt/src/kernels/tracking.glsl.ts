@@ -1,8 +1,8 @@
 // Free-flight sampling and transmittance estimation against a piecewise-constant majorant:
 // delta tracking (Woodcock et al. 1965), ratio tracking and residual ratio tracking (Novák,
 // Selle, Jarosz 2014, "Residual Ratio Tracking for Estimating Attenuation in Participating
-// Media", §3–4, control = per-cell minorant), over a coarse grid of per-cell extinction bounds
-// walked by a 3D DDA (Amanatides & Woo 1987), as pbrt-v4's GridMedium. Exponential distances
+// Media", SIGGRAPH Asia 2014; control = per-cell minorant), over a coarse grid of per-cell extinction bounds
+// walked by a 3D DDA (Amanatides & Woo 1987, "A Fast Voxel Traversal Algorithm for Ray Tracing"), as pbrt-v4's GridMedium. Exponential distances
 // are drawn once and their optical depth is carried across cells (memorylessness).
 // Preprocessed (core's shaders/preprocess.ts) with MAJORANT_GRID, TRACKING, DEBUG_OUTPUT.
 
@@ -54,7 +54,7 @@ vec3 ddaNext(inout Dda s) {
 
 struct Collision { bool hit; float t; vec3 albedo; };
 
-// Delta tracking from t0 to t1 along o + t·d: tentative collisions at majorant rate, accepted
+// Delta tracking (Woodcock et al. 1965) from t0 to t1 along o + t·d: tentative collisions at majorant rate, accepted
 // with probability σ_t/majorant. No hit = the ray leaves the medium at t1.
 Collision freeFlight(vec3 o, vec3 d, float t0, float t1, inout uint rng) {
   Collision c = Collision(false, t1, vec3(0.0));
@@ -85,7 +85,7 @@ Collision freeFlight(vec3 o, vec3 d, float t0, float t1, inout uint rng) {
   return c;
 }
 
-// Transmittance from t0 to t1 along o + t·d. Delta tracking: 1 if the ray gets through, else 0.
+// Transmittance from t0 to t1 along o + t·d (ratio and residual ratio tracking: Novák, Selle, Jarosz 2014). Delta tracking: 1 if the ray gets through, else 0.
 // Ratio tracking: product of (1 − σ_t/majorant) over the tentative collisions. Residual ratio
 // tracking: exp(−∫σ_c) in closed form times ratio tracking of the residual σ_t − σ_c with
 // majorant − σ_c, σ_c the cell's minorant. Russian roulette keeps estimates below 0.1 unbiased.

@@ -1,4 +1,4 @@
-// Free-flight sampling and transmittance estimation (delta, ratio and residual ratio tracking,
+// Free-flight sampling and transmittance estimation (delta tracking, Woodcock et al. 1965; ratio and residual ratio tracking,
 // Novák, Selle, Jarosz 2014) over a majorant grid walked by a 3D DDA (Amanatides & Woo 1987).
 // Twin of tracking.glsl.ts: same arithmetic in the same order.
 

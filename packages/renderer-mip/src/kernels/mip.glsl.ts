@@ -1,6 +1,6 @@
 import { MAX_MARCH_STEPS } from '@vpt/core';
 
-// Monte Carlo maximum intensity projection (Lesar, Bohak, Marolt 2018, §4.1): each
+// Monte Carlo maximum intensity projection (Lesar, Bohak, Marolt 2018, "Real-Time Interactive Platform-Agnostic Volumetric Path Tracing in WebGL 2.0", its MIP renderer): each
 // iteration marches a jittered ray with a random offset; the accumulation keeps the max.
 
 export const generate = /* glsl */ `

@@ -1,6 +1,6 @@
 import { MAX_MARCH_STEPS } from '@vpt/core';
 
-// Monte Carlo maximum intensity projection (Lesar, Bohak, Marolt 2018, §4.1): each
+// Monte Carlo maximum intensity projection (Lesar, Bohak, Marolt 2018, Web3D, its MIP renderer): each
 // iteration marches a jittered ray with a random offset; the accumulation keeps the max.
 
 export const generate = /* wgsl */ `
