@@ -4,7 +4,9 @@ import js from '@eslint/js';
 import tseslint from 'typescript-eslint';
 
 export default tseslint.config(
-  { ignores: ['**/dist/**', '**/node_modules/**', 'benchmarks/results/**', 'apps/gallery/dist/**', 'out/**', 'data/**'] },
+  {
+    ignores: ['**/dist/**', '**/node_modules/**', 'benchmarks/results/**', 'apps/gallery/dist/**', 'out/**', 'data/**'],
+  },
   js.configs.recommended,
   ...tseslint.configs.recommended,
   {
@@ -12,11 +14,37 @@ export default tseslint.config(
       ecmaVersion: 2022,
       sourceType: 'module',
       globals: {
-        window: 'readonly', document: 'readonly', console: 'readonly', performance: 'readonly', fetch: 'readonly', URL: 'readonly',
-        setTimeout: 'readonly', clearTimeout: 'readonly', requestAnimationFrame: 'readonly', cancelAnimationFrame: 'readonly',
-        process: 'readonly', Buffer: 'readonly', navigator: 'readonly', location: 'readonly', history: 'readonly', customElements: 'readonly',
-        HTMLElement: 'readonly', GPUBufferUsage: 'readonly', GPUMapMode: 'readonly', GPUTextureUsage: 'readonly', Worker: 'readonly', self: 'readonly',
-        ResizeObserver: 'readonly', URLSearchParams: 'readonly', Option: 'readonly', Blob: 'readonly', File: 'readonly', Response: 'readonly', structuredClone: 'readonly', btoa: 'readonly', atob: 'readonly',
+        window: 'readonly',
+        document: 'readonly',
+        console: 'readonly',
+        performance: 'readonly',
+        fetch: 'readonly',
+        URL: 'readonly',
+        setTimeout: 'readonly',
+        clearTimeout: 'readonly',
+        requestAnimationFrame: 'readonly',
+        cancelAnimationFrame: 'readonly',
+        process: 'readonly',
+        Buffer: 'readonly',
+        navigator: 'readonly',
+        location: 'readonly',
+        history: 'readonly',
+        customElements: 'readonly',
+        HTMLElement: 'readonly',
+        GPUBufferUsage: 'readonly',
+        GPUMapMode: 'readonly',
+        GPUTextureUsage: 'readonly',
+        Worker: 'readonly',
+        self: 'readonly',
+        ResizeObserver: 'readonly',
+        URLSearchParams: 'readonly',
+        Option: 'readonly',
+        Blob: 'readonly',
+        File: 'readonly',
+        Response: 'readonly',
+        structuredClone: 'readonly',
+        btoa: 'readonly',
+        atob: 'readonly',
       },
     },
     rules: {
@@ -24,9 +52,15 @@ export default tseslint.config(
       // at their edges with `any` on purpose; the strict TypeScript build checks the rest.
       '@typescript-eslint/no-explicit-any': 'off',
       // `_`-prefixed parameters are the code base's way to say "unused on purpose".
-      '@typescript-eslint/no-unused-vars': ['error', { argsIgnorePattern: '^_', varsIgnorePattern: '^_', caughtErrors: 'none' }],
+      '@typescript-eslint/no-unused-vars': [
+        'error',
+        { argsIgnorePattern: '^_', varsIgnorePattern: '^_', caughtErrors: 'none' },
+      ],
       // Optional renderer packages are imported where type-checking may not find them.
-      '@typescript-eslint/ban-ts-comment': ['error', { 'ts-ignore': 'allow-with-description', 'ts-expect-error': 'allow-with-description' }],
+      '@typescript-eslint/ban-ts-comment': [
+        'error',
+        { 'ts-ignore': 'allow-with-description', 'ts-expect-error': 'allow-with-description' },
+      ],
     },
   },
   {

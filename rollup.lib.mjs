@@ -6,7 +6,8 @@ export function libraryConfig({ input = { index: 'src/index.ts' }, extraExternal
   return {
     input,
     output: { dir: 'dist', format: 'es', sourcemap: true, preserveModules: true, preserveModulesRoot: 'src' },
-    external: (id) => !id.startsWith('.') && !id.startsWith('/') && !id.startsWith('\0') || extraExternal.includes(id),
+    external: (id) =>
+      (!id.startsWith('.') && !id.startsWith('/') && !id.startsWith('\0')) || extraExternal.includes(id),
     // Sourcemaps carry the TypeScript text (inlineSources), and their paths stay inside the
     // package (dist/ → src/, both published), so a user's dev server finds every source.
     plugins: [typescript({ tsconfig: './tsconfig.build.json', compilerOptions: { inlineSources: true } })],

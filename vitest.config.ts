@@ -8,7 +8,12 @@ export default defineConfig({
   // Node-side code imports the workspace packages from source; the browser side loads dist/.
   resolve: {
     // Core, post, loaders and every renderer package (renderer-*) by the package's folder name.
-    alias: [{ find: /^@vpt\/(core|post|loaders|renderer-[a-z0-9-]+)$/, replacement: `${fileURLToPath(new URL('./packages/', import.meta.url))}$1/src/index.ts` }],
+    alias: [
+      {
+        find: /^@vpt\/(core|post|loaders|renderer-[a-z0-9-]+)$/,
+        replacement: `${fileURLToPath(new URL('./packages/', import.meta.url))}$1/src/index.ts`,
+      },
+    ],
   },
   test: {
     projects: [

@@ -30,7 +30,10 @@ const catalog = JSON.parse(fs.readFileSync(path.join(root, 'data', 'datasets.jso
 
 const args = process.argv.slice(2).filter((a) => a !== '--');
 const flag = (name) => args.includes(name);
-const value = (name) => { const i = args.indexOf(name); return i >= 0 ? args[i + 1] : undefined; };
+const value = (name) => {
+  const i = args.indexOf(name);
+  return i >= 0 ? args[i + 1] : undefined;
+};
 const outDir = path.resolve(root, value('--out') ?? 'data/fetched');
 const workRoot = path.join(outDir, '.work');
 
@@ -40,16 +43,22 @@ if (only) selected = catalog.filter((d) => only.split(',').some((s) => d.name.in
 
 if (flag('--list') || flag('--help')) {
   for (const d of catalog) {
-    console.log(`${selected.includes(d) ? '*' : ' '} ${d.name}  ${(d.bytes / 1e6).toFixed(1)} MB  ${d.license}${d.committedAt ? `  (committed: ${d.committedAt})` : ''}`);
+    console.log(
+      `${selected.includes(d) ? '*' : ' '} ${d.name}  ${(d.bytes / 1e6).toFixed(1)} MB  ${d.license}${d.committedAt ? `  (committed: ${d.committedAt})` : ''}`,
+    );
   }
   console.log('\n* = fetched by this invocation');
   process.exit(0);
 }
-if (!selected.length) { console.error(`No dataset matches ${only}`); process.exit(2); }
+if (!selected.length) {
+  console.error(`No dataset matches ${only}`);
+  process.exit(2);
+}
 
 const sha256 = (file) => crypto.createHash('sha256').update(fs.readFileSync(file)).digest('hex');
 const have = (cmd) => spawnSync('bash', ['-c', `command -v ${cmd}`], { stdio: 'ignore' }).status === 0;
-const run = (cmd, cwd, env) => spawnSync('bash', ['-eo', 'pipefail', '-c', cmd], { cwd, env, stdio: 'inherit' }).status === 0;
+const run = (cmd, cwd, env) =>
+  spawnSync('bash', ['-eo', 'pipefail', '-c', cmd], { cwd, env, stdio: 'inherit' }).status === 0;
 
 /** A venv with the Python packages some conversion commands import (numpy, tifffile, vtk). */
 function pythonEnv(packages) {
@@ -59,7 +68,8 @@ function pythonEnv(packages) {
     if (!run(`python3 -m venv ${JSON.stringify(venv)}`, root, process.env)) throw new Error('python3 -m venv failed');
   }
   console.log(`  pip install ${packages.join(' ')}`);
-  if (!run(`${JSON.stringify(path.join(venv, 'bin', 'pip'))} install -q ${packages.join(' ')}`, root, process.env)) throw new Error(`pip install ${packages.join(' ')} failed`);
+  if (!run(`${JSON.stringify(path.join(venv, 'bin', 'pip'))} install -q ${packages.join(' ')}`, root, process.env))
+    throw new Error(`pip install ${packages.join(' ')} failed`);
   return { ...process.env, PATH: `${path.join(venv, 'bin')}:${process.env.PATH}`, VIRTUAL_ENV: venv };
 }
 
@@ -77,7 +87,11 @@ for (const d of selected) {
   }
   const tools = d.command.startsWith('apt-get') ? ['apt-get', 'dpkg-deb', 'tar', 'gzip'] : ['python3', 'unzip'];
   const missing = tools.filter((t) => !have(t));
-  if (missing.length) { failures.push(`${d.name}: needs ${missing.join(', ')}`); console.error(`  skipped: needs ${missing.join(', ')}`); continue; }
+  if (missing.length) {
+    failures.push(`${d.name}: needs ${missing.join(', ')}`);
+    console.error(`  skipped: needs ${missing.join(', ')}`);
+    continue;
+  }
   const work = path.join(workRoot, d.name);
   fs.rmSync(work, { recursive: true, force: true });
   fs.mkdirSync(work, { recursive: true });
@@ -85,7 +99,11 @@ for (const d of selected) {
     const env = d.pythonPackages ? pythonEnv(d.pythonPackages) : process.env;
     console.log(`  $ ${d.command}`);
     if (!run(d.command, work, env)) {
-      throw new Error(d.command.startsWith('apt-get') ? 'the command failed (has `apt-get update` been run once?)' : 'the command failed');
+      throw new Error(
+        d.command.startsWith('apt-get')
+          ? 'the command failed (has `apt-get update` been run once?)'
+          : 'the command failed',
+      );
     }
     const produced = path.join(work, d.file);
     if (!fs.existsSync(produced)) throw new Error(`the command did not produce ${d.file}`);
@@ -98,7 +116,8 @@ for (const d of selected) {
     if (d.original) {
       // The file the raw data came from (a real NIfTI/NRRD), kept for the loader tests.
       console.log(`  $ ${d.original.command}`);
-      if (!run(d.original.command, work, env) || !fs.existsSync(path.join(work, d.original.file))) throw new Error(`extracting ${d.original.file} failed`);
+      if (!run(d.original.command, work, env) || !fs.existsSync(path.join(work, d.original.file)))
+        throw new Error(`extracting ${d.original.file} failed`);
       fs.renameSync(path.join(work, d.original.file), originalTarget);
       console.log(`  ok: ${path.relative(root, originalTarget)}`);
     }

@@ -31,70 +31,180 @@ const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..');
  */
 export const MUTATIONS = [
   // MCRT kernels
-  { name: 'ratio-roulette-no-rescale-glsl', why: 'ratio tracking Russian roulette survivors not rescaled to 0.1', file: 'packages/renderer-mcrt/src/kernels/tracking.glsl.ts',
-    find: '        T = 0.1;\n      }\n    }\n#if TRACKING == 2', replace: '      }\n    }\n#if TRACKING == 2',
-    build: '@vpt/renderer-mcrt', tests: ['tests/mcrt-transmittance.test.ts'], only: 'dense medium' },
-  { name: 'ratio-roulette-no-rescale-wgsl', why: 'the same in WGSL', file: 'packages/renderer-mcrt/src/kernels/tracking.wgsl.ts',
-    find: '        T = 0.1;\n      }\n    }\n#if TRACKING == 2', replace: '      }\n    }\n#if TRACKING == 2',
-    build: '@vpt/renderer-mcrt', tests: ['tests/mcrt-transmittance.test.ts'], only: 'dense medium' },
-  { name: 'majorant-upper-border-dropped-cpu', why: 'majorant grid cell range misses its upper border (+2 → +0)', file: 'packages/renderer-mcrt/src/majorant-grid.ts',
-    find: 'const hi = Math.floor(((c + 1) * N) / G - 0.5) + 2;', replace: 'const hi = Math.floor(((c + 1) * N) / G - 0.5) + 0;',
-    tests: ['packages/renderer-mcrt/test/majorant-grid.test.ts'], only: 'true bound on smooth data|high side' },
-  { name: 'majorant-upper-border-dropped-glsl', why: 'the same in the GPU build (GLSL)', file: 'packages/renderer-mcrt/src/kernels/majorant-build.glsl.ts',
-    find: 'int hi = floorDiv(2 * (c + 1) * n - g, 2 * g) + 2;', replace: 'int hi = floorDiv(2 * (c + 1) * n - g, 2 * g) + 0;',
-    build: '@vpt/renderer-mcrt', tests: ['tests/mcrt-majorant-gpu.test.ts'], only: 'true upper bound' },
-  { name: 'majorant-upper-border-dropped-wgsl', why: 'the same in the GPU build (WGSL)', file: 'packages/renderer-mcrt/src/kernels/majorant-build.wgsl.ts',
-    find: 'let hi = floorDiv(2 * (c + 1) * n - g, 2 * g) + 2;', replace: 'let hi = floorDiv(2 * (c + 1) * n - g, 2 * g) + 0;',
-    build: '@vpt/renderer-mcrt', tests: ['tests/mcrt-majorant-gpu.test.ts'], only: 'true upper bound' },
-  { name: 'hg-sign-flipped-glsl', why: 'HG phase of the light direction evaluated with −g', file: 'packages/renderer-mcrt/src/kernels/path.glsl.ts',
-    find: 'float ph = hgPhase(u.phaseG, dot(w, l));', replace: 'float ph = hgPhase(-u.phaseG, dot(w, l));',
-    build: '@vpt/renderer-mcrt', tests: ['tests/mcrt-single-scattering.test.ts'] },
-  { name: 'mis-weight-dropped-glsl', why: 'environment hit by phase sampling not MIS-weighted', file: 'packages/renderer-mcrt/src/kernels/path.glsl.ts',
-    find: 'return e.rgb * misWeight(phasePdf, e.a);', replace: 'return e.rgb;',
-    build: '@vpt/renderer-mcrt', tests: ['tests/mcrt-unbiased.test.ts'], only: 'HDR environment' },
-  { name: 'nan-not-zeroed-wgsl', why: 'non-finite radiance no longer zeroed before accumulation', file: 'packages/renderer-mcrt/src/kernels/path.wgsl.ts',
-    find: 'o.out0 = vec4f(finiteOrZero(L), alpha);', replace: 'o.out0 = vec4f(L, alpha);',
-    build: '@vpt/renderer-mcrt', tests: ['tests/mcrt-stiff.test.ts'], only: 'stiff media on webgpu' },
+  {
+    name: 'ratio-roulette-no-rescale-glsl',
+    why: 'ratio tracking Russian roulette survivors not rescaled to 0.1',
+    file: 'packages/renderer-mcrt/src/kernels/tracking.glsl.ts',
+    find: '        T = 0.1;\n      }\n    }\n#if TRACKING == 2',
+    replace: '      }\n    }\n#if TRACKING == 2',
+    build: '@vpt/renderer-mcrt',
+    tests: ['tests/mcrt-transmittance.test.ts'],
+    only: 'dense medium',
+  },
+  {
+    name: 'ratio-roulette-no-rescale-wgsl',
+    why: 'the same in WGSL',
+    file: 'packages/renderer-mcrt/src/kernels/tracking.wgsl.ts',
+    find: '        T = 0.1;\n      }\n    }\n#if TRACKING == 2',
+    replace: '      }\n    }\n#if TRACKING == 2',
+    build: '@vpt/renderer-mcrt',
+    tests: ['tests/mcrt-transmittance.test.ts'],
+    only: 'dense medium',
+  },
+  {
+    name: 'majorant-upper-border-dropped-cpu',
+    why: 'majorant grid cell range misses its upper border (+2 → +0)',
+    file: 'packages/renderer-mcrt/src/majorant-grid.ts',
+    find: 'const hi = Math.floor(((c + 1) * N) / G - 0.5) + 2;',
+    replace: 'const hi = Math.floor(((c + 1) * N) / G - 0.5) + 0;',
+    tests: ['packages/renderer-mcrt/test/majorant-grid.test.ts'],
+    only: 'true bound on smooth data|high side',
+  },
+  {
+    name: 'majorant-upper-border-dropped-glsl',
+    why: 'the same in the GPU build (GLSL)',
+    file: 'packages/renderer-mcrt/src/kernels/majorant-build.glsl.ts',
+    find: 'int hi = floorDiv(2 * (c + 1) * n - g, 2 * g) + 2;',
+    replace: 'int hi = floorDiv(2 * (c + 1) * n - g, 2 * g) + 0;',
+    build: '@vpt/renderer-mcrt',
+    tests: ['tests/mcrt-majorant-gpu.test.ts'],
+    only: 'true upper bound',
+  },
+  {
+    name: 'majorant-upper-border-dropped-wgsl',
+    why: 'the same in the GPU build (WGSL)',
+    file: 'packages/renderer-mcrt/src/kernels/majorant-build.wgsl.ts',
+    find: 'let hi = floorDiv(2 * (c + 1) * n - g, 2 * g) + 2;',
+    replace: 'let hi = floorDiv(2 * (c + 1) * n - g, 2 * g) + 0;',
+    build: '@vpt/renderer-mcrt',
+    tests: ['tests/mcrt-majorant-gpu.test.ts'],
+    only: 'true upper bound',
+  },
+  {
+    name: 'hg-sign-flipped-glsl',
+    why: 'HG phase of the light direction evaluated with −g',
+    file: 'packages/renderer-mcrt/src/kernels/path.glsl.ts',
+    find: 'float ph = hgPhase(u.phaseG, dot(w, l));',
+    replace: 'float ph = hgPhase(-u.phaseG, dot(w, l));',
+    build: '@vpt/renderer-mcrt',
+    tests: ['tests/mcrt-single-scattering.test.ts'],
+  },
+  {
+    name: 'mis-weight-dropped-glsl',
+    why: 'environment hit by phase sampling not MIS-weighted',
+    file: 'packages/renderer-mcrt/src/kernels/path.glsl.ts',
+    find: 'return e.rgb * misWeight(phasePdf, e.a);',
+    replace: 'return e.rgb;',
+    build: '@vpt/renderer-mcrt',
+    tests: ['tests/mcrt-unbiased.test.ts'],
+    only: 'HDR environment',
+  },
+  {
+    name: 'nan-not-zeroed-wgsl',
+    why: 'non-finite radiance no longer zeroed before accumulation',
+    file: 'packages/renderer-mcrt/src/kernels/path.wgsl.ts',
+    find: 'o.out0 = vec4f(finiteOrZero(L), alpha);',
+    replace: 'o.out0 = vec4f(L, alpha);',
+    build: '@vpt/renderer-mcrt',
+    tests: ['tests/mcrt-stiff.test.ts'],
+    only: 'stiff media on webgpu',
+  },
   // EAM
-  { name: 'eam-fixed-offset-glsl', why: 'EAM march offset fixed at 0.5 instead of random', file: 'packages/renderer-eam/src/kernels/eam.glsl.ts',
-    find: 'float offset = rngNext(rng);', replace: 'float offset = 0.5;',
-    build: '@vpt/renderer-eam', tests: ['tests/eam.test.ts'], only: 'CPU twin' },
-  { name: 'eam-fixed-offset-wgsl', why: 'the same in WGSL', file: 'packages/renderer-eam/src/kernels/eam.wgsl.ts',
-    find: 'let offset = rngNext(&rng);', replace: 'let offset = 0.5;',
-    build: '@vpt/renderer-eam', tests: ['tests/eam.test.ts'], only: 'CPU twin' },
+  {
+    name: 'eam-fixed-offset-glsl',
+    why: 'EAM march offset fixed at 0.5 instead of random',
+    file: 'packages/renderer-eam/src/kernels/eam.glsl.ts',
+    find: 'float offset = rngNext(rng);',
+    replace: 'float offset = 0.5;',
+    build: '@vpt/renderer-eam',
+    tests: ['tests/eam.test.ts'],
+    only: 'CPU twin',
+  },
+  {
+    name: 'eam-fixed-offset-wgsl',
+    why: 'the same in WGSL',
+    file: 'packages/renderer-eam/src/kernels/eam.wgsl.ts',
+    find: 'let offset = rngNext(&rng);',
+    replace: 'let offset = 0.5;',
+    build: '@vpt/renderer-eam',
+    tests: ['tests/eam.test.ts'],
+    only: 'CPU twin',
+  },
   // Post
-  { name: 'aces-typo-wgsl', why: 'ACES fit coefficient typo (2.43 → 2.34) in WGSL', file: 'packages/post/src/tone-mapping.wgsl.ts',
-    find: '(x * (2.43 * x + 0.59) + 0.14)', replace: '(x * (2.34 * x + 0.59) + 0.14)',
-    build: '@vpt/post', tests: ['tests/post.test.ts'] },
+  {
+    name: 'aces-typo-wgsl',
+    why: 'ACES fit coefficient typo (2.43 → 2.34) in WGSL',
+    file: 'packages/post/src/tone-mapping.wgsl.ts',
+    find: '(x * (2.43 * x + 0.59) + 0.14)',
+    replace: '(x * (2.34 * x + 0.59) + 0.14)',
+    build: '@vpt/post',
+    tests: ['tests/post.test.ts'],
+  },
   // Loaders
-  { name: 'nrrd-gzip-ignores-endianness', why: 'gzip-encoded NRRD data always read little-endian', file: 'packages/loaders/src/formats/nrrd.ts',
-    find: 'samples = readSamples(inflated, Math.max(0, from), count, source, endian === \'little\');', replace: 'samples = readSamples(inflated, Math.max(0, from), count, source, true);',
-    tests: ['packages/loaders/test/nrrd.test.ts'] },
+  {
+    name: 'nrrd-gzip-ignores-endianness',
+    why: 'gzip-encoded NRRD data always read little-endian',
+    file: 'packages/loaders/src/formats/nrrd.ts',
+    find: "samples = readSamples(inflated, Math.max(0, from), count, source, endian === 'little');",
+    replace: 'samples = readSamples(inflated, Math.max(0, from), count, source, true);',
+    tests: ['packages/loaders/test/nrrd.test.ts'],
+  },
   // Viewer
-  { name: 'viewer-number-upper-bound-lost', why: 'number attributes no longer checked against their maximum', file: 'packages/viewer/src/attributes.ts',
-    find: 'n < min || n > max ||', replace: 'n < min ||',
-    tests: ['packages/viewer/test/attributes.test.ts'] },
-  { name: 'viewer-number-upper-bound-lost-element', why: 'the same, seen through <vpt-viewer> attributes', file: 'packages/viewer/src/attributes.ts',
-    find: 'n < min || n > max ||', replace: 'n < min ||',
-    build: '@vpt/viewer', tests: ['tests/viewer-element.test.ts'], only: 'above their maximum' },
+  {
+    name: 'viewer-number-upper-bound-lost',
+    why: 'number attributes no longer checked against their maximum',
+    file: 'packages/viewer/src/attributes.ts',
+    find: 'n < min || n > max ||',
+    replace: 'n < min ||',
+    tests: ['packages/viewer/test/attributes.test.ts'],
+  },
+  {
+    name: 'viewer-number-upper-bound-lost-element',
+    why: 'the same, seen through <vpt-viewer> attributes',
+    file: 'packages/viewer/src/attributes.ts',
+    find: 'n < min || n > max ||',
+    replace: 'n < min ||',
+    build: '@vpt/viewer',
+    tests: ['tests/viewer-element.test.ts'],
+    only: 'above their maximum',
+  },
   // CPU twins shared by the references of many tests
-  { name: 'cpu-twin-trilinear-not-cell-centred', why: 'CPU sampler uses corner-aligned voxels (drops the −0.5)', file: 'packages/core/src/reference/cpu-reference.ts',
-    find: '* this.dims[a] - 0.5);', replace: '* this.dims[a]);',
-    tests: ['packages/core/test/cpu-reference.test.ts'] },
-  { name: 'cpu-twin-camera-y-up', why: 'CPU camera ray with film y up instead of down', file: 'packages/core/src/reference/cpu-reference.ts',
-    find: 'sy = (1 - 2 * fy) * t;', replace: 'sy = (2 * fy - 1) * t;',
-    tests: ['packages/core/test/cpu-reference.test.ts'] },
-  { name: 'cpu-twin-box-direction-sign-lost', why: 'CPU box intersection ignores the sign of the direction', file: 'packages/core/src/reference/cpu-reference.ts',
-    find: 'const inv = (d[a] < 0 ? -1 : 1) / Math.max(Math.abs(d[a]), 1e-20);', replace: 'const inv = 1 / Math.max(Math.abs(d[a]), 1e-20);',
-    tests: ['packages/core/test/cpu-reference.test.ts'] },
+  {
+    name: 'cpu-twin-trilinear-not-cell-centred',
+    why: 'CPU sampler uses corner-aligned voxels (drops the −0.5)',
+    file: 'packages/core/src/reference/cpu-reference.ts',
+    find: '* this.dims[a] - 0.5);',
+    replace: '* this.dims[a]);',
+    tests: ['packages/core/test/cpu-reference.test.ts'],
+  },
+  {
+    name: 'cpu-twin-camera-y-up',
+    why: 'CPU camera ray with film y up instead of down',
+    file: 'packages/core/src/reference/cpu-reference.ts',
+    find: 'sy = (1 - 2 * fy) * t;',
+    replace: 'sy = (2 * fy - 1) * t;',
+    tests: ['packages/core/test/cpu-reference.test.ts'],
+  },
+  {
+    name: 'cpu-twin-box-direction-sign-lost',
+    why: 'CPU box intersection ignores the sign of the direction',
+    file: 'packages/core/src/reference/cpu-reference.ts',
+    find: 'const inv = (d[a] < 0 ? -1 : 1) / Math.max(Math.abs(d[a]), 1e-20);',
+    replace: 'const inv = 1 / Math.max(Math.abs(d[a]), 1e-20);',
+    tests: ['packages/core/test/cpu-reference.test.ts'],
+  },
 ];
 
 const args = process.argv.slice(2);
 const flag = (n) => args.includes(`--${n}`);
-const value = (n) => { const i = args.indexOf(`--${n}`); return i >= 0 ? args[i + 1] : undefined; };
+const value = (n) => {
+  const i = args.indexOf(`--${n}`);
+  return i >= 0 ? args[i + 1] : undefined;
+};
 
 if (flag('list')) {
-  for (const m of MUTATIONS) console.log(`${m.name.padEnd(38)} ${m.file}  →  ${m.tests.join(' ')}${m.only ? ` -t "${m.only}"` : ''}`);
+  for (const m of MUTATIONS)
+    console.log(`${m.name.padEnd(38)} ${m.file}  →  ${m.tests.join(' ')}${m.only ? ` -t "${m.only}"` : ''}`);
   process.exit(0);
 }
 
@@ -103,7 +213,9 @@ const sh = (cmd, cmdArgs, opts = {}) => spawnSync(cmd, cmdArgs, { cwd: root, enc
 // 1. A clean tree: whatever happens, `git checkout -- .` gets the code back.
 const dirty = sh('git', ['status', '--porcelain', '--untracked-files=no']).stdout.trim();
 if (dirty) {
-  console.error(`mutations: refusing to run on a tree with uncommitted changes (commit or stash them first):\n${dirty}`);
+  console.error(
+    `mutations: refusing to run on a tree with uncommitted changes (commit or stash them first):\n${dirty}`,
+  );
   process.exit(2);
 }
 
@@ -128,23 +240,38 @@ for (const sig of ['SIGINT', 'SIGTERM', 'SIGHUP']) {
   process.on(sig, () => {
     child?.kill('SIGTERM');
     restore();
-    console.error(`\nmutations: interrupted (${sig}); source restored.${staleDist.size ? ` Rebuild ${[...staleDist].join(', ')} (pnpm run build) before browser tests.` : ''}`);
+    console.error(
+      `\nmutations: interrupted (${sig}); source restored.${staleDist.size ? ` Rebuild ${[...staleDist].join(', ')} (pnpm run build) before browser tests.` : ''}`,
+    );
     process.exit(130);
   });
 }
-process.on('uncaughtException', (e) => { restore(); console.error(e); process.exit(1); });
+process.on('uncaughtException', (e) => {
+  restore();
+  console.error(e);
+  process.exit(1);
+});
 process.on('exit', restore);
 
 /** Run a command asynchronously, so a signal reaches the handlers above while it runs. */
 function run(cmd, cmdArgs) {
   return new Promise((resolve) => {
-    let stdout = '', stderr = '';
+    let stdout = '',
+      stderr = '';
     child = spawn(cmd, cmdArgs, { cwd: root });
-    child.stdout.on('data', (d) => { stdout += d; });
-    child.stderr.on('data', (d) => { stderr += d; });
+    child.stdout.on('data', (d) => {
+      stdout += d;
+    });
+    child.stderr.on('data', (d) => {
+      stderr += d;
+    });
     child.on('close', (status, signal) => {
       child = null;
-      if (signal) { restore(); console.error(`mutations: ${cmd} ended by ${signal}; stopping.`); process.exit(130); }
+      if (signal) {
+        restore();
+        console.error(`mutations: ${cmd} ended by ${signal}; stopping.`);
+        process.exit(130);
+      }
       resolve({ status, stdout, stderr });
     });
   });
@@ -162,7 +289,11 @@ async function runTests(m) {
   // eslint-disable-next-line no-control-regex -- matching the escape character is the point
   const plain = out.replace(/\x1b\[[0-9;]*m/g, '');
   const summary = (plain.match(/Tests\s+[^\n]+/) ?? ['(no summary)'])[0].trim();
-  return { passed: r.status === 0, summary, noTests: /No test files found|No test found/.test(plain) || /Tests\s+\d+ skipped/.test(summary) };
+  return {
+    passed: r.status === 0,
+    summary,
+    noTests: /No test files found|No test found/.test(plain) || /Tests\s+\d+ skipped/.test(summary),
+  };
 }
 
 const results = [];
@@ -174,30 +305,43 @@ if (flag('baseline')) {
     const [tests, o] = JSON.parse(key);
     const r = await runTests({ tests, only: o ?? undefined });
     console.log(`  ${r.passed ? 'pass' : 'FAIL'}  ${tests.join(' ')}${o ? ` -t "${o}"` : ''}  (${r.summary})`);
-    if (!r.passed) { console.error('mutations: a selection fails without any mutation; fix that first.'); process.exit(1); }
+    if (!r.passed) {
+      console.error('mutations: a selection fails without any mutation; fix that first.');
+      process.exit(1);
+    }
   }
 }
 
 for (const m of selected) {
   const t0 = Date.now();
   const abs = path.join(root, m.file);
-  let result, detail = '';
+  let result,
+    detail = '';
   if (!fs.existsSync(abs)) {
-    result = 'stale'; detail = 'file not found';
+    result = 'stale';
+    detail = 'file not found';
   } else {
     const text = fs.readFileSync(abs, 'utf8');
     const count = text.split(m.find).length - 1;
     if (count !== 1) {
-      result = 'stale'; detail = `find string occurs ${count} times`;
+      result = 'stale';
+      detail = `find string occurs ${count} times`;
     } else {
       // Packages left built from an earlier mutation: rebuild before this run uses them.
-      for (const pkg of [...staleDist]) if (pkg !== m.build) { await build(pkg); staleDist.delete(pkg); }
+      for (const pkg of [...staleDist])
+        if (pkg !== m.build) {
+          await build(pkg);
+          staleDist.delete(pkg);
+        }
       pending = { file: m.file, text };
       fs.writeFileSync(abs, text.replace(m.find, m.replace));
       try {
         if (m.build) {
           staleDist.add(m.build);
-          if (!(await build(m.build))) { result = 'caught'; detail = 'build fails'; }
+          if (!(await build(m.build))) {
+            result = 'caught';
+            detail = 'build fails';
+          }
         }
         if (!result) {
           const r = await runTests(m);

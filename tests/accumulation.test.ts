@@ -9,7 +9,14 @@ describe.each(BACKENDS)('accumulation on %s', (backend) => {
       const t = (window as any).t;
       const { core } = (window as any).vpt;
       const ctx = await t.context({ backend, renderer: 'eam', width: 16, height: 16 });
-      ctx.setScene(t.scene({ volume: core.createProceduralVolume('sphere', 12), densityScale: 6, seed: 5, environment: { type: 'constant', radiance: [0.5, 0.5, 0.5] } }));
+      ctx.setScene(
+        t.scene({
+          volume: core.createProceduralVolume('sphere', 12),
+          densityScale: 6,
+          seed: 5,
+          environment: { type: 'constant', radiance: [0.5, 0.5, 0.5] },
+        }),
+      );
       const N = 12;
       const sum = new Float64Array(16 * 16 * 4);
       let spread = 0;
@@ -18,7 +25,10 @@ describe.each(BACKENDS)('accumulation on %s', (backend) => {
         ctx.iterate(1);
         const f: Float32Array = await ctx.readFrame();
         first ??= f;
-        for (let i = 0; i < f.length; i++) { sum[i] += f[i]; spread = Math.max(spread, Math.abs(f[i] - first[i])); }
+        for (let i = 0; i < f.length; i++) {
+          sum[i] += f[i];
+          spread = Math.max(spread, Math.abs(f[i] - first[i]));
+        }
       }
       const hdr: Float32Array = await ctx.readHDR();
       let maxErr = 0;
@@ -51,7 +61,8 @@ describe.each(BACKENDS)('accumulation on %s', (backend) => {
       fresh.setScene({ ...scene, camera: { ...scene.camera, position: [1.5, 0.3, 1.2] } });
       await fresh.renderIterations(1);
       const freshHdr: Float32Array = await fresh.readHDR();
-      ctx.dispose(); fresh.dispose();
+      ctx.dispose();
+      fresh.dispose();
       return { before, afterChange, sameAsSingle: t.sameBits(hdr, single), sameAsFresh: t.sameBits(hdr, freshHdr) };
     }, backend);
     expect(r.before).toBe(5);

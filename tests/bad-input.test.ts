@@ -14,10 +14,20 @@ describe.each(BACKENDS)('bad scene input on %s', (backend) => {
       ctx.setScene(good);
       await ctx.renderIterations(2);
       const before: Float32Array = await ctx.readHDR();
-      const attempt = (s: unknown) => { try { ctx.setScene(s); return { code: 'none', message: '' }; } catch (e: any) { return { code: e.code, message: e.message, isVpt: e instanceof core.VptError }; } };
+      const attempt = (s: unknown) => {
+        try {
+          ctx.setScene(s);
+          return { code: 'none', message: '' };
+        } catch (e: any) {
+          return { code: e.code, message: e.message, isVpt: e instanceof core.VptError };
+        }
+      };
       const results = {
         nanCamera: attempt({ ...good, camera: { ...good.camera, target: [0, NaN, 0] } }),
-        zeroVolume: attempt({ ...good, volume: { dims: [0, 0, 0], spacing: [1, 1, 1], type: 'uint8', data: new Uint8Array(0) } }),
+        zeroVolume: attempt({
+          ...good,
+          volume: { dims: [0, 0, 0], spacing: [1, 1, 1], type: 'uint8', data: new Uint8Array(0) },
+        }),
       };
       await ctx.renderIterations(2);
       const after: Float32Array = await ctx.readHDR();
@@ -34,7 +44,12 @@ describe.each(BACKENDS)('bad scene input on %s', (backend) => {
   it('rejects a render size above the device limit', async () => {
     const r = await page().page.evaluate(async (backend) => {
       const t = (window as any).t;
-      try { await t.context({ backend, renderer: 'mip', width: 1e6, height: 4 }); return 'none'; } catch (e: any) { return e.code; }
+      try {
+        await t.context({ backend, renderer: 'mip', width: 1e6, height: 4 });
+        return 'none';
+      } catch (e: any) {
+        return e.code;
+      }
     }, backend);
     expect(r).toBe('limit-exceeded');
   });
@@ -46,8 +61,17 @@ describe('backend selection', () => {
       const { core } = (window as any).vpt;
       const proto = WebGL2RenderingContext.prototype as any;
       const original = proto.getExtension;
-      proto.getExtension = function (name: string) { return name === 'EXT_color_buffer_float' ? null : original.call(this, name); };
-      try { await core.createBackend({ backend: 'webgl2' }); return { code: 'none' }; } catch (e: any) { return { code: e.code, message: e.message }; } finally { proto.getExtension = original; }
+      proto.getExtension = function (name: string) {
+        return name === 'EXT_color_buffer_float' ? null : original.call(this, name);
+      };
+      try {
+        await core.createBackend({ backend: 'webgl2' });
+        return { code: 'none' };
+      } catch (e: any) {
+        return { code: e.code, message: e.message };
+      } finally {
+        proto.getExtension = original;
+      }
     });
     expect(r.code).toBe('missing-extension');
     expect(r.message).toContain('EXT_color_buffer_float');
@@ -60,7 +84,12 @@ describe('backend selection', () => {
       const getContext = HTMLCanvasElement.prototype.getContext;
       Object.defineProperty(Navigator.prototype, 'gpu', { configurable: true, get: () => undefined });
       (HTMLCanvasElement.prototype as any).getContext = () => null;
-      try { await core.createBackend({ backend: 'auto' }); return { code: 'none' }; } catch (e: any) { return { code: e.code, message: e.message }; } finally {
+      try {
+        await core.createBackend({ backend: 'auto' });
+        return { code: 'none' };
+      } catch (e: any) {
+        return { code: e.code, message: e.message };
+      } finally {
         if (gpuDesc) Object.defineProperty(Navigator.prototype, 'gpu', gpuDesc);
         HTMLCanvasElement.prototype.getContext = getContext;
       }

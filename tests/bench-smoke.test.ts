@@ -12,7 +12,17 @@ describe('smoke: benchmark harness (smoke preset)', () => {
     const root = fileURLToPath(new URL('..', import.meta.url));
     const resultsDir = path.join(root, 'benchmarks', 'results');
     const before = new Set(safeList(resultsDir));
-    execFileSync('node', [path.join(root, 'benchmarks/dist/run.js'), '--preset', 'smoke', '--suites', 'error,frame,convergence,scaling,specialization'], { cwd: root, stdio: 'pipe', timeout: 420_000 });
+    execFileSync(
+      'node',
+      [
+        path.join(root, 'benchmarks/dist/run.js'),
+        '--preset',
+        'smoke',
+        '--suites',
+        'error,frame,convergence,scaling,specialization',
+      ],
+      { cwd: root, stdio: 'pipe', timeout: 420_000 },
+    );
     const fresh = safeList(resultsDir).filter((d) => !before.has(d));
     expect(fresh.length).toBe(1);
     const dir = path.join(resultsDir, fresh[0]);
@@ -26,21 +36,31 @@ describe('smoke: benchmark harness (smoke preset)', () => {
         expect(pts[i].ms).toBeGreaterThan(pts[i - 1].ms);
         expect(pts[i].iterations).toBeGreaterThan(pts[i - 1].iterations);
       }
-      expect(pts.every((p: { nonFinite: number; psnr: number }) => p.nonFinite === 0 && Number.isFinite(p.psnr))).toBe(true);
+      expect(pts.every((p: { nonFinite: number; psnr: number }) => p.nonFinite === 0 && Number.isFinite(p.psnr))).toBe(
+        true,
+      );
       if (curve.label === 'eam') expect(pts.at(-1).psnr).toBeGreaterThan(pts[0].psnr); // error falls with samples
     }
     const backendsTimed = new Set(results.frameTime.map((r: { backend: string }) => r.backend));
     expect([...backendsTimed].sort()).toEqual(['webgl2', 'webgpu']);
     expect(results.frameTime.every((r: { medianMs: number }) => r.medianMs > 0)).toBe(true);
     // Convergence (first backend): one curve per renderer, iterations rising, every point finite.
-    const conv = results.convergence as { label: string; size: number; points: { iterations: number; psnr: number; nonFinite: number }[] }[];
+    const conv = results.convergence as {
+      label: string;
+      size: number;
+      points: { iterations: number; psnr: number; nonFinite: number }[];
+    }[];
     expect(conv.length).toBeGreaterThanOrEqual(4);
     expect(new Set(conv.map((c) => c.label)).size).toBe(conv.length);
     for (const c of conv) {
       expect(c.size).toBe(16);
       expect(c.points.length, c.label).toBeGreaterThan(2);
-      for (let i = 1; i < c.points.length; i++) expect(c.points[i].iterations).toBeGreaterThan(c.points[i - 1].iterations);
-      expect(c.points.every((p) => p.nonFinite === 0 && Number.isFinite(p.psnr)), c.label).toBe(true);
+      for (let i = 1; i < c.points.length; i++)
+        expect(c.points[i].iterations).toBeGreaterThan(c.points[i - 1].iterations);
+      expect(
+        c.points.every((p) => p.nonFinite === 0 && Number.isFinite(p.psnr)),
+        c.label,
+      ).toBe(true);
     }
     // Scaling: every renderer at each volume size and empty fraction of the preset, a finite positive cost.
     const scaling = results.scaling as { axis: string; label: string; x: number; nsPerPath: number }[];
@@ -48,7 +68,14 @@ describe('smoke: benchmark harness (smoke preset)', () => {
     expect([...new Set(scaling.filter((r) => r.axis === 'empty-fraction').map((r) => r.x))]).toEqual([0, 0.9]);
     expect(scaling.length).toBe(3 * conv.length);
     expect(scaling.every((r) => Number.isFinite(r.nsPerPath) && r.nsPerPath > 0)).toBe(true);
-    const spec = results.specialization as { scene: string; scattering: string; backend: string; ratio: number; specializedMs: number; genericMs: number }[];
+    const spec = results.specialization as {
+      scene: string;
+      scattering: string;
+      backend: string;
+      ratio: number;
+      specializedMs: number;
+      genericMs: number;
+    }[];
     expect(spec.length).toBe(2 * 3 * 2); // backends × scenes × scattering orders
     expect(new Set(spec.map((r) => r.backend)).size).toBe(2);
     for (const r of spec) {
@@ -65,5 +92,9 @@ describe('smoke: benchmark harness (smoke preset)', () => {
 });
 
 function safeList(dir: string): string[] {
-  try { return readdirSync(dir).filter((d) => statSync(path.join(dir, d)).isDirectory()); } catch { return []; }
+  try {
+    return readdirSync(dir).filter((d) => statSync(path.join(dir, d)).isDirectory());
+  } catch {
+    return [];
+  }
 }

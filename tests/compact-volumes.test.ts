@@ -1,5 +1,12 @@
 import { beforeAll, describe, expect, it } from 'vitest';
-import { createProceduralVolume, createVolume, type Scene, type TransferFunction, type Vec3, type Volume } from '../packages/core/src/index.js';
+import {
+  createProceduralVolume,
+  createVolume,
+  type Scene,
+  type TransferFunction,
+  type Vec3,
+  type Volume,
+} from '../packages/core/src/index.js';
 import { installMcrtHelpers } from './helpers/mcrt-in-page.js';
 import { zSummary } from './helpers/mcrt-stats.js';
 import { opticalDepth, pixelExpectations } from './helpers/mcrt-reference.js';
@@ -13,7 +20,9 @@ import { testVolumes } from './helpers/test-volumes.js';
  * expectation, and the memory budget / 3D-limit downsampling.
  */
 const page = usePage();
-beforeAll(async () => { await installMcrtHelpers(page().page); });
+beforeAll(async () => {
+  await installMcrtHelpers(page().page);
+});
 
 /**
  * The 16³ blob (values in [0, 1]) stored as each voxel type, with the value range that maps it
@@ -37,57 +46,97 @@ const camera = { position: [0.6, 0.4, 2.2] as Vec3, target: [0, 0, 0] as Vec3, u
 const TYPES = ['uint8', 'uint16', 'int16', 'float32'] as const;
 
 describe.each(BACKENDS)('compact volumes on %s', (backend) => {
-  it.each(TYPES)('%s: compact bytes per voxel, and the fast path agrees with the exact path (EAM, MIP)', async (type) => {
-    const r = await page().page.evaluate(async (backend, type, tf, camera) => {
-      const t = (window as any).t;
-      const volume = window.tv.blobAs(type, false);
-      const out: Record<string, { hdr: number[]; bytes: number }> = {};
+  it.each(TYPES)(
+    '%s: compact bytes per voxel, and the fast path agrees with the exact path (EAM, MIP)',
+    async (type) => {
+      const r = await page().page.evaluate(
+        async (backend, type, tf, camera) => {
+          const t = (window as any).t;
+          const volume = window.tv.blobAs(type, false);
+          const out: Record<string, { hdr: number[]; bytes: number }> = {};
+          for (const renderer of ['eam', 'mip']) {
+            for (const sampling of ['fast', 'exact']) {
+              // The fast path is the default: no option given.
+              const ctx = await t.context({
+                backend,
+                renderer,
+                width: 24,
+                height: 24,
+                ...(sampling === 'exact' ? { sampling } : {}),
+              });
+              ctx.setScene(
+                t.scene({
+                  volume,
+                  transferFunction: tf,
+                  camera,
+                  densityScale: 8,
+                  environment: { type: 'constant', radiance: [0.1, 0.1, 0.1] },
+                }),
+              );
+              await ctx.renderIterations(renderer === 'mip' ? 64 : 4);
+              out[`${renderer}-${sampling}`] = {
+                hdr: Array.from(await ctx.readHDR()),
+                bytes: ctx.stats.gpuBytes.volume,
+              };
+              ctx.dispose();
+            }
+          }
+          return out;
+        },
+        backend,
+        type,
+        TF,
+        camera,
+      );
+      const voxels = 16 ** 3;
+      // SwiftShader offers no 16-bit normalized textures: 16-bit types go to r16float; float32 stays r32float.
+      expect(r['eam-fast'].bytes / voxels).toBe({ uint8: 1, uint16: 2, int16: 2, float32: 4 }[type]);
+      expect(r['eam-exact'].bytes / voxels).toBe(4);
       for (const renderer of ['eam', 'mip']) {
-        for (const sampling of ['fast', 'exact']) {
-          // The fast path is the default: no option given.
-          const ctx = await t.context({ backend, renderer, width: 24, height: 24, ...(sampling === 'exact' ? { sampling } : {}) });
-          ctx.setScene(t.scene({ volume, transferFunction: tf, camera, densityScale: 8, environment: { type: 'constant', radiance: [0.1, 0.1, 0.1] } }));
-          await ctx.renderIterations(renderer === 'mip' ? 64 : 4);
-          out[`${renderer}-${sampling}`] = { hdr: Array.from(await ctx.readHDR()), bytes: ctx.stats.gpuBytes.volume };
-          ctx.dispose();
+        const a = r[`${renderer}-fast`].hdr,
+          b = r[`${renderer}-exact`].hdr;
+        let worst = 0,
+          sum = 0,
+          peak = 0;
+        for (let i = 0; i < a.length; i++) {
+          if (i % 4 === 3) continue;
+          worst = Math.max(worst, Math.abs(a[i] - b[i]));
+          sum += Math.abs(a[i] - b[i]);
+          peak = Math.max(peak, b[i]);
         }
+        // Same rays, same random numbers: only the sampled values differ — by the filter's
+        // weight precision and (16-bit types) r16float's ≤ 8/30000 of the range. Tolerance: 2 % of
+        // the image peak at any pixel, 0.2 % on average.
+        expect(peak).toBeGreaterThan(0.05);
+        expect(worst, `${renderer} worst`).toBeLessThan(0.02 * peak);
+        expect(sum / (a.length * 0.75), `${renderer} mean`).toBeLessThan(0.002 * peak);
       }
-      return out;
-    }, backend, type, TF, camera);
-    const voxels = 16 ** 3;
-    // SwiftShader offers no 16-bit normalized textures: 16-bit types go to r16float; float32 stays r32float.
-    expect(r['eam-fast'].bytes / voxels).toBe({ uint8: 1, uint16: 2, int16: 2, float32: 4 }[type]);
-    expect(r['eam-exact'].bytes / voxels).toBe(4);
-    for (const renderer of ['eam', 'mip']) {
-      const a = r[`${renderer}-fast`].hdr, b = r[`${renderer}-exact`].hdr;
-      let worst = 0, sum = 0, peak = 0;
-      for (let i = 0; i < a.length; i++) {
-        if (i % 4 === 3) continue;
-        worst = Math.max(worst, Math.abs(a[i] - b[i]));
-        sum += Math.abs(a[i] - b[i]);
-        peak = Math.max(peak, b[i]);
-      }
-      // Same rays, same random numbers: only the sampled values differ — by the filter's
-      // weight precision and (16-bit types) r16float's ≤ 8/30000 of the range. Tolerance: 2 % of
-      // the image peak at any pixel, 0.2 % on average.
-      expect(peak).toBeGreaterThan(0.05);
-      expect(worst, `${renderer} worst`).toBeLessThan(0.02 * peak);
-      expect(sum / (a.length * 0.75), `${renderer} mean`).toBeLessThan(0.002 * peak);
-    }
-  });
+    },
+  );
 
   it('MCRT: the fast path is unbiased against the exact path (multiple scattering, z-scores)', async () => {
-    const r = await page().page.evaluate(async (backend, tf, camera) => {
-      const mt = (window as any).mt;
-      const volume = window.tv.blobAs('int16', false);
-      const scene = (sampling: string, seed: number) => ({
-        volume, transferFunction: tf, camera, lights: [{ type: 'directional', direction: [0.3, 0.8, 0.5], irradiance: [2, 2, 2] }],
-        environment: { type: 'constant', radiance: [0.5, 0.5, 0.5] }, densityScale: 10, seed, sampling,
-      });
-      const fast = await mt.run({ backend, width: 16, height: 16, iterations: 96, scene: scene('fast', 11) });
-      const exact = await mt.run({ backend, width: 16, height: 16, iterations: 96, scene: scene('exact', 12) });
-      return { fast, exact };
-    }, backend, TF, camera);
+    const r = await page().page.evaluate(
+      async (backend, tf, camera) => {
+        const mt = (window as any).mt;
+        const volume = window.tv.blobAs('int16', false);
+        const scene = (sampling: string, seed: number) => ({
+          volume,
+          transferFunction: tf,
+          camera,
+          lights: [{ type: 'directional', direction: [0.3, 0.8, 0.5], irradiance: [2, 2, 2] }],
+          environment: { type: 'constant', radiance: [0.5, 0.5, 0.5] },
+          densityScale: 10,
+          seed,
+          sampling,
+        });
+        const fast = await mt.run({ backend, width: 16, height: 16, iterations: 96, scene: scene('fast', 11) });
+        const exact = await mt.run({ backend, width: 16, height: 16, iterations: 96, scene: scene('exact', 12) });
+        return { fast, exact };
+      },
+      backend,
+      TF,
+      camera,
+    );
     const z: number[] = [];
     for (let k = 0; k < 16 * 16; k++) {
       for (let c = 0; c < 3; c++) {
@@ -102,67 +151,142 @@ describe.each(BACKENDS)('compact volumes on %s', (backend) => {
     expect(s.over3 / s.n, JSON.stringify(s)).toBeLessThan(0.03);
   });
 
-  it.each(['fast', 'exact'] as const)('an inverted value range (int16, LO > HI) renders as the range pre-applied and matches the CPU expectation (%s sampling; MCRT transmittance over the majorant grid)', async (sampling) => {
-    const W = 16, H = 16, N = 64;
-    const gpu = await page().page.evaluate(async (backend, tf, camera, W, H, N, sampling) => {
-      const mt = (window as any).mt;
-      const t = (window as any).t;
-      const run = (inverted: boolean) => mt.run({
-        backend, width: W, height: H, iterations: N, params: { debugOutput: 'transmittance', tracking: 'residual', majorantCellSize: 4 },
-        scene: { volume: window.tv.blobAs('int16', inverted), transferFunction: tf, camera, lights: [], environment: { type: 'constant', radiance: [1, 1, 1] }, densityScale: 6, seed: 3, sampling },
+  it.each(['fast', 'exact'] as const)(
+    'an inverted value range (int16, LO > HI) renders as the range pre-applied and matches the CPU expectation (%s sampling; MCRT transmittance over the majorant grid)',
+    async (sampling) => {
+      const W = 16,
+        H = 16,
+        N = 64;
+      const gpu = await page().page.evaluate(
+        async (backend, tf, camera, W, H, N, sampling) => {
+          const mt = (window as any).mt;
+          const t = (window as any).t;
+          const run = (inverted: boolean) =>
+            mt.run({
+              backend,
+              width: W,
+              height: H,
+              iterations: N,
+              params: { debugOutput: 'transmittance', tracking: 'residual', majorantCellSize: 4 },
+              scene: {
+                volume: window.tv.blobAs('int16', inverted),
+                transferFunction: tf,
+                camera,
+                lights: [],
+                environment: { type: 'constant', radiance: [1, 1, 1] },
+                densityScale: 6,
+                seed: 3,
+                sampling,
+              },
+            });
+          const inverted = await run(true);
+          const preApplied = await run(false); // the same medium stored the usual way: dense = high values
+          return {
+            ...inverted,
+            differingFromPreApplied: t.sameBits(new Float32Array(inverted.hdr), new Float32Array(preApplied.hdr)),
+          };
+        },
+        backend,
+        TF,
+        camera,
+        W,
+        H,
+        N,
+        sampling,
+      );
+      expect(gpu.nonFinite).toBe(false);
+      // Data stored as −x with the range [hi, lo] reads exactly as x with [lo, hi] (sign flips are exact), grid included.
+      expect(gpu.differingFromPreApplied).toBe(0);
+      // The CPU twin reads the int16 data through the inverted range itself (CpuVolumeSampler).
+      const scene: Scene = {
+        volume: blobAs('int16', true),
+        transferFunction: TF,
+        camera,
+        lights: [],
+        environment: { type: 'constant', radiance: [1, 1, 1] },
+        densityScale: 6,
+        seed: 3,
+      };
+      expect(scene.volume.valueRange![0]).toBeGreaterThan(scene.volume.valueRange![1]);
+      const tau = opticalDepth(scene, 1000);
+      const ref = pixelExpectations(scene, W, H, (o, d, t0, t1) => {
+        const T = Math.exp(-tau(o, d, t0, t1));
+        return [T, T, T];
       });
-      const inverted = await run(true);
-      const preApplied = await run(false); // the same medium stored the usual way: dense = high values
-      return { ...inverted, differingFromPreApplied: t.sameBits(new Float32Array(inverted.hdr), new Float32Array(preApplied.hdr)) };
-    }, backend, TF, camera, W, H, N, sampling);
-    expect(gpu.nonFinite).toBe(false);
-    // Data stored as −x with the range [hi, lo] reads exactly as x with [lo, hi] (sign flips are exact), grid included.
-    expect(gpu.differingFromPreApplied).toBe(0);
-    // The CPU twin reads the int16 data through the inverted range itself (CpuVolumeSampler).
-    const scene: Scene = { volume: blobAs('int16', true), transferFunction: TF, camera, lights: [], environment: { type: 'constant', radiance: [1, 1, 1] }, densityScale: 6, seed: 3 };
-    expect(scene.volume.valueRange![0]).toBeGreaterThan(scene.volume.valueRange![1]);
-    const tau = opticalDepth(scene, 1000);
-    const ref = pixelExpectations(scene, W, H, (o, d, t0, t1) => { const T = Math.exp(-tau(o, d, t0, t1)); return [T, T, T]; });
-    const z: number[] = [];
-    ref.forEach((p, k) => { if (p.interior) z.push((gpu.mean[4 * k] - p.value[0]) / Math.hypot(gpu.se[4 * k], 5e-4)); });
-    const s = zSummary(z);
-    expect(s.n).toBeGreaterThan(60);
-    // Aggregate below 4 rather than 3: the kernel's 256-texel rasterized TF against the CPU's exact
-    // piecewise-linear lookup leaves a small systematic term (this seed gives 3.4 with the range not
-    // inverted as well, bit for bit the same image, so it is not the inversion).
-    expect(Math.abs(s.meanScaled), JSON.stringify(s)).toBeLessThan(4);
-    expect(s.maxAbs, JSON.stringify(s)).toBeLessThan(5);
-    expect(s.over3 / s.n, JSON.stringify(s)).toBeLessThan(0.03);
-    // The medium attenuates where the blob is dense, which the inverted range maps high:
-    // read without the inversion the image would be the complement (a clear blob in fog).
-    expect(Math.min(...ref.filter((p) => p.interior).map((p) => p.value[0]))).toBeLessThan(0.5);
-  });
+      const z: number[] = [];
+      ref.forEach((p, k) => {
+        if (p.interior) z.push((gpu.mean[4 * k] - p.value[0]) / Math.hypot(gpu.se[4 * k], 5e-4));
+      });
+      const s = zSummary(z);
+      expect(s.n).toBeGreaterThan(60);
+      // Aggregate below 4 rather than 3: the kernel's 256-texel rasterized TF against the CPU's exact
+      // piecewise-linear lookup leaves a small systematic term (this seed gives 3.4 with the range not
+      // inverted as well, bit for bit the same image, so it is not the inversion).
+      expect(Math.abs(s.meanScaled), JSON.stringify(s)).toBeLessThan(4);
+      expect(s.maxAbs, JSON.stringify(s)).toBeLessThan(5);
+      expect(s.over3 / s.n, JSON.stringify(s)).toBeLessThan(0.03);
+      // The medium attenuates where the blob is dense, which the inverted range maps high:
+      // read without the inversion the image would be the complement (a clear blob in fog).
+      expect(Math.min(...ref.filter((p) => p.interior).map((p) => p.value[0]))).toBeLessThan(0.5);
+    },
+  );
 
   it('changes the value range (to an inverted one) without re-uploading the volume, as a fresh context renders it', async () => {
-    const r = await page().page.evaluate(async (backend, tf, camera) => {
-      const t = (window as any).t;
-      const mt = (window as any).mt;
-      const volume = window.tv.blobAs('int16', false);
-      const inverted = { ...volume, valueRange: [volume.valueRange[1], volume.valueRange[0]] };
-      const scene = (v: unknown) => ({ volume: v, transferFunction: tf, camera, lights: [], environment: { type: 'constant', radiance: [1, 1, 1] }, densityScale: 6, seed: 5 });
-      const ctx = await t.context({ backend, renderer: 'mcrt', width: 16, height: 16, params: { majorantCellSize: 4 } });
-      let volumeUploads = 0;
-      const create = ctx.backend.createTexture.bind(ctx.backend);
-      ctx.backend.createTexture = (d: any) => { if (d.label === 'volume') volumeUploads++; return create(d); };
-      ctx.setScene(scene(volume));
-      await ctx.renderIterations(8);
-      ctx.setScene(scene(inverted));
-      await ctx.renderIterations(8);
-      const changed = Array.from(await ctx.readHDR());
-      ctx.dispose();
-      const fresh = await t.context({ backend, renderer: 'mcrt', width: 16, height: 16, params: { majorantCellSize: 4 } });
-      fresh.setScene(scene(inverted));
-      await fresh.renderIterations(8);
-      const want = Array.from(await fresh.readHDR());
-      fresh.dispose();
-      void mt;
-      return { volumeUploads, differing: t.sameBits(new Float32Array(changed as number[]), new Float32Array(want as number[])) };
-    }, backend, TF, camera);
+    const r = await page().page.evaluate(
+      async (backend, tf, camera) => {
+        const t = (window as any).t;
+        const mt = (window as any).mt;
+        const volume = window.tv.blobAs('int16', false);
+        const inverted = { ...volume, valueRange: [volume.valueRange[1], volume.valueRange[0]] };
+        const scene = (v: unknown) => ({
+          volume: v,
+          transferFunction: tf,
+          camera,
+          lights: [],
+          environment: { type: 'constant', radiance: [1, 1, 1] },
+          densityScale: 6,
+          seed: 5,
+        });
+        const ctx = await t.context({
+          backend,
+          renderer: 'mcrt',
+          width: 16,
+          height: 16,
+          params: { majorantCellSize: 4 },
+        });
+        let volumeUploads = 0;
+        const create = ctx.backend.createTexture.bind(ctx.backend);
+        ctx.backend.createTexture = (d: any) => {
+          if (d.label === 'volume') volumeUploads++;
+          return create(d);
+        };
+        ctx.setScene(scene(volume));
+        await ctx.renderIterations(8);
+        ctx.setScene(scene(inverted));
+        await ctx.renderIterations(8);
+        const changed = Array.from(await ctx.readHDR());
+        ctx.dispose();
+        const fresh = await t.context({
+          backend,
+          renderer: 'mcrt',
+          width: 16,
+          height: 16,
+          params: { majorantCellSize: 4 },
+        });
+        fresh.setScene(scene(inverted));
+        await fresh.renderIterations(8);
+        const want = Array.from(await fresh.readHDR());
+        fresh.dispose();
+        void mt;
+        return {
+          volumeUploads,
+          differing: t.sameBits(new Float32Array(changed as number[]), new Float32Array(want as number[])),
+        };
+      },
+      backend,
+      TF,
+      camera,
+    );
     expect(r.volumeUploads).toBe(1);
     expect(r.differing).toBe(0); // the majorant grid and the mapping followed the new range
   });
@@ -176,25 +300,33 @@ describe.each(BACKENDS)('compact volumes on %s', (backend) => {
       const t = (window as any).t;
       const dims = [256, 256, 260];
       const u8 = new Uint8Array(dims[0] * dims[1] * dims[2]);
-      for (let z = 0; z < dims[2]; z++) for (let y = 0; y < dims[1]; y++) for (let x = 0; x < dims[0]; x++) {
-        const r2 = (x - 128) ** 2 + (y - 128) ** 2 + (z - 100) ** 2;
-        u8[x + 256 * (y + 256 * z)] = r2 < 90 ** 2 ? Math.min(255, 40 + z) : 0;
-      }
+      for (let z = 0; z < dims[2]; z++)
+        for (let y = 0; y < dims[1]; y++)
+          for (let x = 0; x < dims[0]; x++) {
+            const r2 = (x - 128) ** 2 + (y - 128) ** 2 + (z - 100) ** 2;
+            u8[x + 256 * (y + 256 * z)] = r2 < 90 ** 2 ? Math.min(255, 40 + z) : 0;
+          }
       const a = core.createVolume(dims, 'uint8', u8);
       const b = core.createVolume(dims, 'int16', Int16Array.from(u8));
       b.valueRange = [0, 255];
       const out: number[][] = [];
       for (const volume of [a, b]) {
         const ctx = await t.context({ backend, renderer: 'mip', width: 32, height: 32 });
-        ctx.setScene(t.scene({ volume, camera: { position: [2, 0.3, 0.2], target: [0, 0, 0], up: [0, 0, 1], fovy: 0.7 } }));
+        ctx.setScene(
+          t.scene({ volume, camera: { position: [2, 0.3, 0.2], target: [0, 0, 0], up: [0, 0, 1], fovy: 0.7 } }),
+        );
         await ctx.renderIterations(16);
         out.push(Array.from(await ctx.readHDR()));
         ctx.dispose();
       }
       return out;
     }, backend);
-    let worst = 0, peak = 0;
-    for (let i = 0; i < r[0].length; i++) { worst = Math.max(worst, Math.abs(r[0][i] - r[1][i])); peak = Math.max(peak, r[0][i]); }
+    let worst = 0,
+      peak = 0;
+    for (let i = 0; i < r[0].length; i++) {
+      worst = Math.max(worst, Math.abs(r[0][i] - r[1][i]));
+      peak = Math.max(peak, r[0][i]);
+    }
     expect(peak).toBeGreaterThan(0.3);
     expect(worst).toBeLessThan(0.01);
   });
@@ -212,7 +344,14 @@ describe.each(BACKENDS)('compact volumes on %s', (backend) => {
       ctx.setScene(t.scene({ volume, densityScale: 5 })); // the same volume again: no second warning
       await ctx.renderIterations(2);
       const hdr = await ctx.readHDR();
-      const out = { warnings, bytes: ctx.stats.gpuBytes, dims: ctx.getScene().volume.dims, budget, lit: (Array.from(hdr) as number[]).some((x) => x > 0.01), finite: !t.hasNonFinite(hdr) };
+      const out = {
+        warnings,
+        bytes: ctx.stats.gpuBytes,
+        dims: ctx.getScene().volume.dims,
+        budget,
+        lit: (Array.from(hdr) as number[]).some((x) => x > 0.01),
+        finite: !t.hasNonFinite(hdr),
+      };
       ctx.dispose();
       return out;
     }, backend);
@@ -223,7 +362,7 @@ describe.each(BACKENDS)('compact volumes on %s', (backend) => {
     expect(r.warnings[0].message).toMatch(/maxGpuBytes/);
     expect(r.dims).toEqual(r.warnings[0].to);
     expect(r.bytes.volume).toBeLessThanOrEqual(300 * 1024);
-    expect(r.bytes.volume).toBeGreaterThan(300 * 1024 / 8); // the largest that fits, not a needless shrink
+    expect(r.bytes.volume).toBeGreaterThan((300 * 1024) / 8); // the largest that fits, not a needless shrink
     expect(r.bytes.total).toBeLessThanOrEqual(r.budget);
     expect(r.lit && r.finite).toBe(true);
   });

@@ -20,7 +20,17 @@ import { encodePNG, launchChromium, startStaticServer, type StaticServer } from 
 import { ROOT } from './helpers/viewer-page.js';
 
 const run = promisify(execFile);
-const PACKAGES = ['core', 'post', 'renderer-mip', 'renderer-eam', 'renderer-iso', 'renderer-mcrt', 'loaders', 'viewer', 'headless'];
+const PACKAGES = [
+  'core',
+  'post',
+  'renderer-mip',
+  'renderer-eam',
+  'renderer-iso',
+  'renderer-mcrt',
+  'loaders',
+  'viewer',
+  'headless',
+];
 /** What a browser app installs (headless is a Node tool with Chromium drivers: packed and checked, not installed). */
 const BROWSER_PACKAGES = PACKAGES.filter((p) => p !== 'headless');
 const HEAD = 'mri_head_volpack_brainsmall_128x128x84_uint8';
@@ -50,41 +60,80 @@ beforeAll(async () => {
   }
   app = path.join(tmp, 'app');
   fs.mkdirSync(app);
-  fs.writeFileSync(path.join(app, 'package.json'), JSON.stringify({ name: 'vpt-consumer', private: true, type: 'module' }));
-  await run('npm', ['install', '--prefer-offline', '--no-audit', '--no-fund', '--loglevel=error', ...BROWSER_PACKAGES.map((p) => tarballs[p])], { cwd: app, timeout: 150_000 });
+  fs.writeFileSync(
+    path.join(app, 'package.json'),
+    JSON.stringify({ name: 'vpt-consumer', private: true, type: 'module' }),
+  );
+  await run(
+    'npm',
+    [
+      'install',
+      '--prefer-offline',
+      '--no-audit',
+      '--no-fund',
+      '--loglevel=error',
+      ...BROWSER_PACKAGES.map((p) => tarballs[p]),
+    ],
+    { cwd: app, timeout: 150_000 },
+  );
   // The data, as a user copies it next to the page.
   fs.copyFileSync(path.join(ROOT, 'data', `${HEAD}.json`), path.join(app, 'head.json'));
   fs.copyFileSync(path.join(ROOT, 'data', `${HEAD}.raw`), path.join(app, `${HEAD}.raw`));
 
   // "Use it in a page": the snippet as written, a plain page, only the bundle script.
-  const pageSnippet = readmeSnippet('Use it in a page', 'html').replace(/width: \d+px; height: \d+px/, 'width: 96px; height: 72px');
-  fs.writeFileSync(path.join(app, 'page.html'), `<!doctype html><meta charset="utf-8">${NO_FAVICON}<body style="margin:0">\n${pageSnippet}</body>`);
+  const pageSnippet = readmeSnippet('Use it in a page', 'html').replace(
+    /width: \d+px; height: \d+px/,
+    'width: 96px; height: 72px',
+  );
+  fs.writeFileSync(
+    path.join(app, 'page.html'),
+    `<!doctype html><meta charset="utf-8">${NO_FAVICON}<body style="margin:0">\n${pageSnippet}</body>`,
+  );
 
   // "Use it from code": the snippet in a module of a bundled app.
   const code = readmeSnippet('Use it from code', 'ts').replace('width: 512, height: 512', 'width: 64, height: 64');
-  fs.writeFileSync(path.join(app, 'code.js'), `const canvas = document.querySelector('canvas');\n${code}\nwindow.__hdr = Array.from(hdr);\n`);
-  fs.writeFileSync(path.join(app, 'code.html'), `<!doctype html><meta charset="utf-8">${NO_FAVICON}<body><canvas></canvas><script type="module" src="dist/code.js"></script></body>`);
+  fs.writeFileSync(
+    path.join(app, 'code.js'),
+    `const canvas = document.querySelector('canvas');\n${code}\nwindow.__hdr = Array.from(hdr);\n`,
+  );
+  fs.writeFileSync(
+    path.join(app, 'code.html'),
+    `<!doctype html><meta charset="utf-8">${NO_FAVICON}<body><canvas></canvas><script type="module" src="dist/code.js"></script></body>`,
+  );
 
   // The element in a bundled app, with only src set; the app uses three and lit itself too.
-  fs.writeFileSync(path.join(app, 'element.js'), [
-    "import '@vpt/viewer';",
-    "import { LitElement } from 'lit';",
-    "import { Vector3 } from 'three';",
-    'window.__appDeps = [typeof LitElement, new Vector3(1, 2, 3).length()];',
-  ].join('\n'));
-  fs.writeFileSync(path.join(app, 'element.html'), `<!doctype html><meta charset="utf-8">${NO_FAVICON}<body style="margin:0">
-<script type="module" src="dist/element.js"></script><vpt-viewer src="head.json" style="width: 96px; height: 72px"></vpt-viewer></body>`);
+  fs.writeFileSync(
+    path.join(app, 'element.js'),
+    [
+      "import '@vpt/viewer';",
+      "import { LitElement } from 'lit';",
+      "import { Vector3 } from 'three';",
+      'window.__appDeps = [typeof LitElement, new Vector3(1, 2, 3).length()];',
+    ].join('\n'),
+  );
+  fs.writeFileSync(
+    path.join(app, 'element.html'),
+    `<!doctype html><meta charset="utf-8">${NO_FAVICON}<body style="margin:0">
+<script type="module" src="dist/element.js"></script><vpt-viewer src="head.json" style="width: 96px; height: 72px"></vpt-viewer></body>`,
+  );
 
   const bundle = await rollup({
     input: { code: path.join(app, 'code.js'), element: path.join(app, 'element.js') },
     plugins: [nodeResolve({ browser: true, rootDir: app }), commonjs()],
-    onwarn: (w, warn) => { if (w.code !== 'CIRCULAR_DEPENDENCY' && w.code !== 'THIS_IS_UNDEFINED') warn(w); },
+    onwarn: (w, warn) => {
+      if (w.code !== 'CIRCULAR_DEPENDENCY' && w.code !== 'THIS_IS_UNDEFINED') warn(w);
+    },
   });
   const { output } = await bundle.write({ dir: path.join(app, 'dist'), format: 'es' });
   await bundle.close();
-  bundleOutput = output.filter((o) => o.type === 'chunk').map((o) => ({ fileName: o.fileName, code: (o as { code: string }).code }));
+  bundleOutput = output
+    .filter((o) => o.type === 'chunk')
+    .map((o) => ({ fileName: o.fileName, code: (o as { code: string }).code }));
   // As the loaders' README says: a bundler that does not copy the worker gets it copied.
-  fs.cpSync(path.join(app, 'node_modules/@vpt/loaders/dist/worker'), path.join(app, 'dist'), { recursive: true, filter: (f) => !/\.(d\.ts|map)$/.test(f) });
+  fs.cpSync(path.join(app, 'node_modules/@vpt/loaders/dist/worker'), path.join(app, 'dist'), {
+    recursive: true,
+    filter: (f) => !/\.(d\.ts|map)$/.test(f),
+  });
 
   server = await startStaticServer(app);
   browser = await launchChromium({ webgpu: true });
@@ -100,12 +149,14 @@ afterAll(async () => {
 async function open<T>(page: string, ready: string, read: string): Promise<{ value: T; errors: string[] }> {
   const p = await browser!.newPage();
   const errors: string[] = [];
-  p.on('console', (m) => { if (m.type() === 'error') errors.push(m.text()); });
+  p.on('console', (m) => {
+    if (m.type() === 'error') errors.push(m.text());
+  });
   p.on('pageerror', (e) => errors.push(String(e)));
   try {
     await p.goto(`http://127.0.0.1:${server!.port}/${page}`);
     await p.waitForFunction(ready, { timeout: 150_000, polling: 200 });
-    return { value: await p.evaluate(read) as T, errors };
+    return { value: (await p.evaluate(read)) as T, errors };
   } finally {
     await p.close();
   }
@@ -113,7 +164,9 @@ async function open<T>(page: string, ready: string, read: string): Promise<{ val
 
 /** Keep what the page showed in out/consumer/ (gitignored) for a person to look at. */
 function keep(name: string, rgba: ArrayLike<number>, width: number, height: number, scale = 255): void {
-  const bytes = Uint8Array.from({ length: width * height * 4 }, (_, i) => (i % 4 === 3 ? 255 : Math.round(255 * Math.min(1, Math.max(0, rgba[i] / scale)) ** (scale === 1 ? 1 / 2.2 : 1))));
+  const bytes = Uint8Array.from({ length: width * height * 4 }, (_, i) =>
+    i % 4 === 3 ? 255 : Math.round(255 * Math.min(1, Math.max(0, rgba[i] / scale)) ** (scale === 1 ? 1 / 2.2 : 1)),
+  );
   fs.mkdirSync(path.join(ROOT, 'out/consumer'), { recursive: true });
   fs.writeFileSync(path.join(ROOT, 'out/consumer', name), encodePNG(bytes, width, height));
 }
@@ -123,14 +176,23 @@ function keep(name: string, rgba: ArrayLike<number>, width: number, height: numb
  * (the framed head leaves them empty); an object pixel differs from it by more than 0.1
  * in luminance (0..1). Returns the fraction of object pixels and their mean difference.
  */
-function contrast(rgba: ArrayLike<number>, width: number, height: number, scale: number): { coverage: number; difference: number } {
+function contrast(
+  rgba: ArrayLike<number>,
+  width: number,
+  height: number,
+  scale: number,
+): { coverage: number; difference: number } {
   const lum = (i: number) => (0.2126 * rgba[4 * i] + 0.7152 * rgba[4 * i + 1] + 0.0722 * rgba[4 * i + 2]) / scale;
   const corners = [0, width - 1, (height - 1) * width, height * width - 1];
   const bg = corners.reduce((a, i) => a + lum(i), 0) / 4;
-  let n = 0, sum = 0;
+  let n = 0,
+    sum = 0;
   for (let i = 0; i < width * height; i++) {
     const d = Math.abs(Math.min(1, lum(i)) - Math.min(1, bg));
-    if (d > 0.1) { n++; sum += d; }
+    if (d > 0.1) {
+      n++;
+      sum += d;
+    }
   }
   return { coverage: n / (width * height), difference: n ? sum / n : 0 };
 }
@@ -139,7 +201,9 @@ describe('the packed packages in a fresh npm app', () => {
   it('every tarball has LICENSE and README, no workspace: ranges, and the viewer takes three and lit as peers', async () => {
     for (const p of PACKAGES) {
       const { stdout: list } = await run('tar', ['-tzf', tarballs[p]]);
-      expect(list.split('\n'), p).toEqual(expect.arrayContaining(['package/LICENSE', 'package/README.md', 'package/package.json']));
+      expect(list.split('\n'), p).toEqual(
+        expect.arrayContaining(['package/LICENSE', 'package/README.md', 'package/package.json']),
+      );
       const { stdout: json } = await run('tar', ['-xzOf', tarballs[p], 'package/package.json']);
       expect(json, p).not.toContain('workspace:');
     }
@@ -168,7 +232,10 @@ describe('the packed packages in a fresh npm app', () => {
     expect(copies('lit')).toHaveLength(1);
     for (const p of BROWSER_PACKAGES) {
       const dir = path.join(vpt, p);
-      const maps = fs.readdirSync(dir, { recursive: true }).map(String).filter((f) => f.endsWith('.js.map'));
+      const maps = fs
+        .readdirSync(dir, { recursive: true })
+        .map(String)
+        .filter((f) => f.endsWith('.js.map'));
       for (const m of maps) {
         const map = JSON.parse(fs.readFileSync(path.join(dir, m), 'utf8'));
         for (const [i, s] of (map.sources as string[]).entries()) {
@@ -189,9 +256,11 @@ describe('the packed packages in a fresh npm app', () => {
   });
 
   it('"Use it in a page" as written shows the head clearly, without console errors', async () => {
-    const { value, errors } = await open<{ ldr: number[]; width: number; height: number; renderer: string }>('page.html',
+    const { value, errors } = await open<{ ldr: number[]; width: number; height: number; renderer: string }>(
+      'page.html',
       "document.querySelector('vpt-viewer')?.samples >= 6",
-      "(async () => { const el = document.querySelector('vpt-viewer'); const c = el.context; return { ldr: Array.from(await c.readLDR()), ...c.size, renderer: c.renderer.name }; })()");
+      "(async () => { const el = document.querySelector('vpt-viewer'); const c = el.context; return { ldr: Array.from(await c.readLDR()), ...c.size, renderer: c.renderer.name }; })()",
+    );
     expect(errors).toEqual([]);
     expect(value.renderer).toBe('mcrt');
     keep('readme-page.png', value.ldr, value.width, value.height);
@@ -212,9 +281,17 @@ describe('the packed packages in a fresh npm app', () => {
   });
 
   it('a bundled app with import "@vpt/viewer" and only src set shows the head clearly, without console errors', async () => {
-    const { value, errors } = await open<{ ldr: number[]; width: number; height: number; deps: unknown[]; up: number[] }>('element.html',
+    const { value, errors } = await open<{
+      ldr: number[];
+      width: number;
+      height: number;
+      deps: unknown[];
+      up: number[];
+    }>(
+      'element.html',
       "document.querySelector('vpt-viewer')?.samples >= 6",
-      "(async () => { const el = document.querySelector('vpt-viewer'); const c = el.context; return { ldr: Array.from(await c.readLDR()), ...c.size, deps: window.__appDeps, up: el.camera.up }; })()");
+      "(async () => { const el = document.querySelector('vpt-viewer'); const c = el.context; return { ldr: Array.from(await c.readLDR()), ...c.size, deps: window.__appDeps, up: el.camera.up }; })()",
+    );
     expect(errors).toEqual([]);
     expect(value.deps[0]).toBe('function');
     expect(value.deps[1]).toBeCloseTo(Math.hypot(1, 2, 3), 6);

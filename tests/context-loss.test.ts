@@ -9,7 +9,13 @@ describe.each(BACKENDS)('GPU loss on %s', (backend) => {
       const t = (window as any).t;
       const { core } = (window as any).vpt;
       const scene = t.scene({ volume: core.createProceduralVolume('blob', 12), densityScale: 8, seed: 9 });
-      const opts = { backend, renderer: 'eam', width: 16, height: 16, post: [{ type: 'tonemap', operator: 'reinhard' }, { type: 'srgb' }] };
+      const opts = {
+        backend,
+        renderer: 'eam',
+        width: 16,
+        height: 16,
+        post: [{ type: 'tonemap', operator: 'reinhard' }, { type: 'srgb' }],
+      };
       const reference = await t.context(opts);
       reference.setScene(scene);
       await reference.renderIterations(8);
@@ -20,7 +26,9 @@ describe.each(BACKENDS)('GPU loss on %s', (backend) => {
       ctx.setScene(scene);
       ctx.iterate(3);
       let lostSeen = false;
-      ctx.backend.onLost(() => { lostSeen = true; });
+      ctx.backend.onLost(() => {
+        lostSeen = true;
+      });
       await ctx.backend.simulateLoss(30);
       const afterRestore = ctx.stats.iterations; // accumulation restarted on the new context
       await ctx.renderIterations(8);

@@ -1,5 +1,13 @@
 import { describe, expect, it } from 'vitest';
-import { rasterizeTransferFunction, reference, TF_RESOLUTION, type Scene, type TransferFunction, type Vec3, createProceduralVolume } from '../packages/core/src/index.js';
+import {
+  rasterizeTransferFunction,
+  reference,
+  TF_RESOLUTION,
+  type Scene,
+  type TransferFunction,
+  type Vec3,
+  createProceduralVolume,
+} from '../packages/core/src/index.js';
 import { BACKENDS, usePage } from './helpers/session.js';
 
 /**
@@ -7,7 +15,17 @@ import { BACKENDS, usePage } from './helpers/session.js';
  * L = c·(1 − e^{−σ·ℓ}) + L_bg·e^{−σ·ℓ}, ℓ the chord length. A pixel is the box-filtered
  * mean over its footprint, integrated here with a fine stratified grid.
  */
-function analyticPixel(scene: Scene, w: number, h: number, x: number, y: number, color: Vec3, sigma: number, bg: Vec3, sub = 16) {
+function analyticPixel(
+  scene: Scene,
+  w: number,
+  h: number,
+  x: number,
+  y: number,
+  color: Vec3,
+  sigma: number,
+  bg: Vec3,
+  sub = 16,
+) {
   const box = { min: [-0.5, -0.5, -0.5] as Vec3, max: [0.5, 0.5, 0.5] as Vec3 };
   const acc = [0, 0, 0];
   const acc2 = [0, 0, 0];
@@ -29,7 +47,12 @@ function analyticPixel(scene: Scene, w: number, h: number, x: number, y: number,
     }
   }
   // Pixels whose corners all hit the box have a smooth integrand; edge pixels are noisy.
-  for (const [cx, cy] of [[0, 0], [1, 0], [0, 1], [1, 1]]) {
+  for (const [cx, cy] of [
+    [0, 0],
+    [1, 0],
+    [0, 1],
+    [1, 1],
+  ]) {
     const { origin, dir } = reference.cameraRay(scene, w, h, (x + cx) / w, (y + cy) / h);
     const [t0, t1] = reference.intersectBox(origin, dir, box.min, box.max);
     if (!(t1 > t0)) allInside = false;
@@ -42,36 +65,60 @@ function analyticPixel(scene: Scene, w: number, h: number, x: number, y: number,
 }
 
 const page = usePage();
-const W = 24, H = 24, ITER = 64;
+const W = 24,
+  H = 24,
+  ITER = 64;
 
 describe.each(BACKENDS)('EAM on %s', (backend) => {
   it.each([0.5, 4])('matches the analytic emission-absorption of a homogeneous cube (sigma = %s)', async (sigma) => {
     const color: Vec3 = [1, 0.5, 0.25];
     const bg: Vec3 = [0.2, 0.3, 0.4];
     const camera = { position: [0.4, 0.5, 2.6] as Vec3, target: [0, 0, 0] as Vec3, up: [0, 1, 0] as Vec3, fovy: 0.9 };
-    const gpu: number[] = await page().page.evaluate(async (backend, W, H, ITER, camera, color, bg, sigma) => {
-      const { core } = (window as any).vpt;
-      const t = (window as any).t;
-      const ctx = await t.context({ backend, renderer: 'eam', width: W, height: H, params: { cutoff: 0 } });
-      ctx.setScene(t.scene({
-        volume: core.createProceduralVolume('cube', 8), camera, densityScale: sigma,
-        transferFunction: { dimensions: '1d', points: [{ value: 0, color, opacity: 1 }] },
-        environment: { type: 'constant', radiance: bg },
-      }));
-      await ctx.renderIterations(ITER);
-      const hdr = await ctx.readHDR();
-      ctx.dispose();
-      return Array.from(hdr as Float32Array);
-    }, backend, W, H, ITER, camera, color, bg, sigma);
+    const gpu: number[] = await page().page.evaluate(
+      async (backend, W, H, ITER, camera, color, bg, sigma) => {
+        const { core } = (window as any).vpt;
+        const t = (window as any).t;
+        const ctx = await t.context({ backend, renderer: 'eam', width: W, height: H, params: { cutoff: 0 } });
+        ctx.setScene(
+          t.scene({
+            volume: core.createProceduralVolume('cube', 8),
+            camera,
+            densityScale: sigma,
+            transferFunction: { dimensions: '1d', points: [{ value: 0, color, opacity: 1 }] },
+            environment: { type: 'constant', radiance: bg },
+          }),
+        );
+        await ctx.renderIterations(ITER);
+        const hdr = await ctx.readHDR();
+        ctx.dispose();
+        return Array.from(hdr as Float32Array);
+      },
+      backend,
+      W,
+      H,
+      ITER,
+      camera,
+      color,
+      bg,
+      sigma,
+    );
     const scene = { camera } as Scene;
     void createProceduralVolume;
-    let interior = 0, misses = 0, maxZ = 0;
-    const pixels = Array.from({ length: W * H }, (_, i) => analyticPixel(scene, W, H, i % W, Math.floor(i / W), color, sigma, bg));
+    let interior = 0,
+      misses = 0,
+      maxZ = 0;
+    const pixels = Array.from({ length: W * H }, (_, i) =>
+      analyticPixel(scene, W, H, i % W, Math.floor(i / W), color, sigma, bg),
+    );
     // Background only where the pixel and its 8 neighbours all miss: no jittered sample can clip the cube there.
-    const farFromCube = (x: number, y: number) => [-1, 0, 1].every((dy) => [-1, 0, 1].every((dx) => {
-      const px = x + dx, py = y + dy;
-      return px < 0 || py < 0 || px >= W || py >= H || pixels[px + W * py].allMiss;
-    }));
+    const farFromCube = (x: number, y: number) =>
+      [-1, 0, 1].every((dy) =>
+        [-1, 0, 1].every((dx) => {
+          const px = x + dx,
+            py = y + dy;
+          return px < 0 || py < 0 || px >= W || py >= H || pixels[px + W * py].allMiss;
+        }),
+      );
     for (let y = 0; y < H; y++) {
       for (let x = 0; x < W; x++) {
         const { rgb, std, allInside } = pixels[x + W * y];
@@ -108,62 +155,109 @@ function cpuEam(scene: Scene, w: number, h: number, iterations: number, stepSize
   const tex = rasterizeTransferFunction(scene.transferFunction, TF_RESOLUTION);
   const lookup = (v: number) => {
     const x = Math.min(1, Math.max(0, v)) * (TF_RESOLUTION - 1);
-    const i0 = Math.floor(x), i1 = Math.min(i0 + 1, TF_RESOLUTION - 1);
+    const i0 = Math.floor(x),
+      i1 = Math.min(i0 + 1, TF_RESOLUTION - 1);
     return [0, 1, 2, 3].map((c) => tex[4 * i0 + c] + (tex[4 * i1 + c] - tex[4 * i0 + c]) * (x - i0));
   };
   const bg = (scene.environment as { radiance: Vec3 }).radiance;
   const out = new Float64Array(4 * w * h);
-  for (let y = 0; y < h; y++) for (let x = 0; x < w; x++) {
-    for (let it = 0; it < iterations; it++) {
-      const rng = new reference.CpuRng(x, y, it, scene.seed);
-      const jx = rng.next(), jy = rng.next();
-      const { origin, dir } = reference.cameraRay(scene, w, h, (x + jx) / w, (y + jy) / h);
-      const [t0, t1] = reference.intersectBox(origin, dir, sampler.box.min, sampler.box.max);
-      const color = [0, 0, 0];
-      let T = 1;
-      if (t0 < t1) {
-        const offset = rng.next();
-        const n = Math.max(1, Math.ceil((t1 - t0) / stepSize));
-        const seg = (t1 - t0) / n;
-        for (let k = 0; k < n; k++) {
-          const s = t0 + (k + offset) * seg;
-          const tf = lookup(sampler.sample([0, 1, 2].map((a) => origin[a] + dir[a] * s) as Vec3));
-          const alpha = 1 - Math.exp(-scene.densityScale * tf[3] * seg);
-          for (let c = 0; c < 3; c++) color[c] += T * alpha * tf[c];
-          T *= 1 - alpha;
+  for (let y = 0; y < h; y++)
+    for (let x = 0; x < w; x++) {
+      for (let it = 0; it < iterations; it++) {
+        const rng = new reference.CpuRng(x, y, it, scene.seed);
+        const jx = rng.next(),
+          jy = rng.next();
+        const { origin, dir } = reference.cameraRay(scene, w, h, (x + jx) / w, (y + jy) / h);
+        const [t0, t1] = reference.intersectBox(origin, dir, sampler.box.min, sampler.box.max);
+        const color = [0, 0, 0];
+        let T = 1;
+        if (t0 < t1) {
+          const offset = rng.next();
+          const n = Math.max(1, Math.ceil((t1 - t0) / stepSize));
+          const seg = (t1 - t0) / n;
+          for (let k = 0; k < n; k++) {
+            const s = t0 + (k + offset) * seg;
+            const tf = lookup(sampler.sample([0, 1, 2].map((a) => origin[a] + dir[a] * s) as Vec3));
+            const alpha = 1 - Math.exp(-scene.densityScale * tf[3] * seg);
+            for (let c = 0; c < 3; c++) color[c] += T * alpha * tf[c];
+            T *= 1 - alpha;
+          }
         }
+        const i = 4 * (x + w * y);
+        for (let c = 0; c < 3; c++) out[i + c] += (color[c] + T * bg[c]) / iterations;
+        out[i + 3] += (1 - T) / iterations;
       }
-      const i = 4 * (x + w * y);
-      for (let c = 0; c < 3; c++) out[i + c] += (color[c] + T * bg[c]) / iterations;
-      out[i + 3] += (1 - T) / iterations;
     }
-  }
   return out;
 }
 
 describe.each(BACKENDS)('EAM on %s against a CPU twin', (backend) => {
   it('equals a CPU emission–absorption march of a heterogeneous volume, sample for sample', async () => {
     const camera = { position: [0.9, 0.5, 1.7] as Vec3, target: [0, 0, 0] as Vec3, up: [0, 1, 0] as Vec3, fovy: 0.45 };
-    const tf: TransferFunction = { dimensions: '1d', points: [
-      { value: 0.1, color: [0.2, 0.4, 1], opacity: 0 }, { value: 0.4, color: [1, 0.6, 0.2], opacity: 0.8 },
-      { value: 0.6, color: [0.3, 1, 0.4], opacity: 0.1 }, { value: 1, color: [1, 1, 1], opacity: 1 },
-    ] };
+    const tf: TransferFunction = {
+      dimensions: '1d',
+      points: [
+        { value: 0.1, color: [0.2, 0.4, 1], opacity: 0 },
+        { value: 0.4, color: [1, 0.6, 0.2], opacity: 0.8 },
+        { value: 0.6, color: [0.3, 1, 0.4], opacity: 0.1 },
+        { value: 1, color: [1, 1, 1], opacity: 1 },
+      ],
+    };
     const bg: Vec3 = [0.1, 0.15, 0.2];
-    const W = 20, H = 16, ITER = 3, STEP = 1 / 24; // steps of ~1.3 voxels: where the samples fall matters
-    const scene: Scene = { volume: createProceduralVolume('blob', 16), transferFunction: tf, camera, lights: [], environment: { type: 'constant', radiance: bg }, densityScale: 12, seed: 9 };
-    const gpu: number[] = await page().page.evaluate(async (backend, W, H, ITER, STEP, camera, tf, bg) => {
-      const { core } = (window as any).vpt;
-      const t = (window as any).t;
-      // sampling: 'exact': the twin samples with float64 trilinear weights (a hardware filter's are coarser).
-      const ctx = await t.context({ backend, renderer: 'eam', width: W, height: H, params: { cutoff: 0, stepSize: STEP }, sampling: 'exact' });
-      ctx.setScene(t.scene({ volume: core.createProceduralVolume('blob', 16), camera, transferFunction: tf, densityScale: 12, seed: 9, environment: { type: 'constant', radiance: bg } }));
-      await ctx.renderIterations(ITER);
-      const hdr = await ctx.readHDR();
-      ctx.dispose();
-      return Array.from(hdr as Float32Array);
-    }, backend, W, H, ITER, STEP, camera, tf, bg);
+    const W = 20,
+      H = 16,
+      ITER = 3,
+      STEP = 1 / 24; // steps of ~1.3 voxels: where the samples fall matters
+    const scene: Scene = {
+      volume: createProceduralVolume('blob', 16),
+      transferFunction: tf,
+      camera,
+      lights: [],
+      environment: { type: 'constant', radiance: bg },
+      densityScale: 12,
+      seed: 9,
+    };
+    const gpu: number[] = await page().page.evaluate(
+      async (backend, W, H, ITER, STEP, camera, tf, bg) => {
+        const { core } = (window as any).vpt;
+        const t = (window as any).t;
+        // sampling: 'exact': the twin samples with float64 trilinear weights (a hardware filter's are coarser).
+        const ctx = await t.context({
+          backend,
+          renderer: 'eam',
+          width: W,
+          height: H,
+          params: { cutoff: 0, stepSize: STEP },
+          sampling: 'exact',
+        });
+        ctx.setScene(
+          t.scene({
+            volume: core.createProceduralVolume('blob', 16),
+            camera,
+            transferFunction: tf,
+            densityScale: 12,
+            seed: 9,
+            environment: { type: 'constant', radiance: bg },
+          }),
+        );
+        await ctx.renderIterations(ITER);
+        const hdr = await ctx.readHDR();
+        ctx.dispose();
+        return Array.from(hdr as Float32Array);
+      },
+      backend,
+      W,
+      H,
+      ITER,
+      STEP,
+      camera,
+      tf,
+      bg,
+    );
     const cpu = cpuEam(scene, W, H, ITER, STEP);
-    let maxErr = 0, covered = 0, spread = 0;
+    let maxErr = 0,
+      covered = 0,
+      spread = 0;
     for (let i = 0; i < W * H; i++) {
       for (let c = 0; c < 4; c++) maxErr = Math.max(maxErr, Math.abs(gpu[4 * i + c] - cpu[4 * i + c]));
       if (cpu[4 * i + 3] > 0.2) covered++;

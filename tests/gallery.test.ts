@@ -37,21 +37,32 @@ function pageReady(which: GalleryPage, samples: number): boolean {
 async function open(path: string, which: GalleryPage, samples = 0): Promise<{ page: Page; errors: string[] }> {
   const page = await browser.newPage();
   const errors: string[] = [];
-  page.on('console', (m) => { if (m.type() === 'error') errors.push(m.text()); });
+  page.on('console', (m) => {
+    if (m.type() === 'error') errors.push(m.text());
+  });
   page.on('pageerror', (e) => errors.push((e as Error).message));
-  page.on('response', (r) => { if (r.status() >= 400) errors.push(`HTTP ${r.status()} ${r.url()}`); });
+  page.on('response', (r) => {
+    if (r.status() >= 400) errors.push(`HTTP ${r.status()} ${r.url()}`);
+  });
   await page.setViewport({ width: 1000, height: 700 });
   await page.goto(new URL(`apps/gallery/dist/${path}`, server.url).href);
   try {
     await page.waitForFunction(pageReady, { timeout: 90_000, polling: 100 }, which, samples);
   } catch (e) {
-    throw new Error(`${path}: not ready (${which}, ${samples} samples); console errors: ${JSON.stringify(errors)}`, { cause: e });
+    throw new Error(`${path}: not ready (${which}, ${samples} samples); console errors: ${JSON.stringify(errors)}`, {
+      cause: e,
+    });
   }
   return { page, errors };
 }
 
 /** Distinct colours in a viewer's displayed image, and its sample count. */
-interface ImageSummary { distinct: number; samples: number; kind: string; renderer: string }
+interface ImageSummary {
+  distinct: number;
+  samples: number;
+  kind: string;
+  renderer: string;
+}
 
 /** Page code: the summary of the gallery's viewer or of each comparison view. */
 function imageSummaries(which: GalleryPage): Promise<ImageSummary[]> {
@@ -67,30 +78,54 @@ function imageSummaries(which: GalleryPage): Promise<ImageSummary[]> {
 
 describe('gallery build', () => {
   it('builds the site with one command: pages, the viewer bundle with its loader worker, the data and a manifest listing it', () => {
-    for (const f of ['index.html', 'compare.html', 'assets/gallery.js', 'assets/compare.js', 'assets/vpt-viewer.bundle.js', 'scenes/head-eam.json', 'data/mri_head_volpack_brainsmall_128x128x84_uint8.raw']) {
+    for (const f of [
+      'index.html',
+      'compare.html',
+      'assets/gallery.js',
+      'assets/compare.js',
+      'assets/vpt-viewer.bundle.js',
+      'scenes/head-eam.json',
+      'data/mri_head_volpack_brainsmall_128x128x84_uint8.raw',
+    ]) {
       expect(fs.existsSync(DIST + f), f).toBe(true);
     }
-    const workers = fs.readdirSync(DIST + 'assets', { recursive: true }).map(String).filter((f) => f.endsWith('loader-worker.js'));
+    const workers = fs
+      .readdirSync(DIST + 'assets', { recursive: true })
+      .map(String)
+      .filter((f) => f.endsWith('loader-worker.js'));
     expect(workers.length).toBeGreaterThan(0);
     const manifest = JSON.parse(fs.readFileSync(DIST + 'data/manifest.json', 'utf8'));
     const head = manifest.datasets.find((d: { id: string }) => d.id === 'mri_head_volpack_brainsmall_128x128x84_uint8');
-    expect(head).toMatchObject({ url: 'data/mri_head_volpack_brainsmall_128x128x84_uint8.json', bundled: true, dims: [128, 128, 84], type: 'uint8' });
+    expect(head).toMatchObject({
+      url: 'data/mri_head_volpack_brainsmall_128x128x84_uint8.json',
+      bundled: true,
+      dims: [128, 128, 84],
+      type: 'uint8',
+    });
   });
 });
 
 describe('gallery pages', () => {
-  it.each(['webgl2', 'webgpu'])('smoke: the gallery page renders the bundled head on %s without console errors (not flat: > 20 colours)', async (backend) => {
-    const { page, errors } = await open(`index.html?backend=${backend}&${FAST}`, 'gallery', 2);
-    const [r] = await page.evaluate(imageSummaries, 'gallery' as GalleryPage);
-    const state = await page.evaluate(() => ({ search: location.search, pressed: document.querySelector('[aria-pressed="true"]')?.getAttribute('data-id') }));
-    await page.close();
-    expect(errors).toEqual([]);
-    expect(r.kind).toBe(backend);
-    expect(r.renderer).toBe('eam');
-    expect(r.distinct).toBeGreaterThan(20); // an image of the head, not a flat fill
-    expect(state.pressed).toBe('mri_head_volpack_brainsmall_128x128x84_uint8');
-    expect(state.search).toMatch(/dataset=mri_head_volpack_brainsmall_128x128x84_uint8&renderer=eam&tf=tissue&camera=/);
-  });
+  it.each(['webgl2', 'webgpu'])(
+    'smoke: the gallery page renders the bundled head on %s without console errors (not flat: > 20 colours)',
+    async (backend) => {
+      const { page, errors } = await open(`index.html?backend=${backend}&${FAST}`, 'gallery', 2);
+      const [r] = await page.evaluate(imageSummaries, 'gallery' as GalleryPage);
+      const state = await page.evaluate(() => ({
+        search: location.search,
+        pressed: document.querySelector('[aria-pressed="true"]')?.getAttribute('data-id'),
+      }));
+      await page.close();
+      expect(errors).toEqual([]);
+      expect(r.kind).toBe(backend);
+      expect(r.renderer).toBe('eam');
+      expect(r.distinct).toBeGreaterThan(20); // an image of the head, not a flat fill
+      expect(state.pressed).toBe('mri_head_volpack_brainsmall_128x128x84_uint8');
+      expect(state.search).toMatch(
+        /dataset=mri_head_volpack_brainsmall_128x128x84_uint8&renderer=eam&tf=tissue&camera=/,
+      );
+    },
+  );
 
   it('smoke: the comparison page renders the same dataset with all four renderers without console errors (not flat)', async () => {
     const { page, errors } = await open(`compare.html?dataset=blob&${FAST}`, 'compare', 1);
@@ -109,15 +144,28 @@ describe('gallery deep links', () => {
   const cam = [...camera.position, ...camera.target, ...camera.up, camera.fovy].join(',');
 
   it('a link restores dataset, renderer, transfer function, camera, exposure, tone mapper and density', async () => {
-    const { page, errors } = await open(`index.html?dataset=blob&renderer=mip&tf=hot&camera=${cam}&exposure=1.5&tone=reinhard&density=33&${FAST}`,
-      'gallery', 1);
+    const { page, errors } = await open(
+      `index.html?dataset=blob&renderer=mip&tf=hot&camera=${cam}&exposure=1.5&tone=reinhard&density=33&${FAST}`,
+      'gallery',
+      1,
+    );
     const s = await page.evaluate(() => {
       const v = (window as any).gallery.viewer;
-      return { src: v.src, renderer: v.context.renderer.name, tf: v.transferFunction, camera: v.camera, exposure: v.exposure, tone: v.toneMapper, density: v.densityScale,
-        pressed: document.querySelector('[aria-pressed="true"]')?.getAttribute('data-id') };
+      return {
+        src: v.src,
+        renderer: v.context.renderer.name,
+        tf: v.transferFunction,
+        camera: v.camera,
+        exposure: v.exposure,
+        tone: v.toneMapper,
+        density: v.densityScale,
+        pressed: document.querySelector('[aria-pressed="true"]')?.getAttribute('data-id'),
+      };
     });
     // (A string, so Vitest does not rewrite the dynamic import.)
-    const hot = await page.evaluate(`import('/apps/gallery/dist/assets/vpt-viewer.bundle.js').then((m) => m.transferFunctionPreset('hot'))`);
+    const hot = await page.evaluate(
+      `import('/apps/gallery/dist/assets/vpt-viewer.bundle.js').then((m) => m.transferFunctionPreset('hot'))`,
+    );
     await page.close();
     expect(errors).toEqual([]);
     expect(s.src).toBe('procedural:blob?size=64');
@@ -143,7 +191,9 @@ describe('gallery deep links', () => {
     for (let i = 1; i <= 5; i++) await page.mouse.move(box.x + 12 * i, box.y + 4 * i);
     await page.mouse.up();
     await page.click('input[name="renderer"][value="mcrt"]');
-    await page.waitForFunction(() => (window as any).gallery.viewer.context.renderer.name === 'mcrt', { timeout: 60_000 });
+    await page.waitForFunction(() => (window as any).gallery.viewer.context.renderer.name === 'mcrt', {
+      timeout: 60_000,
+    });
     await page.evaluate(() => {
       const v = (window as any).gallery.viewer;
       const select = v.shadowRoot.querySelector('details select') as HTMLSelectElement; // the preset list
@@ -154,7 +204,13 @@ describe('gallery deep links', () => {
     await page.waitForFunction(() => location.search.includes('tf=cool'), { timeout: 60_000 });
     const before = await page.evaluate(() => {
       const v = (window as any).gallery.viewer;
-      return { url: location.href, renderer: v.renderer, tf: v.transferFunction, camera: v.camera, density: v.densityScale };
+      return {
+        url: location.href,
+        renderer: v.renderer,
+        tf: v.transferFunction,
+        camera: v.camera,
+        density: v.densityScale,
+      };
     });
     await page.close();
     expect(errors).toEqual([]);
@@ -164,7 +220,13 @@ describe('gallery deep links', () => {
     const again = await open(before.url.split('/apps/gallery/dist/')[1], 'gallery');
     const after = await again.page.evaluate(() => {
       const v = (window as any).gallery.viewer;
-      return { renderer: v.renderer, tf: v.transferFunction, camera: v.camera, density: v.densityScale, dataset: (window as any).gallery.current.dataset.id };
+      return {
+        renderer: v.renderer,
+        tf: v.transferFunction,
+        camera: v.camera,
+        density: v.densityScale,
+        dataset: (window as any).gallery.current.dataset.id,
+      };
     });
     await again.page.close();
     expect(again.errors).toEqual([]);

@@ -10,21 +10,38 @@ import { BACKENDS, usePage } from './helpers/session.js';
  */
 const N = 32;
 const VOXEL = 1 / N;
-const W = 24, H = 24;
+const W = 24,
+  H = 24;
 const CAMERA = { position: [0.35, 0.25, 1.5] as Vec3, target: [0, 0, 0] as Vec3, up: [0, 1, 0] as Vec3, fovy: 0.55 };
 
 /** Render in the page: `params` for the IsoRenderer, `scene` merged over a default scene of the sphere field. */
-async function renderIso(page: ReturnType<typeof usePage>, backend: string, params: object, scene: object, iterations: number, size = [W, H]): Promise<number[]> {
-  return page().page.evaluate(async (backend, params, scene, iterations, n, camera, size) => {
-    const t = (window as any).t;
-    const volume = window.tv.sphereDistance(n);
-    const ctx = await t.context({ backend, renderer: 'iso', width: size[0], height: size[1], params });
-    ctx.setScene({ ...t.scene({ volume, camera }), ...scene });
-    await ctx.renderIterations(iterations);
-    const hdr = await ctx.readHDR();
-    ctx.dispose();
-    return Array.from(hdr as Float32Array);
-  }, backend, params, scene, iterations, N, CAMERA, size);
+async function renderIso(
+  page: ReturnType<typeof usePage>,
+  backend: string,
+  params: object,
+  scene: object,
+  iterations: number,
+  size = [W, H],
+): Promise<number[]> {
+  return page().page.evaluate(
+    async (backend, params, scene, iterations, n, camera, size) => {
+      const t = (window as any).t;
+      const volume = window.tv.sphereDistance(n);
+      const ctx = await t.context({ backend, renderer: 'iso', width: size[0], height: size[1], params });
+      ctx.setScene({ ...t.scene({ volume, camera }), ...scene });
+      await ctx.renderIterations(iterations);
+      const hdr = await ctx.readHDR();
+      ctx.dispose();
+      return Array.from(hdr as Float32Array);
+    },
+    backend,
+    params,
+    scene,
+    iterations,
+    N,
+    CAMERA,
+    size,
+  );
 }
 
 /** Analytic ray–sphere intersection: the nearer t, and the ray's closest distance to the centre. */
@@ -37,9 +54,12 @@ function sphereHit(origin: Vec3, dir: Vec3, r: number): { t: number; dist: numbe
 }
 
 const scene = { camera: CAMERA } as Scene;
-const centreRay = (x: number, y: number, w = W, h = H) => reference.cameraRay(scene, w, h, (x + 0.5) / w, (y + 0.5) / h);
+const centreRay = (x: number, y: number, w = W, h = H) =>
+  reference.cameraRay(scene, w, h, (x + 0.5) / w, (y + 0.5) / h);
 const at = (o: Vec3, d: Vec3, t: number): Vec3 => [o[0] + d[0] * t, o[1] + d[1] * t, o[2] + d[2] * t];
-const angleDeg = (a: Vec3, b: Vec3) => (Math.acos(Math.min(1, (a[0] * b[0] + a[1] * b[1] + a[2] * b[2]) / Math.hypot(...a) / Math.hypot(...b))) * 180) / Math.PI;
+const angleDeg = (a: Vec3, b: Vec3) =>
+  (Math.acos(Math.min(1, (a[0] * b[0] + a[1] * b[1] + a[2] * b[2]) / Math.hypot(...a) / Math.hypot(...b))) * 180) /
+  Math.PI;
 
 const page = usePage();
 const R = 0.3;
@@ -49,7 +69,10 @@ describe.each(BACKENDS)('ISO renderer on %s', (backend) => {
     const surfaces = [{ value: R, color: [1, 1, 1] }];
     const depth = await renderIso(page, backend, { surfaces, jitter: false, output: 'depth' }, {}, 1);
     const normal = await renderIso(page, backend, { surfaces, jitter: false, output: 'normal' }, {}, 1);
-    let inside = 0, outside = 0, maxDepthErr = 0, maxAngle = 0;
+    let inside = 0,
+      outside = 0,
+      maxDepthErr = 0,
+      maxAngle = 0;
     for (let y = 0; y < H; y++) {
       for (let x = 0; x < W; x++) {
         const i = 4 * (x + W * y);
@@ -75,19 +98,29 @@ describe.each(BACKENDS)('ISO renderer on %s', (backend) => {
   });
 
   it('keeps the nearest of the jittered hits inside each pixel', async () => {
-    const depth = await renderIso(page, backend, { surfaces: [{ value: R, color: [1, 1, 1] }], output: 'depth' }, {}, 16);
-    let checked = 0, nearerThanCentre = 0;
+    const depth = await renderIso(
+      page,
+      backend,
+      { surfaces: [{ value: R, color: [1, 1, 1] }], output: 'depth' },
+      {},
+      16,
+    );
+    let checked = 0,
+      nearerThanCentre = 0;
     for (let y = 0; y < H; y++) {
       for (let x = 0; x < W; x++) {
         const { origin, dir } = centreRay(x, y);
         if (sphereHit(origin, dir, R).dist > R - 2 * VOXEL) continue;
         // The analytic depth over the pixel footprint (a 9 x 9 grid, corners included).
-        let lo = Infinity, hi = -Infinity;
-        for (let j = 0; j <= 8; j++) for (let k = 0; k <= 8; k++) {
-          const ray = reference.cameraRay(scene, W, H, (x + k / 8) / W, (y + j / 8) / H);
-          const t = sphereHit(ray.origin, ray.dir, R).t;
-          lo = Math.min(lo, t); hi = Math.max(hi, t);
-        }
+        let lo = Infinity,
+          hi = -Infinity;
+        for (let j = 0; j <= 8; j++)
+          for (let k = 0; k <= 8; k++) {
+            const ray = reference.cameraRay(scene, W, H, (x + k / 8) / W, (y + j / 8) / H);
+            const t = sphereHit(ray.origin, ray.dir, R).t;
+            lo = Math.min(lo, t);
+            hi = Math.max(hi, t);
+          }
         const d = depth[4 * (x + W * y)];
         const centre = sphereHit(origin, dir, R).t;
         expect(d).toBeGreaterThan(lo - 0.05 * VOXEL);
@@ -106,9 +139,18 @@ describe.each(BACKENDS)('ISO renderer on %s', (backend) => {
     const E: Vec3 = [2, 3, 4];
     const l: Vec3 = [1, 0.4, -0.5];
     const ll = Math.hypot(...l);
-    const img = await renderIso(page, backend, { surfaces: [{ value: R, color: albedo }], specular: 0, jitter: false },
-      { lights: [{ type: 'directional', direction: l, irradiance: E }], environment: { type: 'constant', radiance: [0, 0, 0] } }, 2);
-    let lit = 0, dark = 0;
+    const img = await renderIso(
+      page,
+      backend,
+      { surfaces: [{ value: R, color: albedo }], specular: 0, jitter: false },
+      {
+        lights: [{ type: 'directional', direction: l, irradiance: E }],
+        environment: { type: 'constant', radiance: [0, 0, 0] },
+      },
+      2,
+    );
+    let lit = 0,
+      dark = 0;
     for (let y = 0; y < H; y++) {
       for (let x = 0; x < W; x++) {
         const { origin, dir } = centreRay(x, y);
@@ -119,10 +161,15 @@ describe.each(BACKENDS)('ISO renderer on %s', (backend) => {
         const i = 4 * (x + W * y);
         for (let c = 0; c < 3; c++) {
           // A 1° normal error moves cos by at most sin(1°) < 0.018.
-          expect(Math.abs(img[i + c] - (albedo[c] / Math.PI) * E[c] * Math.max(0, cos))).toBeLessThan((albedo[c] / Math.PI) * E[c] * 0.018 + 1e-6);
+          expect(Math.abs(img[i + c] - (albedo[c] / Math.PI) * E[c] * Math.max(0, cos))).toBeLessThan(
+            (albedo[c] / Math.PI) * E[c] * 0.018 + 1e-6,
+          );
         }
         if (cos > 0.1) lit++;
-        if (cos < -0.05) { dark++; expect([img[i], img[i + 1], img[i + 2]]).toEqual([0, 0, 0]); }
+        if (cos < -0.05) {
+          dark++;
+          expect([img[i], img[i + 1], img[i + 2]]).toEqual([0, 0, 0]);
+        }
       }
     }
     expect(lit).toBeGreaterThan(40);
@@ -133,33 +180,71 @@ describe.each(BACKENDS)('ISO renderer on %s', (backend) => {
     // A small sphere (blocker) above a larger one (receiver), lit from above by a light of angular
     // radius 0.15 rad: the receiver's radiance is albedo/π · E · cos · V, V the visible fraction of
     // the light's cone, integrated here on a fine grid of cone directions.
-    const A = { c: [0, 0.17, 0] as Vec3, r: 0.1 }, B = { c: [0, -0.24, 0] as Vec3, r: 0.2 };
+    const A = { c: [0, 0.17, 0] as Vec3, r: 0.1 },
+      B = { c: [0, -0.24, 0] as Vec3, r: 0.2 };
     const cam = { position: [0, 0.75, 1.0] as Vec3, target: [0, -0.2, 0] as Vec3, up: [0, 1, 0] as Vec3, fovy: 0.5 };
-    const radius = 0.15, E = 3, ITER = 64;
-    const img: number[] = await page().page.evaluate(async (backend, A, B, cam, radius, E, ITER, n) => {
-      const { core } = (window as any).vpt;
-      const t = (window as any).t;
-      const data = new Float32Array(n * n * n);
-      for (let z = 0; z < n; z++) for (let y = 0; y < n; y++) for (let x = 0; x < n; x++) {
-        const p = [(x + 0.5) / n - 0.5, (y + 0.5) / n - 0.5, (z + 0.5) / n - 0.5];
-        data[x + n * (y + n * z)] = 0.5 + Math.min(Math.hypot(p[0] - A.c[0], p[1] - A.c[1], p[2] - A.c[2]) - A.r, Math.hypot(p[0] - B.c[0], p[1] - B.c[1], p[2] - B.c[2]) - B.r);
-      }
-      const volume = core.createVolume([n, n, n], 'float32', data);
-      volume.valueRange = [0, 1];
-      const ctx = await t.context({ backend, renderer: 'iso', width: 24, height: 24, params: { surfaces: [{ value: 0.5, color: [1, 1, 1] }], specular: 0, jitter: false, lightAngularRadius: radius } });
-      ctx.setScene({ ...t.scene({ volume, camera: cam }), lights: [{ type: 'directional', direction: [0, 1, 0], irradiance: [E, E, E] }] });
-      await ctx.renderIterations(ITER);
-      const hdr = await ctx.readHDR();
-      ctx.dispose();
-      return Array.from(hdr as Float32Array);
-    }, backend, A, B, cam, radius, E, ITER, N);
+    const radius = 0.15,
+      E = 3,
+      ITER = 64;
+    const img: number[] = await page().page.evaluate(
+      async (backend, A, B, cam, radius, E, ITER, n) => {
+        const { core } = (window as any).vpt;
+        const t = (window as any).t;
+        const data = new Float32Array(n * n * n);
+        for (let z = 0; z < n; z++)
+          for (let y = 0; y < n; y++)
+            for (let x = 0; x < n; x++) {
+              const p = [(x + 0.5) / n - 0.5, (y + 0.5) / n - 0.5, (z + 0.5) / n - 0.5];
+              data[x + n * (y + n * z)] =
+                0.5 +
+                Math.min(
+                  Math.hypot(p[0] - A.c[0], p[1] - A.c[1], p[2] - A.c[2]) - A.r,
+                  Math.hypot(p[0] - B.c[0], p[1] - B.c[1], p[2] - B.c[2]) - B.r,
+                );
+            }
+        const volume = core.createVolume([n, n, n], 'float32', data);
+        volume.valueRange = [0, 1];
+        const ctx = await t.context({
+          backend,
+          renderer: 'iso',
+          width: 24,
+          height: 24,
+          params: {
+            surfaces: [{ value: 0.5, color: [1, 1, 1] }],
+            specular: 0,
+            jitter: false,
+            lightAngularRadius: radius,
+          },
+        });
+        ctx.setScene({
+          ...t.scene({ volume, camera: cam }),
+          lights: [{ type: 'directional', direction: [0, 1, 0], irradiance: [E, E, E] }],
+        });
+        await ctx.renderIterations(ITER);
+        const hdr = await ctx.readHDR();
+        ctx.dispose();
+        return Array.from(hdr as Float32Array);
+      },
+      backend,
+      A,
+      B,
+      cam,
+      radius,
+      E,
+      ITER,
+      N,
+    );
     const sc = { camera: cam } as Scene;
-    const hitSphere = (o: Vec3, d: Vec3, s: { c: Vec3; r: number }) => sphereHit([o[0] - s.c[0], o[1] - s.c[1], o[2] - s.c[2]], d, s.r);
-    let umbra = 0, penumbra = 0, maxZ = 0;
+    const hitSphere = (o: Vec3, d: Vec3, s: { c: Vec3; r: number }) =>
+      sphereHit([o[0] - s.c[0], o[1] - s.c[1], o[2] - s.c[2]], d, s.r);
+    let umbra = 0,
+      penumbra = 0,
+      maxZ = 0;
     for (let y = 0; y < 24; y++) {
       for (let x = 0; x < 24; x++) {
         const { origin, dir } = reference.cameraRay(sc, 24, 24, (x + 0.5) / 24, (y + 0.5) / 24);
-        const a = hitSphere(origin, dir, A), b = hitSphere(origin, dir, B);
+        const a = hitSphere(origin, dir, A),
+          b = hitSphere(origin, dir, B);
         if (!(b.dist < B.r - VOXEL) || (a.dist < A.r + VOXEL && a.t < b.t)) continue; // receiver pixels only
         const p = at(origin, dir, b.t);
         const nrm: Vec3 = [(p[0] - B.c[0]) / B.r, (p[1] - B.c[1]) / B.r, (p[2] - B.c[2]) / B.r];
@@ -168,18 +253,24 @@ describe.each(BACKENDS)('ISO renderer on %s', (backend) => {
         // Uniform over the cone about +y: cosθ = 1 − u(1 − cos r), φ = 2πv, on a 24 x 24 midpoint grid.
         let visible = 0;
         const G = 24;
-        for (let i = 0; i < G; i++) for (let j = 0; j < G; j++) {
-          const ct = 1 - ((i + 0.5) / G) * (1 - Math.cos(radius)), st = Math.sqrt(1 - ct * ct), ph = (2 * Math.PI * (j + 0.5)) / G;
-          const w: Vec3 = [st * Math.cos(ph), ct, st * Math.sin(ph)];
-          const blocked = hitSphere(o, w, A);
-          if (!(blocked.t > 0)) visible++;
-        }
+        for (let i = 0; i < G; i++)
+          for (let j = 0; j < G; j++) {
+            const ct = 1 - ((i + 0.5) / G) * (1 - Math.cos(radius)),
+              st = Math.sqrt(1 - ct * ct),
+              ph = (2 * Math.PI * (j + 0.5)) / G;
+            const w: Vec3 = [st * Math.cos(ph), ct, st * Math.sin(ph)];
+            const blocked = hitSphere(o, w, A);
+            if (!(blocked.t > 0)) visible++;
+          }
         const V = visible / (G * G);
         const lit = (1 / Math.PI) * E * nrm[1];
         const gpu = img[4 * (x + 24 * y)];
         const sd = lit * Math.sqrt((V * (1 - V)) / ITER) + 0.03 * lit; // Bernoulli noise, plus grid and surface error
         maxZ = Math.max(maxZ, Math.abs(gpu - lit * V) / sd);
-        if (V === 0) { umbra++; expect(gpu).toBe(0); }
+        if (V === 0) {
+          umbra++;
+          expect(gpu).toBe(0);
+        }
         if (V > 0.15 && V < 0.85) penumbra++;
       }
     }
@@ -193,12 +284,24 @@ describe.each(BACKENDS)('ISO renderer on %s', (backend) => {
     // so any self-shadowing (rays re-hitting the surface they leave) would show as a deficit.
     const albedo: Vec3 = [0.8, 0.5, 0.2];
     const L: Vec3 = [1.5, 1, 2];
-    const img = await renderIso(page, backend, { surfaces: [{ value: R, color: albedo }], specular: 0 }, { environment: { type: 'constant', radiance: L } }, 8);
-    let interior = 0, background = 0;
+    const img = await renderIso(
+      page,
+      backend,
+      { surfaces: [{ value: R, color: albedo }], specular: 0 },
+      { environment: { type: 'constant', radiance: L } },
+      8,
+    );
+    let interior = 0,
+      background = 0;
     for (let y = 0; y < H; y++) {
       for (let x = 0; x < W; x++) {
         const i = 4 * (x + W * y);
-        const corners = [[0, 0], [1, 0], [0, 1], [1, 1]].map(([cx, cy]) => {
+        const corners = [
+          [0, 0],
+          [1, 0],
+          [0, 1],
+          [1, 1],
+        ].map(([cx, cy]) => {
           const ray = reference.cameraRay(scene, W, H, (x + cx) / W, (y + cy) / H);
           return sphereHit(ray.origin, ray.dir, R).dist;
         });
@@ -221,21 +324,43 @@ describe.each(BACKENDS)('ISO renderer on %s', (backend) => {
     const L: Vec3 = [1.5, 1, 2];
     const ITER = 24;
     const env = { type: 'latlong', width: 16, height: 8, data: Array.from({ length: 16 * 8 * 3 }, (_, i) => L[i % 3]) };
-    const img: number[] = await page().page.evaluate(async (backend, albedo, env, ITER, n, camera) => {
-      const t = (window as any).t;
-      const ctx = await t.context({ backend, renderer: 'iso', width: 24, height: 24, params: { surfaces: [{ value: 0.3, color: albedo }], specular: 0 } });
-      ctx.setScene({ ...t.scene({ volume: window.tv.sphereDistance(n), camera }), environment: { ...env, data: Float32Array.from(env.data) } });
-      await ctx.renderIterations(ITER);
-      const hdr = await ctx.readHDR();
-      ctx.dispose();
-      return Array.from(hdr as Float32Array);
-    }, backend, albedo, env, ITER, N, CAMERA);
+    const img: number[] = await page().page.evaluate(
+      async (backend, albedo, env, ITER, n, camera) => {
+        const t = (window as any).t;
+        const ctx = await t.context({
+          backend,
+          renderer: 'iso',
+          width: 24,
+          height: 24,
+          params: { surfaces: [{ value: 0.3, color: albedo }], specular: 0 },
+        });
+        ctx.setScene({
+          ...t.scene({ volume: window.tv.sphereDistance(n), camera }),
+          environment: { ...env, data: Float32Array.from(env.data) },
+        });
+        await ctx.renderIterations(ITER);
+        const hdr = await ctx.readHDR();
+        ctx.dispose();
+        return Array.from(hdr as Float32Array);
+      },
+      backend,
+      albedo,
+      env,
+      ITER,
+      N,
+      CAMERA,
+    );
     const sum = [0, 0, 0];
     let interior = 0;
     for (let y = 0; y < H; y++) {
       for (let x = 0; x < W; x++) {
         const i = 4 * (x + W * y);
-        const corners = [[0, 0], [1, 0], [0, 1], [1, 1]].map(([cx, cy]) => {
+        const corners = [
+          [0, 0],
+          [1, 0],
+          [0, 1],
+          [1, 1],
+        ].map(([cx, cy]) => {
           const ray = reference.cameraRay(scene, W, H, (x + cx) / W, (y + cy) / H);
           return sphereHit(ray.origin, ray.dir, R).dist;
         });
@@ -259,14 +384,29 @@ describe.each(BACKENDS)('ISO renderer on %s', (backend) => {
     // nothing occludes it); otherwise the inner one (blue), whose every occlusion ray crosses the
     // outer shell once and passes with probability 0.5. Expected rgb = (0.5, 0, 0.25).
     const ITER = 96;
-    const img = await renderIso(page, backend, {
-      surfaces: [{ value: 0.35, color: [1, 0, 0], opacity: 0.5 }, { value: 0.2, color: [0, 0, 1] }], specular: 0,
-    }, { environment: { type: 'constant', radiance: [1, 1, 1] } }, ITER);
+    const img = await renderIso(
+      page,
+      backend,
+      {
+        surfaces: [
+          { value: 0.35, color: [1, 0, 0], opacity: 0.5 },
+          { value: 0.2, color: [0, 0, 1] },
+        ],
+        specular: 0,
+      },
+      { environment: { type: 'constant', radiance: [1, 1, 1] } },
+      ITER,
+    );
     const sum = [0, 0, 0];
     let n = 0;
     for (let y = 0; y < H; y++) {
       for (let x = 0; x < W; x++) {
-        const corners = [[0, 0], [1, 0], [0, 1], [1, 1]].map(([cx, cy]) => {
+        const corners = [
+          [0, 0],
+          [1, 0],
+          [0, 1],
+          [1, 1],
+        ].map(([cx, cy]) => {
           const ray = reference.cameraRay(scene, W, H, (x + cx) / W, (y + cy) / H);
           return sphereHit(ray.origin, ray.dir, 0.2).dist;
         });
@@ -292,17 +432,40 @@ describe('ISO renderer: WebGL 2 / WebGPU parity', () => {
     const r = await page().page.evaluate(async (camera) => {
       const t = (window as any).t;
       const volume = window.tv.sphereDistance(20);
-      const env = { type: 'latlong', width: 8, height: 4, data: Float32Array.from({ length: 96 }, (_, i) => ((i * 37) % 11) / 4) };
+      const env = {
+        type: 'latlong',
+        width: 8,
+        height: 4,
+        data: Float32Array.from({ length: 96 }, (_, i) => ((i * 37) % 11) / 4),
+      };
       const out: Record<string, Float32Array[]> = {};
       for (const backend of ['webgl2', 'webgpu']) {
         out[backend] = [];
         for (const output of ['shaded', 'depth']) {
-          const ctx = await t.context({ backend, renderer: 'iso', width: 20, height: 16, params: {
-            surfaces: [{ value: 0.36, color: [0.9, 0.3, 0.2], opacity: 0.4 }, { value: 0.22, color: [0.3, 0.6, 0.9] }],
-            lightAngularRadius: 0.2, specular: 0.3, shininess: 20, output,
-          } });
-          ctx.setScene({ ...t.scene({ volume, camera, seed: 5 }), environment: env,
-            lights: [{ type: 'directional', direction: [1, 1, 0.5], irradiance: [2, 2, 2] }, { type: 'directional', direction: [-1, 0.2, 1], irradiance: [0.5, 0.3, 0.1] }] });
+          const ctx = await t.context({
+            backend,
+            renderer: 'iso',
+            width: 20,
+            height: 16,
+            params: {
+              surfaces: [
+                { value: 0.36, color: [0.9, 0.3, 0.2], opacity: 0.4 },
+                { value: 0.22, color: [0.3, 0.6, 0.9] },
+              ],
+              lightAngularRadius: 0.2,
+              specular: 0.3,
+              shininess: 20,
+              output,
+            },
+          });
+          ctx.setScene({
+            ...t.scene({ volume, camera, seed: 5 }),
+            environment: env,
+            lights: [
+              { type: 'directional', direction: [1, 1, 0.5], irradiance: [2, 2, 2] },
+              { type: 'directional', direction: [-1, 0.2, 1], irradiance: [0.5, 0.3, 0.1] },
+            ],
+          });
           await ctx.renderIterations(3);
           out[backend].push(await ctx.readHDR());
           ctx.dispose();
@@ -311,7 +474,13 @@ describe('ISO renderer: WebGL 2 / WebGPU parity', () => {
       const a = out.webgl2[0];
       let varied = 0;
       for (let i = 4; i < a.length; i += 4) if (a[i] !== a[0]) varied++;
-      return { shadedDiff: t.sameBits(out.webgl2[0], out.webgpu[0]), depthDiff: t.sameBits(out.webgl2[1], out.webgpu[1]), varied, n: a.length / 4, finite: !t.hasNonFinite(a) };
+      return {
+        shadedDiff: t.sameBits(out.webgl2[0], out.webgpu[0]),
+        depthDiff: t.sameBits(out.webgl2[1], out.webgpu[1]),
+        varied,
+        n: a.length / 4,
+        finite: !t.hasNonFinite(a),
+      };
     }, CAMERA);
     expect(r.varied).toBeGreaterThan(r.n / 4);
     expect(r.finite).toBe(true);
@@ -324,7 +493,10 @@ describe('ISO gallery scene', () => {
   it('smoke: renders apps/gallery/scenes/head-iso.json through the headless page (renderer "iso" with its parameters)', async () => {
     const { description, baseDir } = readSceneFile('apps/gallery/scenes/head-iso.json');
     expect(description.renderer).toBe('iso');
-    const r = await page().render({ ...description, width: 24, height: 24, iterations: 2, backend: 'webgl2' }, { baseDir });
+    const r = await page().render(
+      { ...description, width: 24, height: 24, iterations: 2, backend: 'webgl2' },
+      { baseDir },
+    );
     let hit = 0;
     for (let i = 0; i < r.hdr.length; i += 4) {
       for (let c = 0; c < 4; c++) expect(Number.isFinite(r.hdr[i + c])).toBe(true);

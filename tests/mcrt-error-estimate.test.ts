@@ -14,15 +14,30 @@ describe('MCRT live error estimate (webgl2)', () => {
     const r = await page().page.evaluate(async () => {
       const t = (window as any).t;
       const { core } = (window as any).vpt;
-      const W = 12, H = 12;
+      const W = 12,
+        H = 12;
       const scene = (seed: number) => ({
         volume: core.createProceduralVolume('blob', 16),
-        transferFunction: { dimensions: '1d', points: [{ value: 0.05, color: [0.9, 0.8, 0.7], opacity: 0 }, { value: 1, color: [0.95, 0.95, 0.95], opacity: 1 }] },
+        transferFunction: {
+          dimensions: '1d',
+          points: [
+            { value: 0.05, color: [0.9, 0.8, 0.7], opacity: 0 },
+            { value: 1, color: [0.95, 0.95, 0.95], opacity: 1 },
+          ],
+        },
         camera: { position: [0.2, 0.5, 1.9], target: [0, 0, 0], up: [0, 1, 0], fovy: 0.7 },
         lights: [{ type: 'directional', direction: [1, 1, 0], irradiance: [2, 2, 2] }],
-        environment: { type: 'constant', radiance: [0.3, 0.4, 0.6] }, densityScale: 20, seed,
+        environment: { type: 'constant', radiance: [0.3, 0.4, 0.6] },
+        densityScale: 20,
+        seed,
       });
-      const ctx = await t.context({ backend: 'webgl2', renderer: 'mcrt', width: W, height: H, params: { anisotropy: 0.3 } });
+      const ctx = await t.context({
+        backend: 'webgl2',
+        renderer: 'mcrt',
+        width: W,
+        height: H,
+        params: { anisotropy: 0.3 },
+      });
       ctx.setScene(scene(100));
       await ctx.renderIterations(1024);
       const ref: Float32Array = await ctx.readHDR();
@@ -31,8 +46,13 @@ describe('MCRT live error estimate (webgl2)', () => {
         ctx.setScene(scene(5 + n));
         await ctx.renderIterations(n);
         const img: Float32Array = await ctx.readHDR();
-        let sq = 0, cnt = 0;
-        for (let i = 0; i < img.length; i += 4) for (let c = 0; c < 3; c++) { sq += (img[i + c] - ref[i + c]) ** 2; cnt++; }
+        let sq = 0,
+          cnt = 0;
+        for (let i = 0; i < img.length; i += 4)
+          for (let c = 0; c < 3; c++) {
+            sq += (img[i + c] - ref[i + c]) ** 2;
+            cnt++;
+          }
         out.push({ n, trueRmse: Math.sqrt(sq / cnt), estimate: (await ctx.estimateError()).rmse });
       }
       ctx.dispose();

@@ -15,7 +15,9 @@ import { usePage } from './helpers/session.js';
  * Noise, not bias: per channel |Σz|/√n < 3 and no pixel beyond 5.5σ.
  */
 const page = usePage();
-beforeAll(async () => { await installMcrtHelpers(page().page); });
+beforeAll(async () => {
+  await installMcrtHelpers(page().page);
+});
 
 const DIR = new URL('../benchmarks/reference/', import.meta.url);
 // mitsuba-blob-inverted: vpt stores the blob as int16 with an inverted value range
@@ -29,20 +31,31 @@ describe('MCRT vs Mitsuba 3 (webgl2)', () => {
     const mean = decodePFM(fs.readFileSync(new URL(desc.reference.mean, DIR)));
     const stderr = decodePFM(fs.readFileSync(new URL(desc.reference.stderr, DIR)));
     expect([mean.width, mean.height]).toEqual([desc.width, desc.height]);
-    const gpu = await page().page.evaluate(async (desc, N) => {
-      const mt = (window as any).mt;
-      const { reference: _r, invertedStorage, ...sceneDesc } = desc;
-      const scene = await (window as any).vpt.buildScene(sceneDesc);
-      if (invertedStorage) {
-        const { core } = (window as any).vpt;
-        const [lo, hi] = invertedStorage.valueRange;
-        const v = scene.volume;
-        const stored = Int16Array.from(v.data as Float32Array, (x: number) => Math.round(lo + (hi - lo) * x));
-        scene.volume = core.createVolume([...v.dims], 'int16', stored, [...v.spacing]);
-        scene.volume.valueRange = [lo, hi];
-      }
-      return mt.run({ backend: 'webgl2', width: desc.width, height: desc.height, iterations: N, params: desc.rendererParams, scene });
-    }, desc, N);
+    const gpu = await page().page.evaluate(
+      async (desc, N) => {
+        const mt = (window as any).mt;
+        const { reference: _r, invertedStorage, ...sceneDesc } = desc;
+        const scene = await (window as any).vpt.buildScene(sceneDesc);
+        if (invertedStorage) {
+          const { core } = (window as any).vpt;
+          const [lo, hi] = invertedStorage.valueRange;
+          const v = scene.volume;
+          const stored = Int16Array.from(v.data as Float32Array, (x: number) => Math.round(lo + (hi - lo) * x));
+          scene.volume = core.createVolume([...v.dims], 'int16', stored, [...v.spacing]);
+          scene.volume.valueRange = [lo, hi];
+        }
+        return mt.run({
+          backend: 'webgl2',
+          width: desc.width,
+          height: desc.height,
+          iterations: N,
+          params: desc.rendererParams,
+          scene,
+        });
+      },
+      desc,
+      N,
+    );
     expect(gpu.nonFinite).toBe(false);
     const samples = desc.reference.spp * desc.reference.runs;
     const z: number[] = [];

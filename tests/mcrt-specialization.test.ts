@@ -13,28 +13,66 @@ import { usePage } from './helpers/session.js';
  * uniformly: same expectation, different noise, compared by per-pixel z-scores.
  */
 const page = usePage();
-beforeAll(async () => { await installMcrtHelpers(page().page); });
+beforeAll(async () => {
+  await installMcrtHelpers(page().page);
+});
 
-const W = 16, H = 16;
+const W = 16,
+  H = 16;
 
 type Run = { mean: number[] | null; se: number[] | null; hdr: number[]; nonFinite: boolean };
 
-async function render(backend: string, params: Record<string, unknown>, lightCount: number, seed: number, iterations: number, frames: boolean): Promise<Run> {
-  return page().page.evaluate(async (backend, W, H, params, lightCount, seed, iterations, frames) => {
-    const mt = (window as any).mt;
-    const { core } = (window as any).vpt;
-    const lights = [
-      { type: 'directional', direction: [-0.4, 1, 0.3], irradiance: [2, 1.8, 1.5] },
-      { type: 'directional', direction: [1, 0.2, -0.5], irradiance: [0.5, 0.7, 1.2] },
-    ].slice(0, lightCount);
-    const scene = {
-      volume: core.createProceduralVolume('blob', 20),
-      transferFunction: { dimensions: '1d', points: [{ value: 0.05, color: [0.9, 0.9, 0.9], opacity: 0 }, { value: 0.4, color: [0.95, 0.7, 0.4], opacity: 0.7 }, { value: 1, color: [0.99, 0.99, 0.99], opacity: 1 }] },
-      camera: { position: [0.3, 0.9, 1.8], target: [0, 0, 0], up: [0, 1, 0], fovy: 0.6 },
-      lights, environment: { type: 'constant', radiance: [0.4, 0.5, 0.7] }, densityScale: 25, seed,
-    };
-    return mt.run({ backend, width: W, height: H, iterations, frames, params: { anisotropy: 0.5, majorantCellSize: 4, ...params }, scene });
-  }, backend, W, H, params, lightCount, seed, iterations, frames);
+async function render(
+  backend: string,
+  params: Record<string, unknown>,
+  lightCount: number,
+  seed: number,
+  iterations: number,
+  frames: boolean,
+): Promise<Run> {
+  return page().page.evaluate(
+    async (backend, W, H, params, lightCount, seed, iterations, frames) => {
+      const mt = (window as any).mt;
+      const { core } = (window as any).vpt;
+      const lights = [
+        { type: 'directional', direction: [-0.4, 1, 0.3], irradiance: [2, 1.8, 1.5] },
+        { type: 'directional', direction: [1, 0.2, -0.5], irradiance: [0.5, 0.7, 1.2] },
+      ].slice(0, lightCount);
+      const scene = {
+        volume: core.createProceduralVolume('blob', 20),
+        transferFunction: {
+          dimensions: '1d',
+          points: [
+            { value: 0.05, color: [0.9, 0.9, 0.9], opacity: 0 },
+            { value: 0.4, color: [0.95, 0.7, 0.4], opacity: 0.7 },
+            { value: 1, color: [0.99, 0.99, 0.99], opacity: 1 },
+          ],
+        },
+        camera: { position: [0.3, 0.9, 1.8], target: [0, 0, 0], up: [0, 1, 0], fovy: 0.6 },
+        lights,
+        environment: { type: 'constant', radiance: [0.4, 0.5, 0.7] },
+        densityScale: 25,
+        seed,
+      };
+      return mt.run({
+        backend,
+        width: W,
+        height: H,
+        iterations,
+        frames,
+        params: { anisotropy: 0.5, majorantCellSize: 4, ...params },
+        scene,
+      });
+    },
+    backend,
+    W,
+    H,
+    params,
+    lightCount,
+    seed,
+    iterations,
+    frames,
+  );
 }
 
 describe('MCRT generic kernel (specialize: false) against the specialised kernels', () => {
@@ -65,7 +103,10 @@ describe('MCRT generic kernel (specialize: false) against the specialised kernel
     const generic = await render('webgl2', { ...params, specialize: false }, 1, 22, 64, true);
     expect(special.nonFinite || generic.nonFinite).toBe(false);
     const z: number[] = [];
-    const a = special.mean!, b = generic.mean!, sa = special.se!, sb = generic.se!;
+    const a = special.mean!,
+      b = generic.mean!,
+      sa = special.se!,
+      sb = generic.se!;
     for (let i = 0; i < a.length; i += 4) {
       if (sa[i] === 0 && sb[i] === 0 && a[i] === b[i]) continue; // background only: exact in both
       for (let c = 0; c < 3; c++) z.push((a[i + c] - b[i + c]) / Math.hypot(sa[i + c], sb[i + c]));

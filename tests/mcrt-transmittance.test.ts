@@ -15,9 +15,13 @@ import { BACKENDS, usePage } from './helpers/session.js';
  * no pixel beyond 5σ, at most 3 % beyond 3σ.
  */
 const page = usePage();
-beforeAll(async () => { await installMcrtHelpers(page().page); });
+beforeAll(async () => {
+  await installMcrtHelpers(page().page);
+});
 
-const W = 16, H = 16, N = 64;
+const W = 16,
+  H = 16,
+  N = 64;
 // Float32 arithmetic and the 8×8 sub-pixel quadrature of the footprint: an absolute floor under the measured σ.
 const FLOOR = 5e-4;
 
@@ -27,7 +31,12 @@ const FLOOR = 5e-4;
  * expected transmittance: an exact binomial test, expressed as the equivalent z (the
  * sample variance is 0 when 64 samples happen to agree, likely for p near 0 or 1).
  */
-function compare(gpu: { mean: number[]; se: number[] }, expect_: ReturnType<typeof pixelExpectations>, channels = 3, binaryOf?: Vec3) {
+function compare(
+  gpu: { mean: number[]; se: number[] },
+  expect_: ReturnType<typeof pixelExpectations>,
+  channels = 3,
+  binaryOf?: Vec3,
+) {
   const z: number[] = [];
   let interior = 0;
   expect_.forEach((p, k) => {
@@ -53,10 +62,30 @@ const camera = { position: [0.4, 0.5, 2.6] as Vec3, target: [0, 0, 0] as Vec3, u
 describe.each(BACKENDS)('MCRT homogeneous slab transmittance on %s', (backend) => {
   it.each([0.5, 3])('albedo 0: the image is L_env · exp(−σ·chord), σ = %s', async (sigma) => {
     const env: Vec3 = [0.8, 0.9, 1.0];
-    const gpu = await page().page.evaluate((backend, W, H, N, sigma, camera, env) => {
-      const mt = (window as any).mt;
-      return mt.run({ backend, width: W, height: H, iterations: N, scene: mt.cubeScene({ albedo: [0, 0, 0], density: sigma, camera, environment: { type: 'constant', radiance: env } }) });
-    }, backend, W, H, N, sigma, camera, env);
+    const gpu = await page().page.evaluate(
+      (backend, W, H, N, sigma, camera, env) => {
+        const mt = (window as any).mt;
+        return mt.run({
+          backend,
+          width: W,
+          height: H,
+          iterations: N,
+          scene: mt.cubeScene({
+            albedo: [0, 0, 0],
+            density: sigma,
+            camera,
+            environment: { type: 'constant', radiance: env },
+          }),
+        });
+      },
+      backend,
+      W,
+      H,
+      N,
+      sigma,
+      camera,
+      env,
+    );
     expect(gpu.nonFinite).toBe(false);
     const scene = { volume: createProceduralVolume('cube', 8), camera } as Scene;
     const ref = pixelExpectations(scene, W, H, (_o, _d, t0, t1) => {
@@ -66,7 +95,9 @@ describe.each(BACKENDS)('MCRT homogeneous slab transmittance on %s', (backend) =
     const s = compare(gpu, ref, 3, env);
     expectUnbiased(s, `σ ${sigma}: ${JSON.stringify(s)}`);
     // Pixels that miss the box show the environment exactly.
-    ref.forEach((p, k) => { if (p.miss) for (let c = 0; c < 3; c++) expect(gpu.mean[4 * k + c]).toBeCloseTo(env[c], 6); });
+    ref.forEach((p, k) => {
+      if (p.miss) for (let c = 0; c < 3; c++) expect(gpu.mean[4 * k + c]).toBeCloseTo(env[c], 6);
+    });
   });
 });
 
@@ -84,19 +115,49 @@ describe('MCRT shadow-ray estimators on a heterogeneous medium (webgl2)', () => 
     ],
   };
   const hetCamera = { position: [0.6, 0.4, 2.2] as Vec3, target: [0, 0, 0] as Vec3, up: [0, 1, 0] as Vec3, fovy: 0.55 };
-  const scene: Scene = { volume: createProceduralVolume('blob', 16), transferFunction: tf, camera: hetCamera, lights: [], environment: { type: 'constant', radiance: [1, 1, 1] }, densityScale: 6, seed: 2 };
+  const scene: Scene = {
+    volume: createProceduralVolume('blob', 16),
+    transferFunction: tf,
+    camera: hetCamera,
+    lights: [],
+    environment: { type: 'constant', radiance: [1, 1, 1] },
+    densityScale: 6,
+    seed: 2,
+  };
   const tau = opticalDepth(scene, 1000);
-  const ref = pixelExpectations(scene, W, H, (o, d, t0, t1) => { const T = Math.exp(-tau(o, d, t0, t1)); return [T, T, T]; });
+  const ref = pixelExpectations(scene, W, H, (o, d, t0, t1) => {
+    const T = Math.exp(-tau(o, d, t0, t1));
+    return [T, T, T];
+  });
 
   it.each([
-    ['delta', true], ['ratio', true], ['residual', true],
-    ['delta', false], ['ratio', false], ['residual', false],
+    ['delta', true],
+    ['ratio', true],
+    ['residual', true],
+    ['delta', false],
+    ['ratio', false],
+    ['residual', false],
   ] as const)('%s tracking (majorant grid %s) estimates exp(−∫σ_t) without bias', async (tracking, majorantGrid) => {
-    const gpu = await page().page.evaluate((W, H, N, scene, tracking, majorantGrid) => {
-      const mt = (window as any).mt;
-      const { core } = (window as any).vpt;
-      return mt.run({ backend: 'webgl2', width: W, height: H, iterations: N, params: { debugOutput: 'transmittance', tracking, majorantGrid, majorantCellSize: 4 }, scene: { ...scene, volume: core.createProceduralVolume('blob', 16) } });
-    }, W, H, N, { ...scene, volume: null }, tracking, majorantGrid);
+    const gpu = await page().page.evaluate(
+      (W, H, N, scene, tracking, majorantGrid) => {
+        const mt = (window as any).mt;
+        const { core } = (window as any).vpt;
+        return mt.run({
+          backend: 'webgl2',
+          width: W,
+          height: H,
+          iterations: N,
+          params: { debugOutput: 'transmittance', tracking, majorantGrid, majorantCellSize: 4 },
+          scene: { ...scene, volume: core.createProceduralVolume('blob', 16) },
+        });
+      },
+      W,
+      H,
+      N,
+      { ...scene, volume: null },
+      tracking,
+      majorantGrid,
+    );
     expect(gpu.nonFinite).toBe(false);
     const s = compare(gpu, ref, 1, tracking === 'delta' ? [1, 1, 1] : undefined);
     expectUnbiased(s, `${tracking} grid=${majorantGrid}: ${JSON.stringify(s)}`);
@@ -113,37 +174,77 @@ describe.each(BACKENDS)('MCRT ratio tracking in a dense medium (Russian roulette
   // agree: the per-pixel σ has a floor of √(E·(0.1 − E)/N), the spread of a 0/0.1 draw with mean E.
   const tf: TransferFunction = {
     dimensions: '1d',
-    points: [{ value: 0, color: [1, 1, 1], opacity: 0 }, { value: 0.3, color: [1, 1, 1], opacity: 0.2 }, { value: 0.55, color: [1, 1, 1], opacity: 1 }, { value: 1, color: [1, 1, 1], opacity: 0.6 }],
+    points: [
+      { value: 0, color: [1, 1, 1], opacity: 0 },
+      { value: 0.3, color: [1, 1, 1], opacity: 0.2 },
+      { value: 0.55, color: [1, 1, 1], opacity: 1 },
+      { value: 1, color: [1, 1, 1], opacity: 0.6 },
+    ],
   };
   const DENSE_N = 128; // cheap at 16×16, and it sharpens the aggregate
-  const denseCamera = { position: [0.6, 0.4, 2.2] as Vec3, target: [0, 0, 0] as Vec3, up: [0, 1, 0] as Vec3, fovy: 0.55 };
+  const denseCamera = {
+    position: [0.6, 0.4, 2.2] as Vec3,
+    target: [0, 0, 0] as Vec3,
+    up: [0, 1, 0] as Vec3,
+    fovy: 0.55,
+  };
   // sampling: 'exact': the expectation integrates the CPU twin's exact trilinear field, which at
   // density 60 a hardware filter's coarse weights would shift by more than the z-test allows.
-  const scene: Scene = { volume: createProceduralVolume('blob', 16), transferFunction: tf, camera: denseCamera, lights: [], environment: { type: 'constant', radiance: [1, 1, 1] }, densityScale: 60, seed: 5, sampling: 'exact' };
+  const scene: Scene = {
+    volume: createProceduralVolume('blob', 16),
+    transferFunction: tf,
+    camera: denseCamera,
+    lights: [],
+    environment: { type: 'constant', radiance: [1, 1, 1] },
+    densityScale: 60,
+    seed: 5,
+    sampling: 'exact',
+  };
   const tau = opticalDepth(scene, 1000);
-  const ref = pixelExpectations(scene, W, H, (o, d, t0, t1) => { const T = Math.exp(-tau(o, d, t0, t1)); return [T, T, T]; });
-
-  it.each(['ratio', 'residual'] as const)('%s tracking (majorant grid) estimates exp(−∫σ_t) without bias where roulette decides', async (tracking) => {
-    const gpu = await page().page.evaluate((backend, W, H, N, scene, tracking) => {
-      const mt = (window as any).mt;
-      const { core } = (window as any).vpt;
-      return mt.run({ backend, width: W, height: H, iterations: N, params: { debugOutput: 'transmittance', tracking, majorantGrid: true, majorantCellSize: 4 }, scene: { ...scene, volume: core.createProceduralVolume('blob', 16) } });
-    }, backend, W, H, DENSE_N, { ...scene, volume: null }, tracking);
-    expect(gpu.nonFinite).toBe(false);
-    const z: number[] = [];
-    let dense = 0;
-    ref.forEach((p, k) => {
-      if (!p.interior) return;
-      const E = p.value[0];
-      if (E < 0.1) dense++;
-      const rouletteFloor = Math.sqrt(Math.max(0, E * (0.1 - E)) / DENSE_N);
-      z.push((gpu.mean[4 * k] - E) / Math.max(gpu.se[4 * k], rouletteFloor, FLOOR));
-    });
-    const s = zSummary(z, 1);
-    const msg = `${tracking} ${backend}: ${JSON.stringify(s)}, ${dense} pixels below 0.1`;
-    expect(dense, msg).toBeGreaterThan(40); // the roulette really decides most pixels
-    expect(Math.abs(s.meanScaled), msg).toBeLessThan(3);
-    expect(s.maxAbs, msg).toBeLessThan(5);
-    expect(s.over3 / s.n, msg).toBeLessThan(0.03);
+  const ref = pixelExpectations(scene, W, H, (o, d, t0, t1) => {
+    const T = Math.exp(-tau(o, d, t0, t1));
+    return [T, T, T];
   });
+
+  it.each(['ratio', 'residual'] as const)(
+    '%s tracking (majorant grid) estimates exp(−∫σ_t) without bias where roulette decides',
+    async (tracking) => {
+      const gpu = await page().page.evaluate(
+        (backend, W, H, N, scene, tracking) => {
+          const mt = (window as any).mt;
+          const { core } = (window as any).vpt;
+          return mt.run({
+            backend,
+            width: W,
+            height: H,
+            iterations: N,
+            params: { debugOutput: 'transmittance', tracking, majorantGrid: true, majorantCellSize: 4 },
+            scene: { ...scene, volume: core.createProceduralVolume('blob', 16) },
+          });
+        },
+        backend,
+        W,
+        H,
+        DENSE_N,
+        { ...scene, volume: null },
+        tracking,
+      );
+      expect(gpu.nonFinite).toBe(false);
+      const z: number[] = [];
+      let dense = 0;
+      ref.forEach((p, k) => {
+        if (!p.interior) return;
+        const E = p.value[0];
+        if (E < 0.1) dense++;
+        const rouletteFloor = Math.sqrt(Math.max(0, E * (0.1 - E)) / DENSE_N);
+        z.push((gpu.mean[4 * k] - E) / Math.max(gpu.se[4 * k], rouletteFloor, FLOOR));
+      });
+      const s = zSummary(z, 1);
+      const msg = `${tracking} ${backend}: ${JSON.stringify(s)}, ${dense} pixels below 0.1`;
+      expect(dense, msg).toBeGreaterThan(40); // the roulette really decides most pixels
+      expect(Math.abs(s.meanScaled), msg).toBeLessThan(3);
+      expect(s.maxAbs, msg).toBeLessThan(5);
+      expect(s.over3 / s.n, msg).toBeLessThan(0.03);
+    },
+  );
 });

@@ -14,9 +14,13 @@ import { usePage } from './helpers/session.js';
  * false alarms below 0.2 %) and max |z| < 5.5 over ~370 channel values per comparison.
  */
 const page = usePage();
-beforeAll(async () => { await installMcrtHelpers(page().page); });
+beforeAll(async () => {
+  await installMcrtHelpers(page().page);
+});
 
-const W = 16, H = 16, N = 64;
+const W = 16,
+  H = 16,
+  N = 64;
 
 type Run = { mean: number[]; se: number[]; nonFinite: boolean };
 
@@ -25,28 +29,71 @@ function compareRuns(a: Run, b: Run) {
   let identical = 0;
   for (let i = 0; i < a.mean.length; i += 4) {
     // Pixels that see only the environment are exact in both runs (no noise, z undefined).
-    if (a.se[i] === 0 && b.se[i] === 0 && a.mean[i] === b.mean[i]) { identical++; continue; }
+    if (a.se[i] === 0 && b.se[i] === 0 && a.mean[i] === b.mean[i]) {
+      identical++;
+      continue;
+    }
     for (let c = 0; c < 3; c++) z.push((a.mean[i + c] - b.mean[i + c]) / Math.hypot(a.se[i + c], b.se[i + c]));
   }
   return { ...zSummary(z, 3), identical };
 }
 
-async function render(params: Record<string, unknown>, sceneKind: 'tracking' | 'environment', seed: number): Promise<Run> {
-  return page().page.evaluate(async (W, H, N, params, sceneKind, seed) => {
-    const mt = (window as any).mt;
-    const { core } = (window as any).vpt;
-    const environment = sceneKind === 'environment'
-      ? { type: 'latlong', width: 8, height: 4, data: new Float32Array(8 * 4 * 3).map((_, i) => [0.05, 0.3, 1, 5][(i * 5 + (i >> 2)) % 4] * [1, 0.8, 0.6][i % 3]) }
-      : { type: 'constant', radiance: [0.4, 0.5, 0.7] };
-    const scene = {
-      volume: core.createProceduralVolume('blob', 20),
-      transferFunction: { dimensions: '1d', points: [{ value: 0.05, color: [0.9, 0.9, 0.9], opacity: 0 }, { value: 0.4, color: [0.95, 0.7, 0.4], opacity: 0.7 }, { value: 0.6, color: [0.7, 0.9, 0.95], opacity: 0.15 }, { value: 1, color: [0.99, 0.99, 0.99], opacity: 1 }] },
-      camera: { position: [0.3, 0.9, 1.8], target: [0, 0, 0], up: [0, 1, 0], fovy: 0.6 },
-      lights: sceneKind === 'tracking' ? [{ type: 'directional', direction: [-0.4, 1, 0.3], irradiance: [2, 1.8, 1.5] }] : [],
-      environment, densityScale: 25, seed,
-    };
-    return mt.run({ backend: 'webgl2', width: W, height: H, iterations: N, params: { anisotropy: 0.5, majorantCellSize: 4, ...params }, scene });
-  }, W, H, N, params, sceneKind, seed);
+async function render(
+  params: Record<string, unknown>,
+  sceneKind: 'tracking' | 'environment',
+  seed: number,
+): Promise<Run> {
+  return page().page.evaluate(
+    async (W, H, N, params, sceneKind, seed) => {
+      const mt = (window as any).mt;
+      const { core } = (window as any).vpt;
+      const environment =
+        sceneKind === 'environment'
+          ? {
+              type: 'latlong',
+              width: 8,
+              height: 4,
+              data: new Float32Array(8 * 4 * 3).map(
+                (_, i) => [0.05, 0.3, 1, 5][(i * 5 + (i >> 2)) % 4] * [1, 0.8, 0.6][i % 3],
+              ),
+            }
+          : { type: 'constant', radiance: [0.4, 0.5, 0.7] };
+      const scene = {
+        volume: core.createProceduralVolume('blob', 20),
+        transferFunction: {
+          dimensions: '1d',
+          points: [
+            { value: 0.05, color: [0.9, 0.9, 0.9], opacity: 0 },
+            { value: 0.4, color: [0.95, 0.7, 0.4], opacity: 0.7 },
+            { value: 0.6, color: [0.7, 0.9, 0.95], opacity: 0.15 },
+            { value: 1, color: [0.99, 0.99, 0.99], opacity: 1 },
+          ],
+        },
+        camera: { position: [0.3, 0.9, 1.8], target: [0, 0, 0], up: [0, 1, 0], fovy: 0.6 },
+        lights:
+          sceneKind === 'tracking'
+            ? [{ type: 'directional', direction: [-0.4, 1, 0.3], irradiance: [2, 1.8, 1.5] }]
+            : [],
+        environment,
+        densityScale: 25,
+        seed,
+      };
+      return mt.run({
+        backend: 'webgl2',
+        width: W,
+        height: H,
+        iterations: N,
+        params: { anisotropy: 0.5, majorantCellSize: 4, ...params },
+        scene,
+      });
+    },
+    W,
+    H,
+    N,
+    params,
+    sceneKind,
+    seed,
+  );
 }
 
 describe('MCRT estimators converge to the same image (webgl2)', () => {
@@ -75,7 +122,11 @@ describe('MCRT estimators converge to the same image (webgl2)', () => {
     expect(ref.nonFinite).toBe(false);
     const lines: string[] = [];
     let seed = 12;
-    for (const [environmentSampling, misHeuristic] of [['mis', 'balance'], ['light', 'power'], ['phase', 'power']]) {
+    for (const [environmentSampling, misHeuristic] of [
+      ['mis', 'balance'],
+      ['light', 'power'],
+      ['phase', 'power'],
+    ]) {
       const r = await render({ environmentSampling, misHeuristic }, 'environment', seed++);
       expect(r.nonFinite).toBe(false);
       const s = compareRuns(r, ref);

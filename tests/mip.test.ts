@@ -1,5 +1,12 @@
 import { describe, expect, it } from 'vitest';
-import { createProceduralVolume, createVolume, defaultCamera, reference, type Scene, type Vec3 } from '../packages/core/src/index.js';
+import {
+  createProceduralVolume,
+  createVolume,
+  defaultCamera,
+  reference,
+  type Scene,
+  type Vec3,
+} from '../packages/core/src/index.js';
 import { defaultStepSize } from '../packages/renderer-mip/src/index.js';
 import { readFileSync } from 'node:fs';
 import { BACKENDS, usePage } from './helpers/session.js';
@@ -16,7 +23,8 @@ function cpuMip(scene: Scene, w: number, h: number, iterations: number, stepSize
       let best = 0;
       for (let it = 0; it < iterations; it++) {
         const rng = new reference.CpuRng(x, y, it, scene.seed);
-        const jx = rng.next(), jy = rng.next();
+        const jx = rng.next(),
+          jy = rng.next();
         const { origin, dir } = reference.cameraRay(scene, w, h, (x + jx) / w, (y + jy) / h);
         const [t0, t1] = reference.intersectBox(origin, dir, sampler.box.min, sampler.box.max);
         if (!(t0 < t1)) continue;
@@ -35,25 +43,43 @@ function cpuMip(scene: Scene, w: number, h: number, iterations: number, stepSize
 }
 
 const page = usePage();
-const W = 24, H = 20, ITER = 4;
+const W = 24,
+  H = 20,
+  ITER = 4;
 
 describe.each(BACKENDS)('MIP on %s', (backend) => {
   it('equals a CPU MIP of a smooth procedural volume', async () => {
     const camera = { position: [0.9, 0.6, 1.6] as Vec3, target: [0, 0, 0] as Vec3, up: [0, 1, 0] as Vec3, fovy: 0.7 };
     const volume = createProceduralVolume('blob', 16);
-    const scene: Scene = { volume, transferFunction: { dimensions: '1d', points: [{ value: 0, color: [1, 1, 1], opacity: 1 }] }, camera, lights: [], environment: { type: 'constant', radiance: [0, 0, 0] }, densityScale: 1, seed: 7 };
-    const gpu: number[] = await page().page.evaluate(async (backend, W, H, ITER, camera) => {
-      const { core } = (window as any).vpt;
-      const t = (window as any).t;
-      const ctx = await t.context({ backend, renderer: 'mip', width: W, height: H });
-      ctx.setScene(t.scene({ volume: core.createProceduralVolume('blob', 16), camera, seed: 7 }));
-      await ctx.renderIterations(ITER);
-      const hdr = await ctx.readHDR();
-      ctx.dispose();
-      return Array.from(hdr as Float32Array);
-    }, backend, W, H, ITER, camera);
+    const scene: Scene = {
+      volume,
+      transferFunction: { dimensions: '1d', points: [{ value: 0, color: [1, 1, 1], opacity: 1 }] },
+      camera,
+      lights: [],
+      environment: { type: 'constant', radiance: [0, 0, 0] },
+      densityScale: 1,
+      seed: 7,
+    };
+    const gpu: number[] = await page().page.evaluate(
+      async (backend, W, H, ITER, camera) => {
+        const { core } = (window as any).vpt;
+        const t = (window as any).t;
+        const ctx = await t.context({ backend, renderer: 'mip', width: W, height: H });
+        ctx.setScene(t.scene({ volume: core.createProceduralVolume('blob', 16), camera, seed: 7 }));
+        await ctx.renderIterations(ITER);
+        const hdr = await ctx.readHDR();
+        ctx.dispose();
+        return Array.from(hdr as Float32Array);
+      },
+      backend,
+      W,
+      H,
+      ITER,
+      camera,
+    );
     const cpu = cpuMip(scene, W, H, ITER, defaultStepSize(scene));
-    let maxErr = 0, covered = 0;
+    let maxErr = 0,
+      covered = 0;
     for (let i = 0; i < W * H; i++) {
       maxErr = Math.max(maxErr, Math.abs(gpu[4 * i] - cpu[i]));
       expect(gpu[4 * i + 1]).toBe(gpu[4 * i]); // grey
@@ -66,21 +92,46 @@ describe.each(BACKENDS)('MIP on %s', (backend) => {
   it('equals a CPU MIP of the bundled MRI head', async () => {
     const raw = readFileSync(new URL('../data/mri_head_volpack_brainsmall_128x128x84_uint8.raw', import.meta.url));
     const volume = createVolume([128, 128, 84], 'uint8', new Uint8Array(raw.buffer, raw.byteOffset, raw.byteLength));
-    const camera = { position: [-1.6, -0.3, 0.5] as Vec3, target: [0, 0, 0] as Vec3, up: [0, -1, 0] as Vec3, fovy: 0.8 };
-    const scene: Scene = { volume, transferFunction: { dimensions: '1d', points: [{ value: 0, color: [1, 1, 1], opacity: 1 }] }, camera, lights: [], environment: { type: 'constant', radiance: [0, 0, 0] }, densityScale: 1, seed: 3 };
-    const w = 16, h = 16;
-    const gpu: number[] = await page().page.evaluate(async (backend, w, h, camera) => {
-      const t = (window as any).t;
-      const volume = await t.loadRaw('/data/mri_head_volpack_brainsmall_128x128x84_uint8.raw', [128, 128, 84], 'uint8');
-      const ctx = await t.context({ backend, renderer: 'mip', width: w, height: h });
-      ctx.setScene(t.scene({ volume, camera, seed: 3 }));
-      await ctx.renderIterations(2);
-      const hdr = await ctx.readHDR();
-      ctx.dispose();
-      return Array.from(hdr as Float32Array);
-    }, backend, w, h, camera);
+    const camera = {
+      position: [-1.6, -0.3, 0.5] as Vec3,
+      target: [0, 0, 0] as Vec3,
+      up: [0, -1, 0] as Vec3,
+      fovy: 0.8,
+    };
+    const scene: Scene = {
+      volume,
+      transferFunction: { dimensions: '1d', points: [{ value: 0, color: [1, 1, 1], opacity: 1 }] },
+      camera,
+      lights: [],
+      environment: { type: 'constant', radiance: [0, 0, 0] },
+      densityScale: 1,
+      seed: 3,
+    };
+    const w = 16,
+      h = 16;
+    const gpu: number[] = await page().page.evaluate(
+      async (backend, w, h, camera) => {
+        const t = (window as any).t;
+        const volume = await t.loadRaw(
+          '/data/mri_head_volpack_brainsmall_128x128x84_uint8.raw',
+          [128, 128, 84],
+          'uint8',
+        );
+        const ctx = await t.context({ backend, renderer: 'mip', width: w, height: h });
+        ctx.setScene(t.scene({ volume, camera, seed: 3 }));
+        await ctx.renderIterations(2);
+        const hdr = await ctx.readHDR();
+        ctx.dispose();
+        return Array.from(hdr as Float32Array);
+      },
+      backend,
+      w,
+      h,
+      camera,
+    );
     const cpu = cpuMip(scene, w, h, 2, defaultStepSize(scene));
-    let maxErr = 0, bright = 0;
+    let maxErr = 0,
+      bright = 0;
     for (let i = 0; i < w * h; i++) {
       maxErr = Math.max(maxErr, Math.abs(gpu[4 * i] - cpu[i]));
       if (cpu[i] > 0.3) bright++;

@@ -12,18 +12,36 @@ describe('WebGL 2 / WebGPU parity', () => {
       const out: Record<string, { hdr: Float32Array; ldr: Uint8Array }> = {};
       const volume = core.createProceduralVolume('blob', 20);
       for (const backend of ['webgl2', 'webgpu']) {
-        const ctx = await t.context({ backend, renderer, width: 20, height: 16, post: [{ type: 'exposure', exposure: 0.5 }, { type: 'tonemap', operator: 'aces' }, { type: 'srgb' }] });
-        ctx.setScene(t.scene({
-          volume, seed: 11, densityScale: 12,
-          camera: { position: [0.7, -0.4, 1.5], target: [0, 0.05, 0], up: [0, 1, 0], fovy: 0.8 },
-          transferFunction: { dimensions: '1d', points: [{ value: 0.1, color: [0.2, 0.4, 1], opacity: 0 }, { value: 0.6, color: [1, 0.8, 0.3], opacity: 0.8 }, { value: 1, color: [3, 3, 3], opacity: 1 }] },
-          environment: { type: 'constant', radiance: [0.3, 0.2, 0.1] },
-        }));
+        const ctx = await t.context({
+          backend,
+          renderer,
+          width: 20,
+          height: 16,
+          post: [{ type: 'exposure', exposure: 0.5 }, { type: 'tonemap', operator: 'aces' }, { type: 'srgb' }],
+        });
+        ctx.setScene(
+          t.scene({
+            volume,
+            seed: 11,
+            densityScale: 12,
+            camera: { position: [0.7, -0.4, 1.5], target: [0, 0.05, 0], up: [0, 1, 0], fovy: 0.8 },
+            transferFunction: {
+              dimensions: '1d',
+              points: [
+                { value: 0.1, color: [0.2, 0.4, 1], opacity: 0 },
+                { value: 0.6, color: [1, 0.8, 0.3], opacity: 0.8 },
+                { value: 1, color: [3, 3, 3], opacity: 1 },
+              ],
+            },
+            environment: { type: 'constant', radiance: [0.3, 0.2, 0.1] },
+          }),
+        );
         await ctx.renderIterations(6);
         out[backend] = { hdr: await ctx.readHDR(), ldr: await ctx.readLDR() };
         ctx.dispose();
       }
-      const a = out.webgl2, b = out.webgpu;
+      const a = out.webgl2,
+        b = out.webgpu;
       let ldrDiff = 0;
       for (let i = 0; i < a.ldr.length; i++) if (a.ldr[i] !== b.ldr[i]) ldrDiff++;
       let varied = 0;

@@ -6,7 +6,8 @@ const page = usePage();
 
 // An 8x8 HDR image spanning many orders of magnitude (and exact zeros).
 const LEVELS = [0, 1e-4, 0.01, 0.18, 0.5, 1, 4, 1e4];
-const W = 8, H = 8;
+const W = 8,
+  H = 8;
 const hdr = new Float32Array(W * H * 4);
 for (let i = 0; i < W * H; i++) {
   hdr.set([LEVELS[i % 8], LEVELS[Math.floor(i / 8)], LEVELS[(i * 3) % 8], 0.25 + (i % 4) / 4], 4 * i);
@@ -14,7 +15,10 @@ for (let i = 0; i < W * H; i++) {
 
 const CHAINS = [
   [{ type: 'tonemap', operator: 'reinhard' }],
-  [{ type: 'exposure', exposure: 1.5 }, { type: 'tonemap', operator: 'aces' }],
+  [
+    { type: 'exposure', exposure: 1.5 },
+    { type: 'tonemap', operator: 'aces' },
+  ],
   [{ type: 'tonemap', operator: 'pbr-neutral' }],
   [{ type: 'exposure', exposure: -2 }, { type: 'tonemap', operator: 'clamp' }, { type: 'srgb' }],
   [{ type: 'tonemap', operator: 'aces' }, { type: 'srgb' }],
@@ -22,34 +26,65 @@ const CHAINS = [
 
 /** Run a chain on the GPU: float output after every step but the last, rgba8 after the last. */
 async function runChain(backend: string, chain: object[]) {
-  return page().page.evaluate(async (backend, chain, hdrIn, W, H) => {
-    const { core, post } = (window as any).vpt;
-    const b = await core.createBackend({ backend });
-    const steps = post.postChainFromJSON(chain);
-    let input = b.createTexture({ dimension: '2d', width: W, height: H, format: 'rgba32float', data: new Float32Array(hdrIn) });
-    const floatOut = b.createRenderTarget(W, H, ['rgba32float']);
-    const ldrOut = b.createRenderTarget(W, H, ['rgba8unorm']);
-    let lastFloat: number[] = [];
-    for (let i = 0; i < steps.length; i++) {
-      const s = steps[i];
-      const passFor = (format: string) => b.createPass({ label: s.name, glsl: s.glsl, wgsl: s.wgsl, uniforms: s.uniforms, textures: [{ name: 'inputImage', dimension: '2d' }], outputs: [format], defines: s.defines ? s.defines() : {} });
-      const uniforms = s.uniforms.pack(s.uniformValues());
-      b.draw(passFor('rgba32float'), { uniforms, textures: { inputImage: input }, target: floatOut });
-      lastFloat = Array.from((await b.readTexture(floatOut.textures[0])) as Float32Array);
-      if (i === steps.length - 1) b.draw(passFor('rgba8unorm'), { uniforms, textures: { inputImage: input }, target: ldrOut });
-      else input = b.createTexture({ dimension: '2d', width: W, height: H, format: 'rgba32float', data: new Float32Array(lastFloat) });
-    }
-    const ldr = Array.from((await b.readTexture(ldrOut.textures[0])) as Uint8Array);
-    b.dispose();
-    return { float: lastFloat, ldr };
-  }, backend, chain, Array.from(hdr), W, H);
+  return page().page.evaluate(
+    async (backend, chain, hdrIn, W, H) => {
+      const { core, post } = (window as any).vpt;
+      const b = await core.createBackend({ backend });
+      const steps = post.postChainFromJSON(chain);
+      let input = b.createTexture({
+        dimension: '2d',
+        width: W,
+        height: H,
+        format: 'rgba32float',
+        data: new Float32Array(hdrIn),
+      });
+      const floatOut = b.createRenderTarget(W, H, ['rgba32float']);
+      const ldrOut = b.createRenderTarget(W, H, ['rgba8unorm']);
+      let lastFloat: number[] = [];
+      for (let i = 0; i < steps.length; i++) {
+        const s = steps[i];
+        const passFor = (format: string) =>
+          b.createPass({
+            label: s.name,
+            glsl: s.glsl,
+            wgsl: s.wgsl,
+            uniforms: s.uniforms,
+            textures: [{ name: 'inputImage', dimension: '2d' }],
+            outputs: [format],
+            defines: s.defines ? s.defines() : {},
+          });
+        const uniforms = s.uniforms.pack(s.uniformValues());
+        b.draw(passFor('rgba32float'), { uniforms, textures: { inputImage: input }, target: floatOut });
+        lastFloat = Array.from((await b.readTexture(floatOut.textures[0])) as Float32Array);
+        if (i === steps.length - 1)
+          b.draw(passFor('rgba8unorm'), { uniforms, textures: { inputImage: input }, target: ldrOut });
+        else
+          input = b.createTexture({
+            dimension: '2d',
+            width: W,
+            height: H,
+            format: 'rgba32float',
+            data: new Float32Array(lastFloat),
+          });
+      }
+      const ldr = Array.from((await b.readTexture(ldrOut.textures[0])) as Uint8Array);
+      b.dispose();
+      return { float: lastFloat, ldr };
+    },
+    backend,
+    chain,
+    Array.from(hdr),
+    W,
+    H,
+  );
 }
 
 describe.each(BACKENDS)('post chain on %s', (backend) => {
   it.each(CHAINS.map((c) => [JSON.stringify(c), c] as const))('%s equals the CPU reference', async (_name, chain) => {
     const { float, ldr } = await runChain(backend, chain as object[]);
     const steps = postChainFromJSON(chain);
-    let maxRel = 0, maxCode = 0;
+    let maxRel = 0,
+      maxCode = 0;
     for (let i = 0; i < W * H; i++) {
       const px = hdr.subarray(4 * i, 4 * i + 3);
       const want = postChainRef(steps, [px[0], px[1], px[2]]);

@@ -11,15 +11,25 @@ describe.each(BACKENDS)('progressive loop on %s', (backend) => {
       const canvas = document.createElement('canvas');
       document.body.appendChild(canvas);
       const renderer = new (window as any).vpt.eam.EamRenderer();
-      const steps = (window as any).vpt.post.postChainFromJSON([{ type: 'tonemap', operator: 'reinhard' }, { type: 'srgb' }]);
+      const steps = (window as any).vpt.post.postChainFromJSON([
+        { type: 'tonemap', operator: 'reinhard' },
+        { type: 'srgb' },
+      ]);
       const ctx = await core.RenderContext.create({ backend, canvas, width: 16, height: 12, renderer, post: steps });
-      const scene = t.scene({ volume: core.createProceduralVolume('blob', 12), densityScale: 8, environment: { type: 'constant', radiance: [0.2, 0.2, 0.2] } });
+      const scene = t.scene({
+        volume: core.createProceduralVolume('blob', 12),
+        densityScale: 8,
+        environment: { type: 'constant', radiance: [0.2, 0.2, 0.2] },
+      });
       ctx.setScene(scene);
       const seen: number[] = [];
       ctx.onStats((s: any) => seen.push(s.iterations));
       const waitFor = async (pred: () => boolean, ms = 30000) => {
         const t0 = performance.now();
-        while (!pred()) { if (performance.now() - t0 > ms) return false; await new Promise((res) => setTimeout(res, 20)); }
+        while (!pred()) {
+          if (performance.now() - t0 > ms) return false;
+          await new Promise((res) => setTimeout(res, 20));
+        }
         return true;
       };
       ctx.start({ maxIterations: 40, frameBudgetMs: 8 });
@@ -38,13 +48,15 @@ describe.each(BACKENDS)('progressive loop on %s', (backend) => {
       ctx.setPost(steps);
       ctx.present();
       const c2 = document.createElement('canvas');
-      c2.width = 16; c2.height = 12;
+      c2.width = 16;
+      c2.height = 12;
       const g = c2.getContext('2d')!;
       g.drawImage(canvas, 0, 0);
       const shown = g.getImageData(0, 0, 16, 12).data;
       const ldr: Uint8Array = await ctx.readLDR();
       let maxDiff = 0;
-      for (let i = 0; i < shown.length; i += 4) for (let c = 0; c < 3; c++) maxDiff = Math.max(maxDiff, Math.abs(shown[i + c] - ldr[i + c]));
+      for (let i = 0; i < shown.length; i += 4)
+        for (let c = 0; c < 3; c++) maxDiff = Math.max(maxDiff, Math.abs(shown[i + c] - ldr[i + c]));
       let varied = 0;
       for (let i = 4; i < ldr.length; i += 4) if (ldr[i] !== ldr[0]) varied++;
       ctx.dispose();

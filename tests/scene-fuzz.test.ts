@@ -3,7 +3,13 @@ import os from 'node:os';
 import path from 'node:path';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { isVptError } from '../packages/core/src/index.js';
-import { openVptPage, resolveSceneFiles, validateSceneDescription, type SceneDescription, type VptPageSession } from '../packages/headless/src/index.js';
+import {
+  openVptPage,
+  resolveSceneFiles,
+  validateSceneDescription,
+  type SceneDescription,
+  type VptPageSession,
+} from '../packages/headless/src/index.js';
 import { BASE_SCENES, mutateScene, seededRandom, type Json } from './helpers/scene-fuzz.js';
 
 /**
@@ -20,7 +26,14 @@ const RENDERS = Number(process.env.VPT_FUZZ_RENDERS ?? 12);
 const SEED = Number(process.env.VPT_FUZZ_SEED ?? 15);
 const TYPED = ['invalid-scene', 'limit-exceeded', 'load-failed'];
 
-interface Case { id: number; mutations: string[]; scene: Record<string, Json>; node: string; page?: string; render?: string }
+interface Case {
+  id: number;
+  mutations: string[];
+  scene: Record<string, Json>;
+  node: string;
+  page?: string;
+  render?: string;
+}
 
 let session: VptPageSession;
 let tmp: string;
@@ -31,9 +44,20 @@ beforeAll(async () => {
   const vol = Buffer.alloc(4 * 4 * 4 * 2);
   for (let i = 0; i < 64; i++) vol.writeUInt16BE(i * 3, 2 * i);
   fs.writeFileSync(path.join(tmp, 'vol.raw'), vol);
-  fs.writeFileSync(path.join(tmp, 'side.json'), JSON.stringify({ dims: [4, 4, 4], voxel_type: 'uint16', endianness: 'big', value_range: [0, 200], file: 'vol.raw' }));
+  fs.writeFileSync(
+    path.join(tmp, 'side.json'),
+    JSON.stringify({
+      dims: [4, 4, 4],
+      voxel_type: 'uint16',
+      endianness: 'big',
+      value_range: [0, 200],
+      file: 'vol.raw',
+    }),
+  );
   session = await openVptPage({
-    onConsole: (line) => { if (/^\[page (error|assert)\]/.test(line)) consoleProblems.push(line); },
+    onConsole: (line) => {
+      if (/^\[page (error|assert)\]/.test(line)) consoleProblems.push(line);
+    },
   });
 });
 afterAll(async () => {
@@ -43,12 +67,27 @@ afterAll(async () => {
 
 const BASES: Record<string, Json>[] = [
   ...BASE_SCENES,
-  { width: 8, height: 8, iterations: 2, renderer: 'eam', volume: { raw: 'vol.raw', dims: [4, 4, 4], type: 'uint16', endianness: 'big', valueRange: [0, 200], spacing: [1, 1, 2] }, densityScale: 6 },
+  {
+    width: 8,
+    height: 8,
+    iterations: 2,
+    renderer: 'eam',
+    volume: {
+      raw: 'vol.raw',
+      dims: [4, 4, 4],
+      type: 'uint16',
+      endianness: 'big',
+      valueRange: [0, 200],
+      spacing: [1, 1, 2],
+    },
+    densityScale: 6,
+  },
   { width: 8, height: 8, iterations: 2, renderer: 'mip', volume: { sidecar: 'side.json' } },
 ];
 
 function outcome(e: unknown): string {
-  if (isVptError(e) || (e && typeof e === 'object' && TYPED.includes((e as { code?: string }).code ?? ''))) return (e as { code: string }).code;
+  if (isVptError(e) || (e && typeof e === 'object' && TYPED.includes((e as { code?: string }).code ?? '')))
+    return (e as { code: string }).code;
   return `RAW ${(e as Error)?.name ?? typeof e}: ${(e as Error)?.message ?? String(e)}`;
 }
 
@@ -62,7 +101,9 @@ function makeCases(): Case[] {
     try {
       validateSceneDescription(scene);
       resolveSceneFiles(scene as SceneDescription, tmp);
-    } catch (e) { node = outcome(e); }
+    } catch (e) {
+      node = outcome(e);
+    }
     cases.push({ id, mutations, scene, node });
   }
   return cases;
@@ -101,36 +142,52 @@ describe('scene description fuzz', () => {
       return d;
     });
     for (let at = 0; at < mounted.length; at += 100) {
-      const results: string[] = await session.page.evaluate(async (descs) => {
-        const vpt = (window as any).vpt;
-        const { core } = vpt;
-        const w = window as any;
-        w.fuzzContexts ??= {};
-        const ctors: Record<string, any> = { eam: vpt.eam.EamRenderer, mip: vpt.mip.MipRenderer, iso: vpt.iso.IsoRenderer, mcrt: vpt.mcrt.McrtRenderer };
-        const out: string[] = [];
-        for (const d of descs) {
-          try {
-            const name = d.renderer ?? 'eam';
-            const renderer = new ctors[name](d.rendererParams ?? {});
-            const scene = await vpt.buildScene(d);
-            w.fuzzContexts[name] ??= await core.RenderContext.create({ backend: 'webgl2', width: 8, height: 8, renderer });
-            const ctx = w.fuzzContexts[name];
-            ctx.setRenderer(renderer);
-            ctx.setScene(scene);
-            out.push('ok');
-          } catch (e: any) {
-            out.push(e instanceof core.VptError ? e.code : `RAW ${e?.name}: ${e?.message}`);
+      const results: string[] = await session.page.evaluate(
+        async (descs) => {
+          const vpt = (window as any).vpt;
+          const { core } = vpt;
+          const w = window as any;
+          w.fuzzContexts ??= {};
+          const ctors: Record<string, any> = {
+            eam: vpt.eam.EamRenderer,
+            mip: vpt.mip.MipRenderer,
+            iso: vpt.iso.IsoRenderer,
+            mcrt: vpt.mcrt.McrtRenderer,
+          };
+          const out: string[] = [];
+          for (const d of descs) {
+            try {
+              const name = d.renderer ?? 'eam';
+              const renderer = new ctors[name](d.rendererParams ?? {});
+              const scene = await vpt.buildScene(d);
+              w.fuzzContexts[name] ??= await core.RenderContext.create({
+                backend: 'webgl2',
+                width: 8,
+                height: 8,
+                renderer,
+              });
+              const ctx = w.fuzzContexts[name];
+              ctx.setRenderer(renderer);
+              ctx.setScene(scene);
+              out.push('ok');
+            } catch (e: any) {
+              out.push(e instanceof core.VptError ? e.code : `RAW ${e?.name}: ${e?.message}`);
+            }
           }
-        }
-        return out;
-      }, mounted.slice(at, at + 100));
-      results.forEach((r, i) => { accepted[at + i].page = r; });
+          return out;
+        },
+        mounted.slice(at, at + 100),
+      );
+      results.forEach((r, i) => {
+        accepted[at + i].page = r;
+      });
     }
     const raw = accepted.filter((c) => c.page!.startsWith('RAW'));
     expect(raw.map((c) => `${describeCase(c)} -> ${c.page}`)).toEqual([]);
     // Typed, but later than the CLI's early check would have caught it: worth knowing.
     const late = accepted.filter((c) => c.page !== 'ok').slice(0, 10);
-    if (late.length) console.log(`refused by the page only:\n${late.map((c) => `${describeCase(c)} -> ${c.page}`).join('\n')}`);
+    if (late.length)
+      console.log(`refused by the page only:\n${late.map((c) => `${describeCase(c)} -> ${c.page}`).join('\n')}`);
     expect(consoleProblems).toEqual([]);
   });
 
@@ -139,8 +196,13 @@ describe('scene description fuzz', () => {
     const step = Math.max(1, Math.floor(sample.length / RENDERS));
     const picked = sample.filter((_, i) => i % step === 0).slice(0, RENDERS);
     for (const c of picked) {
-      const render = session.render({ ...(c.scene as SceneDescription), width: 8, height: 8, iterations: 2 }, { baseDir: tmp, warmup: false });
-      const timeout = new Promise<never>((_, reject) => setTimeout(() => reject(new Error('HANG: no result within 60 s')), 60_000));
+      const render = session.render(
+        { ...(c.scene as SceneDescription), width: 8, height: 8, iterations: 2 },
+        { baseDir: tmp, warmup: false },
+      );
+      const timeout = new Promise<never>((_, reject) =>
+        setTimeout(() => reject(new Error('HANG: no result within 60 s')), 60_000),
+      );
       try {
         const r = await Promise.race([render, timeout]);
         c.render = r.hdr.every(Number.isFinite) ? 'finite' : 'NON-FINITE image';
@@ -152,7 +214,16 @@ describe('scene description fuzz', () => {
     expect(bad.map((c) => `${describeCase(c)} -> ${c.render}`)).toEqual([]);
     expect(picked.filter((c) => c.render === 'finite').length).toBeGreaterThan(picked.length / 2);
     expect(consoleProblems).toEqual([]);
-    const tally = (k: keyof Case) => Object.entries(cases.reduce<Record<string, number>>((m, c) => { const v = String(c[k] ?? '-'); m[v] = (m[v] ?? 0) + 1; return m; }, {}));
-    console.log(`scene fuzz seed ${SEED}, ${CASES} cases: node ${JSON.stringify(tally('node'))}, page ${JSON.stringify(tally('page'))}, render ${JSON.stringify(tally('render'))}`);
+    const tally = (k: keyof Case) =>
+      Object.entries(
+        cases.reduce<Record<string, number>>((m, c) => {
+          const v = String(c[k] ?? '-');
+          m[v] = (m[v] ?? 0) + 1;
+          return m;
+        }, {}),
+      );
+    console.log(
+      `scene fuzz seed ${SEED}, ${CASES} cases: node ${JSON.stringify(tally('node'))}, page ${JSON.stringify(tally('page'))}, render ${JSON.stringify(tally('render'))}`,
+    );
   });
 });

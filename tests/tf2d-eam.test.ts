@@ -1,7 +1,17 @@
 import { describe, expect, it } from 'vitest';
 import {
-  createProceduralVolume, createVolume, gradientMagnitudes, maxGradientMagnitude, normalizedData, rasterizeTransferFunction, reference, volumeBox,
-  type Scene, type TransferFunction2D, type Vec3, type Volume,
+  createProceduralVolume,
+  createVolume,
+  gradientMagnitudes,
+  maxGradientMagnitude,
+  normalizedData,
+  rasterizeTransferFunction,
+  reference,
+  volumeBox,
+  type Scene,
+  type TransferFunction2D,
+  type Vec3,
+  type Volume,
 } from '../packages/core/src/index.js';
 import { BACKENDS, usePage } from './helpers/session.js';
 import { testVolumes } from './helpers/test-volumes.js';
@@ -16,9 +26,13 @@ import { testVolumes } from './helpers/test-volumes.js';
  */
 const N = 24;
 const HALF = 0.25;
-const TF2D: TransferFunction2D = { dimensions: '2d', widgets: [{ type: 'box', min: [0, 0.3], max: [1, 1], ramp: [0, 0.1], color: [1, 0.8, 0.6], opacity: 1 }] };
+const TF2D: TransferFunction2D = {
+  dimensions: '2d',
+  widgets: [{ type: 'box', min: [0, 0.3], max: [1, 1], ramp: [0, 0.1], color: [1, 0.8, 0.6], opacity: 1 }],
+};
 const DENSITY = 4;
-const W = 20, H = 20;
+const W = 20,
+  H = 20;
 const CAMERA = { position: [0.7, 0.55, 1.5] as Vec3, target: [0, 0, 0] as Vec3, up: [0, 1, 0] as Vec3, fovy: 0.6 };
 
 function block(): Volume {
@@ -35,19 +49,31 @@ function cpuModel(volume: Volume, tf: TransferFunction2D) {
   const [nx, ny, nz] = volume.dims;
   const tri = (a: Float32Array, p: Vec3) => {
     const c = p.map((x, k) => ((x - box.min[k]) / box.size[k]) * volume.dims[k] - 0.5);
-    const i0 = c.map(Math.floor), f = c.map((x, k) => x - i0[k]);
+    const i0 = c.map(Math.floor),
+      f = c.map((x, k) => x - i0[k]);
     const cl = (i: number, n: number) => Math.min(n - 1, Math.max(0, i));
     let s = 0;
-    for (const dz of [0, 1]) for (const dy of [0, 1]) for (const dx of [0, 1]) {
-      s += (dx ? f[0] : 1 - f[0]) * (dy ? f[1] : 1 - f[1]) * (dz ? f[2] : 1 - f[2]) * a[cl(i0[0] + dx, nx) + nx * (cl(i0[1] + dy, ny) + ny * cl(i0[2] + dz, nz))];
-    }
+    for (const dz of [0, 1])
+      for (const dy of [0, 1])
+        for (const dx of [0, 1]) {
+          s +=
+            (dx ? f[0] : 1 - f[0]) *
+            (dy ? f[1] : 1 - f[1]) *
+            (dz ? f[2] : 1 - f[2]) *
+            a[cl(i0[0] + dx, nx) + nx * (cl(i0[1] + dy, ny) + ny * cl(i0[2] + dz, nz))];
+        }
     return s;
   };
   const opacity = (p: Vec3) => {
-    const x = Math.min(1, Math.max(0, tri(value, p))) * 255, y = Math.min(1, Math.max(0, tri(grad, p) / gmax)) * 255;
-    const x0 = Math.floor(x), y0 = Math.floor(y), x1 = Math.min(x0 + 1, 255), y1 = Math.min(y0 + 1, 255);
+    const x = Math.min(1, Math.max(0, tri(value, p))) * 255,
+      y = Math.min(1, Math.max(0, tri(grad, p) / gmax)) * 255;
+    const x0 = Math.floor(x),
+      y0 = Math.floor(y),
+      x1 = Math.min(x0 + 1, 255),
+      y1 = Math.min(y0 + 1, 255);
     const a = (i: number, j: number) => raster[4 * (i + 256 * j) + 3];
-    const fx = x - x0, fy = y - y0;
+    const fx = x - x0,
+      fy = y - y0;
     return (a(x0, y0) * (1 - fx) + a(x1, y0) * fx) * (1 - fy) + (a(x0, y1) * (1 - fx) + a(x1, y1) * fx) * fy;
   };
   /** 1 − exp(−densityScale ∫ opacity ds) along a ray, by a fine midpoint rule. */
@@ -68,33 +94,61 @@ function cpuModel(volume: Volume, tf: TransferFunction2D) {
 const page = usePage();
 
 async function renderAlpha(backend: string, tf: object, iterations: number): Promise<number[]> {
-  return page().page.evaluate(async (backend, tf, iterations, n, half, camera, density, W, H) => {
-    const t = (window as any).t;
-    const ctx = await t.context({ backend, renderer: 'eam', width: W, height: H, params: { cutoff: 0 } });
-    ctx.setScene(t.scene({ volume: window.tv.block(n, half), camera, densityScale: density, transferFunction: tf }));
-    await ctx.renderIterations(iterations);
-    const hdr: Float32Array = await ctx.readHDR();
-    ctx.dispose();
-    return Array.from(hdr.filter((_, i) => i % 4 === 3));
-  }, backend, tf, iterations, N, HALF, CAMERA, DENSITY, W, H);
+  return page().page.evaluate(
+    async (backend, tf, iterations, n, half, camera, density, W, H) => {
+      const t = (window as any).t;
+      const ctx = await t.context({ backend, renderer: 'eam', width: W, height: H, params: { cutoff: 0 } });
+      ctx.setScene(t.scene({ volume: window.tv.block(n, half), camera, densityScale: density, transferFunction: tf }));
+      await ctx.renderIterations(iterations);
+      const hdr: Float32Array = await ctx.readHDR();
+      ctx.dispose();
+      return Array.from(hdr.filter((_, i) => i % 4 === 3));
+    },
+    backend,
+    tf,
+    iterations,
+    N,
+    HALF,
+    CAMERA,
+    DENSITY,
+    W,
+    H,
+  );
 }
 
 describe.each(BACKENDS)('EAM with a 2D transfer function on %s', (backend) => {
-  it('makes a homogeneous block\'s interior transparent and its boundary visible, as the CPU model predicts', async () => {
+  it("makes a homogeneous block's interior transparent and its boundary visible, as the CPU model predicts", async () => {
     const gpu = await renderAlpha(backend, TF2D, 32);
-    const opaque1d = await renderAlpha(backend, { dimensions: '1d', points: [{ value: 0.4, color: [1, 1, 1], opacity: 0 }, { value: 0.6, color: [1, 1, 1], opacity: 10 }] }, 4);
+    const opaque1d = await renderAlpha(
+      backend,
+      {
+        dimensions: '1d',
+        points: [
+          { value: 0.4, color: [1, 1, 1], opacity: 0 },
+          { value: 0.6, color: [1, 1, 1], opacity: 10 },
+        ],
+      },
+      4,
+    );
     const alphaAlong = cpuModel(block(), TF2D);
     const scene = { camera: CAMERA } as Scene;
     const inner: Vec3 = [-HALF + 2 / N, -HALF + 2 / N, -HALF + 2 / N];
-    let checked = 0, maxErr = 0, throughCore = 0, maxAlpha = 0, min1d = 1, minCoreAlpha = 1, maxCoreAlpha = 0;
+    let checked = 0,
+      maxErr = 0,
+      throughCore = 0,
+      maxAlpha = 0,
+      min1d = 1,
+      minCoreAlpha = 1,
+      maxCoreAlpha = 0;
     for (let y = 0; y < H; y++) {
       for (let x = 0; x < W; x++) {
         // The box-filtered pixel: CPU alpha over a 4 x 4 grid of rays; skip pixels where it varies a lot (silhouettes).
         const sub: number[] = [];
-        for (let j = 0; j < 4; j++) for (let i = 0; i < 4; i++) {
-          const r = reference.cameraRay(scene, W, H, (x + (i + 0.5) / 4) / W, (y + (j + 0.5) / 4) / H);
-          sub.push(alphaAlong(r.origin, r.dir));
-        }
+        for (let j = 0; j < 4; j++)
+          for (let i = 0; i < 4; i++) {
+            const r = reference.cameraRay(scene, W, H, (x + (i + 0.5) / 4) / W, (y + (j + 0.5) / 4) / H);
+            sub.push(alphaAlong(r.origin, r.dir));
+          }
         const want = sub.reduce((a, b) => a + b) / sub.length;
         maxAlpha = Math.max(maxAlpha, gpu[x + W * y]);
         if (Math.max(...sub) - Math.min(...sub) < 0.15) {
@@ -134,14 +188,22 @@ describe('EAM with a 2D transfer function: WebGL 2 / WebGPU parity', () => {
       const out: Float32Array[] = [];
       for (const backend of ['webgl2', 'webgpu']) {
         const ctx = await t.context({ backend, renderer: 'eam', width: 20, height: 16 });
-        ctx.setScene(t.scene({
-          volume, seed: 3, densityScale: 20, camera: { position: [0.7, -0.4, 1.5], target: [0, 0.05, 0], up: [0, 1, 0], fovy: 0.8 },
-          transferFunction: { dimensions: '2d', widgets: [
-            { type: 'gaussian', center: [0.5, 0.8], width: [0.2, 0.2], color: [1, 0.6, 0.2], opacity: 2 },
-            { type: 'box', min: [0.7, 0], max: [1, 0.4], ramp: [0.1, 0.1], color: [0.2, 0.5, 1], opacity: 1 },
-          ] },
-          environment: { type: 'constant', radiance: [0.3, 0.2, 0.1] },
-        }));
+        ctx.setScene(
+          t.scene({
+            volume,
+            seed: 3,
+            densityScale: 20,
+            camera: { position: [0.7, -0.4, 1.5], target: [0, 0.05, 0], up: [0, 1, 0], fovy: 0.8 },
+            transferFunction: {
+              dimensions: '2d',
+              widgets: [
+                { type: 'gaussian', center: [0.5, 0.8], width: [0.2, 0.2], color: [1, 0.6, 0.2], opacity: 2 },
+                { type: 'box', min: [0.7, 0], max: [1, 0.4], ramp: [0.1, 0.1], color: [0.2, 0.5, 1], opacity: 1 },
+              ],
+            },
+            environment: { type: 'constant', radiance: [0.3, 0.2, 0.1] },
+          }),
+        );
         await ctx.renderIterations(4);
         out.push(await ctx.readHDR());
         ctx.dispose();
@@ -161,9 +223,22 @@ describe('2D transfer functions in a RenderContext', () => {
       const { core } = (window as any).vpt;
       const t = (window as any).t;
       const volume = core.createProceduralVolume('sphere', 16);
-      const tf1 = { dimensions: '1d', points: [{ value: 0, color: [1, 1, 1], opacity: 0 }, { value: 1, color: [1, 0.5, 0], opacity: 2 }] };
-      const tf2 = { dimensions: '2d', widgets: [{ type: 'gaussian', center: [0.5, 1], width: [0.3, 0.3], color: [0, 0.5, 1], opacity: 8 }] };
-      const render = async (ctx: any, tf: object) => { ctx.updateScene({ transferFunction: tf }); await ctx.renderIterations(2); return ctx.readHDR(); };
+      const tf1 = {
+        dimensions: '1d',
+        points: [
+          { value: 0, color: [1, 1, 1], opacity: 0 },
+          { value: 1, color: [1, 0.5, 0], opacity: 2 },
+        ],
+      };
+      const tf2 = {
+        dimensions: '2d',
+        widgets: [{ type: 'gaussian', center: [0.5, 1], width: [0.3, 0.3], color: [0, 0.5, 1], opacity: 8 }],
+      };
+      const render = async (ctx: any, tf: object) => {
+        ctx.updateScene({ transferFunction: tf });
+        await ctx.renderIterations(2);
+        return ctx.readHDR();
+      };
       const fresh = async (tf: object) => {
         const ctx = await t.context({ backend: 'webgl2', renderer: 'eam', width: 12, height: 12 });
         ctx.setScene(t.scene({ volume, densityScale: 5 }));
@@ -173,22 +248,51 @@ describe('2D transfer functions in a RenderContext', () => {
       };
       const ctx = await t.context({ backend: 'webgl2', renderer: 'eam', width: 12, height: 12 });
       ctx.setScene(t.scene({ volume, densityScale: 5 }));
-      const a1 = await render(ctx, tf1), a2 = await render(ctx, tf2), a3 = await render(ctx, tf1);
+      const a1 = await render(ctx, tf1),
+        a2 = await render(ctx, tf2),
+        a3 = await render(ctx, tf1);
       let error = '';
-      try { ctx.updateScene({ transferFunction: { dimensions: '2d', widgets: [{ ...tf2.widgets[0], opacity: -1 }] } }); } catch (e) { error = `${(e as any).code}: ${(e as Error).message}`; }
+      try {
+        ctx.updateScene({ transferFunction: { dimensions: '2d', widgets: [{ ...tf2.widgets[0], opacity: -1 }] } });
+      } catch (e) {
+        error = `${(e as any).code}: ${(e as Error).message}`;
+      }
       const kept = ctx.getScene().transferFunction === tf1;
       ctx.dispose();
-      const f1 = await fresh(tf1), f2 = await fresh(tf2);
+      const f1 = await fresh(tf1),
+        f2 = await fresh(tf2);
       let pageError = '';
-      try { await (window as any).vpt.buildScene({ volume: { procedural: 'sphere', size: 4 }, transferFunction: { dimensions: '2d', widgets: [{ type: 'blob', color: [1, 1, 1], opacity: 1 }] } }); } catch (e) { pageError = (e as Error).message; }
-      const built = await (window as any).vpt.buildScene({ volume: { procedural: 'sphere', size: 4 }, transferFunction: tf2 });
-      return { d1: t.sameBits(a1, f1), d2: t.sameBits(a2, f2), d3: t.sameBits(a3, f1), differ: t.sameBits(f1, f2), error, kept, pageError, built: built.transferFunction };
+      try {
+        await (window as any).vpt.buildScene({
+          volume: { procedural: 'sphere', size: 4 },
+          transferFunction: { dimensions: '2d', widgets: [{ type: 'blob', color: [1, 1, 1], opacity: 1 }] },
+        });
+      } catch (e) {
+        pageError = (e as Error).message;
+      }
+      const built = await (window as any).vpt.buildScene({
+        volume: { procedural: 'sphere', size: 4 },
+        transferFunction: tf2,
+      });
+      return {
+        d1: t.sameBits(a1, f1),
+        d2: t.sameBits(a2, f2),
+        d3: t.sameBits(a3, f1),
+        differ: t.sameBits(f1, f2),
+        error,
+        kept,
+        pageError,
+        built: built.transferFunction,
+      };
     });
     expect(r.differ).toBeGreaterThan(50); // the two transfer functions give different images
     expect([r.d1, r.d2, r.d3]).toEqual([0, 0, 0]);
     expect(r.error).toMatch(/^invalid-scene: TransferFunction: widget 0: opacity must be non-negative, got -1/);
     expect(r.kept).toBe(true);
     expect(r.pageError).toMatch(/widget 0: unknown widget type "blob"/);
-    expect(r.built).toEqual({ dimensions: '2d', widgets: [{ type: 'gaussian', center: [0.5, 1], width: [0.3, 0.3], color: [0, 0.5, 1], opacity: 8 }] });
+    expect(r.built).toEqual({
+      dimensions: '2d',
+      widgets: [{ type: 'gaussian', center: [0.5, 1], width: [0.3, 0.3], color: [0, 0.5, 1], opacity: 8 }],
+    });
   });
 });

@@ -1,6 +1,13 @@
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { decodePNG, openVptPage, readSceneFile, type VptPageSession } from '../packages/headless/src/index.js';
-import { compareRgba, distinctGreys, HEAD_SIDECAR, openViewerPage, installViewerHelpers, type ViewerPage } from './helpers/viewer-page.js';
+import {
+  compareRgba,
+  distinctGreys,
+  HEAD_SIDECAR,
+  openViewerPage,
+  installViewerHelpers,
+  type ViewerPage,
+} from './helpers/viewer-page.js';
 
 // <vpt-viewer> from its one-file bundle in a plain page, against the headless renderer.
 let vp: ViewerPage;
@@ -27,47 +34,80 @@ const SIZE = 32;
 const SAMPLES = 8;
 
 describe('<vpt-viewer> renders what the headless renderer renders', () => {
-  it.each(['webgl2', 'webgpu'] as const)('the bundled head with EAM on %s: same LDR image as vpt-render of the same scene, and a non-empty canvas on screen', async (backend) => {
-    const { description, baseDir } = readSceneFile('apps/gallery/scenes/head-eam.json');
-    const desc = { ...description, width: SIZE, height: SIZE, iterations: SAMPLES, backend };
-    const ref = await headless.render(desc, { baseDir });
+  it.each(['webgl2', 'webgpu'] as const)(
+    'the bundled head with EAM on %s: same LDR image as vpt-render of the same scene, and a non-empty canvas on screen',
+    async (backend) => {
+      const { description, baseDir } = readSceneFile('apps/gallery/scenes/head-eam.json');
+      const desc = { ...description, width: SIZE, height: SIZE, iterations: SAMPLES, backend };
+      const ref = await headless.render(desc, { baseDir });
 
-    const attrs = {
-      src: HEAD_SIDECAR, renderer: 'eam', backend, panels: 'none',
-      'transfer-function': JSON.stringify(desc.transferFunction), camera: JSON.stringify(desc.camera),
-      environment: JSON.stringify(desc.environment), 'density-scale': String(desc.densityScale), seed: String(desc.seed),
-      exposure: String(sceneExposure(desc)), 'tone-mapper': 'aces', 'max-samples': String(SAMPLES),
-      // The screenshot below compares the canvas alone: no progress bar or stats line over it.
-      'hide-progress': '', 'hide-stats': '',
-    };
-    const got = await vp.page.evaluate(async (attrs, size) => {
-      const vt = (window as any).vt;
-      const el = vt.create(attrs, `width:${size}px;height:${size}px;position:absolute;left:0;top:0`);
-      el.id = 'match';
-      await vt.converged(el);
-      const r = { kind: el.context.backend.kind, size: el.context.size, samples: el.samples, ldr: await vt.ldr(el), events: el.__events.map((e: any) => e.type) };
-      return r;
-    }, attrs, SIZE);
-    expect(got.kind).toBe(backend);
-    expect(got.size).toEqual({ width: SIZE, height: SIZE });
-    expect(got.samples).toBe(SAMPLES);
-    expect(got.events).toContain('load');
-    expect(got.events).not.toContain('error');
-    const cmp = compareRgba(got.ldr, ref.ldr!);
-    // Same seed, same kernels, same backend: SwiftShader gives the same bits; allow one LSB.
-    expect(cmp.maxDiff).toBeLessThanOrEqual(1);
-    expect(distinctGreys(ref.ldr!)).toBeGreaterThan(50);
+      const attrs = {
+        src: HEAD_SIDECAR,
+        renderer: 'eam',
+        backend,
+        panels: 'none',
+        'transfer-function': JSON.stringify(desc.transferFunction),
+        camera: JSON.stringify(desc.camera),
+        environment: JSON.stringify(desc.environment),
+        'density-scale': String(desc.densityScale),
+        seed: String(desc.seed),
+        exposure: String(sceneExposure(desc)),
+        'tone-mapper': 'aces',
+        'max-samples': String(SAMPLES),
+        // The screenshot below compares the canvas alone: no progress bar or stats line over it.
+        'hide-progress': '',
+        'hide-stats': '',
+      };
+      const got = await vp.page.evaluate(
+        async (attrs, size) => {
+          const vt = (window as any).vt;
+          const el = vt.create(attrs, `width:${size}px;height:${size}px;position:absolute;left:0;top:0`);
+          el.id = 'match';
+          await vt.converged(el);
+          const r = {
+            kind: el.context.backend.kind,
+            size: el.context.size,
+            samples: el.samples,
+            ldr: await vt.ldr(el),
+            events: el.__events.map((e: any) => e.type),
+          };
+          return r;
+        },
+        attrs,
+        SIZE,
+      );
+      expect(got.kind).toBe(backend);
+      expect(got.size).toEqual({ width: SIZE, height: SIZE });
+      expect(got.samples).toBe(SAMPLES);
+      expect(got.events).toContain('load');
+      expect(got.events).not.toContain('error');
+      const cmp = compareRgba(got.ldr, ref.ldr!);
+      // Same seed, same kernels, same backend: SwiftShader gives the same bits; allow one LSB.
+      expect(cmp.maxDiff).toBeLessThanOrEqual(1);
+      expect(distinctGreys(ref.ldr!)).toBeGreaterThan(50);
 
-    // What is on screen: the element's canvas shows the same image (compositing may round).
-    const shot = decodePNG(await vp.page.screenshot({ clip: { x: 0, y: 0, width: SIZE, height: SIZE } }) as Uint8Array);
-    expect(distinctGreys(shot.rgba)).toBeGreaterThan(50);
-    expect(compareRgba(shot.rgba, ref.ldr!).meanDiff).toBeLessThan(3);
-    await vp.page.evaluate(() => document.getElementById('match')!.remove());
-  });
+      // What is on screen: the element's canvas shows the same image (compositing may round).
+      const shot = decodePNG(
+        (await vp.page.screenshot({ clip: { x: 0, y: 0, width: SIZE, height: SIZE } })) as Uint8Array,
+      );
+      expect(distinctGreys(shot.rgba)).toBeGreaterThan(50);
+      expect(compareRgba(shot.rgba, ref.ldr!).meanDiff).toBeLessThan(3);
+      await vp.page.evaluate(() => document.getElementById('match')!.remove());
+    },
+  );
 });
 
 describe('<vpt-viewer> attributes', () => {
-  const BLOB = { src: 'procedural:blob?size=24', renderer: 'eam', backend: 'webgl2', panels: 'none', 'max-samples': '4', 'density-scale': '20', 'transfer-function': 'ramp', environment: '{"type":"constant","radiance":[0.1,0.1,0.1]}' };
+  const BLOB = {
+    src: 'procedural:blob?size=24',
+    renderer: 'eam',
+    backend: 'webgl2',
+    panels: 'none',
+    'max-samples': '4',
+    'density-scale': '20',
+    'transfer-function': 'ramp',
+    environment: '{"type":"constant","radiance":[0.1,0.1,0.1]}',
+  };
 
   it('changing renderer, transfer-function and camera changes the image and restarts the sample count; setting current values does not', async () => {
     const r = await vp.page.evaluate(async (attrs) => {
@@ -78,7 +118,8 @@ describe('<vpt-viewer> attributes', () => {
 
       // Setting every attribute to the value it already has: no reset, no new convergence.
       el.__events.length = 0;
-      for (const name of ['renderer', 'transfer-function', 'camera', 'max-samples', 'density-scale', 'backend']) el.setAttribute(name, el.getAttribute(name));
+      for (const name of ['renderer', 'transfer-function', 'camera', 'max-samples', 'density-scale', 'backend'])
+        el.setAttribute(name, el.getAttribute(name));
       el.camera = JSON.parse(el.getAttribute('camera'));
       await el.whenSettled();
       await vt.frames(10);
@@ -99,9 +140,18 @@ describe('<vpt-viewer> attributes', () => {
         await converged;
         const after = await vt.ldr(el);
         let differing = 0;
-        for (let i = 0; i < after.length; i += 4) if (after[i] !== before[i] || after[i + 1] !== before[i + 1] || after[i + 2] !== before[i + 2]) differing++;
-        const samples = el.__events.filter((e: any) => e.type === 'progress' && e.phase === 'refining').map((e: any) => e.samples);
-        (out.changes as unknown[]).push({ name, differing, firstSamples: samples[0], lastSamples: samples[samples.length - 1], reflected: el.getAttribute(name) });
+        for (let i = 0; i < after.length; i += 4)
+          if (after[i] !== before[i] || after[i + 1] !== before[i + 1] || after[i + 2] !== before[i + 2]) differing++;
+        const samples = el.__events
+          .filter((e: any) => e.type === 'progress' && e.phase === 'refining')
+          .map((e: any) => e.samples);
+        (out.changes as unknown[]).push({
+          name,
+          differing,
+          firstSamples: samples[0],
+          lastSamples: samples[samples.length - 1],
+          reflected: el.getAttribute(name),
+        });
         before = after;
       }
       out.tfProperty = el.transferFunction.points.length;
@@ -111,7 +161,13 @@ describe('<vpt-viewer> attributes', () => {
     const same = r.same as { samples: number; events: string[] };
     expect(same.samples).toBe(4);
     expect(same.events).toEqual([]);
-    for (const c of r.changes as { name: string; differing: number; firstSamples: number; lastSamples: number; reflected: string }[]) {
+    for (const c of r.changes as {
+      name: string;
+      differing: number;
+      firstSamples: number;
+      lastSamples: number;
+      reflected: string;
+    }[]) {
       expect(c.differing, c.name).toBeGreaterThan(24 * 24 * 0.1);
       expect(c.firstSamples, c.name).toBeLessThan(4); // accumulation started over
       expect(c.lastSamples, c.name).toBe(4);
@@ -129,16 +185,31 @@ describe('<vpt-viewer> attributes', () => {
       el.exposure = 1.5;
       el.lights = [{ type: 'directional', direction: [1, 1, 1], irradiance: [2, 2, 2] }];
       await el.updateComplete;
-      const reflected = { camera: JSON.parse(el.getAttribute('camera')), exposure: el.getAttribute('exposure'), lights: JSON.parse(el.getAttribute('lights')) };
+      const reflected = {
+        camera: JSON.parse(el.getAttribute('camera')),
+        exposure: el.getAttribute('exposure'),
+        lights: JSON.parse(el.getAttribute('lights')),
+      };
       const errors: unknown[] = [];
-      el.addEventListener('vpt-error', (e: CustomEvent) => errors.push({ code: e.detail.code, message: e.detail.message, source: e.detail.source, isVptError: e.detail.error.name }));
+      el.addEventListener('vpt-error', (e: CustomEvent) =>
+        errors.push({
+          code: e.detail.code,
+          message: e.detail.message,
+          source: e.detail.source,
+          isVptError: e.detail.error.name,
+        }),
+      );
       el.setAttribute('transfer-function', '{"dimensions":"1d","points":[{"value":2}]');
       await el.updateComplete;
       el.setAttribute('transfer-function', 'no-such-preset');
       await el.updateComplete;
       el.setAttribute('max-samples', '-3');
       await el.updateComplete;
-      const kept = { tf: el.transferFunction.points.length, maxSamples: el.maxSamples, banner: vt.shadowText(el, '[part=error] p') };
+      const kept = {
+        tf: el.transferFunction.points.length,
+        maxSamples: el.maxSamples,
+        banner: vt.shadowText(el, '[part=error] p'),
+      };
       el.remove();
       return { reflected, errors, kept };
     }, BLOB);
@@ -165,8 +236,14 @@ describe('<vpt-viewer> attributes', () => {
       const el = vt.create({ ...attrs, seed: '7', exposure: '0.5', 'resolution-scale': '1' });
       await el.whenSettled();
       const errors: { code: string; source: string; message: string }[] = [];
-      el.addEventListener('vpt-error', (e: CustomEvent) => errors.push({ code: e.detail.code, source: e.detail.source, message: e.detail.message }));
-      for (const [name, value] of [['seed', '4294967296'], ['exposure', '100'], ['resolution-scale', '5']]) {
+      el.addEventListener('vpt-error', (e: CustomEvent) =>
+        errors.push({ code: e.detail.code, source: e.detail.source, message: e.detail.message }),
+      );
+      for (const [name, value] of [
+        ['seed', '4294967296'],
+        ['exposure', '100'],
+        ['resolution-scale', '5'],
+      ]) {
         el.setAttribute(name, value);
         await el.updateComplete;
       }
@@ -174,7 +251,11 @@ describe('<vpt-viewer> attributes', () => {
       el.remove();
       return { errors, kept };
     }, BLOB);
-    expect(r.errors.map((e) => [e.code, e.source])).toEqual([['invalid-scene', 'attribute'], ['invalid-scene', 'attribute'], ['invalid-scene', 'attribute']]);
+    expect(r.errors.map((e) => [e.code, e.source])).toEqual([
+      ['invalid-scene', 'attribute'],
+      ['invalid-scene', 'attribute'],
+      ['invalid-scene', 'attribute'],
+    ]);
     expect(r.errors[0].message).toMatch(/seed: must be an integer in \[0, 4294967295\]/);
     expect(r.errors[1].message).toMatch(/exposure: must be a number in \[-64, 64\]/);
     expect(r.errors[2].message).toMatch(/resolution-scale: must be a number in \[0.05, 4\]/);
@@ -184,19 +265,26 @@ describe('<vpt-viewer> attributes', () => {
 
 describe('<vpt-viewer> size', () => {
   it('renders at the element size times the device pixel ratio and follows container resizes', async () => {
-    const sizes = async (page: typeof vp.page) => page.evaluate(async () => {
-      const vt = (window as any).vt;
-      const el = vt.create({ src: 'procedural:blob?size=8', renderer: 'mip', backend: 'webgl2', panels: 'none', 'max-samples': '1' }, 'width:20px;height:12px');
-      await vt.converged(el);
-      const read = async () => { await vt.frames(3); return [el.context.size.width, el.context.size.height, el.shadowRoot.querySelector('canvas').width]; };
-      const first = await read();
-      el.style.width = '30px';
-      const resized = await read();
-      el.setAttribute('resolution-scale', '0.5');
-      const scaled = await read();
-      el.remove();
-      return { first, resized, scaled };
-    });
+    const sizes = async (page: typeof vp.page) =>
+      page.evaluate(async () => {
+        const vt = (window as any).vt;
+        const el = vt.create(
+          { src: 'procedural:blob?size=8', renderer: 'mip', backend: 'webgl2', panels: 'none', 'max-samples': '1' },
+          'width:20px;height:12px',
+        );
+        await vt.converged(el);
+        const read = async () => {
+          await vt.frames(3);
+          return [el.context.size.width, el.context.size.height, el.shadowRoot.querySelector('canvas').width];
+        };
+        const first = await read();
+        el.style.width = '30px';
+        const resized = await read();
+        el.setAttribute('resolution-scale', '0.5');
+        const scaled = await read();
+        el.remove();
+        return { first, resized, scaled };
+      });
     expect(await sizes(vp.page)).toEqual({ first: [20, 12, 20], resized: [30, 12, 30], scaled: [15, 6, 15] });
     // A second page on a screen with two device pixels per CSS pixel.
     const hi = await vp.browser.newPage();
@@ -215,10 +303,23 @@ describe('<vpt-viewer> stopping rules', () => {
   it('with a renderer that estimates its error, progress reports it and refinement stops at target-error', async () => {
     const r = await vp.page.evaluate(async () => {
       const vt = (window as any).vt;
-      const el = vt.create({ src: 'procedural:blob?size=16', renderer: 'mcrt', backend: 'webgl2', panels: 'none', 'max-samples': '4096', 'target-error': '0.2', 'density-scale': '20' }, 'width:16px;height:16px');
+      const el = vt.create(
+        {
+          src: 'procedural:blob?size=16',
+          renderer: 'mcrt',
+          backend: 'webgl2',
+          panels: 'none',
+          'max-samples': '4096',
+          'target-error': '0.2',
+          'density-scale': '20',
+        },
+        'width:16px;height:16px',
+      );
       const done = await vt.next(el, 'converged', 180000);
       await vt.frames(10);
-      const errors = el.__events.filter((e: any) => e.type === 'progress' && e.phase === 'refining').map((e: any) => e.samples);
+      const errors = el.__events
+        .filter((e: any) => e.type === 'progress' && e.phase === 'refining')
+        .map((e: any) => e.samples);
       const estimate = await el.context.estimateError();
       const out = { done, samplesLater: el.samples, progressCount: errors.length, estimate };
       el.remove();
@@ -238,8 +339,18 @@ describe('<vpt-viewer> interaction', () => {
     await vp.page.evaluate(async () => {
       const vt = (window as any).vt;
       // A ramp (value = x), not a blob: a round blob looks the same from every side.
-      const el = vt.create({ src: 'procedural:ramp?size=16', renderer: 'eam', backend: 'webgl2', panels: 'none', 'max-samples': '4', 'density-scale': '4', environment: '{"type":"constant","radiance":[0,0,0]}' },
-        'width:48px;height:48px;position:absolute;left:100px;top:100px');
+      const el = vt.create(
+        {
+          src: 'procedural:ramp?size=16',
+          renderer: 'eam',
+          backend: 'webgl2',
+          panels: 'none',
+          'max-samples': '4',
+          'density-scale': '4',
+          environment: '{"type":"constant","radiance":[0,0,0]}',
+        },
+        'width:48px;height:48px;position:absolute;left:100px;top:100px',
+      );
       el.id = 'drag';
       await vt.converged(el);
       (window as any).dragBefore = { camera: el.getAttribute('camera'), ldr: await vt.ldr(el) };
@@ -260,8 +371,12 @@ describe('<vpt-viewer> interaction', () => {
       let differing = 0;
       for (let i = 0; i < after.length; i += 4) if (after[i] !== before.ldr[i]) differing++;
       const out = {
-        cameraBefore: JSON.parse(before.camera), cameraAfter: JSON.parse(el.getAttribute('camera')), property: el.camera,
-        differing, size: el.context.size, changeEvents: el.__events.filter((e: any) => e.type === 'change').map((e: any) => e.property),
+        cameraBefore: JSON.parse(before.camera),
+        cameraAfter: JSON.parse(el.getAttribute('camera')),
+        property: el.camera,
+        differing,
+        size: el.context.size,
+        changeEvents: el.__events.filter((e: any) => e.type === 'change').map((e: any) => e.property),
       };
       el.remove();
       return out;
@@ -279,8 +394,16 @@ describe('<vpt-viewer> interaction', () => {
 });
 
 describe('<vpt-viewer> keyboard', () => {
-  it('arrows orbit and +/- zoom the focused canvas; the transfer-function editor\'s points move and delete from the keyboard', async () => {
-    const attrs = { src: 'procedural:ramp?size=16', renderer: 'eam', backend: 'webgl2', panels: 'tf', 'max-samples': '2', 'resolution-scale': '0.2', 'transfer-function': 'tissue' };
+  it("arrows orbit and +/- zoom the focused canvas; the transfer-function editor's points move and delete from the keyboard", async () => {
+    const attrs = {
+      src: 'procedural:ramp?size=16',
+      renderer: 'eam',
+      backend: 'webgl2',
+      panels: 'tf',
+      'max-samples': '2',
+      'resolution-scale': '0.2',
+      'transfer-function': 'tissue',
+    };
     await vp.page.evaluate(async (attrs) => {
       const vt = (window as any).vt;
       const el = vt.create(attrs, 'width:380px;height:300px;position:absolute;left:0;top:0');
@@ -298,18 +421,27 @@ describe('<vpt-viewer> keyboard', () => {
     expect(orbit.position).not.toEqual(before.position);
     expect(dist(orbit)).toBeCloseTo(dist(before), 4); // an orbit, not a zoom
     // Five degrees about the up axis (y): the angle between the two positions.
-    const cos = orbit.position.reduce((a: number, x: number, i: number) => a + x * before.position[i], 0) / (dist(orbit) * dist(before));
+    const cos =
+      orbit.position.reduce((a: number, x: number, i: number) => a + x * before.position[i], 0) /
+      (dist(orbit) * dist(before));
     const horizontal = Math.hypot(before.position[0], before.position[2]) / dist(before);
-    expect(Math.acos(Math.min(1, cos))).toBeCloseTo((5 * Math.PI / 180) * horizontal, 2);
+    expect(Math.acos(Math.min(1, cos))).toBeCloseTo(((5 * Math.PI) / 180) * horizontal, 2);
     expect(dist(zoom)).toBeCloseTo(dist(orbit) / 1.1, 4);
 
     // 380 px is too narrow for a sidebar: the panels are a closed overlay; the button opens it.
     const overlay = await vp.page.evaluate(async () => {
       const el = document.getElementById('keys') as any;
-      const before = { aside: !!el.shadowRoot.querySelector('aside'), button: el.shadowRoot.querySelector('[part=panels-toggle]').textContent.trim() };
+      const before = {
+        aside: !!el.shadowRoot.querySelector('aside'),
+        button: el.shadowRoot.querySelector('[part=panels-toggle]').textContent.trim(),
+      };
       el.shadowRoot.querySelector('[part=panels-toggle]').click();
       await el.updateComplete;
-      return { before, aside: !!el.shadowRoot.querySelector('aside'), button: el.shadowRoot.querySelector('[part=panels-toggle]').textContent.trim() };
+      return {
+        before,
+        aside: !!el.shadowRoot.querySelector('aside'),
+        button: el.shadowRoot.querySelector('[part=panels-toggle]').textContent.trim(),
+      };
     });
     expect(overlay).toEqual({ before: { aside: false, button: 'Settings' }, aside: true, button: 'Close' });
     // The third control point of the "tissue" preset: value 0.3, opacity 0.02.
@@ -322,12 +454,19 @@ describe('<vpt-viewer> keyboard', () => {
     await vp.page.keyboard.press('ArrowRight');
     const moved = await vp.page.evaluate(() => {
       const el = document.getElementById('keys') as any;
-      return { point: el.transferFunction.points[2], attribute: JSON.parse(el.getAttribute('transfer-function')).points[2], events: el.__events.filter((e: any) => e.type === 'change').map((e: any) => e.property) };
+      return {
+        point: el.transferFunction.points[2],
+        attribute: JSON.parse(el.getAttribute('transfer-function')).points[2],
+        events: el.__events.filter((e: any) => e.type === 'change').map((e: any) => e.property),
+      };
     });
     await vp.page.keyboard.press('Delete');
     const after = await vp.page.evaluate(() => {
       const el = document.getElementById('keys') as any;
-      const r = { count: el.transferFunction.points.length, focused: el.shadowRoot.querySelector('vpt-tf-editor').shadowRoot.activeElement?.getAttribute('aria-label') };
+      const r = {
+        count: el.transferFunction.points.length,
+        focused: el.shadowRoot.querySelector('vpt-tf-editor').shadowRoot.activeElement?.getAttribute('aria-label'),
+      };
       el.remove();
       return r;
     });
@@ -345,7 +484,13 @@ describe('<vpt-viewer> failures', () => {
   it('a bad src fires a clear load error and shows it; a good src afterwards loads and renders', async () => {
     const r = await vp.page.evaluate(async () => {
       const vt = (window as any).vt;
-      const el = vt.create({ src: '/data/no-such-volume.json', renderer: 'mip', backend: 'webgl2', panels: 'none', 'max-samples': '2' });
+      const el = vt.create({
+        src: '/data/no-such-volume.json',
+        renderer: 'mip',
+        backend: 'webgl2',
+        panels: 'none',
+        'max-samples': '2',
+      });
       const err = await vt.next(el, 'error');
       await el.updateComplete;
       const banner = vt.shadowText(el, '[part=error] p');
@@ -357,8 +502,19 @@ describe('<vpt-viewer> failures', () => {
       const ldr = await vt.ldr(el);
       let lit = 0;
       for (let i = 0; i < ldr.length; i += 4) if (ldr[i] > 0) lit++;
-      const centre = ldr[(12 * 24 + 12) * 4], corner = ldr[0];
-      const out = { code: err.code, source: err.source, message: err.message, banner, bannerAfter: vt.shadowText(el, '[part=error] p'), lit, centre, corner, samples: el.samples };
+      const centre = ldr[(12 * 24 + 12) * 4],
+        corner = ldr[0];
+      const out = {
+        code: err.code,
+        source: err.source,
+        message: err.message,
+        banner,
+        bannerAfter: vt.shadowText(el, '[part=error] p'),
+        lit,
+        centre,
+        corner,
+        samples: el.samples,
+      };
       el.remove();
       return out;
     });
@@ -378,8 +534,19 @@ describe('<vpt-viewer> failures', () => {
     const r = await vp.page.evaluate(async () => {
       const vt = (window as any).vt;
       const viewer = (window as any).ref.viewer;
-      viewer.registerRenderer({ name: 'broken', label: 'Broken', packageName: '@example/renderer-broken', load: () => Promise.reject(new Error('network down')) });
-      const el = vt.create({ src: 'procedural:blob?size=16', renderer: 'eam', backend: 'webgl2', panels: 'none', 'max-samples': '2' });
+      viewer.registerRenderer({
+        name: 'broken',
+        label: 'Broken',
+        packageName: '@example/renderer-broken',
+        load: () => Promise.reject(new Error('network down')),
+      });
+      const el = vt.create({
+        src: 'procedural:blob?size=16',
+        renderer: 'eam',
+        backend: 'webgl2',
+        panels: 'none',
+        'max-samples': '2',
+      });
       await vt.converged(el);
       const err = vt.next(el, 'error');
       el.renderer = 'broken';
@@ -396,7 +563,9 @@ describe('<vpt-viewer> failures', () => {
     });
     expect(r.code).toBe('load-failed');
     expect(r.source).toBe('renderer');
-    expect(r.message).toMatch(/"broken" renderer is not available: @example\/renderer-broken could not be loaded \(network down\)/);
+    expect(r.message).toMatch(
+      /"broken" renderer is not available: @example\/renderer-broken could not be loaded \(network down\)/,
+    );
     expect(r.stillEam).toBe('eam');
     expect(r.now).toBe('mip');
   });
@@ -404,7 +573,13 @@ describe('<vpt-viewer> failures', () => {
   it('a lost GPU context shows a message, recovers, and refines again', async () => {
     const r = await vp.page.evaluate(async () => {
       const vt = (window as any).vt;
-      const el = vt.create({ src: 'procedural:blob?size=16', renderer: 'eam', backend: 'webgl2', panels: 'none', 'max-samples': '3' });
+      const el = vt.create({
+        src: 'procedural:blob?size=16',
+        renderer: 'eam',
+        backend: 'webgl2',
+        panels: 'none',
+        'max-samples': '3',
+      });
       await vt.converged(el);
       const restored = el.context.backend.simulateLoss(300);
       await vt.frames(2);
@@ -427,7 +602,10 @@ describe('<vpt-viewer> export', () => {
   it('screenshot is a PNG of the displayed image; HDR export writes PFM and OpenEXR', async () => {
     const r = await vp.page.evaluate(async () => {
       const vt = (window as any).vt;
-      const el = vt.create({ src: 'procedural:blob?size=16', renderer: 'eam', backend: 'webgl2', panels: 'none', 'max-samples': '2' }, 'width:20px;height:12px');
+      const el = vt.create(
+        { src: 'procedural:blob?size=16', renderer: 'eam', backend: 'webgl2', panels: 'none', 'max-samples': '2' },
+        'width:20px;height:12px',
+      );
       await vt.converged(el);
       const png = new Uint8Array(await (await el.screenshot()).arrayBuffer());
       const pfm = await el.exportHDR('pfm');
@@ -439,10 +617,14 @@ describe('<vpt-viewer> export', () => {
       const first = new DataView(pfm.buffer, pfm.byteOffset + headerLen, 12);
       const bottomLeft = (12 - 1) * 20 * 4;
       const out = {
-        png: Array.from(png.slice(0, 8)), pngBytes: png.length,
-        pfmHeader, pfmBytes: pfm.length, pfmFirst: [first.getFloat32(0, true), first.getFloat32(4, true), first.getFloat32(8, true)],
+        png: Array.from(png.slice(0, 8)),
+        pngBytes: png.length,
+        pfmHeader,
+        pfmBytes: pfm.length,
+        pfmFirst: [first.getFloat32(0, true), first.getFloat32(4, true), first.getFloat32(8, true)],
         hdrBottomLeft: [hdr[bottomLeft], hdr[bottomLeft + 1], hdr[bottomLeft + 2]],
-        exrMagic: new DataView(exr.buffer, exr.byteOffset, 4).getUint32(0, true), exrBytes: exr.length,
+        exrMagic: new DataView(exr.buffer, exr.byteOffset, 4).getUint32(0, true),
+        exrBytes: exr.length,
       };
       el.remove();
       return out;
@@ -461,13 +643,27 @@ describe('<vpt-viewer> small and narrow', () => {
   it('a 400x300 element shows only its image at rest (panels an overlay behind a button), with a progress bar and a stats line that attributes hide; Escape closes the overlay', async () => {
     const r = await vp.page.evaluate(async () => {
       const vt = (window as any).vt;
-      const el = vt.create({ src: 'procedural:blob?size=16', renderer: 'eam', backend: 'webgl2', 'max-samples': '100000', 'resolution-scale': '0.1' }, 'width:400px;height:300px;position:absolute;left:0;top:0');
+      const el = vt.create(
+        {
+          src: 'procedural:blob?size=16',
+          renderer: 'eam',
+          backend: 'webgl2',
+          'max-samples': '100000',
+          'resolution-scale': '0.1',
+        },
+        'width:400px;height:300px;position:absolute;left:0;top:0',
+      );
       await vt.next(el, 'progress');
       while (!el.stats) await vt.frames(1);
       await el.updateComplete;
       const q = (sel: string) => el.shadowRoot.querySelector(sel);
       const view = q('.view').getBoundingClientRect();
-      const atRest = { aside: !!q('aside'), view: [view.width, view.height], bar: !!q('[part=progress]'), stats: q('[part=stats]')?.textContent ?? '' };
+      const atRest = {
+        aside: !!q('aside'),
+        view: [view.width, view.height],
+        bar: !!q('[part=progress]'),
+        stats: q('[part=stats]')?.textContent ?? '',
+      };
       const barValue = Number(q('[part=progress]')?.getAttribute('aria-valuenow'));
       q('[part=panels-toggle]').click();
       await el.updateComplete;
@@ -509,16 +705,34 @@ describe('<vpt-viewer> renderer changes while a renderer package loads', () => {
       const viewer = (window as any).ref.viewer;
       // "slow" is EAM behind a load that resolves only when the test says so.
       let release!: () => void;
-      const gate = new Promise<void>((res) => { release = res; });
+      const gate = new Promise<void>((res) => {
+        release = res;
+      });
       const eam = viewer.rendererEntry('eam');
-      viewer.registerRenderer({ ...eam, name: 'slow', label: 'Slow', load: async () => { await gate; return eam.load(); } });
-      const el = vt.create({ src: 'procedural:blob?size=16', renderer: 'slow', backend: 'webgl2', panels: 'none', 'max-samples': '3' });
+      viewer.registerRenderer({
+        ...eam,
+        name: 'slow',
+        label: 'Slow',
+        load: async () => {
+          await gate;
+          return eam.load();
+        },
+      });
+      const el = vt.create({
+        src: 'procedural:blob?size=16',
+        renderer: 'slow',
+        backend: 'webgl2',
+        panels: 'none',
+        'max-samples': '3',
+      });
       await vt.frames(3);
       el.renderer = 'mip'; // while the context still waits for "slow"
       await vt.frames(2);
       release();
       const seen: string[] = [];
-      const record = () => { if (el.context && el.samples > 0) seen.push(el.context.renderer.name); };
+      const record = () => {
+        if (el.context && el.samples > 0) seen.push(el.context.renderer.name);
+      };
       el.addEventListener('vpt-progress', record);
       await vt.converged(el);
       record();

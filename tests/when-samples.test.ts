@@ -13,12 +13,26 @@ describe.each(BACKENDS)('waiting for samples on %s', (backend) => {
       const canvas = document.createElement('canvas');
       document.body.appendChild(canvas);
       const renderer = new (window as any).vpt.eam.EamRenderer();
-      const post = (window as any).vpt.post.postChainFromJSON([{ type: 'tonemap', operator: 'aces' }, { type: 'srgb' }]);
+      const post = (window as any).vpt.post.postChainFromJSON([
+        { type: 'tonemap', operator: 'aces' },
+        { type: 'srgb' },
+      ]);
       const ctx = await core.RenderContext.create({ backend, canvas, width: 12, height: 12, renderer, post });
       const errors: string[] = [];
-      const code = async (p: () => Promise<unknown>) => { try { await p(); return 'resolved'; } catch (e) { return (e as any).code; } };
+      const code = async (p: () => Promise<unknown>) => {
+        try {
+          await p();
+          return 'resolved';
+        } catch (e) {
+          return (e as any).code;
+        }
+      };
       errors.push(await code(() => ctx.whenSamples(1))); // no scene yet
-      const scene = t.scene({ volume: core.createProceduralVolume('blob', 12), densityScale: 8, environment: { type: 'constant', radiance: [0.2, 0.2, 0.2] } });
+      const scene = t.scene({
+        volume: core.createProceduralVolume('blob', 12),
+        densityScale: 8,
+        environment: { type: 'constant', radiance: [0.2, 0.2, 0.2] },
+      });
       ctx.setScene(scene);
       // Not started: whenSamples runs the iterations itself.
       const direct = (await ctx.whenSamples(5)).iterations;
@@ -29,8 +43,12 @@ describe.each(BACKENDS)('waiting for samples on %s', (backend) => {
       ctx.updateScene({ camera: { ...scene.camera, position: [1.2, 0.4, 1.4] } });
       const afterChange = ctx.stats.iterations;
       const hdr: Float32Array = await ctx.readHDR();
-      let finite = true, nonZero = 0;
-      for (const v of hdr) { if (!Number.isFinite(v)) finite = false; if (v !== 0) nonZero++; }
+      let finite = true,
+        nonZero = 0;
+      for (const v of hdr) {
+        if (!Number.isFinite(v)) finite = false;
+        if (v !== 0) nonZero++;
+      }
       ctx.stop();
       ctx.start({ maxIterations: 3 });
       errors.push(await code(() => ctx.whenSamples(10))); // the loop stops short of 10

@@ -52,7 +52,11 @@ if (fs.existsSync(path.join(viewerDist, 'loader-worker.js'))) {
 
 const REAL_FORMATS = [/\.nrrd$/i, /\.nhdr$/i, /\.nii(\.gz)?$/i];
 const readJson = (f) => {
-  try { return JSON.parse(fs.readFileSync(f, 'utf8')); } catch { return null; }
+  try {
+    return JSON.parse(fs.readFileSync(f, 'utf8'));
+  } catch {
+    return null;
+  }
 };
 const registry = readJson(path.join(dataDir, 'datasets.json'))?.datasets ?? [];
 const registryEntry = (name) => registry.find((d) => d.name === name || d.original?.file === name);
@@ -71,19 +75,39 @@ function scan(folder, urlPrefix, bundled) {
       const id = f.replace(/\.json$/, '');
       const reg = registryEntry(id);
       out.push({
-        id, url: `${urlPrefix}${f}`, format: 'raw', bundled,
-        title: meta.title ?? id, modality: meta.modality ?? '', dims: meta.dims, type: meta.voxel_type, spacing: meta.spacing ?? [1, 1, 1], valueRange: meta.value_range ?? null,
-        bytes: fs.statSync(path.join(folder, raw)).size, license: meta.license ?? reg?.license ?? '', gpl: reg?.gpl ?? false,
+        id,
+        url: `${urlPrefix}${f}`,
+        format: 'raw',
+        bundled,
+        title: meta.title ?? id,
+        modality: meta.modality ?? '',
+        dims: meta.dims,
+        type: meta.voxel_type,
+        spacing: meta.spacing ?? [1, 1, 1],
+        valueRange: meta.value_range ?? null,
+        bytes: fs.statSync(path.join(folder, raw)).size,
+        license: meta.license ?? reg?.license ?? '',
+        gpl: reg?.gpl ?? false,
       });
     } else if (REAL_FORMATS.some((re) => re.test(f))) {
       const reg = registryEntry(f);
       const twin = reg ? readJson(path.join(folder, `${reg.name}.json`)) : null;
       const format = /\.nii/i.test(f) ? 'nifti' : 'nrrd';
       out.push({
-        id: f.replace(/\.(nii\.gz|nii|nrrd|nhdr)$/i, '') + `-${format}`, url: `${urlPrefix}${f}`, format, bundled,
-        title: `${twin?.title ?? f} — original ${format.toUpperCase()} file`, modality: twin?.modality ?? '', dims: twin?.dims ?? null,
-        type: twin?.voxel_type ?? null, spacing: twin?.spacing ?? null, valueRange: twin?.value_range ?? null, bytes: fs.statSync(file).size,
-        license: twin?.license ?? reg?.license ?? '', gpl: reg?.gpl ?? false, sameAs: reg?.name ?? null,
+        id: f.replace(/\.(nii\.gz|nii|nrrd|nhdr)$/i, '') + `-${format}`,
+        url: `${urlPrefix}${f}`,
+        format,
+        bundled,
+        title: `${twin?.title ?? f} — original ${format.toUpperCase()} file`,
+        modality: twin?.modality ?? '',
+        dims: twin?.dims ?? null,
+        type: twin?.voxel_type ?? null,
+        spacing: twin?.spacing ?? null,
+        valueRange: twin?.value_range ?? null,
+        bytes: fs.statSync(file).size,
+        license: twin?.license ?? reg?.license ?? '',
+        gpl: reg?.gpl ?? false,
+        sameAs: reg?.name ?? null,
       });
     }
   }
@@ -92,15 +116,19 @@ function scan(folder, urlPrefix, bundled) {
 
 // Bundled volumes are small: copy them (the site then works wherever dist/ is copied).
 for (const f of fs.readdirSync(dataDir)) {
-  if (/\.(json|raw)$/.test(f) && f !== 'datasets.json') fs.copyFileSync(path.join(dataDir, f), path.join(dist, 'data', f));
+  if (/\.(json|raw)$/.test(f) && f !== 'datasets.json')
+    fs.copyFileSync(path.join(dataDir, f), path.join(dist, 'data', f));
 }
 const bundled = scan(dataDir, 'data/', true);
 const fetchedDir = path.join(dataDir, 'fetched');
 // A fetched copy of a bundled volume is listed once, as the bundled one.
 const fetched = scan(fetchedDir, 'data/fetched/', false).filter((d) => !bundled.some((b) => b.id === d.id));
-if (fetched.length) fs.symlinkSync(path.relative(path.join(dist, 'data'), fetchedDir), path.join(dist, 'data', 'fetched'), 'dir');
+if (fetched.length)
+  fs.symlinkSync(path.relative(path.join(dist, 'data'), fetchedDir), path.join(dist, 'data', 'fetched'), 'dir');
 
 const development = !process.argv.includes('--production');
 const manifest = { generated: new Date().toISOString(), development, datasets: [...bundled, ...fetched] };
 fs.writeFileSync(path.join(dist, 'data', 'manifest.json'), JSON.stringify(manifest, null, 1));
-console.log(`gallery: ${path.relative(root, dist)}/ with ${bundled.length} bundled and ${fetched.length} fetched datasets${fetched.length ? '' : ' (run `pnpm data:fetch` for more)'}`);
+console.log(
+  `gallery: ${path.relative(root, dist)}/ with ${bundled.length} bundled and ${fetched.length} fetched datasets${fetched.length ? '' : ' (run `pnpm data:fetch` for more)'}`,
+);

@@ -29,11 +29,25 @@ export interface SceneSpec {
   seed?: number;
 }
 
-const TF_CLOUD = { dimensions: '1d', points: [{ value: 0, color: [0.9, 0.9, 0.9], opacity: 0 }, { value: 0.2, color: [0.95, 0.8, 0.7], opacity: 0.3 }, { value: 1, color: [1, 1, 1], opacity: 1 }] };
-const TF_HEAD = { dimensions: '1d', points: [
-  { value: 0.0, color: [0, 0, 0], opacity: 0 }, { value: 0.15, color: [0.5, 0.2, 0.1], opacity: 0 },
-  { value: 0.3, color: [0.9, 0.5, 0.35], opacity: 0.02 }, { value: 0.5, color: [1.0, 0.85, 0.7], opacity: 0.08 },
-  { value: 0.7, color: [2.0, 1.9, 1.8], opacity: 0.5 }, { value: 1.0, color: [3, 3, 3], opacity: 1 }] };
+const TF_CLOUD = {
+  dimensions: '1d',
+  points: [
+    { value: 0, color: [0.9, 0.9, 0.9], opacity: 0 },
+    { value: 0.2, color: [0.95, 0.8, 0.7], opacity: 0.3 },
+    { value: 1, color: [1, 1, 1], opacity: 1 },
+  ],
+};
+const TF_HEAD = {
+  dimensions: '1d',
+  points: [
+    { value: 0.0, color: [0, 0, 0], opacity: 0 },
+    { value: 0.15, color: [0.5, 0.2, 0.1], opacity: 0 },
+    { value: 0.3, color: [0.9, 0.5, 0.35], opacity: 0.02 },
+    { value: 0.5, color: [1.0, 0.85, 0.7], opacity: 0.08 },
+    { value: 0.7, color: [2.0, 1.9, 1.8], opacity: 0.5 },
+    { value: 1.0, color: [3, 3, 3], opacity: 1 },
+  ],
+};
 
 /** The procedural 128³ scene (fixed seed) and the bundled MRI head. */
 export function scenes(cloudSize: number): Record<string, SceneSpec> {
@@ -69,9 +83,16 @@ export const FETCHED_SCENES: Record<string, { sidecar: string; scene: Omit<Scene
   'ct-chest': {
     sidecar: 'ct_chest_pyradiomics_lung2_512x512x61_int16.json',
     scene: {
-      transferFunction: { dimensions: '1d', points: [
-        { value: hu(-400), color: [0.8, 0.5, 0.4], opacity: 0 }, { value: hu(-50), color: [0.85, 0.45, 0.35], opacity: 0.005 },
-        { value: hu(100), color: [0.9, 0.6, 0.5], opacity: 0.01 }, { value: hu(250), color: [1, 0.95, 0.85], opacity: 0.3 }, { value: 1, color: [1, 1, 1], opacity: 1 }] },
+      transferFunction: {
+        dimensions: '1d',
+        points: [
+          { value: hu(-400), color: [0.8, 0.5, 0.4], opacity: 0 },
+          { value: hu(-50), color: [0.85, 0.45, 0.35], opacity: 0.005 },
+          { value: hu(100), color: [0.9, 0.6, 0.5], opacity: 0.01 },
+          { value: hu(250), color: [1, 0.95, 0.85], opacity: 0.3 },
+          { value: 1, color: [1, 1, 1], opacity: 1 },
+        ],
+      },
       // LPS: anterior is −y, superior +z.
       camera: { position: [0.4, -1.7, 0.5], target: [0, 0, 0], up: [0, 0, 1], fovy: 0.75 },
       lights: [{ type: 'directional', direction: [0.3, -1, 0.6], irradiance: [3, 3, 3] }],
@@ -94,11 +115,41 @@ export const RENDERERS: RendererConfig[] = [
 ];
 
 export const MCRT_VARIANTS: RendererConfig[] = [
-  { label: 'mcrt delta tracking, global majorant', renderer: 'mcrt', params: { scattering: 'multiple', tracking: 'delta', majorantGrid: false }, halves: true, referenceGroup: 'mcrt multiple' },
-  { label: 'mcrt delta tracking, majorant grid', renderer: 'mcrt', params: { scattering: 'multiple', tracking: 'delta', majorantGrid: true }, halves: true, referenceGroup: 'mcrt multiple' },
-  { label: 'mcrt ratio tracking, majorant grid', renderer: 'mcrt', params: { scattering: 'multiple', tracking: 'ratio', majorantGrid: true }, halves: true, referenceGroup: 'mcrt multiple' },
-  { label: 'mcrt residual ratio tracking, majorant grid', renderer: 'mcrt', params: { scattering: 'multiple', tracking: 'residual', majorantGrid: true }, halves: true, referenceGroup: 'mcrt multiple' },
-  { label: 'mcrt residual ratio, phase sampling only (no MIS)', renderer: 'mcrt', params: { scattering: 'multiple', tracking: 'residual', majorantGrid: true, environmentSampling: 'phase' }, halves: true, referenceGroup: 'mcrt multiple' },
+  {
+    label: 'mcrt delta tracking, global majorant',
+    renderer: 'mcrt',
+    params: { scattering: 'multiple', tracking: 'delta', majorantGrid: false },
+    halves: true,
+    referenceGroup: 'mcrt multiple',
+  },
+  {
+    label: 'mcrt delta tracking, majorant grid',
+    renderer: 'mcrt',
+    params: { scattering: 'multiple', tracking: 'delta', majorantGrid: true },
+    halves: true,
+    referenceGroup: 'mcrt multiple',
+  },
+  {
+    label: 'mcrt ratio tracking, majorant grid',
+    renderer: 'mcrt',
+    params: { scattering: 'multiple', tracking: 'ratio', majorantGrid: true },
+    halves: true,
+    referenceGroup: 'mcrt multiple',
+  },
+  {
+    label: 'mcrt residual ratio tracking, majorant grid',
+    renderer: 'mcrt',
+    params: { scattering: 'multiple', tracking: 'residual', majorantGrid: true },
+    halves: true,
+    referenceGroup: 'mcrt multiple',
+  },
+  {
+    label: 'mcrt residual ratio, phase sampling only (no MIS)',
+    renderer: 'mcrt',
+    params: { scattering: 'multiple', tracking: 'residual', majorantGrid: true, environmentSampling: 'phase' },
+    halves: true,
+    referenceGroup: 'mcrt multiple',
+  },
 ];
 
 export interface Preset {
@@ -131,38 +182,105 @@ export interface Preset {
 export const PRESETS: Record<string, Preset> = {
   /** Seconds, not minutes: exercised by the test suite to keep the harness working. */
   smoke: {
-    name: 'smoke', specializationSize: 16, errorSize: 16, referenceIterations: { mip: 16, eam: 16, iso: 16, mcrt: 32 }, curveIterations: 8, curveBudgetMs: 5_000,
-    frameSizes: [16], frameVolumeSizes: [16], frameSizeAtVolume: 16, frameIterations: 1, frameRepeats: 2,
-    convergenceSizes: [16], cloudSize: 16, scalingVolumeSizes: [16], scalingEmptyFractions: [0, 0.9], scalingFramebuffer: 16,
-    compactSize: 16, ctDepths: [4],
+    name: 'smoke',
+    specializationSize: 16,
+    errorSize: 16,
+    referenceIterations: { mip: 16, eam: 16, iso: 16, mcrt: 32 },
+    curveIterations: 8,
+    curveBudgetMs: 5_000,
+    frameSizes: [16],
+    frameVolumeSizes: [16],
+    frameSizeAtVolume: 16,
+    frameIterations: 1,
+    frameRepeats: 2,
+    convergenceSizes: [16],
+    cloudSize: 16,
+    scalingVolumeSizes: [16],
+    scalingEmptyFractions: [0, 0.9],
+    scalingFramebuffer: 16,
+    compactSize: 16,
+    ctDepths: [4],
   },
   /** Only the frame-time table at 256² and 512² on the 128³ cloud (the figures quoted in issue notes). */
   table: {
-    name: 'table', specializationSize: 64, errorSize: 64, referenceIterations: { mip: 64, eam: 64, iso: 64, mcrt: 128 }, curveIterations: 32, curveBudgetMs: 20_000,
-    frameSizes: [256, 512], frameVolumeSizes: [], frameSizeAtVolume: 256, frameIterations: 2, frameRepeats: 3,
-    convergenceSizes: [64], cloudSize: 128, scalingVolumeSizes: [64], scalingEmptyFractions: [0],
-    compactSize: 256, ctDepths: [64],
+    name: 'table',
+    specializationSize: 64,
+    errorSize: 64,
+    referenceIterations: { mip: 64, eam: 64, iso: 64, mcrt: 128 },
+    curveIterations: 32,
+    curveBudgetMs: 20_000,
+    frameSizes: [256, 512],
+    frameVolumeSizes: [],
+    frameSizeAtVolume: 256,
+    frameIterations: 2,
+    frameRepeats: 3,
+    convergenceSizes: [64],
+    cloudSize: 128,
+    scalingVolumeSizes: [64],
+    scalingEmptyFractions: [0],
+    compactSize: 256,
+    ctDepths: [64],
   },
   /**
    * The MCRT figures of issue 3: time to 30/35 dB at 256² on the 128³ cloud
    * (`--suites error --renderers "mcrt single,mcrt multiple"`).
    */
   mcrt256: {
-    name: 'mcrt256', specializationSize: 256, errorSize: 256, referenceIterations: { mip: 256, eam: 256, iso: 256, mcrt: 256 }, curveIterations: 256, curveBudgetMs: 360_000,
-    frameSizes: [256], frameVolumeSizes: [], frameSizeAtVolume: 256, frameIterations: 2, frameRepeats: 3,
-    convergenceSizes: [256], cloudSize: 128, scalingVolumeSizes: [128], scalingEmptyFractions: [0], errorScenes: ['cloud'],
-    compactSize: 256, ctDepths: [64],
+    name: 'mcrt256',
+    specializationSize: 256,
+    errorSize: 256,
+    referenceIterations: { mip: 256, eam: 256, iso: 256, mcrt: 256 },
+    curveIterations: 256,
+    curveBudgetMs: 360_000,
+    frameSizes: [256],
+    frameVolumeSizes: [],
+    frameSizeAtVolume: 256,
+    frameIterations: 2,
+    frameRepeats: 3,
+    convergenceSizes: [256],
+    cloudSize: 128,
+    scalingVolumeSizes: [128],
+    scalingEmptyFractions: [0],
+    errorScenes: ['cloud'],
+    compactSize: 256,
+    ctDepths: [64],
   },
   quick: {
-    name: 'quick', specializationSize: 96, errorSize: 64, referenceIterations: { mip: 128, eam: 128, iso: 256, mcrt: 384 }, curveIterations: 128, curveBudgetMs: 15_000,
-    frameSizes: [64, 128, 256, 512], frameVolumeSizes: [64, 128, 256], frameSizeAtVolume: 128, frameIterations: 1, frameRepeats: 3,
-    convergenceSizes: [64, 128], cloudSize: 128, scalingVolumeSizes: [32, 64, 128], scalingEmptyFractions: [0, 0.5, 0.9],
-    compactSize: 256, ctDepths: [64, 256, 1024],
+    name: 'quick',
+    specializationSize: 96,
+    errorSize: 64,
+    referenceIterations: { mip: 128, eam: 128, iso: 256, mcrt: 384 },
+    curveIterations: 128,
+    curveBudgetMs: 15_000,
+    frameSizes: [64, 128, 256, 512],
+    frameVolumeSizes: [64, 128, 256],
+    frameSizeAtVolume: 128,
+    frameIterations: 1,
+    frameRepeats: 3,
+    convergenceSizes: [64, 128],
+    cloudSize: 128,
+    scalingVolumeSizes: [32, 64, 128],
+    scalingEmptyFractions: [0, 0.5, 0.9],
+    compactSize: 256,
+    ctDepths: [64, 256, 1024],
   },
   full: {
-    name: 'full', specializationSize: 256, errorSize: 256, referenceIterations: { mip: 512, eam: 512, iso: 1024, mcrt: 4096 }, curveIterations: 1024, curveBudgetMs: 300_000,
-    frameSizes: [64, 128, 256, 512], frameVolumeSizes: [64, 128, 256], frameSizeAtVolume: 512, frameIterations: 4, frameRepeats: 5,
-    convergenceSizes: [256, 512, 1024], cloudSize: 128, scalingVolumeSizes: [32, 64, 128, 256], scalingEmptyFractions: [0, 0.25, 0.5, 0.75, 0.9],
-    compactSize: 256, ctDepths: [64, 256, 1024],
+    name: 'full',
+    specializationSize: 256,
+    errorSize: 256,
+    referenceIterations: { mip: 512, eam: 512, iso: 1024, mcrt: 4096 },
+    curveIterations: 1024,
+    curveBudgetMs: 300_000,
+    frameSizes: [64, 128, 256, 512],
+    frameVolumeSizes: [64, 128, 256],
+    frameSizeAtVolume: 512,
+    frameIterations: 4,
+    frameRepeats: 5,
+    convergenceSizes: [256, 512, 1024],
+    cloudSize: 128,
+    scalingVolumeSizes: [32, 64, 128, 256],
+    scalingEmptyFractions: [0, 0.25, 0.5, 0.75, 0.9],
+    compactSize: 256,
+    ctDepths: [64, 256, 1024],
   },
 };

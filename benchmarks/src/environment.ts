@@ -8,7 +8,9 @@ export function machineRecord(browserVersion: string, flags: readonly string[]):
   try {
     commit = execFileSync('git', ['rev-parse', 'HEAD'], { encoding: 'utf8' }).trim();
     dirty = execFileSync('git', ['status', '--porcelain'], { encoding: 'utf8' }).trim().length > 0;
-  } catch { /* not a git checkout */ }
+  } catch {
+    /* not a git checkout */
+  }
   return {
     date: new Date().toISOString(),
     os: `${os.type()} ${os.release()} ${os.arch()}`,

@@ -19,11 +19,16 @@ export interface CurvePoint {
  * checkpoints around it (PSNR grows ~ linearly in log time for Monte Carlo: 10 dB per
  * decade of samples). Null when the curve never reaches the target.
  */
-export function timeToPsnr(points: readonly CurvePoint[], targetDb: number, key: 'psnr' | 'psnrLdr' = 'psnr'): number | null {
+export function timeToPsnr(
+  points: readonly CurvePoint[],
+  targetDb: number,
+  key: 'psnr' | 'psnrLdr' = 'psnr',
+): number | null {
   for (let i = 0; i < points.length; i++) {
     if (points[i][key] >= targetDb) {
       if (i === 0) return points[0].ms;
-      const a = points[i - 1], b = points[i];
+      const a = points[i - 1],
+        b = points[i];
       const f = (targetDb - a[key]) / (b[key] - a[key]);
       return Math.exp(Math.log(a.ms) + f * (Math.log(b.ms) - Math.log(a.ms)));
     }

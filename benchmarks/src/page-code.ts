@@ -22,8 +22,20 @@ type Vec3 = [number, number, number];
 type RawSpec = Extract<SceneSpec['volume'], { kind: 'raw' }>;
 /** A renderer configuration on one backend, with the context's volume sampling and GPU memory budget. */
 type PageConfig = RendererConfig & { backend: 'webgl2' | 'webgpu'; sampling?: 'fast' | 'exact'; maxGpuBytes?: number };
-interface Reference { hdr: Float32Array; ldr: Uint8Array; peak: number; noiseMse: number; info: Record<string, unknown> }
-interface GpuTimer { kind: string; begin(): void; end(): void; result(): Promise<number | null>; dispose(): void }
+interface Reference {
+  hdr: Float32Array;
+  ldr: Uint8Array;
+  peak: number;
+  noiseMse: number;
+  info: Record<string, unknown>;
+}
+interface GpuTimer {
+  kind: string;
+  begin(): void;
+  end(): void;
+  result(): Promise<number | null>;
+  dispose(): void;
+}
 
 declare const window: Window & { vpt: VptPageApi };
 
@@ -35,18 +47,31 @@ export function installBenchPage(): void {
   // LCG, modulated by hashed value noise, about half of the box empty.
   function cloudVolume(size: number, seed = 1234): Volume {
     let s = seed >>> 0;
-    const rnd = () => ((s = (Math.imul(s, 1664525) + 1013904223) >>> 0) / 4294967296);
-    const blobs = Array.from({ length: 12 }, () => ({ c: [rnd() - 0.5, rnd() - 0.5, rnd() - 0.5].map((v) => v * 0.6), r: 0.06 + 0.12 * rnd(), w: 0.5 + 0.5 * rnd() }));
-    const hash = (x: number, y: number, z: number) => { let h = Math.imul(x, 374761393) ^ Math.imul(y, 668265263) ^ Math.imul(z, 2147483647) ^ seed; h = Math.imul(h ^ (h >>> 13), 1274126177); return ((h ^ (h >>> 16)) >>> 0) / 4294967296; };
+    const rnd = () => (s = (Math.imul(s, 1664525) + 1013904223) >>> 0) / 4294967296;
+    const blobs = Array.from({ length: 12 }, () => ({
+      c: [rnd() - 0.5, rnd() - 0.5, rnd() - 0.5].map((v) => v * 0.6),
+      r: 0.06 + 0.12 * rnd(),
+      w: 0.5 + 0.5 * rnd(),
+    }));
+    const hash = (x: number, y: number, z: number) => {
+      let h = Math.imul(x, 374761393) ^ Math.imul(y, 668265263) ^ Math.imul(z, 2147483647) ^ seed;
+      h = Math.imul(h ^ (h >>> 13), 1274126177);
+      return ((h ^ (h >>> 16)) >>> 0) / 4294967296;
+    };
     const data = new Float32Array(size * size * size);
-    for (let z = 0; z < size; z++) for (let y = 0; y < size; y++) for (let x = 0; x < size; x++) {
-      const p = [(x + 0.5) / size - 0.5, (y + 0.5) / size - 0.5, (z + 0.5) / size - 0.5];
-      let v = 0;
-      for (const b of blobs) { const d2 = (p[0] - b.c[0]) ** 2 + (p[1] - b.c[1]) ** 2 + (p[2] - b.c[2]) ** 2; v += b.w * Math.exp(-d2 / (2 * b.r * b.r)); }
-      const n = hash(x >> 2, y >> 2, z >> 2);
-      v = v * (0.75 + 0.5 * n);
-      data[x + size * (y + size * z)] = v < 0.15 ? 0 : Math.min(1, v);
-    }
+    for (let z = 0; z < size; z++)
+      for (let y = 0; y < size; y++)
+        for (let x = 0; x < size; x++) {
+          const p = [(x + 0.5) / size - 0.5, (y + 0.5) / size - 0.5, (z + 0.5) / size - 0.5];
+          let v = 0;
+          for (const b of blobs) {
+            const d2 = (p[0] - b.c[0]) ** 2 + (p[1] - b.c[1]) ** 2 + (p[2] - b.c[2]) ** 2;
+            v += b.w * Math.exp(-d2 / (2 * b.r * b.r));
+          }
+          const n = hash(x >> 2, y >> 2, z >> 2);
+          v = v * (0.75 + 0.5 * n);
+          data[x + size * (y + size * z)] = v < 0.15 ? 0 : Math.min(1, v);
+        }
     const vol = vpt.core.createVolume([size, size, size], 'float32', data);
     vol.valueRange = [0, 1];
     vol.name = 'cloud-' + size;
@@ -56,30 +81,53 @@ export function installBenchPage(): void {
   // A solid ball of the given radius (box units): everything outside it is empty space.
   function ballVolume(size: number, radius: number): Volume {
     const data = new Float32Array(size * size * size);
-    for (let z = 0; z < size; z++) for (let y = 0; y < size; y++) for (let x = 0; x < size; x++) {
-      const r = Math.hypot((x + 0.5) / size - 0.5, (y + 0.5) / size - 0.5, (z + 0.5) / size - 0.5);
-      data[x + size * (y + size * z)] = r < radius ? 1 : 0;
-    }
+    for (let z = 0; z < size; z++)
+      for (let y = 0; y < size; y++)
+        for (let x = 0; x < size; x++) {
+          const r = Math.hypot((x + 0.5) / size - 0.5, (y + 0.5) / size - 0.5, (z + 0.5) / size - 0.5);
+          data[x + size * (y + size * z)] = r < radius ? 1 : 0;
+        }
     const vol = vpt.core.createVolume([size, size, size], 'float32', data);
     vol.valueRange = [0, 1];
     return vol;
   }
 
-
   const volumes = new Map<string, Volume>();
-  const BUNDLED_HEAD: RawSpec = { kind: 'raw', url: '/data/mri_head_volpack_brainsmall_128x128x84_uint8.raw', dims: [128, 128, 84], type: 'uint8', spacing: [1, 1, 1] };
+  const BUNDLED_HEAD: RawSpec = {
+    kind: 'raw',
+    url: '/data/mri_head_volpack_brainsmall_128x128x84_uint8.raw',
+    dims: [128, 128, 84],
+    type: 'uint8',
+    spacing: [1, 1, 1],
+  };
 
   // A bundled or fetched dataset: raw voxels (x fastest) as its sidecar describes them, read
   // by the headless page's one raw reader.
   async function rawVolume(spec: RawSpec): Promise<Volume> {
-    return vpt.loadVolume({ raw: spec.url, dims: spec.dims as Vec3, type: spec.type as VoxelType, spacing: spec.spacing as Vec3, valueRange: spec.valueRange as [number, number] | undefined });
+    return vpt.loadVolume({
+      raw: spec.url,
+      dims: spec.dims as Vec3,
+      type: spec.type as VoxelType,
+      spacing: spec.spacing as Vec3,
+      valueRange: spec.valueRange as [number, number] | undefined,
+    });
   }
 
   async function volume(spec: SceneSpec['volume']): Promise<Volume> {
     const key = JSON.stringify(spec);
     if (!volumes.has(key)) {
-      volumes.set(key, spec.kind === 'raw' ? await rawVolume(spec) : spec.kind === 'head' ? await rawVolume(BUNDLED_HEAD) : spec.kind === 'cloud' ? cloudVolume(spec.size ?? 128)
-        : spec.kind === 'ball' ? ballVolume(spec.size ?? 64, spec.radius ?? 0.25) : vpt.core.createProceduralVolume(spec.kind, spec.size));
+      volumes.set(
+        key,
+        spec.kind === 'raw'
+          ? await rawVolume(spec)
+          : spec.kind === 'head'
+            ? await rawVolume(BUNDLED_HEAD)
+            : spec.kind === 'cloud'
+              ? cloudVolume(spec.size ?? 128)
+              : spec.kind === 'ball'
+                ? ballVolume(spec.size ?? 64, spec.radius ?? 0.25)
+                : vpt.core.createProceduralVolume(spec.kind, spec.size),
+      );
     }
     return volumes.get(key)!;
   }
@@ -98,30 +146,51 @@ export function installBenchPage(): void {
   }
 
   function renderer(config: PageConfig): Renderer {
-    if (!vpt.renderers[config.renderer]) throw new Error('renderer ' + config.renderer + ' is not available in this build');
+    if (!vpt.renderers[config.renderer])
+      throw new Error('renderer ' + config.renderer + ' is not available in this build');
     return vpt.createRenderer(config.renderer, config.params || {});
   }
 
   async function context(config: PageConfig, width: number, height: number): Promise<RenderContext> {
     return vpt.core.RenderContext.create({
-      backend: config.backend, width, height, renderer: renderer(config), post: vpt.post.postChainFromJSON([{ type: 'tonemap', operator: 'aces' }, { type: 'srgb' }]),
-      sampling: config.sampling, maxGpuBytes: config.maxGpuBytes,
+      backend: config.backend,
+      width,
+      height,
+      renderer: renderer(config),
+      post: vpt.post.postChainFromJSON([{ type: 'tonemap', operator: 'aces' }, { type: 'srgb' }]),
+      sampling: config.sampling,
+      maxGpuBytes: config.maxGpuBytes,
     });
   }
 
   function errors(hdr: Float32Array, ldr: Uint8Array, ref: Reference) {
-    let se = 0, seL = 0, n = 0, nonFinite = 0;
-    for (let i = 0; i < hdr.length; i += 4) for (let c = 0; c < 3; c++) {
-      const d = hdr[i + c] - ref.hdr[i + c];
-      if (!Number.isFinite(hdr[i + c])) nonFinite++;
-      se += d * d; const dl = ldr[i + c] - ref.ldr[i + c]; seL += dl * dl; n++;
-    }
+    let se = 0,
+      seL = 0,
+      n = 0,
+      nonFinite = 0;
+    for (let i = 0; i < hdr.length; i += 4)
+      for (let c = 0; c < 3; c++) {
+        const d = hdr[i + c] - ref.hdr[i + c];
+        if (!Number.isFinite(hdr[i + c])) nonFinite++;
+        se += d * d;
+        const dl = ldr[i + c] - ref.ldr[i + c];
+        seL += dl * dl;
+        n++;
+      }
     // E[(x - ref)^2] = MSE(x) + Var(ref): subtract the reference's own noise, estimated from
     // its even/odd half-accumulations, so a reference only a few times longer than the curve
     // does not flatten it (HDR only: the tone-mapped error is not additive).
     const rawMse = se / n;
-    const rmse = Math.sqrt(Math.max(rawMse - ref.noiseMse, rawMse * 1e-6)), rmseLdr = Math.sqrt(seL / n);
-    return { rmse, rmseRaw: Math.sqrt(rawMse), psnr: 20 * Math.log10(ref.peak / Math.max(rmse, 1e-12)), rmseLdr, psnrLdr: 20 * Math.log10(255 / Math.max(rmseLdr, 1e-12)), nonFinite };
+    const rmse = Math.sqrt(Math.max(rawMse - ref.noiseMse, rawMse * 1e-6)),
+      rmseLdr = Math.sqrt(seL / n);
+    return {
+      rmse,
+      rmseRaw: Math.sqrt(rawMse),
+      psnr: 20 * Math.log10(ref.peak / Math.max(rmse, 1e-12)),
+      rmseLdr,
+      psnrLdr: 20 * Math.log10(255 / Math.max(rmseLdr, 1e-12)),
+      nonFinite,
+    };
   }
 
   /**
@@ -141,11 +210,18 @@ export function installBenchPage(): void {
       let query: WebGLQuery | null = null;
       return {
         kind: 'EXT_disjoint_timer_query_webgl2',
-        begin() { query = gl.createQuery(); gl.beginQuery(ext.TIME_ELAPSED_EXT, query!); },
-        end() { gl.endQuery(ext.TIME_ELAPSED_EXT); },
+        begin() {
+          query = gl.createQuery();
+          gl.beginQuery(ext.TIME_ELAPSED_EXT, query!);
+        },
+        end() {
+          gl.endQuery(ext.TIME_ELAPSED_EXT);
+        },
         async result() {
-          const q = query!; query = null;
-          for (let tries = 0; tries < 2000 && !gl.getQueryParameter(q, gl.QUERY_RESULT_AVAILABLE); tries++) await new Promise((r) => setTimeout(r, 1));
+          const q = query!;
+          query = null;
+          for (let tries = 0; tries < 2000 && !gl.getQueryParameter(q, gl.QUERY_RESULT_AVAILABLE); tries++)
+            await new Promise((r) => setTimeout(r, 1));
           const ok = gl.getQueryParameter(q, gl.QUERY_RESULT_AVAILABLE) && !gl.getParameter(ext.GPU_DISJOINT_EXT);
           const ns = ok ? gl.getQueryParameter(q, gl.QUERY_RESULT) : null;
           gl.deleteQuery(q);
@@ -166,7 +242,9 @@ export function installBenchPage(): void {
     };
     return {
       kind: 'timestamp-query',
-      begin() { device.queue.submit([stamp({ beginningOfPassWriteIndex: 0 }).finish()]); },
+      begin() {
+        device.queue.submit([stamp({ beginningOfPassWriteIndex: 0 }).finish()]);
+      },
       end() {
         const enc = stamp({ endOfPassWriteIndex: 1 });
         enc.resolveQuerySet(querySet, 0, 2, resolve, 0);
@@ -179,47 +257,80 @@ export function installBenchPage(): void {
         read.unmap();
         return t1 > t0 ? Number(t1 - t0) / 1e6 : null;
       },
-      dispose() { querySet.destroy(); resolve.destroy(); read.destroy(); },
+      dispose() {
+        querySet.destroy();
+        resolve.destroy();
+        read.destroy();
+      },
     };
   }
 
   (window as unknown as { bench: unknown }).bench = {
     /** Render and keep a converged reference (HDR peak = max over RGB, for PSNR). */
-    async reference(key: string, config: PageConfig, sceneSpec: SceneSpec, width: number, height: number, iterations: number) {
+    async reference(
+      key: string,
+      config: PageConfig,
+      sceneSpec: SceneSpec,
+      width: number,
+      height: number,
+      iterations: number,
+    ) {
       if (refs.has(key)) return refs.get(key)!.info;
       const ctx = await context(config, width, height);
       ctx.setScene(await scene({ ...sceneSpec, seed: 987654 }));
       const t0 = performance.now();
       const chunk = 32;
       ctx.reset();
-      for (let done = 0; done < iterations; done += chunk) { ctx.iterate(Math.min(chunk, iterations - done)); await ctx.backend.finish(); }
-      const hdr = await ctx.readHDR(), ldr = await ctx.readLDR();
+      for (let done = 0; done < iterations; done += chunk) {
+        ctx.iterate(Math.min(chunk, iterations - done));
+        await ctx.backend.finish();
+      }
+      const hdr = await ctx.readHDR(),
+        ldr = await ctx.readLDR();
       let peak = 0;
       for (let i = 0; i < hdr.length; i += 4) peak = Math.max(peak, hdr[i], hdr[i + 1], hdr[i + 2]);
       const est = await ctx.estimateError();
       const noiseMse = est ? est.rmse * est.rmse : 0;
-      const info = { iterations, ms: performance.now() - t0, peak, backend: ctx.backend.kind, rmse: est ? est.rmse : null };
+      const info = {
+        iterations,
+        ms: performance.now() - t0,
+        peak,
+        backend: ctx.backend.kind,
+        rmse: est ? est.rmse : null,
+      };
       refs.set(key, { hdr, ldr, peak, noiseMse, info });
       ctx.dispose();
       return info;
     },
 
     /** Error against wall-clock time and iterations, at doubling iteration checkpoints. */
-    async errorCurve(config: PageConfig, sceneSpec: SceneSpec, width: number, height: number, refKey: string, maxIterations: number, budgetMs: number, withEstimate: boolean) {
+    async errorCurve(
+      config: PageConfig,
+      sceneSpec: SceneSpec,
+      width: number,
+      height: number,
+      refKey: string,
+      maxIterations: number,
+      budgetMs: number,
+      withEstimate: boolean,
+    ) {
       const ref = refs.get(refKey)!;
       const ctx = await context(config, width, height);
       ctx.setScene(await scene(sceneSpec));
       await ctx.renderIterations(1); // compile every kernel variant outside the clock
       ctx.reset();
       const points: Record<string, number | null>[] = [];
-      let clock = 0, done = 0, next = 1;
+      let clock = 0,
+        done = 0,
+        next = 1;
       while (done < maxIterations && clock < budgetMs) {
         const t0 = performance.now();
         ctx.iterate(next - done);
         await ctx.backend.finish();
         clock += performance.now() - t0;
         done = next;
-        const hdr = await ctx.readHDR(), ldr = await ctx.readLDR();
+        const hdr = await ctx.readHDR(),
+          ldr = await ctx.readLDR();
         const e = errors(hdr, ldr, ref);
         const est = withEstimate ? await ctx.estimateError() : null;
         points.push({ iterations: done, ms: clock, ...e, estimatedRmse: est ? est.rmse : null });
@@ -234,13 +345,21 @@ export function installBenchPage(): void {
      * Wall-clock samples always; GPU samples too where the backend offers a timer
      * (gpuTimer), the GPU time of the whole batch.
      */
-    async frameTime(config: PageConfig, sceneSpec: SceneSpec, width: number, height: number, iterations: number, repeats: number) {
+    async frameTime(
+      config: PageConfig,
+      sceneSpec: SceneSpec,
+      width: number,
+      height: number,
+      iterations: number,
+      repeats: number,
+    ) {
       const ctx = await context(config, width, height);
       ctx.setScene(await scene(sceneSpec));
       const tFirst = performance.now();
       await ctx.renderIterations(1); // compiles the kernels: outside the samples
       const firstMs = performance.now() - tFirst;
-      const samples: number[] = [], gpuSamples: number[] = [];
+      const samples: number[] = [],
+        gpuSamples: number[] = [];
       const timer = gpuTimer(ctx.backend);
       for (let r = 0; r < repeats; r++) {
         ctx.reset();
@@ -262,7 +381,13 @@ export function installBenchPage(): void {
 
     /** GPU bytes per voxel of the volume texture for each voxel type, fast (default) and exact sampling. */
     async bytesPerVoxel(backend: 'webgl2' | 'webgpu', size: number) {
-      const rows: { backend: string; type: VoxelType; sampling: 'fast' | 'exact'; bytesPerVoxel: number; total: number }[] = [];
+      const rows: {
+        backend: string;
+        type: VoxelType;
+        sampling: 'fast' | 'exact';
+        bytesPerVoxel: number;
+        total: number;
+      }[] = [];
       const C = { uint8: Uint8Array, uint16: Uint16Array, int16: Int16Array, float32: Float32Array };
       for (const type of ['uint8', 'uint16', 'int16', 'float32'] as const) {
         const data = new C[type](size * size * size);
@@ -270,7 +395,15 @@ export function installBenchPage(): void {
         const volume = vpt.core.createVolume([size, size, size], type, data);
         for (const sampling of ['fast', 'exact'] as const) {
           const ctx = await context({ label: 'eam', renderer: 'eam', backend, sampling }, 16, 16);
-          ctx.setScene({ volume, transferFunction: vpt.core.rampTransferFunction(), camera: vpt.core.defaultCamera(), lights: [], environment: { type: 'constant', radiance: [1, 1, 1] }, densityScale: 1, seed: 1 });
+          ctx.setScene({
+            volume,
+            transferFunction: vpt.core.rampTransferFunction(),
+            camera: vpt.core.defaultCamera(),
+            lights: [],
+            environment: { type: 'constant', radiance: [1, 1, 1] },
+            densityScale: 1,
+            seed: 1,
+          });
           await ctx.renderIterations(1);
           const b = ctx.stats.gpuBytes;
           rows.push({ backend, type, sampling, bytesPerVoxel: b.volume / data.length, total: b.total });
@@ -286,16 +419,20 @@ export function installBenchPage(): void {
      * image. Times of each stage; the caller samples the JS heap meanwhile.
      */
     async ctLoad(backend: 'webgl2' | 'webgpu', depth: number) {
-      const nx = 512, ny = 512, slice = nx * ny;
+      const nx = 512,
+        ny = 512,
+        slice = nx * ny;
       const t0 = performance.now();
       const templates: Int16Array[] = [];
       for (let k = 0; k < 16; k++) {
         const t = new Int16Array(slice);
-        const ra = 200 + 4 * k, rb = 150 + 3 * k;
-        for (let y = 0; y < ny; y++) for (let x = 0; x < nx; x++) {
-          const e = ((x - 256) / ra) ** 2 + ((y - 256) / rb) ** 2;
-          t[x + nx * y] = e > 1 ? -1000 : e > 0.85 ? 700 + ((x * 31 + y * 17) % 200) : 40 + ((x * 13 + y * 7) % 60);
-        }
+        const ra = 200 + 4 * k,
+          rb = 150 + 3 * k;
+        for (let y = 0; y < ny; y++)
+          for (let x = 0; x < nx; x++) {
+            const e = ((x - 256) / ra) ** 2 + ((y - 256) / rb) ** 2;
+            t[x + nx * y] = e > 1 ? -1000 : e > 0.85 ? 700 + ((x * 31 + y * 17) % 200) : 40 + ((x * 13 + y * 7) % 60);
+          }
         templates.push(t);
       }
       const data = new Int16Array(slice * depth);
@@ -307,11 +444,29 @@ export function installBenchPage(): void {
       const warnings: string[] = [];
       ctx.onWarning((w) => warnings.push(w.message));
       const t2 = performance.now();
-      ctx.setScene({ volume, transferFunction: vpt.core.rampTransferFunction(), camera: vpt.core.defaultCamera(), lights: [], environment: { type: 'constant', radiance: [1, 1, 1] }, densityScale: 10, seed: 1 });
+      ctx.setScene({
+        volume,
+        transferFunction: vpt.core.rampTransferFunction(),
+        camera: vpt.core.defaultCamera(),
+        lights: [],
+        environment: { type: 'constant', radiance: [1, 1, 1] },
+        densityScale: 10,
+        seed: 1,
+      });
       const t3 = performance.now();
       await ctx.renderIterations(1);
       const t4 = performance.now();
-      const out = { backend, depth, generateMs: t1 - t0, setSceneMs: t3 - t2, firstImageMs: t4 - t3, loadMs: t4 - t2, gpuBytes: ctx.stats.gpuBytes, uploadedDims: ctx.getScene()!.volume.dims, warnings };
+      const out = {
+        backend,
+        depth,
+        generateMs: t1 - t0,
+        setSceneMs: t3 - t2,
+        firstImageMs: t4 - t3,
+        loadMs: t4 - t2,
+        gpuBytes: ctx.stats.gpuBytes,
+        uploadedDims: ctx.getScene()!.volume.dims,
+        warnings,
+      };
       ctx.dispose();
       return out;
     },

@@ -21,8 +21,10 @@ export interface Results {
   skipped: string[];
 }
 
-const esc = (s: unknown) => String(s).replace(/[&<>"]/g, (c) => ({ '&': '&amp;', '<': '&lt;', '>': '&gt;', '"': '&quot;' })[c]!);
-const fmt = (ms: number | null) => (ms === null ? '—' : ms < 1000 ? `${ms.toFixed(0)} ms` : `${(ms / 1000).toFixed(2)} s`);
+const esc = (s: unknown) =>
+  String(s).replace(/[&<>"]/g, (c) => ({ '&': '&amp;', '<': '&lt;', '>': '&gt;', '"': '&quot;' })[c]!);
+const fmt = (ms: number | null) =>
+  ms === null ? '—' : ms < 1000 ? `${ms.toFixed(0)} ms` : `${(ms / 1000).toFixed(2)} s`;
 
 /** A self-contained HTML report: tables plus uPlot charts (the library is inlined). */
 export function htmlReport(r: Results): string {
@@ -35,54 +37,132 @@ export function htmlReport(r: Results): string {
   const charts: unknown[] = [];
 
   if (r.errorVsTime?.length) {
-    const rows = r.errorVsTime.map((c) => `<tr><td>${esc(c.scene)}</td><td>${esc(c.label)}</td><td>${esc(c.backend)}</td><td>${c.size}²</td>${[25, 30, 35, 40].map((d) => `<td>${fmt(c.timeToDb[d])}</td>`).join('')}<td>${c.points.at(-1)?.psnr.toFixed(1)} dB @ ${c.points.at(-1)?.iterations} it</td></tr>`).join('');
+    const rows = r.errorVsTime
+      .map(
+        (c) =>
+          `<tr><td>${esc(c.scene)}</td><td>${esc(c.label)}</td><td>${esc(c.backend)}</td><td>${c.size}²</td>${[25, 30, 35, 40].map((d) => `<td>${fmt(c.timeToDb[d])}</td>`).join('')}<td>${c.points.at(-1)?.psnr.toFixed(1)} dB @ ${c.points.at(-1)?.iterations} it</td></tr>`,
+      )
+      .join('');
     sections.push(`<h2>Error against wall-clock time</h2><p>Time to reach a PSNR (HDR, peak = reference maximum) against a converged reference rendered by the same configuration with another seed (one reference serves both backends, which give bit-identical images). Where the renderer estimates its error (MCRT), the reference's own noise variance, estimated from its even/odd half-accumulations, is subtracted from the measured mean squared error, so the curve shows the error against the converged image rather than flattening at the reference's noise. Interpolated in log time between checkpoints; read-backs excluded from the clock.</p>
 <table><tr><th>scene</th><th>configuration</th><th>backend</th><th>size</th><th>25 dB</th><th>30 dB</th><th>35 dB</th><th>40 dB</th><th>last point</th></tr>${rows}</table><div id="evt"></div>`);
     for (const scene of new Set(r.errorVsTime.map((c) => c.scene))) {
       const curves = r.errorVsTime.filter((c) => c.scene === scene);
-      charts.push({ id: 'evt', title: `PSNR vs time — ${scene}`, xLabel: 'seconds', yLabel: 'PSNR (dB)', logX: true, series: curves.map((c) => ({ label: `${c.label} (${c.backend})`, x: c.points.map((p) => p.ms / 1000), y: c.points.map((p) => p.psnr) })) });
+      charts.push({
+        id: 'evt',
+        title: `PSNR vs time — ${scene}`,
+        xLabel: 'seconds',
+        yLabel: 'PSNR (dB)',
+        logX: true,
+        series: curves.map((c) => ({
+          label: `${c.label} (${c.backend})`,
+          x: c.points.map((p) => p.ms / 1000),
+          y: c.points.map((p) => p.psnr),
+        })),
+      });
     }
     const withEstimate = r.errorVsTime.filter((c) => c.points.some((p) => p.estimatedRmse !== null));
     if (withEstimate.length) {
-      sections.push(`<h2>Live error estimate</h2><p>The context's estimate (two half-accumulations) divided by the true RMSE against the reference, along each curve. 1 is perfect.</p><div id="est"></div>`);
-      charts.push({ id: 'est', title: 'estimated / true RMSE', xLabel: 'iterations', yLabel: 'ratio', logX: true, series: withEstimate.map((c) => ({ label: `${c.scene} ${c.label} (${c.backend})`, x: c.points.filter((p) => p.estimatedRmse !== null).map((p) => p.iterations), y: c.points.filter((p) => p.estimatedRmse !== null).map((p) => p.estimatedRmse! / p.rmse) })) });
+      sections.push(
+        `<h2>Live error estimate</h2><p>The context's estimate (two half-accumulations) divided by the true RMSE against the reference, along each curve. 1 is perfect.</p><div id="est"></div>`,
+      );
+      charts.push({
+        id: 'est',
+        title: 'estimated / true RMSE',
+        xLabel: 'iterations',
+        yLabel: 'ratio',
+        logX: true,
+        series: withEstimate.map((c) => ({
+          label: `${c.scene} ${c.label} (${c.backend})`,
+          x: c.points.filter((p) => p.estimatedRmse !== null).map((p) => p.iterations),
+          y: c.points.filter((p) => p.estimatedRmse !== null).map((p) => p.estimatedRmse! / p.rmse),
+        })),
+      });
     }
   }
 
   if (r.frameTime?.length) {
     const table = (t: FrameTimeRow['table'], col: (x: FrameTimeRow) => string) => {
       const rows = r.frameTime!.filter((x) => x.table === t);
-      const gpu = (x: FrameTimeRow) => (x.gpuMedianMs === null || x.gpuMedianMs === undefined ? '<td>—</td><td>—</td>' : `<td>${x.gpuMedianMs.toFixed(1)}</td><td>${x.gpuMinMs!.toFixed(1)}–${x.gpuMaxMs!.toFixed(1)}</td>`);
+      const gpu = (x: FrameTimeRow) =>
+        x.gpuMedianMs === null || x.gpuMedianMs === undefined
+          ? '<td>—</td><td>—</td>'
+          : `<td>${x.gpuMedianMs.toFixed(1)}</td><td>${x.gpuMinMs!.toFixed(1)}–${x.gpuMaxMs!.toFixed(1)}</td>`;
       return `<table><tr><th>configuration</th><th>backend</th><th>${t === 'by-volume' ? 'volume' : 'framebuffer'}</th><th>median ms/iteration (wall)</th><th>min–max</th><th>median ms/iteration (GPU timer)</th><th>min–max</th></tr>${rows.map((x) => `<tr><td>${esc(x.label)}</td><td>${x.backend}</td><td>${col(x)}</td><td>${x.medianMs.toFixed(1)}</td><td>${x.minMs.toFixed(1)}–${x.maxMs.toFixed(1)}</td>${gpu(x)}</tr>`).join('')}</table>`;
     };
-    sections.push(`<h2>Frame time (Lesar et al. 2018, Table 1)</h2><p>Wall clock: a batch of iterations between two blocking GPU syncs. GPU timer: the same batch timed by EXT_disjoint_timer_query_webgl2 (WebGL 2) or timestamp queries (WebGPU) where offered. On SwiftShader the "GPU" is the CPU, so the two agree closely.</p><h3>By volume size</h3>${table('by-volume', (x) => `${x.volumeSize}³ at ${x.size}²`)}<h3>By framebuffer size (128³)</h3>${table('by-framebuffer', (x) => `${x.size}²`)}`);
+    sections.push(
+      `<h2>Frame time (Lesar et al. 2018, Table 1)</h2><p>Wall clock: a batch of iterations between two blocking GPU syncs. GPU timer: the same batch timed by EXT_disjoint_timer_query_webgl2 (WebGL 2) or timestamp queries (WebGPU) where offered. On SwiftShader the "GPU" is the CPU, so the two agree closely.</p><h3>By volume size</h3>${table('by-volume', (x) => `${x.volumeSize}³ at ${x.size}²`)}<h3>By framebuffer size (128³)</h3>${table('by-framebuffer', (x) => `${x.size}²`)}`,
+    );
   }
 
   if (r.convergence?.length) {
     sections.push(`<h2>Convergence per iteration (Lesar et al. 2018, Figure 5)</h2><div id="conv"></div>`);
-    charts.push({ id: 'conv', title: 'PSNR vs iterations', xLabel: 'iterations', yLabel: 'PSNR (dB)', logX: true, series: r.convergence.map((c) => ({ label: `${c.label} ${c.size}²`, x: c.points.map((p) => p.iterations), y: c.points.map((p) => p.psnr) })) });
+    charts.push({
+      id: 'conv',
+      title: 'PSNR vs iterations',
+      xLabel: 'iterations',
+      yLabel: 'PSNR (dB)',
+      logX: true,
+      series: r.convergence.map((c) => ({
+        label: `${c.label} ${c.size}²`,
+        x: c.points.map((p) => p.iterations),
+        y: c.points.map((p) => p.psnr),
+      })),
+    });
   }
 
   if (r.scaling?.length) {
     for (const axis of ['volume-size', 'empty-fraction'] as const) {
       const rows = r.scaling.filter((x) => x.axis === axis);
       if (!rows.length) continue;
-      sections.push(`<h2>Scaling: cost per path against ${axis === 'volume-size' ? 'volume size' : 'fraction of empty space'}</h2><div id="sc-${axis}"></div>`);
-      charts.push({ id: `sc-${axis}`, title: `ns per path vs ${axis}`, xLabel: axis === 'volume-size' ? 'volume side (voxels)' : 'empty fraction', yLabel: 'ns per path', logX: axis === 'volume-size', series: [...new Set(rows.map((x) => x.label))].map((label) => ({ label, x: rows.filter((x) => x.label === label).map((x) => x.x), y: rows.filter((x) => x.label === label).map((x) => x.nsPerPath) })) });
+      sections.push(
+        `<h2>Scaling: cost per path against ${axis === 'volume-size' ? 'volume size' : 'fraction of empty space'}</h2><div id="sc-${axis}"></div>`,
+      );
+      charts.push({
+        id: `sc-${axis}`,
+        title: `ns per path vs ${axis}`,
+        xLabel: axis === 'volume-size' ? 'volume side (voxels)' : 'empty fraction',
+        yLabel: 'ns per path',
+        logX: axis === 'volume-size',
+        series: [...new Set(rows.map((x) => x.label))].map((label) => ({
+          label,
+          x: rows.filter((x) => x.label === label).map((x) => x.x),
+          y: rows.filter((x) => x.label === label).map((x) => x.nsPerPath),
+        })),
+      });
     }
   }
 
   if (r.specialization?.length) {
-    const rows = r.specialization.map((x) => `<tr><td>${esc(x.scene)}</td><td>${x.scattering}</td><td>${x.backend}</td><td>${x.size}²</td><td>${x.specializedMs.toFixed(1)}</td><td>${x.genericMs.toFixed(1)}</td><td>${x.ratio.toFixed(2)}×</td><td>${fmt(x.specializedFirstMs)} / ${fmt(x.genericFirstMs)}</td></tr>`).join('');
+    const rows = r.specialization
+      .map(
+        (x) =>
+          `<tr><td>${esc(x.scene)}</td><td>${x.scattering}</td><td>${x.backend}</td><td>${x.size}²</td><td>${x.specializedMs.toFixed(1)}</td><td>${x.genericMs.toFixed(1)}</td><td>${x.ratio.toFixed(2)}×</td><td>${fmt(x.specializedFirstMs)} / ${fmt(x.genericFirstMs)}</td></tr>`,
+      )
+      .join('');
     sections.push(`<h2>MCRT kernel specialization</h2><p>Median ms per iteration of the kernel compiled for the scene against the generic kernel (<code>specialize: false</code>: environment map, light loop, scattering order and majorant grid as runtime data), measured alternately in the same run. Ratio &gt; 1: specialization saves that factor. Last column: first iteration after a scene change (kernel compilation + one iteration), specialised / generic.</p>
 <table><tr><th>scene</th><th>scattering</th><th>backend</th><th>size</th><th>specialised ms/it</th><th>generic ms/it</th><th>generic / specialised</th><th>first iteration</th></tr>${rows}</table>`);
   }
 
   if (r.compact) {
     const c = r.compact;
-    const bpv = c.bytesPerVoxel.map((x) => `<tr><td>${x.type}</td><td>${x.backend}</td><td>${x.sampling}</td><td>${x.bytesPerVoxel.toFixed(2)}</td></tr>`).join('');
-    const fe = c.fastVsExact.map((x) => `<tr><td>${esc(x.renderer)}</td><td>${x.backend}</td><td>${x.size}²</td><td>${x.fastMs.toFixed(1)}</td><td>${x.exactMs.toFixed(1)}</td><td>${x.ratio.toFixed(2)}×</td></tr>`).join('');
-    const ct = c.ctLoad.map((x) => `<tr><td>512×512×${x.depth}</td><td>${x.backend}</td><td>${fmt(x.generateMs)}</td><td>${fmt(x.setSceneMs)}</td><td>${fmt(x.firstImageMs)}</td><td>${fmt(x.loadMs)}</td><td>${x.baseHeapMiB.toFixed(0)} → ${x.peakHeapMiB.toFixed(0)}</td><td>${(x.gpuBytes.volume / 2 ** 20).toFixed(0)}</td><td>${x.uploadedDims.join('×')}</td></tr>`).join('');
+    const bpv = c.bytesPerVoxel
+      .map(
+        (x) =>
+          `<tr><td>${x.type}</td><td>${x.backend}</td><td>${x.sampling}</td><td>${x.bytesPerVoxel.toFixed(2)}</td></tr>`,
+      )
+      .join('');
+    const fe = c.fastVsExact
+      .map(
+        (x) =>
+          `<tr><td>${esc(x.renderer)}</td><td>${x.backend}</td><td>${x.size}²</td><td>${x.fastMs.toFixed(1)}</td><td>${x.exactMs.toFixed(1)}</td><td>${x.ratio.toFixed(2)}×</td></tr>`,
+      )
+      .join('');
+    const ct = c.ctLoad
+      .map(
+        (x) =>
+          `<tr><td>512×512×${x.depth}</td><td>${x.backend}</td><td>${fmt(x.generateMs)}</td><td>${fmt(x.setSceneMs)}</td><td>${fmt(x.firstImageMs)}</td><td>${fmt(x.loadMs)}</td><td>${x.baseHeapMiB.toFixed(0)} → ${x.peakHeapMiB.toFixed(0)}</td><td>${(x.gpuBytes.volume / 2 ** 20).toFixed(0)}</td><td>${x.uploadedDims.join('×')}</td></tr>`,
+      )
+      .join('');
     sections.push(`<h2>Compact volumes: GPU bytes, fast vs exact sampling, CT load</h2><p>Load average at the start: ${c.loadAverage.map((x) => x.toFixed(2)).join(', ')}.</p>
 <table><tr><th>voxel type</th><th>backend</th><th>sampling</th><th>GPU bytes / voxel (volume)</th></tr>${bpv}</table>
 <p>Median ms per iteration on the bundled head, fast path (compact texture, one hardware-filtered fetch) and exact path (r32float, manual trilinear), measured alternately (A/B then B/A) in one run. Ratio = exact / fast.</p>

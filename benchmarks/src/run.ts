@@ -35,14 +35,25 @@ if (sceneFilter) preset.errorScenes = sceneFilter.split(',');
 /** FETCHED_SCENES whose raw file `pnpm data:fetch` has put in data/fetched/, with their sidecar's geometry. */
 function fetchedScenes(): { present: Record<string, SceneSpec>; absent: string[] } {
   const dir = fileURLToPath(new URL('../../data/fetched/', import.meta.url));
-  const present: Record<string, SceneSpec> = {}, absent: string[] = [];
+  const present: Record<string, SceneSpec> = {},
+    absent: string[] = [];
   for (const [name, f] of Object.entries(FETCHED_SCENES)) {
     const sidecarPath = path.join(dir, f.sidecar);
     const sidecar = existsSync(sidecarPath) ? JSON.parse(readFileSync(sidecarPath, 'utf8')) : null;
-    if (!sidecar || !existsSync(path.join(dir, sidecar.file))) { absent.push(`${name} (not fetched: pnpm data:fetch)`); continue; }
+    if (!sidecar || !existsSync(path.join(dir, sidecar.file))) {
+      absent.push(`${name} (not fetched: pnpm data:fetch)`);
+      continue;
+    }
     present[name] = {
       ...f.scene,
-      volume: { kind: 'raw', url: `/data/fetched/${sidecar.file}`, dims: sidecar.dims, type: sidecar.voxel_type, valueRange: sidecar.value_range, spacing: sidecar.spacing ?? [1, 1, 1] },
+      volume: {
+        kind: 'raw',
+        url: `/data/fetched/${sidecar.file}`,
+        dims: sidecar.dims,
+        type: sidecar.voxel_type,
+        valueRange: sidecar.value_range,
+        spacing: sidecar.spacing ?? [1, 1, 1],
+      },
     };
   }
   return { present, absent };
@@ -53,26 +64,54 @@ const log = (line: string) => console.log(`[${((Date.now() - started) / 1000).to
 const session = await openVptPage();
 try {
   await session.page.evaluate(installBenchPage);
-  const available = await session.page.evaluate(() => (window as unknown as { bench: { available(): string[] } }).bench.available());
-  const keep = (r: { renderer: string; label: string }) => available.includes(r.renderer) && (!only || only.split(',').some((o) => r.label.startsWith(o)));
-  const skipped = [...RENDERERS, ...MCRT_VARIANTS].filter((r) => !available.includes(r.renderer)).map((r) => `${r.label} (package not in this build)`);
+  const available = await session.page.evaluate(() =>
+    (window as unknown as { bench: { available(): string[] } }).bench.available(),
+  );
+  const keep = (r: { renderer: string; label: string }) =>
+    available.includes(r.renderer) && (!only || only.split(',').some((o) => r.label.startsWith(o)));
+  const skipped = [...RENDERERS, ...MCRT_VARIANTS]
+    .filter((r) => !available.includes(r.renderer))
+    .map((r) => `${r.label} (package not in this build)`);
   const results: Results = {
     machine: machineRecord(await session.browser.version(), [...CHROMIUM_FLAGS, ...WEBGPU_FLAGS]),
-    backends: Object.fromEntries(await Promise.all(backends.map(async (b) => [b, await session.page.evaluate((b) => (window as unknown as { bench: { backendInfo(b: string): Promise<unknown> } }).bench.backendInfo(b), b)]))),
+    backends: Object.fromEntries(
+      await Promise.all(
+        backends.map(async (b) => [
+          b,
+          await session.page.evaluate(
+            (b) => (window as unknown as { bench: { backendInfo(b: string): Promise<unknown> } }).bench.backendInfo(b),
+            b,
+          ),
+        ]),
+      ),
+    ),
     preset: preset.name,
     skipped,
   };
   const fetched = fetchedScenes();
   results.skipped.push(...fetched.absent);
-  const ctx: SuiteContext = { page: session.page, preset, backends, renderers: RENDERERS.filter(keep), mcrtVariants: MCRT_VARIANTS.filter(keep), fetchedScenes: fetched.present, log };
+  const ctx: SuiteContext = {
+    page: session.page,
+    preset,
+    backends,
+    renderers: RENDERERS.filter(keep),
+    mcrtVariants: MCRT_VARIANTS.filter(keep),
+    fetchedScenes: fetched.present,
+    log,
+  };
   if (suites.includes('frame')) results.frameTime = await frameTime(ctx);
   if (suites.includes('error')) results.errorVsTime = await errorVsTime(ctx);
   if (suites.includes('convergence')) results.convergence = await convergence(ctx);
   if (suites.includes('scaling')) results.scaling = await scaling(ctx);
-  if (suites.includes('specialization') && available.includes('mcrt')) results.specialization = await specialization(ctx);
+  if (suites.includes('specialization') && available.includes('mcrt'))
+    results.specialization = await specialization(ctx);
   if (suites.includes('compact')) results.compact = await compact(ctx);
 
-  const dir = path.join(fileURLToPath(new URL('..', import.meta.url)), 'results', new Date().toISOString().replace(/[:.]/g, '-'));
+  const dir = path.join(
+    fileURLToPath(new URL('..', import.meta.url)),
+    'results',
+    new Date().toISOString().replace(/[:.]/g, '-'),
+  );
   mkdirSync(dir, { recursive: true });
   writeFileSync(path.join(dir, 'results.json'), JSON.stringify(results, null, 2));
   writeFileSync(path.join(dir, 'report.html'), htmlReport(results));

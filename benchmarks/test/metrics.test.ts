@@ -1,7 +1,16 @@
 import { describe, expect, it } from 'vitest';
 import { median, timeToPsnr, type CurvePoint } from '../src/metrics.js';
 
-const point = (ms: number, psnr: number): CurvePoint => ({ iterations: 0, ms, rmse: 0, psnr, rmseLdr: 0, psnrLdr: psnr - 3, nonFinite: 0, estimatedRmse: null });
+const point = (ms: number, psnr: number): CurvePoint => ({
+  iterations: 0,
+  ms,
+  rmse: 0,
+  psnr,
+  rmseLdr: 0,
+  psnrLdr: psnr - 3,
+  nonFinite: 0,
+  estimatedRmse: null,
+});
 
 describe('timeToPsnr', () => {
   // Monte Carlo: PSNR = 10·log10(t) + c, so the crossing of target T is t = 10^((T − c)/10) exactly,

@@ -20,7 +20,11 @@ const worker = {
   output: { dir: 'dist/worker', format: 'es', sourcemap: false, chunkFileNames: 'chunks/[name]-[hash].js' },
   plugins: [
     // dicom-parser's UMD build names Node's zlib; the worker passes its own inflater (fflate).
-    { name: 'no-zlib', resolveId: (id) => (id === 'zlib' ? '\0zlib' : null), load: (id) => (id === '\0zlib' ? 'export default {};' : null) },
+    {
+      name: 'no-zlib',
+      resolveId: (id) => (id === 'zlib' ? '\0zlib' : null),
+      load: (id) => (id === '\0zlib' ? 'export default {};' : null),
+    },
     nodeResolve({ browser: true, exportConditions: ['browser', 'import', 'default'] }),
     commonjs(),
     typescript({ tsconfig: './tsconfig.worker.json', compilerOptions: { sourceMap: false, declarationMap: false } }),

@@ -10,7 +10,6 @@ import terser from '@rollup/plugin-terser';
 import commonjs from '@rollup/plugin-commonjs';
 import { libraryConfig } from '../../rollup.lib.mjs';
 
-
 // Packages the viewer imports only dynamically and that may not be installed (or built):
 // each missing one becomes a module that rejects, so only its renderer (or the full
 // loaders) is unavailable and the rest of the viewer builds and runs.
@@ -31,13 +30,16 @@ function optionalPackages(needBuilt) {
     const p = packageEntry(name);
     return needBuilt ? !p.built : !p.installed;
   });
-  if (missing.length) console.warn(`@vpt/viewer: not available, stubbed (they will reject when used): ${missing.join(', ')}`);
+  if (missing.length)
+    console.warn(`@vpt/viewer: not available, stubbed (they will reject when used): ${missing.join(', ')}`);
   const PREFIX = '\0vpt-missing:';
   return {
     missing,
     plugin: {
       name: 'vpt-optional-packages',
-      resolveId(id) { return missing.includes(id) ? PREFIX + id : null; },
+      resolveId(id) {
+        return missing.includes(id) ? PREFIX + id : null;
+      },
       load(id) {
         if (!id.startsWith(PREFIX)) return null;
         const name = id.slice(PREFIX.length);
@@ -64,14 +66,28 @@ function copyLoaderWorker() {
   return {
     name: 'vpt-copy-loader-worker',
     writeBundle(options, bundle) {
-      const from = path.join(path.dirname(fileURLToPath(import.meta.url)), 'node_modules', '@vpt', 'loaders', 'dist', 'worker');
+      const from = path.join(
+        path.dirname(fileURLToPath(import.meta.url)),
+        'node_modules',
+        '@vpt',
+        'loaders',
+        'dist',
+        'worker',
+      );
       if (!fs.existsSync(path.join(from, 'loader-worker.js'))) return;
       // Beside whichever output file holds the worker client (an entry or a lazy chunk).
-      const dirs = new Set(Object.values(bundle).filter((c) => c.type === 'chunk' && c.code.includes('loader-worker.js')).map((c) => path.dirname(path.join(options.dir, c.fileName))));
+      const dirs = new Set(
+        Object.values(bundle)
+          .filter((c) => c.type === 'chunk' && c.code.includes('loader-worker.js'))
+          .map((c) => path.dirname(path.join(options.dir, c.fileName))),
+      );
       for (const dir of dirs) {
         fs.rmSync(path.join(dir, 'chunks'), { recursive: true, force: true });
         fs.copyFileSync(path.join(from, 'loader-worker.js'), path.join(dir, 'loader-worker.js'));
-        fs.cpSync(path.join(from, 'chunks'), path.join(dir, 'chunks'), { recursive: true, filter: (f) => !f.endsWith('.map') });
+        fs.cpSync(path.join(from, 'chunks'), path.join(dir, 'chunks'), {
+          recursive: true,
+          filter: (f) => !f.endsWith('.map'),
+        });
       }
     },
   };
@@ -83,18 +99,32 @@ const bundle = {
   preserveEntrySignatures: 'allow-extension',
   // One entry file for a plain page; what the viewer imports dynamically (the iso and mcrt
   // renderers, the NIfTI/DICOM parsers) becomes chunks beside it, fetched on first use.
-  output: { dir: 'dist', format: 'es', entryFileNames: '[name].js', chunkFileNames: 'bundle-chunks/[name]-[hash].js', sourcemap: false },
+  output: {
+    dir: 'dist',
+    format: 'es',
+    entryFileNames: '[name].js',
+    chunkFileNames: 'bundle-chunks/[name]-[hash].js',
+    sourcemap: false,
+  },
   plugins: [
     bundleOptional.plugin,
     // dicom-parser's UMD build names Node's zlib; @vpt/loaders passes its own inflater (fflate).
-    { name: 'no-zlib', resolveId: (id) => (id === 'zlib' ? '\0zlib' : null), load: (id) => (id === '\0zlib' ? 'export default {};' : null) },
+    {
+      name: 'no-zlib',
+      resolveId: (id) => (id === 'zlib' ? '\0zlib' : null),
+      load: (id) => (id === '\0zlib' ? 'export default {};' : null),
+    },
     nodeResolve({ browser: true, exportConditions: ['browser', 'import', 'default'] }),
     commonjs(),
     ...(process.env.VPT_NO_MINIFY ? [] : [terser({ module: true, format: { comments: false } })]),
     copyLoaderWorker(),
   ],
   onwarn(warning, warn) {
-    if (warning.code === 'THIS_IS_UNDEFINED' || (warning.code === 'CIRCULAR_DEPENDENCY' && /node_modules/.test(warning.message))) return;
+    if (
+      warning.code === 'THIS_IS_UNDEFINED' ||
+      (warning.code === 'CIRCULAR_DEPENDENCY' && /node_modules/.test(warning.message))
+    )
+      return;
     warn(warning);
   },
 };

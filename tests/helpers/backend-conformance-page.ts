@@ -35,26 +35,35 @@ export async function backendConformance(kind: 'webgl2' | 'webgpu'): Promise<Con
       return undefined;
     } catch (err) {
       const e = err as Failure;
-      check(name, e?.name === 'VptError' && e.code === code, `${e?.name} ${e?.code}: ${String(e?.message).split('\n')[0]}`);
+      check(
+        name,
+        e?.name === 'VptError' && e.code === code,
+        `${e?.name} ${e?.code}: ${String(e?.message).split('\n')[0]}`,
+      );
       return e;
     }
   };
   /** First mismatch between two arrays, or '' when they are equal element by element. */
   const firstMismatch = (got: ArrayLike<number>, want: ArrayLike<number>) => {
     if (got.length !== want.length) return `length ${got.length} != ${want.length}`;
-    for (let i = 0; i < want.length; i++) if (!Object.is(got[i], want[i])) return `[${i}] got ${got[i]}, want ${want[i]}`;
+    for (let i = 0; i < want.length; i++)
+      if (!Object.is(got[i], want[i])) return `[${i}] got ${got[i]}, want ${want[i]}`;
     return '';
   };
   const gl = kind === 'webgl2';
   /** A full-screen kernel body in this backend's language: GLSL `void main()` or the WGSL fs_main returning VptOut. */
   const kernel = (glsl: string, wgsl: string) => (gl ? { glsl, wgsl: '' } : { glsl: '', wgsl });
-  const wgslMain = (body: string) => `@fragment fn fs_main(@builtin(position) fragCoord: vec4f) -> VptOut {\n  var o: VptOut;\n${body}\n  return o;\n}`;
+  const wgslMain = (body: string) =>
+    `@fragment fn fs_main(@builtin(position) fragCoord: vec4f) -> VptOut {\n  var o: VptOut;\n${body}\n  return o;\n}`;
 
-  const W = 8, H = 4, NZ = 3;
+  const W = 8,
+    H = 4,
+    NZ = 3;
   const volumeValue = (x: number, y: number, z: number) => x + 10 * y + 100 * z + 0.25;
   const volumeData = (bias = 0) => {
     const d = new Float32Array(W * H * NZ);
-    for (let z = 0; z < NZ; z++) for (let y = 0; y < H; y++) for (let x = 0; x < W; x++) d[x + W * (y + H * z)] = volumeValue(x, y, z) + bias;
+    for (let z = 0; z < NZ; z++)
+      for (let y = 0; y < H; y++) for (let x = 0; x < W; x++) d[x + W * (y + H * z)] = volumeValue(x, y, z) + bias;
     return d;
   };
 
@@ -73,7 +82,8 @@ export async function backendConformance(kind: 'webgl2' | 'webgpu'): Promise<Con
     textures: [{ name: 'vol', dimension: '3d' }],
     outputs: ['rgba32float', 'rgba32float'],
     defines: { HALF: 0.5, FLAG: true, OFF: false, SEVEN: 7 },
-    ...kernel(`
+    ...kernel(
+      `
 void main() {
   ivec2 p = vptPixel();
   ivec2 size = vptTargetSize();
@@ -84,7 +94,8 @@ void main() {
                   u.m[1][2] + HALF + float(FLAG));
   vpt_out1 = vec4(vptPixel(), 0, 1);
 }
-`, `
+`,
+      `
 @fragment fn fs_main(@builtin(position) fragCoord: vec4f) -> VptOut {
   let p = vptPixel(fragCoord);
   let size = vptTargetSize();
@@ -97,29 +108,54 @@ void main() {
   o.out1 = vec4f(vec2f(p), 0.0, 1.0);
   return o;
 }
-`),
+`,
+    ),
   };
   const expectedMain = (bias = 0, values: typeof uniformValues = uniformValues) => {
-    const a = new Float32Array(W * H * 4), b = new Float32Array(W * H * 4);
+    const a = new Float32Array(W * H * 4),
+      b = new Float32Array(W * H * 4);
     const f = Math.fround;
-    for (let y = 0; y < H; y++) for (let x = 0; x < W; x++) {
-      const i = 4 * (x + W * y);
-      const v = f(volumeValue(x, y, 1) + bias);
-      a.set([f(f(v * values.scale) + values.offset[0]), values.offset[1] + (W * 10 + H), values.offset[2] + 0 + 7, values.m[6] + 0.5 + 1], i);
-      b.set([x, y, 0, 1], i);
-    }
+    for (let y = 0; y < H; y++)
+      for (let x = 0; x < W; x++) {
+        const i = 4 * (x + W * y);
+        const v = f(volumeValue(x, y, 1) + bias);
+        a.set(
+          [
+            f(f(v * values.scale) + values.offset[0]),
+            values.offset[1] + (W * 10 + H),
+            values.offset[2] + 0 + 7,
+            values.m[6] + 0.5 + 1,
+          ],
+          i,
+        );
+        b.set([x, y, 0, 1], i);
+      }
     return [a, b];
   };
 
   const R32_PASS: PassDescriptor = {
-    label: 'r32 test', uniforms: new UniformLayout('NoParams', []), textures: [], outputs: ['r32float'],
-    ...kernel('void main() { ivec2 p = vptPixel(); vpt_out0 = vec4(float(p.x + p.y * vptTargetSize().x) + 0.5, 9.0, 9.0, 9.0); }',
-      wgslMain('  let p = vptPixel(fragCoord);\n  o.out0 = vec4f(f32(p.x + p.y * vptTargetSize().x) + 0.5, 9.0, 9.0, 9.0);')),
+    label: 'r32 test',
+    uniforms: new UniformLayout('NoParams', []),
+    textures: [],
+    outputs: ['r32float'],
+    ...kernel(
+      'void main() { ivec2 p = vptPixel(); vpt_out0 = vec4(float(p.x + p.y * vptTargetSize().x) + 0.5, 9.0, 9.0, 9.0); }',
+      wgslMain(
+        '  let p = vptPixel(fragCoord);\n  o.out0 = vec4f(f32(p.x + p.y * vptTargetSize().x) + 0.5, 9.0, 9.0, 9.0);',
+      ),
+    ),
   };
   const RGBA8_PASS: PassDescriptor = {
-    label: 'rgba8 test', uniforms: new UniformLayout('Rgba8Params', [{ name: 'pad', type: 'f32' }]), textures: [], outputs: ['rgba8unorm'],
-    ...kernel('void main() { ivec2 p = vptPixel(); vpt_out0 = vec4(float(p.x * 10) / 255.0, float(p.y * 20) / 255.0, 1.0, 1.0); }',
-      wgslMain('  let p = vptPixel(fragCoord);\n  o.out0 = vec4f(f32(p.x * 10) / 255.0, f32(p.y * 20) / 255.0, 1.0, 1.0);')),
+    label: 'rgba8 test',
+    uniforms: new UniformLayout('Rgba8Params', [{ name: 'pad', type: 'f32' }]),
+    textures: [],
+    outputs: ['rgba8unorm'],
+    ...kernel(
+      'void main() { ivec2 p = vptPixel(); vpt_out0 = vec4(float(p.x * 10) / 255.0, float(p.y * 20) / 255.0, 1.0, 1.0); }',
+      wgslMain(
+        '  let p = vptPixel(fragCoord);\n  o.out0 = vec4f(f32(p.x * 10) / 255.0, f32(p.y * 20) / 255.0, 1.0, 1.0);',
+      ),
+    ),
   };
   const expectedRgba8 = () => {
     const e = new Uint8Array(W * H * 4);
@@ -127,30 +163,57 @@ void main() {
     return e;
   };
   const PRESENT_PASS: PassDescriptor = {
-    label: 'present test', uniforms: new UniformLayout('PresentParams', [{ name: 'pad', type: 'f32' }]),
-    textures: [{ name: 'inputImage', dimension: '2d' }], outputs: ['rgba8unorm'],
-    ...kernel('void main() { vpt_out0 = texelFetch(inputImage, vptPixel(), 0); }', wgslMain('  o.out0 = textureLoad(inputImage, vptPixel(fragCoord), 0);')),
+    label: 'present test',
+    uniforms: new UniformLayout('PresentParams', [{ name: 'pad', type: 'f32' }]),
+    textures: [{ name: 'inputImage', dimension: '2d' }],
+    outputs: ['rgba8unorm'],
+    ...kernel(
+      'void main() { vpt_out0 = texelFetch(inputImage, vptPixel(), 0); }',
+      wgslMain('  o.out0 = textureLoad(inputImage, vptPixel(fragCoord), 0);'),
+    ),
   };
   const pad = (v: UniformValues = { pad: 0 }) => RGBA8_PASS.uniforms.pack(v);
 
   /** Create the 3D texture, MRT target and pass; draw; read both outputs back and compare. */
   const runMain = async (backend: GpuBackend, tag: string, bias = 0) => {
-    const vol = backend.createTexture({ dimension: '3d', width: W, height: H, depth: NZ, format: 'r32float', data: volumeData(bias), label: 'vol' });
+    const vol = backend.createTexture({
+      dimension: '3d',
+      width: W,
+      height: H,
+      depth: NZ,
+      format: 'r32float',
+      data: volumeData(bias),
+      label: 'vol',
+    });
     const target = backend.createRenderTarget(W, H, ['rgba32float', 'rgba32float'], 'mrt');
     const pass = backend.createPass(MAIN_PASS);
     backend.draw(pass, { uniforms: layout.pack(uniformValues), textures: { vol }, target });
     const [a, b] = await Promise.all(target.textures.map((t) => backend.readTexture(t)));
     const [ea, eb] = expectedMain(bias);
-    check(`${tag}: output 0 (3D integer load + uniforms + defines + target size) exact`, a instanceof Float32Array && !firstMismatch(a, ea), firstMismatch(a, ea));
-    check(`${tag}: output 1 (vptPixel) exact`, b instanceof Float32Array && !firstMismatch(b, eb), firstMismatch(b, eb));
-    check(`${tag}: readback row 0 is pixel row 0 from the top`, b[1] === 0 && b[4 * W * (H - 1) + 1] === H - 1, `row0.y=${b[1]} lastRow.y=${b[4 * W * (H - 1) + 1]}`);
+    check(
+      `${tag}: output 0 (3D integer load + uniforms + defines + target size) exact`,
+      a instanceof Float32Array && !firstMismatch(a, ea),
+      firstMismatch(a, ea),
+    );
+    check(
+      `${tag}: output 1 (vptPixel) exact`,
+      b instanceof Float32Array && !firstMismatch(b, eb),
+      firstMismatch(b, eb),
+    );
+    check(
+      `${tag}: readback row 0 is pixel row 0 from the top`,
+      b[1] === 0 && b[4 * W * (H - 1) + 1] === H - 1,
+      `row0.y=${b[1]} lastRow.y=${b[4 * W * (H - 1) + 1]}`,
+    );
     return { vol, target, pass };
   };
-  const create = async (canvas: HTMLCanvasElement | OffscreenCanvas): Promise<GpuBackend> => (gl ? core.createWebGL2Backend(canvas) : core.createWebGPUBackend(canvas));
+  const create = async (canvas: HTMLCanvasElement | OffscreenCanvas): Promise<GpuBackend> =>
+    gl ? core.createWebGL2Backend(canvas) : core.createWebGPUBackend(canvas);
   /** What the canvas shows, read through a 2D canvas. */
   const shownOn = (canvas: HTMLCanvasElement) => {
     const c2 = document.createElement('canvas');
-    c2.width = W; c2.height = H;
+    c2.width = W;
+    c2.height = H;
     const ctx = c2.getContext('2d')!;
     ctx.drawImage(canvas, 0, 0);
     return new Uint8Array(ctx.getImageData(0, 0, W, H).data.buffer);
@@ -167,7 +230,8 @@ void main() {
     backend.resizeCanvas(W, H);
     check('resizeCanvas', canvas.width === W && canvas.height === H);
 
-    const lostCalls: number[] = [], restoredCalls: number[] = [];
+    const lostCalls: number[] = [],
+      restoredCalls: number[] = [];
     backend.onLost(() => lostCalls.push(performance.now()));
     backend.onRestored(() => restoredCalls.push(performance.now()));
 
@@ -182,10 +246,18 @@ void main() {
     // Two draws in a row with different uniforms, each into its own target, read afterwards.
     {
       const t2 = backend.createRenderTarget(W, H, ['rgba32float', 'rgba32float'], 'mrt B');
-      backend.draw(first.pass, { uniforms: layout.pack(uniformValues), textures: { vol: first.vol }, target: first.target });
+      backend.draw(first.pass, {
+        uniforms: layout.pack(uniformValues),
+        textures: { vol: first.vol },
+        target: first.target,
+      });
       backend.draw(first.pass, { uniforms: layout.pack(uniformValuesB), textures: { vol: first.vol }, target: t2 });
-      const [a1, a2] = await Promise.all([backend.readTexture(first.target.textures[0]), backend.readTexture(t2.textures[0])]);
-      const [e1] = expectedMain(0, uniformValues), [e2] = expectedMain(0, uniformValuesB);
+      const [a1, a2] = await Promise.all([
+        backend.readTexture(first.target.textures[0]),
+        backend.readTexture(t2.textures[0]),
+      ]);
+      const [e1] = expectedMain(0, uniformValues),
+        [e2] = expectedMain(0, uniformValuesB);
       check('two draws in a row: first sees its own uniforms', !firstMismatch(a1, e1), firstMismatch(a1, e1));
       check('two draws in a row: second sees its own uniforms', !firstMismatch(a2, e2), firstMismatch(a2, e2));
       backend.destroyRenderTarget(t2);
@@ -193,7 +265,11 @@ void main() {
 
     // writeTexture replaces the volume; the same pass sees the new values.
     backend.writeTexture(first.vol, volumeData(1000));
-    backend.draw(first.pass, { uniforms: layout.pack(uniformValues), textures: { vol: first.vol }, target: first.target });
+    backend.draw(first.pass, {
+      uniforms: layout.pack(uniformValues),
+      textures: { vol: first.vol },
+      target: first.target,
+    });
     {
       const a = await backend.readTexture(first.target.textures[0]);
       const [ea] = expectedMain(1000);
@@ -226,28 +302,61 @@ void main() {
       check('canvas shows row 0 at the top', !firstMismatch(shown, e), firstMismatch(shown, e));
 
       let feedback = '';
-      try { backend.draw(present, { uniforms: new ArrayBuffer(16), textures: { inputImage: t.textures[0] }, target: t }); } catch (err) { feedback = (err as Error).message; }
+      try {
+        backend.draw(present, { uniforms: new ArrayBuffer(16), textures: { inputImage: t.textures[0] }, target: t });
+      } catch (err) {
+        feedback = (err as Error).message;
+      }
       check('reading the texture being written is refused', /feedback/.test(feedback), feedback);
 
       // The shared canvas-draw rule: one rgba8unorm output, on both backends.
-      const hdrToCanvas = backend.createPass({ ...PRESENT_PASS, label: 'hdr to canvas', outputs: ['rgba32float'], ...kernel('void main() { vpt_out0 = texelFetch(inputImage, vptPixel(), 0); }', wgslMain('  o.out0 = textureLoad(inputImage, vptPixel(fragCoord), 0);')) });
+      const hdrToCanvas = backend.createPass({
+        ...PRESENT_PASS,
+        label: 'hdr to canvas',
+        outputs: ['rgba32float'],
+        ...kernel(
+          'void main() { vpt_out0 = texelFetch(inputImage, vptPixel(), 0); }',
+          wgslMain('  o.out0 = textureLoad(inputImage, vptPixel(fragCoord), 0);'),
+        ),
+      });
       let canvasRule = '';
-      try { backend.draw(hdrToCanvas, { uniforms: pad(), textures: { inputImage: t.textures[0] }, target: 'canvas' }); } catch (err) { canvasRule = (err as Error).message; }
-      check('a canvas draw with an rgba32float output is refused', /one rgba8unorm output/.test(canvasRule), canvasRule);
+      try {
+        backend.draw(hdrToCanvas, { uniforms: pad(), textures: { inputImage: t.textures[0] }, target: 'canvas' });
+      } catch (err) {
+        canvasRule = (err as Error).message;
+      }
+      check(
+        'a canvas draw with an rgba32float output is refused',
+        /one rgba8unorm output/.test(canvasRule),
+        canvasRule,
+      );
       backend.destroyRenderTarget(t);
     }
 
     // Limits: checked before the API would fail.
-    const max3 = backend.limits.maxTextureDimension3D, max2 = backend.limits.maxTextureDimension2D;
-    const name3 = gl ? 'MAX_3D_TEXTURE_SIZE' : 'maxTextureDimension3D', name2 = gl ? 'MAX_TEXTURE_SIZE' : 'maxTextureDimension2D';
+    const max3 = backend.limits.maxTextureDimension3D,
+      max2 = backend.limits.maxTextureDimension2D;
+    const name3 = gl ? 'MAX_3D_TEXTURE_SIZE' : 'maxTextureDimension3D',
+      name2 = gl ? 'MAX_TEXTURE_SIZE' : 'maxTextureDimension2D';
     const e3 = await expectCode(`3D texture of ${name3}+1 (${max3 + 1}) → limit-exceeded`, 'limit-exceeded', () =>
-      backend.createTexture({ dimension: '3d', width: 1, height: 1, depth: max3 + 1, format: 'r32float' }));
-    check('limit message names the limit and the size', new RegExp(name3).test(String(e3?.message)) && String(e3?.message).includes(String(max3 + 1)), e3?.message);
-    await expectCode(`2D texture of ${name2}+1 (${max2 + 1}) → limit-exceeded`, 'limit-exceeded', () => backend.createRenderTarget(max2 + 1, 1, ['rgba32float']));
+      backend.createTexture({ dimension: '3d', width: 1, height: 1, depth: max3 + 1, format: 'r32float' }),
+    );
+    check(
+      'limit message names the limit and the size',
+      new RegExp(name3).test(String(e3?.message)) && String(e3?.message).includes(String(max3 + 1)),
+      e3?.message,
+    );
+    await expectCode(`2D texture of ${name2}+1 (${max2 + 1}) → limit-exceeded`, 'limit-exceeded', () =>
+      backend.createRenderTarget(max2 + 1, 1, ['rgba32float']),
+    );
 
     // Shader errors: WebGL 2 compiles at createPass; WebGPU finds them asynchronously (the
     // next finish() rejects, then createPass throws at once).
-    const BROKEN: PassDescriptor = { ...R32_PASS, label: 'broken kernel', ...kernel('void main() {\n  vpt_out0 = vec4(notDeclared);\n}\n', wgslMain('  o.out0 = vec4f(notDeclared);')) };
+    const BROKEN: PassDescriptor = {
+      ...R32_PASS,
+      label: 'broken kernel',
+      ...kernel('void main() {\n  vpt_out0 = vec4(notDeclared);\n}\n', wgslMain('  o.out0 = vec4f(notDeclared);')),
+    };
     const brokenLine = gl ? /\d+\|\s+vpt_out0 = vec4\(notDeclared\);/ : /\d+\|\s+o\.out0 = vec4f\(notDeclared\);/;
     const es = await expectCode('broken shader → shader-compile', 'shader-compile', async () => {
       const t = backend.createRenderTarget(W, H, ['r32float'], 'r32 broken');
@@ -255,45 +364,96 @@ void main() {
       backend.draw(p, { uniforms: new ArrayBuffer(16), textures: {}, target: t });
       await backend.finish();
     });
-    check('compile error names the label, has the log and numbered source lines', /broken kernel/.test(String(es?.message)) && /notDeclared/.test(String(es?.message)) && brokenLine.test(String(es?.message)), '');
+    check(
+      'compile error names the label, has the log and numbered source lines',
+      /broken kernel/.test(String(es?.message)) &&
+        /notDeclared/.test(String(es?.message)) &&
+        brokenLine.test(String(es?.message)),
+      '',
+    );
     log.push(`(shader error message)\n${es?.message}`);
-    await expectCode('broken shader, second createPass → shader-compile at once', 'shader-compile', () => backend.createPass(BROKEN));
+    await expectCode('broken shader, second createPass → shader-compile at once', 'shader-compile', () =>
+      backend.createPass(BROKEN),
+    );
     await backend.finish();
     check('the error is reported once: a later finish() resolves', true);
     if (!gl) {
       await expectCode('broken shader → readTexture rejects with shader-compile', 'shader-compile', async () => {
         const t = backend.createRenderTarget(W, H, ['r32float'], 'r32 broken 2');
-        backend.draw(backend.createPass({ ...BROKEN, label: 'broken kernel 2', wgsl: BROKEN.wgsl.replace('notDeclared', 'alsoMissing') }), { uniforms: new ArrayBuffer(16), textures: {}, target: t });
+        backend.draw(
+          backend.createPass({
+            ...BROKEN,
+            label: 'broken kernel 2',
+            wgsl: BROKEN.wgsl.replace('notDeclared', 'alsoMissing'),
+          }),
+          { uniforms: new ArrayBuffer(16), textures: {}, target: t },
+        );
         await backend.readTexture(t.textures[0]);
       });
       // A kernel whose outputs do not match VptOut fails at pipeline creation, not in the compiler.
       const em = await expectCode('kernel/pipeline mismatch → shader-compile', 'shader-compile', async () => {
         const t = backend.createRenderTarget(W, H, ['r32float'], 'r32 mismatch');
         // Writes location 1 only, while the target (and pipeline) has a colour target at location 0.
-        const wgsl = '@fragment fn fs_main(@builtin(position) fragCoord: vec4f) -> @location(1) vec4f { return vec4f(1.0); }';
-        backend.draw(backend.createPass({ ...R32_PASS, label: 'no VptOut', wgsl }), { uniforms: new ArrayBuffer(16), textures: {}, target: t });
+        const wgsl =
+          '@fragment fn fs_main(@builtin(position) fragCoord: vec4f) -> @location(1) vec4f { return vec4f(1.0); }';
+        backend.draw(backend.createPass({ ...R32_PASS, label: 'no VptOut', wgsl }), {
+          uniforms: new ArrayBuffer(16),
+          textures: {},
+          target: t,
+        });
         await backend.finish();
       });
       log.push(`(pipeline error message)\n${em?.message}`);
     }
 
     // Loss: while lost, draw is a no-op and readTexture rejects with context-lost.
-    const duringLoss: { value: { drawThrew: unknown; isLost: boolean; read: Promise<Failure | null>; created: boolean } | null } = { value: null };
+    const duringLoss: {
+      value: { drawThrew: unknown; isLost: boolean; read: Promise<Failure | null>; created: boolean } | null;
+    } = { value: null };
     backend.onLost(() => {
       let drawThrew: unknown = null;
-      try { backend.draw(first.pass, { uniforms: layout.pack(uniformValues), textures: { vol: first.vol }, target: first.target }); } catch (e) { drawThrew = e; }
+      try {
+        backend.draw(first.pass, {
+          uniforms: layout.pack(uniformValues),
+          textures: { vol: first.vol },
+          target: first.target,
+        });
+      } catch (e) {
+        drawThrew = e;
+      }
       const t = backend.createTexture({ dimension: '2d', width: 2, height: 2, format: 'rgba32float' });
-      duringLoss.value = { drawThrew, isLost: backend.isLost, read: backend.readTexture(first.target.textures[0]).then(() => null, (e) => e as Failure), created: !!t };
+      duringLoss.value = {
+        drawThrew,
+        isLost: backend.isLost,
+        read: backend.readTexture(first.target.textures[0]).then(
+          () => null,
+          (e) => e as Failure,
+        ),
+        created: !!t,
+      };
     });
     await backend.simulateLoss(50);
-    check('onLost and onRestored each fired once', lostCalls.length === 1 && restoredCalls.length === 1 && restoredCalls[0] >= lostCalls[0], `${lostCalls.length}/${restoredCalls.length}`);
+    check(
+      'onLost and onRestored each fired once',
+      lostCalls.length === 1 && restoredCalls.length === 1 && restoredCalls[0] >= lostCalls[0],
+      `${lostCalls.length}/${restoredCalls.length}`,
+    );
     check('isLost is false after restore', backend.isLost === false);
     const during = duringLoss.value;
-    check('during loss: isLost, draw is a no-op, createTexture works', !!during && during.isLost && during.drawThrew === null && during.created, String(during?.drawThrew));
+    check(
+      'during loss: isLost, draw is a no-op, createTexture works',
+      !!during && during.isLost && during.drawThrew === null && during.created,
+      String(during?.drawThrew),
+    );
     const readErr = during && (await during.read);
     check('during loss: readTexture rejects with context-lost', readErr?.code === 'context-lost', `${readErr?.code}`);
     await expectCode('after restore, an old pass is refused clearly', 'context-lost', () =>
-      backend.draw(first.pass, { uniforms: layout.pack(uniformValues), textures: { vol: first.vol }, target: first.target }));
+      backend.draw(first.pass, {
+        uniforms: layout.pack(uniformValues),
+        textures: { vol: first.vol },
+        target: first.target,
+      }),
+    );
     backend.destroyTexture(first.vol); // stale objects can still be destroyed without errors
     backend.destroyRenderTarget(first.target);
     check('destroying stale objects is silent', true);
@@ -302,10 +462,18 @@ void main() {
     {
       const t = backend.createRenderTarget(W, H, ['rgba8unorm'], 'ldr 2');
       backend.draw(backend.createPass(RGBA8_PASS), { uniforms: pad(), textures: {}, target: t });
-      backend.draw(backend.createPass(PRESENT_PASS), { uniforms: pad(), textures: { inputImage: t.textures[0] }, target: 'canvas' });
+      backend.draw(backend.createPass(PRESENT_PASS), {
+        uniforms: pad(),
+        textures: { inputImage: t.textures[0] },
+        target: 'canvas',
+      });
       await backend.finish();
       const shown = shownOn(canvas);
-      check('after restore: canvas presentation works', !firstMismatch(shown, expectedRgba8()), firstMismatch(shown, expectedRgba8()));
+      check(
+        'after restore: canvas presentation works',
+        !firstMismatch(shown, expectedRgba8()),
+        firstMismatch(shown, expectedRgba8()),
+      );
     }
     await backend.finish();
 
@@ -320,12 +488,18 @@ void main() {
     let lostAfterDispose = 0;
     if (!gl) backend.onLost(() => lostAfterDispose++);
     backend.dispose();
-    await expectCode('use after dispose → disposed', 'disposed', () => backend.createTexture({ dimension: '2d', width: 1, height: 1, format: 'rgba8unorm' }));
+    await expectCode('use after dispose → disposed', 'disposed', () =>
+      backend.createTexture({ dimension: '2d', width: 1, height: 1, format: 'rgba8unorm' }),
+    );
     if (gl) {
       check('dispose loses the context', canvas.getContext('webgl2')?.isContextLost() === true);
     } else {
       await new Promise((r) => setTimeout(r, 200));
-      check('dispose does not fire onLost or restore', lostAfterDispose === 0 && restoredCalls.length === 1, `${lostAfterDispose}/${restoredCalls.length}`);
+      check(
+        'dispose does not fire onLost or restore',
+        lostAfterDispose === 0 && restoredCalls.length === 1,
+        `${lostAfterDispose}/${restoredCalls.length}`,
+      );
     }
   } catch (err) {
     const e = err as { name?: string; code?: string; message?: string; stack?: string };

@@ -4,7 +4,16 @@
  * TypeScript: puppeteer sends the function's compiled source, so it may use nothing from
  * this module's scope, only `window.vpt` (the headless page's API).
  */
-import type { RenderContext, Scene, Volume, VoxelType, Camera, Environment, TransferFunction, VolumeSampling } from '@vpt/core';
+import type {
+  RenderContext,
+  Scene,
+  Volume,
+  VoxelType,
+  Camera,
+  Environment,
+  TransferFunction,
+  VolumeSampling,
+} from '@vpt/core';
 
 export interface TestContextOptions {
   backend: 'webgl2' | 'webgpu' | 'auto';
@@ -54,7 +63,15 @@ export function installInPageHelpers(): void {
       const renderer = window.vpt.createRenderer(opts.renderer || 'eam', opts.params || {});
       const steps = opts.post ? post.postChainFromJSON(opts.post) : [];
       // sampling: 'exact' for tests that compare with CPU twins or across backends bit for bit.
-      return core.RenderContext.create({ backend: opts.backend, width: opts.width, height: opts.height, renderer, post: steps, sampling: opts.sampling, maxGpuBytes: opts.maxGpuBytes });
+      return core.RenderContext.create({
+        backend: opts.backend,
+        width: opts.width,
+        height: opts.height,
+        renderer,
+        post: steps,
+        sampling: opts.sampling,
+        maxGpuBytes: opts.maxGpuBytes,
+      });
     },
     scene(spec) {
       const { core } = window.vpt;
@@ -74,7 +91,8 @@ export function installInPageHelpers(): void {
       return window.vpt.loadVolume({ raw: url, dims, type });
     },
     sameBits(a, b) {
-      const x = new Uint32Array(a.buffer, a.byteOffset, a.byteLength / 4), y = new Uint32Array(b.buffer, b.byteOffset, b.byteLength / 4);
+      const x = new Uint32Array(a.buffer, a.byteOffset, a.byteLength / 4),
+        y = new Uint32Array(b.buffer, b.byteOffset, b.byteLength / 4);
       if (x.length !== y.length) return -1;
       let diff = 0;
       for (let i = 0; i < x.length; i++) if (x[i] !== y[i]) diff++;

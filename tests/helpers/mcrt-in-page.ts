@@ -58,7 +58,13 @@ declare global {
 function installMcrtInPage(): void {
   window.mt = {
     async run(opts) {
-      const ctx = await window.t.context({ backend: opts.backend, renderer: 'mcrt', width: opts.width, height: opts.height, params: opts.params || {} });
+      const ctx = await window.t.context({
+        backend: opts.backend,
+        renderer: 'mcrt',
+        width: opts.width,
+        height: opts.height,
+        params: opts.params || {},
+      });
       try {
         return await window.mt.measure(ctx, opts);
       } finally {
@@ -67,23 +73,33 @@ function installMcrtInPage(): void {
     },
     async measure(ctx, opts) {
       const t = window.t;
-      if (opts.params) (ctx.renderer as unknown as { setParams(p: Record<string, unknown>): void }).setParams(opts.params);
+      if (opts.params)
+        (ctx.renderer as unknown as { setParams(p: Record<string, unknown>): void }).setParams(opts.params);
       ctx.setScene(opts.scene);
       const n = ctx.size.width * ctx.size.height * 4;
       const N = opts.iterations;
       const t0 = performance.now();
-      let mean: number[] | null = null, se: number[] | null = null, nonFinite = false;
+      let mean: number[] | null = null,
+        se: number[] | null = null,
+        nonFinite = false;
       if (opts.frames === false) {
         await ctx.renderIterations(N);
       } else {
         ctx.reset();
-        const sum = new Float64Array(n), sum2 = new Float64Array(n);
+        const sum = new Float64Array(n),
+          sum2 = new Float64Array(n);
         for (let k = 0; k < N; k++) {
           ctx.iterate(1);
           const f = await ctx.readFrame();
-          for (let i = 0; i < n; i++) { const x = f[i]; if (!Number.isFinite(x)) nonFinite = true; sum[i] += x; sum2[i] += x * x; }
+          for (let i = 0; i < n; i++) {
+            const x = f[i];
+            if (!Number.isFinite(x)) nonFinite = true;
+            sum[i] += x;
+            sum2[i] += x * x;
+          }
         }
-        mean = new Array<number>(n); se = new Array<number>(n);
+        mean = new Array<number>(n);
+        se = new Array<number>(n);
         for (let i = 0; i < n; i++) {
           const m = sum[i] / N;
           mean[i] = m;
@@ -93,7 +109,15 @@ function installMcrtInPage(): void {
       const ms = performance.now() - t0;
       const hdr = await ctx.readHDR();
       const err = await ctx.estimateError();
-      return { mean, se, hdr: Array.from(hdr), nonFinite: nonFinite || t.hasNonFinite(hdr), iterations: ctx.stats.iterations, ms, err };
+      return {
+        mean,
+        se,
+        hdr: Array.from(hdr),
+        nonFinite: nonFinite || t.hasNonFinite(hdr),
+        iterations: ctx.stats.iterations,
+        ms,
+        err,
+      };
     },
     cubeScene(o) {
       const { core } = window.vpt;

@@ -4,10 +4,21 @@
  * box-filtered pixel footprints by a stratified sub-pixel grid, analytic or quadrature
  * optical depths, and the single-scattering integral under a directional light.
  */
-import { rasterizeTransferFunction, reference, TF_RESOLUTION, volumeBox, type Scene, type TransferFunction, type Vec3 } from '../../packages/core/src/index.js';
+import {
+  rasterizeTransferFunction,
+  reference,
+  TF_RESOLUTION,
+  volumeBox,
+  type Scene,
+  type TransferFunction,
+  type Vec3,
+} from '../../packages/core/src/index.js';
 
 export const hg = (g: number, cos: number) => (1 - g * g) / (4 * Math.PI * Math.pow(1 + g * g - 2 * g * cos, 1.5));
-const norm = (v: Vec3): Vec3 => { const l = Math.hypot(...v); return [v[0] / l, v[1] / l, v[2] / l]; };
+const norm = (v: Vec3): Vec3 => {
+  const l = Math.hypot(...v);
+  return [v[0] / l, v[1] / l, v[2] / l];
+};
 const dot = (a: Vec3, b: Vec3) => a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 const at = (o: Vec3, d: Vec3, t: number): Vec3 => [o[0] + d[0] * t, o[1] + d[1] * t, o[2] + d[2] * t];
 
@@ -16,7 +27,8 @@ export function opacityLookup(tf: TransferFunction): (v: number) => number {
   const tex = rasterizeTransferFunction(tf, TF_RESOLUTION);
   return (v) => {
     const x = Math.min(1, Math.max(0, v)) * (TF_RESOLUTION - 1);
-    const i0 = Math.floor(x), i1 = Math.min(i0 + 1, TF_RESOLUTION - 1);
+    const i0 = Math.floor(x),
+      i1 = Math.min(i0 + 1, TF_RESOLUTION - 1);
     return tex[4 * i0 + 3] + (tex[4 * i1 + 3] - tex[4 * i0 + 3]) * (x - i0);
   };
 }
@@ -33,7 +45,13 @@ export interface PixelExpectation {
  * Per-pixel expectation of `radiance(origin, dir, tNear, tFar)` (tNear ≥ tFar when the ray
  * misses the box) averaged over the pixel footprint with sub × sub stratified rays.
  */
-export function pixelExpectations(scene: Scene, W: number, H: number, radiance: (o: Vec3, d: Vec3, t0: number, t1: number) => Vec3, sub = 8): PixelExpectation[] {
+export function pixelExpectations(
+  scene: Scene,
+  W: number,
+  H: number,
+  radiance: (o: Vec3, d: Vec3, t0: number, t1: number) => Vec3,
+  sub = 8,
+): PixelExpectation[] {
   const box = volumeBox(scene.volume);
   const out: PixelExpectation[] = [];
   const hits = (fx: number, fy: number) => {
@@ -41,19 +59,33 @@ export function pixelExpectations(scene: Scene, W: number, H: number, radiance: 
     const [t0, t1] = reference.intersectBox(origin, dir, box.min, box.max);
     return t1 > t0;
   };
-  for (let y = 0; y < H; y++) for (let x = 0; x < W; x++) {
-    const acc: Vec3 = [0, 0, 0];
-    let nHit = 0;
-    for (let j = 0; j < sub; j++) for (let i = 0; i < sub; i++) {
-      const { origin, dir } = reference.cameraRay(scene, W, H, (x + (i + 0.5) / sub) / W, (y + (j + 0.5) / sub) / H);
-      const [t0, t1] = reference.intersectBox(origin, dir, box.min, box.max);
-      if (t1 > t0) nHit++;
-      const L = radiance(origin, dir, t0, t1);
-      for (let c = 0; c < 3; c++) acc[c] += L[c] / (sub * sub);
+  for (let y = 0; y < H; y++)
+    for (let x = 0; x < W; x++) {
+      const acc: Vec3 = [0, 0, 0];
+      let nHit = 0;
+      for (let j = 0; j < sub; j++)
+        for (let i = 0; i < sub; i++) {
+          const { origin, dir } = reference.cameraRay(
+            scene,
+            W,
+            H,
+            (x + (i + 0.5) / sub) / W,
+            (y + (j + 0.5) / sub) / H,
+          );
+          const [t0, t1] = reference.intersectBox(origin, dir, box.min, box.max);
+          if (t1 > t0) nHit++;
+          const L = radiance(origin, dir, t0, t1);
+          for (let c = 0; c < 3; c++) acc[c] += L[c] / (sub * sub);
+        }
+      const corners = [
+        [0, 0],
+        [1, 0],
+        [0, 1],
+        [1, 1],
+        [0.5, 0.5],
+      ].every(([cx, cy]) => hits((x + cx) / W, (y + cy) / H));
+      out.push({ value: acc, interior: corners && nHit === sub * sub, miss: nHit === 0 });
     }
-    const corners = [[0, 0], [1, 0], [0, 1], [1, 1], [0.5, 0.5]].every(([cx, cy]) => hits((x + cx) / W, (y + cy) / H));
-    out.push({ value: acc, interior: corners && nHit === sub * sub, miss: nHit === 0 });
-  }
   return out;
 }
 
@@ -76,7 +108,14 @@ export function opticalDepth(scene: Scene, steps = 1000): (o: Vec3, d: Vec3, t0:
  * L = ∫ e^{−σ(t−t0)} σ a p(l·d) E e^{−σ·d_l(x(t))} dt, d_l = distance from x to the box along l.
  * (Light propagates along −l and leaves toward the camera along −d: cosθ = (−l)·(−d) = l·d.)
  */
-export function singleScatteringRadiance(scene: Scene, sigma: number, albedo: Vec3, g: number, light: { direction: Vec3; irradiance: Vec3 }, steps = 400) {
+export function singleScatteringRadiance(
+  scene: Scene,
+  sigma: number,
+  albedo: Vec3,
+  g: number,
+  light: { direction: Vec3; irradiance: Vec3 },
+  steps = 400,
+) {
   const box = volumeBox(scene.volume);
   const l = norm(light.direction);
   return (o: Vec3, d: Vec3, t0: number, t1: number): Vec3 => {

@@ -12,8 +12,10 @@
  */
 export function zSummary(z: number[], channels = 1): { maxAbs: number; meanScaled: number; n: number; over3: number } {
   const n = z.length;
-  let maxAbs = 0, over3 = 0;
-  const sums = new Array(channels).fill(0), counts = new Array(channels).fill(0);
+  let maxAbs = 0,
+    over3 = 0;
+  const sums = new Array(channels).fill(0),
+    counts = new Array(channels).fill(0);
   z.forEach((v, i) => {
     maxAbs = Math.max(maxAbs, Math.abs(v));
     if (Math.abs(v) > 3) over3++;
@@ -31,17 +33,35 @@ export function zSummary(z: number[], channels = 1): { maxAbs: number; meanScale
 /** erfc(x) for x ≥ 0, Chebyshev fit with relative error < 1.2e-7 (Press et al., Numerical Recipes, erfcc). */
 function erfc(x: number): number {
   const t = 1 / (1 + 0.5 * x);
-  return t * Math.exp(-x * x - 1.26551223 + t * (1.00002368 + t * (0.37409196 + t * (0.09678418 + t * (-0.18628806 + t * (0.27886807 + t * (-1.13520398 + t * (1.48851587 + t * (-0.82215223 + t * 0.17087277)))))))));
+  return (
+    t *
+    Math.exp(
+      -x * x -
+        1.26551223 +
+        t *
+          (1.00002368 +
+            t *
+              (0.37409196 +
+                t *
+                  (0.09678418 +
+                    t *
+                      (-0.18628806 +
+                        t *
+                          (0.27886807 + t * (-1.13520398 + t * (1.48851587 + t * (-0.82215223 + t * 0.17087277)))))))),
+    )
+  );
 }
 
 /** |z| whose two-sided normal tail probability is p (bisection on erfc). */
 export function zOfTwoSidedP(p: number): number {
   if (p >= 1) return 0;
   if (p <= 0) return Infinity;
-  let lo = 0, hi = 40;
+  let lo = 0,
+    hi = 40;
   for (let k = 0; k < 100; k++) {
     const mid = (lo + hi) / 2;
-    if (erfc(mid / Math.SQRT2) > p) lo = mid; else hi = mid;
+    if (erfc(mid / Math.SQRT2) > p) lo = mid;
+    else hi = mid;
   }
   return (lo + hi) / 2;
 }
@@ -57,7 +77,8 @@ export function binomialTwoSidedP(k: number, n: number, q: number): number {
   if (q <= 0) return k === 0 ? 1 : 0;
   if (q >= 1) return k === n ? 1 : 0;
   const pmf = (i: number) => Math.exp(logChoose(n, i) + i * Math.log(q) + (n - i) * Math.log(1 - q));
-  let lower = 0, upper = 0;
+  let lower = 0,
+    upper = 0;
   for (let i = 0; i <= k; i++) lower += pmf(i);
   for (let i = k; i <= n; i++) upper += pmf(i);
   return Math.min(1, 2 * Math.min(lower, upper));

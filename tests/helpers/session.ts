@@ -14,7 +14,9 @@ export function usePage(): () => VptPageSession {
     await session.page.evaluate(installInPageHelpers);
     await session.page.evaluate(installTestVolumes);
   });
-  afterAll(async () => { await session?.close(); });
+  afterAll(async () => {
+    await session?.close();
+  });
   return () => {
     if (!session) throw new Error('page not open');
     return session;

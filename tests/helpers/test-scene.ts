@@ -3,7 +3,14 @@
  * a white sky, the ramp transfer function, the default camera, no lights. Tests override
  * what they exercise. (The in-page twin is `window.t.scene()` in in-page.ts.)
  */
-import { createProceduralVolume, defaultCamera, isVptError, rampTransferFunction, type Scene, type VptErrorCode } from '@vpt/core';
+import {
+  createProceduralVolume,
+  defaultCamera,
+  isVptError,
+  rampTransferFunction,
+  type Scene,
+  type VptErrorCode,
+} from '@vpt/core';
 
 export function testScene(overrides: Partial<Scene> = {}): Scene {
   return {
@@ -27,6 +34,8 @@ export function expectVptError(fn: () => unknown, code: VptErrorCode, pattern: R
     error = e;
   }
   if (error === undefined) throw new Error(`expected a VptError ('${code}') matching ${pattern}`);
-  if (!isVptError(error) || error.code !== code) throw new Error(`expected a VptError ('${code}'), got ${String(error)}`);
-  if (!pattern.test((error as Error).message)) throw new Error(`expected the message to match ${pattern}, got "${(error as Error).message}"`);
+  if (!isVptError(error) || error.code !== code)
+    throw new Error(`expected a VptError ('${code}'), got ${String(error)}`);
+  if (!pattern.test((error as Error).message))
+    throw new Error(`expected the message to match ${pattern}, got "${(error as Error).message}"`);
 }

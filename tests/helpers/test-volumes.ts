@@ -9,7 +9,12 @@ import type { ProceduralKind, Volume, VoxelArray, VoxelType } from '@vpt/core';
 
 /** The part of core the builders need (window.vpt.core in the page, core's index in Node). */
 export interface VolumeFactories {
-  createVolume(dims: [number, number, number], type: VoxelType, data?: VoxelArray, spacing?: [number, number, number]): Volume;
+  createVolume(
+    dims: [number, number, number],
+    type: VoxelType,
+    data?: VoxelArray,
+    spacing?: [number, number, number],
+  ): Volume;
   createProceduralVolume(kind: ProceduralKind, size?: number): Volume;
 }
 
@@ -60,17 +65,21 @@ export function installTestVolumes(host: TestVolumeHost = window as unknown as T
   host.tv = {
     sphereDistance(n) {
       const data = new Float32Array(n * n * n);
-      for (let z = 0; z < n; z++) for (let y = 0; y < n; y++) for (let x = 0; x < n; x++)
-        data[x + n * (y + n * z)] = Math.hypot((x + 0.5) / n - 0.5, (y + 0.5) / n - 0.5, (z + 0.5) / n - 0.5);
+      for (let z = 0; z < n; z++)
+        for (let y = 0; y < n; y++)
+          for (let x = 0; x < n; x++)
+            data[x + n * (y + n * z)] = Math.hypot((x + 0.5) / n - 0.5, (y + 0.5) / n - 0.5, (z + 0.5) / n - 0.5);
       const v = core.createVolume([n, n, n], 'float32', data);
       return ranged(v, [0, 1]);
     },
     block(n, half) {
       const data = new Float32Array(n * n * n);
-      for (let z = 0; z < n; z++) for (let y = 0; y < n; y++) for (let x = 0; x < n; x++) {
-        const c = [x, y, z].map((i) => Math.abs((i + 0.5) / n - 0.5));
-        data[x + n * (y + n * z)] = Math.max(...c) < half ? 1 : 0;
-      }
+      for (let z = 0; z < n; z++)
+        for (let y = 0; y < n; y++)
+          for (let x = 0; x < n; x++) {
+            const c = [x, y, z].map((i) => Math.abs((i + 0.5) / n - 0.5));
+            data[x + n * (y + n * z)] = Math.max(...c) < half ? 1 : 0;
+          }
       const v = core.createVolume([n, n, n], 'float32', data);
       return ranged(v, [0, 1]);
     },
@@ -91,8 +100,10 @@ export function installTestVolumes(host: TestVolumeHost = window as unknown as T
       const f = fields[spec.kind];
       const [nx, ny, nz] = spec.dims;
       const data = new Float32Array(nx * ny * nz);
-      for (let z = 0; z < nz; z++) for (let y = 0; y < ny; y++) for (let x = 0; x < nx; x++)
-        data[x + nx * (y + ny * z)] = f(x * spec.spacing[0], y * spec.spacing[1], z * spec.spacing[2]);
+      for (let z = 0; z < nz; z++)
+        for (let y = 0; y < ny; y++)
+          for (let x = 0; x < nx; x++)
+            data[x + nx * (y + ny * z)] = f(x * spec.spacing[0], y * spec.spacing[1], z * spec.spacing[2]);
       const v = core.createVolume(spec.dims, 'float32', data, spec.spacing);
       return ranged(v, spec.range);
     },

@@ -12,7 +12,14 @@ export const HEAD_SIDECAR = '/data/mri_head_volpack_brainsmall_128x128x84_uint8.
 
 /** One recorded `vpt-*` event of an element made by `vt.create`. */
 export interface RecordedViewerEvent {
-  type: string; phase?: string; samples?: number; reason?: string; code?: string; message?: string; source?: string; property?: string;
+  type: string;
+  phase?: string;
+  samples?: number;
+  reason?: string;
+  code?: string;
+  message?: string;
+  source?: string;
+  property?: string;
 }
 
 /** `window.vt`: helpers for driving <vpt-viewer> elements from page.evaluate. */
@@ -43,7 +50,16 @@ export function installViewerHelpers(): void {
       for (const type of ['load', 'progress', 'converged', 'error', 'change']) {
         el.addEventListener('vpt-' + type, (e) => {
           const d = (e as CustomEvent).detail || {};
-          el.__events.push({ type, phase: d.phase, samples: d.samples, reason: d.reason, code: d.code, message: d.message, source: d.source, property: d.property });
+          el.__events.push({
+            type,
+            phase: d.phase,
+            samples: d.samples,
+            reason: d.reason,
+            code: d.code,
+            message: d.message,
+            source: d.source,
+            property: d.property,
+          });
         });
       }
       for (const [k, v] of Object.entries(attrs)) el.setAttribute(k, v);
@@ -54,8 +70,23 @@ export function installViewerHelpers(): void {
     next(el, type, timeoutMs = 90000) {
       return new Promise((resolve, reject) => {
         const events = (el as HTMLElement & { __events?: RecordedViewerEvent[] }).__events ?? [];
-        const t = setTimeout(() => reject(new Error('no ' + type + ' event within ' + timeoutMs + ' ms; events: ' + JSON.stringify(events.slice(-8)))), timeoutMs);
-        el.addEventListener('vpt-' + type, (e) => { clearTimeout(t); resolve((e as CustomEvent).detail); }, { once: true });
+        const t = setTimeout(
+          () =>
+            reject(
+              new Error(
+                'no ' + type + ' event within ' + timeoutMs + ' ms; events: ' + JSON.stringify(events.slice(-8)),
+              ),
+            ),
+          timeoutMs,
+        );
+        el.addEventListener(
+          'vpt-' + type,
+          (e) => {
+            clearTimeout(t);
+            resolve((e as CustomEvent).detail);
+          },
+          { once: true },
+        );
       });
     },
     async converged(el, timeoutMs = 90000) {
@@ -63,15 +94,30 @@ export function installViewerHelpers(): void {
       if (el.converged) return;
       await this.next(el, 'converged', timeoutMs);
     },
-    async ldr(el) { return Array.from(await el.context.readLDR() as Uint8Array); },
-    frames(n = 4) { return new Promise<void>((r) => { const f = () => (n-- <= 0 ? r() : requestAnimationFrame(f)); f(); }); },
-    shadowText(el, selector) { const n = el.shadowRoot?.querySelector(selector); return n ? (n.textContent ?? '').trim() : null; },
+    async ldr(el) {
+      return Array.from((await el.context.readLDR()) as Uint8Array);
+    },
+    frames(n = 4) {
+      return new Promise<void>((r) => {
+        const f = () => (n-- <= 0 ? r() : requestAnimationFrame(f));
+        f();
+      });
+    },
+    shadowText(el, selector) {
+      const n = el.shadowRoot?.querySelector(selector);
+      return n ? (n.textContent ?? '').trim() : null;
+    },
   };
 }
 
 /** Per-pixel comparison of two RGBA8 images (alpha ignored). */
-export function compareRgba(a: ArrayLike<number>, b: ArrayLike<number>): { maxDiff: number; meanDiff: number; differingPixels: number } {
-  let max = 0, sum = 0, differing = 0;
+export function compareRgba(
+  a: ArrayLike<number>,
+  b: ArrayLike<number>,
+): { maxDiff: number; meanDiff: number; differingPixels: number } {
+  let max = 0,
+    sum = 0,
+    differing = 0;
   for (let i = 0; i < a.length; i += 4) {
     let pixelDiff = 0;
     for (let c = 0; c < 3; c++) {
@@ -102,17 +148,22 @@ export interface ViewerPage {
 
 export async function openViewerPage(browser?: Browser): Promise<ViewerPage> {
   const server = await startStaticServer(ROOT);
-  const b = browser ?? await launchChromium();
+  const b = browser ?? (await launchChromium());
   const page = await b.newPage();
   const errors: string[] = [];
-  page.on('console', (m) => { if (m.type() === 'error') errors.push(m.text()); });
+  page.on('console', (m) => {
+    if (m.type() === 'error') errors.push(m.text());
+  });
   page.on('pageerror', (e) => errors.push((e as Error).message));
   await page.setViewport({ width: 400, height: 300, deviceScaleFactor: 1 });
   await page.goto(new URL('tests/pages/viewer.html', server.url).href);
   await page.waitForFunction(() => (window as any).__ready === true, { timeout: 60_000 });
   await page.evaluate(installViewerHelpers);
   return {
-    browser: b, server, page, errors,
+    browser: b,
+    server,
+    page,
+    errors,
     async close() {
       await page.close().catch(() => {});
       if (!browser) await b.close().catch(() => {});

@@ -17,9 +17,30 @@ export const RENDERERS = [
 ];
 
 const PROCEDURAL = [
-  { id: 'blob', title: 'Gaussian blob (procedural, 64³)', url: 'procedural:blob?size=64', modality: 'procedural', dims: [64, 64, 64], type: 'float32' },
-  { id: 'sphere', title: 'Sphere (procedural, 64³)', url: 'procedural:sphere?size=64', modality: 'procedural', dims: [64, 64, 64], type: 'float32' },
-  { id: 'ramp', title: 'Linear ramp along x (procedural, 32³)', url: 'procedural:ramp?size=32', modality: 'procedural', dims: [32, 32, 32], type: 'float32' },
+  {
+    id: 'blob',
+    title: 'Gaussian blob (procedural, 64³)',
+    url: 'procedural:blob?size=64',
+    modality: 'procedural',
+    dims: [64, 64, 64],
+    type: 'float32',
+  },
+  {
+    id: 'sphere',
+    title: 'Sphere (procedural, 64³)',
+    url: 'procedural:sphere?size=64',
+    modality: 'procedural',
+    dims: [64, 64, 64],
+    type: 'float32',
+  },
+  {
+    id: 'ramp',
+    title: 'Linear ramp along x (procedural, 32³)',
+    url: 'procedural:ramp?size=32',
+    modality: 'procedural',
+    dims: [32, 32, 32],
+    type: 'float32',
+  },
 ];
 
 /** About the build: a development build shows developer hints (`pnpm data:fetch`). */
@@ -38,7 +59,10 @@ export async function loadCatalog() {
   } catch {
     // Without a manifest (not built?) the procedural volumes still work.
   }
-  return [...datasets, ...PROCEDURAL.map((d) => ({ ...d, bundled: true, format: 'procedural', license: 'generated in code' }))];
+  return [
+    ...datasets,
+    ...PROCEDURAL.map((d) => ({ ...d, bundled: true, format: 'procedural', license: 'generated in code' })),
+  ];
 }
 
 // ——— presets ———
@@ -74,12 +98,21 @@ function fittedPreset(d) {
 function tunedTransferFunction(d) {
   if ((d.sameAs ?? d.id).startsWith('geo_')) {
     // Categorical facies 0..4 → 0, 0.25 … 1: the background class clear, each other class its own colour.
-    const cls = (v, color, opacity) => [{ value: v - 0.1, color, opacity }, { value: v + 0.1, color, opacity }];
-    return { dimensions: '1d', points: [
-      { value: 0.12, color: [0, 0, 0], opacity: 0 },
-      ...cls(0.25, [0.25, 0.45, 1.2], 0.08), ...cls(0.5, [1.3, 1.0, 0.3], 0.5), ...cls(0.75, [1.4, 0.45, 0.25], 0.8),
-      { value: 0.9, color: [1.8, 1.8, 1.6], opacity: 1 }, { value: 1, color: [1.8, 1.8, 1.6], opacity: 1 },
-    ] };
+    const cls = (v, color, opacity) => [
+      { value: v - 0.1, color, opacity },
+      { value: v + 0.1, color, opacity },
+    ];
+    return {
+      dimensions: '1d',
+      points: [
+        { value: 0.12, color: [0, 0, 0], opacity: 0 },
+        ...cls(0.25, [0.25, 0.45, 1.2], 0.08),
+        ...cls(0.5, [1.3, 1.0, 0.3], 0.5),
+        ...cls(0.75, [1.4, 0.45, 0.25], 0.8),
+        { value: 0.9, color: [1.8, 1.8, 1.6], opacity: 1 },
+        { value: 1, color: [1.8, 1.8, 1.6], opacity: 1 },
+      ],
+    };
   }
   return null;
 }
@@ -97,15 +130,25 @@ function viewCamera(d, volume) {
   if (!view) return fit;
   const dist = Math.hypot(...fit.position);
   const len = Math.hypot(...view.dir);
-  return { position: view.dir.map((x) => Math.round((x / len) * dist * 1e4) / 1e4), target: [0, 0, 0], up: view.up, fovy: 0.7 };
+  return {
+    position: view.dir.map((x) => Math.round((x / len) * dist * 1e4) / 1e4),
+    target: [0, 0, 0],
+    up: view.up,
+    fovy: 0.7,
+  };
 }
 
 /** Properties of a scene file (scenes/*.json) as <vpt-viewer> properties. */
 function fromSceneFile(s) {
   const p = {
-    renderer: s.renderer, camera: s.camera, environment: s.environment ?? { type: 'constant', radiance: [1, 1, 1] },
-    lights: s.lights ?? [], densityScale: s.densityScale ?? 10, rendererParams: s.rendererParams ?? null,
-    exposure: 0, toneMapper: 'aces',
+    renderer: s.renderer,
+    camera: s.camera,
+    environment: s.environment ?? { type: 'constant', radiance: [1, 1, 1] },
+    lights: s.lights ?? [],
+    densityScale: s.densityScale ?? 10,
+    rendererParams: s.rendererParams ?? null,
+    exposure: 0,
+    toneMapper: 'aces',
   };
   if (s.transferFunction) p.transferFunction = { dimensions: '1d', ...s.transferFunction };
   for (const step of s.post ?? []) {
@@ -117,7 +160,13 @@ function fromSceneFile(s) {
 
 const sceneFiles = new Map();
 async function sceneFile(name) {
-  if (!sceneFiles.has(name)) sceneFiles.set(name, fetch(`scenes/${name}.json`).then((r) => (r.ok ? r.json() : null)).catch(() => null));
+  if (!sceneFiles.has(name))
+    sceneFiles.set(
+      name,
+      fetch(`scenes/${name}.json`)
+        .then((r) => (r.ok ? r.json() : null))
+        .catch(() => null),
+    );
   return sceneFiles.get(name);
 }
 
@@ -137,7 +186,15 @@ export async function presetFor(d, renderer, volume) {
   const tf = tunedTransferFunction(d) ?? autoTransferFunction(volume, paletteOf(d));
   const fitted = fittedPreset(d);
   const camera = viewCamera(d, volume);
-  const base = { renderer, camera, transferFunction: tf, exposure: 0, toneMapper: 'aces', rendererParams: null, lights: [] };
+  const base = {
+    renderer,
+    camera,
+    transferFunction: tf,
+    exposure: 0,
+    toneMapper: 'aces',
+    rendererParams: null,
+    lights: [],
+  };
   // CT: bone at 300 HU; otherwise where the automatic function turns a third opaque.
   const iso = d.modality === 'CT' && d.valueRange ? hu(300, d.valueRange) : isoValueOf(tf);
   switch (renderer) {
@@ -145,17 +202,33 @@ export async function presetFor(d, renderer, volume) {
       return { ...base, toneMapper: 'clamp', environment: { type: 'constant', radiance: [0, 0, 0] }, densityScale: 20 };
     case 'iso':
       return {
-        ...base, environment: { type: 'constant', radiance: [0.25, 0.28, 0.35] }, densityScale: 20,
-        rendererParams: { surfaces: [{ value: Math.round(iso * 1000) / 1000, color: [0.92, 0.88, 0.8], opacity: 1 }], specular: 0.15, shininess: 30 },
+        ...base,
+        environment: { type: 'constant', radiance: [0.25, 0.28, 0.35] },
+        densityScale: 20,
+        rendererParams: {
+          surfaces: [{ value: Math.round(iso * 1000) / 1000, color: [0.92, 0.88, 0.8], opacity: 1 }],
+          specular: 0.15,
+          shininess: 30,
+        },
         lights: keyLight(camera, [2.2, 2.1, 2.0]),
       };
     case 'mcrt':
       return {
-        ...base, transferFunction: fitted ?? asAlbedo(tf), environment: { type: 'constant', radiance: [0.08, 0.09, 0.12] }, densityScale: fitted ? 1 : 150,
-        rendererParams: { anisotropy: 0.2 }, lights: keyLight(camera, [4, 3.7, 3.2]),
+        ...base,
+        transferFunction: fitted ?? asAlbedo(tf),
+        environment: { type: 'constant', radiance: [0.08, 0.09, 0.12] },
+        densityScale: fitted ? 1 : 150,
+        rendererParams: { anisotropy: 0.2 },
+        lights: keyLight(camera, [4, 3.7, 3.2]),
       };
     default:
       // Core's presets are extinctions for densityScale 1 with albedo-like colours: a stop brighter as emission.
-      return { ...base, transferFunction: fitted ?? tf, exposure: fitted ? 1 : 0, environment: { type: 'constant', radiance: [0.03, 0.035, 0.05] }, densityScale: fitted ? 1 : 60 };
+      return {
+        ...base,
+        transferFunction: fitted ?? tf,
+        exposure: fitted ? 1 : 0,
+        environment: { type: 'constant', radiance: [0.03, 0.035, 0.05] },
+        densityScale: fitted ? 1 : 60,
+      };
   }
 }

@@ -25,7 +25,8 @@ const views = RENDERERS.map((r) => {
   stats.className = 'stats';
   caption.append(name, ' ', stats);
   el.addEventListener('vpt-progress', (e) => {
-    if (e.detail.phase === 'refining') stats.textContent = `${e.detail.samples} spp · ${e.detail.msPerIteration.toFixed(1)} ms/it${e.detail.error != null ? ` · err ${(e.detail.error * 100).toFixed(1)} %` : ''}`;
+    if (e.detail.phase === 'refining')
+      stats.textContent = `${e.detail.samples} spp · ${e.detail.msPerIteration.toFixed(1)} ms/it${e.detail.error != null ? ` · err ${(e.detail.error * 100).toFixed(1)} %` : ''}`;
   });
   figure.append(el, caption);
   grid.append(figure);
@@ -63,16 +64,21 @@ async function show(id, camera) {
   const d = catalog.find((x) => x.id === id) ?? catalog[0];
   current = d;
   select.value = d.id;
-  await Promise.all(views.map(async (v) => {
-    if (v.el.src !== d.url || !v.el.loadedVolume) {
-      const done = new Promise((r) => { v.el.addEventListener('vpt-load', r, { once: true }); v.el.addEventListener('vpt-error', r, { once: true }); });
-      v.el.src = d.url;
-      await done;
-    }
-    if (!v.el.loadedVolume) return;
-    const preset = await presetFor(d, v.renderer, v.el.loadedVolume);
-    Object.assign(v.el, preset, { renderer: v.renderer }, camera ? { camera } : {});
-  }));
+  await Promise.all(
+    views.map(async (v) => {
+      if (v.el.src !== d.url || !v.el.loadedVolume) {
+        const done = new Promise((r) => {
+          v.el.addEventListener('vpt-load', r, { once: true });
+          v.el.addEventListener('vpt-error', r, { once: true });
+        });
+        v.el.src = d.url;
+        await done;
+      }
+      if (!v.el.loadedVolume) return;
+      const preset = await presetFor(d, v.renderer, v.el.loadedVolume);
+      Object.assign(v.el, preset, { renderer: v.renderer }, camera ? { camera } : {});
+    }),
+  );
   // Every view takes the first one's camera (presets of one dataset agree, but a link's wins).
   const cam = camera ?? views[0].el.camera;
   for (const v of views) v.el.camera = cam;
@@ -91,7 +97,15 @@ $('copy-link').addEventListener('click', async () => {
   }
 });
 
-window.compare = { views: views.map((v) => v.el), catalog, get current() { return current; }, show };
-const first = catalog.find((d) => d.id === page.dataset) ?? catalog.find((d) => d.bundled && d.format === 'raw') ?? catalog[0];
+window.compare = {
+  views: views.map((v) => v.el),
+  catalog,
+  get current() {
+    return current;
+  },
+  show,
+};
+const first =
+  catalog.find((d) => d.id === page.dataset) ?? catalog.find((d) => d.bundled && d.format === 'raw') ?? catalog[0];
 await show(first.id, page.camera);
 window.__compareReady = true;

@@ -34,7 +34,10 @@ function renderDatasetList() {
     list.append(h);
     if (!items.length) {
       // Site visitors cannot run the fetch: a production build shows no empty group.
-      if (!catalogInfo.development) { h.remove(); continue; }
+      if (!catalogInfo.development) {
+        h.remove();
+        continue;
+      }
       const p = document.createElement('p');
       p.className = 'empty';
       p.textContent = 'None here yet: `pnpm data:fetch` downloads the larger datasets, then rebuild the gallery.';
@@ -48,7 +51,14 @@ function renderDatasetList() {
       b.type = 'button';
       b.dataset.id = d.id;
       b.setAttribute('aria-pressed', String(current?.dataset.id === d.id));
-      const facts = [d.dims ? d.dims.join('×') : null, d.type, d.format !== 'raw' && d.format !== 'procedural' ? d.format.toUpperCase() : null, d.bytes ? formatBytes(d.bytes) : null].filter(Boolean).join(' · ');
+      const facts = [
+        d.dims ? d.dims.join('×') : null,
+        d.type,
+        d.format !== 'raw' && d.format !== 'procedural' ? d.format.toUpperCase() : null,
+        d.bytes ? formatBytes(d.bytes) : null,
+      ]
+        .filter(Boolean)
+        .join(' · ');
       b.innerHTML = '<span class="t"></span><span class="f"></span>';
       b.querySelector('.t').textContent = d.title;
       b.querySelector('.f').textContent = facts + (d.gpl ? ' · GPL' : '');
@@ -86,7 +96,8 @@ function updateUrl(push = false) {
   const q = stateQuery(current.dataset.id, viewer, page);
   if (q === location.search) return;
   history[push ? 'pushState' : 'replaceState'](null, '', q);
-  $('compare-link').href = `compare.html?${new URLSearchParams({ dataset: current.dataset.id, ...(viewer.camera ? { camera: new URLSearchParams(q).get('camera') } : {}), ...pageParams() })}`;
+  $('compare-link').href =
+    `compare.html?${new URLSearchParams({ dataset: current.dataset.id, ...(viewer.camera ? { camera: new URLSearchParams(q).get('camera') } : {}), ...pageParams() })}`;
 }
 
 function pageParams() {
@@ -97,7 +108,10 @@ function pageParams() {
 
 function once(el, types) {
   return new Promise((resolve) => {
-    const done = (e) => { types.forEach((t) => el.removeEventListener(t, done)); resolve(e); };
+    const done = (e) => {
+      types.forEach((t) => el.removeEventListener(t, done));
+      resolve(e);
+    };
     types.forEach((t) => el.addEventListener(t, done));
   });
 }
@@ -145,8 +159,16 @@ $('copy-link').addEventListener('click', async () => {
 });
 
 // Test and console access.
-window.gallery = { viewer, catalog, get current() { return current; }, select };
+window.gallery = {
+  viewer,
+  catalog,
+  get current() {
+    return current;
+  },
+  select,
+};
 
-const first = catalog.find((d) => d.id === page.dataset) ?? catalog.find((d) => d.bundled && d.format === 'raw') ?? catalog[0];
+const first =
+  catalog.find((d) => d.id === page.dataset) ?? catalog.find((d) => d.bundled && d.format === 'raw') ?? catalog[0];
 await select(first.id, RENDERERS.some((r) => r.name === page.renderer) ? page.renderer : 'eam', overridesOf(page));
 window.__galleryReady = true;

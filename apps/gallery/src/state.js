@@ -19,7 +19,9 @@ export function decodeCamera(s) {
 /** A preset's name when the transfer function is exactly that preset, else its JSON. */
 export function encodeTransferFunction(tf) {
   const json = JSON.stringify(tf);
-  return Object.keys(TRANSFER_FUNCTION_PRESETS).find((k) => JSON.stringify(TRANSFER_FUNCTION_PRESETS[k]) === json) ?? json;
+  return (
+    Object.keys(TRANSFER_FUNCTION_PRESETS).find((k) => JSON.stringify(TRANSFER_FUNCTION_PRESETS[k]) === json) ?? json
+  );
 }
 
 export function readState(search = location.search) {
@@ -29,7 +31,7 @@ export function readState(search = location.search) {
     dataset: q.get('dataset') ?? undefined,
     renderer: q.get('renderer') ?? undefined,
     tf: q.get('tf') ?? undefined,
-    camera: q.has('camera') ? decodeCamera(q.get('camera')) ?? undefined : undefined,
+    camera: q.has('camera') ? (decodeCamera(q.get('camera')) ?? undefined) : undefined,
     exposure: num('exposure'),
     tone: q.get('tone') ?? undefined,
     density: num('density'),
@@ -55,8 +57,10 @@ export function stateQuery(datasetId, viewer, page = readState()) {
   const q = new URLSearchParams();
   q.set('dataset', datasetId);
   q.set('renderer', viewer.renderer);
-  if (viewer.fittedPresetName) q.set('tf', viewer.fittedPresetName); // refitted to the volume when the link is opened
-  else if (viewer.transferFunction && typeof viewer.transferFunction === 'object') q.set('tf', encodeTransferFunction(viewer.transferFunction));
+  if (viewer.fittedPresetName)
+    q.set('tf', viewer.fittedPresetName); // refitted to the volume when the link is opened
+  else if (viewer.transferFunction && typeof viewer.transferFunction === 'object')
+    q.set('tf', encodeTransferFunction(viewer.transferFunction));
   if (viewer.camera && typeof viewer.camera === 'object') q.set('camera', encodeCamera(viewer.camera));
   q.set('exposure', String(viewer.exposure));
   q.set('tone', viewer.toneMapper);

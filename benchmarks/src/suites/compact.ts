@@ -3,7 +3,13 @@ import { scenes } from '../configs.js';
 import { median, spread } from '../metrics.js';
 import { bench, type SuiteContext } from './types.js';
 
-export interface BytesPerVoxelRow { backend: string; type: string; sampling: 'fast' | 'exact'; bytesPerVoxel: number; total: number }
+export interface BytesPerVoxelRow {
+  backend: string;
+  type: string;
+  sampling: 'fast' | 'exact';
+  bytesPerVoxel: number;
+  total: number;
+}
 
 export interface FastExactRow {
   renderer: string;
@@ -50,7 +56,8 @@ export interface CompactResults {
 export async function compact(s: SuiteContext): Promise<CompactResults> {
   const loadAverage = os.loadavg();
   const bytesPerVoxel: BytesPerVoxelRow[] = [];
-  for (const backend of s.backends) bytesPerVoxel.push(...await bench<BytesPerVoxelRow[]>(s.page, 'bytesPerVoxel', backend, 32));
+  for (const backend of s.backends)
+    bytesPerVoxel.push(...(await bench<BytesPerVoxelRow[]>(s.page, 'bytesPerVoxel', backend, 32)));
 
   const fastVsExact: FastExactRow[] = [];
   const size = s.preset.compactSize;
@@ -62,12 +69,31 @@ export async function compact(s: SuiteContext): Promise<CompactResults> {
       for (let round = 0; round < 2; round++) {
         const order = round === 0 ? (['fast', 'exact'] as const) : (['exact', 'fast'] as const);
         for (const sampling of order) {
-          const res = await bench<{ samples: number[] }>(s.page, 'frameTime', { ...r, backend, sampling }, head, size, size, s.preset.frameIterations, s.preset.frameRepeats);
+          const res = await bench<{ samples: number[] }>(
+            s.page,
+            'frameTime',
+            { ...r, backend, sampling },
+            head,
+            size,
+            size,
+            s.preset.frameIterations,
+            s.preset.frameRepeats,
+          );
           samples[sampling].push(...res.samples);
         }
       }
-      const fm = median(samples.fast), em = median(samples.exact);
-      fastVsExact.push({ renderer: r.label, backend, size, fastMs: fm, exactMs: em, ratio: em / fm, fastSpread: spread(samples.fast), exactSpread: spread(samples.exact) });
+      const fm = median(samples.fast),
+        em = median(samples.exact);
+      fastVsExact.push({
+        renderer: r.label,
+        backend,
+        size,
+        fastMs: fm,
+        exactMs: em,
+        ratio: em / fm,
+        fastSpread: spread(samples.fast),
+        exactSpread: spread(samples.exact),
+      });
     }
   }
 
@@ -76,15 +102,21 @@ export async function compact(s: SuiteContext): Promise<CompactResults> {
   const backend = s.backends[0];
   const cdp = await s.page.target().createCDPSession();
   const heapMiB = async () => {
-    const h = await cdp.send('Runtime.getHeapUsage') as { usedSize: number; backingStorageSize?: number };
+    const h = (await cdp.send('Runtime.getHeapUsage')) as { usedSize: number; backingStorageSize?: number };
     return (h.usedSize + (h.backingStorageSize ?? 0)) / 2 ** 20;
   };
   for (const depth of s.preset.ctDepths) {
     s.log(`compact: synthetic 512x512x${depth} int16 CT on ${backend}`);
     await cdp.send('HeapProfiler.collectGarbage');
     const baseHeapMiB = await heapMiB();
-    let peak = baseHeapMiB, polling = true;
-    const poll = (async () => { while (polling) { peak = Math.max(peak, await heapMiB()); await new Promise((r) => setTimeout(r, 20)); } })();
+    let peak = baseHeapMiB,
+      polling = true;
+    const poll = (async () => {
+      while (polling) {
+        peak = Math.max(peak, await heapMiB());
+        await new Promise((r) => setTimeout(r, 20));
+      }
+    })();
     try {
       const row = await bench<Omit<CtLoadRow, 'peakHeapMiB' | 'baseHeapMiB'>>(s.page, 'ctLoad', backend, depth);
       polling = false;

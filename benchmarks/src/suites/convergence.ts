@@ -3,7 +3,12 @@ import type { CurvePoint } from '../metrics.js';
 import { referenceKey } from './error-vs-time.js';
 import { bench, type SuiteContext } from './types.js';
 
-export interface ConvergenceResult { label: string; backend: string; size: number; points: CurvePoint[] }
+export interface ConvergenceResult {
+  label: string;
+  backend: string;
+  size: number;
+  points: CurvePoint[];
+}
 
 /** The paper's Figure 5: PSNR against iteration count at several resolutions (first backend). */
 export async function convergence(s: SuiteContext): Promise<ConvergenceResult[]> {
@@ -14,8 +19,28 @@ export async function convergence(s: SuiteContext): Promise<ConvergenceResult[]>
     for (const config of s.renderers) {
       const refKey = referenceKey('cloud', config.label, size); // shared with error-vs-time where the sizes match
       s.log(`convergence: ${config.label} ${backend} ${size}²`);
-      await bench(s.page, 'reference', refKey, { ...config, backend }, spec, size, size, s.preset.referenceIterations[config.renderer]);
-      const points = await bench<CurvePoint[]>(s.page, 'errorCurve', { ...config, backend }, spec, size, size, refKey, s.preset.curveIterations, s.preset.curveBudgetMs, false);
+      await bench(
+        s.page,
+        'reference',
+        refKey,
+        { ...config, backend },
+        spec,
+        size,
+        size,
+        s.preset.referenceIterations[config.renderer],
+      );
+      const points = await bench<CurvePoint[]>(
+        s.page,
+        'errorCurve',
+        { ...config, backend },
+        spec,
+        size,
+        size,
+        refKey,
+        s.preset.curveIterations,
+        s.preset.curveBudgetMs,
+        false,
+      );
       out.push({ label: config.label, backend, size, points });
     }
   }

@@ -36,11 +36,39 @@ export async function errorVsTime(s: SuiteContext): Promise<ErrorCurveResult[]> 
         // bit-identical images (tests/*parity*), so it is the reference for both.
         const refConfig = referenceConfig(config, all);
         const refKey = referenceKey(sceneName, refConfig.label, size);
-        s.log(`error-vs-time: ${sceneName} ${config.label} ${backend} (reference: ${refConfig.label}, ${refIterations} it)`);
-        const ref = await bench<{ rmse: number | null }>(s.page, 'reference', refKey, { ...refConfig, backend: s.backends[0] }, spec, size, size, refIterations);
-        const points = await bench<CurvePoint[]>(s.page, 'errorCurve', { ...config, backend }, spec, size, size, refKey, s.preset.curveIterations, s.preset.curveBudgetMs, !!config.halves);
+        s.log(
+          `error-vs-time: ${sceneName} ${config.label} ${backend} (reference: ${refConfig.label}, ${refIterations} it)`,
+        );
+        const ref = await bench<{ rmse: number | null }>(
+          s.page,
+          'reference',
+          refKey,
+          { ...refConfig, backend: s.backends[0] },
+          spec,
+          size,
+          size,
+          refIterations,
+        );
+        const points = await bench<CurvePoint[]>(
+          s.page,
+          'errorCurve',
+          { ...config, backend },
+          spec,
+          size,
+          size,
+          refKey,
+          s.preset.curveIterations,
+          s.preset.curveBudgetMs,
+          !!config.halves,
+        );
         out.push({
-          scene: sceneName, label: config.label, backend, size, referenceIterations: refIterations, referenceRmse: ref.rmse ?? null, points,
+          scene: sceneName,
+          label: config.label,
+          backend,
+          size,
+          referenceIterations: refIterations,
+          referenceRmse: ref.rmse ?? null,
+          points,
           timeToDb: Object.fromEntries(TARGETS_DB.map((d) => [d, timeToPsnr(points, d)])),
           timeToDbLdr: Object.fromEntries(TARGETS_DB.map((d) => [d, timeToPsnr(points, d, 'psnrLdr')])),
         });

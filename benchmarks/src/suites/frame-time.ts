@@ -34,12 +34,32 @@ export async function frameTime(s: SuiteContext): Promise<FrameTimeRow[]> {
     for (const backend of s.backends) {
       for (const config of s.renderers) {
         s.log(`frame-time: ${table} ${config.label} ${backend} volume ${volumeSize}³ at ${size}²`);
-        const r = await bench<{ samples: number[]; gpuSamples: number[]; gpuTimer: string }>(s.page, 'frameTime', { ...config, backend }, spec, size, size, p.frameIterations, p.frameRepeats);
+        const r = await bench<{ samples: number[]; gpuSamples: number[]; gpuTimer: string }>(
+          s.page,
+          'frameTime',
+          { ...config, backend },
+          spec,
+          size,
+          size,
+          p.frameIterations,
+          p.frameRepeats,
+        );
         const sp = spread(r.samples);
         const gp = r.gpuSamples.length ? spread(r.gpuSamples) : null;
         rows.push({
-          table, label: config.label, backend, volumeSize, size, medianMs: median(r.samples), minMs: sp.min, maxMs: sp.max, samples: r.samples,
-          gpuMedianMs: gp ? median(r.gpuSamples) : null, gpuMinMs: gp?.min ?? null, gpuMaxMs: gp?.max ?? null, gpuTimer: r.gpuTimer,
+          table,
+          label: config.label,
+          backend,
+          volumeSize,
+          size,
+          medianMs: median(r.samples),
+          minMs: sp.min,
+          maxMs: sp.max,
+          samples: r.samples,
+          gpuMedianMs: gp ? median(r.gpuSamples) : null,
+          gpuMinMs: gp?.min ?? null,
+          gpuMaxMs: gp?.max ?? null,
+          gpuTimer: r.gpuTimer,
         });
       }
     }

@@ -42,17 +42,40 @@ export async function specialization(s: SuiteContext): Promise<SpecializationRow
         for (let round = 0; round < 2; round++) {
           const order = round === 0 ? (['specialized', 'generic'] as const) : (['generic', 'specialized'] as const);
           for (const kind of order) {
-            const config = { label: `mcrt ${scattering} ${kind}`, renderer: 'mcrt', backend, params: { scattering, specialize: kind === 'specialized' } };
-            const r = await bench<{ samples: number[]; firstMs: number }>(s.page, 'frameTime', config, spec, size, size, s.preset.frameIterations, s.preset.frameRepeats);
+            const config = {
+              label: `mcrt ${scattering} ${kind}`,
+              renderer: 'mcrt',
+              backend,
+              params: { scattering, specialize: kind === 'specialized' },
+            };
+            const r = await bench<{ samples: number[]; firstMs: number }>(
+              s.page,
+              'frameTime',
+              config,
+              spec,
+              size,
+              size,
+              s.preset.frameIterations,
+              s.preset.frameRepeats,
+            );
             samples[kind].push(...r.samples);
             first[kind].push(r.firstMs);
           }
         }
-        const sm = median(samples.specialized), gm = median(samples.generic);
+        const sm = median(samples.specialized),
+          gm = median(samples.generic);
         rows.push({
-          scene: sceneName, scattering, backend, size, specializedMs: sm, genericMs: gm, ratio: gm / sm,
-          specializedSpread: spread(samples.specialized), genericSpread: spread(samples.generic),
-          specializedFirstMs: median(first.specialized), genericFirstMs: median(first.generic),
+          scene: sceneName,
+          scattering,
+          backend,
+          size,
+          specializedMs: sm,
+          genericMs: gm,
+          ratio: gm / sm,
+          specializedSpread: spread(samples.specialized),
+          genericSpread: spread(samples.generic),
+          specializedFirstMs: median(first.specialized),
+          genericFirstMs: median(first.generic),
         });
       }
     }

@@ -15,5 +15,9 @@ export interface SuiteContext {
 
 /** evaluate `window.bench.<fn>(...args)` in the page. */
 export async function bench<T>(page: Page, fn: string, ...args: unknown[]): Promise<T> {
-  return page.evaluate((fn, args) => (window as unknown as { bench: Record<string, (...a: unknown[]) => unknown> }).bench[fn](...args), fn, args) as Promise<T>;
+  return page.evaluate(
+    (fn, args) => (window as unknown as { bench: Record<string, (...a: unknown[]) => unknown> }).bench[fn](...args),
+    fn,
+    args,
+  ) as Promise<T>;
 }

@@ -13,7 +13,11 @@ export abstract class BaseRenderer<P extends object> implements Renderer {
   abstract readonly name: string;
   abstract readonly frameFormats: readonly TextureFormat[];
   abstract readonly accumulationFormats: readonly TextureFormat[];
-  abstract readonly kernels: { readonly generate: KernelSource; readonly integrate: KernelSource; readonly render: KernelSource };
+  abstract readonly kernels: {
+    readonly generate: KernelSource;
+    readonly integrate: KernelSource;
+    readonly render: KernelSource;
+  };
   abstract readonly paramFields: readonly UniformField[];
   private _version = 0;
   private params: P;
@@ -32,7 +36,9 @@ export abstract class BaseRenderer<P extends object> implements Renderer {
 
   private readonly owner: string;
 
-  get version(): number { return this._version; }
+  get version(): number {
+    return this._version;
+  }
 
   /** Merge new parameter values; the next iteration starts a new accumulation. */
   setParams(params: Partial<P>): void {
@@ -41,9 +47,13 @@ export abstract class BaseRenderer<P extends object> implements Renderer {
     this._version++;
   }
 
-  getParams(): P { return { ...this.params }; }
+  getParams(): P {
+    return { ...this.params };
+  }
 
   abstract paramValues(scene: Scene): UniformValues;
 
-  features(_scene: Scene): Record<string, boolean | number> { return {}; }
+  features(_scene: Scene): Record<string, boolean | number> {
+    return {};
+  }
 }

@@ -10,7 +10,14 @@ export * from './scene/scene.js';
 export * from './scene/procedural.js';
 export * from './scene/raw-sidecar.js';
 
-export { UniformLayout, type UniformField, type UniformType, type UniformValues, type UniformValue, type FieldPlacement } from './uniforms/layout.js';
+export {
+  UniformLayout,
+  type UniformField,
+  type UniformType,
+  type UniformValues,
+  type UniformValue,
+  type FieldPlacement,
+} from './uniforms/layout.js';
 
 export type * from './gpu/backend.js';
 export { isFilterable, sliceCount, BYTES_PER_TEXEL } from './gpu/backend.js';
@@ -20,18 +27,44 @@ export { createWebGL2Backend } from './gpu/webgl2/webgl2-backend.js';
 export { createWebGPUBackend, isWebGPUAvailable } from './gpu/webgpu/webgpu-backend.js';
 
 export type { Renderer, KernelSource, AuxiliaryTexture, AuxiliaryPass, VolumeBinding } from './renderer.js';
-export { planVolumeUpload, uploadsDataAsIs, volumeTextureData, volumeTextureSlab, volumeValueMapping, type VolumeSampling, type VolumeUpload, type VolumeFormatOptions } from './gpu/volume-format.js';
+export {
+  planVolumeUpload,
+  uploadsDataAsIs,
+  volumeTextureData,
+  volumeTextureSlab,
+  volumeValueMapping,
+  type VolumeSampling,
+  type VolumeUpload,
+  type VolumeFormatOptions,
+} from './gpu/volume-format.js';
 export { downsampleVolume, fitFactors } from './scene/downsample.js';
 export { BaseRenderer } from './base-renderer.js';
 export { RUNNING_MEAN_INTEGRATE, HALF_MEANS_INTEGRATE, COPY_ACCUMULATION_RENDER } from './shaders/accumulation.js';
 export type { PostStep } from './post-step.js';
-export { RenderContext, DEFAULT_GPU_BYTES, type RenderContextOptions, type RenderStats, type GpuBytes, type RenderWarning } from './context/render-context.js';
+export {
+  RenderContext,
+  DEFAULT_GPU_BYTES,
+  type RenderContextOptions,
+  type RenderStats,
+  type GpuBytes,
+  type RenderWarning,
+} from './context/render-context.js';
 
 export { SCENE_UNIFORM_FIELDS, sceneUniformValues } from './shaders/scene-uniforms.js';
 // Shader chunks: each <name>.glsl.ts / <name>.wgsl.ts pair exports the same identifiers;
 // the public names carry the language as a prefix.
-export { RNG as GLSL_RNG, RAY as GLSL_RAY, GRADIENT as GLSL_GRADIENT, TRANSFER_2D as GLSL_TRANSFER_2D } from './shaders/common.glsl.js';
-export { RNG as WGSL_RNG, RAY as WGSL_RAY, GRADIENT as WGSL_GRADIENT, TRANSFER_2D as WGSL_TRANSFER_2D } from './shaders/common.wgsl.js';
+export {
+  RNG as GLSL_RNG,
+  RAY as GLSL_RAY,
+  GRADIENT as GLSL_GRADIENT,
+  TRANSFER_2D as GLSL_TRANSFER_2D,
+} from './shaders/common.glsl.js';
+export {
+  RNG as WGSL_RNG,
+  RAY as WGSL_RAY,
+  GRADIENT as WGSL_GRADIENT,
+  TRANSFER_2D as WGSL_TRANSFER_2D,
+} from './shaders/common.wgsl.js';
 export { commonChunks, PASS_CHUNKS, type CommonChunkOptions } from './shaders/common.js';
 export { SAMPLING as GLSL_SAMPLING, ENVIRONMENT_MAP as GLSL_ENVIRONMENT_MAP } from './shaders/sampling.glsl.js';
 export { SAMPLING as WGSL_SAMPLING, ENVIRONMENT_MAP as WGSL_ENVIRONMENT_MAP } from './shaders/sampling.wgsl.js';
@@ -45,8 +78,31 @@ export * from './scene/environment-sampling.js';
 
 export * as reference from './reference/cpu-reference.js';
 
-export { RENDERER_CATALOG, rendererCatalogEntry, rendererNames, type RendererCatalogEntry, type RendererParamSpec } from './catalog/renderer-catalog.js';
+export {
+  RENDERER_CATALOG,
+  rendererCatalogEntry,
+  rendererNames,
+  type RendererCatalogEntry,
+  type RendererParamSpec,
+} from './catalog/renderer-catalog.js';
 export * from './validation/limits.js';
-export { describeValue, checkNumber, checkNumbers, checkOneOf, checkBoolean, checkString, checkObject, checkKnownKeys, type NumberRule } from './validation/checks.js';
-export { validateParams, validateStepParams, minStepSize, STEP_RULE, type ParamSpec, type ParamSpecs } from './validation/params.js';
+export {
+  describeValue,
+  checkNumber,
+  checkNumbers,
+  checkOneOf,
+  checkBoolean,
+  checkString,
+  checkObject,
+  checkKnownKeys,
+  type NumberRule,
+} from './validation/checks.js';
+export {
+  validateParams,
+  validateStepParams,
+  minStepSize,
+  STEP_RULE,
+  type ParamSpec,
+  type ParamSpecs,
+} from './validation/params.js';
 export { validateSceneForDevice } from './validation/device.js';

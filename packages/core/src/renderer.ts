@@ -30,7 +30,11 @@ export interface Renderer {
   readonly name: string;
   readonly frameFormats: readonly TextureFormat[];
   readonly accumulationFormats: readonly TextureFormat[];
-  readonly kernels: { readonly generate: KernelSource; readonly integrate: KernelSource; readonly render: KernelSource };
+  readonly kernels: {
+    readonly generate: KernelSource;
+    readonly integrate: KernelSource;
+    readonly render: KernelSource;
+  };
   readonly paramFields: readonly UniformField[];
   /**
    * Bumped whenever a parameter that changes the image changes; the context resets

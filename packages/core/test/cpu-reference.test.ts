@@ -11,7 +11,8 @@ describe('PCG hash (CPU twin of the kernels RNG)', () => {
     return Number(((word >> 22n) ^ word) & M);
   }
   it('matches a BigInt implementation over many inputs', () => {
-    for (const v of [0, 1, 2, 0x7fffffff, 0x80000000, 0xffffffff, 123456789, 42]) expect(reference.pcgHash(v)).toBe(pcgBig(v));
+    for (const v of [0, 1, 2, 0x7fffffff, 0x80000000, 0xffffffff, 123456789, 42])
+      expect(reference.pcgHash(v)).toBe(pcgBig(v));
     for (let i = 0; i < 2000; i++) {
       const v = (i * 2654435761) >>> 0;
       expect(reference.pcgHash(v)).toBe(pcgBig(v));
@@ -36,7 +37,8 @@ describe('PCG hash (CPU twin of the kernels RNG)', () => {
  * would go unseen. These pin each convention to a closed form, independent of the code.
  */
 describe('CPU twin conventions against closed forms', () => {
-  const scene = (position: Vec3, fovy: number) => ({ camera: { position, target: [0, 0, 0] as Vec3, up: [0, 1, 0] as Vec3, fovy } }) as Scene;
+  const scene = (position: Vec3, fovy: number) =>
+    ({ camera: { position, target: [0, 0, 0] as Vec3, up: [0, 1, 0] as Vec3, fovy } }) as Scene;
 
   it('camera ray: the film centre looks at the target, film (0,0) is the top-left corner at the half field of view, y down', () => {
     const s = scene([0, 0, 3], 2 * Math.atan(0.5)); // tan(fovy/2) = 0.5
@@ -55,7 +57,8 @@ describe('CPU twin conventions against closed forms', () => {
   });
 
   it('box intersection: chord lengths of an axis ray, a diagonal ray, a ray from inside and a miss', () => {
-    const min: Vec3 = [-0.5, -0.25, -0.5], max: Vec3 = [0.5, 0.25, 0.5];
+    const min: Vec3 = [-0.5, -0.25, -0.5],
+      max: Vec3 = [0.5, 0.25, 0.5];
     expect(reference.intersectBox([0, 0, 2], [0, 0, -1], min, max)).toEqual([1.5, 2.5]);
     const d = 1 / Math.sqrt(3);
     const [t0, t1] = reference.intersectBox([-1, -1, -1], [d, d, d], [-0.5, -0.5, -0.5], [0.5, 0.5, 0.5]);
@@ -69,7 +72,9 @@ describe('CPU twin conventions against closed forms', () => {
   it('trilinear sampling is exact on a linear ramp (cell-centred voxels, clamped half a voxel from the faces)', () => {
     // value(i, j, k) = (i + 2j + 3k) / 36 at voxel centres; the box is [−0.5, 0.5]·(6, 4, 2)/6.
     const dims: [number, number, number] = [6, 4, 2];
-    const data = new Float32Array(48).map((_, n) => ((n % 6) + 2 * (Math.floor(n / 6) % 4) + 3 * Math.floor(n / 24)) / 36);
+    const data = new Float32Array(48).map(
+      (_, n) => ((n % 6) + 2 * (Math.floor(n / 6) % 4) + 3 * Math.floor(n / 24)) / 36,
+    );
     const volume = createVolume(dims, 'float32', data);
     volume.valueRange = [0, 1];
     const sampler = new reference.CpuVolumeSampler({ volume });
@@ -77,7 +82,13 @@ describe('CPU twin conventions against closed forms', () => {
     expect(sampler.box.min).toEqual([-0.5, -2 * h, -h]);
     // Voxel coordinate g = (p − min)/h − ½ per axis; inside the centres the sample is the ramp at g.
     const ramp = (g: number[]) => (g[0] + 2 * g[1] + 3 * g[2]) / 36;
-    for (const g of [[0, 0, 0], [2.5, 1.25, 0.5], [4.9, 2.1, 0.3], [5, 3, 1], [1.75, 0.5, 0.99]]) {
+    for (const g of [
+      [0, 0, 0],
+      [2.5, 1.25, 0.5],
+      [4.9, 2.1, 0.3],
+      [5, 3, 1],
+      [1.75, 0.5, 0.99],
+    ]) {
       const p = g.map((x, a) => sampler.box.min[a] + (x + 0.5) * h) as Vec3;
       expect(sampler.sample(p)).toBeCloseTo(ramp(g), 6);
     }

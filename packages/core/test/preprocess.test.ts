@@ -2,7 +2,9 @@ import { describe, expect, it } from 'vitest';
 import { commonChunks, preprocess } from '../src/index.js';
 
 describe('preprocess', () => {
-  const src = ['a', '#if X', 'x', '#elif Y == 2 && !Z', 'y', '#else', 'e', '#if Z', 'z', '#endif', '#endif', 'b'].join('\n');
+  const src = ['a', '#if X', 'x', '#elif Y == 2 && !Z', 'y', '#else', 'e', '#if Z', 'z', '#endif', '#endif', 'b'].join(
+    '\n',
+  );
   it('keeps the taken branch of nested #if/#elif/#else', () => {
     expect(preprocess(src, { X: true, Y: 2, Z: false })).toBe('a\nx\nb');
     expect(preprocess(src, { X: false, Y: 2, Z: false })).toBe('a\ny\nb');
@@ -17,7 +19,8 @@ describe('preprocess', () => {
     expect(() => preprocess('#endif', {})).toThrow(/without #if/);
   });
   it('picks the exact or hardware volume filter in the common chunks (one sampleVolumeTexel each)', () => {
-    const exact = commonChunks({}), filtered = commonChunks({ hardwareFilter: true });
+    const exact = commonChunks({}),
+      filtered = commonChunks({ hardwareFilter: true });
     for (const src of [exact.glsl, exact.wgsl, filtered.glsl, filtered.wgsl]) {
       expect(src.match(/(float|fn) sampleVolumeTexel/g)).toHaveLength(1);
       expect(src).toContain('volumeValue(sampleVolumeTexel(p))');

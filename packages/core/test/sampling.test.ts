@@ -1,7 +1,12 @@
 import { describe, expect, it } from 'vitest';
 import {
-  buildEnvironmentSampling, directionToLatLong, environmentLookupCpu, latLongToDirection, sampleEnvironmentCpu,
-  type LatLongEnvironment, type Vec3,
+  buildEnvironmentSampling,
+  directionToLatLong,
+  environmentLookupCpu,
+  latLongToDirection,
+  sampleEnvironmentCpu,
+  type LatLongEnvironment,
+  type Vec3,
 } from '../src/index.js';
 
 /**
@@ -22,7 +27,8 @@ function hgPhaseAB(g: number, a: number, b: number) {
 /** docs/design.md's HG, written as given. */
 const hgDesign = (g: number, cos: number) => (1 - g * g) / (4 * Math.PI * Math.pow(1 + g * g - 2 * g * cos, 1.5));
 /** Analytic CDF of cosθ under HG (integral of the docs/design.md density over the sphere, in closed form). */
-const hgCdf = (g: number, mu: number) => (Math.abs(g) < 1e-12 ? (mu + 1) / 2 : ((1 - g * g) / (2 * g)) * (1 / Math.sqrt(1 + g * g - 2 * g * mu) - 1 / (1 + g)));
+const hgCdf = (g: number, mu: number) =>
+  Math.abs(g) < 1e-12 ? (mu + 1) / 2 : ((1 - g * g) / (2 * g)) * (1 / Math.sqrt(1 + g * g - 2 * g * mu) - 1 / (1 + g));
 
 describe('Henyey–Greenstein sampling (the kernels’ closed form)', () => {
   const gs = [-0.999, -0.9, -0.3, -1e-6, 0, 1e-6, 0.3, 0.9, 0.999];
@@ -49,7 +55,8 @@ describe('Henyey–Greenstein sampling (the kernels’ closed form)', () => {
   it('keeps 1 − cosθ accurate in float32 for g = 0.999, where the classic formula cancels', () => {
     const f = Math.fround;
     const g = f(0.999);
-    let worstStable = 0, worstClassic = 0;
+    let worstStable = 0,
+      worstClassic = 0;
     for (let k = 1; k < 200; k++) {
       const xi = f(k / 200);
       const exact = hgSample(g, xi).a; // float64, same g and ξ
@@ -65,13 +72,17 @@ describe('Henyey–Greenstein sampling (the kernels’ closed form)', () => {
 });
 
 describe('lat-long environment sampling (CPU twin of the kernels)', () => {
-  const W = 16, H = 8;
+  const W = 16,
+    H = 8;
   const data = new Float32Array(W * H * 3);
-  for (let j = 0; j < H; j++) for (let i = 0; i < W; i++) {
-    const k = 3 * (j * W + i);
-    const v = 10 ** (((i * 7 + j * 13) % 17) / 17 * 8 - 4); // 1e-4 … 1e4
-    data[k] = v; data[k + 1] = 0.5 * v; data[k + 2] = i === 3 && j === 2 ? 0 : 0.25 * v;
-  }
+  for (let j = 0; j < H; j++)
+    for (let i = 0; i < W; i++) {
+      const k = 3 * (j * W + i);
+      const v = 10 ** ((((i * 7 + j * 13) % 17) / 17) * 8 - 4); // 1e-4 … 1e4
+      data[k] = v;
+      data[k + 1] = 0.5 * v;
+      data[k + 2] = i === 3 && j === 2 ? 0 : 0.25 * v;
+    }
   data.fill(0, 3 * (5 * W), 3 * (6 * W)); // one black row: never sampled
   const env: LatLongEnvironment = { type: 'latlong', width: W, height: H, data, scale: 2 };
   const t = buildEnvironmentSampling(env);
@@ -83,7 +94,11 @@ describe('lat-long environment sampling (CPU twin of the kernels)', () => {
     expect(directionToLatLong([1, 0, 0])[0]).toBeCloseTo(0.25, 12);
     expect(directionToLatLong([0, 0, 1])[0]).toBeCloseTo(0.5, 12);
     expect(directionToLatLong([-1, 0, 0])[0]).toBeCloseTo(0.75, 12);
-    for (const [u, v] of [[0.1, 0.2], [0.6, 0.9], [0.95, 0.5]]) {
+    for (const [u, v] of [
+      [0.1, 0.2],
+      [0.6, 0.9],
+      [0.95, 0.5],
+    ]) {
       const [u2, v2] = directionToLatLong(latLongToDirection(u, v));
       expect(u2).toBeCloseTo(u, 12);
       expect(v2).toBeCloseTo(v, 12);
@@ -97,13 +112,17 @@ describe('lat-long environment sampling (CPU twin of the kernels)', () => {
     // ∫ p(ω) dω over texels: p is constant in (u, v) per texel and dω = 2π² sinθ du dv.
     let integral = 0;
     const n = 64;
-    for (let j = 0; j < H * n; j++) for (let i = 0; i < W * 4; i++) {
-      const u = (i + 0.5) / (W * 4), v = (j + 0.5) / (H * n);
-      integral += environmentLookupCpu(t, latLongToDirection(u, v)).pdf * 2 * Math.PI * Math.PI * Math.sin(Math.PI * v) / (W * 4 * H * n);
-    }
+    for (let j = 0; j < H * n; j++)
+      for (let i = 0; i < W * 4; i++) {
+        const u = (i + 0.5) / (W * 4),
+          v = (j + 0.5) / (H * n);
+        integral +=
+          (environmentLookupCpu(t, latLongToDirection(u, v)).pdf * 2 * Math.PI * Math.PI * Math.sin(Math.PI * v)) /
+          (W * 4 * H * n);
+      }
     expect(integral).toBeCloseTo(1, 3);
     for (let k = 1; k < 500; k++) {
-      const s = sampleEnvironmentCpu(t, ((k * 0.618034) % 1), ((k * 0.7548777) % 1));
+      const s = sampleEnvironmentCpu(t, (k * 0.618034) % 1, (k * 0.7548777) % 1);
       const l = environmentLookupCpu(t, s.direction);
       expect(Math.abs(l.pdf - s.pdf) / s.pdf).toBeLessThan(1e-6);
       expect(l.radiance).toEqual(s.radiance);
@@ -114,22 +133,37 @@ describe('lat-long environment sampling (CPU twin of the kernels)', () => {
     const counts = new Float64Array(W * H);
     const N = 200000;
     let a = 12345;
-    const rand = () => { a = (Math.imul(a, 1664525) + 1013904223) >>> 0; return (a >>> 8) / 16777216; };
-    for (let k = 0; k < N; k++) { const s = sampleEnvironmentCpu(t, rand(), rand()); counts[s.texel[1] * W + s.texel[0]]++; }
-    let chi2 = 0, dof = 0;
-    for (let j = 0; j < H; j++) for (let i = 0; i < W; i++) {
-      const k = j * W + i;
-      const r = t.map[4 * k], g = t.map[4 * k + 1], b = t.map[4 * k + 2];
-      const w = (0.2126 * r + 0.7152 * g + 0.0722 * b) * Math.sin(Math.PI * (j + 0.5) / H);
-      let total = 0;
-      for (let q = 0; q < W * H; q++) {
-        const qj = Math.floor(q / W);
-        total += (0.2126 * t.map[4 * q] + 0.7152 * t.map[4 * q + 1] + 0.0722 * t.map[4 * q + 2]) * Math.sin(Math.PI * (qj + 0.5) / H);
-      }
-      const expected = (N * w) / total;
-      if (j === 5) expect(counts[k]).toBe(0);
-      if (expected >= 5) { chi2 += (counts[k] - expected) ** 2 / expected; dof++; }
+    const rand = () => {
+      a = (Math.imul(a, 1664525) + 1013904223) >>> 0;
+      return (a >>> 8) / 16777216;
+    };
+    for (let k = 0; k < N; k++) {
+      const s = sampleEnvironmentCpu(t, rand(), rand());
+      counts[s.texel[1] * W + s.texel[0]]++;
     }
+    let chi2 = 0,
+      dof = 0;
+    for (let j = 0; j < H; j++)
+      for (let i = 0; i < W; i++) {
+        const k = j * W + i;
+        const r = t.map[4 * k],
+          g = t.map[4 * k + 1],
+          b = t.map[4 * k + 2];
+        const w = (0.2126 * r + 0.7152 * g + 0.0722 * b) * Math.sin((Math.PI * (j + 0.5)) / H);
+        let total = 0;
+        for (let q = 0; q < W * H; q++) {
+          const qj = Math.floor(q / W);
+          total +=
+            (0.2126 * t.map[4 * q] + 0.7152 * t.map[4 * q + 1] + 0.0722 * t.map[4 * q + 2]) *
+            Math.sin((Math.PI * (qj + 0.5)) / H);
+        }
+        const expected = (N * w) / total;
+        if (j === 5) expect(counts[k]).toBe(0);
+        if (expected >= 5) {
+          chi2 += (counts[k] - expected) ** 2 / expected;
+          dof++;
+        }
+      }
     // chi-square with ~dof degrees of freedom: mean dof, sd sqrt(2 dof); 6 sd is far beyond chance.
     expect(dof).toBeGreaterThan(20);
     expect(chi2).toBeLessThan(dof + 6 * Math.sqrt(2 * dof));

@@ -33,7 +33,15 @@ describe('UniformLayout', () => {
 
   it('packs values at their offsets, integers as integers', () => {
     const mat = Array.from({ length: 16 }, (_, i) => i + 1);
-    const buf = layout.pack({ a: 1.5, position: [2, 3, 4], b: 5, view: mat, e: 0xffffffff, lights: [1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12], f: -1 });
+    const buf = layout.pack({
+      a: 1.5,
+      position: [2, 3, 4],
+      b: 5,
+      view: mat,
+      e: 0xffffffff,
+      lights: [1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12],
+      f: -1,
+    });
     const f32 = new Float32Array(buf);
     const u32 = new Uint32Array(buf);
     expect(f32[0]).toBe(1.5);
@@ -49,6 +57,12 @@ describe('UniformLayout', () => {
     expect(() => layout.pack({ position: [1, 2] })).toThrow(/takes 3 numbers/);
     expect(() => layout.pack({ nope: 1 })).toThrow(/not in Params/);
     expect(() => new UniformLayout('X', [{ name: 'w', type: 'f32', count: 4 }])).toThrow(/vec4, ivec4, uvec4 or mat4/);
-    expect(() => new UniformLayout('X', [{ name: 'a', type: 'f32' }, { name: 'a', type: 'f32' }])).toThrow(/duplicate/);
+    expect(
+      () =>
+        new UniformLayout('X', [
+          { name: 'a', type: 'f32' },
+          { name: 'a', type: 'f32' },
+        ]),
+    ).toThrow(/duplicate/);
   });
 });

@@ -1,27 +1,44 @@
 import { describe, expect, it } from 'vitest';
 import { createVolume, normalizedData, validateVolume, VptError, type Volume } from '../src/index.js';
 import { floatToHalf, halfToFloat } from '../src/gpu/half-float.js';
-import { planVolumeUpload, volumeTextureData, volumeTextureSlab, volumeValueMapping } from '../src/gpu/volume-format.js';
+import {
+  planVolumeUpload,
+  volumeTextureData,
+  volumeTextureSlab,
+  volumeValueMapping,
+} from '../src/gpu/volume-format.js';
 import { downsampleVolume, fitFactors } from '../src/scene/downsample.js';
 
 const NO_EXT = { norm16: false, float32Filterable: false };
 const ALL_EXT = { norm16: true, float32Filterable: true };
 
 /** What the shader computes for one texel (before the clamp): texel · valueScale + valueOffset. */
-function decodeNormalized(volume: Volume, caps = NO_EXT, sampling: 'fast' | 'exact' = 'fast', allowHalfFloat = false): Float64Array {
+function decodeNormalized(
+  volume: Volume,
+  caps = NO_EXT,
+  sampling: 'fast' | 'exact' = 'fast',
+  allowHalfFloat = false,
+): Float64Array {
   const upload = planVolumeUpload(volume, caps, { sampling, allowHalfFloat });
   const data = volumeTextureData(volume, upload);
   const { valueScale, valueOffset } = volumeValueMapping(volume, upload);
   const texel = (i: number): number => {
     switch (upload.format) {
-      case 'r8unorm': return data[i] / 255;
-      case 'r16unorm': return data[i] / 65535;
-      case 'r16snorm': return Math.max(data[i] / 32767, -1);
-      case 'r16float': return halfToFloat(data[i]);
-      default: return data[i];
+      case 'r8unorm':
+        return data[i] / 255;
+      case 'r16unorm':
+        return data[i] / 65535;
+      case 'r16snorm':
+        return Math.max(data[i] / 32767, -1);
+      case 'r16float':
+        return halfToFloat(data[i]);
+      default:
+        return data[i];
     }
   };
-  return Float64Array.from({ length: data.length }, (_, i) => Math.min(1, Math.max(0, texel(i) * valueScale + valueOffset)));
+  return Float64Array.from({ length: data.length }, (_, i) =>
+    Math.min(1, Math.max(0, texel(i) * valueScale + valueOffset)),
+  );
 }
 
 describe('half floats', () => {
@@ -39,7 +56,8 @@ describe('half floats', () => {
   });
 
   it('holds every 16-bit integer within the stated bound: ≤ 8 units, ≤ 1/2049 relative, exact up to 2048', () => {
-    let worstAbs = 0, worstRel = 0;
+    let worstAbs = 0,
+      worstRel = 0;
     for (let x = -32768; x <= 32767; x++) {
       const err = Math.abs(halfToFloat(floatToHalf(x)) - x);
       if (Math.abs(x) <= 2048) expect(err).toBe(0);
@@ -86,13 +104,29 @@ describe('volume upload formats', () => {
   it('decodes every format to the CPU normalization, inverted ranges included', () => {
     const n = 4096;
     const cases: Volume[] = [];
-    const u8 = createVolume([16, 16, 16], 'uint8', Uint8Array.from({ length: n }, (_, i) => (i * 37) % 256));
+    const u8 = createVolume(
+      [16, 16, 16],
+      'uint8',
+      Uint8Array.from({ length: n }, (_, i) => (i * 37) % 256),
+    );
     cases.push(u8, { ...u8, valueRange: [200, 20] });
-    const u16 = createVolume([16, 16, 16], 'uint16', Uint16Array.from({ length: n }, (_, i) => (i * 997) % 65536));
+    const u16 = createVolume(
+      [16, 16, 16],
+      'uint16',
+      Uint16Array.from({ length: n }, (_, i) => (i * 997) % 65536),
+    );
     cases.push(u16, { ...u16, valueRange: [60000, 1000] });
-    const i16 = createVolume([16, 16, 16], 'int16', Int16Array.from({ length: n }, (_, i) => ((i * 811) % 65536) - 32768));
+    const i16 = createVolume(
+      [16, 16, 16],
+      'int16',
+      Int16Array.from({ length: n }, (_, i) => ((i * 811) % 65536) - 32768),
+    );
     cases.push(i16, { ...i16, valueRange: [3071, -1024] });
-    const f32 = createVolume([16, 16, 16], 'float32', Float32Array.from({ length: n }, (_, i) => Math.sin(i) * 1e3));
+    const f32 = createVolume(
+      [16, 16, 16],
+      'float32',
+      Float32Array.from({ length: n }, (_, i) => Math.sin(i) * 1e3),
+    );
     f32.data[5] = NaN;
     f32.data[6] = Infinity;
     cases.push(f32, { ...f32, valueRange: [800, -800] });
@@ -103,14 +137,20 @@ describe('volume upload formats', () => {
         for (const sampling of ['fast', 'exact'] as const) {
           const got = decodeNormalized(v, caps, sampling, true);
           const u = planVolumeUpload(v, caps, { sampling, allowHalfFloat: true });
-          const [lo, hi] = v.valueRange ?? (v.type === 'uint8' ? [0, 255] : v.type === 'uint16' ? [0, 65535] : [-32768, 32767]);
+          const [lo, hi] =
+            v.valueRange ?? (v.type === 'uint8' ? [0, 255] : v.type === 'uint16' ? [0, 65535] : [-32768, 32767]);
           const width = v.type === 'float32' && !v.valueRange ? 2000 : Math.abs(hi - lo);
           // The stated bounds (gpu/volume-format.ts), in normalized units: float32 rounding for exact formats;
           // r16float ≤ 16 data units for uint16 (values ≥ 32768 unshifted), ≤ 8 for int16, half of 2^-11 of the
           // data's extent (≈ 2000) for float32; snorm one unit at −32768.
-          const tol = u.format === 'r16float'
-            ? (v.type === 'float32' ? (2000 * 2 ** -12) / width : (v.type === 'uint16' ? 16 : 8) / width)
-            : u.format === 'r16snorm' ? 1 / width : 0;
+          const tol =
+            u.format === 'r16float'
+              ? v.type === 'float32'
+                ? (2000 * 2 ** -12) / width
+                : (v.type === 'uint16' ? 16 : 8) / width
+              : u.format === 'r16snorm'
+                ? 1 / width
+                : 0;
           let worst = 0;
           for (let i = 0; i < n; i++) worst = Math.max(worst, Math.abs(got[i] - want[i]));
           expect(worst, `${v.type} ${JSON.stringify(v.valueRange)} ${u.format}`).toBeLessThanOrEqual(tol + 1e-6);
@@ -120,14 +160,26 @@ describe('volume upload formats', () => {
   });
 
   it('converts slab by slab to exactly the whole-volume data', () => {
-    const i16 = createVolume([8, 4, 10], 'int16', Int16Array.from({ length: 320 }, (_, i) => i * 97 - 15000));
-    const f32 = createVolume([8, 4, 10], 'float32', Float32Array.from({ length: 320 }, (_, i) => (i % 7 === 0 ? NaN : i * 0.37)));
+    const i16 = createVolume(
+      [8, 4, 10],
+      'int16',
+      Int16Array.from({ length: 320 }, (_, i) => i * 97 - 15000),
+    );
+    const f32 = createVolume(
+      [8, 4, 10],
+      'float32',
+      Float32Array.from({ length: 320 }, (_, i) => (i % 7 === 0 ? NaN : i * 0.37)),
+    );
     for (const v of [i16, f32]) {
       for (const sampling of ['fast', 'exact'] as const) {
         const u = planVolumeUpload(v, NO_EXT, { sampling, allowHalfFloat: true });
         const whole = Array.from(volumeTextureData(v, u));
         const scratch = new ArrayBuffer(4 * 8 * 4 * 6);
-        const slabs = [[0, 3], [3, 4], [4, 10]].flatMap(([z0, z1]) => Array.from(volumeTextureSlab(v, u, z0, z1, scratch)));
+        const slabs = [
+          [0, 3],
+          [3, 4],
+          [4, 10],
+        ].flatMap(([z0, z1]) => Array.from(volumeTextureSlab(v, u, z0, z1, scratch)));
         expect(slabs, `${v.type} ${sampling}`).toEqual(whole);
       }
     }
@@ -149,7 +201,7 @@ describe('hardware filtering keeps the majorant bound', () => {
     // A filtered value is Σ w_i c_i with w_i ≥ 0 and Σ w_i = 1 whatever the weights' precision,
     // so it lies in [min c_i, max c_i]: the per-cell texel range bounds it (majorant-grid.ts).
     let state = 12345;
-    const rnd = () => ((state = (state * 1103515245 + 12345) >>> 0) / 2 ** 32);
+    const rnd = () => (state = (state * 1103515245 + 12345) >>> 0) / 2 ** 32;
     for (let k = 0; k < 20000; k++) {
       const c = Array.from({ length: 8 }, () => Math.fround(rnd() * 2 - 0.5));
       const q = (t: number) => Math.round(t * 256) / 256;
@@ -164,7 +216,12 @@ describe('hardware filtering keeps the majorant bound', () => {
 
 describe('fitting a volume to the device', () => {
   it('downsamples by box averages, keeping the box and the value range', () => {
-    const v = createVolume([4, 2, 3], 'int16', Int16Array.from({ length: 24 }, (_, i) => i * 10), [1, 2, 3]);
+    const v = createVolume(
+      [4, 2, 3],
+      'int16',
+      Int16Array.from({ length: 24 }, (_, i) => i * 10),
+      [1, 2, 3],
+    );
     v.valueRange = [300, 0];
     const d = downsampleVolume(v, [2, 2, 2]);
     expect(d.dims).toEqual([2, 1, 2]);

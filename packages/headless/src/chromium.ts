@@ -53,7 +53,7 @@ export async function launchChromium(options: ChromiumOptions = {}): Promise<Bro
   if (!fs.existsSync(executablePath)) {
     throw new Error(
       `Chromium not found at ${executablePath}. Install it (Debian/Ubuntu: apt-get install -y chromium) ` +
-      'or point VPT_CHROMIUM (or CHROMIUM_PATH) at a Chromium or Chrome executable.',
+        'or point VPT_CHROMIUM (or CHROMIUM_PATH) at a Chromium or Chrome executable.',
     );
   }
   // A fresh profile per launch: no state leaks between runs, and parallel runs never

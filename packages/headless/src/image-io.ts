@@ -22,7 +22,11 @@ export function opaque(rgba8: Uint8Array): Uint8Array {
 /** PNG file bytes → RGBA8, top row first. */
 export function decodePNG(file: Uint8Array): { width: number; height: number; rgba: Uint8Array } {
   const png = PNG.sync.read(Buffer.from(file.buffer, file.byteOffset, file.byteLength));
-  return { width: png.width, height: png.height, rgba: new Uint8Array(png.data.buffer, png.data.byteOffset, png.data.byteLength) };
+  return {
+    width: png.width,
+    height: png.height,
+    rgba: new Uint8Array(png.data.buffer, png.data.byteOffset, png.data.byteLength),
+  };
 }
 
 /**
@@ -74,11 +78,15 @@ export function decodePFM(file: Uint8Array): DecodedPFM {
   const width = Number(token());
   const height = Number(token());
   const scale = Number(token());
-  if (!Number.isInteger(width) || width < 1 || !Number.isInteger(height) || height < 1) throw new Error(`PFM: bad size ${width} x ${height}`);
+  if (!Number.isInteger(width) || width < 1 || !Number.isInteger(height) || height < 1)
+    throw new Error(`PFM: bad size ${width} x ${height}`);
   if (!Number.isFinite(scale) || scale === 0) throw new Error('PFM: bad scale');
   pos++; // the single whitespace character that ends the header
   const need = width * height * channels * 4;
-  if (buf.length - pos < need) throw new Error(`PFM: ${width} x ${height} x ${channels} needs ${need} data bytes, the file has ${buf.length - pos}`);
+  if (buf.length - pos < need)
+    throw new Error(
+      `PFM: ${width} x ${height} x ${channels} needs ${need} data bytes, the file has ${buf.length - pos}`,
+    );
   const little = scale < 0;
   const rgba = new Float32Array(width * height * 4);
   for (let row = 0; row < height; row++) {
@@ -101,6 +109,8 @@ function isSpace(b: number): boolean {
 }
 
 function checkSize(length: number, width: number, height: number, what: string): void {
-  if (!Number.isInteger(width) || !Number.isInteger(height) || width < 1 || height < 1) throw new Error(`${what}: bad size ${width} x ${height}`);
-  if (length !== width * height * 4) throw new Error(`${what}: ${width} x ${height} RGBA needs ${width * height * 4} values, got ${length}`);
+  if (!Number.isInteger(width) || !Number.isInteger(height) || width < 1 || height < 1)
+    throw new Error(`${what}: bad size ${width} x ${height}`);
+  if (length !== width * height * 4)
+    throw new Error(`${what}: ${width} x ${height} RGBA needs ${width * height * 4} values, got ${length}`);
 }

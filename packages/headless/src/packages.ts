@@ -46,7 +46,10 @@ export function findPackageDir(name: string, fromDir = headlessPackageDir()): st
     const candidate = path.join(dir, 'node_modules', ...name.split('/'));
     if (fs.existsSync(path.join(candidate, 'package.json'))) return fs.realpathSync(candidate);
     const up = path.dirname(dir);
-    if (up === dir) throw new Error(`Cannot find the package ${name} (looked in node_modules above ${fromDir}); install it next to @vpt/headless`);
+    if (up === dir)
+      throw new Error(
+        `Cannot find the package ${name} (looked in node_modules above ${fromDir}); install it next to @vpt/headless`,
+      );
     dir = up;
   }
 }

@@ -94,7 +94,7 @@ export async function openVptPage(options: VptPageOptions = {}): Promise<VptPage
   const problems: string[] = [];
   try {
     mountPagePackages(server, options.packageDirs);
-    browser = options.browser ?? await launchChromium(options.chromium);
+    browser = options.browser ?? (await launchChromium(options.chromium));
     page = await browser.newPage();
     page.on('console', (m) => options.onConsole?.(`[page ${m.type()}] ${m.text()}`));
     page.on('pageerror', (e) => {
@@ -102,19 +102,28 @@ export async function openVptPage(options: VptPageOptions = {}): Promise<VptPage
       problems.push(msg);
       options.onConsole?.(`[page error] ${msg}`);
     });
-    page.on('response', (r) => { if (r.status() >= 400 && !r.url().endsWith('/favicon.ico')) problems.push(`HTTP ${r.status()} ${r.url()}`); });
+    page.on('response', (r) => {
+      if (r.status() >= 400 && !r.url().endsWith('/favicon.ico')) problems.push(`HTTP ${r.status()} ${r.url()}`);
+    });
     const url = new URL(PAGE_PATH, server.url).href;
     await page.goto(url);
     const timeout = options.loadTimeoutMs ?? 60_000;
     try {
-      await page.waitForFunction(() => window.__vptReady === true || typeof window.__vptError === 'string', { timeout, polling: 50 });
+      await page.waitForFunction(() => window.__vptReady === true || typeof window.__vptError === 'string', {
+        timeout,
+        polling: 50,
+      });
     } catch {
-      throw new Error(`The vpt page did not load within ${timeout} ms${problems.length ? `: ${problems.join('; ')}` : ''}`);
+      throw new Error(
+        `The vpt page did not load within ${timeout} ms${problems.length ? `: ${problems.join('; ')}` : ''}`,
+      );
     }
     const loadError = await page.evaluate(() => window.__vptError ?? null);
-    if (loadError) throw new Error(`The vpt page failed to load: ${loadError}${problems.length ? ` (${problems.join('; ')})` : ''}`);
+    if (loadError)
+      throw new Error(`The vpt page failed to load: ${loadError}${problems.length ? ` (${problems.join('; ')})` : ''}`);
 
-    const b = browser, p = page;
+    const b = browser,
+      p = page;
     return {
       page,
       browser: b,
@@ -137,18 +146,28 @@ export async function openVptPage(options: VptPageOptions = {}): Promise<VptPage
   }
 }
 
-async function renderInPage(page: Page, server: StaticServer, desc: SceneDescription, options: PageRenderOptions): Promise<RenderResult> {
+async function renderInPage(
+  page: Page,
+  server: StaticServer,
+  desc: SceneDescription,
+  options: PageRenderOptions,
+): Promise<RenderResult> {
   const mounted = mountSceneFiles(desc, options.baseDir ?? process.cwd(), server, { root: options.sceneRoot });
   // Errors come back as data: a rejected evaluate would lose VptError's code.
-  type Outcome = { ok: PageRenderResult; error?: undefined } | { ok?: undefined; error: { message: string; code?: string } };
-  const out: Outcome = await page.evaluate(async (d, o) => {
-    try {
-      return { ok: await window.vpt.renderDescription(d, o) };
-    } catch (e) {
-      const err = e as { message?: string; code?: string };
-      return { error: { message: String(err?.message ?? e), code: err?.code } };
-    }
-  }, mounted, { warmup: options.warmup ?? true });
+  type Outcome =
+    { ok: PageRenderResult; error?: undefined } | { ok?: undefined; error: { message: string; code?: string } };
+  const out: Outcome = await page.evaluate(
+    async (d, o) => {
+      try {
+        return { ok: await window.vpt.renderDescription(d, o) };
+      } catch (e) {
+        const err = e as { message?: string; code?: string };
+        return { error: { message: String(err?.message ?? e), code: err?.code } };
+      }
+    },
+    mounted,
+    { warmup: options.warmup ?? true },
+  );
   if (out.error) throw new PageError(out.error.message, out.error.code);
   return decodeResult(out.ok!);
 }
@@ -201,8 +220,19 @@ export async function renderScene(desc: SceneDescription, options: RenderSceneOp
     if (options[key] !== undefined) (overrides as Record<string, unknown>)[key] = options[key];
   }
   // Bad fields, missing files and size mismatches fail here, before a browser is started.
-  const full = resolveSceneFiles(validateSceneDescription({ ...desc, ...overrides }), options.baseDir ?? process.cwd(), { root: options.sceneRoot });
-  const session = options.session ?? await openVptPage({ root: null, chromium: options.chromium, onConsole: options.onConsole, packageDirs: options.packageDirs });
+  const full = resolveSceneFiles(
+    validateSceneDescription({ ...desc, ...overrides }),
+    options.baseDir ?? process.cwd(),
+    { root: options.sceneRoot },
+  );
+  const session =
+    options.session ??
+    (await openVptPage({
+      root: null,
+      chromium: options.chromium,
+      onConsole: options.onConsole,
+      packageDirs: options.packageDirs,
+    }));
   try {
     return await session.render(full, options);
   } finally {

@@ -59,7 +59,8 @@ export interface SceneDescription {
   rendererParams?: Record<string, unknown>;
   volume?: VolumeDescription;
   /** 1D (control points) or 2D (value x gradient-magnitude widgets, as core's TransferFunction2D). */
-  transferFunction?: { dimensions?: '1d'; points: TransferPointDescription[] } | { dimensions: '2d'; widgets: TransferWidget[] };
+  transferFunction?:
+    { dimensions?: '1d'; points: TransferPointDescription[] } | { dimensions: '2d'; widgets: TransferWidget[] };
   /** Merged over core's `defaultCamera()`; fovy is the full vertical angle in radians. */
   camera?: { position?: Vec3; target?: Vec3; up?: Vec3; fovy?: number };
   lights?: { type: 'directional'; direction: Vec3; irradiance: Vec3 }[];
@@ -84,7 +85,10 @@ export const SCENE_DEFAULTS = {
   environment: { type: 'constant', radiance: [1, 1, 1] } as EnvironmentDescription,
   densityScale: 10,
   seed: 1,
-  post: [{ type: 'exposure', exposure: 0 }, { type: 'tonemap', operator: 'aces' }, { type: 'srgb' }] as Record<string, unknown>[],
+  post: [{ type: 'exposure', exposure: 0 }, { type: 'tonemap', operator: 'aces' }, { type: 'srgb' }] as Record<
+    string,
+    unknown
+  >[],
   iterations: 64,
   backend: 'auto' as BackendName,
 };
@@ -100,20 +104,34 @@ export const BACKEND_NAMES: readonly BackendName[] = ['auto', 'webgl2', 'webgpu'
  * module does not import) lets the caller reject an unknown renderer early.
  */
 export function checkSceneDescription(d: unknown, rendererNames?: readonly string[]): asserts d is SceneDescription {
-  const bad = (m: string): never => { throw new Error(`Scene description: ${m}`); };
+  const bad = (m: string): never => {
+    throw new Error(`Scene description: ${m}`);
+  };
   if (!d || typeof d !== 'object' || Array.isArray(d)) bad('must be a JSON object');
   const s = d as Record<string, unknown>;
   const posInt = (k: string) => {
-    if (s[k] !== undefined && !(Number.isInteger(s[k]) && (s[k] as number) >= 1)) bad(`"${k}" must be a positive integer, got ${JSON.stringify(s[k])}`);
+    if (s[k] !== undefined && !(Number.isInteger(s[k]) && (s[k] as number) >= 1))
+      bad(`"${k}" must be a positive integer, got ${JSON.stringify(s[k])}`);
   };
-  posInt('width'); posInt('height'); posInt('iterations');
-  if (s.seed !== undefined && !(Number.isInteger(s.seed) && (s.seed as number) >= 0)) bad(`"seed" must be a non-negative integer, got ${JSON.stringify(s.seed)}`);
-  if (s.sampling !== undefined && s.sampling !== 'fast' && s.sampling !== 'exact') bad(`"sampling" must be "fast" or "exact", got ${JSON.stringify(s.sampling)}`);
-  if (s.maxGpuBytes !== undefined && !(typeof s.maxGpuBytes === 'number' && s.maxGpuBytes > 0)) bad(`"maxGpuBytes" must be a positive number of bytes, got ${JSON.stringify(s.maxGpuBytes)}`);
-  if (s.renderer !== undefined && (typeof s.renderer !== 'string' || (rendererNames && !rendererNames.includes(s.renderer)))) {
-    bad(`"renderer" must be ${rendererNames ? `one of ${rendererNames.join(', ')}` : 'a renderer name'}, got ${JSON.stringify(s.renderer)}`);
+  posInt('width');
+  posInt('height');
+  posInt('iterations');
+  if (s.seed !== undefined && !(Number.isInteger(s.seed) && (s.seed as number) >= 0))
+    bad(`"seed" must be a non-negative integer, got ${JSON.stringify(s.seed)}`);
+  if (s.sampling !== undefined && s.sampling !== 'fast' && s.sampling !== 'exact')
+    bad(`"sampling" must be "fast" or "exact", got ${JSON.stringify(s.sampling)}`);
+  if (s.maxGpuBytes !== undefined && !(typeof s.maxGpuBytes === 'number' && s.maxGpuBytes > 0))
+    bad(`"maxGpuBytes" must be a positive number of bytes, got ${JSON.stringify(s.maxGpuBytes)}`);
+  if (
+    s.renderer !== undefined &&
+    (typeof s.renderer !== 'string' || (rendererNames && !rendererNames.includes(s.renderer)))
+  ) {
+    bad(
+      `"renderer" must be ${rendererNames ? `one of ${rendererNames.join(', ')}` : 'a renderer name'}, got ${JSON.stringify(s.renderer)}`,
+    );
   }
-  if (s.backend !== undefined && !BACKEND_NAMES.includes(s.backend as BackendName)) bad(`"backend" must be one of ${BACKEND_NAMES.join(', ')}, got ${JSON.stringify(s.backend)}`);
+  if (s.backend !== undefined && !BACKEND_NAMES.includes(s.backend as BackendName))
+    bad(`"backend" must be one of ${BACKEND_NAMES.join(', ')}, got ${JSON.stringify(s.backend)}`);
   if (s.post !== undefined && !Array.isArray(s.post)) bad('"post" must be an array of steps');
   if (s.lights !== undefined && !Array.isArray(s.lights)) bad('"lights" must be an array');
   const v = s.volume as Record<string, unknown> | undefined;
@@ -121,7 +139,8 @@ export function checkSceneDescription(d: unknown, rendererNames?: readonly strin
     if (!v || typeof v !== 'object') bad('"volume" must be an object');
     else if (typeof v.raw === 'string') {
       if (!Array.isArray(v.dims) || v.dims.length !== 3) bad('"volume.dims" must be [nx, ny, nz]');
-      if (!['uint8', 'uint16', 'int16', 'float32'].includes(v.type as string)) bad(`"volume.type" must be uint8, uint16, int16 or float32, got ${JSON.stringify(v.type)}`);
+      if (!['uint8', 'uint16', 'int16', 'float32'].includes(v.type as string))
+        bad(`"volume.type" must be uint8, uint16, int16 or float32, got ${JSON.stringify(v.type)}`);
     } else if (typeof v.sidecar !== 'string' && typeof v.procedural !== 'string') {
       bad('"volume" needs one of "raw" (with dims and type), "sidecar" or "procedural"');
     }

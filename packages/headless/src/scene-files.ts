@@ -24,11 +24,17 @@ export function readSceneFile(file: string): { description: SceneDescription; ba
   let text: string;
   try {
     const size = fs.statSync(file).size;
-    if (size > MAX_SCENE_FILE_BYTES) throw new VptError('limit-exceeded', `${size} bytes exceed the limit of ${MAX_SCENE_FILE_BYTES} for a scene file`);
+    if (size > MAX_SCENE_FILE_BYTES)
+      throw new VptError(
+        'limit-exceeded',
+        `${size} bytes exceed the limit of ${MAX_SCENE_FILE_BYTES} for a scene file`,
+      );
     text = fs.readFileSync(file, 'utf8');
   } catch (e) {
     if (e instanceof VptError) throw new VptError(e.code, `Scene file ${file}: ${e.message}`);
-    throw new Error(`Cannot read scene file ${file}: ${(e as NodeJS.ErrnoException).code === 'ENOENT' ? 'no such file' : (e as Error).message}`);
+    throw new Error(
+      `Cannot read scene file ${file}: ${(e as NodeJS.ErrnoException).code === 'ENOENT' ? 'no such file' : (e as Error).message}`,
+    );
   }
   let json: unknown;
   try {
@@ -48,15 +54,22 @@ export function readSceneFile(file: string): { description: SceneDescription; ba
 const HAS_SCHEME = /^[a-z][a-z0-9+.-]*:/i;
 
 /** Apply `map` to each file reference of the description (the volume's raw or sidecar). */
-function mapVolumeRefs(desc: SceneDescription, map: (ref: string, volume: VolumeDescription) => string): SceneDescription {
+function mapVolumeRefs(
+  desc: SceneDescription,
+  map: (ref: string, volume: VolumeDescription) => string,
+): SceneDescription {
   const volume = desc.volume;
   if (!volume || 'procedural' in volume) return desc;
-  const mapped: VolumeDescription = 'sidecar' in volume ? { ...volume, sidecar: map(volume.sidecar, volume) } : { ...volume, raw: map(volume.raw, volume) };
+  const mapped: VolumeDescription =
+    'sidecar' in volume
+      ? { ...volume, sidecar: map(volume.sidecar, volume) }
+      : { ...volume, raw: map(volume.raw, volume) };
   return { ...desc, volume: mapped };
 }
 
 function insideRoot(file: string, root: string): boolean {
-  const real = fs.realpathSync(file), base = fs.realpathSync(root);
+  const real = fs.realpathSync(file),
+    base = fs.realpathSync(root);
   return real === base || real.startsWith(base + path.sep);
 }
 
@@ -73,7 +86,10 @@ function statFile(file: string): fs.Stats | null {
 function checkRawSize(file: string, dims: readonly number[], type: keyof typeof VOXEL_BYTES, size: number): void {
   const need = dims[0] * dims[1] * dims[2] * VOXEL_BYTES[type];
   if (size !== need) {
-    throw new VptError('load-failed', `${file}: dims [${dims.join(', ')}] of ${type} need ${need} bytes, the file has ${size}${size > need ? ` (${size - need} bytes past the declared size)` : ''}`);
+    throw new VptError(
+      'load-failed',
+      `${file}: dims [${dims.join(', ')}] of ${type} need ${need} bytes, the file has ${size}${size > need ? ` (${size - need} bytes past the declared size)` : ''}`,
+    );
   }
 }
 
@@ -84,7 +100,11 @@ function checkRawSize(file: string, dims: readonly number[], type: keyof typeof 
  */
 export function checkSidecarFile(sidecar: string): { rawFile: string } {
   const size = statFile(sidecar)?.size ?? 0;
-  if (size > MAX_SIDECAR_BYTES) throw new VptError('limit-exceeded', `${sidecar}: ${size} bytes exceed the limit of ${MAX_SIDECAR_BYTES} for a sidecar`);
+  if (size > MAX_SIDECAR_BYTES)
+    throw new VptError(
+      'limit-exceeded',
+      `${sidecar}: ${size} bytes exceed the limit of ${MAX_SIDECAR_BYTES} for a sidecar`,
+    );
   let meta: Record<string, unknown>;
   try {
     meta = JSON.parse(fs.readFileSync(sidecar, 'utf8'));
@@ -92,7 +112,8 @@ export function checkSidecarFile(sidecar: string): { rawFile: string } {
     throw new VptError('load-failed', `${sidecar}: not valid JSON (${(e as Error).message})`);
   }
   try {
-    if (!meta || typeof meta !== 'object' || Array.isArray(meta)) throw new VptError('load-failed', 'must be a JSON object');
+    if (!meta || typeof meta !== 'object' || Array.isArray(meta))
+      throw new VptError('load-failed', 'must be a JSON object');
     const dims = checkNumbers('dims', meta.dims, 3, { min: 1, integer: true });
     const type = checkOneOf('voxel_type', meta.voxel_type, ['uint8', 'uint16', 'int16', 'float32'] as const);
     if (meta.spacing !== undefined) checkNumbers('spacing', meta.spacing, 3, { min: 0, exclusiveMin: true });
@@ -101,14 +122,20 @@ export function checkSidecarFile(sidecar: string): { rawFile: string } {
       if (lo === hi) throw new VptError('invalid-scene', `value_range: min and max are equal (${lo}), an empty range`);
     }
     if (meta.endianness !== undefined) checkOneOf('endianness', meta.endianness, ['little', 'big'] as const);
-    const name = typeof meta.file === 'string' && meta.file && !/[\\/]/.test(meta.file) ? meta.file : path.basename(sidecar).replace(/\.json$/i, '') + '.raw';
+    const name =
+      typeof meta.file === 'string' && meta.file && !/[\\/]/.test(meta.file)
+        ? meta.file
+        : path.basename(sidecar).replace(/\.json$/i, '') + '.raw';
     const rawFile = path.join(path.dirname(sidecar), name);
     const st = statFile(rawFile);
     if (!st) throw new VptError('load-failed', `its raw file ${rawFile} was not found`);
     checkRawSize(rawFile, dims, type, st.size);
     return { rawFile };
   } catch (e) {
-    if (e instanceof VptError) throw new VptError(e.code === 'limit-exceeded' ? e.code : 'load-failed', `Sidecar ${sidecar}: ${e.message}`, { cause: e });
+    if (e instanceof VptError)
+      throw new VptError(e.code === 'limit-exceeded' ? e.code : 'load-failed', `Sidecar ${sidecar}: ${e.message}`, {
+        cause: e,
+      });
     throw e;
   }
 }
@@ -120,11 +147,19 @@ export function checkSidecarFile(sidecar: string): { rawFile: string } {
  * alone, and so is an absolute path that is not a file on this machine (a URL path for the
  * page's server). With `root`, every reference must be a file inside it.
  */
-export function resolveSceneFiles(desc: SceneDescription, baseDir: string, options: SceneFileOptions = {}): SceneDescription {
+export function resolveSceneFiles(
+  desc: SceneDescription,
+  baseDir: string,
+  options: SceneFileOptions = {},
+): SceneDescription {
   return mapVolumeRefs(desc, (ref, volume) => {
     const confined = options.root !== undefined;
     if (HAS_SCHEME.test(ref)) {
-      if (confined) throw new VptError('invalid-scene', `Volume reference ${ref}: URLs are refused when scene paths are confined to ${options.root}`);
+      if (confined)
+        throw new VptError(
+          'invalid-scene',
+          `Volume reference ${ref}: URLs are refused when scene paths are confined to ${options.root}`,
+        );
       return ref;
     }
     const file = path.resolve(baseDir, ref);
@@ -134,11 +169,18 @@ export function resolveSceneFiles(desc: SceneDescription, baseDir: string, optio
       throw new VptError('load-failed', `Volume file not found: ${file}`);
     }
     if (confined && !insideRoot(file, options.root!)) {
-      throw new VptError('invalid-scene', `Volume file ${file} is outside ${path.resolve(options.root!)}, the folder scene paths are confined to (--root)`);
+      throw new VptError(
+        'invalid-scene',
+        `Volume file ${file} is outside ${path.resolve(options.root!)}, the folder scene paths are confined to (--root)`,
+      );
     }
     if ('sidecar' in volume) {
       const { rawFile } = checkSidecarFile(file);
-      if (confined && !insideRoot(rawFile, options.root!)) throw new VptError('invalid-scene', `Raw file ${rawFile} of sidecar ${file} is outside ${path.resolve(options.root!)} (--root)`);
+      if (confined && !insideRoot(rawFile, options.root!))
+        throw new VptError(
+          'invalid-scene',
+          `Raw file ${rawFile} of sidecar ${file} is outside ${path.resolve(options.root!)} (--root)`,
+        );
     } else {
       const v = volume as RawVolumeDescription;
       checkRawSize(file, v.dims, v.type, st.size);
@@ -152,7 +194,12 @@ export function resolveSceneFiles(desc: SceneDescription, baseDir: string, optio
  * sidecar with its raw file), each set under its own `/__files/<n>/`, never their folders;
  * the path is replaced by its URL (see resolveSceneFiles for what counts as a file).
  */
-export function mountSceneFiles(desc: SceneDescription, baseDir: string, server: StaticServer, options: SceneFileOptions = {}): SceneDescription {
+export function mountSceneFiles(
+  desc: SceneDescription,
+  baseDir: string,
+  server: StaticServer,
+  options: SceneFileOptions = {},
+): SceneDescription {
   return mapVolumeRefs(resolveSceneFiles(desc, baseDir, options), (ref, volume) => {
     if (!path.isAbsolute(ref) || !statFile(ref)) return ref;
     const files = 'sidecar' in volume ? [ref, checkSidecarFile(ref).rawFile] : [ref];

@@ -122,7 +122,10 @@ export async function startStaticServer(root: string | null, options: StaticServ
       // Rebuilt packages must never be served stale from the browser's cache.
       'cache-control': 'no-store',
     });
-    if (req.method === 'HEAD') { res.end(); return; }
+    if (req.method === 'HEAD') {
+      res.end();
+      return;
+    }
     const stream = fs.createReadStream(file);
     stream.on('error', () => res.destroy());
     stream.pipe(res);
@@ -131,7 +134,10 @@ export async function startStaticServer(root: string | null, options: StaticServ
   const host = options.host ?? '127.0.0.1';
   await new Promise<void>((resolve, reject) => {
     server.once('error', reject);
-    server.listen(options.port ?? 0, host, () => { server.off('error', reject); resolve(); });
+    server.listen(options.port ?? 0, host, () => {
+      server.off('error', reject);
+      resolve();
+    });
   });
   const port = (server.address() as AddressInfo).port;
 
@@ -160,9 +166,10 @@ export async function startStaticServer(root: string | null, options: StaticServ
       mounts.set(prefix, byName);
       return prefix;
     },
-    close: () => new Promise<void>((resolve) => {
-      server.close(() => resolve());
-      server.closeAllConnections();
-    }),
+    close: () =>
+      new Promise<void>((resolve) => {
+        server.close(() => resolve());
+        server.closeAllConnections();
+      }),
   };
 }

@@ -7,9 +7,29 @@
  */
 import { BACKEND_NAMES, SCENE_DEFAULTS, type RendererName, type SceneDescription } from './scene-description.js';
 import {
-  checkKnownKeys, checkNumber, checkNumbers, checkObject, checkOneOf, checkString, defaultCamera, FLOAT32_MAX,
-  MAX_DENSITY_SCALE, MAX_ITERATIONS, rendererNames, MAX_PROCEDURAL_SIZE, MAX_RENDER_SIDE, MAX_TEXTURE_SIDE_2D, transferFunctionFromJSON,
-  validateCamera, validateEnvironment, validateLights, validateParams, VptError, type Camera, type Environment, type Light,
+  checkKnownKeys,
+  checkNumber,
+  checkNumbers,
+  checkObject,
+  checkOneOf,
+  checkString,
+  defaultCamera,
+  FLOAT32_MAX,
+  MAX_DENSITY_SCALE,
+  MAX_ITERATIONS,
+  rendererNames,
+  MAX_PROCEDURAL_SIZE,
+  MAX_RENDER_SIDE,
+  MAX_TEXTURE_SIDE_2D,
+  transferFunctionFromJSON,
+  validateCamera,
+  validateEnvironment,
+  validateLights,
+  validateParams,
+  VptError,
+  type Camera,
+  type Environment,
+  type Light,
 } from '@vpt/core';
 import { postChainFromJSON } from '@vpt/post';
 import { EAM_PARAM_SPECS } from '@vpt/renderer-eam';
@@ -17,7 +37,24 @@ import { MIP_PARAM_SPECS } from '@vpt/renderer-mip';
 import { ISO_PARAM_SPECS, resolveIsoParams } from '@vpt/renderer-iso';
 import { MCRT_PARAM_SPECS, resolveParams as resolveMcrtParams } from '@vpt/renderer-mcrt';
 
-const TOP_KEYS = ['width', 'height', 'renderer', 'rendererParams', 'volume', 'transferFunction', 'camera', 'lights', 'environment', 'densityScale', 'seed', 'sampling', 'maxGpuBytes', 'post', 'iterations', 'backend'];
+const TOP_KEYS = [
+  'width',
+  'height',
+  'renderer',
+  'rendererParams',
+  'volume',
+  'transferFunction',
+  'camera',
+  'lights',
+  'environment',
+  'densityScale',
+  'seed',
+  'sampling',
+  'maxGpuBytes',
+  'post',
+  'iterations',
+  'backend',
+];
 const VOXEL_TYPES = ['uint8', 'uint16', 'int16', 'float32'] as const;
 const PROCEDURAL_KINDS = ['sphere', 'cube', 'ramp', 'blob'] as const;
 /** Largest volume side a description may name; the device's maxTextureDimension3D is checked at setScene. */
@@ -30,8 +67,14 @@ export const MAX_VOLUME_SIDE = 2048;
 export const RENDERER_PARAM_CHECKS: Record<RendererName, (params: unknown) => void> = {
   eam: (p) => validateParams('EAM', EAM_PARAM_SPECS, p),
   mip: (p) => validateParams('MIP', MIP_PARAM_SPECS, p),
-  iso: (p) => { validateParams('ISO', ISO_PARAM_SPECS, p); resolveIsoParams(p as object); },
-  mcrt: (p) => { validateParams('MCRT', MCRT_PARAM_SPECS, p); resolveMcrtParams(p as object); },
+  iso: (p) => {
+    validateParams('ISO', ISO_PARAM_SPECS, p);
+    resolveIsoParams(p as object);
+  },
+  mcrt: (p) => {
+    validateParams('MCRT', MCRT_PARAM_SPECS, p);
+    resolveMcrtParams(p as object);
+  },
 };
 
 function checkVolume(v: unknown): void {
@@ -39,12 +82,19 @@ function checkVolume(v: unknown): void {
   if ('raw' in vol) {
     checkKnownKeys('volume', vol, ['raw', 'dims', 'type', 'spacing', 'valueRange', 'endianness']);
     checkString('volume.raw', vol.raw);
-    checkNumbers('volume.dims', vol.dims, 3, { min: 1, max: MAX_VOLUME_SIDE, integer: true, maxCode: 'limit-exceeded', unit: 'voxels' });
+    checkNumbers('volume.dims', vol.dims, 3, {
+      min: 1,
+      max: MAX_VOLUME_SIDE,
+      integer: true,
+      maxCode: 'limit-exceeded',
+      unit: 'voxels',
+    });
     checkOneOf('volume.type', vol.type, VOXEL_TYPES);
     if (vol.spacing !== undefined) checkNumbers('volume.spacing', vol.spacing, 3, { min: 0, exclusiveMin: true });
     if (vol.valueRange !== undefined) {
       const [lo, hi] = checkNumbers('volume.valueRange', vol.valueRange, 2);
-      if (lo === hi) throw new VptError('invalid-scene', `volume.valueRange: min and max are equal (${lo}), an empty range`);
+      if (lo === hi)
+        throw new VptError('invalid-scene', `volume.valueRange: min and max are equal (${lo}), an empty range`);
     }
     if (vol.endianness !== undefined) checkOneOf('volume.endianness', vol.endianness, ['little', 'big'] as const);
   } else if ('sidecar' in vol) {
@@ -53,7 +103,14 @@ function checkVolume(v: unknown): void {
   } else if ('procedural' in vol) {
     checkKnownKeys('volume', vol, ['procedural', 'size']);
     checkOneOf('volume.procedural', vol.procedural, PROCEDURAL_KINDS);
-    if (vol.size !== undefined) checkNumber('volume.size', vol.size, { min: 2, max: MAX_PROCEDURAL_SIZE, integer: true, maxCode: 'limit-exceeded', unit: 'voxels per side' });
+    if (vol.size !== undefined)
+      checkNumber('volume.size', vol.size, {
+        min: 2,
+        max: MAX_PROCEDURAL_SIZE,
+        integer: true,
+        maxCode: 'limit-exceeded',
+        unit: 'voxels per side',
+      });
   } else {
     throw new VptError('invalid-scene', 'volume: needs one of "raw" (with dims and type), "sidecar" or "procedural"');
   }
@@ -67,13 +124,28 @@ function checkEnvironment(e: unknown): Environment {
     return env as unknown as Environment;
   }
   checkKnownKeys('environment', env, ['type', 'width', 'height', 'data', 'scale']);
-  const side = { min: 1, max: MAX_TEXTURE_SIDE_2D - 1, integer: true, maxCode: 'limit-exceeded' as const, unit: 'texels' };
+  const side = {
+    min: 1,
+    max: MAX_TEXTURE_SIDE_2D - 1,
+    integer: true,
+    maxCode: 'limit-exceeded' as const,
+    unit: 'texels',
+  };
   const width = checkNumber('environment.width', env.width, side);
   const height = checkNumber('environment.height', env.height, side);
   if (!Array.isArray(env.data) || env.data.length !== width * height * 3) {
-    throw new VptError('invalid-scene', `environment.data: must be an array of width*height*3 = ${width * height * 3} numbers, got ${Array.isArray(env.data) ? `${env.data.length}` : typeof env.data}`);
+    throw new VptError(
+      'invalid-scene',
+      `environment.data: must be an array of width*height*3 = ${width * height * 3} numbers, got ${Array.isArray(env.data) ? `${env.data.length}` : typeof env.data}`,
+    );
   }
-  env.data.forEach((x, i) => { if (typeof x !== 'number' || !Number.isFinite(x) || Math.abs(x) > FLOAT32_MAX) throw new VptError('invalid-scene', `environment.data[${i}]: must be a finite float32 number, got ${JSON.stringify(x)}`); });
+  env.data.forEach((x, i) => {
+    if (typeof x !== 'number' || !Number.isFinite(x) || Math.abs(x) > FLOAT32_MAX)
+      throw new VptError(
+        'invalid-scene',
+        `environment.data[${i}]: must be a finite float32 number, got ${JSON.stringify(x)}`,
+      );
+  });
   return { ...(env as object), data: Float32Array.from(env.data as number[]) } as Environment;
 }
 
@@ -82,7 +154,8 @@ function checkLights(l: unknown): Light[] {
   l.forEach((light, i) => {
     const o = checkObject(`lights[${i}]`, light);
     checkKnownKeys(`lights[${i}]`, o, ['type', 'direction', 'irradiance']);
-    for (const k of ['type', 'direction', 'irradiance']) if (o[k] === undefined) throw new VptError('invalid-scene', `lights[${i}].${k}: is required`);
+    for (const k of ['type', 'direction', 'irradiance'])
+      if (o[k] === undefined) throw new VptError('invalid-scene', `lights[${i}].${k}: is required`);
   });
   return l as Light[];
 }
@@ -95,18 +168,43 @@ export function validateSceneDescription(d: unknown): SceneDescription {
   try {
     const s = checkObject('scene', d);
     checkKnownKeys('scene', s, TOP_KEYS);
-    for (const k of ['width', 'height'] as const) if (s[k] !== undefined) checkNumber(k, s[k], { min: 1, max: MAX_RENDER_SIDE, integer: true, maxCode: 'limit-exceeded', unit: 'pixels' });
-    if (s.iterations !== undefined) checkNumber('iterations', s.iterations, { min: 1, max: MAX_ITERATIONS, integer: true, maxCode: 'limit-exceeded' });
+    for (const k of ['width', 'height'] as const)
+      if (s[k] !== undefined)
+        checkNumber(k, s[k], {
+          min: 1,
+          max: MAX_RENDER_SIDE,
+          integer: true,
+          maxCode: 'limit-exceeded',
+          unit: 'pixels',
+        });
+    if (s.iterations !== undefined)
+      checkNumber('iterations', s.iterations, {
+        min: 1,
+        max: MAX_ITERATIONS,
+        integer: true,
+        maxCode: 'limit-exceeded',
+      });
     if (s.seed !== undefined) checkNumber('seed', s.seed, { min: 0, max: 0xffffffff, integer: true });
-    if (s.densityScale !== undefined) checkNumber('densityScale', s.densityScale, { min: 0, max: MAX_DENSITY_SCALE, unit: 'extinction per world unit; MAX_DENSITY_SCALE' });
-    const renderer = s.renderer === undefined ? SCENE_DEFAULTS.renderer : checkOneOf('renderer', s.renderer, rendererNames());
+    if (s.densityScale !== undefined)
+      checkNumber('densityScale', s.densityScale, {
+        min: 0,
+        max: MAX_DENSITY_SCALE,
+        unit: 'extinction per world unit; MAX_DENSITY_SCALE',
+      });
+    const renderer =
+      s.renderer === undefined ? SCENE_DEFAULTS.renderer : checkOneOf('renderer', s.renderer, rendererNames());
     if (s.backend !== undefined) checkOneOf('backend', s.backend, BACKEND_NAMES);
     if (s.sampling !== undefined) checkOneOf('sampling', s.sampling, ['fast', 'exact'] as const);
-    if (s.maxGpuBytes !== undefined) checkNumber('maxGpuBytes', s.maxGpuBytes, { min: 0, exclusiveMin: true, unit: 'bytes' });
+    if (s.maxGpuBytes !== undefined)
+      checkNumber('maxGpuBytes', s.maxGpuBytes, { min: 0, exclusiveMin: true, unit: 'bytes' });
     if (s.rendererParams !== undefined) {
       const params = checkObject('rendererParams', s.rendererParams);
       const check = RENDERER_PARAM_CHECKS[renderer];
-      if (!check) throw new VptError('invalid-scene', `rendererParams: no parameter checks for renderer "${renderer}" (add it to RENDERER_PARAM_CHECKS)`);
+      if (!check)
+        throw new VptError(
+          'invalid-scene',
+          `rendererParams: no parameter checks for renderer "${renderer}" (add it to RENDERER_PARAM_CHECKS)`,
+        );
       check(params);
     }
     if (s.volume !== undefined) checkVolume(s.volume);

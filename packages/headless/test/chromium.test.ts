@@ -23,7 +23,10 @@ describe.skipIf(!fs.existsSync(chromiumExecutable()))('launchChromium', () => {
     const caps = await page.evaluate(async () => {
       const gl = document.createElement('canvas').getContext('webgl2');
       const ext = gl?.getExtension('WEBGL_debug_renderer_info');
-      const adapter = 'gpu' in navigator ? await (navigator as unknown as { gpu: { requestAdapter(): Promise<unknown> } }).gpu.requestAdapter() : null;
+      const adapter =
+        'gpu' in navigator
+          ? await (navigator as unknown as { gpu: { requestAdapter(): Promise<unknown> } }).gpu.requestAdapter()
+          : null;
       return {
         webgl2: !!gl,
         colorBufferFloat: !!gl?.getExtension('EXT_color_buffer_float'),

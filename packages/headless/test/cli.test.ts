@@ -8,18 +8,49 @@ import { runRender } from '../src/cli/render-main.js';
 import { pageDependencies, runServe } from '../src/cli/serve-main.js';
 
 function capture(): CliIO & { stdout: string[]; stderr: string[] } {
-  const stdout: string[] = [], stderr: string[] = [];
+  const stdout: string[] = [],
+    stderr: string[] = [];
   return { stdout, stderr, out: (l) => stdout.push(l), err: (l) => stderr.push(l) };
 }
 
 let dir: string;
-beforeAll(() => { dir = fs.mkdtempSync(path.join(os.tmpdir(), 'vpt-cli-')); });
+beforeAll(() => {
+  dir = fs.mkdtempSync(path.join(os.tmpdir(), 'vpt-cli-'));
+});
 afterAll(() => fs.rmSync(dir, { recursive: true, force: true }));
 
 describe('vpt-render arguments', () => {
   it('parses every option', () => {
-    expect(parseRenderArgs(['s.json', '-o', 'o.png', '--pfm', 'o.pfm', '--backend', 'webgpu', '--iterations', '8', '--width', '16', '--height', '12', '--seed', '0'])).toEqual({
-      scene: 's.json', output: 'o.png', pfm: 'o.pfm', backend: 'webgpu', iterations: 8, width: 16, height: 12, seed: 0, keepAlpha: false, verbose: false, help: false,
+    expect(
+      parseRenderArgs([
+        's.json',
+        '-o',
+        'o.png',
+        '--pfm',
+        'o.pfm',
+        '--backend',
+        'webgpu',
+        '--iterations',
+        '8',
+        '--width',
+        '16',
+        '--height',
+        '12',
+        '--seed',
+        '0',
+      ]),
+    ).toEqual({
+      scene: 's.json',
+      output: 'o.png',
+      pfm: 'o.pfm',
+      backend: 'webgpu',
+      iterations: 8,
+      width: 16,
+      height: 12,
+      seed: 0,
+      keepAlpha: false,
+      verbose: false,
+      help: false,
     });
     expect(parseRenderArgs(['--pfm=x.pfm', 's.json']).pfm).toBe('x.pfm');
     expect(parseRenderArgs(['--help']).help).toBe(true);
@@ -30,8 +61,13 @@ describe('vpt-render arguments', () => {
     expect(() => parseRenderArgs(['-o', 'o.png'])).toThrow(/missing the scene file/);
     expect(() => parseRenderArgs(['a.json', 'b.json', '-o', 'o.png'])).toThrow(/one scene file/);
     expect(() => parseRenderArgs(['s.json'])).toThrow(/nothing to write/);
-    expect(() => parseRenderArgs(['s.json', '-o', 'o.png', '--backend', 'vulkan'])).toThrow(/--backend must be one of auto, webgl2, webgpu/);
-    for (const bad of ['0', '-3', '1.5', 'many', '']) expect(() => parseRenderArgs(['s.json', '-o', 'o.png', `--iterations=${bad}`])).toThrow(/--iterations must be an integer >= 1/);
+    expect(() => parseRenderArgs(['s.json', '-o', 'o.png', '--backend', 'vulkan'])).toThrow(
+      /--backend must be one of auto, webgl2, webgpu/,
+    );
+    for (const bad of ['0', '-3', '1.5', 'many', ''])
+      expect(() => parseRenderArgs(['s.json', '-o', 'o.png', `--iterations=${bad}`])).toThrow(
+        /--iterations must be an integer >= 1/,
+      );
     expect(() => parseRenderArgs(['s.json', '-o', 'o.png', '--seed=-1'])).toThrow(/--seed must be an integer >= 0/);
     expect(() => parseRenderArgs(['s.json', '-o', 'o.png', '--frobnicate'])).toThrow(/frobnicate/);
   });
@@ -49,17 +85,24 @@ describe('vpt-render failures exit 1 with one line on stderr', () => {
   };
 
   it('bad arguments', () => expectFailure(['--iterations', 'x'], /iterations|scene file/));
-  it('a missing scene file', () => expectFailure([path.join(dir, 'nope.json'), '-o', 'o.png'], /Cannot read scene file .*nope\.json: no such file/));
+  it('a missing scene file', () =>
+    expectFailure([path.join(dir, 'nope.json'), '-o', 'o.png'], /Cannot read scene file .*nope\.json: no such file/));
   it('a scene file that is not JSON', async () => {
     fs.writeFileSync(path.join(dir, 'bad.json'), '{"width": 64,');
     await expectFailure([path.join(dir, 'bad.json'), '-o', 'o.png'], /bad\.json is not valid JSON/);
   });
   it('a scene description with a bad field', async () => {
     fs.writeFileSync(path.join(dir, 'field.json'), JSON.stringify({ renderer: 'pathtracer' }));
-    await expectFailure([path.join(dir, 'field.json'), '-o', 'o.png'], /renderer: must be one of "mip", "iso", "eam", "mcrt", got "pathtracer"/);
+    await expectFailure(
+      [path.join(dir, 'field.json'), '-o', 'o.png'],
+      /renderer: must be one of "mip", "iso", "eam", "mcrt", got "pathtracer"/,
+    );
   });
   it('a volume file that does not exist', async () => {
-    fs.writeFileSync(path.join(dir, 'vol.json'), JSON.stringify({ volume: { raw: 'missing.raw', dims: [2, 2, 2], type: 'uint8' } }));
+    fs.writeFileSync(
+      path.join(dir, 'vol.json'),
+      JSON.stringify({ volume: { raw: 'missing.raw', dims: [2, 2, 2], type: 'uint8' } }),
+    );
     await expectFailure([path.join(dir, 'vol.json'), '-o', 'o.png'], /Volume file not found: .*missing\.raw/);
   });
   it('no Chromium', async () => {
@@ -67,9 +110,13 @@ describe('vpt-render failures exit 1 with one line on stderr', () => {
     const saved = process.env.VPT_CHROMIUM;
     process.env.VPT_CHROMIUM = path.join(dir, 'no-such-chromium');
     try {
-      await expectFailure([path.join(dir, 'ok.json'), '-o', path.join(dir, 'o.png')], /Chromium not found .*apt-get install -y chromium/);
+      await expectFailure(
+        [path.join(dir, 'ok.json'), '-o', path.join(dir, 'o.png')],
+        /Chromium not found .*apt-get install -y chromium/,
+      );
     } finally {
-      if (saved === undefined) delete process.env.VPT_CHROMIUM; else process.env.VPT_CHROMIUM = saved;
+      if (saved === undefined) delete process.env.VPT_CHROMIUM;
+      else process.env.VPT_CHROMIUM = saved;
     }
     expect(fs.existsSync(path.join(dir, 'o.png'))).toBe(false);
   });
@@ -77,12 +124,22 @@ describe('vpt-render failures exit 1 with one line on stderr', () => {
 
 describe('vpt-serve', () => {
   it('parses its options', () => {
-    expect(parseServeArgs(['--open', 'apps/gallery/index.html', '--check'])).toEqual({ open: 'apps/gallery/index.html', root: undefined, port: 0, check: true, help: false });
-    expect(parseServeArgs(['--once', '-p', '8080', 'x.html'])).toMatchObject({ open: 'x.html', port: 8080, check: true });
+    expect(parseServeArgs(['--open', 'apps/gallery/index.html', '--check'])).toEqual({
+      open: 'apps/gallery/index.html',
+      root: undefined,
+      port: 0,
+      check: true,
+      help: false,
+    });
+    expect(parseServeArgs(['--once', '-p', '8080', 'x.html'])).toMatchObject({
+      open: 'x.html',
+      port: 8080,
+      check: true,
+    });
     expect(() => parseServeArgs(['--port', '70000'])).toThrow(/65535/);
   });
 
-  it('finds a page\'s local dependencies', () => {
+  it("finds a page's local dependencies", () => {
     const html = `<script type="importmap">{"imports":{"@vpt/core":"/packages/core/dist/index.js","x":"https://cdn/x.js","three/addons/":"/three/jsm/"}}</script>
       <script type="module" src="./main.js"></script><link rel="stylesheet" href="style.css"><script src="//cdn/y.js"></script>`;
     expect(pageDependencies(html)).toEqual(['/packages/core/dist/index.js', './main.js', 'style.css']);

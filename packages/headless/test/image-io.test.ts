@@ -3,18 +3,22 @@ import { decodePFM, decodePNG, encodePFM, encodePNG, opaque } from '../src/image
 
 function gradient(w: number, h: number): Float32Array {
   const a = new Float32Array(w * h * 4);
-  for (let y = 0; y < h; y++) for (let x = 0; x < w; x++) {
-    const i = (y * w + x) * 4;
-    a.set([x + 0.25, y * 10 + 0.5, -(x * y) - 1e-3, 0.5], i);
-  }
+  for (let y = 0; y < h; y++)
+    for (let x = 0; x < w; x++) {
+      const i = (y * w + x) * 4;
+      a.set([x + 0.25, y * 10 + 0.5, -(x * y) - 1e-3, 0.5], i);
+    }
   return a;
 }
 
 describe('PFM', () => {
   it('round-trips RGB exactly (alpha becomes 1)', () => {
-    const w = 5, h = 3;
+    const w = 5,
+      h = 3;
     const src = gradient(w, h);
-    src[0] = 1e30; src[1] = 1e-30; src[2] = 65504.125;
+    src[0] = 1e30;
+    src[1] = 1e-30;
+    src[2] = 65504.125;
     const back = decodePFM(encodePFM(src, w, h));
     expect(back).toMatchObject({ width: w, height: h, channels: 3 });
     for (let i = 0; i < w * h; i++) {
@@ -24,7 +28,8 @@ describe('PFM', () => {
   });
 
   it('writes the header "PF\\nW H\\n-1.0\\n" and little-endian rows bottom to top', () => {
-    const w = 2, h = 2;
+    const w = 2,
+      h = 2;
     // top row: red, green; bottom row: blue, white
     const src = new Float32Array([1, 0, 0, 1, 0, 1, 0, 1, 0, 0, 1, 1, 1, 1, 1, 1]);
     const file = encodePFM(src, w, h);
@@ -59,7 +64,8 @@ describe('PFM', () => {
 
 describe('PNG', () => {
   it('round-trips RGBA8, top row first', () => {
-    const w = 3, h = 2;
+    const w = 3,
+      h = 2;
     const src = new Uint8Array(w * h * 4).map((_, i) => (i * 37) & 255);
     const file = encodePNG(src, w, h);
     expect(file.subarray(1, 4).toString('ascii')).toBe('PNG');

@@ -12,7 +12,9 @@ import { startStaticServer, type StaticServer } from '../src/server.js';
 import { validateSceneDescription } from '../src/validate-description.js';
 
 function thrown(f: () => unknown): { code: string; message: string } {
-  try { f(); } catch (e) {
+  try {
+    f();
+  } catch (e) {
     expect(isVptError(e), `not a VptError: ${String(e)}`).toBe(true);
     return { code: (e as { code: string }).code, message: (e as Error).message };
   }
@@ -22,7 +24,9 @@ function thrown(f: () => unknown): { code: string; message: string } {
 describe('renderer step parameters are validated where they are set', () => {
   it('EAM stepSize 1e-9, 0 and negative are refused by the constructor and by setParams', () => {
     for (const stepSize of [1e-9, 0, -0.01]) {
-      expect(thrown(() => new EamRenderer({ stepSize })).message).toMatch(/^EAM\.stepSize: must be a number >= 0\.00001/);
+      expect(thrown(() => new EamRenderer({ stepSize })).message).toMatch(
+        /^EAM\.stepSize: must be a number >= 0\.00001/,
+      );
       const r = new EamRenderer();
       expect(thrown(() => r.setParams({ stepSize })).code).toBe('invalid-scene');
       expect(r.getParams().stepSize).toBeUndefined(); // the refused value did not stick
@@ -31,28 +35,65 @@ describe('renderer step parameters are validated where they are set', () => {
   it('MIP and ISO steps likewise; unknown keys of every renderer are refused', () => {
     expect(thrown(() => new MipRenderer({ stepSize: 0 })).message).toMatch(/MIP\.stepSize/);
     expect(thrown(() => new IsoRenderer({ stepSize: -1 })).message).toMatch(/stepSize/);
-    expect(thrown(() => new EamRenderer({ stepsize: 0.01 } as never)).message).toMatch(/unknown key "stepsize" \(known: stepSize, cutoff\)/);
+    expect(thrown(() => new EamRenderer({ stepsize: 0.01 } as never)).message).toMatch(
+      /unknown key "stepsize" \(known: stepSize, cutoff\)/,
+    );
     expect(thrown(() => new MipRenderer({ foo: 1 } as never)).message).toMatch(/unknown key "foo"/);
     expect(thrown(() => new IsoRenderer({ foo: 1 } as never)).message).toMatch(/unknown key "foo"/);
     expect(thrown(() => new McrtRenderer({ foo: 1 } as never)).message).toMatch(/unknown key "foo"/);
-    expect(thrown(() => new McrtRenderer({ maxDepth: 1e39 })).message).toMatch(/MCRT\.maxDepth: 1e\+39 exceeds the float32 range/);
+    expect(thrown(() => new McrtRenderer({ maxDepth: 1e39 })).message).toMatch(
+      /MCRT\.maxDepth: 1e\+39 exceeds the float32 range/,
+    );
   });
 });
 
 describe('scene description validation (CLI and page)', () => {
   const cases: [string, unknown, RegExp, string?][] = [
     ['an unknown top-level key', { widht: 64 }, /scene: unknown key "widht"/],
-    ['unknown rendererParams keys', { renderer: 'eam', rendererParams: { stepsize: 0.01 } }, /EAM parameters: unknown key "stepsize"/],
+    [
+      'unknown rendererParams keys',
+      { renderer: 'eam', rendererParams: { stepsize: 0.01 } },
+      /EAM parameters: unknown key "stepsize"/,
+    ],
     ['EAM stepSize 1e-9', { renderer: 'eam', rendererParams: { stepSize: 1e-9 } }, /EAM\.stepSize/],
-    ['endianness "middle"', { volume: { raw: 'x.raw', dims: [1, 1, 1], type: 'uint16', endianness: 'middle' } }, /volume\.endianness: must be one of "little", "big", got "middle"/],
-    ['a light without direction', { lights: [{ type: 'directional', irradiance: [1, 1, 1] }] }, /lights\[0\]\.direction: is required/],
-    ['procedural size 100000', { volume: { procedural: 'sphere', size: 100000 } }, /volume\.size: 100000 is above the limit/, 'limit-exceeded'],
-    ['a lat-long width of 1.5', { environment: { type: 'latlong', width: 1.5, height: 1, data: [1, 1, 1] } }, /environment\.width: must be an integer/],
-    ['an environment of 1e39', { environment: { type: 'constant', radiance: [1e39, 1, 1] } }, /radiance\[0\]: 1e\+39 exceeds the float32 range/],
+    [
+      'endianness "middle"',
+      { volume: { raw: 'x.raw', dims: [1, 1, 1], type: 'uint16', endianness: 'middle' } },
+      /volume\.endianness: must be one of "little", "big", got "middle"/,
+    ],
+    [
+      'a light without direction',
+      { lights: [{ type: 'directional', irradiance: [1, 1, 1] }] },
+      /lights\[0\]\.direction: is required/,
+    ],
+    [
+      'procedural size 100000',
+      { volume: { procedural: 'sphere', size: 100000 } },
+      /volume\.size: 100000 is above the limit/,
+      'limit-exceeded',
+    ],
+    [
+      'a lat-long width of 1.5',
+      { environment: { type: 'latlong', width: 1.5, height: 1, data: [1, 1, 1] } },
+      /environment\.width: must be an integer/,
+    ],
+    [
+      'an environment of 1e39',
+      { environment: { type: 'constant', radiance: [1e39, 1, 1] } },
+      /radiance\[0\]: 1e\+39 exceeds the float32 range/,
+    ],
     ['a camera at 1e39', { camera: { position: [0, 0, 1e39] } }, /position\[2\] = 1e\+39 exceeds the limit/],
     ['an unknown camera key', { camera: { fov: 1 } }, /camera: unknown key "fov"/],
-    ['dims as strings', { volume: { raw: 'x.raw', dims: ['1', '1', '1'], type: 'uint8' } }, /volume\.dims\[0\]: must be an integer/],
-    ['an equal valueRange', { volume: { raw: 'x.raw', dims: [1, 1, 1], type: 'uint8', valueRange: [3, 3] } }, /valueRange: min and max are equal/],
+    [
+      'dims as strings',
+      { volume: { raw: 'x.raw', dims: ['1', '1', '1'], type: 'uint8' } },
+      /volume\.dims\[0\]: must be an integer/,
+    ],
+    [
+      'an equal valueRange',
+      { volume: { raw: 'x.raw', dims: [1, 1, 1], type: 'uint8', valueRange: [3, 3] } },
+      /valueRange: min and max are equal/,
+    ],
     ['densityScale 1e39', { densityScale: 1e39 }, /densityScale: 1e\+39 exceeds the float32 range/],
   ];
   it.each(cases)('%s', (_name, desc, pattern, code = 'invalid-scene') => {
@@ -61,16 +102,29 @@ describe('scene description validation (CLI and page)', () => {
     expect(e.message).toMatch(pattern);
     expect(e.code).toBe(code);
   });
-  it('accepts compact\'s fields and an inverted valueRange (issue 12); refuses bad sampling and budgets and unknown renderers', () => {
-    expect(() => validateSceneDescription({ volume: { raw: 'x.raw', dims: [1, 1, 1], type: 'int16', valueRange: [1000, -1000] }, sampling: 'exact', maxGpuBytes: 1 << 20 })).not.toThrow();
+  it("accepts compact's fields and an inverted valueRange (issue 12); refuses bad sampling and budgets and unknown renderers", () => {
+    expect(() =>
+      validateSceneDescription({
+        volume: { raw: 'x.raw', dims: [1, 1, 1], type: 'int16', valueRange: [1000, -1000] },
+        sampling: 'exact',
+        maxGpuBytes: 1 << 20,
+      }),
+    ).not.toThrow();
     expect(() => validateSceneDescription({ sampling: 'fast' })).not.toThrow();
-    expect(thrown(() => validateSceneDescription({ sampling: 'nearest' })).message).toMatch(/sampling: must be one of "fast", "exact"/);
+    expect(thrown(() => validateSceneDescription({ sampling: 'nearest' })).message).toMatch(
+      /sampling: must be one of "fast", "exact"/,
+    );
     expect(thrown(() => validateSceneDescription({ maxGpuBytes: 0 })).message).toMatch(/maxGpuBytes/);
-    expect(thrown(() => validateSceneDescription({ renderer: 'pathtracer' })).message).toMatch(/renderer: must be one of "mip", "iso", "eam", "mcrt"/);
+    expect(thrown(() => validateSceneDescription({ renderer: 'pathtracer' })).message).toMatch(
+      /renderer: must be one of "mip", "iso", "eam", "mcrt"/,
+    );
   });
   it('accepts the gallery scenes', () => {
     for (const f of fs.readdirSync('apps/gallery/scenes').filter((n) => n.endsWith('.json'))) {
-      expect(() => validateSceneDescription(JSON.parse(fs.readFileSync(path.join('apps/gallery/scenes', f), 'utf8'))), f).not.toThrow();
+      expect(
+        () => validateSceneDescription(JSON.parse(fs.readFileSync(path.join('apps/gallery/scenes', f), 'utf8'))),
+        f,
+      ).not.toThrow();
     }
   });
 });
@@ -87,12 +141,19 @@ describe('scene files: only what the scene names is served, sizes checked from m
     fs.writeFileSync(path.join(dir, 'outside.raw'), Buffer.alloc(8));
     server = await startStaticServer(null);
   });
-  afterAll(async () => { await server.close(); fs.rmSync(dir, { recursive: true, force: true }); });
+  afterAll(async () => {
+    await server.close();
+    fs.rmSync(dir, { recursive: true, force: true });
+  });
 
   const get = async (urlPath: string) => (await fetch(new URL(urlPath, server.url))).status;
 
   it('serves the named raw file, not its folder', async () => {
-    const d = mountSceneFiles({ volume: { raw: 'vol.raw', dims: [2, 2, 2], type: 'uint8' } }, path.join(dir, 'scenes'), server);
+    const d = mountSceneFiles(
+      { volume: { raw: 'vol.raw', dims: [2, 2, 2], type: 'uint8' } },
+      path.join(dir, 'scenes'),
+      server,
+    );
     const url = (d.volume as { raw: string }).raw;
     expect(await get(url)).toBe(200);
     expect(await get(url.replace('vol.raw', 'secret.txt'))).toBe(404);
@@ -108,13 +169,36 @@ describe('scene files: only what the scene names is served, sizes checked from m
   it('--root refuses paths outside the folder, URLs and URL paths; accepts paths inside', () => {
     const root = { root: path.join(dir, 'scenes') };
     const base = path.join(dir, 'scenes');
-    expect(thrown(() => resolveSceneFiles({ volume: { raw: '../outside.raw', dims: [2, 2, 2], type: 'uint8' } }, base, root)).message).toMatch(/outside .* \(--root\)/);
-    expect(thrown(() => resolveSceneFiles({ volume: { raw: '../../../../../etc/passwd', dims: [1, 1, 1], type: 'uint8' } }, base, root)).message).toMatch(/outside|not found/);
-    expect(thrown(() => resolveSceneFiles({ volume: { raw: 'http://example.invalid/x.raw', dims: [1, 1, 1], type: 'uint8' } }, base, root)).message).toMatch(/URLs are refused/);
-    expect(thrown(() => resolveSceneFiles({ volume: { raw: '/no/such.raw', dims: [1, 1, 1], type: 'uint8' } }, base, root)).message).toMatch(/not found/);
+    expect(
+      thrown(() => resolveSceneFiles({ volume: { raw: '../outside.raw', dims: [2, 2, 2], type: 'uint8' } }, base, root))
+        .message,
+    ).toMatch(/outside .* \(--root\)/);
+    expect(
+      thrown(() =>
+        resolveSceneFiles({ volume: { raw: '../../../../../etc/passwd', dims: [1, 1, 1], type: 'uint8' } }, base, root),
+      ).message,
+    ).toMatch(/outside|not found/);
+    expect(
+      thrown(() =>
+        resolveSceneFiles(
+          { volume: { raw: 'http://example.invalid/x.raw', dims: [1, 1, 1], type: 'uint8' } },
+          base,
+          root,
+        ),
+      ).message,
+    ).toMatch(/URLs are refused/);
+    expect(
+      thrown(() => resolveSceneFiles({ volume: { raw: '/no/such.raw', dims: [1, 1, 1], type: 'uint8' } }, base, root))
+        .message,
+    ).toMatch(/not found/);
     fs.symlinkSync(path.join(dir, 'outside.raw'), path.join(dir, 'scenes', 'link.raw'));
-    expect(thrown(() => resolveSceneFiles({ volume: { raw: 'link.raw', dims: [2, 2, 2], type: 'uint8' } }, base, root)).message).toMatch(/outside/);
-    expect(() => resolveSceneFiles({ volume: { raw: 'vol.raw', dims: [2, 2, 2], type: 'uint8' } }, base, root)).not.toThrow();
+    expect(
+      thrown(() => resolveSceneFiles({ volume: { raw: 'link.raw', dims: [2, 2, 2], type: 'uint8' } }, base, root))
+        .message,
+    ).toMatch(/outside/);
+    expect(() =>
+      resolveSceneFiles({ volume: { raw: 'vol.raw', dims: [2, 2, 2], type: 'uint8' } }, base, root),
+    ).not.toThrow();
   });
   it('a 1.5 GiB raw file with dims [1, 1, 1] is reported from its size, without reading it', () => {
     const big = path.join(dir, 'big.raw');
@@ -125,9 +209,19 @@ describe('scene files: only what the scene names is served, sizes checked from m
     expect(e.message).toMatch(/need 1 bytes, the file has 1610612736 \(1610612735 bytes past the declared size\)/);
   });
   it('a sidecar with dims as strings or an equal value_range is refused, naming the field', () => {
-    fs.writeFileSync(path.join(dir, 'strdims.json'), JSON.stringify({ dims: ['2', '2', '2'], voxel_type: 'uint8', file: 'outside.raw' }));
-    expect(thrown(() => resolveSceneFiles({ volume: { sidecar: 'strdims.json' } }, dir)).message).toMatch(/dims\[0\]: must be an integer/);
-    fs.writeFileSync(path.join(dir, 'eq.json'), JSON.stringify({ dims: [2, 2, 2], voxel_type: 'uint8', value_range: [5, 5], file: 'outside.raw' }));
-    expect(thrown(() => resolveSceneFiles({ volume: { sidecar: 'eq.json' } }, dir)).message).toMatch(/value_range: min and max are equal/);
+    fs.writeFileSync(
+      path.join(dir, 'strdims.json'),
+      JSON.stringify({ dims: ['2', '2', '2'], voxel_type: 'uint8', file: 'outside.raw' }),
+    );
+    expect(thrown(() => resolveSceneFiles({ volume: { sidecar: 'strdims.json' } }, dir)).message).toMatch(
+      /dims\[0\]: must be an integer/,
+    );
+    fs.writeFileSync(
+      path.join(dir, 'eq.json'),
+      JSON.stringify({ dims: [2, 2, 2], voxel_type: 'uint8', value_range: [5, 5], file: 'outside.raw' }),
+    );
+    expect(thrown(() => resolveSceneFiles({ volume: { sidecar: 'eq.json' } }, dir)).message).toMatch(
+      /value_range: min and max are equal/,
+    );
   });
 });

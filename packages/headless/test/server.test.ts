@@ -36,7 +36,12 @@ describe('startStaticServer', () => {
   });
 
   it('serves files with their MIME type and no-store caching', async () => {
-    const cases: [string, string][] = [['a.html', 'text/html'], ['m.mjs', 'text/javascript'], ['v.raw', 'application/octet-stream'], ['x.wasm', 'application/wasm']];
+    const cases: [string, string][] = [
+      ['a.html', 'text/html'],
+      ['m.mjs', 'text/javascript'],
+      ['v.raw', 'application/octet-stream'],
+      ['x.wasm', 'application/wasm'],
+    ];
     for (const [file, mime] of cases) {
       const r = await get(file);
       expect(r.status).toBe(200);
@@ -46,7 +51,7 @@ describe('startStaticServer', () => {
     expect(Array.from(new Uint8Array(await (await get('v.raw')).arrayBuffer()))).toEqual([1, 2, 3]);
   });
 
-  it('serves a folder\'s index.html and 404s what is missing', async () => {
+  it("serves a folder's index.html and 404s what is missing", async () => {
     expect(await (await get('sub/')).text()).toBe('index');
     expect((await get('nope.js')).status).toBe(404);
     expect((await get('sub/nope/')).status).toBe(404);
@@ -54,7 +59,13 @@ describe('startStaticServer', () => {
 
   it('never leaves the root', async () => {
     const name = 'outside-secret.txt';
-    for (const p of [`/../${name}`, `/%2e%2e/${name}`, `/sub/%2E%2E/%2E%2E/${name}`, `/..%2f${name}`, `/%2f..%2f${name}`]) {
+    for (const p of [
+      `/../${name}`,
+      `/%2e%2e/${name}`,
+      `/sub/%2E%2E/%2E%2E/${name}`,
+      `/..%2f${name}`,
+      `/%2f..%2f${name}`,
+    ]) {
       const r = await fetch(`${server.url.slice(0, -1)}${p}`);
       expect(r.status, p).toBe(404);
     }

@@ -39,7 +39,9 @@ export function createContext(name: string, options: LoadOptions): LoadContext {
         // A throwing progress callback must not turn a good file into a failed load.
       }
     },
-    checkAborted() { throwIfAborted(options.signal, name); },
+    checkAborted() {
+      throwIfAborted(options.signal, name);
+    },
   };
   return ctx;
 }

@@ -15,7 +15,17 @@ export type LoaderErrorReason =
   | 'invalid-data'; // the data itself is unusable (inconsistent DICOM slices, a crash while parsing)
 
 export const LOADER_ERROR_REASONS: readonly LoaderErrorReason[] = [
-  'not-found', 'network', 'truncated', 'bad-header', 'bad-magic', 'unsupported', 'overflow', 'empty', 'limit', 'aborted', 'invalid-data',
+  'not-found',
+  'network',
+  'truncated',
+  'bad-header',
+  'bad-magic',
+  'unsupported',
+  'overflow',
+  'empty',
+  'limit',
+  'aborted',
+  'invalid-data',
 ];
 
 /**
@@ -57,7 +67,11 @@ export function toLoaderError(e: unknown, what: string): LoaderError {
   if (e instanceof LoaderError) return e;
   if (isAbort(e)) return new LoaderError('aborted', `Loading ${what} was aborted`, { cause: e });
   if (e instanceof RangeError && /allocat|Invalid typed array length|Array buffer/i.test(e.message)) {
-    return new LoaderError('limit', `${what}: out of memory (${e.message}); pass limits.maxBytes and downsample: true to load a smaller copy`, { cause: e });
+    return new LoaderError(
+      'limit',
+      `${what}: out of memory (${e.message}); pass limits.maxBytes and downsample: true to load a smaller copy`,
+      { cause: e },
+    );
   }
   const msg = e instanceof Error ? e.message : String(e);
   return new LoaderError('invalid-data', `${UNEXPECTED_PREFIX} ${what}: ${msg}`, { cause: e });

@@ -3,7 +3,13 @@ export { loadInThread } from './load-in-thread.js';
 export { LoaderError, isLoaderError, LOADER_ERROR_REASONS, type LoaderErrorReason } from './errors.js';
 export {
   DEFAULT_LIMITS,
-  type VolumeSource, type LoadOptions, type LoadProgress, type LoadedVolume, type LoadLimits, type RawOptions, type LoaderFormat,
+  type VolumeSource,
+  type LoadOptions,
+  type LoadProgress,
+  type LoadedVolume,
+  type LoadLimits,
+  type RawOptions,
+  type LoaderFormat,
 } from './types.js';
 export { parseSidecar, rawFromName } from './formats/raw.js';
 export { axisCodes } from './formats/orientation.js';

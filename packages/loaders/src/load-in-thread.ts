@@ -38,7 +38,10 @@ export async function loadInThread(source: VolumeSource, options: LoadOptions = 
   try {
     ctx.checkAborted();
     if (options.format !== undefined && !['auto', 'raw', 'nrrd', 'nifti', 'dicom'].includes(options.format)) {
-      throw new LoaderError('unsupported', `format "${String(options.format)}" is not one of auto, raw, nrrd, nifti, dicom`);
+      throw new LoaderError(
+        'unsupported',
+        `format "${String(options.format)}" is not one of auto, raw, nrrd, nifti, dicom`,
+      );
     }
     return await dispatch(source, options, ctx);
   } catch (e) {
@@ -60,7 +63,10 @@ async function dispatch(source: VolumeSource, options: LoadOptions, ctx: LoadCon
   if (source instanceof ArrayBuffer || ArrayBuffer.isView(source)) {
     return decodeBytes(bytesOf(source as ArrayBuffer), '', wanted, options, ctx, undefined);
   }
-  throw new LoaderError('unsupported', `Cannot load ${Object.prototype.toString.call(source)}: pass a URL, a File or Blob, an ArrayBuffer, or an array of Files`);
+  throw new LoaderError(
+    'unsupported',
+    `Cannot load ${Object.prototype.toString.call(source)}: pass a URL, a File or Blob, an ArrayBuffer, or an array of Files`,
+  );
 }
 
 function absoluteUrl(url: string): string {
@@ -72,7 +78,12 @@ function absoluteUrl(url: string): string {
   }
 }
 
-async function loadUrl(url: string, wanted: Format | undefined, options: LoadOptions, ctx: LoadContext): Promise<LoadedVolume> {
+async function loadUrl(
+  url: string,
+  wanted: Format | undefined,
+  options: LoadOptions,
+  ctx: LoadContext,
+): Promise<LoadedVolume> {
   const abs = absoluteUrl(url);
   const resolve: Resolver = (name) => fetchBytes(new URL(name, abs).href, ctx);
   const byName = formatFromName(abs);
@@ -101,15 +112,25 @@ async function loadUrl(url: string, wanted: Format | undefined, options: LoadOpt
   return decodeBytes(bytes, baseName(abs), wanted, options, ctx, resolve);
 }
 
-async function loadFiles(files: readonly File[], wanted: Format | undefined, options: LoadOptions, ctx: LoadContext): Promise<LoadedVolume> {
+async function loadFiles(
+  files: readonly File[],
+  wanted: Format | undefined,
+  options: LoadOptions,
+  ctx: LoadContext,
+): Promise<LoadedVolume> {
   if (!files.length) throw new LoaderError('empty', 'No files were given');
   for (const f of files) {
-    if (!(typeof Blob !== 'undefined' && f instanceof Blob)) throw new LoaderError('unsupported', 'The file list holds something that is not a File');
+    if (!(typeof Blob !== 'undefined' && f instanceof Blob))
+      throw new LoaderError('unsupported', 'The file list holds something that is not a File');
   }
   const byName = (name: string) => files.find((f) => f.name === baseName(name) || relativePath(f).endsWith(name));
   const resolve: Resolver = async (name) => {
     const f = byName(name);
-    if (!f) throw new LoaderError('not-found', `${ctx.name}: the header names the data file "${name}", which is not among the given files; add it`);
+    if (!f)
+      throw new LoaderError(
+        'not-found',
+        `${ctx.name}: the header names the data file "${name}", which is not among the given files; add it`,
+      );
     return readBlob(f, ctx);
   };
   const kinds = files.map((f) => formatFromName(f.name));
@@ -117,10 +138,17 @@ async function loadFiles(files: readonly File[], wanted: Format | undefined, opt
   const sidecarIndex = kinds.indexOf('sidecar');
   if ((!wanted || wanted === 'raw') && sidecarIndex >= 0 && files.length > 1) {
     const sidecarFile = files[sidecarIndex];
-    const sidecar = parseSidecar(new TextDecoder().decode(await readBlob(sidecarFile, ctx)), { ...ctx, name: sidecarFile.name });
+    const sidecar = parseSidecar(new TextDecoder().decode(await readBlob(sidecarFile, ctx)), {
+      ...ctx,
+      name: sidecarFile.name,
+    });
     const rawName = sidecar.file ?? sidecarFile.name.replace(/\.json$/i, '.raw');
     const rawFile = byName(rawName);
-    if (!rawFile) throw new LoaderError('not-found', `${sidecarFile.name} describes "${rawName}", which is not among the given files; add it`);
+    if (!rawFile)
+      throw new LoaderError(
+        'not-found',
+        `${sidecarFile.name} describes "${rawName}", which is not among the given files; add it`,
+      );
     return decodeRaw(await readBlob(rawFile, ctx), sidecar, { ...ctx, name: rawFile.name }, sidecar.meta);
   }
   // A (detached) NRRD header with its data file.
@@ -146,7 +174,8 @@ async function loadFiles(files: readonly File[], wanted: Format | undefined, opt
   // Otherwise: a DICOM series (a dropped folder). Files that are clearly not DICOM are skipped.
   const total = files.reduce((n, f) => n + f.size, 0);
   const dicom: DicomFile[] = [];
-  let loaded = 0, ignored = 0;
+  let loaded = 0,
+    ignored = 0;
   ctx.progress('fetch', 0, total);
   for (const f of files) {
     ctx.checkAborted();
@@ -154,35 +183,54 @@ async function loadFiles(files: readonly File[], wanted: Format | undefined, opt
     loaded += f.size;
     ctx.progress('fetch', loaded, total);
     const kind = formatFromBytes(bytes);
-    if (kind === 'dicom' || (kind === undefined && formatFromName(f.name) === 'dicom')) dicom.push({ name: relativePath(f), bytes });
+    if (kind === 'dicom' || (kind === undefined && formatFromName(f.name) === 'dicom'))
+      dicom.push({ name: relativePath(f), bytes });
     else ignored++;
   }
   if (!dicom.length) {
-    throw new LoaderError('bad-magic', `None of the ${files.length} files is DICOM, NIfTI, NRRD or a sidecar with its raw file`);
+    throw new LoaderError(
+      'bad-magic',
+      `None of the ${files.length} files is DICOM, NIfTI, NRRD or a sidecar with its raw file`,
+    );
   }
   if (ignored) ctx.warnings.push(`${ignored} file(s) that are not DICOM were skipped`);
   return decodeDicom(dicom, ctx);
 }
 
 /** Decode bytes whose format is asked for, or told by the name, or by the magic bytes. */
-async function decodeBytes(bytes: Uint8Array, name: string, wanted: Format | undefined, options: LoadOptions, ctx: LoadContext, resolve: Resolver | undefined): Promise<LoadedVolume> {
+async function decodeBytes(
+  bytes: Uint8Array,
+  name: string,
+  wanted: Format | undefined,
+  options: LoadOptions,
+  ctx: LoadContext,
+  resolve: Resolver | undefined,
+): Promise<LoadedVolume> {
   if (!bytes.length) throw new LoaderError('empty', `${ctx.name} is empty (0 bytes)`);
   // The extension proposes, the magic bytes decide (a .dcm that is really NIfTI loads as
   // NIfTI); headerless raw has no magic, so there the extension or options.raw decides.
   let format: Format | undefined = wanted;
   if (!format) {
     const byName = name ? formatFromName(name) : undefined;
-    format = options.raw || byName === 'raw' ? 'raw' : formatFromBytes(bytes) ?? byName;
+    format = options.raw || byName === 'raw' ? 'raw' : (formatFromBytes(bytes) ?? byName);
   }
   switch (format) {
     case 'raw': {
       const raw = options.raw ? checkRawOptions(options.raw, ctx) : rawFromName(name);
-      if (!raw) throw new LoaderError('bad-header', `${ctx.name}: raw data has no header; pass options.raw = { dims: [NX, NY, NZ], type } or load its JSON sidecar`);
+      if (!raw)
+        throw new LoaderError(
+          'bad-header',
+          `${ctx.name}: raw data has no header; pass options.raw = { dims: [NX, NY, NZ], type } or load its JSON sidecar`,
+        );
       return decodeRaw(bytes, checkRawOptions(raw, ctx), ctx);
     }
     case 'sidecar': {
       const sidecar: RawDescription = parseSidecar(new TextDecoder().decode(bytes), ctx);
-      if (!resolve) throw new LoaderError('unsupported', `${ctx.name} is a JSON sidecar; load it by URL, or together with its raw file`);
+      if (!resolve)
+        throw new LoaderError(
+          'unsupported',
+          `${ctx.name} is a JSON sidecar; load it by URL, or together with its raw file`,
+        );
       return decodeRaw(await resolve(sidecar.file ?? name.replace(/\.json$/i, '.raw')), sidecar, ctx, sidecar.meta);
     }
     case 'nifti': {
@@ -195,7 +243,10 @@ async function decodeBytes(bytes: Uint8Array, name: string, wanted: Format | und
       return decodeDicom([{ name, bytes }], ctx);
     }
     default:
-      throw new LoaderError('bad-magic', `${ctx.name}: the format is not recognised (not NIfTI-1, NRRD, DICOM or a JSON sidecar); `
-        + 'for headerless data pass options.raw = { dims, type }, or pass options.format');
+      throw new LoaderError(
+        'bad-magic',
+        `${ctx.name}: the format is not recognised (not NIfTI-1, NRRD, DICOM or a JSON sidecar); ` +
+          'for headerless data pass options.raw = { dims, type }, or pass options.format',
+      );
   }
 }

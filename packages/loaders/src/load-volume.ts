@@ -10,7 +10,8 @@ import { loadInWorker, workersAvailable, WorkerUnavailable } from './worker/work
  * the calling thread. Every failure is a LoaderError with a `reason`.
  */
 export async function loadVolume(source: VolumeSource, options: LoadOptions = {}): Promise<LoadedVolume> {
-  if (options.signal?.aborted) throw new LoaderError('aborted', 'Loading was aborted before it started', { cause: options.signal.reason });
+  if (options.signal?.aborted)
+    throw new LoaderError('aborted', 'Loading was aborted before it started', { cause: options.signal.reason });
   const useWorker = options.worker ?? true;
   if (useWorker && workersAvailable()) {
     try {

@@ -15,8 +15,12 @@ import { HERE, fileOf, sha256 } from './helpers.js';
 const root = path.resolve(HERE, '../../..');
 const fetched = path.join(root, 'data', 'fetched');
 interface Dataset {
-  name: string; file: string; sha256: string; committedAt?: string;
-  sidecar: { dims: number[]; spacing: number[]; voxel_type: string }; original?: { file: string };
+  name: string;
+  file: string;
+  sha256: string;
+  committedAt?: string;
+  sidecar: { dims: number[]; spacing: number[]; voxel_type: string };
+  original?: { file: string };
 }
 const catalog: Dataset[] = JSON.parse(fs.readFileSync(path.join(root, 'data', 'datasets.json'), 'utf8')).datasets;
 
@@ -41,34 +45,48 @@ describe('datasets of data/datasets.json (committed ones always, fetched ones wh
   });
 
   for (const d of catalog) {
-    const present = fs.existsSync(path.join(folderOf(d), d.file)) && fs.existsSync(path.join(folderOf(d), sidecarOf(d)));
+    const present =
+      fs.existsSync(path.join(folderOf(d), d.file)) && fs.existsSync(path.join(folderOf(d), sidecarOf(d)));
     // A committed dataset never skips: a missing file must fail (the test above says which).
     const skip = !d.committedAt && !present;
     if (skip) skipped.push(d.name);
     const where = d.committedAt ? `committed at ${path.dirname(d.committedAt)}/` : present ? 'fetched' : NOT_FETCHED;
-    it.skipIf(skip)(`${d.name} (${where}): raw + sidecar load to the recorded sha256`, async () => {
-      const json = sidecarOf(d);
-      const v = await loadVolume([fileOf(read(d, json), json), fileOf(read(d, d.file), d.file)], { limits: { maxBytes: 256 << 20 } });
-      expect(v.dims).toEqual(d.sidecar.dims);
-      expect(v.spacing).toEqual(d.sidecar.spacing);
-      expect(v.type).toBe(d.sidecar.voxel_type);
-      expect(sha256(v.data)).toBe(d.sha256);
-    }, 60_000);
+    it.skipIf(skip)(
+      `${d.name} (${where}): raw + sidecar load to the recorded sha256`,
+      async () => {
+        const json = sidecarOf(d);
+        const v = await loadVolume([fileOf(read(d, json), json), fileOf(read(d, d.file), d.file)], {
+          limits: { maxBytes: 256 << 20 },
+        });
+        expect(v.dims).toEqual(d.sidecar.dims);
+        expect(v.spacing).toEqual(d.sidecar.spacing);
+        expect(v.type).toBe(d.sidecar.voxel_type);
+        expect(sha256(v.data)).toBe(d.sha256);
+      },
+      60_000,
+    );
 
     if (!d.original) continue; // only datasets converted from a real-format file have one
     const original = d.original.file;
     const originalPresent = present && fs.existsSync(path.join(folderOf(d), original));
     if (!originalPresent && !d.committedAt) skipped.push(`${d.name} (original ${original})`);
-    it.skipIf(!originalPresent && !d.committedAt)(`${d.name} (${originalPresent ? 'fetched' : NOT_FETCHED}): the original ${original} equals the raw data`, async () => {
-      const v = await loadVolume(fileOf(read(d, original), original), { limits: { maxBytes: 256 << 20 } });
-      expect(v.dims).toEqual(d.sidecar.dims);
-      for (let i = 0; i < 3; i++) expect(v.spacing[i]).toBeCloseTo(d.sidecar.spacing[i], 3);
-      expect(v.type).toBe(d.sidecar.voxel_type);
-      expect(sha256(v.data)).toBe(d.sha256);
-    }, 60_000);
+    it.skipIf(!originalPresent && !d.committedAt)(
+      `${d.name} (${originalPresent ? 'fetched' : NOT_FETCHED}): the original ${original} equals the raw data`,
+      async () => {
+        const v = await loadVolume(fileOf(read(d, original), original), { limits: { maxBytes: 256 << 20 } });
+        expect(v.dims).toEqual(d.sidecar.dims);
+        for (let i = 0; i < 3; i++) expect(v.spacing[i]).toBeCloseTo(d.sidecar.spacing[i], 3);
+        expect(v.type).toBe(d.sidecar.voxel_type);
+        expect(sha256(v.data)).toBe(d.sha256);
+      },
+      60_000,
+    );
   }
 
   afterAll(() => {
-    if (skipped.length) console.warn(`fetched datasets: ${skipped.length} test(s) skipped, data not in data/fetched/ (run \`pnpm data:fetch\`): ${skipped.join(', ')}`);
+    if (skipped.length)
+      console.warn(
+        `fetched datasets: ${skipped.length} test(s) skipped, data not in data/fetched/ (run \`pnpm data:fetch\`): ${skipped.join(', ')}`,
+      );
   });
 });

@@ -27,7 +27,10 @@ export function fileOf(bytes: Uint8Array | string, name: string): File {
 }
 
 export function sha256(bytes: ArrayBufferView): string {
-  return crypto.createHash('sha256').update(new Uint8Array(bytes.buffer, bytes.byteOffset, bytes.byteLength)).digest('hex');
+  return crypto
+    .createHash('sha256')
+    .update(new Uint8Array(bytes.buffer, bytes.byteOffset, bytes.byteLength))
+    .digest('hex');
 }
 
 /** sha256 of core's normalized float32 data: what the renderer will upload. */
@@ -62,13 +65,15 @@ export function checkOutcome(outcome: { volume?: LoadedVolume; error?: unknown }
     }
     if (v.origin) expect(v.origin.every(Number.isFinite)).toBe(true);
     const n = normalizedData(v);
-    for (let i = 0; i < n.length; i += 97) if (!(n[i] >= 0 && n[i] <= 1)) throw new Error(`normalized voxel ${i} = ${n[i]}`);
+    for (let i = 0; i < n.length; i += 97)
+      if (!(n[i] >= 0 && n[i] <= 1)) throw new Error(`normalized voxel ${i} = ${n[i]}`);
     return 'volume';
   }
   const e = outcome.error;
   if (!(e instanceof LoaderError)) throw new Error(`not a LoaderError: ${(e as Error)?.stack ?? e}`);
   if (!LOADER_ERROR_REASONS.includes(e.reason)) throw new Error(`unknown reason ${e.reason}`);
-  if (e.message.startsWith(UNEXPECTED_PREFIX)) throw new Error(`unexpected path: ${e.message}\n${(e.cause as Error)?.stack}`);
+  if (e.message.startsWith(UNEXPECTED_PREFIX))
+    throw new Error(`unexpected path: ${e.message}\n${(e.cause as Error)?.stack}`);
   return e.reason;
 }
 
@@ -117,7 +122,13 @@ export function niftiFile(s: NiftiSpec): Uint8Array {
   const q = s.quatern ?? [0, 0, 0];
   q.forEach((x, i) => v.setFloat32(256 + 4 * i, x, le));
   (s.qoffset ?? [0, 0, 0]).forEach((x, i) => v.setFloat32(268 + 4 * i, x, le));
-  (s.srow ?? [[0, 0, 0, 0], [0, 0, 0, 0], [0, 0, 0, 0]]).forEach((row, r) => row.forEach((x, c) => v.setFloat32(280 + 4 * (4 * r + c), x, le)));
+  (
+    s.srow ?? [
+      [0, 0, 0, 0],
+      [0, 0, 0, 0],
+      [0, 0, 0, 0],
+    ]
+  ).forEach((row, r) => row.forEach((x, c) => v.setFloat32(280 + 4 * (4 * r + c), x, le)));
   const magic = s.magic ?? 'n+1\0';
   for (let i = 0; i < 4; i++) out[344 + i] = magic.charCodeAt(i) || 0;
   out.set(s.data, Math.max(off, 352));
@@ -125,7 +136,10 @@ export function niftiFile(s: NiftiSpec): Uint8Array {
 }
 
 /** Bytes of a typed array in the given byte order. */
-export function bytesIn(a: ArrayLike<number> & { BYTES_PER_ELEMENT: number; buffer: ArrayBufferLike; byteOffset: number; byteLength: number }, littleEndian: boolean): Uint8Array {
+export function bytesIn(
+  a: ArrayLike<number> & { BYTES_PER_ELEMENT: number; buffer: ArrayBufferLike; byteOffset: number; byteLength: number },
+  littleEndian: boolean,
+): Uint8Array {
   const b = new Uint8Array(a.buffer.slice(a.byteOffset, a.byteOffset + a.byteLength));
   const size = a.BYTES_PER_ELEMENT;
   if (!littleEndian && size > 1) for (let i = 0; i < b.length; i += size) b.subarray(i, i + size).reverse();
@@ -134,7 +148,11 @@ export function bytesIn(a: ArrayLike<number> & { BYTES_PER_ELEMENT: number; buff
 
 // ---------------------------------------------------------------- NRRD writer
 
-export function nrrdFile(fields: Record<string, string>, data: Uint8Array, keyValues: Record<string, string> = {}): Uint8Array {
+export function nrrdFile(
+  fields: Record<string, string>,
+  data: Uint8Array,
+  keyValues: Record<string, string> = {},
+): Uint8Array {
   const lines = ['NRRD0004', '# written by the vpt loader tests'];
   for (const [k, v] of Object.entries(fields)) lines.push(`${k}: ${v}`);
   for (const [k, v] of Object.entries(keyValues)) lines.push(`${k}:=${v}`);
@@ -168,15 +186,23 @@ export interface DicomSpec {
 
 const LONG_VR = new Set(['OB', 'OW', 'OF', 'SQ', 'UT', 'UN']);
 
-function element(group: number, elem: number, vr: string, value: Uint8Array, mode: { explicit: boolean; little: boolean }): Uint8Array {
-  const padded = value.length % 2 ? concatBytes([value, new Uint8Array([vr === 'UI' || vr === 'OB' ? 0 : 0x20])]) : value;
+function element(
+  group: number,
+  elem: number,
+  vr: string,
+  value: Uint8Array,
+  mode: { explicit: boolean; little: boolean },
+): Uint8Array {
+  const padded =
+    value.length % 2 ? concatBytes([value, new Uint8Array([vr === 'UI' || vr === 'OB' ? 0 : 0x20])]) : value;
   const head = new Uint8Array(mode.explicit ? (LONG_VR.has(vr) ? 12 : 8) : 8);
   const v = new DataView(head.buffer);
   v.setUint16(0, group, mode.little);
   v.setUint16(2, elem, mode.little);
   if (!mode.explicit) v.setUint32(4, padded.length, mode.little);
   else {
-    head[4] = vr.charCodeAt(0); head[5] = vr.charCodeAt(1);
+    head[4] = vr.charCodeAt(0);
+    head[5] = vr.charCodeAt(1);
     if (LONG_VR.has(vr)) v.setUint32(8, padded.length, mode.little);
     else v.setUint16(6, padded.length, mode.little);
   }
@@ -186,15 +212,24 @@ function element(group: number, elem: number, vr: string, value: Uint8Array, mod
 export function concatBytes(parts: Uint8Array[]): Uint8Array {
   const out = new Uint8Array(parts.reduce((n, p) => n + p.length, 0));
   let at = 0;
-  for (const p of parts) { out.set(p, at); at += p.length; }
+  for (const p of parts) {
+    out.set(p, at);
+    at += p.length;
+  }
   return out;
 }
 
 const str = (s: string) => new TextEncoder().encode(s);
-const us = (x: number, little: boolean) => { const b = new Uint8Array(2); new DataView(b.buffer).setUint16(0, x, little); return b; };
+const us = (x: number, little: boolean) => {
+  const b = new Uint8Array(2);
+  new DataView(b.buffer).setUint16(0, x, little);
+  return b;
+};
 
 export const SYNTAX_UID: Record<string, string> = {
-  'explicit-le': '1.2.840.10008.1.2.1', 'explicit-be': '1.2.840.10008.1.2.2', 'implicit-le': '1.2.840.10008.1.2',
+  'explicit-le': '1.2.840.10008.1.2.1',
+  'explicit-be': '1.2.840.10008.1.2.2',
+  'implicit-le': '1.2.840.10008.1.2',
 };
 
 /** A minimal but valid DICOM Part 10 file (MR image storage) with the given geometry and pixels. */
@@ -213,10 +248,13 @@ export function dicomFile(s: DicomSpec): Uint8Array {
   new DataView(groupLength.buffer).setUint32(0, metaBody.length, true);
   const meta = concatBytes([element(2, 0, 'UL', groupLength, metaMode), metaBody]);
   const bits = s.bitsAllocated ?? 16;
-  const ds = (tag: [number, number], vr: string, value: Uint8Array | undefined) => (value ? element(tag[0], tag[1], vr, value, mode) : new Uint8Array(0));
+  const ds = (tag: [number, number], vr: string, value: Uint8Array | undefined) =>
+    value ? element(tag[0], tag[1], vr, value, mode) : new Uint8Array(0);
   const ds3 = (xs: number[] | undefined) => (xs ? str(xs.join('\\')) : undefined);
-  const pixelBytes = bits === 8 ? new Uint8Array(s.pixels.buffer, s.pixels.byteOffset, s.pixels.byteLength)
-    : bytesIn(s.pixels as Uint16Array, mode.little);
+  const pixelBytes =
+    bits === 8
+      ? new Uint8Array(s.pixels.buffer, s.pixels.byteOffset, s.pixels.byteLength)
+      : bytesIn(s.pixels as Uint16Array, mode.little);
   const body = concatBytes([
     ds([8, 0x16], 'UI', str('1.2.840.10008.5.1.4.1.1.4')),
     ds([8, 0x60], 'CS', str('MR')),
@@ -246,7 +284,11 @@ export function dicomFile(s: DicomSpec): Uint8Array {
 
 // ---------------------------------------------------------------- a local HTTP server
 
-export interface TestServer { url: string; close(): Promise<void>; requests: string[] }
+export interface TestServer {
+  url: string;
+  close(): Promise<void>;
+  requests: string[];
+}
 
 /** Serve a folder (and in-memory files) on 127.0.0.1; `/slow/…` trickles the body. */
 export async function serve(dir: string, extra: Record<string, Uint8Array> = {}): Promise<TestServer> {
@@ -255,16 +297,31 @@ export async function serve(dir: string, extra: Record<string, Uint8Array> = {})
     const p = decodeURIComponent(new URL(req.url ?? '/', 'http://x').pathname);
     requests.push(p);
     const name = p.replace(/^\/(slow\/)?/, '');
-    const body = extra[name] ?? (fs.existsSync(path.join(dir, name)) && !name.includes('..') ? fs.readFileSync(path.join(dir, name)) : undefined);
-    if (!body) { res.writeHead(404); res.end('not found'); return; }
+    const body =
+      extra[name] ??
+      (fs.existsSync(path.join(dir, name)) && !name.includes('..') ? fs.readFileSync(path.join(dir, name)) : undefined);
+    if (!body) {
+      res.writeHead(404);
+      res.end('not found');
+      return;
+    }
     res.writeHead(200, { 'content-length': body.length, 'content-type': 'application/octet-stream' });
-    if (!p.startsWith('/slow/')) { res.end(body); return; }
+    if (!p.startsWith('/slow/')) {
+      res.end(body);
+      return;
+    }
     let at = 0;
     const timer = setInterval(() => {
-      if (res.destroyed) { clearInterval(timer); return; }
+      if (res.destroyed) {
+        clearInterval(timer);
+        return;
+      }
       res.write(body.subarray(at, at + 1024));
       at += 1024;
-      if (at >= body.length) { clearInterval(timer); res.end(); }
+      if (at >= body.length) {
+        clearInterval(timer);
+        res.end();
+      }
     }, 20);
     res.on('close', () => clearInterval(timer));
   });
@@ -273,6 +330,10 @@ export async function serve(dir: string, extra: Record<string, Uint8Array> = {})
   return {
     url: `http://127.0.0.1:${port}/`,
     requests,
-    close: () => new Promise<void>((r) => { server.closeAllConnections?.(); server.close(() => r()); }),
+    close: () =>
+      new Promise<void>((r) => {
+        server.closeAllConnections?.();
+        server.close(() => r());
+      }),
   };
 }

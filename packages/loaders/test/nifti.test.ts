@@ -54,7 +54,9 @@ describe('NIfTI-1: header features', () => {
     expect(half.type).toBe('float32');
     expect(Array.from(half.data)).toEqual(Array.from(values, (x) => x * 0.5 + 1));
     const u = new Uint16Array([0, 100, 1024, 4095, 2, 3, 4, 5]);
-    const ct = await loadVolume(niftiFile({ dims: [2, 2, 2], datatype: 512, bitpix: 16, data: bytesIn(u, true), slope: 1, inter: -1024 }));
+    const ct = await loadVolume(
+      niftiFile({ dims: [2, 2, 2], datatype: 512, bitpix: 16, data: bytesIn(u, true), slope: 1, inter: -1024 }),
+    );
     expect(ct.type).toBe('int16');
     expect(Array.from(ct.data)).toEqual(Array.from(u, (x) => x - 1024));
     const none = await loadVolume(niftiFile({ ...base, data: bytesIn(values, true), slope: 0, inter: 5 }));
@@ -64,22 +66,38 @@ describe('NIfTI-1: header features', () => {
   it('little- and big-endian float32 files give the same volume; NaN is counted, not fatal', async () => {
     const f = new Float32Array([1.5, -2.25, NaN, 1e-3, 4, 5, 6, Infinity]);
     const le = await loadVolume(niftiFile({ dims: [2, 2, 2], datatype: 16, bitpix: 32, data: bytesIn(f, true) }));
-    const be = await loadVolume(niftiFile({ dims: [2, 2, 2], datatype: 16, bitpix: 32, data: bytesIn(f, false), littleEndian: false }));
+    const be = await loadVolume(
+      niftiFile({ dims: [2, 2, 2], datatype: 16, bitpix: 32, data: bytesIn(f, false), littleEndian: false }),
+    );
     expect(Array.from(le.data)).toEqual(Array.from(f));
     expect(Array.from(be.data)).toEqual(Array.from(f));
     expect(le.meta?.nonFiniteCount).toBe(2);
   });
 
   it('converts int8, uint32 and float64 to core types exactly where they fit', async () => {
-    const i8 = await loadVolume(niftiFile({ dims: [2, 2, 1], datatype: 256, bitpix: 8, data: new Uint8Array([0xff, 1, 0x80, 0x7f]) }));
+    const i8 = await loadVolume(
+      niftiFile({ dims: [2, 2, 1], datatype: 256, bitpix: 8, data: new Uint8Array([0xff, 1, 0x80, 0x7f]) }),
+    );
     expect(i8.type).toBe('int16');
     expect(Array.from(i8.data)).toEqual([-1, 1, -128, 127]);
-    const u32 = await loadVolume(niftiFile({ dims: [2, 1, 1], datatype: 768, bitpix: 32, data: bytesIn(new Uint32Array([5, 100000]), true) }));
+    const u32 = await loadVolume(
+      niftiFile({ dims: [2, 1, 1], datatype: 768, bitpix: 32, data: bytesIn(new Uint32Array([5, 100000]), true) }),
+    );
     expect(u32.type).toBe('float32');
     expect(Array.from(u32.data)).toEqual([5, 100000]);
-    const small32 = await loadVolume(niftiFile({ dims: [2, 1, 1], datatype: 8, bitpix: 32, data: bytesIn(new Int32Array([-5, 30000]), true) }));
+    const small32 = await loadVolume(
+      niftiFile({ dims: [2, 1, 1], datatype: 8, bitpix: 32, data: bytesIn(new Int32Array([-5, 30000]), true) }),
+    );
     expect(small32.type).toBe('int16');
-    const f64 = await loadVolume(niftiFile({ dims: [2, 1, 1], datatype: 64, bitpix: 64, data: bytesIn(new Float64Array([0.1, 1e300]), false), littleEndian: false }));
+    const f64 = await loadVolume(
+      niftiFile({
+        dims: [2, 1, 1],
+        datatype: 64,
+        bitpix: 64,
+        data: bytesIn(new Float64Array([0.1, 1e300]), false),
+        littleEndian: false,
+      }),
+    );
     expect(Array.from(f64.data)).toEqual([Math.fround(0.1), Infinity]);
     expect(f64.meta?.nonFiniteCount).toBe(1); // 1e300 does not fit a float32
   });
@@ -87,13 +105,35 @@ describe('NIfTI-1: header features', () => {
   it('orientation: the qform quaternion when there is no sform, the sform when there is', async () => {
     // quaternion (b, c, d) = (0, 0, sin 45°): a 90° rotation about z; qfac = -1 flips k.
     const s = Math.SQRT1_2;
-    const q = await loadVolume(niftiFile({ ...base, data: bytesIn(values, true), qformCode: 1, quatern: [0, 0, s], qoffset: [10, 20, 30], pixdim: [-1, 2, 3, 4, 1, 1, 1, 1] }));
+    const q = await loadVolume(
+      niftiFile({
+        ...base,
+        data: bytesIn(values, true),
+        qformCode: 1,
+        quatern: [0, 0, s],
+        qoffset: [10, 20, 30],
+        pixdim: [-1, 2, 3, 4, 1, 1, 1, 1],
+      }),
+    );
     expect(q.meta?.xform).toBe('qform');
     expect(q.spacing).toEqual([2, 3, 4]);
     const expected = [0, -1, 0, 1, 0, 0, 0, 0, -1];
     q.orientation!.forEach((x, i) => expect(x).toBeCloseTo(expected[i], 6));
     expect(q.origin).toEqual([10, 20, 30]);
-    const both = await loadVolume(niftiFile({ ...base, data: bytesIn(values, true), qformCode: 1, quatern: [0, 0, s], sformCode: 2, srow: [[0, 0, 3, -1], [2, 0, 0, -2], [0, 5, 0, -3]] }));
+    const both = await loadVolume(
+      niftiFile({
+        ...base,
+        data: bytesIn(values, true),
+        qformCode: 1,
+        quatern: [0, 0, s],
+        sformCode: 2,
+        srow: [
+          [0, 0, 3, -1],
+          [2, 0, 0, -2],
+          [0, 5, 0, -3],
+        ],
+      }),
+    );
     expect(both.meta?.xform).toBe('sform');
     expect(both.orientation).toEqual([0, 0, 1, 1, 0, 0, 0, 1, 0]);
     expect(both.origin).toEqual([-1, -2, -3]);
@@ -102,7 +142,9 @@ describe('NIfTI-1: header features', () => {
 
   it('loads the first volume of a 4D file and says so', async () => {
     const four = new Int16Array(8).map((_, i) => i);
-    const v = await loadVolume(niftiFile({ dims: [4, 2, 2, 1, 2, 1, 1, 1], datatype: 4, bitpix: 16, data: bytesIn(four, true) }));
+    const v = await loadVolume(
+      niftiFile({ dims: [4, 2, 2, 1, 2, 1, 1, 1], datatype: 4, bitpix: 16, data: bytesIn(four, true) }),
+    );
     expect(v.dims).toEqual([2, 2, 1]);
     expect(Array.from(v.data)).toEqual([0, 1, 2, 3]);
     expect(String(v.meta?.warnings)).toMatch(/2 volumes/);
@@ -111,7 +153,11 @@ describe('NIfTI-1: header features', () => {
 
 describe('NIfTI-1: bad input', () => {
   const good = () => niftiFile({ dims: [2, 2, 2], datatype: 4, bitpix: 16, data: new Uint8Array(16) });
-  const edit = (f: (v: DataView, b: Uint8Array) => void) => { const b = good(); f(new DataView(b.buffer), b); return b; };
+  const edit = (f: (v: DataView, b: Uint8Array) => void) => {
+    const b = good();
+    f(new DataView(b.buffer), b);
+    return b;
+  };
 
   it('truncated data, a truncated header, a truncated or corrupt gzip', async () => {
     const cut = await expectLoaderError(loadVolume(good().subarray(0, 360), { format: 'nifti' }), 'truncated');
@@ -127,7 +173,16 @@ describe('NIfTI-1: bad input', () => {
 
   it('lying headers: zero dims, overflowing dims, unknown or unsupported types, a bad vox_offset, wrong magic, NIfTI-2', async () => {
     await expectLoaderError(loadVolume(edit((v) => v.setInt16(44, 0, true))), 'empty');
-    const big = await expectLoaderError(loadVolume(edit((v) => { v.setInt16(42, 32767, true); v.setInt16(44, 32767, true); v.setInt16(46, 32767, true); })), 'overflow');
+    const big = await expectLoaderError(
+      loadVolume(
+        edit((v) => {
+          v.setInt16(42, 32767, true);
+          v.setInt16(44, 32767, true);
+          v.setInt16(46, 32767, true);
+        }),
+      ),
+      'overflow',
+    );
     expect(big.message).toMatch(/32767 × 32767 × 32767/);
     // Not an overflow but far more data than the file holds: the header lies about dims.
     await expectLoaderError(loadVolume(edit((v) => v.setInt16(42, 1000, true))), 'truncated');
@@ -136,12 +191,47 @@ describe('NIfTI-1: bad input', () => {
     await expectLoaderError(loadVolume(edit((v) => v.setInt16(70, 3, true))), 'bad-header');
     await expectLoaderError(loadVolume(edit((v) => v.setFloat32(108, NaN, true))), 'bad-header');
     await expectLoaderError(loadVolume(edit((v) => v.setInt16(40, 9, true))), 'bad-header');
-    await expectLoaderError(loadVolume(edit((_, b) => { b[345] = 0x69; })), 'unsupported'); // "ni1": a .hdr/.img pair
-    await expectLoaderError(loadVolume(edit((_, b) => { b[344] = 0x78; }), { format: 'nifti' }), 'bad-magic');
-    await expectLoaderError(loadVolume(edit((v) => v.setInt32(0, 540, true)), { format: 'nifti' }), 'unsupported');
-    await expectLoaderError(loadVolume(edit((v) => v.setInt32(0, 1234, true)), { format: 'nifti' }), 'bad-magic');
+    await expectLoaderError(
+      loadVolume(
+        edit((_, b) => {
+          b[345] = 0x69;
+        }),
+      ),
+      'unsupported',
+    ); // "ni1": a .hdr/.img pair
+    await expectLoaderError(
+      loadVolume(
+        edit((_, b) => {
+          b[344] = 0x78;
+        }),
+        { format: 'nifti' },
+      ),
+      'bad-magic',
+    );
+    await expectLoaderError(
+      loadVolume(
+        edit((v) => v.setInt32(0, 540, true)),
+        { format: 'nifti' },
+      ),
+      'unsupported',
+    );
+    await expectLoaderError(
+      loadVolume(
+        edit((v) => v.setInt32(0, 1234, true)),
+        { format: 'nifti' },
+      ),
+      'bad-magic',
+    );
     // dims past the texture limit in a file far too short for them: the missing data is the finding.
-    const lying = await expectLoaderError(loadVolume(edit((v) => { v.setInt16(42, 3000, true); }), { limits: { maxTextureDimension3D: 2048 } }), 'truncated');
+    const lying = await expectLoaderError(
+      loadVolume(
+        edit((v) => {
+          v.setInt16(42, 3000, true);
+        }),
+        { limits: { maxTextureDimension3D: 2048 } },
+      ),
+      'truncated',
+    );
     expect(lying.message).toContain('the file is cut short, or its header gives the wrong dims or type');
   });
 

@@ -3,7 +3,18 @@ import path from 'node:path';
 import zlib from 'node:zlib';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { loadVolume } from '../src/index.js';
-import { FIXTURES, bytesIn, expectLoaderError, fileOf, fixture, normalizedChecksum, nrrdFile, serve, sha256, type TestServer } from './helpers.js';
+import {
+  FIXTURES,
+  bytesIn,
+  expectLoaderError,
+  fileOf,
+  fixture,
+  normalizedChecksum,
+  nrrdFile,
+  serve,
+  sha256,
+  type TestServer,
+} from './helpers.js';
 
 const TWIN = 'mri_brain_nibabel_anatomical_33x41x25_int16';
 const twinMeta = JSON.parse(new TextDecoder().decode(fixture(`${TWIN}.json`)));
@@ -12,16 +23,29 @@ const twinValues = new Int16Array(twinBytes.buffer.slice(0));
 
 // The raw twin written as NRRD the way teem/Slicer write it: LAS directions, 2 mm voxels.
 const FIELDS = {
-  type: 'short', dimension: '3', space: 'left-anterior-superior', sizes: '33 41 25',
-  'space directions': '(2,0,0) (0,2,0) (0,0,2)', kinds: 'domain domain domain', 'space origin': '(32,-40,-16)',
+  type: 'short',
+  dimension: '3',
+  space: 'left-anterior-superior',
+  sizes: '33 41 25',
+  'space directions': '(2,0,0) (0,2,0) (0,0,2)',
+  kinds: 'domain domain domain',
+  'space origin': '(32,-40,-16)',
 };
 
 describe('NRRD: the raw twin in every encoding', () => {
   it.each([
     ['raw, little-endian', { ...FIELDS, endian: 'little', encoding: 'raw' }, bytesIn(twinValues, true)],
     ['raw, big-endian', { ...FIELDS, endian: 'big', encoding: 'raw' }, bytesIn(twinValues, false)],
-    ['gzip', { ...FIELDS, endian: 'little', encoding: 'gzip' }, new Uint8Array(zlib.gzipSync(bytesIn(twinValues, true)))],
-    ['gzip, big-endian', { ...FIELDS, endian: 'big', encoding: 'gz' }, new Uint8Array(zlib.gzipSync(bytesIn(twinValues, false)))],
+    [
+      'gzip',
+      { ...FIELDS, endian: 'little', encoding: 'gzip' },
+      new Uint8Array(zlib.gzipSync(bytesIn(twinValues, true))),
+    ],
+    [
+      'gzip, big-endian',
+      { ...FIELDS, endian: 'big', encoding: 'gz' },
+      new Uint8Array(zlib.gzipSync(bytesIn(twinValues, false))),
+    ],
     ['ascii', { ...FIELDS, encoding: 'ascii' }, new TextEncoder().encode(Array.from(twinValues).join(' ') + '\n')],
   ])('%s', async (_, fields, data) => {
     const v = await loadVolume(fileOf(nrrdFile(fields, data), 'twin.nrrd'));
@@ -37,7 +61,19 @@ describe('NRRD: the raw twin in every encoding', () => {
 
   it('space directions give spacing (vector lengths) and direction cosines, not just the diagonal', async () => {
     // An oblique grid: axis i along (3,4,0) (length 5), j along (0,0,2), k along (-4·0.5, 3·0.5, 0) (length 2.5).
-    const v = await loadVolume(nrrdFile({ type: 'uchar', dimension: '3', sizes: '2 2 2', encoding: 'raw', space: 'RAS', 'space directions': '(3,4,0) (0,0,2) (-2,1.5,0)' }, new Uint8Array(8)));
+    const v = await loadVolume(
+      nrrdFile(
+        {
+          type: 'uchar',
+          dimension: '3',
+          sizes: '2 2 2',
+          encoding: 'raw',
+          space: 'RAS',
+          'space directions': '(3,4,0) (0,0,2) (-2,1.5,0)',
+        },
+        new Uint8Array(8),
+      ),
+    );
     expect(v.spacing).toEqual([5, 2, 2.5]);
     const o = v.orientation!;
     const expected = [0.6, 0, -0.8, 0.8, 0, 0.6, 0, 1, 0];
@@ -45,7 +81,10 @@ describe('NRRD: the raw twin in every encoding', () => {
   });
 
   it('a detached header (.nhdr) loads with its data file, dropped together or by URL', async () => {
-    const nhdr = nrrdFile({ ...FIELDS, endian: 'little', encoding: 'raw', 'data file': `${TWIN}.raw` }, new Uint8Array(0));
+    const nhdr = nrrdFile(
+      { ...FIELDS, endian: 'little', encoding: 'raw', 'data file': `${TWIN}.raw` },
+      new Uint8Array(0),
+    );
     const v = await loadVolume([fileOf(nhdr, 'twin.nhdr'), fileOf(twinBytes, `${TWIN}.raw`)]);
     expect(sha256(v.data)).toBe(twinMeta.sha256);
     const dir = fs.mkdtempSync(path.join(process.env.TMPDIR ?? '/tmp', 'vpt-nrrd-'));
@@ -60,20 +99,33 @@ describe('NRRD: the raw twin in every encoding', () => {
   });
 
   it('spacings without space directions; a 4D file with one value per voxel; a 2D image', async () => {
-    const v = await loadVolume(nrrdFile({ type: 'float', dimension: '3', sizes: '2 1 1', encoding: 'raw', endian: 'little', spacings: '0.5 0.25 3' }, bytesIn(new Float32Array([1, 2]), true)));
+    const v = await loadVolume(
+      nrrdFile(
+        { type: 'float', dimension: '3', sizes: '2 1 1', encoding: 'raw', endian: 'little', spacings: '0.5 0.25 3' },
+        bytesIn(new Float32Array([1, 2]), true),
+      ),
+    );
     expect(v.spacing).toEqual([0.5, 0.25, 3]);
     expect(v.orientation).toBeUndefined();
-    const w = await loadVolume(nrrdFile({ type: 'uint8', dimension: '4', sizes: '1 2 2 1', encoding: 'raw' }, new Uint8Array([9, 8, 7, 6])));
+    const w = await loadVolume(
+      nrrdFile({ type: 'uint8', dimension: '4', sizes: '1 2 2 1', encoding: 'raw' }, new Uint8Array([9, 8, 7, 6])),
+    );
     expect(w.dims).toEqual([2, 2, 1]);
-    const flat = await loadVolume(nrrdFile({ type: 'uint8', dimension: '2', sizes: '3 1', encoding: 'raw' }, new Uint8Array([1, 2, 3])));
+    const flat = await loadVolume(
+      nrrdFile({ type: 'uint8', dimension: '2', sizes: '3 1', encoding: 'raw' }, new Uint8Array([1, 2, 3])),
+    );
     expect(flat.dims).toEqual([3, 1, 1]);
   });
 });
 
 describe('NRRD: bad input', () => {
   const ok = { type: 'short', dimension: '3', sizes: '4 3 2', endian: 'little', encoding: 'raw' };
-  const data = bytesIn(new Int16Array(24).map((_, i) => i), true);
-  const load = (fields: Record<string, string>, d: Uint8Array = data) => loadVolume(fileOf(nrrdFile(fields, d), 'x.nrrd'));
+  const data = bytesIn(
+    new Int16Array(24).map((_, i) => i),
+    true,
+  );
+  const load = (fields: Record<string, string>, d: Uint8Array = data) =>
+    loadVolume(fileOf(nrrdFile(fields, d), 'x.nrrd'));
 
   it('each gets the reason a person can act on', async () => {
     await expectLoaderError(load({ ...ok, sizes: '4 3 2' }, data.subarray(0, 10)), 'truncated');
@@ -93,21 +145,45 @@ describe('NRRD: bad input', () => {
     expect(missing.message).toContain('"type"');
     await expectLoaderError(load({ ...ok, 'space directions': '(1,0,0) (0,0,0) (0,0,1)' }), 'bad-header');
     await expectLoaderError(load({ ...ok, 'space directions': '(1,0) (0,1,0) (0,0,1)' }), 'bad-header');
-    await expectLoaderError(loadVolume(fileOf(nrrdFile({ ...ok, 'data file': 'elsewhere.raw' }, new Uint8Array(0)), 'x.nhdr')), 'unsupported');
-    await expectLoaderError(loadVolume([fileOf(nrrdFile({ ...ok, 'data file': 'elsewhere.raw' }, new Uint8Array(0)), 'x.nhdr'), fileOf(data, 'other.raw')]), 'not-found');
-    await expectLoaderError(loadVolume(new TextEncoder().encode('NRRX0004\ntype: short\n\n'), { format: 'nrrd' }), 'bad-magic');
+    await expectLoaderError(
+      loadVolume(fileOf(nrrdFile({ ...ok, 'data file': 'elsewhere.raw' }, new Uint8Array(0)), 'x.nhdr')),
+      'unsupported',
+    );
+    await expectLoaderError(
+      loadVolume([
+        fileOf(nrrdFile({ ...ok, 'data file': 'elsewhere.raw' }, new Uint8Array(0)), 'x.nhdr'),
+        fileOf(data, 'other.raw'),
+      ]),
+      'not-found',
+    );
+    await expectLoaderError(
+      loadVolume(new TextEncoder().encode('NRRX0004\ntype: short\n\n'), { format: 'nrrd' }),
+      'bad-magic',
+    );
   });
 
   it('a volume beyond the limits names the limit', async () => {
-    const e = await expectLoaderError(loadVolume(fileOf(nrrdFile(ok, data), 'x.nrrd'), { limits: { maxTextureDimension3D: 3 } }), 'limit');
+    const e = await expectLoaderError(
+      loadVolume(fileOf(nrrdFile(ok, data), 'x.nrrd'), { limits: { maxTextureDimension3D: 3 } }),
+      'limit',
+    );
     expect(e.message).toContain('maxTextureDimension3D = 3');
   });
 });
 
 describe('NRRD over HTTP', () => {
   let server: TestServer;
-  beforeAll(async () => { server = await serve(FIXTURES, { 'a.nrrd': nrrdFile({ type: 'uchar', dimension: '3', sizes: '2 2 2', encoding: 'raw' }, new Uint8Array([1, 2, 3, 4, 5, 6, 7, 8])) }); });
-  afterAll(async () => { await server.close(); });
+  beforeAll(async () => {
+    server = await serve(FIXTURES, {
+      'a.nrrd': nrrdFile(
+        { type: 'uchar', dimension: '3', sizes: '2 2 2', encoding: 'raw' },
+        new Uint8Array([1, 2, 3, 4, 5, 6, 7, 8]),
+      ),
+    });
+  });
+  afterAll(async () => {
+    await server.close();
+  });
   it('loads by URL', async () => {
     const v = await loadVolume(`${server.url}a.nrrd`);
     expect(Array.from(v.data)).toEqual([1, 2, 3, 4, 5, 6, 7, 8]);

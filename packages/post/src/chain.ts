@@ -5,9 +5,7 @@ import { ToneMapStep, checkToneMapOperator, type ToneMapOperator } from './tone-
 
 /** A post step in a scene description. Omitted parameters take the step's defaults. */
 export type PostStepJSON =
-  | { type: 'exposure'; exposure?: number }
-  | { type: 'tonemap'; operator?: ToneMapOperator }
-  | { type: 'srgb' };
+  { type: 'exposure'; exposure?: number } | { type: 'tonemap'; operator?: ToneMapOperator } | { type: 'srgb' };
 
 export interface DefaultPostChainOptions {
   /** Stops; default 0. */
@@ -31,25 +29,38 @@ const KEYS: Readonly<Record<PostStepJSON['type'], readonly string[]>> = {
 /** Build a step from its scene-description JSON; throws VptError('invalid-scene') for anything malformed. */
 export function postStepFromJSON(json: unknown, where = 'post step'): PostStep {
   if (typeof json !== 'object' || json === null || Array.isArray(json)) {
-    throw new VptError('invalid-scene', `${where} must be an object like {"type": "srgb"}, got ${json === null ? 'null' : Array.isArray(json) ? 'an array' : typeof json}`);
+    throw new VptError(
+      'invalid-scene',
+      `${where} must be an object like {"type": "srgb"}, got ${json === null ? 'null' : Array.isArray(json) ? 'an array' : typeof json}`,
+    );
   }
   const obj = json as Record<string, unknown>;
   const type = obj.type;
   if (typeof type !== 'string' || !Object.hasOwn(KEYS, type)) {
     const got = typeof type === 'string' ? `"${type}"` : type === undefined ? 'no "type"' : typeof type;
-    throw new VptError('invalid-scene', `${where} has unknown type ${got} (expected one of ${Object.keys(KEYS).map((k) => `"${k}"`).join(', ')})`);
+    throw new VptError(
+      'invalid-scene',
+      `${where} has unknown type ${got} (expected one of ${Object.keys(KEYS)
+        .map((k) => `"${k}"`)
+        .join(', ')})`,
+    );
   }
   const allowed = KEYS[type as PostStepJSON['type']];
   for (const key of Object.keys(obj)) {
     if (!allowed.includes(key)) {
-      throw new VptError('invalid-scene', `${where} of type "${type}" has unknown field "${key}" (allowed: ${allowed.map((k) => `"${k}"`).join(', ')})`);
+      throw new VptError(
+        'invalid-scene',
+        `${where} of type "${type}" has unknown field "${key}" (allowed: ${allowed.map((k) => `"${k}"`).join(', ')})`,
+      );
     }
   }
   switch (type as PostStepJSON['type']) {
     case 'exposure':
       return new ExposureStep(obj.exposure === undefined ? 0 : checkExposure(obj.exposure, `${where}: exposure`));
     case 'tonemap':
-      return new ToneMapStep(obj.operator === undefined ? 'aces' : checkToneMapOperator(obj.operator, `${where}: tone-mapping operator`));
+      return new ToneMapStep(
+        obj.operator === undefined ? 'aces' : checkToneMapOperator(obj.operator, `${where}: tone-mapping operator`),
+      );
     case 'srgb':
       return new SrgbEncodeStep();
   }
@@ -58,7 +69,10 @@ export function postStepFromJSON(json: unknown, where = 'post step'): PostStep {
 /** Build a chain from a JSON array of step descriptions (see postStepFromJSON). */
 export function postChainFromJSON(json: unknown): PostStep[] {
   if (!Array.isArray(json)) {
-    throw new VptError('invalid-scene', `the post chain must be an array of steps, got ${json === null ? 'null' : typeof json}`);
+    throw new VptError(
+      'invalid-scene',
+      `the post chain must be an array of steps, got ${json === null ? 'null' : typeof json}`,
+    );
   }
   return json.map((step, i) => postStepFromJSON(step, `post step ${i}`));
 }

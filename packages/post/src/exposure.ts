@@ -50,5 +50,11 @@ export function checkExposure(stops: unknown, where = 'exposure'): number {
 }
 
 function describe(v: unknown): string {
-  return typeof v === 'number' ? String(v) : typeof v === 'string' ? `the string "${v}"` : v === null ? 'null' : typeof v;
+  return typeof v === 'number'
+    ? String(v)
+    : typeof v === 'string'
+      ? `the string "${v}"`
+      : v === null
+        ? 'null'
+        : typeof v;
 }

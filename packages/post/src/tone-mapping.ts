@@ -1,5 +1,11 @@
 import { preprocess, UniformLayout, VptError, type PostStep, type UniformValues } from '@vpt/core';
-import { TONE_MAP_DEFINE, TONE_MAP_OPERATOR_ID, TONE_MAP_OPERATORS, isToneMapOperator, type ToneMapOperator } from './tone-mapping-operators.js';
+import {
+  TONE_MAP_DEFINE,
+  TONE_MAP_OPERATOR_ID,
+  TONE_MAP_OPERATORS,
+  isToneMapOperator,
+  type ToneMapOperator,
+} from './tone-mapping-operators.js';
 import * as glsl from './tone-mapping.glsl.js';
 import * as wgsl from './tone-mapping.wgsl.js';
 
@@ -41,7 +47,10 @@ export class ToneMapStep implements PostStep {
 export function checkToneMapOperator(op: unknown, where = 'tone-mapping operator'): ToneMapOperator {
   if (!isToneMapOperator(op)) {
     const got = typeof op === 'string' ? `"${op}"` : op === null ? 'null' : typeof op;
-    throw new VptError('invalid-scene', `unknown ${where} ${got} (expected one of ${TONE_MAP_OPERATORS.map((o) => `"${o}"`).join(', ')})`);
+    throw new VptError(
+      'invalid-scene',
+      `unknown ${where} ${got} (expected one of ${TONE_MAP_OPERATORS.map((o) => `"${o}"`).join(', ')})`,
+    );
   }
   return op;
 }

@@ -47,7 +47,7 @@ describe('CPU references', () => {
   it('sRGB OETF is monotonic across the threshold', () => {
     let prev = -1;
     for (let i = 0; i <= 2000; i++) {
-      const y = srgbOetfRef(0.0030 + i * 1e-7);
+      const y = srgbOetfRef(0.003 + i * 1e-7);
       expect(y).toBeGreaterThan(prev);
       prev = y;
     }
@@ -117,7 +117,9 @@ describe('CPU references', () => {
 
   it('postChainRef composes the steps', () => {
     const chain = defaultPostChain({ exposure: 1, toneMapper: 'reinhard' });
-    expect(postChainRef(chain, [0.5, 0, 1])).toEqual(srgbEncodeRef(toneMapRef('reinhard', exposureRef(1, [0.5, 0, 1]))));
+    expect(postChainRef(chain, [0.5, 0, 1])).toEqual(
+      srgbEncodeRef(toneMapRef('reinhard', exposureRef(1, [0.5, 0, 1]))),
+    );
     expect(postChainRef(chain, [0.5, 0, 1])[0]).toBeCloseTo(srgbOetfRef(0.5), 15);
   });
 });
@@ -129,7 +131,9 @@ describe('steps', () => {
     expect(packed[0]).toBe(8);
     s.exposure = -1;
     expect(new Float32Array(s.uniforms.pack(s.uniformValues()))[0]).toBe(0.5);
-    expect(() => { s.exposure = NaN; }).toThrow(/finite/);
+    expect(() => {
+      s.exposure = NaN;
+    }).toThrow(/finite/);
     expect(() => new ExposureStep(Infinity)).toThrow(/finite/);
     expect(() => new ExposureStep(200)).toThrow(/64/);
   });
@@ -172,7 +176,11 @@ describe('steps', () => {
   it('the default chain is exposure 0 → ACES → sRGB', () => {
     const chain = defaultPostChain();
     expect(chain.map((s) => s.name)).toEqual(['exposure', 'tonemap', 'srgb']);
-    expect(postChainToJSON(chain)).toEqual([{ type: 'exposure', exposure: 0 }, { type: 'tonemap', operator: 'aces' }, { type: 'srgb' }]);
+    expect(postChainToJSON(chain)).toEqual([
+      { type: 'exposure', exposure: 0 },
+      { type: 'tonemap', operator: 'aces' },
+      { type: 'srgb' },
+    ]);
     expect(postChainToJSON(defaultPostChain({ exposure: -1.5, toneMapper: 'pbr-neutral' }))).toEqual([
       { type: 'exposure', exposure: -1.5 },
       { type: 'tonemap', operator: 'pbr-neutral' },
@@ -198,8 +206,16 @@ describe('JSON', () => {
   });
 
   it('parses the documented example and fills defaults', () => {
-    const chain = postChainFromJSON([{ type: 'exposure', exposure: 0 }, { type: 'tonemap', operator: 'reinhard' }, { type: 'srgb' }]);
-    expect(chain.map(postStepToJSON)).toEqual([{ type: 'exposure', exposure: 0 }, { type: 'tonemap', operator: 'reinhard' }, { type: 'srgb' }]);
+    const chain = postChainFromJSON([
+      { type: 'exposure', exposure: 0 },
+      { type: 'tonemap', operator: 'reinhard' },
+      { type: 'srgb' },
+    ]);
+    expect(chain.map(postStepToJSON)).toEqual([
+      { type: 'exposure', exposure: 0 },
+      { type: 'tonemap', operator: 'reinhard' },
+      { type: 'srgb' },
+    ]);
     expect(postStepToJSON(postStepFromJSON({ type: 'exposure' }))).toEqual({ type: 'exposure', exposure: 0 });
     expect(postStepToJSON(postStepFromJSON({ type: 'tonemap' }))).toEqual({ type: 'tonemap', operator: 'aces' });
   });
@@ -208,7 +224,11 @@ describe('JSON', () => {
     ['unknown type', { type: 'bloom' }, /unknown type "bloom"/],
     ['missing type', { exposure: 1 }, /unknown type no "type"/],
     ['non-string type', { type: 3 }, /unknown type number/],
-    ['unknown operator', { type: 'tonemap', operator: 'filmic' }, /unknown .*tone-mapping operator "filmic".*"reinhard"/],
+    [
+      'unknown operator',
+      { type: 'tonemap', operator: 'filmic' },
+      /unknown .*tone-mapping operator "filmic".*"reinhard"/,
+    ],
     ['non-string operator', { type: 'tonemap', operator: 2 }, /tone-mapping operator number/],
     ['NaN exposure', { type: 'exposure', exposure: NaN }, /finite/],
     ['infinite exposure', { type: 'exposure', exposure: -Infinity }, /finite/],
@@ -223,7 +243,11 @@ describe('JSON', () => {
   for (const [what, json, message] of bad) {
     it(`rejects ${what} with VptError('invalid-scene')`, () => {
       let err: unknown;
-      try { postStepFromJSON(json); } catch (e) { err = e; }
+      try {
+        postStepFromJSON(json);
+      } catch (e) {
+        err = e;
+      }
       expect(isVptError(err, 'invalid-scene')).toBe(true);
       expect((err as Error).message).toMatch(message);
     });
@@ -232,11 +256,21 @@ describe('JSON', () => {
   it('names the failing index in a chain, and wants an array', () => {
     expect(() => postChainFromJSON([{ type: 'srgb' }, { type: 'tonemap', operator: 'x' }])).toThrow(/post step 1/);
     expect(() => postChainFromJSON({ type: 'srgb' })).toThrow(/must be an array/);
-    try { postChainFromJSON('nope'); } catch (e) { expect(isVptError(e, 'invalid-scene')).toBe(true); }
+    try {
+      postChainFromJSON('nope');
+    } catch (e) {
+      expect(isVptError(e, 'invalid-scene')).toBe(true);
+    }
   });
 
   it('refuses to serialise a foreign step', () => {
-    const foreign = { name: 'custom', glsl: '', wgsl: '', uniforms: new SrgbEncodeStep().uniforms, uniformValues: () => ({}) };
+    const foreign = {
+      name: 'custom',
+      glsl: '',
+      wgsl: '',
+      uniforms: new SrgbEncodeStep().uniforms,
+      uniformValues: () => ({}),
+    };
     expect(() => postStepToJSON(foreign)).toThrow(/no JSON form/);
   });
 });

@@ -1,4 +1,12 @@
-import { BaseRenderer, COPY_ACCUMULATION_RENDER, RUNNING_MEAN_INTEGRATE, type ParamSpecs, type Scene, type UniformField, type UniformValues } from '@vpt/core';
+import {
+  BaseRenderer,
+  COPY_ACCUMULATION_RENDER,
+  RUNNING_MEAN_INTEGRATE,
+  type ParamSpecs,
+  type Scene,
+  type UniformField,
+  type UniformValues,
+} from '@vpt/core';
 import * as glsl from './kernels/eam.glsl.js';
 import * as wgsl from './kernels/eam.wgsl.js';
 

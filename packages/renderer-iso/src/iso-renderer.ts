@@ -1,10 +1,25 @@
 import {
-  BaseRenderer, buildEnvironmentSampling, environmentEmits, volumeBox, VptError,
-  type AuxiliaryTexture, type LatLongEnvironment, type Scene, type UniformField, type UniformValues,
+  BaseRenderer,
+  buildEnvironmentSampling,
+  environmentEmits,
+  volumeBox,
+  VptError,
+  type AuxiliaryTexture,
+  type LatLongEnvironment,
+  type Scene,
+  type UniformField,
+  type UniformValues,
 } from '@vpt/core';
 import * as glsl from './kernels/iso.glsl.js';
 import * as wgsl from './kernels/iso.wgsl.js';
-import { ISO_PARAM_SPECS, MAX_ISO_LIGHTS, MAX_ISO_SURFACES, resolveIsoParams, type IsoParams, type ResolvedIsoParams } from './params.js';
+import {
+  ISO_PARAM_SPECS,
+  MAX_ISO_LIGHTS,
+  MAX_ISO_SURFACES,
+  resolveIsoParams,
+  type IsoParams,
+  type ResolvedIsoParams,
+} from './params.js';
 
 export const ISO_PARAM_FIELDS: readonly UniformField[] = [
   { name: 'isoValues', type: 'vec4' },
@@ -22,7 +37,14 @@ export const ISO_PARAM_FIELDS: readonly UniformField[] = [
 // Stable ids for environment images (the auxiliary textures' key), without hashing pixels.
 const ids = new WeakMap<object, number>();
 let nextId = 1;
-const idOf = (o: object) => { let i = ids.get(o); if (i === undefined) { i = nextId++; ids.set(o, i); } return i; };
+const idOf = (o: object) => {
+  let i = ids.get(o);
+  if (i === undefined) {
+    i = nextId++;
+    ids.set(o, i);
+  }
+  return i;
+};
 
 const OUTPUT_CODE = { shaded: 0, depth: 1, normal: 2 } as const;
 
@@ -65,12 +87,17 @@ export class IsoRenderer extends BaseRenderer<IsoParams> {
   }
 
   /** The parameters with defaults filled in. */
-  get resolvedParams(): ResolvedIsoParams { return structuredClone(this.resolved); }
+  get resolvedParams(): ResolvedIsoParams {
+    return structuredClone(this.resolved);
+  }
 
   override features(scene: Scene): Record<string, boolean | number> {
     const p = this.resolved;
     if (scene.lights.length > MAX_ISO_LIGHTS) {
-      throw new VptError('limit-exceeded', `IsoRenderer: the scene has ${scene.lights.length} lights; at most ${MAX_ISO_LIGHTS} directional lights are supported`);
+      throw new VptError(
+        'limit-exceeded',
+        `IsoRenderer: the scene has ${scene.lights.length} lights; at most ${MAX_ISO_LIGHTS} directional lights are supported`,
+      );
     }
     const env = scene.environment;
     return {
@@ -94,10 +121,12 @@ export class IsoRenderer extends BaseRenderer<IsoParams> {
       values[i] = s.value;
       surface.set([...s.color, s.opacity], 4 * i);
     });
-    const dirs = new Float32Array(4 * MAX_ISO_LIGHTS), irr = new Float32Array(4 * MAX_ISO_LIGHTS);
+    const dirs = new Float32Array(4 * MAX_ISO_LIGHTS),
+      irr = new Float32Array(4 * MAX_ISO_LIGHTS);
     const cosRadius = Math.cos(p.lightAngularRadius);
     scene.lights.slice(0, MAX_ISO_LIGHTS).forEach((l, i) => {
-      const d = l.direction, len = Math.hypot(d[0], d[1], d[2]);
+      const d = l.direction,
+        len = Math.hypot(d[0], d[1], d[2]);
       dirs.set([d[0] / len, d[1] / len, d[2] / len, cosRadius], 4 * i);
       irr.set([...l.irradiance, 0], 4 * i);
     });
@@ -130,9 +159,45 @@ export class IsoRenderer extends BaseRenderer<IsoParams> {
       let tables: ReturnType<typeof buildEnvironmentSampling> | null = null;
       const t = () => (tables ??= buildEnvironmentSampling(e));
       return [
-        { name: 'envMap', dimension: '2d', key, create: () => ({ dimension: '2d', width: e.width, height: e.height, format: 'rgba32float', data: t().map, label: 'environment map' }) },
-        { name: 'envMarginal', dimension: '2d', key, create: () => ({ dimension: '2d', width: e.height + 1, height: 1, format: 'r32float', data: t().marginal, label: 'environment marginal CDF' }) },
-        { name: 'envConditional', dimension: '2d', key, create: () => ({ dimension: '2d', width: e.width + 1, height: e.height, format: 'r32float', data: t().conditional, label: 'environment conditional CDFs' }) },
+        {
+          name: 'envMap',
+          dimension: '2d',
+          key,
+          create: () => ({
+            dimension: '2d',
+            width: e.width,
+            height: e.height,
+            format: 'rgba32float',
+            data: t().map,
+            label: 'environment map',
+          }),
+        },
+        {
+          name: 'envMarginal',
+          dimension: '2d',
+          key,
+          create: () => ({
+            dimension: '2d',
+            width: e.height + 1,
+            height: 1,
+            format: 'r32float',
+            data: t().marginal,
+            label: 'environment marginal CDF',
+          }),
+        },
+        {
+          name: 'envConditional',
+          dimension: '2d',
+          key,
+          create: () => ({
+            dimension: '2d',
+            width: e.width + 1,
+            height: e.height,
+            format: 'r32float',
+            data: t().conditional,
+            label: 'environment conditional CDFs',
+          }),
+        },
       ];
     }
     return [];

@@ -81,29 +81,40 @@ export const ISO_PARAM_SPECS: ParamSpecs = {
 
 /** Defaults filled in and every value checked; throws VptError('invalid-scene') naming the parameter. */
 export function resolveIsoParams(p: IsoParams): ResolvedIsoParams {
-  const bad = (m: string): never => { throw new VptError('invalid-scene', `IsoRenderer: ${m}`); };
+  const bad = (m: string): never => {
+    throw new VptError('invalid-scene', `IsoRenderer: ${m}`);
+  };
   const finite = (x: unknown): x is number => typeof x === 'number' && Number.isFinite(x);
   const surfaces = p.surfaces ?? [{ value: 0.5, color: [1, 1, 1], opacity: 1 }];
   if (!Array.isArray(surfaces) || surfaces.length < 1 || surfaces.length > MAX_ISO_SURFACES) {
-    bad(`surfaces must be an array of 1 to ${MAX_ISO_SURFACES} isosurfaces, got ${Array.isArray(surfaces) ? surfaces.length : JSON.stringify(surfaces)}`);
+    bad(
+      `surfaces must be an array of 1 to ${MAX_ISO_SURFACES} isosurfaces, got ${Array.isArray(surfaces) ? surfaces.length : JSON.stringify(surfaces)}`,
+    );
   }
   const resolved = surfaces.map((s, i): Required<IsoSurface> => {
     if (!s || typeof s !== 'object') bad(`surface ${i} must be an object`);
-    if (!finite(s.value) || s.value < 0 || s.value > 1) bad(`surface ${i}: value must be in [0, 1] (normalized), got ${s.value}`);
-    if (!Array.isArray(s.color) || s.color.length !== 3 || !s.color.every((c) => finite(c) && c >= 0 && c <= 1)) bad(`surface ${i}: color must be three numbers in [0, 1], got ${JSON.stringify(s.color)}`);
+    if (!finite(s.value) || s.value < 0 || s.value > 1)
+      bad(`surface ${i}: value must be in [0, 1] (normalized), got ${s.value}`);
+    if (!Array.isArray(s.color) || s.color.length !== 3 || !s.color.every((c) => finite(c) && c >= 0 && c <= 1))
+      bad(`surface ${i}: color must be three numbers in [0, 1], got ${JSON.stringify(s.color)}`);
     const opacity = s.opacity ?? 1;
-    if (!finite(opacity) || opacity < 0 || opacity > 1) bad(`surface ${i}: opacity must be in [0, 1], got ${s.opacity}`);
+    if (!finite(opacity) || opacity < 0 || opacity > 1)
+      bad(`surface ${i}: opacity must be in [0, 1], got ${s.opacity}`);
     return { value: s.value, color: [s.color[0], s.color[1], s.color[2]], opacity };
   });
-  if (p.stepSize !== undefined && !(finite(p.stepSize) && p.stepSize >= 1e-4 && p.stepSize <= 1)) bad(`stepSize must be in [1e-4, 1] world units, got ${p.stepSize}`);
+  if (p.stepSize !== undefined && !(finite(p.stepSize) && p.stepSize >= 1e-4 && p.stepSize <= 1))
+    bad(`stepSize must be in [1e-4, 1] world units, got ${p.stepSize}`);
   const specular = p.specular ?? 0.1;
   if (!(finite(specular) && specular >= 0 && specular <= 1)) bad(`specular must be in [0, 1], got ${p.specular}`);
   const shininess = p.shininess ?? 40;
-  if (!(finite(shininess) && shininess > 0 && shininess <= 1e4)) bad(`shininess must be in (0, 10000], got ${p.shininess}`);
+  if (!(finite(shininess) && shininess > 0 && shininess <= 1e4))
+    bad(`shininess must be in (0, 10000], got ${p.shininess}`);
   const aoRadius = p.aoRadius ?? Infinity;
-  if (!(aoRadius > 0) || Number.isNaN(aoRadius)) bad(`aoRadius must be positive (Infinity for unlimited), got ${p.aoRadius}`);
+  if (!(aoRadius > 0) || Number.isNaN(aoRadius))
+    bad(`aoRadius must be positive (Infinity for unlimited), got ${p.aoRadius}`);
   const lightAngularRadius = p.lightAngularRadius ?? 0;
-  if (!(finite(lightAngularRadius) && lightAngularRadius >= 0 && lightAngularRadius < Math.PI / 2)) bad(`lightAngularRadius must be in [0, π/2) radians, got ${p.lightAngularRadius}`);
+  if (!(finite(lightAngularRadius) && lightAngularRadius >= 0 && lightAngularRadius < Math.PI / 2))
+    bad(`lightAngularRadius must be in [0, π/2) radians, got ${p.lightAngularRadius}`);
   const output = p.output ?? 'shaded';
   if (!OUTPUTS.includes(output)) bad(`output must be one of ${OUTPUTS.join(', ')}, got ${JSON.stringify(p.output)}`);
   for (const k of ['shadows', 'ambientOcclusion', 'jitter'] as const) {

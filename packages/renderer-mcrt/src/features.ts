@@ -40,7 +40,10 @@ export interface ActiveLight {
 export function activeLights(scene: Scene): ActiveLight[] {
   const lights = (scene.lights ?? []).filter((l) => l.irradiance.some((x) => x > 0));
   if (lights.length > MAX_LIGHTS) {
-    throw new VptError('limit-exceeded', `MCRT handles at most ${MAX_LIGHTS} directional lights, the scene has ${lights.length}`);
+    throw new VptError(
+      'limit-exceeded',
+      `MCRT handles at most ${MAX_LIGHTS} directional lights, the scene has ${lights.length}`,
+    );
   }
   return lights.map((l) => ({ direction: normalize(l.direction), irradiance: l.irradiance }));
 }

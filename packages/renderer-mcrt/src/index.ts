@@ -1,5 +1,24 @@
 export { McrtRenderer, MCRT_PARAM_FIELDS } from './mcrt-renderer.js';
-export { MCRT_DEFAULTS, MCRT_PARAM_SPECS, MAX_ANISOTROPY, resolveParams, type McrtParams, type ResolvedMcrtParams, type TrackingMode, type EnvironmentSampling } from './params.js';
+export {
+  MCRT_DEFAULTS,
+  MCRT_PARAM_SPECS,
+  MAX_ANISOTROPY,
+  resolveParams,
+  type McrtParams,
+  type ResolvedMcrtParams,
+  type TrackingMode,
+  type EnvironmentSampling,
+} from './params.js';
 export { computeFeatures, activeLights, MAX_LIGHTS, type McrtFeatures } from './features.js';
-export { buildMajorantGrid, computeCellValueRanges, cellVoxelRange, gridCells, OpacityRangeTable, volumeCellRanges, MAX_GRID_CELLS_PER_AXIS, type MajorantGrid, type CellValueRanges } from './majorant-grid.js';
+export {
+  buildMajorantGrid,
+  computeCellValueRanges,
+  cellVoxelRange,
+  gridCells,
+  OpacityRangeTable,
+  volumeCellRanges,
+  MAX_GRID_CELLS_PER_AXIS,
+  type MajorantGrid,
+  type CellValueRanges,
+} from './majorant-grid.js';
 export { generateKernel } from './kernel-sources.js';

@@ -1,4 +1,13 @@
-import { GLSL_ENVIRONMENT_MAP, GLSL_SAMPLING, HALF_MEANS_INTEGRATE, preprocess, WGSL_ENVIRONMENT_MAP, WGSL_SAMPLING, type Flags, type KernelSource } from '@vpt/core';
+import {
+  GLSL_ENVIRONMENT_MAP,
+  GLSL_SAMPLING,
+  HALF_MEANS_INTEGRATE,
+  preprocess,
+  WGSL_ENVIRONMENT_MAP,
+  WGSL_SAMPLING,
+  type Flags,
+  type KernelSource,
+} from '@vpt/core';
 import type { McrtFeatures } from './features.js';
 import * as glslPath from './kernels/path.glsl.js';
 import * as wgslPath from './kernels/path.wgsl.js';

@@ -45,7 +45,11 @@ export interface MajorantGrid {
 
 /** Cells per axis for a cell edge of `cellSize` voxels, between 1 and 64. */
 export function gridCells(dims: readonly number[], cellSize: number): [number, number, number] {
-  return dims.map((n) => Math.min(MAX_GRID_CELLS_PER_AXIS, Math.max(1, Math.ceil(n / cellSize)))) as [number, number, number];
+  return dims.map((n) => Math.min(MAX_GRID_CELLS_PER_AXIS, Math.max(1, Math.ceil(n / cellSize)))) as [
+    number,
+    number,
+    number,
+  ];
 }
 
 /** Voxel index range [lo, hi] whose values can reach the points of cell c (of G) along an axis of N voxels. */
@@ -57,58 +61,71 @@ export function cellVoxelRange(c: number, G: number, N: number): [number, number
 }
 
 /** Per-cell value ranges, by separable min/max passes along x, then y, then z. */
-export function computeCellValueRanges(values: Float32Array, dims: readonly [number, number, number], cells: [number, number, number]): CellValueRanges {
+export function computeCellValueRanges(
+  values: Float32Array,
+  dims: readonly [number, number, number],
+  cells: [number, number, number],
+): CellValueRanges {
   const [nx, ny, nz] = dims;
   const [gx, gy, gz] = cells;
   const rx = Array.from({ length: gx }, (_, c) => cellVoxelRange(c, gx, nx));
   const ry = Array.from({ length: gy }, (_, c) => cellVoxelRange(c, gy, ny));
   const rz = Array.from({ length: gz }, (_, c) => cellVoxelRange(c, gz, nz));
   // Pass 1: along x → [gx, ny, nz]
-  const ax = new Float32Array(gx * ny * nz), bx = new Float32Array(gx * ny * nz);
+  const ax = new Float32Array(gx * ny * nz),
+    bx = new Float32Array(gx * ny * nz);
   for (let z = 0; z < nz; z++) {
     for (let y = 0; y < ny; y++) {
       const row = nx * (y + ny * z);
       for (let c = 0; c < gx; c++) {
-        let lo = Infinity, hi = -Infinity;
+        let lo = Infinity,
+          hi = -Infinity;
         for (let x = rx[c][0]; x <= rx[c][1]; x++) {
           const v = values[row + x];
           if (v < lo) lo = v;
           if (v > hi) hi = v;
         }
         const o = c + gx * (y + ny * z);
-        ax[o] = lo; bx[o] = hi;
+        ax[o] = lo;
+        bx[o] = hi;
       }
     }
   }
   // Pass 2: along y → [gx, gy, nz]
-  const ay = new Float32Array(gx * gy * nz), by = new Float32Array(gx * gy * nz);
+  const ay = new Float32Array(gx * gy * nz),
+    by = new Float32Array(gx * gy * nz);
   for (let z = 0; z < nz; z++) {
     for (let cy = 0; cy < gy; cy++) {
       for (let cx = 0; cx < gx; cx++) {
-        let lo = Infinity, hi = -Infinity;
+        let lo = Infinity,
+          hi = -Infinity;
         for (let y = ry[cy][0]; y <= ry[cy][1]; y++) {
           const o = cx + gx * (y + ny * z);
           if (ax[o] < lo) lo = ax[o];
           if (bx[o] > hi) hi = bx[o];
         }
         const o = cx + gx * (cy + gy * z);
-        ay[o] = lo; by[o] = hi;
+        ay[o] = lo;
+        by[o] = hi;
       }
     }
   }
   // Pass 3: along z → [gx, gy, gz]
-  const vmin = new Float32Array(gx * gy * gz), vmax = new Float32Array(gx * gy * gz);
+  const vmin = new Float32Array(gx * gy * gz),
+    vmax = new Float32Array(gx * gy * gz);
   for (let cz = 0; cz < gz; cz++) {
     for (let cy = 0; cy < gy; cy++) {
       for (let cx = 0; cx < gx; cx++) {
-        let lo = Infinity, hi = -Infinity;
+        let lo = Infinity,
+          hi = -Infinity;
         for (let z = rz[cz][0]; z <= rz[cz][1]; z++) {
           const o = cx + gx * (cy + gy * z);
           if (ay[o] < lo) lo = ay[o];
           if (by[o] > hi) hi = by[o];
         }
         const o = cx + gx * (cy + gy * cz);
-        vmin[o] = lo; vmax[o] = hi;
+        vmin[o] = lo;
+        vmax[o] = hi;
       }
     }
   }
@@ -129,7 +146,8 @@ export class OpacityRangeTable {
     const n = width;
     const rows = Math.max(1, Math.floor(tfTexels.length / (4 * width)));
     this.size = n;
-    const hi = new Float64Array(n).fill(-Infinity), lo = new Float64Array(n).fill(Infinity);
+    const hi = new Float64Array(n).fill(-Infinity),
+      lo = new Float64Array(n).fill(Infinity);
     for (let r = 0; r < rows; r++) {
       for (let i = 0; i < n; i++) {
         const a = tfTexels[4 * (r * n + i) + 3];
@@ -141,9 +159,14 @@ export class OpacityRangeTable {
     this.minT.push(lo);
     for (let k = 1; 1 << k <= n; k++) {
       const h = 1 << (k - 1);
-      const pm = this.maxT[k - 1], pn = this.minT[k - 1];
-      const m = new Float64Array(n - (1 << k) + 1), q = new Float64Array(n - (1 << k) + 1);
-      for (let i = 0; i < m.length; i++) { m[i] = Math.max(pm[i], pm[i + h]); q[i] = Math.min(pn[i], pn[i + h]); }
+      const pm = this.maxT[k - 1],
+        pn = this.minT[k - 1];
+      const m = new Float64Array(n - (1 << k) + 1),
+        q = new Float64Array(n - (1 << k) + 1);
+      for (let i = 0; i < m.length; i++) {
+        m[i] = Math.max(pm[i], pm[i + h]);
+        q[i] = Math.min(pn[i], pn[i + h]);
+      }
       this.maxT.push(m);
       this.minT.push(q);
     }
@@ -168,7 +191,8 @@ export class OpacityRangeTable {
     const xb = Math.min(n1, clamp01(b) * n1 * (1 + 1e-4));
     let lo = Math.min(this.interp(this.minT[0], xa), this.interp(this.minT[0], xb));
     let hi = Math.max(this.interp(this.maxT[0], xa), this.interp(this.maxT[0], xb));
-    const k0 = Math.floor(xa) + 1, k1 = Math.ceil(xb) - 1;
+    const k0 = Math.floor(xa) + 1,
+      k1 = Math.ceil(xb) - 1;
     if (k0 <= k1) {
       const [qlo, qhi] = this.query(k0, k1);
       lo = Math.min(lo, qlo);
@@ -178,17 +202,24 @@ export class OpacityRangeTable {
   }
 
   private interp(t: Float64Array, x: number): number {
-    const i0 = Math.min(Math.floor(x), this.size - 1), i1 = Math.min(i0 + 1, this.size - 1);
+    const i0 = Math.min(Math.floor(x), this.size - 1),
+      i1 = Math.min(i0 + 1, this.size - 1);
     return t[i0] + (t[i1] - t[i0]) * (x - i0);
   }
 }
 
 /** The majorant grid for per-cell value ranges, a rasterized TF (RGBA texels) and a density scale. */
-export function buildMajorantGrid(ranges: CellValueRanges, tfTexels: Float32Array, densityScale: number, tfWidth = TF_RESOLUTION): MajorantGrid {
+export function buildMajorantGrid(
+  ranges: CellValueRanges,
+  tfTexels: Float32Array,
+  densityScale: number,
+  tfWidth = TF_RESOLUTION,
+): MajorantGrid {
   const table = new OpacityRangeTable(tfTexels, tfWidth);
   const n = ranges.vmin.length;
   const data = new Float32Array(4 * n);
-  let gMax = 0, gMin = Infinity;
+  let gMax = 0,
+    gMin = Infinity;
   for (let c = 0; c < n; c++) {
     const [lo, hi] = table.valueRange(ranges.vmin[c], ranges.vmax[c]);
     const maj = Math.fround(hi * densityScale * (1 + PAD));
@@ -206,7 +237,10 @@ const rangeCache = new WeakMap<Volume, Map<number, CellValueRanges>>();
 /** Per-cell value ranges of a volume, computed once per (Volume object, cell size). */
 export function volumeCellRanges(volume: Volume, cellSize: number): CellValueRanges {
   let byCell = rangeCache.get(volume);
-  if (!byCell) { byCell = new Map(); rangeCache.set(volume, byCell); }
+  if (!byCell) {
+    byCell = new Map();
+    rangeCache.set(volume, byCell);
+  }
   let r = byCell.get(cellSize);
   if (!r) {
     r = computeCellValueRanges(normalizedData(volume), volume.dims, gridCells(volume.dims, cellSize));

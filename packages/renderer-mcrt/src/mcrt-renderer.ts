@@ -1,7 +1,24 @@
 import {
-  BaseRenderer, validateParams, buildEnvironmentSampling, COPY_ACCUMULATION_RENDER, GLSL_SLICE_ATLAS, sliceAtlasLayout, WGSL_SLICE_ATLAS, rasterizeTransferFunction, TF_RESOLUTION, UniformLayout,
-  type AuxiliaryTexture, type EnvironmentSamplingTables, type KernelSource, type LatLongEnvironment, type Scene,
-  type UniformField, type UniformValues, type Volume, type VolumeBinding, volumeValueMapping,
+  BaseRenderer,
+  validateParams,
+  buildEnvironmentSampling,
+  COPY_ACCUMULATION_RENDER,
+  GLSL_SLICE_ATLAS,
+  sliceAtlasLayout,
+  WGSL_SLICE_ATLAS,
+  rasterizeTransferFunction,
+  TF_RESOLUTION,
+  UniformLayout,
+  type AuxiliaryTexture,
+  type EnvironmentSamplingTables,
+  type KernelSource,
+  type LatLongEnvironment,
+  type Scene,
+  type UniformField,
+  type UniformValues,
+  type Volume,
+  type VolumeBinding,
+  volumeValueMapping,
 } from '@vpt/core';
 import { activeLights, computeFeatures, featureKey, MAX_LIGHTS, type McrtFeatures } from './features.js';
 import { generateKernel, INTEGRATE_HALVES } from './kernel-sources.js';
@@ -27,7 +44,14 @@ export const MCRT_PARAM_FIELDS: readonly UniformField[] = [
 // Stable ids for the objects whose identity keys the auxiliary textures.
 const ids = new WeakMap<object, number>();
 let nextId = 1;
-const idOf = (o: object) => { let i = ids.get(o); if (i === undefined) { i = nextId++; ids.set(o, i); } return i; };
+const idOf = (o: object) => {
+  let i = ids.get(o);
+  if (i === undefined) {
+    i = nextId++;
+    ids.set(o, i);
+  }
+  return i;
+};
 
 /**
  * Monte Carlo volumetric path tracer (docs/design.md; issue 3). HDR = estimated radiance,
@@ -67,7 +91,9 @@ export class McrtRenderer extends BaseRenderer<McrtParams> {
   }
 
   /** The parameters with defaults filled in. */
-  get resolvedParams(): ResolvedMcrtParams { return { ...this.resolved }; }
+  get resolvedParams(): ResolvedMcrtParams {
+    return { ...this.resolved };
+  }
 
   get kernels(): { readonly generate: KernelSource; readonly integrate: KernelSource; readonly render: KernelSource } {
     return { generate: this.variant(this.current), integrate: INTEGRATE_HALVES, render: COPY_ACCUMULATION_RENDER };
@@ -78,7 +104,10 @@ export class McrtRenderer extends BaseRenderer<McrtParams> {
     const f = features ?? DEFAULT_FEATURES;
     const key = featureKey(f);
     let k = this.variants.get(key);
-    if (!k) { k = generateKernel(f); this.variants.set(key, k); }
+    if (!k) {
+      k = generateKernel(f);
+      this.variants.set(key, k);
+    }
     return k;
   }
 
@@ -94,8 +123,12 @@ export class McrtRenderer extends BaseRenderer<McrtParams> {
     const onGpu = computeFeatures(scene, p).MAJORANT_GRID;
     const grid = onGpu ? null : this.majorantGrid(scene);
     const lights = activeLights(scene);
-    const dirs = new Float32Array(4 * MAX_LIGHTS), irr = new Float32Array(4 * MAX_LIGHTS);
-    lights.forEach((l, i) => { dirs.set(l.direction, 4 * i); irr.set(l.irradiance, 4 * i); });
+    const dirs = new Float32Array(4 * MAX_LIGHTS),
+      irr = new Float32Array(4 * MAX_LIGHTS);
+    lights.forEach((l, i) => {
+      dirs.set(l.direction, 4 * i);
+      irr.set(l.irradiance, 4 * i);
+    });
     return {
       phaseG: p.anisotropy,
       maxDepth: p.scattering === 'single' ? 1 : p.maxDepth,
@@ -110,7 +143,14 @@ export class McrtRenderer extends BaseRenderer<McrtParams> {
   }
 
   // Without a binding (a caller outside RenderContext): the exact path's r32float of data values.
-  auxiliaryTextures(scene: Scene, volume: VolumeBinding = { ...volumeValueMapping(scene.volume, { decodeScale: 1, decodeOffset: 0 }), format: 'r32float', key: '' }): readonly AuxiliaryTexture[] {
+  auxiliaryTextures(
+    scene: Scene,
+    volume: VolumeBinding = {
+      ...volumeValueMapping(scene.volume, { decodeScale: 1, decodeOffset: 0 }),
+      format: 'r32float',
+      key: '',
+    },
+  ): readonly AuxiliaryTexture[] {
     const aux: AuxiliaryTexture[] = [];
     const f = computeFeatures(scene, this.resolved);
     if (f.MAJORANT_GRID) aux.push(...this.majorantGridTextures(scene, volume));
@@ -119,9 +159,45 @@ export class McrtRenderer extends BaseRenderer<McrtParams> {
       const key = `${idOf(env.data)}|${env.scale ?? 1}|${env.width}x${env.height}`;
       const tables = () => this.environmentTables(env, key);
       aux.push(
-        { name: 'envMap', dimension: '2d', key, create: () => ({ dimension: '2d', width: env.width, height: env.height, format: 'rgba32float', data: tables().map, label: 'environment map' }) },
-        { name: 'envMarginal', dimension: '2d', key, create: () => ({ dimension: '2d', width: env.height + 1, height: 1, format: 'r32float', data: tables().marginal, label: 'environment marginal CDF' }) },
-        { name: 'envConditional', dimension: '2d', key, create: () => ({ dimension: '2d', width: env.width + 1, height: env.height, format: 'r32float', data: tables().conditional, label: 'environment conditional CDFs' }) },
+        {
+          name: 'envMap',
+          dimension: '2d',
+          key,
+          create: () => ({
+            dimension: '2d',
+            width: env.width,
+            height: env.height,
+            format: 'rgba32float',
+            data: tables().map,
+            label: 'environment map',
+          }),
+        },
+        {
+          name: 'envMarginal',
+          dimension: '2d',
+          key,
+          create: () => ({
+            dimension: '2d',
+            width: env.height + 1,
+            height: 1,
+            format: 'r32float',
+            data: tables().marginal,
+            label: 'environment marginal CDF',
+          }),
+        },
+        {
+          name: 'envConditional',
+          dimension: '2d',
+          key,
+          create: () => ({
+            dimension: '2d',
+            width: env.width + 1,
+            height: env.height,
+            format: 'r32float',
+            data: tables().conditional,
+            label: 'environment conditional CDFs',
+          }),
+        },
       );
     }
     return aux;
@@ -141,29 +217,56 @@ export class McrtRenderer extends BaseRenderer<McrtParams> {
     const tfKey = JSON.stringify(scene.transferFunction);
     return [
       {
-        name: 'majorantRanges', dimension: '2d', bind: false, key: `${idOf(scene.volume as Volume)}|${cellSize}|${volume.format}|${volume.key.split('|')[0]}`,
+        name: 'majorantRanges',
+        dimension: '2d',
+        bind: false,
+        key: `${idOf(scene.volume as Volume)}|${cellSize}|${volume.format}|${volume.key.split('|')[0]}`,
         render: {
-          label: 'majorant grid value ranges', width: layout.width, height: layout.height, format: 'rgba32float',
-          glsl: GLSL_SLICE_ATLAS + glslBuild.cellRanges, wgsl: WGSL_SLICE_ATLAS + wgslBuild.cellRanges, uniforms: BUILD_UNIFORMS,
+          label: 'majorant grid value ranges',
+          width: layout.width,
+          height: layout.height,
+          format: 'rgba32float',
+          glsl: GLSL_SLICE_ATLAS + glslBuild.cellRanges,
+          wgsl: WGSL_SLICE_ATLAS + wgslBuild.cellRanges,
+          uniforms: BUILD_UNIFORMS,
           values: { gridCells: geometry, gridDensity: 0, ...map },
           inputs: [{ name: 'volume', dimension: '3d' }],
         },
       },
       {
-        name: 'opacityBounds', dimension: '2d', bind: false, key: tfKey,
+        name: 'opacityBounds',
+        dimension: '2d',
+        bind: false,
+        key: tfKey,
         render: {
-          label: 'transfer function opacity bounds', width: TF_RESOLUTION, height: 1, format: 'rgba32float',
-          glsl: glslBuild.opacityBounds, wgsl: wgslBuild.opacityBounds, uniforms: BUILD_UNIFORMS, values: { gridCells: [0, 0, 0, 0], gridDensity: 0, ...map },
+          label: 'transfer function opacity bounds',
+          width: TF_RESOLUTION,
+          height: 1,
+          format: 'rgba32float',
+          glsl: glslBuild.opacityBounds,
+          wgsl: wgslBuild.opacityBounds,
+          uniforms: BUILD_UNIFORMS,
+          values: { gridCells: [0, 0, 0, 0], gridDensity: 0, ...map },
           inputs: [{ name: 'transferFunction', dimension: '2d' }],
         },
       },
       {
-        name: 'majorantGrid', dimension: '2d', key: `${this.gridKey(scene)}|${volume.key}`,
+        name: 'majorantGrid',
+        dimension: '2d',
+        key: `${this.gridKey(scene)}|${volume.key}`,
         render: {
-          label: 'majorant grid', width: layout.width, height: layout.height, format: 'rgba32float',
-          glsl: GLSL_SLICE_ATLAS + glslBuild.majorantGrid, wgsl: WGSL_SLICE_ATLAS + wgslBuild.majorantGrid, uniforms: BUILD_UNIFORMS,
+          label: 'majorant grid',
+          width: layout.width,
+          height: layout.height,
+          format: 'rgba32float',
+          glsl: GLSL_SLICE_ATLAS + glslBuild.majorantGrid,
+          wgsl: WGSL_SLICE_ATLAS + wgslBuild.majorantGrid,
+          uniforms: BUILD_UNIFORMS,
           values: { gridCells: geometry, gridDensity: scene.densityScale, ...map },
-          inputs: [{ name: 'majorantRanges', dimension: '2d' }, { name: 'opacityBounds', dimension: '2d' }],
+          inputs: [
+            { name: 'majorantRanges', dimension: '2d' },
+            { name: 'opacityBounds', dimension: '2d' },
+          ],
         },
       },
     ];
@@ -217,8 +320,16 @@ export class McrtRenderer extends BaseRenderer<McrtParams> {
 }
 
 const DEFAULT_FEATURES: McrtFeatures = {
-  ENV_MAP: false, ENV_LIGHT: true, LIGHT_COUNT: 0, SINGLE_SCATTERING: false, MAJORANT_GRID: true,
-  TRACKING: 2, ENV_SAMPLING: 2, MIS_POWER: true, DEBUG_OUTPUT: 0, GENERIC: false,
+  ENV_MAP: false,
+  ENV_LIGHT: true,
+  LIGHT_COUNT: 0,
+  SINGLE_SCATTERING: false,
+  MAJORANT_GRID: true,
+  TRACKING: 2,
+  ENV_SAMPLING: 2,
+  MIS_POWER: true,
+  DEBUG_OUTPUT: 0,
+  GENERIC: false,
 };
 
 const BUILD_UNIFORMS = new UniformLayout('MajorantBuild', [

@@ -80,7 +80,8 @@ export const MCRT_PARAM_SPECS: ParamSpecs = {
 };
 
 const oneOf = <T extends string>(name: string, v: unknown, allowed: readonly T[]) => {
-  if (!allowed.includes(v as T)) throw new VptError('invalid-scene', `MCRT: ${name} must be one of ${allowed.join(', ')}, got ${JSON.stringify(v)}`);
+  if (!allowed.includes(v as T))
+    throw new VptError('invalid-scene', `MCRT: ${name} must be one of ${allowed.join(', ')}, got ${JSON.stringify(v)}`);
 };
 
 /** Defaults filled in and every value checked; throws VptError('invalid-scene') naming the bad field. */
@@ -92,11 +93,26 @@ export function resolveParams(p: McrtParams): ResolvedMcrtParams {
   oneOf('environmentSampling', r.environmentSampling, ['mis', 'light', 'phase'] as const);
   oneOf('misHeuristic', r.misHeuristic, ['power', 'balance'] as const);
   oneOf('debugOutput', r.debugOutput, ['none', 'transmittance', 'fetches'] as const);
-  if (typeof r.specialize !== 'boolean') throw new VptError('invalid-scene', `MCRT: specialize must be a boolean, got ${JSON.stringify(r.specialize)}`);
-  if (typeof r.majorantGrid !== 'boolean') throw new VptError('invalid-scene', `MCRT: majorantGrid must be a boolean, got ${JSON.stringify(r.majorantGrid)}`);
-  if (!Number.isInteger(r.maxDepth) || r.maxDepth < -1 || r.maxDepth === 0) throw new VptError('invalid-scene', `MCRT: maxDepth must be -1 (unlimited) or a positive integer, got ${r.maxDepth}`);
-  if (!Number.isInteger(r.rouletteDepth) || r.rouletteDepth < 1) throw new VptError('invalid-scene', `MCRT: rouletteDepth must be a positive integer, got ${r.rouletteDepth}`);
-  if (!Number.isFinite(r.anisotropy) || Math.abs(r.anisotropy) > MAX_ANISOTROPY) throw new VptError('invalid-scene', `MCRT: anisotropy must be in [-${MAX_ANISOTROPY}, ${MAX_ANISOTROPY}], got ${r.anisotropy}`);
-  if (!Number.isInteger(r.majorantCellSize) || r.majorantCellSize < 1) throw new VptError('invalid-scene', `MCRT: majorantCellSize must be a positive integer (voxels), got ${r.majorantCellSize}`);
+  if (typeof r.specialize !== 'boolean')
+    throw new VptError('invalid-scene', `MCRT: specialize must be a boolean, got ${JSON.stringify(r.specialize)}`);
+  if (typeof r.majorantGrid !== 'boolean')
+    throw new VptError('invalid-scene', `MCRT: majorantGrid must be a boolean, got ${JSON.stringify(r.majorantGrid)}`);
+  if (!Number.isInteger(r.maxDepth) || r.maxDepth < -1 || r.maxDepth === 0)
+    throw new VptError(
+      'invalid-scene',
+      `MCRT: maxDepth must be -1 (unlimited) or a positive integer, got ${r.maxDepth}`,
+    );
+  if (!Number.isInteger(r.rouletteDepth) || r.rouletteDepth < 1)
+    throw new VptError('invalid-scene', `MCRT: rouletteDepth must be a positive integer, got ${r.rouletteDepth}`);
+  if (!Number.isFinite(r.anisotropy) || Math.abs(r.anisotropy) > MAX_ANISOTROPY)
+    throw new VptError(
+      'invalid-scene',
+      `MCRT: anisotropy must be in [-${MAX_ANISOTROPY}, ${MAX_ANISOTROPY}], got ${r.anisotropy}`,
+    );
+  if (!Number.isInteger(r.majorantCellSize) || r.majorantCellSize < 1)
+    throw new VptError(
+      'invalid-scene',
+      `MCRT: majorantCellSize must be a positive integer (voxels), got ${r.majorantCellSize}`,
+    );
   return r;
 }

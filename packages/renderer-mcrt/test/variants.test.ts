@@ -4,24 +4,77 @@ import { createProceduralVolume, isVptError, rampTransferFunction, type Scene } 
 import { computeFeatures, generateKernel, McrtRenderer, resolveParams, type McrtFeatures } from '../src/index.js';
 
 const scene = (over: Partial<Scene> = {}): Scene =>
-  testScene({ camera: { position: [0, 0, 2], target: [0, 0, 0], up: [0, 1, 0], fovy: 0.8 }, densityScale: 10, seed: 1, ...over });
+  testScene({
+    camera: { position: [0, 0, 2], target: [0, 0, 0], up: [0, 1, 0], fovy: 0.8 },
+    densityScale: 10,
+    seed: 1,
+    ...over,
+  });
 
 describe('MCRT feature variants', () => {
   it('derives the flags from the scene and the parameters', () => {
-    const f = computeFeatures(scene({ lights: [{ type: 'directional', direction: [0, 1, 0], irradiance: [1, 1, 1] }, { type: 'directional', direction: [1, 0, 0], irradiance: [0, 0, 0] }] }), resolveParams({}));
-    expect(f).toEqual({ ENV_MAP: false, ENV_LIGHT: true, LIGHT_COUNT: 1, SINGLE_SCATTERING: false, MAJORANT_GRID: true, TRACKING: 2, ENV_SAMPLING: 2, MIS_POWER: true, DEBUG_OUTPUT: 0, GENERIC: false });
-    const black = computeFeatures(scene({ environment: { type: 'constant', radiance: [0, 0, 0] } }), resolveParams({ environmentSampling: 'light', misHeuristic: 'balance' }));
+    const f = computeFeatures(
+      scene({
+        lights: [
+          { type: 'directional', direction: [0, 1, 0], irradiance: [1, 1, 1] },
+          { type: 'directional', direction: [1, 0, 0], irradiance: [0, 0, 0] },
+        ],
+      }),
+      resolveParams({}),
+    );
+    expect(f).toEqual({
+      ENV_MAP: false,
+      ENV_LIGHT: true,
+      LIGHT_COUNT: 1,
+      SINGLE_SCATTERING: false,
+      MAJORANT_GRID: true,
+      TRACKING: 2,
+      ENV_SAMPLING: 2,
+      MIS_POWER: true,
+      DEBUG_OUTPUT: 0,
+      GENERIC: false,
+    });
+    const black = computeFeatures(
+      scene({ environment: { type: 'constant', radiance: [0, 0, 0] } }),
+      resolveParams({ environmentSampling: 'light', misHeuristic: 'balance' }),
+    );
     expect(black.ENV_LIGHT).toBe(false);
     expect(black.ENV_SAMPLING).toBe(0); // irrelevant flags are canonical: no extra variants
     expect(black.MIS_POWER).toBe(false);
-    const map = computeFeatures(scene({ environment: { type: 'latlong', width: 2, height: 1, data: new Float32Array([0, 0, 0, 1, 2, 3]) } }), resolveParams({ scattering: 'single', tracking: 'ratio', majorantGrid: false }));
-    expect(map).toMatchObject({ ENV_MAP: true, ENV_LIGHT: true, SINGLE_SCATTERING: true, TRACKING: 1, MAJORANT_GRID: false });
-    const darkMap = computeFeatures(scene({ environment: { type: 'latlong', width: 1, height: 1, data: new Float32Array(3) } }), resolveParams({}));
+    const map = computeFeatures(
+      scene({ environment: { type: 'latlong', width: 2, height: 1, data: new Float32Array([0, 0, 0, 1, 2, 3]) } }),
+      resolveParams({ scattering: 'single', tracking: 'ratio', majorantGrid: false }),
+    );
+    expect(map).toMatchObject({
+      ENV_MAP: true,
+      ENV_LIGHT: true,
+      SINGLE_SCATTERING: true,
+      TRACKING: 1,
+      MAJORANT_GRID: false,
+    });
+    const darkMap = computeFeatures(
+      scene({ environment: { type: 'latlong', width: 1, height: 1, data: new Float32Array(3) } }),
+      resolveParams({}),
+    );
     expect(darkMap.ENV_MAP).toBe(false);
   });
 
-  const base: McrtFeatures = { ENV_MAP: false, ENV_LIGHT: true, LIGHT_COUNT: 0, SINGLE_SCATTERING: false, MAJORANT_GRID: true, TRACKING: 2, ENV_SAMPLING: 2, MIS_POWER: true, DEBUG_OUTPUT: 0, GENERIC: false };
-  const both = (f: McrtFeatures) => { const k = generateKernel(f); return [k.glsl, k.wgsl]; };
+  const base: McrtFeatures = {
+    ENV_MAP: false,
+    ENV_LIGHT: true,
+    LIGHT_COUNT: 0,
+    SINGLE_SCATTERING: false,
+    MAJORANT_GRID: true,
+    TRACKING: 2,
+    ENV_SAMPLING: 2,
+    MIS_POWER: true,
+    DEBUG_OUTPUT: 0,
+    GENERIC: false,
+  };
+  const both = (f: McrtFeatures) => {
+    const k = generateKernel(f);
+    return [k.glsl, k.wgsl];
+  };
 
   it('compiles only the code a variant needs, in both languages', () => {
     for (const src of both(base)) {
@@ -47,13 +100,23 @@ describe('MCRT feature variants', () => {
       expect(src).not.toContain('misWeight');
       expect(src).toContain('sampleUniformSphere(xi1, xi2)');
     }
-    for (const src of both({ ...base, ENV_SAMPLING: 0, MIS_POWER: false })) expect(src).not.toContain('sampleUniformSphere(xi1, xi2)');
+    for (const src of both({ ...base, ENV_SAMPLING: 0, MIS_POWER: false }))
+      expect(src).not.toContain('sampleUniformSphere(xi1, xi2)');
     for (const src of both({ ...base, ENV_LIGHT: false, ENV_SAMPLING: 0, MIS_POWER: false })) {
       expect(src).not.toContain('sampleUniformSphere(xi1, xi2)');
       expect(src).not.toContain('misWeight');
     }
     const full = generateKernel({ ...base, ENV_MAP: true, LIGHT_COUNT: 2 }).glsl.length;
-    expect(generateKernel({ ...base, ENV_LIGHT: false, ENV_SAMPLING: 0, MIS_POWER: false, MAJORANT_GRID: false, SINGLE_SCATTERING: true }).glsl.length).toBeLessThan(full * 0.8);
+    expect(
+      generateKernel({
+        ...base,
+        ENV_LIGHT: false,
+        ENV_SAMPLING: 0,
+        MIS_POWER: false,
+        MAJORANT_GRID: false,
+        SINGLE_SCATTERING: true,
+      }).glsl.length,
+    ).toBeLessThan(full * 0.8);
   });
 
   it('serves the variant of the last features() call and caches it', () => {
@@ -69,11 +132,25 @@ describe('MCRT feature variants', () => {
 
   it('lists the majorant grid (value ranges, TF bounds, grid) and environment tables as auxiliary textures with content keys', () => {
     const r = new McrtRenderer();
-    const s = scene({ volume: createProceduralVolume('blob', 20), environment: { type: 'latlong', width: 4, height: 2, data: new Float32Array(24).fill(1) } });
+    const s = scene({
+      volume: createProceduralVolume('blob', 20),
+      environment: { type: 'latlong', width: 4, height: 2, data: new Float32Array(24).fill(1) },
+    });
     const aux = r.auxiliaryTextures(s);
-    expect(aux.map((a) => a.name)).toEqual(['majorantRanges', 'opacityBounds', 'majorantGrid', 'envMap', 'envMarginal', 'envConditional']);
+    expect(aux.map((a) => a.name)).toEqual([
+      'majorantRanges',
+      'opacityBounds',
+      'majorantGrid',
+      'envMap',
+      'envMarginal',
+      'envConditional',
+    ]);
     expect(aux.map((a) => a.bind !== false)).toEqual([false, false, true, true, true, true]);
-    const keys = (x: Scene) => r.auxiliaryTextures(x).slice(0, 3).map((a) => a.key);
+    const keys = (x: Scene) =>
+      r
+        .auxiliaryTextures(x)
+        .slice(0, 3)
+        .map((a) => a.key);
     const [ranges, bounds, grid] = keys(s);
     // A camera move keeps every key; the volume changes the ranges, the TF the bounds, and all of them the grid.
     expect(keys({ ...s, camera: { ...s.camera, position: [1, 2, 3] } })).toEqual([ranges, bounds, grid]);
@@ -89,7 +166,9 @@ describe('MCRT feature variants', () => {
     expect(other[2]).not.toBe(grid);
     // 20³ voxels in cells of 8: 3³ cells in a 2 × 2 slice atlas of 3 × 3 tiles, all made on the GPU.
     expect(aux.slice(0, 3).every((a) => a.render && !a.create)).toBe(true);
-    expect([aux[0].render!.width, aux[0].render!.height, aux[2].render!.width, aux[2].render!.height]).toEqual([6, 6, 6, 6]);
+    expect([aux[0].render!.width, aux[0].render!.height, aux[2].render!.width, aux[2].render!.height]).toEqual([
+      6, 6, 6, 6,
+    ]);
     expect(aux[0].render!.inputs.map((i) => i.name)).toEqual(['volume']);
     expect(aux[0].render!.values.gridCells).toEqual([3, 3, 3, 2]);
     // Without a RenderContext's volume binding: the exact path's data values, here already in [0, 1].
@@ -103,23 +182,40 @@ describe('MCRT feature variants', () => {
   });
 
   it('specialize: false compiles one generic kernel for every scene, with the scene features as data', () => {
-    const light = { type: 'directional' as const, direction: [0, 1, 0] as [number, number, number], irradiance: [1, 1, 1] as [number, number, number] };
+    const light = {
+      type: 'directional' as const,
+      direction: [0, 1, 0] as [number, number, number],
+      irradiance: [1, 1, 1] as [number, number, number],
+    };
     const scenes = [
       scene(),
       scene({ environment: { type: 'constant', radiance: [0, 0, 0] }, lights: [light, light] }),
-      scene({ environment: { type: 'latlong', width: 2, height: 1, data: new Float32Array([0, 0, 0, 1, 2, 3]) }, lights: [light] }),
+      scene({
+        environment: { type: 'latlong', width: 2, height: 1, data: new Float32Array([0, 0, 0, 1, 2, 3]) },
+        lights: [light],
+      }),
     ];
     const specialised = new Set(scenes.map((s) => JSON.stringify(computeFeatures(s, resolveParams({})))));
     expect(specialised.size).toBe(3);
     for (const scattering of ['single', 'multiple'] as const) {
       for (const majorantGrid of [true, false]) {
-        const keys = new Set(scenes.map((s) => JSON.stringify(computeFeatures(s, resolveParams({ specialize: false, scattering, majorantGrid })))));
+        const keys = new Set(
+          scenes.map((s) =>
+            JSON.stringify(computeFeatures(s, resolveParams({ specialize: false, scattering, majorantGrid }))),
+          ),
+        );
         expect(keys.size, `${scattering} grid=${majorantGrid}`).toBe(1);
       }
     }
     const r = new McrtRenderer({ specialize: false, scattering: 'single', majorantGrid: false });
     const f = r.features(scenes[1]);
-    expect(f).toMatchObject({ GENERIC: true, ENV_MAP: true, SINGLE_SCATTERING: false, MAJORANT_GRID: true, LIGHT_COUNT: 8 });
+    expect(f).toMatchObject({
+      GENERIC: true,
+      ENV_MAP: true,
+      SINGLE_SCATTERING: false,
+      MAJORANT_GRID: true,
+      LIGHT_COUNT: 8,
+    });
     for (const src of both(f as unknown as McrtFeatures)) expect(src).toContain('u.lightCount');
     for (const src of both({ ...base, LIGHT_COUNT: 2 })) expect(src).not.toContain('u.lightCount');
     // The scene's features arrive as data: light count and depth as uniforms, a constant sky
@@ -127,7 +223,14 @@ describe('MCRT feature variants', () => {
     const v = r.paramValues(scenes[1]);
     expect([v.lightCount, v.maxDepth]).toEqual([2, 1]);
     const aux = r.auxiliaryTextures(scenes[1]);
-    expect(aux.map((a) => a.name)).toEqual(['majorantRanges', 'opacityBounds', 'majorantGrid', 'envMap', 'envMarginal', 'envConditional']);
+    expect(aux.map((a) => a.name)).toEqual([
+      'majorantRanges',
+      'opacityBounds',
+      'majorantGrid',
+      'envMap',
+      'envMarginal',
+      'envConditional',
+    ]);
     expect(aux[2].render!.values.gridCells).toEqual([1, 1, 1, 1]);
     const map = aux[3].create!().data as Float32Array;
     expect(map.length).toBeGreaterThan(4);
@@ -136,16 +239,33 @@ describe('MCRT feature variants', () => {
   });
 
   it('rejects bad parameters with a typed error', () => {
-    const bad: object[] = [{ anisotropy: 1 }, { anisotropy: NaN }, { maxDepth: 0 }, { maxDepth: 2.5 }, { tracking: 'woodcock' }, { rouletteDepth: 0 }, { majorantCellSize: 0 }, { environmentSampling: 'nee' }];
+    const bad: object[] = [
+      { anisotropy: 1 },
+      { anisotropy: NaN },
+      { maxDepth: 0 },
+      { maxDepth: 2.5 },
+      { tracking: 'woodcock' },
+      { rouletteDepth: 0 },
+      { majorantCellSize: 0 },
+      { environmentSampling: 'nee' },
+    ];
     for (const p of bad) {
       let err: unknown;
-      try { new McrtRenderer(p); } catch (e) { err = e; }
+      try {
+        new McrtRenderer(p);
+      } catch (e) {
+        err = e;
+      }
       expect(isVptError(err) && err.code === 'invalid-scene', JSON.stringify(p)).toBe(true);
     }
     const r = new McrtRenderer();
     expect(() => r.setParams({ anisotropy: -2 })).toThrow(/anisotropy/);
     expect(r.resolvedParams.anisotropy).toBe(0); // a rejected change leaves the renderer as it was
-    const many = Array.from({ length: 9 }, () => ({ type: 'directional' as const, direction: [0, 1, 0] as [number, number, number], irradiance: [1, 1, 1] as [number, number, number] }));
+    const many = Array.from({ length: 9 }, () => ({
+      type: 'directional' as const,
+      direction: [0, 1, 0] as [number, number, number],
+      irradiance: [1, 1, 1] as [number, number, number],
+    }));
     expect(() => r.features(scene({ lights: many }))).toThrow(/at most 8/);
   });
 });

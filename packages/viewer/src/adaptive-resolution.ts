@@ -27,14 +27,21 @@ export class AdaptiveResolution implements ReactiveController {
   /** Milliseconds per iteration at full size, from the last progress report outside an interaction. */
   private fullResMs = 0;
 
-  constructor(private readonly host: AdaptiveResolutionHost, private readonly onSizeChange: () => void) {
+  constructor(
+    private readonly host: AdaptiveResolutionHost,
+    private readonly onSizeChange: () => void,
+  ) {
     host.addController(this);
   }
 
   /** Whether the camera is moving (the image is rendered smaller). */
-  get interacting(): boolean { return this.interactingNow; }
+  get interacting(): boolean {
+    return this.interactingNow;
+  }
   /** The observed element's CSS size in pixels. */
-  get size(): { width: number; height: number } { return { ...this.cssSize }; }
+  get size(): { width: number; height: number } {
+    return { ...this.cssSize };
+  }
 
   hostConnected(): void {
     this.watchDevicePixelRatio();

@@ -5,9 +5,20 @@
  * message that names the attribute. Nothing here touches the GPU.
  */
 import {
-  MAX_DENSITY_SCALE, VptError, validateCamera, validateEnvironment, validateLights, validateTransferFunction,
-  TRANSFER_FUNCTION_PRESETS as CORE_TF_PRESETS, transferFunctionPreset as coreTransferFunctionPreset,
-  type Camera, type Environment, type Light, type TransferFunction, type TransferFunctionPresetName, type Volume,
+  MAX_DENSITY_SCALE,
+  VptError,
+  validateCamera,
+  validateEnvironment,
+  validateLights,
+  validateTransferFunction,
+  TRANSFER_FUNCTION_PRESETS as CORE_TF_PRESETS,
+  transferFunctionPreset as coreTransferFunctionPreset,
+  type Camera,
+  type Environment,
+  type Light,
+  type TransferFunction,
+  type TransferFunctionPresetName,
+  type Volume,
 } from '@vpt/core';
 import { TONE_MAP_OPERATORS, type ToneMapOperator } from '@vpt/post';
 import { TRANSFER_FUNCTION_PRESETS, transferFunctionPreset } from './presets.js';
@@ -16,7 +27,11 @@ export type BackendName = 'auto' | 'webgl2' | 'webgpu';
 export const BACKEND_NAMES: readonly BackendName[] = ['auto', 'webgl2', 'webgpu'];
 
 /** An environment given as a URL of a Radiance .hdr (or OpenEXR) lat-long image; loaded asynchronously. */
-export interface EnvironmentUrl { type: 'url'; url: string; scale?: number }
+export interface EnvironmentUrl {
+  type: 'url';
+  url: string;
+  scale?: number;
+}
 export type EnvironmentValue = Environment | EnvironmentUrl;
 
 const bad = (attribute: string, message: string): never => {
@@ -59,10 +74,15 @@ export function parseTransferFunction(v: unknown, volume?: Volume): TransferFunc
     const preset = transferFunctionPreset(text);
     if (preset) return preset;
     if (isFittedPreset(text)) return coreTransferFunctionPreset(text, volume);
-    if (!text.startsWith('{')) bad(attribute, `unknown preset "${text}" (presets: ${[...Object.keys(TRANSFER_FUNCTION_PRESETS), ...CORE_TF_PRESETS].join(', ')}; or JSON like {"dimensions":"1d","points":[…]})`);
+    if (!text.startsWith('{'))
+      bad(
+        attribute,
+        `unknown preset "${text}" (presets: ${[...Object.keys(TRANSFER_FUNCTION_PRESETS), ...CORE_TF_PRESETS].join(', ')}; or JSON like {"dimensions":"1d","points":[…]})`,
+      );
     tf = parseJson(attribute, text);
   }
-  if (!tf || typeof tf !== 'object') bad(attribute, `expected a preset name or a transfer-function object, got ${JSON.stringify(tf)}`);
+  if (!tf || typeof tf !== 'object')
+    bad(attribute, `expected a preset name or a transfer-function object, got ${JSON.stringify(tf)}`);
   const copy = structuredClone(tf) as TransferFunction;
   withAttribute(attribute, () => validateTransferFunction(copy));
   return copy;
@@ -73,7 +93,8 @@ export const DEFAULT_FOVY = 0.7;
 export function parseCamera(v: unknown): Camera {
   const attribute = 'camera';
   const c = typeof v === 'string' ? parseJson(attribute, v) : v;
-  if (!c || typeof c !== 'object' || Array.isArray(c)) bad(attribute, 'expected JSON like {"position":[0,0,2],"target":[0,0,0],"up":[0,1,0],"fovy":0.7}');
+  if (!c || typeof c !== 'object' || Array.isArray(c))
+    bad(attribute, 'expected JSON like {"position":[0,0,2],"target":[0,0,0],"up":[0,1,0],"fovy":0.7}');
   const o = c as Partial<Camera>;
   const cam: Camera = {
     position: o.position as Camera['position'],
@@ -89,7 +110,11 @@ export function parseLights(v: unknown): Light[] {
   const attribute = 'lights';
   if (typeof v === 'string' && v.trim() === 'none') return [];
   const l = typeof v === 'string' ? parseJson(attribute, v) : v;
-  if (!Array.isArray(l)) return bad(attribute, 'expected a JSON array like [{"type":"directional","direction":[1,1,1],"irradiance":[3,3,3]}] or "none"');
+  if (!Array.isArray(l))
+    return bad(
+      attribute,
+      'expected a JSON array like [{"type":"directional","direction":[1,1,1],"irradiance":[3,3,3]}] or "none"',
+    );
   const lights = structuredClone(l) as Light[];
   for (const [i, light] of lights.entries()) {
     if (!light || typeof light !== 'object' || !Array.isArray(light.direction) || !Array.isArray(light.irradiance)) {
@@ -106,7 +131,11 @@ export function parseEnvironment(v: unknown): EnvironmentValue {
   if (typeof v === 'string') {
     const text = v.trim();
     if (!text.startsWith('{')) {
-      if (!/\.(hdr|pic|exr)(\?|#|$)/i.test(text)) bad(attribute, `expected JSON like {"type":"constant","radiance":[1,1,1]} or the URL of a .hdr/.exr lat-long image, got "${text}"`);
+      if (!/\.(hdr|pic|exr)(\?|#|$)/i.test(text))
+        bad(
+          attribute,
+          `expected JSON like {"type":"constant","radiance":[1,1,1]} or the URL of a .hdr/.exr lat-long image, got "${text}"`,
+        );
       return { type: 'url', url: text };
     }
     v = parseJson(attribute, text);
@@ -117,10 +146,12 @@ export function parseEnvironment(v: unknown): EnvironmentValue {
     if (typeof env.url !== 'string') bad(attribute, '"url" must be a string');
     return { ...env };
   }
-  if (env.type === 'constant' && (!Array.isArray(env.radiance) || env.radiance.length !== 3)) bad(attribute, '"radiance" must be [r, g, b]');
+  if (env.type === 'constant' && (!Array.isArray(env.radiance) || env.radiance.length !== 3))
+    bad(attribute, '"radiance" must be [r, g, b]');
   if (env.type === 'latlong') {
     if (Array.isArray(env.data)) env.data = Float32Array.from(env.data as number[]);
-    if (!(env.data instanceof Float32Array)) bad(attribute, 'a lat-long environment needs "data": width*height*3 floats');
+    if (!(env.data instanceof Float32Array))
+      bad(attribute, 'a lat-long environment needs "data": width*height*3 floats');
   }
   withAttribute(attribute, () => validateEnvironment(env));
   // Lat-long data (a Float32Array) is kept by identity: copying megabytes per set is waste.
@@ -128,22 +159,29 @@ export function parseEnvironment(v: unknown): EnvironmentValue {
 }
 
 export function parseRendererParams(v: unknown): Record<string, unknown> {
-  const p = typeof v === 'string' ? (v.trim() === '' ? {} : parseJson('renderer-params', v)) : v ?? {};
-  if (!p || typeof p !== 'object' || Array.isArray(p)) return bad('renderer-params', 'expected a JSON object like {"stepSize":0.004}');
+  const p = typeof v === 'string' ? (v.trim() === '' ? {} : parseJson('renderer-params', v)) : (v ?? {});
+  if (!p || typeof p !== 'object' || Array.isArray(p))
+    return bad('renderer-params', 'expected a JSON object like {"stepSize":0.004}');
   return { ...(p as Record<string, unknown>) };
 }
 
 export function parseBackend(v: unknown): BackendName {
-  if (!BACKEND_NAMES.includes(v as BackendName)) bad('backend', `must be one of ${BACKEND_NAMES.join(', ')}, got ${JSON.stringify(v)}`);
+  if (!BACKEND_NAMES.includes(v as BackendName))
+    bad('backend', `must be one of ${BACKEND_NAMES.join(', ')}, got ${JSON.stringify(v)}`);
   return v as BackendName;
 }
 
 export function parseToneMapper(v: unknown): ToneMapOperator {
-  if (!TONE_MAP_OPERATORS.includes(v as ToneMapOperator)) bad('tone-mapper', `must be one of ${TONE_MAP_OPERATORS.join(', ')}, got ${JSON.stringify(v)}`);
+  if (!TONE_MAP_OPERATORS.includes(v as ToneMapOperator))
+    bad('tone-mapper', `must be one of ${TONE_MAP_OPERATORS.join(', ')}, got ${JSON.stringify(v)}`);
   return v as ToneMapOperator;
 }
 
-export function parseNumber(attribute: string, v: unknown, { min = -Infinity, max = Infinity, integer = false } = {}): number {
+export function parseNumber(
+  attribute: string,
+  v: unknown,
+  { min = -Infinity, max = Infinity, integer = false } = {},
+): number {
   const n = typeof v === 'string' ? Number(v.trim() === '' ? NaN : v) : v;
   if (typeof n !== 'number' || !Number.isFinite(n) || n < min || n > max || (integer && !Number.isInteger(n))) {
     bad(attribute, `must be a${integer ? 'n integer' : ' number'} in [${min}, ${max}], got ${JSON.stringify(v)}`);
@@ -172,7 +210,8 @@ export function jsonConverter(parse: (v: unknown) => unknown, keep: (value: stri
         return new InvalidAttribute(e);
       }
     },
-    toAttribute: (value: unknown): string | null => (value == null ? null : typeof value === 'string' ? value : JSON.stringify(value, jsonReplacer)),
+    toAttribute: (value: unknown): string | null =>
+      value == null ? null : typeof value === 'string' ? value : JSON.stringify(value, jsonReplacer),
   };
 }
 
@@ -187,20 +226,36 @@ function jsonReplacer(_key: string, value: unknown): unknown {
  */
 export function sameValue(a: unknown, b: unknown): boolean {
   if (a === b) return true;
-  if (typeof a !== 'object' || typeof b !== 'object' || a === null || b === null) return Number.isNaN(a) && Number.isNaN(b);
+  if (typeof a !== 'object' || typeof b !== 'object' || a === null || b === null)
+    return Number.isNaN(a) && Number.isNaN(b);
   if (ArrayBuffer.isView(a) || ArrayBuffer.isView(b)) return false;
   if (Array.isArray(a) !== Array.isArray(b)) return false;
-  const ka = Object.keys(a), kb = Object.keys(b);
+  const ka = Object.keys(a),
+    kb = Object.keys(b);
   if (ka.length !== kb.length) return false;
-  return ka.every((k) => Object.hasOwn(b, k) && sameValue((a as Record<string, unknown>)[k], (b as Record<string, unknown>)[k]));
+  return ka.every(
+    (k) => Object.hasOwn(b, k) && sameValue((a as Record<string, unknown>)[k], (b as Record<string, unknown>)[k]),
+  );
 }
 
 export const hasChanged = (value: unknown, old: unknown): boolean => !sameValue(value, old);
 
 /** The element's checked properties and the parser each one's value goes through. */
 export type CheckedProperty =
-  | 'transferFunction' | 'camera' | 'lights' | 'environment' | 'rendererParams' | 'backend' | 'toneMapper'
-  | 'exposure' | 'maxSamples' | 'targetError' | 'densityScale' | 'seed' | 'resolutionScale' | 'renderer';
+  | 'transferFunction'
+  | 'camera'
+  | 'lights'
+  | 'environment'
+  | 'rendererParams'
+  | 'backend'
+  | 'toneMapper'
+  | 'exposure'
+  | 'maxSamples'
+  | 'targetError'
+  | 'densityScale'
+  | 'seed'
+  | 'resolutionScale'
+  | 'renderer';
 
 function propertyParsers(volume: Volume | undefined): Record<CheckedProperty, (v: unknown) => unknown> {
   return {
@@ -218,7 +273,10 @@ function propertyParsers(volume: Volume | undefined): Record<CheckedProperty, (v
     seed: (v) => parseNumber('seed', v, { min: 0, max: 0xffffffff, integer: true }),
     resolutionScale: (v) => parseNumber('resolution-scale', v, { min: 0.05, max: 4 }),
     // The name is checked against the registry when it loads; here only its form.
-    renderer: (v) => (typeof v === 'string' && v.trim() !== '' ? v : bad('renderer', `must be a renderer name, got ${JSON.stringify(v)}`)),
+    renderer: (v) =>
+      typeof v === 'string' && v.trim() !== ''
+        ? v
+        : bad('renderer', `must be a renderer name, got ${JSON.stringify(v)}`),
   };
 }
 
@@ -250,7 +308,12 @@ export class AttributeValidator {
    * parsed objects; objects (from an attribute's converter or a property) are only
    * validated, so an attribute's own text is not rewritten. `volume` fits the 2D presets.
    */
-  validate(target: Record<CheckedProperty, unknown>, changed: { has(key: string): boolean }, volume: Volume | undefined, report: (error: unknown) => void): void {
+  validate(
+    target: Record<CheckedProperty, unknown>,
+    changed: { has(key: string): boolean },
+    volume: Volume | undefined,
+    report: (error: unknown) => void,
+  ): void {
     const parsers = propertyParsers(volume);
     for (const key of CHECKED_PROPERTIES) {
       if (!changed.has(key)) continue;

@@ -14,9 +14,20 @@ export interface OrientedVolume extends Pick<Volume, 'dims' | 'spacing'> {
 }
 
 /** Anatomical directions in the volume's own (index) frame, each snapped to the nearest axis. */
-export interface AnatomicalFrame { superior: Vec3; anterior: Vec3; right: Vec3 }
+export interface AnatomicalFrame {
+  superior: Vec3;
+  anterior: Vec3;
+  right: Vec3;
+}
 
-const LETTER_AXIS: Record<string, [number, number]> = { R: [0, 1], L: [0, -1], A: [1, 1], P: [1, -1], S: [2, 1], I: [2, -1] };
+const LETTER_AXIS: Record<string, [number, number]> = {
+  R: [0, 1],
+  L: [0, -1],
+  A: [1, 1],
+  P: [1, -1],
+  S: [2, 1],
+  I: [2, -1],
+};
 
 /** The orientation matrix (RAS+ world) of axis codes like 'PIR', or null. */
 function orientationFromCodes(codes: string): number[] | null {
@@ -51,7 +62,10 @@ export function anatomicalFrame(volume: OrientedVolume): AnatomicalFrame | null 
   const meta = (volume.meta ?? {}) as { space?: unknown; axisCodes?: unknown };
   let o: readonly number[] | null = volume.orientation && volume.orientation.length === 9 ? volume.orientation : null;
   let space = meta.space === 'LPS' ? 'LPS' : 'RAS';
-  if (!o && typeof meta.axisCodes === 'string') { o = orientationFromCodes(meta.axisCodes); space = 'RAS'; }
+  if (!o && typeof meta.axisCodes === 'string') {
+    o = orientationFromCodes(meta.axisCodes);
+    space = 'RAS';
+  }
   if (!o || !o.every(Number.isFinite)) return null;
   // LPS: world x is left and y posterior, so right and anterior are their negatives; S is +z in both.
   const k = space === 'LPS' ? -1 : 1;

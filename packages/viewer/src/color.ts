@@ -23,7 +23,17 @@ export function intensityOf(c: readonly number[]): number {
 /** `#rrggbb` of a linear colour, divided by its intensity. */
 export function linearToHex(c: readonly number[]): string {
   const k = intensityOf(c);
-  return '#' + c.slice(0, 3).map((v) => Math.round(linearToSrgb(v / k) * 255).toString(16).padStart(2, '0')).join('');
+  return (
+    '#' +
+    c
+      .slice(0, 3)
+      .map((v) =>
+        Math.round(linearToSrgb(v / k) * 255)
+          .toString(16)
+          .padStart(2, '0'),
+      )
+      .join('')
+  );
 }
 
 /** A linear colour from `#rrggbb` and an intensity multiplier. */

@@ -10,9 +10,21 @@ import { valueHistogram } from './histogram.js';
 type Rgb = [number, number, number];
 
 const PALETTES: Record<'warm' | 'hot' | 'cool', [Rgb, Rgb, Rgb]> = {
-  warm: [[0.8, 0.45, 0.3], [1.0, 0.8, 0.65], [2.2, 2.1, 1.9]],
-  hot: [[1.2, 0.15, 0.02], [2.4, 1.1, 0.1], [4, 3.4, 2.4]],
-  cool: [[0.1, 0.3, 1.0], [0.4, 1.2, 1.6], [2.5, 2.6, 2.8]],
+  warm: [
+    [0.8, 0.45, 0.3],
+    [1.0, 0.8, 0.65],
+    [2.2, 2.1, 1.9],
+  ],
+  hot: [
+    [1.2, 0.15, 0.02],
+    [2.4, 1.1, 0.1],
+    [4, 3.4, 2.4],
+  ],
+  cool: [
+    [0.1, 0.3, 1.0],
+    [0.4, 1.2, 1.6],
+    [2.5, 2.6, 2.8],
+  ],
 };
 export type Palette = keyof typeof PALETTES;
 
@@ -34,10 +46,13 @@ export function autoTransferFunction(volume: Volume, palette: Palette = 'warm'):
     return 1;
   };
   const [c0, c1, c2] = PALETTES[palette];
-  const lo = quantile(0.5), mid = Math.max(quantile(0.9), lo + 0.01), hi = Math.max(quantile(0.995), mid + 0.02);
+  const lo = quantile(0.5),
+    mid = Math.max(quantile(0.9), lo + 0.01),
+    hi = Math.max(quantile(0.995), mid + 0.02);
   const r = (x: number) => Math.round(Math.min(1, x) * 1e4) / 1e4;
   return {
-    dimensions: '1d', points: [
+    dimensions: '1d',
+    points: [
       { value: r(lo), color: [...c0], opacity: 0 },
       { value: r(mid), color: [...c1], opacity: 0.15 },
       { value: r(hi), color: [...c2], opacity: 1 },
@@ -48,13 +63,22 @@ export function autoTransferFunction(volume: Volume, palette: Palette = 'warm'):
 /** A 1D transfer function's colours as albedos in [0, 1] for the path tracer (emissive colours above 1 are not albedos). */
 export function asAlbedo(tf: TransferFunction): TransferFunction {
   if (tf.dimensions !== '1d') return tf;
-  return { ...tf, points: tf.points.map((p) => ({ ...p, color: p.color.map((c) => Math.min(0.98, c / Math.max(1, ...p.color))) as Rgb })) };
+  return {
+    ...tf,
+    points: tf.points.map((p) => ({
+      ...p,
+      color: p.color.map((c) => Math.min(0.98, c / Math.max(1, ...p.color))) as Rgb,
+    })),
+  };
 }
 
 /** A 1D transfer function with every colour multiplied by k. */
 export function scaleColors(tf: TransferFunction, k: number): TransferFunction {
   if (tf.dimensions !== '1d') return tf;
-  return { ...tf, points: tf.points.map((p) => ({ ...p, color: p.color.map((c) => Math.round(c * k * 1e4) / 1e4) as Rgb })) };
+  return {
+    ...tf,
+    points: tf.points.map((p) => ({ ...p, color: p.color.map((c) => Math.round(c * k * 1e4) / 1e4) as Rgb })),
+  };
 }
 
 /** The value where a 1D transfer function first reaches a third of its largest opacity: a sensible isovalue. */
@@ -94,12 +118,27 @@ export function rendererLook(renderer: string): RendererLook {
     case 'mip':
       return { densityScale: 20, environment: dark(0, 0, 0), lights: () => [], transferFunction: (tf) => tf };
     case 'iso':
-      return { densityScale: 20, environment: dark(0.1, 0.11, 0.14), lights: (c) => keyLight(c, [2.6, 2.5, 2.3]), transferFunction: (tf) => tf };
+      return {
+        densityScale: 20,
+        environment: dark(0.1, 0.11, 0.14),
+        lights: (c) => keyLight(c, [2.6, 2.5, 2.3]),
+        transferFunction: (tf) => tf,
+      };
     case 'mcrt':
-      return { densityScale: 150, environment: dark(0.08, 0.09, 0.12), lights: (c) => keyLight(c, [4, 3.7, 3.2]), transferFunction: asAlbedo };
+      return {
+        densityScale: 150,
+        environment: dark(0.08, 0.09, 0.12),
+        lights: (c) => keyLight(c, [4, 3.7, 3.2]),
+        transferFunction: asAlbedo,
+      };
     default:
       // Emission–absorption: the palette's emissive top (2.2) saturates a dense volume; 0.55× keeps its structure.
-      return { densityScale: 60, environment: dark(0.03, 0.035, 0.05), lights: () => [], transferFunction: (tf) => scaleColors(tf, 0.55) };
+      return {
+        densityScale: 60,
+        environment: dark(0.03, 0.035, 0.05),
+        lights: () => [],
+        transferFunction: (tf) => scaleColors(tf, 0.55),
+      };
   }
 }
 
@@ -109,7 +148,11 @@ export function defaultRendererParams(renderer: string, tf: TransferFunction | n
     // Halfway between where the automatic function starts (the median of the foreground)
     // and its 90th percentile: the outer surface of the object rather than its densest core.
     const value = (tf.points[0].value + tf.points[1].value) / 2;
-    return { surfaces: [{ value: Math.round(value * 1000) / 1000, color: [0.92, 0.88, 0.8], opacity: 1 }], specular: 0.15, shininess: 30 };
+    return {
+      surfaces: [{ value: Math.round(value * 1000) / 1000, color: [0.92, 0.88, 0.8], opacity: 1 }],
+      specular: 0.15,
+      shininess: 30,
+    };
   }
   return {};
 }

@@ -21,7 +21,9 @@ export async function encodePngBlob(rgba: Uint8Array, width: number, height: num
   canvas.width = width;
   canvas.height = height;
   canvas.getContext('2d')!.putImageData(image, 0, 0);
-  return new Promise((resolve, reject) => canvas.toBlob((b) => (b ? resolve(b) : reject(new Error('PNG encoding failed'))), 'image/png'));
+  return new Promise((resolve, reject) =>
+    canvas.toBlob((b) => (b ? resolve(b) : reject(new Error('PNG encoding failed'))), 'image/png'),
+  );
 }
 
 /** Portable float map (colour "PF", little-endian, rows bottom to top as the format requires). */

@@ -9,8 +9,17 @@ import { gradientMagnitudes, maxGradientMagnitude, normalizationRange, normalize
 /** At most this many voxels are visited (every k-th along each axis beyond it). */
 const MAX_VISITED = 2_000_000;
 
-export interface Histogram1D { bins: Float64Array; max: number }
-export interface Histogram2D { width: number; height: number; bins: Float64Array; max: number; maxGradient: number }
+export interface Histogram1D {
+  bins: Float64Array;
+  max: number;
+}
+export interface Histogram2D {
+  width: number;
+  height: number;
+  bins: Float64Array;
+  max: number;
+  maxGradient: number;
+}
 
 function strideFor(v: Volume): number {
   const n = v.dims[0] * v.dims[1] * v.dims[2];
@@ -44,7 +53,11 @@ export function valueHistogram(v: Volume, binCount = 256): Histogram1D {
  * two million voxels and on every k-th voxel beyond, where `maxGradient` is then the
  * largest sampled magnitude rather than the exact one.
  */
-export interface GradientSamples { values: Float32Array; gradients: Float32Array; maxGradient: number }
+export interface GradientSamples {
+  values: Float32Array;
+  gradients: Float32Array;
+  maxGradient: number;
+}
 
 export function gradientSamples(v: Volume): GradientSamples {
   const [lo, hi] = normalizationRange(v);
@@ -63,13 +76,16 @@ export function gradientSamples(v: Volume): GradientSamples {
   const at = (x: number, y: number, z: number) => norm(x + nx * (y + ny * z));
   // Same formula as core's gradientMagnitudes, evaluated only at the sampled voxels.
   const deriv = (i: number, n: number, f: (j: number) => number) => {
-    const i0 = Math.max(i - 1, 0), i1 = Math.min(i + 1, n - 1);
+    const i0 = Math.max(i - 1, 0),
+      i1 = Math.min(i + 1, n - 1);
     return i1 === i0 ? 0 : (f(i1) - f(i0)) / (i1 - i0);
   };
   const k = v.spacing.map((sp) => Math.abs(hi - lo) / sp); // |hi − lo|: an inverted range keeps magnitudes
   const count = Math.ceil(nx / s) * Math.ceil(ny / s) * Math.ceil(nz / s);
-  const values = new Float32Array(count), gradients = new Float32Array(count);
-  let n = 0, max = 0;
+  const values = new Float32Array(count),
+    gradients = new Float32Array(count);
+  let n = 0,
+    max = 0;
   for (let z = 0; z < nz; z += s) {
     for (let y = 0; y < ny; y += s) {
       for (let x = 0; x < nx; x += s) {
@@ -91,7 +107,12 @@ export function gradientSamples(v: Volume): GradientSamples {
  * row 0 = gradient 0): the axes of a 2D transfer function, the gradient divided by
  * `gradientMax` (the TF's own, else the volume's largest) and clamped to 1 as the kernels do.
  */
-export function valueGradientHistogram(s: GradientSamples, gradientMax = s.maxGradient, width = 128, height = 64): Histogram2D {
+export function valueGradientHistogram(
+  s: GradientSamples,
+  gradientMax = s.maxGradient,
+  width = 128,
+  height = 64,
+): Histogram2D {
   const bins = new Float64Array(width * height);
   const inv = gradientMax > 0 ? 1 / gradientMax : 0;
   for (let i = 0; i < s.values.length; i++) {
@@ -104,9 +125,13 @@ export function valueGradientHistogram(s: GradientSamples, gradientMax = s.maxGr
 
 /** The largest count once the single largest bin is set aside (usually the empty background). */
 function robustMax(bins: Float64Array): number {
-  let first = 0, second = 0;
+  let first = 0,
+    second = 0;
   for (const b of bins) {
-    if (b > first) { second = first; first = b; } else if (b > second) second = b;
+    if (b > first) {
+      second = first;
+      first = b;
+    } else if (b > second) second = b;
   }
   return Math.max(1, second > 0 ? second : first);
 }

@@ -5,18 +5,56 @@
  */
 import { VptTfEditor } from './tf-editor-1d.js';
 import { VptTf2dEditor } from './tf-editor-2d.js';
-import { VptViewer, type ViewerChangeDetail, type ViewerConvergedDetail, type ViewerErrorDetail, type ViewerLoadDetail, type ViewerProgressDetail } from './viewer-element.js';
+import {
+  VptViewer,
+  type ViewerChangeDetail,
+  type ViewerConvergedDetail,
+  type ViewerErrorDetail,
+  type ViewerLoadDetail,
+  type ViewerProgressDetail,
+} from './viewer-element.js';
 
 export { VptViewer, VptTfEditor, VptTf2dEditor };
-export type { ViewerErrorDetail, ViewerProgressDetail, ViewerConvergedDetail, ViewerLoadDetail, ViewerChangeDetail, PanelName } from './viewer-element.js';
+export type {
+  ViewerErrorDetail,
+  ViewerProgressDetail,
+  ViewerConvergedDetail,
+  ViewerLoadDetail,
+  ViewerChangeDetail,
+  PanelName,
+} from './viewer-element.js';
 export type { RefinementStats } from './session.js';
-export { registerRenderer, rendererEntries, rendererEntry, createRenderer, type RendererEntry, type RendererConstructor, type RendererParamSpec } from './renderer-registry.js';
+export {
+  registerRenderer,
+  rendererEntries,
+  rendererEntry,
+  createRenderer,
+  type RendererEntry,
+  type RendererConstructor,
+  type RendererParamSpec,
+} from './renderer-registry.js';
 export { TRANSFER_FUNCTION_PRESETS, transferFunctionPreset } from './presets.js';
 export { parseTransferFunction, parseCamera, parseLights, parseEnvironment } from './attributes.js';
-export { valueHistogram, gradientSamples, valueGradientHistogram, type Histogram1D, type Histogram2D, type GradientSamples } from './histogram.js';
+export {
+  valueHistogram,
+  gradientSamples,
+  valueGradientHistogram,
+  type Histogram1D,
+  type Histogram2D,
+  type GradientSamples,
+} from './histogram.js';
 export { encodePfm, encodeExr, encodePngBlob } from './export.js';
 export { fitCamera, anatomicalFrame, type AnatomicalFrame, type OrientedVolume } from './camera-fit.js';
-export { autoTransferFunction, asAlbedo, isoValueOf, keyLight, rendererLook, defaultRendererParams, type RendererLook, type Palette } from './defaults.js';
+export {
+  autoTransferFunction,
+  asAlbedo,
+  isoValueOf,
+  keyLight,
+  rendererLook,
+  defaultRendererParams,
+  type RendererLook,
+  type Palette,
+} from './defaults.js';
 export { volumeLoader } from './loading/volume-source.js';
 export type { VolumeSource, LoadOptions, LoadedVolumeLike } from './loading/types.js';
 

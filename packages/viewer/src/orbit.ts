@@ -139,7 +139,10 @@ export class OrbitCamera {
     cam.updateMatrixWorld();
     if (!this.keyTimer) this.callbacks.start();
     else clearTimeout(this.keyTimer);
-    this.keyTimer = setTimeout(() => { this.keyTimer = null; this.callbacks.end(); }, KEY_END_MS);
+    this.keyTimer = setTimeout(() => {
+      this.keyTimer = null;
+      this.callbacks.end();
+    }, KEY_END_MS);
     this.callbacks.change(this.get());
   };
 }

@@ -7,7 +7,13 @@ import type { TransferFunction } from '@vpt/core';
  */
 export const TRANSFER_FUNCTION_PRESETS: Readonly<Record<string, TransferFunction>> = {
   /** Grey, opacity and brightness growing linearly with the value. */
-  ramp: { dimensions: '1d', points: [{ value: 0, color: [1, 1, 1], opacity: 0 }, { value: 1, color: [1, 1, 1], opacity: 1 }] },
+  ramp: {
+    dimensions: '1d',
+    points: [
+      { value: 0, color: [1, 1, 1], opacity: 0 },
+      { value: 1, color: [1, 1, 1], opacity: 1 },
+    ],
+  },
   /** Low values transparent, a soft warm shell around the middle, dense white highs (soft tissue → bone); colours stay ≤ 1 so EAM does not blow out to white. */
   tissue: {
     dimensions: '1d',

@@ -46,7 +46,10 @@ export function exported<T>(m: Record<string, unknown>, name: string): T {
 export async function createRenderer(name: string, params: Record<string, unknown> = {}): Promise<Renderer> {
   const entry = registry.get(name);
   if (!entry) {
-    throw new VptError('invalid-scene', `<vpt-viewer> renderer: unknown renderer "${name}" (available: ${[...registry.keys()].join(', ')})`);
+    throw new VptError(
+      'invalid-scene',
+      `<vpt-viewer> renderer: unknown renderer "${name}" (available: ${[...registry.keys()].join(', ')})`,
+    );
   }
   let ctor = loaded.get(name);
   if (!ctor) {
@@ -62,7 +65,11 @@ export async function createRenderer(name: string, params: Record<string, unknow
     Ctor = await ctor;
   } catch (e) {
     loaded.delete(name); // a later attempt (after installing or building the package) may succeed
-    throw new VptError('load-failed', `The "${name}" renderer is not available: ${entry.packageName} could not be loaded (${(e as Error).message}). Install and build it, or pick another renderer.`, { cause: e });
+    throw new VptError(
+      'load-failed',
+      `The "${name}" renderer is not available: ${entry.packageName} could not be loaded (${(e as Error).message}). Install and build it, or pick another renderer.`,
+      { cause: e },
+    );
   }
   return new Ctor(params);
 }
@@ -83,7 +90,13 @@ const PACKAGE_LOADERS: Record<string, () => Promise<Record<string, unknown>>> = 
 // The renderers of the catalog (core's renderer-catalog.ts), each loaded on first use.
 for (const e of RENDERER_CATALOG) {
   registerRenderer({
-    name: e.name, label: e.label, packageName: e.packageName, params: e.params,
-    load: () => (PACKAGE_LOADERS[e.packageName] ?? (() => import(/* @vite-ignore */ e.packageName)))().then((m) => exported<RendererConstructor>(m, e.exportName)),
+    name: e.name,
+    label: e.label,
+    packageName: e.packageName,
+    params: e.params,
+    load: () =>
+      (PACKAGE_LOADERS[e.packageName] ?? (() => import(/* @vite-ignore */ e.packageName)))().then((m) =>
+        exported<RendererConstructor>(m, e.exportName),
+      ),
   });
 }

@@ -37,7 +37,10 @@ export class RenderSession {
   private lastErrorAt = 0;
   private disposed = false;
 
-  private constructor(readonly ctx: RenderContext, private readonly callbacks: SessionCallbacks) {
+  private constructor(
+    readonly ctx: RenderContext,
+    private readonly callbacks: SessionCallbacks,
+  ) {
     ctx.onStats((s) => this.onStats(s.iterations, s.msPerIteration));
     ctx.backend.onLost(() => callbacks.lost());
     ctx.backend.onRestored(() => {
@@ -47,14 +50,30 @@ export class RenderSession {
     });
   }
 
-  static async create(opts: { canvas: HTMLCanvasElement; backend: BackendPreference; renderer: Renderer; post: PostStep[]; width: number; height: number }, callbacks: SessionCallbacks): Promise<RenderSession> {
+  static async create(
+    opts: {
+      canvas: HTMLCanvasElement;
+      backend: BackendPreference;
+      renderer: Renderer;
+      post: PostStep[];
+      width: number;
+      height: number;
+    },
+    callbacks: SessionCallbacks,
+  ): Promise<RenderSession> {
     const ctx = await RenderContext.create(opts);
     return new RenderSession(ctx, callbacks);
   }
 
-  get samples(): number { return this.ctx.stats.iterations; }
-  get isConverged(): boolean { return this.converged; }
-  get lastError(): number | null { return this.error; }
+  get samples(): number {
+    return this.ctx.stats.iterations;
+  }
+  get isConverged(): boolean {
+    return this.converged;
+  }
+  get lastError(): number | null {
+    return this.error;
+  }
 
   /**
    * Apply a scene; returns whether the image changes (and accumulation restarted).
@@ -101,7 +120,12 @@ export class RenderSession {
     this.maxSamples = maxSamples;
     this.targetError = targetError;
     if (!changed) return;
-    if (this.converged && this.samples < maxSamples && !(targetError > 0 && this.error !== null && this.error <= targetError)) this.converged = false;
+    if (
+      this.converged &&
+      this.samples < maxSamples &&
+      !(targetError > 0 && this.error !== null && this.error <= targetError)
+    )
+      this.converged = false;
     this.rearm();
     if (!this.converged && this.ctx.getScene() && this.samples >= maxSamples) this.finish('max-samples');
   }
@@ -150,27 +174,35 @@ export class RenderSession {
     this.errorInFlight = true;
     this.lastErrorAt = now;
     const accumulation = this.accumulation;
-    this.ctx.estimateError().then((e) => {
-      if (this.disposed || accumulation !== this.accumulation || !e) return;
-      this.error = e.relativeRmse;
-      if (this.targetError > 0 && e.relativeRmse <= this.targetError && !this.converged) {
-        // Hold the accumulation where it is: the loop keeps presenting but adds no samples.
-        this.ctx.start({ maxIterations: this.samples });
-        this.finish('target-error');
-      }
-    }).catch(() => {
-      // Targets can be replaced mid-read (resize, loss); the next estimate will do.
-    }).finally(() => { this.errorInFlight = false; });
+    this.ctx
+      .estimateError()
+      .then((e) => {
+        if (this.disposed || accumulation !== this.accumulation || !e) return;
+        this.error = e.relativeRmse;
+        if (this.targetError > 0 && e.relativeRmse <= this.targetError && !this.converged) {
+          // Hold the accumulation where it is: the loop keeps presenting but adds no samples.
+          this.ctx.start({ maxIterations: this.samples });
+          this.finish('target-error');
+        }
+      })
+      .catch(() => {
+        // Targets can be replaced mid-read (resize, loss); the next estimate will do.
+      })
+      .finally(() => {
+        this.errorInFlight = false;
+      });
   }
 }
 
 /** Same image: same volume object, and equal transfer function, camera, lights, environment, density and seed. */
 export function sameScene(a: Scene, b: Scene): boolean {
-  return a.volume === b.volume
-    && a.densityScale === b.densityScale
-    && a.seed === b.seed
-    && sameValue(a.transferFunction, b.transferFunction)
-    && sameValue(a.camera, b.camera)
-    && sameValue(a.lights, b.lights)
-    && sameValue(a.environment, b.environment);
+  return (
+    a.volume === b.volume &&
+    a.densityScale === b.densityScale &&
+    a.seed === b.seed &&
+    sameValue(a.transferFunction, b.transferFunction) &&
+    sameValue(a.camera, b.camera) &&
+    sameValue(a.lights, b.lights) &&
+    sameValue(a.environment, b.environment)
+  );
 }

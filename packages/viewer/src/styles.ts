@@ -3,51 +3,263 @@ import { css } from 'lit';
 /** The element's look: dark, compact, a visible focus ring on everything that takes focus. */
 export const viewerStyles = css`
   :host {
-    display: block; position: relative; height: 480px; box-sizing: border-box;
-    font: 13px/1.35 system-ui, sans-serif; color: #ddd; background: #000; container-type: inline-size;
-    --vpt-accent: #6af; --vpt-panel-bg: #16161a; --vpt-panel-width: 19rem;
+    display: block;
+    position: relative;
+    height: 480px;
+    box-sizing: border-box;
+    font:
+      13px/1.35 system-ui,
+      sans-serif;
+    color: #ddd;
+    background: #000;
+    container-type: inline-size;
+    --vpt-accent: #6af;
+    --vpt-panel-bg: #16161a;
+    --vpt-panel-width: 19rem;
   }
-  :host([hidden]) { display: none; }
-  .layout { display: flex; width: 100%; height: 100%; }
-  .view { position: relative; flex: 1 1 auto; min-width: 0; overflow: hidden; }
-  .view canvas { position: absolute; inset: 0; width: 100%; height: 100%; display: block; touch-action: none; outline: none; }
-  .view canvas:focus-visible { box-shadow: inset 0 0 0 2px var(--vpt-accent); }
-  .overlay { position: absolute; left: 0; right: 0; margin: 0; padding: 6px 10px; font-size: 12px; }
-  .status { top: 0; background: #000a; pointer-events: none; }
-  .error { bottom: 0; background: #7a1010ee; color: #fff; display: flex; gap: 8px; align-items: flex-start; }
-  .error p { margin: 0; flex: 1; white-space: pre-wrap; overflow-wrap: anywhere; }
-  .lost { inset: 0; display: grid; place-content: center; gap: 8px; text-align: center; background: #000c; }
-  .toolbar { position: absolute; top: 6px; right: 6px; display: flex; gap: 4px; }
-  .drop { position: absolute; inset: 0; border: 3px dashed var(--vpt-accent); background: #0468; display: grid; place-content: center; pointer-events: none; }
-  button, select, input { font: inherit; color: inherit; }
-  button { background: #2a2a30e6; border: 1px solid #555; border-radius: 4px; padding: 3px 9px; cursor: pointer; }
-  button:hover { background: #3a3a42; }
-  button:focus-visible, select:focus-visible, input:focus-visible, summary:focus-visible { outline: 2px solid var(--vpt-accent); outline-offset: 1px; }
-  aside { flex: 0 0 var(--vpt-panel-width); max-width: 100%; overflow-y: auto; background: var(--vpt-panel-bg); border-left: 1px solid #333; box-sizing: border-box; }
+  :host([hidden]) {
+    display: none;
+  }
+  .layout {
+    display: flex;
+    width: 100%;
+    height: 100%;
+  }
+  .view {
+    position: relative;
+    flex: 1 1 auto;
+    min-width: 0;
+    overflow: hidden;
+  }
+  .view canvas {
+    position: absolute;
+    inset: 0;
+    width: 100%;
+    height: 100%;
+    display: block;
+    touch-action: none;
+    outline: none;
+  }
+  .view canvas:focus-visible {
+    box-shadow: inset 0 0 0 2px var(--vpt-accent);
+  }
+  .overlay {
+    position: absolute;
+    left: 0;
+    right: 0;
+    margin: 0;
+    padding: 6px 10px;
+    font-size: 12px;
+  }
+  .status {
+    top: 0;
+    background: #000a;
+    pointer-events: none;
+  }
+  .error {
+    bottom: 0;
+    background: #7a1010ee;
+    color: #fff;
+    display: flex;
+    gap: 8px;
+    align-items: flex-start;
+  }
+  .error p {
+    margin: 0;
+    flex: 1;
+    white-space: pre-wrap;
+    overflow-wrap: anywhere;
+  }
+  .lost {
+    inset: 0;
+    display: grid;
+    place-content: center;
+    gap: 8px;
+    text-align: center;
+    background: #000c;
+  }
+  .toolbar {
+    position: absolute;
+    top: 6px;
+    right: 6px;
+    display: flex;
+    gap: 4px;
+  }
+  .drop {
+    position: absolute;
+    inset: 0;
+    border: 3px dashed var(--vpt-accent);
+    background: #0468;
+    display: grid;
+    place-content: center;
+    pointer-events: none;
+  }
+  button,
+  select,
+  input {
+    font: inherit;
+    color: inherit;
+  }
+  button {
+    background: #2a2a30e6;
+    border: 1px solid #555;
+    border-radius: 4px;
+    padding: 3px 9px;
+    cursor: pointer;
+  }
+  button:hover {
+    background: #3a3a42;
+  }
+  button:focus-visible,
+  select:focus-visible,
+  input:focus-visible,
+  summary:focus-visible {
+    outline: 2px solid var(--vpt-accent);
+    outline-offset: 1px;
+  }
+  aside {
+    flex: 0 0 var(--vpt-panel-width);
+    max-width: 100%;
+    overflow-y: auto;
+    background: var(--vpt-panel-bg);
+    border-left: 1px solid #333;
+    box-sizing: border-box;
+  }
   /* Narrow (set by the element from its width): the panels are an overlay over the image, opened by the toolbar button. */
-  .layout.narrow aside { position: absolute; inset: 0; z-index: 2; border-left: 0; padding-top: 34px; flex: none; }
-  .toolbar { z-index: 3; }
-  .toolbar button { font-size: 12px; }
-  .stats-line { position: absolute; left: 0; bottom: 3px; margin: 0; padding: 2px 6px; max-width: calc(100% - 12px); box-sizing: border-box;
-    font-size: 11px; font-variant-numeric: tabular-nums; color: #e8e8e8; background: #000a; border-top-right-radius: 4px;
-    white-space: nowrap; overflow: hidden; text-overflow: ellipsis; pointer-events: none; }
-  .progress { position: absolute; left: 0; right: 0; bottom: 0; height: 3px; background: #fff2; pointer-events: none; }
-  .progress > div { height: 100%; background: var(--vpt-accent); transition: width 0.2s linear; }
-  .progress.indeterminate > div { opacity: 0.5; animation: vpt-pulse 1s ease-in-out infinite alternate; }
-  @keyframes vpt-pulse { from { opacity: 0.2; } to { opacity: 0.8; } }
-  @media (pointer: coarse) { button { min-height: 32px; min-width: 32px; } }
-  details { border-bottom: 1px solid #2c2c32; }
-  summary { cursor: pointer; padding: 7px 10px; font-weight: 600; user-select: none; }
-  .panel { padding: 0 10px 10px; display: grid; grid-template-columns: minmax(0, 1fr); gap: 6px; }
-  .row { display: grid; grid-template-columns: 6.2rem minmax(0, 1fr); align-items: center; gap: 6px; }
-  .row > span.value { font-variant-numeric: tabular-nums; }
-  select, input[type='number'], input[type='text'] { background: #1c1c20; border: 1px solid #555; border-radius: 3px; padding: 2px 4px; min-width: 0; }
-  input[type='range'] { min-width: 0; accent-color: var(--vpt-accent); }
-  input[type='file'] { max-width: 100%; }
-  input[type='color'] { height: 1.7em; padding: 0; border: 1px solid #555; background: none; }
-  dl.readout { display: grid; grid-template-columns: auto 1fr; gap: 2px 10px; margin: 0; font-variant-numeric: tabular-nums; }
-  dl.readout dt { opacity: 0.75; }
-  dl.readout dd { margin: 0; }
-  .buttons { display: flex; flex-wrap: wrap; gap: 6px; }
-  .visually-hidden { position: absolute; width: 1px; height: 1px; overflow: hidden; clip: rect(0 0 0 0); white-space: nowrap; }
+  .layout.narrow aside {
+    position: absolute;
+    inset: 0;
+    z-index: 2;
+    border-left: 0;
+    padding-top: 34px;
+    flex: none;
+  }
+  .toolbar {
+    z-index: 3;
+  }
+  .toolbar button {
+    font-size: 12px;
+  }
+  .stats-line {
+    position: absolute;
+    left: 0;
+    bottom: 3px;
+    margin: 0;
+    padding: 2px 6px;
+    max-width: calc(100% - 12px);
+    box-sizing: border-box;
+    font-size: 11px;
+    font-variant-numeric: tabular-nums;
+    color: #e8e8e8;
+    background: #000a;
+    border-top-right-radius: 4px;
+    white-space: nowrap;
+    overflow: hidden;
+    text-overflow: ellipsis;
+    pointer-events: none;
+  }
+  .progress {
+    position: absolute;
+    left: 0;
+    right: 0;
+    bottom: 0;
+    height: 3px;
+    background: #fff2;
+    pointer-events: none;
+  }
+  .progress > div {
+    height: 100%;
+    background: var(--vpt-accent);
+    transition: width 0.2s linear;
+  }
+  .progress.indeterminate > div {
+    opacity: 0.5;
+    animation: vpt-pulse 1s ease-in-out infinite alternate;
+  }
+  @keyframes vpt-pulse {
+    from {
+      opacity: 0.2;
+    }
+    to {
+      opacity: 0.8;
+    }
+  }
+  @media (pointer: coarse) {
+    button {
+      min-height: 32px;
+      min-width: 32px;
+    }
+  }
+  details {
+    border-bottom: 1px solid #2c2c32;
+  }
+  summary {
+    cursor: pointer;
+    padding: 7px 10px;
+    font-weight: 600;
+    user-select: none;
+  }
+  .panel {
+    padding: 0 10px 10px;
+    display: grid;
+    grid-template-columns: minmax(0, 1fr);
+    gap: 6px;
+  }
+  .row {
+    display: grid;
+    grid-template-columns: 6.2rem minmax(0, 1fr);
+    align-items: center;
+    gap: 6px;
+  }
+  .row > span.value {
+    font-variant-numeric: tabular-nums;
+  }
+  select,
+  input[type='number'],
+  input[type='text'] {
+    background: #1c1c20;
+    border: 1px solid #555;
+    border-radius: 3px;
+    padding: 2px 4px;
+    min-width: 0;
+  }
+  input[type='range'] {
+    min-width: 0;
+    accent-color: var(--vpt-accent);
+  }
+  input[type='file'] {
+    max-width: 100%;
+  }
+  input[type='color'] {
+    height: 1.7em;
+    padding: 0;
+    border: 1px solid #555;
+    background: none;
+  }
+  dl.readout {
+    display: grid;
+    grid-template-columns: auto 1fr;
+    gap: 2px 10px;
+    margin: 0;
+    font-variant-numeric: tabular-nums;
+  }
+  dl.readout dt {
+    opacity: 0.75;
+  }
+  dl.readout dd {
+    margin: 0;
+  }
+  .buttons {
+    display: flex;
+    flex-wrap: wrap;
+    gap: 6px;
+  }
+  .visually-hidden {
+    position: absolute;
+    width: 1px;
+    height: 1px;
+    overflow: hidden;
+    clip: rect(0 0 0 0);
+    white-space: nowrap;
+  }
 `;

@@ -35,21 +35,101 @@ export class VptTfEditor extends LitElement {
   }
 
   static override styles = css`
-    :host { display: block; font: inherit; color: inherit; }
-    .plot { position: relative; height: 120px; background: #0b0b0d; border: 1px solid #444; border-radius: 4px; touch-action: none; cursor: crosshair; margin: 6px 7px; }
-    svg { position: absolute; inset: 0; width: 100%; height: 100%; display: block; }
-    .pt { position: absolute; width: 12px; height: 12px; margin: -7px 0 0 -7px; border: 2px solid #ddd; border-radius: 50%; transform: translateY(0); cursor: grab; box-sizing: content-box; padding: 0; }
-    .pt[aria-selected='true'] { border-color: #6af; box-shadow: 0 0 0 2px #6af8; }
-    .pt:focus-visible { outline: 2px solid #fff; outline-offset: 2px; }
-    .strip { height: 12px; margin: 2px 7px 8px; border-radius: 3px; border: 1px solid #444; }
-    form { display: grid; grid-template-columns: auto 1fr auto 1fr; gap: 4px 6px; align-items: center; font-size: 0.85em; }
-    label { white-space: nowrap; }
-    input { min-width: 0; font: inherit; background: #1c1c20; color: inherit; border: 1px solid #555; border-radius: 3px; padding: 2px 4px; }
-    input[type='color'] { padding: 0; height: 1.6em; }
-    .buttons { grid-column: 1 / -1; display: flex; gap: 6px; }
-    button { font: inherit; background: #2a2a30; color: inherit; border: 1px solid #555; border-radius: 3px; padding: 2px 8px; cursor: pointer; }
-    button:focus-visible, input:focus-visible { outline: 2px solid #6af; outline-offset: 1px; }
-    .hint { font-size: 0.8em; opacity: 0.7; margin: 0 0 4px; }
+    :host {
+      display: block;
+      font: inherit;
+      color: inherit;
+    }
+    .plot {
+      position: relative;
+      height: 120px;
+      background: #0b0b0d;
+      border: 1px solid #444;
+      border-radius: 4px;
+      touch-action: none;
+      cursor: crosshair;
+      margin: 6px 7px;
+    }
+    svg {
+      position: absolute;
+      inset: 0;
+      width: 100%;
+      height: 100%;
+      display: block;
+    }
+    .pt {
+      position: absolute;
+      width: 12px;
+      height: 12px;
+      margin: -7px 0 0 -7px;
+      border: 2px solid #ddd;
+      border-radius: 50%;
+      transform: translateY(0);
+      cursor: grab;
+      box-sizing: content-box;
+      padding: 0;
+    }
+    .pt[aria-selected='true'] {
+      border-color: #6af;
+      box-shadow: 0 0 0 2px #6af8;
+    }
+    .pt:focus-visible {
+      outline: 2px solid #fff;
+      outline-offset: 2px;
+    }
+    .strip {
+      height: 12px;
+      margin: 2px 7px 8px;
+      border-radius: 3px;
+      border: 1px solid #444;
+    }
+    form {
+      display: grid;
+      grid-template-columns: auto 1fr auto 1fr;
+      gap: 4px 6px;
+      align-items: center;
+      font-size: 0.85em;
+    }
+    label {
+      white-space: nowrap;
+    }
+    input {
+      min-width: 0;
+      font: inherit;
+      background: #1c1c20;
+      color: inherit;
+      border: 1px solid #555;
+      border-radius: 3px;
+      padding: 2px 4px;
+    }
+    input[type='color'] {
+      padding: 0;
+      height: 1.6em;
+    }
+    .buttons {
+      grid-column: 1 / -1;
+      display: flex;
+      gap: 6px;
+    }
+    button {
+      font: inherit;
+      background: #2a2a30;
+      color: inherit;
+      border: 1px solid #555;
+      border-radius: 3px;
+      padding: 2px 8px;
+      cursor: pointer;
+    }
+    button:focus-visible,
+    input:focus-visible {
+      outline: 2px solid #6af;
+      outline-offset: 1px;
+    }
+    .hint {
+      font-size: 0.8em;
+      opacity: 0.7;
+      margin: 0 0 4px;
+    }
   `;
 
   private get points(): TransferPoint[] {
@@ -67,27 +147,88 @@ export class VptTfEditor extends LitElement {
     const pts = this.points;
     const sel = pts[this.selected];
     return html`
-      <p class="hint" id="hint">Click to add a point; drag points, or focus one and use the arrow keys; Delete removes it.</p>
-      <div class="plot" part="plot" @pointerdown=${this.onPlotDown} @pointermove=${this.onMove} @pointerup=${this.onUp} @pointercancel=${this.onUp}>
+      <p class="hint" id="hint">
+        Click to add a point; drag points, or focus one and use the arrow keys; Delete removes it.
+      </p>
+      <div
+        class="plot"
+        part="plot"
+        @pointerdown=${this.onPlotDown}
+        @pointermove=${this.onMove}
+        @pointerup=${this.onUp}
+        @pointercancel=${this.onUp}
+      >
         ${this.renderCurves(pts)}
-        ${pts.map((p, i) => html`<div class="pt" role="slider" tabindex="0"
-            aria-label="Control point ${i + 1} of ${pts.length}" aria-describedby="hint"
-            aria-valuemin="0" aria-valuemax="1" aria-valuenow=${p.value}
-            aria-valuetext="value ${p.value.toFixed(3)}, opacity ${p.opacity.toFixed(3)}"
-            aria-selected=${i === this.selected ? 'true' : 'false'}
-            style="left:${p.value * 100}%;top:${(1 - p.opacity / this.yMax) * 100}%;background:${cssColor(p.color)}"
-            @pointerdown=${(e: PointerEvent) => this.onPointDown(e, i)}
-            @keydown=${(e: KeyboardEvent) => this.onKey(e, i)}
-            @focus=${() => { this.selected = i; }}></div>`)}
+        ${pts.map(
+          (p, i) =>
+            html`<div
+              class="pt"
+              role="slider"
+              tabindex="0"
+              aria-label="Control point ${i + 1} of ${pts.length}"
+              aria-describedby="hint"
+              aria-valuemin="0"
+              aria-valuemax="1"
+              aria-valuenow=${p.value}
+              aria-valuetext="value ${p.value.toFixed(3)}, opacity ${p.opacity.toFixed(3)}"
+              aria-selected=${i === this.selected ? 'true' : 'false'}
+              style="left:${p.value * 100}%;top:${(1 - p.opacity / this.yMax) * 100}%;background:${cssColor(p.color)}"
+              @pointerdown=${(e: PointerEvent) => this.onPointDown(e, i)}
+              @keydown=${(e: KeyboardEvent) => this.onKey(e, i)}
+              @focus=${() => {
+                this.selected = i;
+              }}
+            ></div>`,
+        )}
       </div>
       <div class="strip" style="background:${this.gradientCss(pts)}" aria-hidden="true"></div>
-      ${sel ? html`<form @submit=${(e: Event) => e.preventDefault()} aria-label="Selected control point">
-        <label for="v">Value</label><input id="v" type="number" min="0" max="1" step="0.01" .value=${String(sel.value)} @change=${(e: Event) => this.setField('value', e)}>
-        <label for="o">Opacity</label><input id="o" type="number" min="0" step="0.01" .value=${String(sel.opacity)} @change=${(e: Event) => this.setField('opacity', e)}>
-        <label for="c">Colour</label><input id="c" type="color" .value=${linearToHex(sel.color)} @input=${(e: Event) => this.setColor(e, 'input')} @change=${(e: Event) => this.setColor(e, 'change')}>
-        <label for="i">Intensity</label><input id="i" type="number" min="1" step="0.1" .value=${String(round4(intensityOf(sel.color)))} @change=${(e: Event) => this.setIntensity(e)}>
-        <div class="buttons"><button type="button" @click=${() => this.removePoint(this.selected)} ?disabled=${pts.length <= 1}>Remove point</button></div>
-      </form>` : nothing}
+      ${
+        sel
+          ? html`<form @submit=${(e: Event) => e.preventDefault()} aria-label="Selected control point">
+              <label for="v">Value</label
+              ><input
+                id="v"
+                type="number"
+                min="0"
+                max="1"
+                step="0.01"
+                .value=${String(sel.value)}
+                @change=${(e: Event) => this.setField('value', e)}
+              />
+              <label for="o">Opacity</label
+              ><input
+                id="o"
+                type="number"
+                min="0"
+                step="0.01"
+                .value=${String(sel.opacity)}
+                @change=${(e: Event) => this.setField('opacity', e)}
+              />
+              <label for="c">Colour</label
+              ><input
+                id="c"
+                type="color"
+                .value=${linearToHex(sel.color)}
+                @input=${(e: Event) => this.setColor(e, 'input')}
+                @change=${(e: Event) => this.setColor(e, 'change')}
+              />
+              <label for="i">Intensity</label
+              ><input
+                id="i"
+                type="number"
+                min="1"
+                step="0.1"
+                .value=${String(round4(intensityOf(sel.color)))}
+                @change=${(e: Event) => this.setIntensity(e)}
+              />
+              <div class="buttons">
+                <button type="button" @click=${() => this.removePoint(this.selected)} ?disabled=${pts.length <= 1}>
+                  Remove point
+                </button>
+              </div>
+            </form>`
+          : nothing
+      }
     `;
   }
 
@@ -102,7 +243,13 @@ export class VptTfEditor extends LitElement {
         if (y > 0) bars += `M${i / n},1V${1 - y}H${(i + 1) / n}V1Z`;
       }
     }
-    const line = pts.length ? [`M0,${1 - pts[0].opacity / this.yMax}`, ...pts.map((p) => `L${p.value},${1 - p.opacity / this.yMax}`), `L1,${1 - pts[pts.length - 1].opacity / this.yMax}`].join('') : '';
+    const line = pts.length
+      ? [
+          `M0,${1 - pts[0].opacity / this.yMax}`,
+          ...pts.map((p) => `L${p.value},${1 - p.opacity / this.yMax}`),
+          `L1,${1 - pts[pts.length - 1].opacity / this.yMax}`,
+        ].join('')
+      : '';
     return html`<svg viewBox="0 0 1 1" preserveAspectRatio="none" aria-hidden="true">
       ${svg`<path d=${bars} fill="#5a5a66" opacity="0.8"></path>
       <path d=${line} fill="none" stroke="#eee" stroke-width="1.5" vector-effect="non-scaling-stroke"></path>`}
@@ -111,7 +258,9 @@ export class VptTfEditor extends LitElement {
 
   private gradientCss(pts: TransferPoint[]): string {
     if (!pts.length) return '#000';
-    const stops = pts.map((p) => `${cssColor(p.color, Math.min(1, p.opacity / this.yMax + 0.15))} ${(p.value * 100).toFixed(1)}%`);
+    const stops = pts.map(
+      (p) => `${cssColor(p.color, Math.min(1, p.opacity / this.yMax + 0.15))} ${(p.value * 100).toFixed(1)}%`,
+    );
     return `linear-gradient(to right, ${stops.join(', ')})`;
   }
 
@@ -148,7 +297,8 @@ export class VptTfEditor extends LitElement {
     const pts = this.points.map((p) => ({ ...p }));
     let j = 0;
     while (j < pts.length && pts[j].value < value) j++;
-    const a = pts[Math.max(0, j - 1)], b = pts[Math.min(pts.length - 1, j)];
+    const a = pts[Math.max(0, j - 1)],
+      b = pts[Math.min(pts.length - 1, j)];
     let color: TransferPoint['color'] = [1, 1, 1];
     if (a && b) {
       const t = b.value > a.value ? (value - a.value) / (b.value - a.value) : 0;
@@ -168,7 +318,7 @@ export class VptTfEditor extends LitElement {
   }
 
   private onPlotDown = (e: PointerEvent): void => {
-    if (e.button !== 0 || e.target !== e.currentTarget && !(e.target instanceof SVGElement)) return;
+    if (e.button !== 0 || (e.target !== e.currentTarget && !(e.target instanceof SVGElement))) return;
     const m = this.toModel(e);
     const i = this.addPoint(m.value, m.opacity);
     this.startDrag(e, i);
@@ -205,12 +355,25 @@ export class VptTfEditor extends LitElement {
     const k = e.shiftKey ? 10 : 1;
     let handled = true;
     switch (e.key) {
-      case 'ArrowLeft': this.movePoint(i, p.value - 0.01 * k, p.opacity, 'change'); break;
-      case 'ArrowRight': this.movePoint(i, p.value + 0.01 * k, p.opacity, 'change'); break;
-      case 'ArrowUp': this.movePoint(i, p.value, p.opacity + 0.01 * k * this.yMax, 'change'); break;
-      case 'ArrowDown': this.movePoint(i, p.value, p.opacity - 0.01 * k * this.yMax, 'change'); break;
-      case 'Delete': case 'Backspace': this.removePoint(i); this.focusPoint(this.selected); break;
-      default: handled = false;
+      case 'ArrowLeft':
+        this.movePoint(i, p.value - 0.01 * k, p.opacity, 'change');
+        break;
+      case 'ArrowRight':
+        this.movePoint(i, p.value + 0.01 * k, p.opacity, 'change');
+        break;
+      case 'ArrowUp':
+        this.movePoint(i, p.value, p.opacity + 0.01 * k * this.yMax, 'change');
+        break;
+      case 'ArrowDown':
+        this.movePoint(i, p.value, p.opacity - 0.01 * k * this.yMax, 'change');
+        break;
+      case 'Delete':
+      case 'Backspace':
+        this.removePoint(i);
+        this.focusPoint(this.selected);
+        break;
+      default:
+        handled = false;
     }
     if (handled) e.preventDefault();
   }

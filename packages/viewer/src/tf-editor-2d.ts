@@ -19,7 +19,8 @@ const clamp01 = (x: number) => Math.min(1, Math.max(0, x));
 
 /** The widget's bounding box [v0, g0, v1, g1] (Gaussian: ±1 standard deviation). */
 function extent(w: TransferWidget): [number, number, number, number] {
-  if (w.type === 'gaussian') return [w.center[0] - w.width[0], w.center[1] - w.width[1], w.center[0] + w.width[0], w.center[1] + w.width[1]];
+  if (w.type === 'gaussian')
+    return [w.center[0] - w.width[0], w.center[1] - w.width[1], w.center[0] + w.width[0], w.center[1] + w.width[1]];
   return [w.min[0], w.min[1], w.max[0], w.max[1]];
 }
 
@@ -34,7 +35,12 @@ function edit(w: TransferWidget, handle: Handle, dv: number, dg: number): Transf
     if (handle === 'move') return { ...w, center: [round4(w.center[0] + dv), round4(w.center[1] + dg)] };
     return { ...w, width: [round4(Math.max(0.005, w.width[0] + dv)), round4(Math.max(0.005, w.width[1] + dg))] };
   }
-  if (handle === 'move') return { ...w, min: [round4(w.min[0] + dv), round4(w.min[1] + dg)], max: [round4(w.max[0] + dv), round4(w.max[1] + dg)] };
+  if (handle === 'move')
+    return {
+      ...w,
+      min: [round4(w.min[0] + dv), round4(w.min[1] + dg)],
+      max: [round4(w.max[0] + dv), round4(w.max[1] + dg)],
+    };
   return { ...w, max: [round4(Math.max(w.min[0], w.max[0] + dv)), round4(Math.max(w.min[1], w.max[1] + dg))] };
 }
 
@@ -61,22 +67,109 @@ export class VptTf2dEditor extends LitElement {
   }
 
   static override styles = css`
-    :host { display: block; font: inherit; color: inherit; }
-    .plot { position: relative; aspect-ratio: 2 / 1; background: #0b0b0d; border: 1px solid #444; border-radius: 4px; touch-action: none; margin: 6px 7px; }
-    canvas, svg { position: absolute; inset: 0; width: 100%; height: 100%; display: block; }
-    canvas { image-rendering: pixelated; }
-    .h { position: absolute; width: 10px; height: 10px; margin: -6px 0 0 -6px; border: 2px solid #ddd; background: #222; cursor: move; padding: 0; box-sizing: content-box; }
-    .h.size { border-radius: 50%; cursor: nwse-resize; width: 8px; height: 8px; margin: -5px 0 0 -5px; }
-    .h[aria-selected='true'] { border-color: #6af; }
-    .h:focus-visible { outline: 2px solid #fff; outline-offset: 2px; }
-    .axes { display: flex; justify-content: space-between; font-size: 0.75em; opacity: 0.7; margin: 0 7px 6px; }
-    form { display: grid; grid-template-columns: auto 1fr 1fr; gap: 4px 6px; align-items: center; font-size: 0.85em; }
-    input, select { min-width: 0; font: inherit; background: #1c1c20; color: inherit; border: 1px solid #555; border-radius: 3px; padding: 2px 4px; }
-    input[type='color'] { padding: 0; height: 1.6em; }
-    .buttons { display: flex; gap: 6px; flex-wrap: wrap; margin: 6px 0; }
-    button { font: inherit; background: #2a2a30; color: inherit; border: 1px solid #555; border-radius: 3px; padding: 2px 8px; cursor: pointer; }
-    button:focus-visible, input:focus-visible { outline: 2px solid #6af; outline-offset: 1px; }
-    .hint { font-size: 0.8em; opacity: 0.7; margin: 0 0 4px; }
+    :host {
+      display: block;
+      font: inherit;
+      color: inherit;
+    }
+    .plot {
+      position: relative;
+      aspect-ratio: 2 / 1;
+      background: #0b0b0d;
+      border: 1px solid #444;
+      border-radius: 4px;
+      touch-action: none;
+      margin: 6px 7px;
+    }
+    canvas,
+    svg {
+      position: absolute;
+      inset: 0;
+      width: 100%;
+      height: 100%;
+      display: block;
+    }
+    canvas {
+      image-rendering: pixelated;
+    }
+    .h {
+      position: absolute;
+      width: 10px;
+      height: 10px;
+      margin: -6px 0 0 -6px;
+      border: 2px solid #ddd;
+      background: #222;
+      cursor: move;
+      padding: 0;
+      box-sizing: content-box;
+    }
+    .h.size {
+      border-radius: 50%;
+      cursor: nwse-resize;
+      width: 8px;
+      height: 8px;
+      margin: -5px 0 0 -5px;
+    }
+    .h[aria-selected='true'] {
+      border-color: #6af;
+    }
+    .h:focus-visible {
+      outline: 2px solid #fff;
+      outline-offset: 2px;
+    }
+    .axes {
+      display: flex;
+      justify-content: space-between;
+      font-size: 0.75em;
+      opacity: 0.7;
+      margin: 0 7px 6px;
+    }
+    form {
+      display: grid;
+      grid-template-columns: auto 1fr 1fr;
+      gap: 4px 6px;
+      align-items: center;
+      font-size: 0.85em;
+    }
+    input,
+    select {
+      min-width: 0;
+      font: inherit;
+      background: #1c1c20;
+      color: inherit;
+      border: 1px solid #555;
+      border-radius: 3px;
+      padding: 2px 4px;
+    }
+    input[type='color'] {
+      padding: 0;
+      height: 1.6em;
+    }
+    .buttons {
+      display: flex;
+      gap: 6px;
+      flex-wrap: wrap;
+      margin: 6px 0;
+    }
+    button {
+      font: inherit;
+      background: #2a2a30;
+      color: inherit;
+      border: 1px solid #555;
+      border-radius: 3px;
+      padding: 2px 8px;
+      cursor: pointer;
+    }
+    button:focus-visible,
+    input:focus-visible {
+      outline: 2px solid #6af;
+      outline-offset: 1px;
+    }
+    .hint {
+      font-size: 0.8em;
+      opacity: 0.7;
+      margin: 0 0 4px;
+    }
   `;
 
   private get widgets(): TransferWidget[] {
@@ -110,7 +203,10 @@ export class VptTf2dEditor extends LitElement {
       for (let x = 0; x < h.width; x++) {
         const c = Math.round(Math.sqrt(Math.min(1, Math.log1p(h.bins[x + h.width * y]) / logMax)) * 200);
         const o = 4 * (x + h.width * (h.height - 1 - y)); // gradient grows upward
-        img.data[o] = c; img.data[o + 1] = c; img.data[o + 2] = c + 10; img.data[o + 3] = 255;
+        img.data[o] = c;
+        img.data[o + 1] = c;
+        img.data[o + 2] = c + 10;
+        img.data[o + 3] = 255;
       }
     }
     ctx.putImageData(img, 0, 0);
@@ -120,35 +216,76 @@ export class VptTf2dEditor extends LitElement {
     const ws = this.widgets;
     const sel = ws[this.selected];
     const gmax = this.value?.gradientMax;
-    return html`
-      <p class="hint" id="hint2d">Drag a square to move a widget, a circle to resize it; or focus one and use the arrow keys; Delete removes.</p>
+    return html` <p class="hint" id="hint2d">
+        Drag a square to move a widget, a circle to resize it; or focus one and use the arrow keys; Delete removes.
+      </p>
       <div class="plot" part="plot" @pointermove=${this.onMove} @pointerup=${this.onUp} @pointercancel=${this.onUp}>
         <canvas aria-hidden="true"></canvas>
-        <svg viewBox="0 0 1 1" preserveAspectRatio="none" aria-hidden="true">${ws.map((w, i) => this.renderWidget(w, i))}</svg>
+        <svg viewBox="0 0 1 1" preserveAspectRatio="none" aria-hidden="true">
+          ${ws.map((w, i) => this.renderWidget(w, i))}
+        </svg>
         ${ws.map((w, i) => {
           const [cv, cg] = centre(w);
           const [, , v1, g1] = extent(w);
           const label = `Widget ${i + 1} of ${ws.length} (${w.type})`;
-          return html`
-            <div class="h" role="slider" tabindex="0" aria-label="${label}: move" aria-describedby="hint2d" aria-valuetext="value ${cv.toFixed(2)}, gradient ${cg.toFixed(2)}"
-              aria-selected=${i === this.selected ? 'true' : 'false'} style="left:${clamp01(cv) * 100}%;top:${(1 - clamp01(cg)) * 100}%"
-              @pointerdown=${(e: PointerEvent) => this.startDrag(e, i, 'move')} @keydown=${(e: KeyboardEvent) => this.onKey(e, i, 'move')} @focus=${() => { this.selected = i; }}></div>
-            <div class="h size" role="slider" tabindex="0" aria-label="${label}: size" aria-describedby="hint2d" aria-valuetext="up to value ${v1.toFixed(2)}, gradient ${g1.toFixed(2)}"
-              aria-selected=${i === this.selected ? 'true' : 'false'} style="left:${clamp01(v1) * 100}%;top:${(1 - clamp01(g1)) * 100}%"
-              @pointerdown=${(e: PointerEvent) => this.startDrag(e, i, 'size')} @keydown=${(e: KeyboardEvent) => this.onKey(e, i, 'size')} @focus=${() => { this.selected = i; }}></div>`;
+          return html` <div
+              class="h"
+              role="slider"
+              tabindex="0"
+              aria-label="${label}: move"
+              aria-describedby="hint2d"
+              aria-valuetext="value ${cv.toFixed(2)}, gradient ${cg.toFixed(2)}"
+              aria-selected=${i === this.selected ? 'true' : 'false'}
+              style="left:${clamp01(cv) * 100}%;top:${(1 - clamp01(cg)) * 100}%"
+              @pointerdown=${(e: PointerEvent) => this.startDrag(e, i, 'move')}
+              @keydown=${(e: KeyboardEvent) => this.onKey(e, i, 'move')}
+              @focus=${() => {
+                this.selected = i;
+              }}
+            ></div>
+            <div
+              class="h size"
+              role="slider"
+              tabindex="0"
+              aria-label="${label}: size"
+              aria-describedby="hint2d"
+              aria-valuetext="up to value ${v1.toFixed(2)}, gradient ${g1.toFixed(2)}"
+              aria-selected=${i === this.selected ? 'true' : 'false'}
+              style="left:${clamp01(v1) * 100}%;top:${(1 - clamp01(g1)) * 100}%"
+              @pointerdown=${(e: PointerEvent) => this.startDrag(e, i, 'size')}
+              @keydown=${(e: KeyboardEvent) => this.onKey(e, i, 'size')}
+              @focus=${() => {
+                this.selected = i;
+              }}
+            ></div>`;
         })}
       </div>
-      <div class="axes" aria-hidden="true"><span>value →</span><span>↑ gradient magnitude${this.histogram ? ` (0 … ${this.histogram.maxGradient.toPrecision(3)})` : ''}</span></div>
+      <div class="axes" aria-hidden="true">
+        <span>value →</span
+        ><span>↑ gradient magnitude${this.histogram ? ` (0 … ${this.histogram.maxGradient.toPrecision(3)})` : ''}</span>
+      </div>
       <div class="buttons">
         <button type="button" @click=${() => this.add('gaussian')}>Add Gaussian</button>
         <button type="button" @click=${() => this.add('box')}>Add box</button>
-        <button type="button" ?disabled=${ws.length <= 1} @click=${() => this.removeWidget(this.selected)}>Remove widget</button>
+        <button type="button" ?disabled=${ws.length <= 1} @click=${() => this.removeWidget(this.selected)}>
+          Remove widget
+        </button>
       </div>
       ${sel ? this.renderForm(sel) : nothing}
       <form @submit=${(e: Event) => e.preventDefault()}>
         <label for="gm">Gradient max</label>
-        <input id="gm" type="number" min="0" step="any" placeholder=${this.samples ? `volume max ${this.samples.maxGradient.toPrecision(4)}` : 'volume max'} .value=${gmax === undefined ? '' : String(gmax)}
-          @change=${(e: Event) => { const t = (e.target as HTMLInputElement).value.trim(); this.setGradientMax(t === '' ? undefined : Number(t)); }}>
+        <input
+          id="gm"
+          type="number"
+          min="0"
+          step="any"
+          placeholder=${this.samples ? `volume max ${this.samples.maxGradient.toPrecision(4)}` : 'volume max'}
+          .value=${gmax === undefined ? '' : String(gmax)}
+          @change=${(e: Event) => {
+            const t = (e.target as HTMLInputElement).value.trim();
+            this.setGradientMax(t === '' ? undefined : Number(t));
+          }}
+        />
         <span></span>
       </form>`;
   }
@@ -167,21 +304,60 @@ export class VptTf2dEditor extends LitElement {
   }
 
   private renderForm(w: TransferWidget) {
-    const pair = (label: string, key: string, values: [number, number], min: number) => html`
-      <label>${label}</label>
-      <input type="number" step="0.01" min=${min} aria-label="${label}, value axis" .value=${String(round4(values[0]))} @change=${(e: Event) => this.setPair(key, 0, Number((e.target as HTMLInputElement).value))}>
-      <input type="number" step="0.01" min=${min} aria-label="${label}, gradient axis" .value=${String(round4(values[1]))} @change=${(e: Event) => this.setPair(key, 1, Number((e.target as HTMLInputElement).value))}>`;
+    const pair = (label: string, key: string, values: [number, number], min: number) =>
+      html` <label>${label}</label>
+        <input
+          type="number"
+          step="0.01"
+          min=${min}
+          aria-label="${label}, value axis"
+          .value=${String(round4(values[0]))}
+          @change=${(e: Event) => this.setPair(key, 0, Number((e.target as HTMLInputElement).value))}
+        />
+        <input
+          type="number"
+          step="0.01"
+          min=${min}
+          aria-label="${label}, gradient axis"
+          .value=${String(round4(values[1]))}
+          @change=${(e: Event) => this.setPair(key, 1, Number((e.target as HTMLInputElement).value))}
+        />`;
     return html`<form @submit=${(e: Event) => e.preventDefault()} aria-label="Selected widget">
       <span></span><span>value</span><span>gradient</span>
-      ${w.type === 'gaussian'
-        ? html`${pair('Centre', 'center', w.center, -1)}${pair('Std. dev.', 'width', w.width, 0.001)}`
-        : html`${pair('Min', 'min', w.min, -1)}${pair('Max', 'max', w.max, -1)}${pair('Soft edge', 'ramp', w.ramp ?? [0, 0], 0)}`}
+      ${
+        w.type === 'gaussian'
+          ? html`${pair('Centre', 'center', w.center, -1)}${pair('Std. dev.', 'width', w.width, 0.001)}`
+          : html`${pair('Min', 'min', w.min, -1)}${pair('Max', 'max', w.max, -1)}${pair('Soft edge', 'ramp', w.ramp ?? [0, 0], 0)}`
+      }
       <label for="wc">Colour</label>
-      <input id="wc" type="color" .value=${linearToHex(w.color)} @change=${(e: Event) => this.patch({ color: hexToLinear((e.target as HTMLInputElement).value, intensityOf(w.color)) })}>
-      <input type="number" min="1" step="0.1" aria-label="Colour intensity" title="Intensity" .value=${String(round4(intensityOf(w.color)))}
-        @change=${(e: Event) => { const k = Math.max(1, Number((e.target as HTMLInputElement).value) || 1); const old = intensityOf(w.color); this.patch({ color: w.color.map((c) => round4((c / old) * k)) as TransferWidget['color'] }); }}>
+      <input
+        id="wc"
+        type="color"
+        .value=${linearToHex(w.color)}
+        @change=${(e: Event) => this.patch({ color: hexToLinear((e.target as HTMLInputElement).value, intensityOf(w.color)) })}
+      />
+      <input
+        type="number"
+        min="1"
+        step="0.1"
+        aria-label="Colour intensity"
+        title="Intensity"
+        .value=${String(round4(intensityOf(w.color)))}
+        @change=${(e: Event) => {
+          const k = Math.max(1, Number((e.target as HTMLInputElement).value) || 1);
+          const old = intensityOf(w.color);
+          this.patch({ color: w.color.map((c) => round4((c / old) * k)) as TransferWidget['color'] });
+        }}
+      />
       <label for="wo">Opacity</label>
-      <input id="wo" type="number" min="0" step="0.05" .value=${String(w.opacity)} @change=${(e: Event) => this.patch({ opacity: Math.max(0, Number((e.target as HTMLInputElement).value) || 0) })}>
+      <input
+        id="wo"
+        type="number"
+        min="0"
+        step="0.05"
+        .value=${String(w.opacity)}
+        @change=${(e: Event) => this.patch({ opacity: Math.max(0, Number((e.target as HTMLInputElement).value) || 0) })}
+      />
       <span></span>
     </form>`;
   }
@@ -233,9 +409,10 @@ export class VptTf2dEditor extends LitElement {
   }
 
   private add(type: 'gaussian' | 'box'): void {
-    const w: TransferWidget = type === 'gaussian'
-      ? { type: 'gaussian', center: [0.5, 0.3], width: [0.08, 0.15], color: [1, 1, 1], opacity: 1 }
-      : { type: 'box', min: [0.4, 0.2], max: [0.6, 1], ramp: [0.05, 0.05], color: [1, 1, 1], opacity: 1 };
+    const w: TransferWidget =
+      type === 'gaussian'
+        ? { type: 'gaussian', center: [0.5, 0.3], width: [0.08, 0.15], color: [1, 1, 1], opacity: 1 }
+        : { type: 'box', min: [0.4, 0.2], max: [0.6, 1], ramp: [0.05, 0.05], color: [1, 1, 1], opacity: 1 };
     this.selected = this.widgets.length;
     this.setWidgets([...this.widgets, w], 'change');
   }
@@ -243,7 +420,10 @@ export class VptTf2dEditor extends LitElement {
   private removeWidget(i: number): void {
     if (this.widgets.length <= 1 || i < 0) return;
     this.selected = Math.max(0, Math.min(i, this.widgets.length - 2));
-    this.setWidgets(this.widgets.filter((_, k) => k !== i), 'change');
+    this.setWidgets(
+      this.widgets.filter((_, k) => k !== i),
+      'change',
+    );
   }
 
   private toModel(e: PointerEvent): [number, number] {
@@ -274,7 +454,12 @@ export class VptTf2dEditor extends LitElement {
 
   private onKey(e: KeyboardEvent, i: number, handle: Handle): void {
     const step = e.shiftKey ? 0.1 : 0.01;
-    const moves: Record<string, [number, number]> = { ArrowLeft: [-step, 0], ArrowRight: [step, 0], ArrowUp: [0, step], ArrowDown: [0, -step] };
+    const moves: Record<string, [number, number]> = {
+      ArrowLeft: [-step, 0],
+      ArrowRight: [step, 0],
+      ArrowUp: [0, step],
+      ArrowDown: [0, -step],
+    };
     if (moves[e.key]) {
       e.preventDefault();
       this.replace(i, edit(this.widgets[i], handle, ...moves[e.key]), 'change');

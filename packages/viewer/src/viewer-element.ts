@@ -14,12 +14,33 @@
  * synchronously after Lit's update, and only a change of the image resets accumulation.
  */
 import { LitElement, html, nothing, type PropertyValues } from 'lit';
-import { isVptError, VptError, type Camera, type Environment, type Light, type Renderer, type Scene, type TransferFunction, type Volume } from '@vpt/core';
+import {
+  isVptError,
+  VptError,
+  type Camera,
+  type Environment,
+  type Light,
+  type Renderer,
+  type Scene,
+  type TransferFunction,
+  type Volume,
+} from '@vpt/core';
 import { defaultPostChain, type ToneMapOperator } from '@vpt/post';
 import { AdaptiveResolution } from './adaptive-resolution.js';
 import {
-  AttributeValidator, hasChanged, isFittedPreset, jsonConverter, parseCamera, parseEnvironment, parseLights, parseRendererParams,
-  parseTransferFunction, sameValue, type BackendName, type CheckedProperty, type EnvironmentValue,
+  AttributeValidator,
+  hasChanged,
+  isFittedPreset,
+  jsonConverter,
+  parseCamera,
+  parseEnvironment,
+  parseLights,
+  parseRendererParams,
+  parseTransferFunction,
+  sameValue,
+  type BackendName,
+  type CheckedProperty,
+  type EnvironmentValue,
 } from './attributes.js';
 import { fitCamera } from './camera-fit.js';
 import { autoTransferFunction, defaultRendererParams, rendererLook } from './defaults.js';
@@ -44,18 +65,34 @@ export interface ViewerErrorDetail {
   source: 'src' | 'renderer' | 'environment' | 'context' | 'attribute' | 'export';
 }
 export type ViewerProgressDetail =
-  | { phase: 'loading'; stage: string; loaded: number; total?: number }
-  | ({ phase: 'refining' } & RefinementStats);
+  { phase: 'loading'; stage: string; loaded: number; total?: number } | ({ phase: 'refining' } & RefinementStats);
 export type ViewerConvergedDetail = RefinementStats & { reason: 'max-samples' | 'target-error' };
-export interface ViewerLoadDetail { volume: Volume; format: string; dims: [number, number, number]; type: string }
-export interface ViewerChangeDetail { property: string }
-
+export interface ViewerLoadDetail {
+  volume: Volume;
+  format: string;
+  dims: [number, number, number];
+  type: string;
+}
+export interface ViewerChangeDetail {
+  property: string;
+}
 
 /** Below a sidebar's width plus this much image, the panels become an overlay. */
 const NARROW_MIN_IMAGE_PX = 320;
 
 /** Fields whose change goes straight to the GPU scene/post/stopping (no async work). */
-const SYNC_FIELDS = ['transferFunction', 'camera', 'lights', 'densityScale', 'seed', 'exposure', 'toneMapper', 'maxSamples', 'targetError', 'resolutionScale'] as const;
+const SYNC_FIELDS = [
+  'transferFunction',
+  'camera',
+  'lights',
+  'densityScale',
+  'seed',
+  'exposure',
+  'toneMapper',
+  'maxSamples',
+  'targetError',
+  'resolutionScale',
+] as const;
 
 export class VptViewer extends LitElement {
   static override styles = viewerStyles;
@@ -64,7 +101,12 @@ export class VptViewer extends LitElement {
     src: { type: String, reflect: true },
     renderer: { type: String, reflect: true },
     backend: { type: String, reflect: true },
-    transferFunction: { attribute: 'transfer-function', reflect: true, converter: jsonConverter(parseTransferFunction, isFittedPreset), hasChanged },
+    transferFunction: {
+      attribute: 'transfer-function',
+      reflect: true,
+      converter: jsonConverter(parseTransferFunction, isFittedPreset),
+      hasChanged,
+    },
     camera: { reflect: true, converter: jsonConverter(parseCamera), hasChanged },
     lights: { reflect: true, converter: jsonConverter(parseLights), hasChanged },
     environment: { reflect: true, converter: jsonConverter(parseEnvironment), hasChanged },
@@ -74,7 +116,12 @@ export class VptViewer extends LitElement {
     targetError: { attribute: 'target-error', type: Number, reflect: true },
     densityScale: { attribute: 'density-scale', type: Number, reflect: true },
     seed: { type: Number, reflect: true },
-    rendererParams: { attribute: 'renderer-params', reflect: true, converter: jsonConverter(parseRendererParams), hasChanged },
+    rendererParams: {
+      attribute: 'renderer-params',
+      reflect: true,
+      converter: jsonConverter(parseRendererParams),
+      hasChanged,
+    },
     resolutionScale: { attribute: 'resolution-scale', type: Number, reflect: true },
     panels: { type: String, reflect: true },
     collapsed: { type: Boolean, reflect: true },
@@ -199,7 +246,9 @@ export class VptViewer extends LitElement {
     this._dragOver = false;
     this.validator = new AttributeValidator(this as unknown as Record<CheckedProperty, unknown>);
     this.orbit = new OrbitCamera({
-      start: () => { /* a click without movement must not drop resolution: see change */ },
+      start: () => {
+        /* a click without movement must not drop resolution: see change */
+      },
       change: (camera) => this.onUserCamera(camera),
       end: () => this.resolution.interactionEnded(),
     });
@@ -208,15 +257,25 @@ export class VptViewer extends LitElement {
   // ——— public API ———
 
   /** The RenderContext (null until the GPU context is open): stats, readHDR/readLDR, estimateError… */
-  get context() { return this.session?.ctx ?? null; }
+  get context() {
+    return this.session?.ctx ?? null;
+  }
   /** Samples per pixel accumulated for the current image. */
-  get samples(): number { return this.session?.samples ?? 0; }
+  get samples(): number {
+    return this.session?.samples ?? 0;
+  }
   /** The latest refinement numbers (samples, ms per iteration, estimated error, render size). */
-  get stats(): RefinementStats | null { return this._stats; }
+  get stats(): RefinementStats | null {
+    return this._stats;
+  }
   /** The volume on display. */
-  get loadedVolume(): LoadedVolumeLike | null { return this.volume; }
+  get loadedVolume(): LoadedVolumeLike | null {
+    return this.volume;
+  }
   /** Whether the current image has reached max-samples or target-error. */
-  get converged(): boolean { return this.session?.isConverged ?? false; }
+  get converged(): boolean {
+    return this.session?.isConverged ?? false;
+  }
 
   /** Resolves once every pending load (renderer, volume, environment, GPU context) has been applied. */
   async whenSettled(): Promise<void> {
@@ -292,7 +351,12 @@ export class VptViewer extends LitElement {
     }
     this.keepFittedPreset = false;
     // Normalize and validate what changed; an invalid value is reported and the last valid one restored.
-    this.validator.validate(this as unknown as Record<CheckedProperty, unknown>, changed as Map<PropertyKey, unknown>, this.volume ?? undefined, (e) => this.fail(e, 'attribute'));
+    this.validator.validate(
+      this as unknown as Record<CheckedProperty, unknown>,
+      changed as Map<PropertyKey, unknown>,
+      this.volume ?? undefined,
+      (e) => this.fail(e, 'attribute'),
+    );
     if (changed.has('camera') && !this.internalChange.has('camera')) {
       // A camera given from outside becomes "home" for resetCamera().
       this.cameraIsAuto = this.camera === null;
@@ -306,7 +370,8 @@ export class VptViewer extends LitElement {
     if (!this.connected) return;
     if (changed.has('camera') && this.camera && !internal.has('camera')) this.orbit.set(this.camera as Camera);
     if (changed.has('backend') || (!this.session && !this.opening)) this.track(this.openSession());
-    else if (this.session && (changed.has('renderer') || changed.has('rendererParams'))) this.track(this.switchRenderer());
+    else if (this.session && (changed.has('renderer') || changed.has('rendererParams')))
+      this.track(this.switchRenderer());
     if (changed.has('src')) this.track(this.loadSource(this.src));
     if (changed.has('environment')) this.track(this.resolveEnvironment());
     if (SYNC_FIELDS.some((f) => changed.has(f))) this.applySync();
@@ -330,40 +395,90 @@ export class VptViewer extends LitElement {
       if (this._narrow) this._overlayOpen = !this._overlayOpen;
       else this.collapsed = !this.collapsed;
     };
-    return html`
-      <div class="layout ${this._narrow ? 'narrow' : ''}" @keydown=${this.onLayoutKey}>
-        <div class="view" part="view"
-          @dragover=${this.onDragOver} @dragleave=${() => { this._dragOver = false; }} @drop=${this.onDrop}>
-          ${this._status ? html`<p class="overlay status" part="status" role="status">${this._status}</p>` : nothing}
-          ${this.renderHud()}
-          ${panels.size ? html`<div class="toolbar">
-            ${panels.has('export') && this.volume && !showAside ? html`<button type="button" part="screenshot" title="Download the image as PNG" @click=${() => this.downloadScreenshot()}>PNG</button>` : nothing}
-            <button type="button" part="panels-toggle" aria-expanded=${showAside ? 'true' : 'false'} aria-controls="panels"
-              @click=${toggle}>${showAside ? (this._narrow ? 'Close' : 'Hide panels') : (this._narrow ? 'Settings' : 'Panels')}</button>
-          </div>` : nothing}
-          ${this._lost ? html`<div class="overlay lost" role="alert">
-            <p>${this._lostGaveUp ? 'The GPU context was lost and was not restored.' : 'The GPU context was lost. Restoring…'}</p>
-            <div><button type="button" @click=${() => this.track(this.openSession())}>${this._lostGaveUp ? 'Retry' : 'Restart renderer'}</button></div>
-          </div>` : nothing}
-          ${this._error ? html`<div class="overlay error" part="error" role="alert">
-            <p>${this._error.message}</p>
-            <button type="button" aria-label="Dismiss error" @click=${() => { this._error = null; }}>×</button>
-          </div>` : nothing}
-          ${this._dragOver ? html`<div class="drop" aria-hidden="true">Drop a volume file</div>` : nothing}
-        </div>
-        ${showAside ? html`<aside id="panels" part="panels" aria-label="Viewer settings">${renderPanels(this, panels)}</aside>` : nothing}
-      </div>`;
+    return html` <div class="layout ${this._narrow ? 'narrow' : ''}" @keydown=${this.onLayoutKey}>
+      <div
+        class="view"
+        part="view"
+        @dragover=${this.onDragOver}
+        @dragleave=${() => {
+          this._dragOver = false;
+        }}
+        @drop=${this.onDrop}
+      >
+        ${this._status ? html`<p class="overlay status" part="status" role="status">${this._status}</p>` : nothing}
+        ${this.renderHud()}
+        ${
+          panels.size
+            ? html`<div class="toolbar">
+                ${panels.has('export') && this.volume && !showAside ? html`<button type="button" part="screenshot" title="Download the image as PNG" @click=${() => this.downloadScreenshot()}>PNG</button>` : nothing}
+                <button
+                  type="button"
+                  part="panels-toggle"
+                  aria-expanded=${showAside ? 'true' : 'false'}
+                  aria-controls="panels"
+                  @click=${toggle}
+                >
+                  ${showAside ? (this._narrow ? 'Close' : 'Hide panels') : this._narrow ? 'Settings' : 'Panels'}
+                </button>
+              </div>`
+            : nothing
+        }
+        ${
+          this._lost
+            ? html`<div class="overlay lost" role="alert">
+                <p>
+                  ${this._lostGaveUp ? 'The GPU context was lost and was not restored.' : 'The GPU context was lost. Restoring…'}
+                </p>
+                <div>
+                  <button type="button" @click=${() => this.track(this.openSession())}>
+                    ${this._lostGaveUp ? 'Retry' : 'Restart renderer'}
+                  </button>
+                </div>
+              </div>`
+            : nothing
+        }
+        ${
+          this._error
+            ? html`<div class="overlay error" part="error" role="alert">
+                <p>${this._error.message}</p>
+                <button
+                  type="button"
+                  aria-label="Dismiss error"
+                  @click=${() => {
+                    this._error = null;
+                  }}
+                >
+                  ×
+                </button>
+              </div>`
+            : nothing
+        }
+        ${this._dragOver ? html`<div class="drop" aria-hidden="true">Drop a volume file</div>` : nothing}
+      </div>
+      ${showAside ? html`<aside id="panels" part="panels" aria-label="Viewer settings">${renderPanels(this, panels)}</aside>` : nothing}
+    </div>`;
   }
 
   /** The thin progress bar (loading bytes; refining toward max-samples or target-error) and the stats line. */
   private renderHud() {
     const bar = this.hideProgress ? null : this.progressFraction();
     const stats = this.hideStats ? null : this.statsLine();
-    return html`
-      ${stats ? html`<p class="stats-line" part="stats" aria-live="off">${stats}</p>` : nothing}
-      ${bar === null ? nothing : html`<div class="progress ${Number.isNaN(bar) ? 'indeterminate' : ''}" part="progress" role="progressbar"
-        aria-label=${this._loading !== null ? 'Loading' : 'Refining'} aria-valuemin="0" aria-valuemax="100" aria-valuenow=${Number.isNaN(bar) ? nothing : Math.round(100 * bar)}>
-        <div style="width: ${Number.isNaN(bar) ? 100 : (100 * bar).toFixed(2)}%"></div></div>`}`;
+    return html` ${stats ? html`<p class="stats-line" part="stats" aria-live="off">${stats}</p>` : nothing}
+    ${
+      bar === null
+        ? nothing
+        : html`<div
+            class="progress ${Number.isNaN(bar) ? 'indeterminate' : ''}"
+            part="progress"
+            role="progressbar"
+            aria-label=${this._loading !== null ? 'Loading' : 'Refining'}
+            aria-valuemin="0"
+            aria-valuemax="100"
+            aria-valuenow=${Number.isNaN(bar) ? nothing : Math.round(100 * bar)}
+          >
+            <div style="width: ${Number.isNaN(bar) ? 100 : (100 * bar).toFixed(2)}%"></div>
+          </div>`
+    }`;
   }
 
   /**
@@ -383,8 +498,14 @@ export class VptViewer extends LitElement {
   private statsLine(): string | null {
     const s = this._stats;
     if (!s || !this.volume) return null;
-    const parts = [`${s.samples} / ${this.maxSamples} spp`, `${s.msPerIteration < 10 ? s.msPerIteration.toFixed(1) : Math.round(s.msPerIteration)} ms/it`];
-    if (s.error !== null) parts.push(`err ${(100 * s.error).toFixed(1)}%${this.targetError > 0 ? ` → ${(100 * this.targetError).toFixed(1)}%` : ''}`);
+    const parts = [
+      `${s.samples} / ${this.maxSamples} spp`,
+      `${s.msPerIteration < 10 ? s.msPerIteration.toFixed(1) : Math.round(s.msPerIteration)} ms/it`,
+    ];
+    if (s.error !== null)
+      parts.push(
+        `err ${(100 * s.error).toFixed(1)}%${this.targetError > 0 ? ` → ${(100 * this.targetError).toFixed(1)}%` : ''}`,
+      );
     parts.push(`${s.width}×${s.height}`);
     if (this.converged) parts.push('done');
     return parts.join(' · ');
@@ -435,7 +556,24 @@ export class VptViewer extends LitElement {
   }
 
   /** @internal Set a property as the user did through the element: reflected, and announced with `change`. */
-  setInternal(property: 'camera' | 'transferFunction' | 'lights' | 'environment' | 'renderer' | 'backend' | 'exposure' | 'toneMapper' | 'maxSamples' | 'targetError' | 'densityScale' | 'seed' | 'rendererParams' | 'resolutionScale', value: unknown): void {
+  setInternal(
+    property:
+      | 'camera'
+      | 'transferFunction'
+      | 'lights'
+      | 'environment'
+      | 'renderer'
+      | 'backend'
+      | 'exposure'
+      | 'toneMapper'
+      | 'maxSamples'
+      | 'targetError'
+      | 'densityScale'
+      | 'seed'
+      | 'rendererParams'
+      | 'resolutionScale',
+    value: unknown,
+  ): void {
     if (sameValue(this[property], value)) return;
     (this as Record<string, unknown>)[property] = value;
     if (property === 'camera') this.internalChange.add('camera');
@@ -450,25 +588,36 @@ export class VptViewer extends LitElement {
   /** @internal The volume's (value, gradient) pairs for the 2D editor's histogram; computed once per volume, on first use. */
   gradientSamples(): GradientSamples | null {
     if (!this.volume) return null;
-    if (this.gradientCache?.volume !== this.volume) this.gradientCache = { volume: this.volume, samples: gradientSamples(this.volume) };
+    if (this.gradientCache?.volume !== this.volume)
+      this.gradientCache = { volume: this.volume, samples: gradientSamples(this.volume) };
     return this.gradientCache.samples;
   }
 
   /** @internal The core 2D preset the transfer function was fitted from, if any. */
-  get fittedPresetName(): string | null { return this.fittedPreset; }
+  get fittedPresetName(): string | null {
+    return this.fittedPreset;
+  }
 
   /** @internal */
   async downloadScreenshot(): Promise<void> {
     try {
       download(await this.screenshot(), 'vpt.png');
-    } catch (e) { this.fail(e, 'export'); }
+    } catch (e) {
+      this.fail(e, 'export');
+    }
   }
 
   /** @internal */
   async downloadHDR(format: 'pfm' | 'exr'): Promise<void> {
     try {
-      download(await this.exportHDR(format), `vpt.${format}`, format === 'exr' ? 'image/x-exr' : 'image/x-portable-floatmap');
-    } catch (e) { this.fail(e, 'export'); }
+      download(
+        await this.exportHDR(format),
+        `vpt.${format}`,
+        format === 'exr' ? 'image/x-exr' : 'image/x-portable-floatmap',
+      );
+    } catch (e) {
+      this.fail(e, 'export');
+    }
   }
 
   // ——— async work ———
@@ -481,7 +630,8 @@ export class VptViewer extends LitElement {
 
   private requireContext() {
     const ctx = this.session?.ctx;
-    if (!ctx || !ctx.getScene()) throw new VptError('invalid-scene', '<vpt-viewer>: nothing rendered yet (no volume loaded)');
+    if (!ctx || !ctx.getScene())
+      throw new VptError('invalid-scene', '<vpt-viewer>: nothing rendered yet (no volume loaded)');
     return ctx;
   }
 
@@ -523,7 +673,9 @@ export class VptViewer extends LitElement {
   /** (Re)open the GPU context on a fresh canvas (a canvas keeps the first context type it was given). */
   private async openSession(): Promise<void> {
     const token = ++this.tokens.session;
-    const opening = this.openSessionNow(token).finally(() => { if (this.opening === opening) this.opening = null; });
+    const opening = this.openSessionNow(token).finally(() => {
+      if (this.opening === opening) this.opening = null;
+    });
     this.opening = opening;
     return opening;
   }
@@ -558,14 +710,21 @@ export class VptViewer extends LitElement {
       if (token !== this.tokens.session) return;
       this.fail(e, 'renderer');
       // Keep going with the previous renderer, or else the default one, so the element stays usable.
-      try { renderer = this.rendererInstance ?? await createRenderer('eam'); } catch { return; }
+      try {
+        renderer = this.rendererInstance ?? (await createRenderer('eam'));
+      } catch {
+        return;
+      }
     }
     if (token !== this.tokens.session) return;
     const canvas = document.createElement('canvas');
     canvas.tabIndex = 0;
     canvas.setAttribute('part', 'canvas');
     canvas.setAttribute('role', 'img');
-    canvas.setAttribute('aria-label', 'Volume rendering. Drag or use the arrow keys to orbit; right-drag or Shift+arrows to pan; wheel, +/- to zoom.');
+    canvas.setAttribute(
+      'aria-label',
+      'Volume rendering. Drag or use the arrow keys to orbit; right-drag or Shift+arrows to pan; wheel, +/- to zoom.',
+    );
     const { width, height } = this.resolution.renderSize(Infinity);
     let session: RenderSession;
     try {
@@ -574,15 +733,25 @@ export class VptViewer extends LitElement {
         {
           progress: (s) => this.onProgress(s),
           converged: (s) => this.dispatchEvent(new CustomEvent<ViewerConvergedDetail>('vpt-converged', { detail: s })),
-          lost: () => { this._lost = true; this.startLostTimer(); },
-          restored: () => { this._lost = false; this.stopLostTimer(); this.clearError('context'); },
+          lost: () => {
+            this._lost = true;
+            this.startLostTimer();
+          },
+          restored: () => {
+            this._lost = false;
+            this.stopLostTimer();
+            this.clearError('context');
+          },
         },
       );
     } catch (e) {
       if (token === this.tokens.session) this.fail(e, 'context');
       return;
     }
-    if (token !== this.tokens.session || !this.connected) { session.dispose(); return; }
+    if (token !== this.tokens.session || !this.connected) {
+      session.dispose();
+      return;
+    }
     this.canvas?.remove();
     this.canvas = canvas;
     view.prepend(canvas);
@@ -595,7 +764,8 @@ export class VptViewer extends LitElement {
     this.applySync();
     this.requestUpdate();
     // The renderer attribute may have changed while the context was opening.
-    if (this.desiredRendererKey() !== this.rendererKey && this.desiredRendererKey() !== this.failedRendererKey) this.track(this.switchRenderer());
+    if (this.desiredRendererKey() !== this.rendererKey && this.desiredRendererKey() !== this.failedRendererKey)
+      this.track(this.switchRenderer());
   }
 
   private async loadSource(source: VolumeSource | null): Promise<void> {
@@ -607,15 +777,21 @@ export class VptViewer extends LitElement {
     this._status = 'Loading…';
     this._loading = NaN;
     try {
-      const limits = this.session ? { maxTextureDimension3D: this.session.ctx.backend.limits.maxTextureDimension3D } : undefined;
+      const limits = this.session
+        ? { maxTextureDimension3D: this.session.ctx.backend.limits.maxTextureDimension3D }
+        : undefined;
       const volume = await loadVolumeSource(source, {
         signal: abort.signal,
         limits,
         onProgress: (p) => {
           if (token !== this.tokens.src) return;
-          this._status = p.total ? `Loading… ${Math.round((100 * p.loaded) / p.total)}%` : `Loading… ${(p.loaded / 1048576).toFixed(1)} MB`;
+          this._status = p.total
+            ? `Loading… ${Math.round((100 * p.loaded) / p.total)}%`
+            : `Loading… ${(p.loaded / 1048576).toFixed(1)} MB`;
           this._loading = p.total ? Math.min(1, p.loaded / p.total) : NaN;
-          this.dispatchEvent(new CustomEvent<ViewerProgressDetail>('vpt-progress', { detail: { phase: 'loading', ...p } }));
+          this.dispatchEvent(
+            new CustomEvent<ViewerProgressDetail>('vpt-progress', { detail: { phase: 'loading', ...p } }),
+          );
         },
       });
       if (token !== this.tokens.src) return;
@@ -643,7 +819,11 @@ export class VptViewer extends LitElement {
       this.applySync();
       // Renderer parameters that follow the data (iso's default surface) may have changed.
       if (this.session && this.desiredRendererKey() !== this.rendererKey) this.track(this.switchRenderer());
-      this.dispatchEvent(new CustomEvent<ViewerLoadDetail>('vpt-load', { detail: { volume, format: volume.format, dims: [...volume.dims], type: volume.type } }));
+      this.dispatchEvent(
+        new CustomEvent<ViewerLoadDetail>('vpt-load', {
+          detail: { volume, format: volume.format, dims: [...volume.dims], type: volume.type },
+        }),
+      );
     } catch (e) {
       if (token !== this.tokens.src) return;
       this._status = '';
@@ -709,7 +889,7 @@ export class VptViewer extends LitElement {
   /** The scene from the current attributes, or null before a volume is loaded. */
   private sceneNow(): Scene | null {
     if (!this.volume) return null;
-    const camera = (this.camera && typeof this.camera === 'object' ? this.camera : fitCamera(this.volume));
+    const camera = this.camera && typeof this.camera === 'object' ? this.camera : fitCamera(this.volume);
     return {
       volume: this.volume,
       transferFunction: this.currentTransferFunction(),
@@ -729,7 +909,9 @@ export class VptViewer extends LitElement {
       try {
         s.setPost(this.makePost());
         this.postKey = key;
-      } catch (e) { this.fail(e, 'attribute'); }
+      } catch (e) {
+        this.fail(e, 'attribute');
+      }
     }
     this.applySize();
     s.setStopping(this.maxSamples, this.targetError);
@@ -755,7 +937,9 @@ export class VptViewer extends LitElement {
     const { width, height } = this.resolution.renderSize(max);
     try {
       s.setSize(width, height);
-    } catch (e) { this.fail(e, 'context'); }
+    } catch (e) {
+      this.fail(e, 'context');
+    }
   }
 
   private onProgress(s: RefinementStats): void {
@@ -773,7 +957,11 @@ export class VptViewer extends LitElement {
   // ——— errors ———
 
   private fail(e: unknown, source: ViewerErrorDetail['source']): void {
-    const error = isVptError(e) ? e : new VptError(source === 'src' ? 'load-failed' : 'invalid-scene', (e as Error)?.message ?? String(e), { cause: e });
+    const error = isVptError(e)
+      ? e
+      : new VptError(source === 'src' ? 'load-failed' : 'invalid-scene', (e as Error)?.message ?? String(e), {
+          cause: e,
+        });
     const detail: ViewerErrorDetail = { error, code: error.code, message: error.message, source };
     this._error = detail;
     this.dispatchEvent(new CustomEvent<ViewerErrorDetail>('vpt-error', { detail }));
@@ -786,7 +974,13 @@ export class VptViewer extends LitElement {
       this.lostTimer = undefined;
       if (!this._lost) return;
       this._lostGaveUp = true;
-      this.fail(new VptError('context-lost', `The GPU context was lost and not restored within ${this.contextRestoreTimeoutMs} ms; press Retry to start a new one`), 'context');
+      this.fail(
+        new VptError(
+          'context-lost',
+          `The GPU context was lost and not restored within ${this.contextRestoreTimeoutMs} ms; press Retry to start a new one`,
+        ),
+        'context',
+      );
     }, this.contextRestoreTimeoutMs);
   }
 

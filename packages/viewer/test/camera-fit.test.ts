@@ -7,7 +7,7 @@ const box = { dims: [64, 64, 64] as [number, number, number], spacing: [1, 1, 1]
 const dot = (a: number[], b: number[]) => a.reduce((s, x, i) => s + x * b[i], 0);
 
 describe('default camera', () => {
-  it('puts anatomical superior up from an orientation matrix (RAS or LPS) or a sidecar\'s axis codes, +y without one', () => {
+  it("puts anatomical superior up from an orientation matrix (RAS or LPS) or a sidecar's axis codes, +y without one", () => {
     expect(fitCamera(box).up).toEqual([0, 1, 0]);
     // RAS identity: superior is +z, the camera sits in front (+y = anterior).
     const ras = fitCamera({ ...box, orientation: [1, 0, 0, 0, 1, 0, 0, 0, 1], meta: { space: 'RAS' } });

@@ -35,7 +35,7 @@ describe('histograms', () => {
     expect(h.max).toBe(1); // the largest bin set aside
   });
 
-  it('gradient samples equal core\'s gradient magnitudes, and the 2D histogram bins them on [0, gradientMax]', () => {
+  it("gradient samples equal core's gradient magnitudes, and the 2D histogram bins them on [0, gradientMax]", () => {
     const v = createProceduralVolume('blob', 12);
     const s = gradientSamples(v);
     const g = gradientMagnitudes(v);
@@ -61,11 +61,13 @@ describe('automatic camera', () => {
     const f = c.position.map((p) => -p);
     const fl = Math.hypot(...f);
     const fwd = f.map((x) => x / fl);
-    for (const x of [min[0], max[0]]) for (const y of [min[1], max[1]]) for (const z of [min[2], max[2]]) {
-      const d = [x - c.position[0], y - c.position[1], z - c.position[2]];
-      const along = d[0] * fwd[0] + d[1] * fwd[1] + d[2] * fwd[2];
-      const off = Math.sqrt(Math.max(0, d[0] ** 2 + d[1] ** 2 + d[2] ** 2 - along ** 2));
-      expect(Math.atan2(off, along)).toBeLessThan(0.35); // half of fovy, in any direction (square view)
-    }
+    for (const x of [min[0], max[0]])
+      for (const y of [min[1], max[1]])
+        for (const z of [min[2], max[2]]) {
+          const d = [x - c.position[0], y - c.position[1], z - c.position[2]];
+          const along = d[0] * fwd[0] + d[1] * fwd[1] + d[2] * fwd[2];
+          const off = Math.sqrt(Math.max(0, d[0] ** 2 + d[1] ** 2 + d[2] ** 2 - along ** 2));
+          expect(Math.atan2(off, along)).toBeLessThan(0.35); // half of fovy, in any direction (square view)
+        }
   });
 });

@@ -43,12 +43,20 @@ export interface RendererCatalogEntry {
   readonly params: readonly RendererParamSpec[];
 }
 
-const step = (placeholder: string): RendererParamSpec => ({ name: 'stepSize', label: 'Step size', min: 0.0005, max: 0.05, step: 0.0005, placeholder });
+const step = (placeholder: string): RendererParamSpec => ({
+  name: 'stepSize',
+  label: 'Step size',
+  min: 0.0005,
+  max: 0.05,
+  step: 0.0005,
+  placeholder,
+});
 
 /** The first isosurface's fields, edited in place (the iso renderer takes a list of surfaces). */
 type Surface = { value: number; color: [number, number, number]; opacity?: number };
 const DEFAULT_SURFACE: Surface = { value: 0.5, color: [1, 1, 1], opacity: 1 };
-const firstSurface = (p: Record<string, unknown>): Surface => (p.surfaces as Surface[] | undefined)?.[0] ?? DEFAULT_SURFACE;
+const firstSurface = (p: Record<string, unknown>): Surface =>
+  (p.surfaces as Surface[] | undefined)?.[0] ?? DEFAULT_SURFACE;
 const withFirstSurface = (p: Record<string, unknown>, patch: Partial<Surface>) => {
   const surfaces = [...((p.surfaces as Surface[] | undefined) ?? [DEFAULT_SURFACE])];
   surfaces[0] = { ...surfaces[0], ...patch };
@@ -57,14 +65,35 @@ const withFirstSurface = (p: Record<string, unknown>, patch: Partial<Surface>) =
 
 export const RENDERER_CATALOG: readonly RendererCatalogEntry[] = [
   {
-    name: 'mip', label: 'Maximum intensity', packageName: '@vpt/renderer-mip', exportName: 'MipRenderer',
+    name: 'mip',
+    label: 'Maximum intensity',
+    packageName: '@vpt/renderer-mip',
+    exportName: 'MipRenderer',
     params: [step('half a voxel')],
   },
   {
-    name: 'iso', label: 'Isosurface', packageName: '@vpt/renderer-iso', exportName: 'IsoRenderer',
+    name: 'iso',
+    label: 'Isosurface',
+    packageName: '@vpt/renderer-iso',
+    exportName: 'IsoRenderer',
     params: [
-      { name: 'isoValue', label: 'Iso value', min: 0, max: 1, step: 0.01, placeholder: '0.5', read: (p) => firstSurface(p).value, write: (p, v) => withFirstSurface(p, { value: v as number }) },
-      { name: 'isoColor', label: 'Surface colour', kind: 'color', read: (p) => firstSurface(p).color, write: (p, v) => withFirstSurface(p, { color: v as Surface['color'] }) },
+      {
+        name: 'isoValue',
+        label: 'Iso value',
+        min: 0,
+        max: 1,
+        step: 0.01,
+        placeholder: '0.5',
+        read: (p) => firstSurface(p).value,
+        write: (p, v) => withFirstSurface(p, { value: v as number }),
+      },
+      {
+        name: 'isoColor',
+        label: 'Surface colour',
+        kind: 'color',
+        read: (p) => firstSurface(p).color,
+        write: (p, v) => withFirstSurface(p, { color: v as Surface['color'] }),
+      },
       step('half a voxel'),
       { name: 'specular', label: 'Specular', min: 0, max: 1, step: 0.05, placeholder: '0.1' },
       { name: 'shininess', label: 'Shininess', min: 1, max: 1000, step: 1, placeholder: '40' },
@@ -73,17 +102,44 @@ export const RENDERER_CATALOG: readonly RendererCatalogEntry[] = [
     ],
   },
   {
-    name: 'eam', label: 'Emission–absorption', packageName: '@vpt/renderer-eam', exportName: 'EamRenderer',
-    params: [step('half a voxel'), { name: 'cutoff', label: 'Early-exit transmittance', min: 0, max: 0.1, step: 0.0001, placeholder: '1e-6' }],
+    name: 'eam',
+    label: 'Emission–absorption',
+    packageName: '@vpt/renderer-eam',
+    exportName: 'EamRenderer',
+    params: [
+      step('half a voxel'),
+      { name: 'cutoff', label: 'Early-exit transmittance', min: 0, max: 0.1, step: 0.0001, placeholder: '1e-6' },
+    ],
   },
   {
-    name: 'mcrt', label: 'Path tracing (MCRT)', packageName: '@vpt/renderer-mcrt', exportName: 'McrtRenderer',
+    name: 'mcrt',
+    label: 'Path tracing (MCRT)',
+    packageName: '@vpt/renderer-mcrt',
+    exportName: 'McrtRenderer',
     params: [
-      { name: 'scattering', label: 'Scattering', kind: 'select', options: ['multiple', 'single'], defaultValue: 'multiple' },
+      {
+        name: 'scattering',
+        label: 'Scattering',
+        kind: 'select',
+        options: ['multiple', 'single'],
+        defaultValue: 'multiple',
+      },
       { name: 'anisotropy', label: 'Anisotropy g', min: -0.99, max: 0.99, step: 0.05, placeholder: '0' },
       { name: 'maxDepth', label: 'Max bounces', min: -1, max: 256, step: 1, placeholder: 'unlimited' },
-      { name: 'tracking', label: 'Shadow tracking', kind: 'select', options: ['residual', 'ratio', 'delta'], defaultValue: 'residual' },
-      { name: 'environmentSampling', label: 'Environment sampling', kind: 'select', options: ['mis', 'light', 'phase'], defaultValue: 'mis' },
+      {
+        name: 'tracking',
+        label: 'Shadow tracking',
+        kind: 'select',
+        options: ['residual', 'ratio', 'delta'],
+        defaultValue: 'residual',
+      },
+      {
+        name: 'environmentSampling',
+        label: 'Environment sampling',
+        kind: 'select',
+        options: ['mis', 'light', 'phase'],
+        defaultValue: 'mis',
+      },
       { name: 'majorantGrid', label: 'Majorant grid', kind: 'boolean', defaultValue: true },
     ],
   },

@@ -28,9 +28,13 @@ export class ProgressiveLoop {
 
   constructor(private readonly hooks: ProgressiveLoopHooks) {}
 
-  get running(): boolean { return this.active && !this.paused; }
+  get running(): boolean {
+    return this.active && !this.paused;
+  }
   /** The iteration count the running loop stops at (Infinity when unlimited). */
-  get maxIterations(): number { return this.options.maxIterations ?? Infinity; }
+  get maxIterations(): number {
+    return this.options.maxIterations ?? Infinity;
+  }
 
   start(options: LoopOptions = {}): void {
     this.options = options;
@@ -38,14 +42,24 @@ export class ProgressiveLoop {
     this.schedule();
   }
 
-  stop(): void { this.active = false; }
-  pause(): void { this.paused = true; }
-  resume(): void { this.paused = false; this.schedule(); }
+  stop(): void {
+    this.active = false;
+  }
+  pause(): void {
+    this.paused = true;
+  }
+  resume(): void {
+    this.paused = false;
+    this.schedule();
+  }
 
   private schedule(): void {
     if (!this.active || this.paused || this.scheduled) return;
     this.scheduled = true;
-    raf(() => { this.scheduled = false; void this.tick(); });
+    raf(() => {
+      this.scheduled = false;
+      void this.tick();
+    });
   }
 
   private async tick(): Promise<void> {
@@ -61,7 +75,10 @@ export class ProgressiveLoop {
       return;
     }
     // First frame: one iteration to learn the rate; later, fill the budget (at least one).
-    const n = Math.max(1, Math.min(remaining, this.msPerIteration > 0 ? Math.floor(budget / this.msPerIteration) : 1, 256));
+    const n = Math.max(
+      1,
+      Math.min(remaining, this.msPerIteration > 0 ? Math.floor(budget / this.msPerIteration) : 1, 256),
+    );
     const t0 = performance.now();
     try {
       this.hooks.step(n);

@@ -132,9 +132,14 @@ export class RenderContext {
     this._renderer = opts.renderer;
     this._post = opts.post ?? [];
     this.sampling = opts.sampling ?? 'fast';
-    if (this.sampling !== 'fast' && this.sampling !== 'exact') throw new VptError('invalid-scene', `sampling must be 'fast' or 'exact', got ${JSON.stringify(opts.sampling)}`);
-    this.resources = new SceneResources(backend, () => ({ scene: this.scene, renderer: this._renderer }), { sampling: this.sampling, allowHalfFloat: opts.allowHalfFloatVolumes === true });
-    if (opts.maxGpuBytes !== undefined && !(opts.maxGpuBytes > 0)) throw new VptError('invalid-scene', `maxGpuBytes must be a positive number of bytes, got ${opts.maxGpuBytes}`);
+    if (this.sampling !== 'fast' && this.sampling !== 'exact')
+      throw new VptError('invalid-scene', `sampling must be 'fast' or 'exact', got ${JSON.stringify(opts.sampling)}`);
+    this.resources = new SceneResources(backend, () => ({ scene: this.scene, renderer: this._renderer }), {
+      sampling: this.sampling,
+      allowHalfFloat: opts.allowHalfFloatVolumes === true,
+    });
+    if (opts.maxGpuBytes !== undefined && !(opts.maxGpuBytes > 0))
+      throw new VptError('invalid-scene', `maxGpuBytes must be a positive number of bytes, got ${opts.maxGpuBytes}`);
     this.maxGpuBytes = opts.maxGpuBytes ?? defaultGpuBytes(backend);
     checkSize(opts.width, opts.height, backend);
     this.width = opts.width;
@@ -144,7 +149,10 @@ export class RenderContext {
       step: (n) => this.iterate(n),
       finishFrame: () => this.present(),
       sync: () => this.backend.finish(),
-      onStats: (ms) => { this.msPerIteration = ms; this.emit(); },
+      onStats: (ms) => {
+        this.msPerIteration = ms;
+        this.emit();
+      },
     });
     backend.onLost(() => this.loop.pause());
     backend.onRestored(() => this.restore());
@@ -160,12 +168,23 @@ export class RenderContext {
     }
   }
 
-  get renderer(): Renderer { return this._renderer; }
-  get post(): readonly PostStep[] { return this._post; }
-  get size(): { width: number; height: number } { return { width: this.width, height: this.height }; }
+  get renderer(): Renderer {
+    return this._renderer;
+  }
+  get post(): readonly PostStep[] {
+    return this._post;
+  }
+  get size(): { width: number; height: number } {
+    return { width: this.width, height: this.height };
+  }
 
   get stats(): RenderStats {
-    return { iterations: this.iteration, samplesPerPixel: this.iteration, msPerIteration: this.msPerIteration, gpuBytes: this.gpuBytes() };
+    return {
+      iterations: this.iteration,
+      samplesPerPixel: this.iteration,
+      msPerIteration: this.msPerIteration,
+      gpuBytes: this.gpuBytes(),
+    };
   }
 
   /** Called when the context changes something to make a scene fit (a downsampled volume). */
@@ -176,14 +195,16 @@ export class RenderContext {
 
   /** GPU memory held now, by kind (textures as allocated: width × height × depth × bytes per texel). */
   gpuBytes(): GpuBytes {
-    const tex = (t: GpuTexture | null | undefined) => (t ? t.width * t.height * t.depth * BYTES_PER_TEXEL[t.format] : 0);
+    const tex = (t: GpuTexture | null | undefined) =>
+      t ? t.width * t.height * t.depth * BYTES_PER_TEXEL[t.format] : 0;
     const target = (t: RenderTarget | null | undefined) => (t ? t.textures.reduce((a, x) => a + tex(x), 0) : 0);
     const res = this.resources;
     const volume = tex(res.volumeTexture);
     const gradient = res.gradient ? target(res.gradient.atlas) + target(res.gradient.max) : 0;
     let auxiliary = tex(res.tfTexture);
     for (const a of res.auxTextures.values()) auxiliary += tex(a.texture);
-    let targets = target(this.frame) + target(this.hdr) + (this.accum ? target(this.accum[0]) + target(this.accum[1]) : 0);
+    let targets =
+      target(this.frame) + target(this.hdr) + (this.accum ? target(this.accum[0]) + target(this.accum[1]) : 0);
     for (const t of this.postTargets) targets += target(t);
     return { volume, gradient, auxiliary, targets, total: volume + gradient + auxiliary + targets };
   }
@@ -209,7 +230,10 @@ export class RenderContext {
       const atlas = sliceAtlasLayout(scene.volume.dims);
       const max2D = this.backend.limits.maxTextureDimension2D;
       if (atlas.width > max2D || atlas.height > max2D) {
-        throw new VptError('limit-exceeded', `The gradient volume of a [${nx}, ${ny}, ${nz}] volume (needed by the 2D transfer function or the renderer) needs a ${atlas.width} x ${atlas.height} slice atlas; this device's 2D texture limit is ${max2D} (maxTextureDimension2D)`);
+        throw new VptError(
+          'limit-exceeded',
+          `The gradient volume of a [${nx}, ${ny}, ${nz}] volume (needed by the 2D transfer function or the renderer) needs a ${atlas.width} x ${atlas.height} slice atlas; this device's 2D texture limit is ${max2D} (maxTextureDimension2D)`,
+        );
       }
     }
     this.scene = scene;
@@ -241,13 +265,19 @@ export class RenderContext {
     const upload = this.resources.planUpload(scene.volume, sampling);
     const perVoxel = upload.bytesPerVoxel + (gradient ? (sampling === 'exact' ? 4 : 2) : 0);
     const pixels = this.width * this.height;
-    const targetBytes = pixels * 16 * (this._renderer.frameFormats.length + 2 * this._renderer.accumulationFormats.length + 1 + this._post.length);
+    const targetBytes =
+      pixels *
+      16 *
+      (this._renderer.frameFormats.length + 2 * this._renderer.accumulationFormats.length + 1 + this._post.length);
     const budget = this.maxGpuBytes - targetBytes - TF_RESOLUTION * 16 * 256;
     const max3D = this.backend.limits.maxTextureDimension3D;
     const from = [...scene.volume.dims] as [number, number, number];
     const factors = fitFactors(from, perVoxel, budget, max3D);
     if (!factors) {
-      throw new VptError('limit-exceeded', `maxGpuBytes (${this.maxGpuBytes} bytes) leaves no room for a volume next to the ${this.width} x ${this.height} render targets`);
+      throw new VptError(
+        'limit-exceeded',
+        `maxGpuBytes (${this.maxGpuBytes} bytes) leaves no room for a volume next to the ${this.width} x ${this.height} render targets`,
+      );
     }
     let volume = scene.volume;
     if (factors.some((f) => f > 1)) {
@@ -257,7 +287,10 @@ export class RenderContext {
         ? `a side exceeds this device's 3D texture limit of ${max3D} (maxTextureDimension3D)`
         : `${voxelCount(from)} voxels x ${perVoxel} bytes exceed the GPU memory budget of ${this.maxGpuBytes} bytes (maxGpuBytes)`;
       const warning: RenderWarning = {
-        code: 'volume-downsampled', factors, from, to: [...volume.dims] as [number, number, number],
+        code: 'volume-downsampled',
+        factors,
+        from,
+        to: [...volume.dims] as [number, number, number],
         message: `Volume [${from.join(', ')}] downsampled by [${factors.join(', ')}] to [${volume.dims.join(', ')}]: ${why}`,
       };
       if (this.warningListeners.size === 0) console.warn(`vpt: ${warning.message}`);
@@ -273,7 +306,9 @@ export class RenderContext {
     this.setScene({ ...this.input, ...changes });
   }
 
-  getScene(): Scene | null { return this.scene; }
+  getScene(): Scene | null {
+    return this.scene;
+  }
 
   setRenderer(renderer: Renderer): void {
     this._renderer = renderer;
@@ -312,7 +347,10 @@ export class RenderContext {
     this.prepare();
     const scene = this.scene;
     const passes = this.passes!;
-    const textures: Record<string, GpuTexture> = { volume: this.resources.volumeTexture!, transferFunction: this.resources.tfTexture! };
+    const textures: Record<string, GpuTexture> = {
+      volume: this.resources.volumeTexture!,
+      transferFunction: this.resources.tfTexture!,
+    };
     if (this.resources.gradient && this.wantsGradient(scene)) {
       textures.gradientMagnitude = this.resources.gradient.atlas.textures[0];
       textures.gradientMax = this.resources.gradient.max.textures[0];
@@ -323,8 +361,12 @@ export class RenderContext {
       this.backend.draw(passes.generate, { uniforms, textures, target: this.frame! });
       const [prev, next] = this.accum!;
       const integrateTextures: Record<string, GpuTexture> = {};
-      this.frame!.textures.forEach((t, i) => { integrateTextures[`frame${i}`] = t; });
-      prev.textures.forEach((t, i) => { integrateTextures[`accum${i}`] = t; });
+      this.frame!.textures.forEach((t, i) => {
+        integrateTextures[`frame${i}`] = t;
+      });
+      prev.textures.forEach((t, i) => {
+        integrateTextures[`accum${i}`] = t;
+      });
       this.backend.draw(passes.integrate, { uniforms, textures: integrateTextures, target: next });
       this.accum = [next, prev];
       this.iteration++;
@@ -333,7 +375,8 @@ export class RenderContext {
 
   /** Reset, run exactly n iterations, render and post-process, and wait for the GPU. */
   async renderIterations(n: number): Promise<void> {
-    if (!Number.isInteger(n) || n < 1) throw new VptError('invalid-scene', `renderIterations needs a positive integer, got ${n}`);
+    if (!Number.isInteger(n) || n < 1)
+      throw new VptError('invalid-scene', `renderIterations needs a positive integer, got ${n}`);
     this.reset();
     const t0 = performance.now();
     this.iterate(n);
@@ -348,18 +391,29 @@ export class RenderContext {
     this.assertAlive();
     if (!this.scene || this.backend.isLost || this.iteration === 0) return;
     const postKey = JSON.stringify(this._post.map((s) => [s.name, s.uniformValues(), s.defines?.()]));
-    if (this.hdrIteration === this.iteration && this.postKey === postKey && this.postPasses.length === this._post.length) return;
+    if (
+      this.hdrIteration === this.iteration &&
+      this.postKey === postKey &&
+      this.postPasses.length === this._post.length
+    )
+      return;
     this.postKey = postKey;
     this.prepare();
     const uniforms = this.uniforms(this.scene, this.iteration - 1);
     const accTextures: Record<string, GpuTexture> = {};
-    this.accum![0].textures.forEach((t, i) => { accTextures[`accum${i}`] = t; });
+    this.accum![0].textures.forEach((t, i) => {
+      accTextures[`accum${i}`] = t;
+    });
     this.backend.draw(this.passes!.render, { uniforms, textures: accTextures, target: this.hdr! });
     this.preparePost();
     let input = this.hdr!.textures[0];
     this._post.forEach((step, i) => {
       const pass = this.postPasses[i];
-      this.backend.draw(pass, { uniforms: step.uniforms.pack(step.uniformValues()), textures: { inputImage: input }, target: this.postTargets[i] });
+      this.backend.draw(pass, {
+        uniforms: step.uniforms.pack(step.uniformValues()),
+        textures: { inputImage: input },
+        target: this.postTargets[i],
+      });
       input = this.postTargets[i].textures[0];
     });
     this.hdrIteration = this.iteration;
@@ -389,10 +443,13 @@ export class RenderContext {
    */
   async whenSamples(n: number): Promise<RenderStats> {
     this.assertAlive();
-    if (!Number.isInteger(n) || n < 1) throw new VptError('invalid-scene', `whenSamples needs a positive integer, got ${n}`);
-    if (!this.scene) throw new VptError('invalid-scene', 'whenSamples: there is no scene to render; call setScene() first');
+    if (!Number.isInteger(n) || n < 1)
+      throw new VptError('invalid-scene', `whenSamples needs a positive integer, got ${n}`);
+    if (!this.scene)
+      throw new VptError('invalid-scene', 'whenSamples: there is no scene to render; call setScene() first');
     const limit = this.loop.maxIterations;
-    if (this.loop.running && limit < n) throw new VptError('invalid-scene', `whenSamples(${n}): the progressive loop stops at maxIterations = ${limit}`);
+    if (this.loop.running && limit < n)
+      throw new VptError('invalid-scene', `whenSamples(${n}): the progressive loop stops at maxIterations = ${limit}`);
     for (;;) {
       this.assertAlive();
       if (this.iteration >= n) break;
@@ -429,7 +486,8 @@ export class RenderContext {
    * output `index`), RGBA float, top row first. For tests and debugging.
    */
   async readFrame(index = 0): Promise<Float32Array> {
-    if (!this.frame || this.iteration === 0) throw new VptError('invalid-scene', 'Nothing rendered yet: call setScene() and iterate first');
+    if (!this.frame || this.iteration === 0)
+      throw new VptError('invalid-scene', 'Nothing rendered yet: call setScene() and iterate first');
     return (await this.backend.readTexture(this.frame.textures[index])) as Float32Array;
   }
 
@@ -456,13 +514,20 @@ export class RenderContext {
     this.assertAlive();
     if (!this.scene) throw new VptError('invalid-scene', 'readGradientVolume() before setScene()');
     const g = this.resources.ensureGradient();
-    const [atlas, max] = await Promise.all([this.backend.readTexture(g.atlas.textures[0]), this.backend.readTexture(g.max.textures[0])]) as Float32Array[];
+    const [atlas, max] = (await Promise.all([
+      this.backend.readTexture(g.atlas.textures[0]),
+      this.backend.readTexture(g.max.textures[0]),
+    ])) as Float32Array[];
     const [nx, ny, nz] = this.scene.volume.dims;
     const magnitudes = new Float32Array(nx * ny * nz);
     for (let z = 0; z < nz; z++) {
-      const ox = (z % g.layout.columns) * nx, oy = Math.floor(z / g.layout.columns) * ny;
+      const ox = (z % g.layout.columns) * nx,
+        oy = Math.floor(z / g.layout.columns) * ny;
       for (let y = 0; y < ny; y++) {
-        magnitudes.set(atlas.subarray(ox + g.layout.width * (oy + y), ox + g.layout.width * (oy + y) + nx), nx * (y + ny * z));
+        magnitudes.set(
+          atlas.subarray(ox + g.layout.width * (oy + y), ox + g.layout.width * (oy + y) + nx),
+          nx * (y + ny * z),
+        );
       }
     }
     return { magnitudes, max: max[0] };
@@ -478,8 +543,12 @@ export class RenderContext {
   async estimateError(): Promise<{ rmse: number; relativeRmse: number } | null> {
     const halves = this._renderer.halfAccumulations;
     if (!halves || !this.accum || this.iteration < 2) return null;
-    const [a, b] = await Promise.all(halves.map((i) => this.backend.readTexture(this.accum![0].textures[i]))) as Float32Array[];
-    let sq = 0, sum = 0, n = 0;
+    const [a, b] = (await Promise.all(
+      halves.map((i) => this.backend.readTexture(this.accum![0].textures[i])),
+    )) as Float32Array[];
+    let sq = 0,
+      sum = 0,
+      n = 0;
     for (let i = 0; i < a.length; i += 4) {
       for (let c = 0; c < 3; c++) {
         const d = (a[i + c] - b[i + c]) / 2;
@@ -499,9 +568,13 @@ export class RenderContext {
     this.loop.start({ ...options, currentIterations: () => this.iteration });
   }
 
-  stop(): void { this.loop.stop(); }
+  stop(): void {
+    this.loop.stop();
+  }
 
-  get running(): boolean { return this.loop.running; }
+  get running(): boolean {
+    return this.loop.running;
+  }
 
   dispose(): void {
     if (this.disposed) return;
@@ -524,7 +597,14 @@ export class RenderContext {
 
   private uniforms(scene: Scene, iteration = this.iteration): ArrayBuffer {
     return this.layout.pack({
-      ...sceneUniformValues(scene, this.width, this.height, iteration, TF_RESOLUTION, this.resources.volumeMapping(scene)),
+      ...sceneUniformValues(
+        scene,
+        this.width,
+        this.height,
+        iteration,
+        TF_RESOLUTION,
+        this.resources.volumeMapping(scene),
+      ),
       ...this._renderer.paramValues(scene),
     });
   }
@@ -537,7 +617,11 @@ export class RenderContext {
   /** Which shared chunks (and defines) the generate pass needs for this scene. */
   private chunkOptions(scene: Scene): Required<CommonChunkOptions> {
     const tf2d = scene.transferFunction.dimensions === '2d';
-    return { tf2d, gradient: this.wantsGradient(scene), hardwareFilter: this.resources.volumeUpload?.filter === 'linear' };
+    return {
+      tf2d,
+      gradient: this.wantsGradient(scene),
+      hardwareFilter: this.resources.volumeUpload?.filter === 'linear',
+    };
   }
 
   /** Compile the renderer's variant for the current scene and allocate its targets. */
@@ -552,20 +636,33 @@ export class RenderContext {
     }
     this.resources.syncGradient();
     this.resources.syncAuxiliaryTextures();
-    const auxBindings = [...this.resources.auxTextures].filter(([, a]) => a.bind).map(([name, a]) => ({ name, dimension: a.dimension }));
-    const gradientBindings = chunks.gradient ? [{ name: 'gradientMagnitude', dimension: '2d' as const }, { name: 'gradientMax', dimension: '2d' as const }] : [];
+    const auxBindings = [...this.resources.auxTextures]
+      .filter(([, a]) => a.bind)
+      .map(([name, a]) => ({ name, dimension: a.dimension }));
+    const gradientBindings = chunks.gradient
+      ? [
+          { name: 'gradientMagnitude', dimension: '2d' as const },
+          { name: 'gradientMax', dimension: '2d' as const },
+        ]
+      : [];
     const key = `${r.name}|${JSON.stringify(features)}|${auxBindings.map((b) => b.name).join(',')}|${chunks.hardwareFilter ? 'filtered' : 'exact'}`;
     if (!this.passes || key !== this.variantKey) {
       this.layout = new UniformLayout('Params', [...SCENE_UNIFORM_FIELDS, ...r.paramFields]);
       // The volume/TF chunks read the `volume` and `transferFunction` (and gradient) textures,
       // which only the generate pass binds; integrate and render get the texture-free chunks.
       const generateChunks = commonChunks(chunks);
-      const mk = (stage: 'generate' | 'integrate' | 'render', textures: { name: string; dimension: '2d' | '3d' }[], outputs: typeof r.frameFormats) =>
+      const mk = (
+        stage: 'generate' | 'integrate' | 'render',
+        textures: { name: string; dimension: '2d' | '3d' }[],
+        outputs: typeof r.frameFormats,
+      ) =>
         this.backend.createPass({
           label: `${r.name}.${stage}`,
           // Kernels mark variants with #if lines on their feature flags; one preprocessor cuts both languages.
-          glsl: (stage === 'generate' ? generateChunks : PASS_CHUNKS).glsl + preprocess(r.kernels[stage].glsl, features),
-          wgsl: (stage === 'generate' ? generateChunks : PASS_CHUNKS).wgsl + preprocess(r.kernels[stage].wgsl, features),
+          glsl:
+            (stage === 'generate' ? generateChunks : PASS_CHUNKS).glsl + preprocess(r.kernels[stage].glsl, features),
+          wgsl:
+            (stage === 'generate' ? generateChunks : PASS_CHUNKS).wgsl + preprocess(r.kernels[stage].wgsl, features),
           uniforms: this.layout,
           textures,
           outputs,
@@ -574,7 +671,16 @@ export class RenderContext {
       const frameTex = r.frameFormats.map((_, i) => ({ name: `frame${i}`, dimension: '2d' as const }));
       const accTex = r.accumulationFormats.map((_, i) => ({ name: `accum${i}`, dimension: '2d' as const }));
       this.passes = {
-        generate: mk('generate', [{ name: 'volume', dimension: '3d', ...(chunks.hardwareFilter ? { filter: 'linear' as const } : {}) }, { name: 'transferFunction', dimension: '2d' }, ...gradientBindings, ...auxBindings], r.frameFormats),
+        generate: mk(
+          'generate',
+          [
+            { name: 'volume', dimension: '3d', ...(chunks.hardwareFilter ? { filter: 'linear' as const } : {}) },
+            { name: 'transferFunction', dimension: '2d' },
+            ...gradientBindings,
+            ...auxBindings,
+          ],
+          r.frameFormats,
+        ),
         integrate: mk('integrate', [...frameTex, ...accTex], r.accumulationFormats),
         render: mk('render', accTex, ['rgba32float']),
       };
@@ -593,23 +699,34 @@ export class RenderContext {
   private preparePost(): void {
     if (this.postPasses.length !== this._post.length || this.postTargets.length !== this._post.length) {
       this.destroyPostTargets();
-      this.postPasses = this._post.map((step, i) => this.backend.createPass({
-        label: `post.${step.name}`,
-        glsl: step.glsl,
-        wgsl: step.wgsl,
-        uniforms: step.uniforms,
-        textures: [{ name: 'inputImage', dimension: '2d' }],
-        outputs: [i === this._post.length - 1 ? 'rgba8unorm' : 'rgba32float'],
-        defines: step.defines?.() ?? {},
-      }));
+      this.postPasses = this._post.map((step, i) =>
+        this.backend.createPass({
+          label: `post.${step.name}`,
+          glsl: step.glsl,
+          wgsl: step.wgsl,
+          uniforms: step.uniforms,
+          textures: [{ name: 'inputImage', dimension: '2d' }],
+          outputs: [i === this._post.length - 1 ? 'rgba8unorm' : 'rgba32float'],
+          defines: step.defines?.() ?? {},
+        }),
+      );
       this.postTargets = this._post.map((_, i) =>
-        this.backend.createRenderTarget(this.width, this.height, [i === this._post.length - 1 ? 'rgba8unorm' : 'rgba32float'], `post ${i}`));
+        this.backend.createRenderTarget(
+          this.width,
+          this.height,
+          [i === this._post.length - 1 ? 'rgba8unorm' : 'rgba32float'],
+          `post ${i}`,
+        ),
+      );
     }
   }
 
   private ldrTexture(): GpuTexture {
     if (this._post.length === 0) {
-      throw new VptError('invalid-scene', 'The post chain is empty: add at least one step (e.g. sRGB encoding) to get an LDR image');
+      throw new VptError(
+        'invalid-scene',
+        'The post chain is empty: add at least one step (e.g. sRGB encoding) to get an LDR image',
+      );
     }
     return this.postTargets[this.postTargets.length - 1].textures[0];
   }
@@ -639,10 +756,16 @@ export class RenderContext {
   private restore(): void {
     if (this.disposed) return;
     // The old handles belong to the lost context: forget them without calling destroy.
-    this.frame = null; this.accum = null; this.hdr = null;
-    this.postTargets = []; this.postPasses = []; this.presentPass = null;
+    this.frame = null;
+    this.accum = null;
+    this.hdr = null;
+    this.postTargets = [];
+    this.postPasses = [];
+    this.presentPass = null;
     this.resources.forget();
-    this.passes = null; this.variantKey = ''; this.presentedVersion = -1;
+    this.passes = null;
+    this.variantKey = '';
+    this.presentedVersion = -1;
     this.backend.resizeCanvas(this.width, this.height);
     if (this.scene) this.resources.sync();
     this.reset();
@@ -661,5 +784,9 @@ function checkSize(width: number, height: number, backend: GpuBackend): void {
   if (!Number.isInteger(width) || !Number.isInteger(height) || width < 1 || height < 1) {
     throw new VptError('invalid-scene', `Render size must be positive integers, got ${width} x ${height}`);
   }
-  if (width > max || height > max) throw new VptError('limit-exceeded', `Render size ${width} x ${height} exceeds this device's 2D texture limit of ${max} (maxTextureDimension2D)`);
+  if (width > max || height > max)
+    throw new VptError(
+      'limit-exceeded',
+      `Render size ${width} x ${height} exceeds this device's 2D texture limit of ${max} (maxTextureDimension2D)`,
+    );
 }

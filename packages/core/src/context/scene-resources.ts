@@ -2,7 +2,15 @@ import type { GpuBackend, GpuTexture, RenderTarget } from '../gpu/backend.js';
 import type { AuxiliaryPass, AuxiliaryTexture, Renderer, VolumeBinding } from '../renderer.js';
 import type { Scene } from '../scene/scene.js';
 import { rasterizeTransferFunction, TF_RESOLUTION, transferFunctionSize } from '../scene/transfer-function.js';
-import { planVolumeUpload, uploadsDataAsIs, volumeTextureData, volumeTextureSlab, volumeValueMapping, type VolumeSampling, type VolumeUpload } from '../gpu/volume-format.js';
+import {
+  planVolumeUpload,
+  uploadsDataAsIs,
+  volumeTextureData,
+  volumeTextureSlab,
+  volumeValueMapping,
+  type VolumeSampling,
+  type VolumeUpload,
+} from '../gpu/volume-format.js';
 import { buildGradientVolume, destroyGradientVolume, type GradientVolume } from '../gradient/gradient-volume.js';
 
 /**
@@ -20,7 +28,11 @@ export class SceneResources {
   volumeUpload: VolumeUpload | null = null;
   private volumeKey = 0; // bumped on every volume upload (VolumeBinding.key)
   private planMemo: { volume: Scene['volume']; sampling: VolumeSampling; plan: VolumeUpload } | null = null;
-  private mappingMemo: { volume: Scene['volume']; upload: Pick<VolumeUpload, 'decodeScale' | 'decodeOffset'>; mapping: { valueScale: number; valueOffset: number } } | null = null;
+  private mappingMemo: {
+    volume: Scene['volume'];
+    upload: Pick<VolumeUpload, 'decodeScale' | 'decodeOffset'>;
+    mapping: { valueScale: number; valueOffset: number };
+  } | null = null;
   private readonly sampling: VolumeSampling;
   private readonly allowHalfFloat: boolean;
   tfTexture: GpuTexture | null = null;
@@ -32,7 +44,11 @@ export class SceneResources {
   private gradientKey = '';
   // Renderer-declared textures by name; `target` is set for GPU-made ones (AuxiliaryPass).
   readonly auxTextures = new Map<string, AuxEntry>();
-  private auxFor: { scene: Scene | null; renderer: Renderer | null; version: number } = { scene: null, renderer: null, version: -1 };
+  private auxFor: { scene: Scene | null; renderer: Renderer | null; version: number } = {
+    scene: null,
+    renderer: null,
+    version: -1,
+  };
 
   constructor(
     private readonly backend: GpuBackend,
@@ -43,8 +59,12 @@ export class SceneResources {
     this.allowHalfFloat = opts.allowHalfFloat;
   }
 
-  private get scene(): Scene | null { return this.current().scene; }
-  private get _renderer(): Renderer { return this.current().renderer; }
+  private get scene(): Scene | null {
+    return this.current().scene;
+  }
+  private get _renderer(): Renderer {
+    return this.current().renderer;
+  }
 
   /** The texel → normalized value map of the uploaded volume (scene uniforms valueScale/valueOffset). */
   volumeMapping(scene: Scene): { valueScale: number; valueOffset: number } {
@@ -60,7 +80,11 @@ export class SceneResources {
   /** What auxiliary passes need to read the volume texture's texels (Renderer.auxiliaryTextures). */
   volumeBinding(scene: Scene): VolumeBinding {
     const m = this.volumeMapping(scene);
-    return { ...m, format: this.volumeUpload?.format ?? 'r32float', key: `${this.volumeKey}|${m.valueScale}|${m.valueOffset}` };
+    return {
+      ...m,
+      format: this.volumeUpload?.format ?? 'r32float',
+      key: `${this.volumeKey}|${m.valueScale}|${m.valueOffset}`,
+    };
   }
 
   /** The upload plan of a volume, kept per volume and sampling (a uint16 or half-float plan scans the data once). */
@@ -84,8 +108,17 @@ export class SceneResources {
    */
   private uploadVolume(volume: Scene['volume'], upload: VolumeUpload): GpuTexture {
     const [width, height, depth] = volume.dims;
-    const desc = { dimension: '3d' as const, width, height, depth, format: upload.format, filter: upload.filter, label: 'volume' };
-    if (uploadsDataAsIs(upload) || width * height * depth <= SLAB_VOXELS) return this.backend.createTexture({ ...desc, data: volumeTextureData(volume, upload) });
+    const desc = {
+      dimension: '3d' as const,
+      width,
+      height,
+      depth,
+      format: upload.format,
+      filter: upload.filter,
+      label: 'volume',
+    };
+    if (uploadsDataAsIs(upload) || width * height * depth <= SLAB_VOXELS)
+      return this.backend.createTexture({ ...desc, data: volumeTextureData(volume, upload) });
     const texture = this.backend.createTexture(desc);
     const slabDepth = Math.max(1, Math.floor(SLAB_VOXELS / (width * height)));
     const scratch = new ArrayBuffer(slabDepth * width * height * 4); // one buffer for every slab
@@ -100,9 +133,18 @@ export class SceneResources {
   sync(): void {
     const scene = this.scene!;
     const upload = this.planUpload(scene.volume, this.samplingOf(scene));
-    const same = this.volumeUpload && this.volumeUpload.format === upload.format && this.volumeUpload.filter === upload.filter
-      && this.volumeUpload.decodeScale === upload.decodeScale && this.volumeUpload.decodeOffset === upload.decodeOffset;
-    if (this.volumeTexture && same && this.volumeSource !== scene.volume && sameVoxels(this.volumeSource!, scene.volume)) {
+    const same =
+      this.volumeUpload &&
+      this.volumeUpload.format === upload.format &&
+      this.volumeUpload.filter === upload.filter &&
+      this.volumeUpload.decodeScale === upload.decodeScale &&
+      this.volumeUpload.decodeOffset === upload.decodeOffset;
+    if (
+      this.volumeTexture &&
+      same &&
+      this.volumeSource !== scene.volume &&
+      sameVoxels(this.volumeSource!, scene.volume)
+    ) {
       // Only the value range (or name) changed: the kernels map it, so nothing is uploaded;
       // the gradient volume and the majorant grid follow through their keys.
       this.volumeSource = scene.volume;
@@ -126,7 +168,15 @@ export class SceneResources {
         this.tfTexture = null;
       }
       if (this.tfTexture) this.backend.writeTexture(this.tfTexture, data);
-      else this.tfTexture = this.backend.createTexture({ dimension: '2d', width, height, format: 'rgba32float', data, label: 'transfer function' });
+      else
+        this.tfTexture = this.backend.createTexture({
+          dimension: '2d',
+          width,
+          height,
+          format: 'rgba32float',
+          data,
+          label: 'transfer function',
+        });
       this.tfSource = tfKey;
     }
     this.syncGradient();
@@ -141,7 +191,8 @@ export class SceneResources {
   syncGradient(): void {
     const scene = this.scene!;
     if (!this.wantsGradient(scene) || !this.volumeTexture || this.backend.isLost) return;
-    if (this.gradient && this.gradientSource === scene.volume && this.gradientKey === this.volumeBinding(scene).key) return;
+    if (this.gradient && this.gradientSource === scene.volume && this.gradientKey === this.volumeBinding(scene).key)
+      return;
     this.dropGradient();
     this.gradient = buildGradientVolume(this.backend, this.volumeTexture, scene.volume, this.gradientOptions(scene));
     this.gradientSource = scene.volume;
@@ -150,7 +201,10 @@ export class SceneResources {
 
   /** The gradient build reads texels through the scene's mapping; 16 bits on the fast path. */
   private gradientOptions(scene: Scene) {
-    return { ...this.volumeMapping(scene), format: this.samplingOf(scene) === 'exact' ? 'r32float' as const : 'r16float' as const };
+    return {
+      ...this.volumeMapping(scene),
+      format: this.samplingOf(scene) === 'exact' ? ('r32float' as const) : ('r16float' as const),
+    };
   }
 
   dropGradient(): void {
@@ -176,16 +230,33 @@ export class SceneResources {
   syncAuxiliaryTextures(): void {
     const r = this._renderer;
     if (this.auxFor.scene === this.scene && this.auxFor.renderer === r && this.auxFor.version === r.version) return;
-    const specs: readonly AuxiliaryTexture[] = r.auxiliaryTextures?.(this.scene!, this.volumeBinding(this.scene!)) ?? [];
+    const specs: readonly AuxiliaryTexture[] =
+      r.auxiliaryTextures?.(this.scene!, this.volumeBinding(this.scene!)) ?? [];
     const wanted = new Set(specs.map((a) => a.name));
     for (const [name, aux] of this.auxTextures) {
-      if (!wanted.has(name)) { this.releaseAux(aux); this.auxTextures.delete(name); }
+      if (!wanted.has(name)) {
+        this.releaseAux(aux);
+        this.auxTextures.delete(name);
+      }
     }
     for (const spec of specs) {
       const have = this.auxTextures.get(spec.name);
       if (have && have.key === spec.key) continue;
-      if (have) { this.releaseAux(have); this.auxTextures.delete(spec.name); }
-      this.auxTextures.set(spec.name, spec.render ? this.renderAux(spec, spec.render) : { key: spec.key, texture: this.backend.createTexture(this.auxDescriptor(spec)), dimension: spec.dimension, bind: spec.bind !== false });
+      if (have) {
+        this.releaseAux(have);
+        this.auxTextures.delete(spec.name);
+      }
+      this.auxTextures.set(
+        spec.name,
+        spec.render
+          ? this.renderAux(spec, spec.render)
+          : {
+              key: spec.key,
+              texture: this.backend.createTexture(this.auxDescriptor(spec)),
+              dimension: spec.dimension,
+              bind: spec.bind !== false,
+            },
+      );
     }
     this.auxFor = { scene: this.scene, renderer: r, version: r.version };
   }
@@ -200,11 +271,26 @@ export class SceneResources {
     if (spec.dimension !== '2d') throw new RangeError(`auxiliary texture "${spec.name}": a GPU-made texture is 2D`);
     const textures: Record<string, GpuTexture> = {};
     for (const b of p.inputs) {
-      const t = b.name === 'volume' ? this.volumeTexture : b.name === 'transferFunction' ? this.tfTexture : this.auxTextures.get(b.name)?.texture;
-      if (!t) throw new RangeError(`auxiliary pass "${p.label}" reads "${b.name}", which is not the volume, the transfer function or an earlier auxiliary texture`);
+      const t =
+        b.name === 'volume'
+          ? this.volumeTexture
+          : b.name === 'transferFunction'
+            ? this.tfTexture
+            : this.auxTextures.get(b.name)?.texture;
+      if (!t)
+        throw new RangeError(
+          `auxiliary pass "${p.label}" reads "${b.name}", which is not the volume, the transfer function or an earlier auxiliary texture`,
+        );
       textures[b.name] = t;
     }
-    const pass = this.backend.createPass({ label: p.label, glsl: p.glsl, wgsl: p.wgsl, uniforms: p.uniforms, textures: p.inputs, outputs: [p.format] });
+    const pass = this.backend.createPass({
+      label: p.label,
+      glsl: p.glsl,
+      wgsl: p.wgsl,
+      uniforms: p.uniforms,
+      textures: p.inputs,
+      outputs: [p.format],
+    });
     const target = this.backend.createRenderTarget(p.width, p.height, [p.format], p.label);
     this.backend.draw(pass, { uniforms: p.uniforms.pack(p.values), textures, target });
     return { key: spec.key, texture: target.textures[0], dimension: '2d', target, bind: spec.bind !== false };
@@ -229,10 +315,17 @@ export class SceneResources {
 
   /** After a context/device loss: the old handles belong to the lost context; forget them without calling destroy. */
   forget(): void {
-    this.volumeTexture = null; this.volumeSource = null; this.tfTexture = null; this.tfSource = null;
-    this.gradient = null; this.gradientSource = null; this.gradientKey = '';
-    this.volumeUpload = null; this.planMemo = null;
-    this.auxTextures.clear(); this.auxFor = { scene: null, renderer: null, version: -1 };
+    this.volumeTexture = null;
+    this.volumeSource = null;
+    this.tfTexture = null;
+    this.tfSource = null;
+    this.gradient = null;
+    this.gradientSource = null;
+    this.gradientKey = '';
+    this.volumeUpload = null;
+    this.planMemo = null;
+    this.auxTextures.clear();
+    this.auxFor = { scene: null, renderer: null, version: -1 };
   }
 }
 

@@ -47,7 +47,10 @@ export abstract class BackendBase {
 
   protected assertCurrent(obj: { generation: number }, what: string): void {
     if (obj.generation !== this.generation) {
-      throw new VptError('context-lost', `${what} was made before the ${this.names.lossTarget} was lost; re-create it after onRestored`);
+      throw new VptError(
+        'context-lost',
+        `${what} was made before the ${this.names.lossTarget} was lost; re-create it after onRestored`,
+      );
     }
   }
 
@@ -57,7 +60,10 @@ export abstract class BackendBase {
 }
 
 /** Run owner callbacks; one that throws must not stop the others or the backend's own bookkeeping. */
-export function runCallbacks(callbacks: ReadonlyArray<() => void>, what: 'context-loss' | 'device-loss' = 'context-loss'): void {
+export function runCallbacks(
+  callbacks: ReadonlyArray<() => void>,
+  what: 'context-loss' | 'device-loss' = 'context-loss',
+): void {
   for (const cb of callbacks) {
     try {
       cb();

@@ -24,7 +24,8 @@ export type BackendPreference = BackendKind | 'auto';
  * r16snorm (WebGL 2 EXT_texture_norm16, WebGPU 'texture-formats-tier1'; see
  * BackendCapabilities.norm16) and r16float (everywhere; also a render target).
  */
-export type TextureFormat = 'r32float' | 'rgba32float' | 'rgba8unorm' | 'r8unorm' | 'r16unorm' | 'r16snorm' | 'r16float';
+export type TextureFormat =
+  'r32float' | 'rgba32float' | 'rgba8unorm' | 'r8unorm' | 'r16unorm' | 'r16snorm' | 'r16float';
 
 /**
  * Texel data: Float32Array for r32float/rgba32float, Uint8Array for rgba8unorm/r8unorm,
@@ -150,15 +151,30 @@ export function isFilterable(format: TextureFormat, caps: BackendCapabilities): 
 /** The number of whole slices `texels` makes at zOffset of a 3D texture; throws when they do not fit. */
 export function sliceCount(tex: GpuTexture, zOffset: number, texels: number): number {
   const depth = texels / (tex.width * tex.height);
-  if (tex.dimension !== '3d' || !Number.isInteger(zOffset) || zOffset < 0 || !Number.isInteger(depth) || depth < 1 || zOffset + depth > tex.depth) {
-    throw new RangeError(`texture "${tex.label}": ${texels} texels at slice ${zOffset} are not whole slices inside its ${tex.width}x${tex.height}x${tex.depth} (${tex.dimension})`);
+  if (
+    tex.dimension !== '3d' ||
+    !Number.isInteger(zOffset) ||
+    zOffset < 0 ||
+    !Number.isInteger(depth) ||
+    depth < 1 ||
+    zOffset + depth > tex.depth
+  ) {
+    throw new RangeError(
+      `texture "${tex.label}": ${texels} texels at slice ${zOffset} are not whole slices inside its ${tex.width}x${tex.height}x${tex.depth} (${tex.dimension})`,
+    );
   }
   return depth;
 }
 
 /** Bytes per texel of each format, as the device stores it (for the memory budget and stats). */
 export const BYTES_PER_TEXEL: Readonly<Record<TextureFormat, number>> = {
-  r32float: 4, rgba32float: 16, rgba8unorm: 4, r8unorm: 1, r16unorm: 2, r16snorm: 2, r16float: 2,
+  r32float: 4,
+  rgba32float: 16,
+  rgba8unorm: 4,
+  r8unorm: 1,
+  r16unorm: 2,
+  r16snorm: 2,
+  r16float: 2,
 };
 
 export interface BackendInfo {

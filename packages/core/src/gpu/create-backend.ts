@@ -26,7 +26,9 @@ export async function createBackend(options: BackendOptions = {}): Promise<GpuBa
     return createWebGL2Backend(canvas);
   } catch (e) {
     if (e instanceof VptError && e.code === 'missing-extension') throw e;
-    throw new VptError('no-backend', 'This browser offers neither WebGPU nor WebGL 2; vpt needs one of them.', { cause: e });
+    throw new VptError('no-backend', 'This browser offers neither WebGPU nor WebGL 2; vpt needs one of them.', {
+      cause: e,
+    });
   }
 }
 

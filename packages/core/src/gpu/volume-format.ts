@@ -49,12 +49,16 @@ export interface VolumeUpload {
 /** The upload for a volume on a device (no data is touched except to find a float32 or uint16 volume's extremes). */
 export function planVolumeUpload(volume: Volume, caps: BackendCapabilities, opts: VolumeFormatOptions): VolumeUpload {
   const make = (format: TextureFormat, decodeScale: number, decodeOffset: number, filtered: boolean): VolumeUpload => ({
-    format, decodeScale, decodeOffset, bytesPerVoxel: BYTES_PER_TEXEL[format],
+    format,
+    decodeScale,
+    decodeOffset,
+    bytesPerVoxel: BYTES_PER_TEXEL[format],
     filter: filtered && isFilterable(format, caps) ? 'linear' : 'nearest',
   });
   if (opts.sampling === 'exact') return make('r32float', 1, 0, false);
   switch (volume.type) {
-    case 'uint8': return make('r8unorm', 255, 0, true);
+    case 'uint8':
+      return make('r8unorm', 255, 0, true);
     case 'uint16':
       if (caps.norm16) return make('r16unorm', 65535, 0, true);
       return make('r16float', 1, maxOf(volume.data) >= HALF_OVERFLOW ? 32768 : 0, true);
@@ -85,14 +89,23 @@ export function volumeTextureData(volume: Volume, upload: VolumeUpload): Texture
  * when given and large enough (one buffer reused for every slab, since both backends copy
  * the data when it is written to the texture).
  */
-export function volumeTextureSlab(volume: Volume, upload: VolumeUpload, z0: number, z1: number, scratch?: ArrayBuffer): TextureData {
+export function volumeTextureSlab(
+  volume: Volume,
+  upload: VolumeUpload,
+  z0: number,
+  z1: number,
+  scratch?: ArrayBuffer,
+): TextureData {
   const slice = volume.dims[0] * volume.dims[1];
   const src = volume.data.subarray(z0 * slice, z1 * slice);
   const fill = normalizationRange(volume)[0]; // non-finite voxels read as the value that maps to 0
   if (uploadsDataAsIs(upload)) return src as TextureData; // Uint8Array / Uint16Array / Int16Array as stored
   switch (upload.format) {
     case 'r16float': {
-      const out = scratch && scratch.byteLength >= src.length * 2 ? new Uint16Array(scratch, 0, src.length) : new Uint16Array(src.length);
+      const out =
+        scratch && scratch.byteLength >= src.length * 2
+          ? new Uint16Array(scratch, 0, src.length)
+          : new Uint16Array(src.length);
       if (volume.type === 'float32') {
         const inv = upload.decodeScale > 0 ? 1 / upload.decodeScale : 0;
         for (let i = 0; i < out.length; i++) {
@@ -109,8 +122,15 @@ export function volumeTextureSlab(volume: Volume, upload: VolumeUpload, z0: numb
       return out;
     }
     case 'r32float': {
-      const out = () => (scratch && scratch.byteLength >= src.length * 4 ? new Float32Array(scratch, 0, src.length) : new Float32Array(src.length));
-      if (volume.type !== 'float32') { const o = out(); o.set(src); return o; }
+      const out = () =>
+        scratch && scratch.byteLength >= src.length * 4
+          ? new Float32Array(scratch, 0, src.length)
+          : new Float32Array(src.length);
+      if (volume.type !== 'float32') {
+        const o = out();
+        o.set(src);
+        return o;
+      }
       const f = src as Float32Array;
       let clean = true;
       for (let i = 0; i < f.length && clean; i++) clean = Number.isFinite(f[i]);
@@ -130,7 +150,10 @@ export function volumeTextureSlab(volume: Volume, upload: VolumeUpload, z0: numb
  * (lo > hi inverts: valueScale < 0). Applied after filtering, which commutes with the
  * affine part, so both sampling paths compute clamp(map(trilinear(data))).
  */
-export function volumeValueMapping(volume: Volume, upload: Pick<VolumeUpload, 'decodeScale' | 'decodeOffset'>): { valueScale: number; valueOffset: number } {
+export function volumeValueMapping(
+  volume: Volume,
+  upload: Pick<VolumeUpload, 'decodeScale' | 'decodeOffset'>,
+): { valueScale: number; valueOffset: number } {
   const [lo, hi] = normalizationRange(volume);
   const inv = 1 / (hi - lo);
   return { valueScale: upload.decodeScale * inv, valueOffset: (upload.decodeOffset - lo) * inv };
@@ -159,7 +182,8 @@ function maxOf(data: ArrayLike<number>): number {
 }
 
 function finiteExtent(data: ArrayLike<number>): [number, number] {
-  let lo = Infinity, hi = -Infinity;
+  let lo = Infinity,
+    hi = -Infinity;
   for (let i = 0; i < data.length; i++) {
     const x = data[i];
     if (!Number.isFinite(x)) continue;

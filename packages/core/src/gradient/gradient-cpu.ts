@@ -16,7 +16,8 @@ export function gradientMagnitudes(volume: Volume, normalized: Float32Array = no
   const out = new Float32Array(nx * ny * nz);
   const at = (x: number, y: number, z: number) => normalized[x + nx * (y + ny * z)];
   const deriv = (i: number, n: number, f: (j: number) => number) => {
-    const i0 = Math.max(i - 1, 0), i1 = Math.min(i + 1, n - 1);
+    const i0 = Math.max(i - 1, 0),
+      i1 = Math.min(i + 1, n - 1);
     return i1 === i0 ? 0 : (f(i1) - f(i0)) / (i1 - i0);
   };
   for (let z = 0; z < nz; z++) {

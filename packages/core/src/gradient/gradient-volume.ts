@@ -45,22 +45,35 @@ const REDUCE_UNIFORMS = new UniformLayout('ReduceParams', [{ name: 'srcSize', ty
  * Throws VptError('limit-exceeded') when the atlas would exceed the 2D texture limit.
  */
 export function buildGradientVolume(
-  backend: GpuBackend, volumeTexture: GpuTexture, volume: Volume,
+  backend: GpuBackend,
+  volumeTexture: GpuTexture,
+  volume: Volume,
   opts: GradientBuildOptions = { valueScale: 1, valueOffset: 0, format: 'r32float' },
 ): GradientVolume {
   const layout = sliceAtlasLayout(volume.dims);
   const max2D = backend.limits.maxTextureDimension2D;
   if (layout.width > max2D || layout.height > max2D) {
-    throw new VptError('limit-exceeded', `The gradient volume of a [${volume.dims.join(', ')}] volume needs a ${layout.width} x ${layout.height} slice atlas; this device's 2D texture limit is ${max2D} (maxTextureDimension2D)`);
+    throw new VptError(
+      'limit-exceeded',
+      `The gradient volume of a [${volume.dims.join(', ')}] volume needs a ${layout.width} x ${layout.height} slice atlas; this device's 2D texture limit is ${max2D} (maxTextureDimension2D)`,
+    );
   }
   const [lo, hi] = normalizationRange(volume);
   const gradientPass = backend.createPass({
-    label: 'gradient magnitude', glsl: glslAtlas.SLICE_ATLAS + glsl.GRADIENT_MAGNITUDE, wgsl: wgslAtlas.SLICE_ATLAS + wgsl.GRADIENT_MAGNITUDE, uniforms: GRADIENT_UNIFORMS,
-    textures: [{ name: 'volume', dimension: '3d' }], outputs: [opts.format],
+    label: 'gradient magnitude',
+    glsl: glslAtlas.SLICE_ATLAS + glsl.GRADIENT_MAGNITUDE,
+    wgsl: wgslAtlas.SLICE_ATLAS + wgsl.GRADIENT_MAGNITUDE,
+    uniforms: GRADIENT_UNIFORMS,
+    textures: [{ name: 'volume', dimension: '3d' }],
+    outputs: [opts.format],
   });
   const reducePass = backend.createPass({
-    label: 'gradient max', glsl: glsl.MAX_REDUCE, wgsl: wgsl.MAX_REDUCE, uniforms: REDUCE_UNIFORMS,
-    textures: [{ name: 'src', dimension: '2d' }], outputs: ['r32float'],
+    label: 'gradient max',
+    glsl: glsl.MAX_REDUCE,
+    wgsl: wgsl.MAX_REDUCE,
+    uniforms: REDUCE_UNIFORMS,
+    textures: [{ name: 'src', dimension: '2d' }],
+    outputs: ['r32float'],
   });
   const atlas = backend.createRenderTarget(layout.width, layout.height, [opts.format], 'gradient magnitude atlas');
   backend.draw(gradientPass, {
@@ -77,9 +90,14 @@ export function buildGradientVolume(
   // Reduce until 1 x 1; intermediate targets are freed as soon as the next one is drawn.
   let src: RenderTarget = atlas;
   do {
-    const w = Math.ceil(src.width / REDUCTION), h = Math.ceil(src.height / REDUCTION);
+    const w = Math.ceil(src.width / REDUCTION),
+      h = Math.ceil(src.height / REDUCTION);
     const dst = backend.createRenderTarget(w, h, ['r32float'], 'gradient max');
-    backend.draw(reducePass, { uniforms: REDUCE_UNIFORMS.pack({ srcSize: [src.width, src.height, 0, 0] }), textures: { src: src.textures[0] }, target: dst });
+    backend.draw(reducePass, {
+      uniforms: REDUCE_UNIFORMS.pack({ srcSize: [src.width, src.height, 0, 0] }),
+      textures: { src: src.textures[0] },
+      target: dst,
+    });
     if (src !== atlas) backend.destroyRenderTarget(src);
     src = dst;
   } while (src.width > 1 || src.height > 1);

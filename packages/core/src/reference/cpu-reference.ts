@@ -25,10 +25,12 @@ export class CpuRng {
 }
 
 export function intersectBox(o: Vec3, d: Vec3, min: Vec3, max: Vec3): [number, number] {
-  let tNear = 0, tFar = Infinity;
+  let tNear = 0,
+    tFar = Infinity;
   for (let a = 0; a < 3; a++) {
     const inv = (d[a] < 0 ? -1 : 1) / Math.max(Math.abs(d[a]), 1e-20);
-    const t0 = (min[a] - o[a]) * inv, t1 = (max[a] - o[a]) * inv;
+    const t0 = (min[a] - o[a]) * inv,
+      t1 = (max[a] - o[a]) * inv;
     tNear = Math.max(tNear, Math.min(t0, t1));
     tFar = Math.min(tFar, Math.max(t0, t1));
   }
@@ -36,10 +38,17 @@ export function intersectBox(o: Vec3, d: Vec3, min: Vec3, max: Vec3): [number, n
 }
 
 /** The ray through film point (fx, fy) ∈ [0,1]², y down (docs/design.md camera convention). */
-export function cameraRay(scene: Scene, width: number, height: number, fx: number, fy: number): { origin: Vec3; dir: Vec3 } {
+export function cameraRay(
+  scene: Scene,
+  width: number,
+  height: number,
+  fx: number,
+  fy: number,
+): { origin: Vec3; dir: Vec3 } {
   const b = cameraBasis(scene.camera);
   const t = Math.tan(scene.camera.fovy / 2);
-  const sx = (2 * fx - 1) * t * (width / height), sy = (1 - 2 * fy) * t;
+  const sx = (2 * fx - 1) * t * (width / height),
+    sy = (1 - 2 * fy) * t;
   const d: Vec3 = [0, 1, 2].map((i) => b.forward[i] + b.right[i] * sx + b.up[i] * sy) as Vec3;
   const l = Math.hypot(...d);
   return { origin: scene.camera.position, dir: [d[0] / l, d[1] / l, d[2] / l] };
@@ -71,7 +80,12 @@ export class CpuVolumeSampler {
     const g0 = g.map(Math.floor);
     const f = g.map((x, a) => x - g0[a]);
     const cl = (i: number, n: number) => Math.min(n - 1, Math.max(0, i));
-    const x0 = cl(g0[0], nx), x1 = cl(g0[0] + 1, nx), y0 = cl(g0[1], ny), y1 = cl(g0[1] + 1, ny), z0 = cl(g0[2], nz), z1 = cl(g0[2] + 1, nz);
+    const x0 = cl(g0[0], nx),
+      x1 = cl(g0[0] + 1, nx),
+      y0 = cl(g0[1], ny),
+      y1 = cl(g0[1] + 1, ny),
+      z0 = cl(g0[2], nz),
+      z1 = cl(g0[2] + 1, nz);
     const at = (x: number, y: number, z: number) => this.data[x + nx * (y + ny * z)];
     const l = (a: number, b: number, t: number) => a + (b - a) * t;
     const c00 = l(at(x0, y0, z0), at(x1, y0, z0), f[0]);

@@ -13,8 +13,15 @@ export interface Camera {
 
 export const sub = (a: Vec3, b: Vec3): Vec3 => [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
 export const dot = (a: Vec3, b: Vec3) => a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-export const cross = (a: Vec3, b: Vec3): Vec3 => [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
-export const normalize = (a: Vec3): Vec3 => { const l = Math.hypot(a[0], a[1], a[2]); return [a[0] / l, a[1] / l, a[2] / l]; };
+export const cross = (a: Vec3, b: Vec3): Vec3 => [
+  a[1] * b[2] - a[2] * b[1],
+  a[2] * b[0] - a[0] * b[2],
+  a[0] * b[1] - a[1] * b[0],
+];
+export const normalize = (a: Vec3): Vec3 => {
+  const l = Math.hypot(a[0], a[1], a[2]);
+  return [a[0] / l, a[1] / l, a[2] / l];
+};
 
 /** Orthonormal basis: f = normalize(target - position), r = normalize(f × up), u = r × f. */
 export function cameraBasis(c: Camera): { forward: Vec3; right: Vec3; up: Vec3 } {
@@ -24,17 +31,26 @@ export function cameraBasis(c: Camera): { forward: Vec3; right: Vec3; up: Vec3 }
 }
 
 export function validateCamera(c: Camera): void {
-  const bad = (msg: string) => { throw new VptError('invalid-scene', `Camera: ${msg}`); };
+  const bad = (msg: string) => {
+    throw new VptError('invalid-scene', `Camera: ${msg}`);
+  };
   if (!c || typeof c !== 'object') bad('missing');
   for (const key of ['position', 'target', 'up'] as const) {
     const v = c[key];
-    if (!Array.isArray(v) || v.length !== 3 || !v.every((x) => typeof x === 'number' && Number.isFinite(x))) bad(`${key} must be three finite numbers, got ${JSON.stringify(v)}`);
+    if (!Array.isArray(v) || v.length !== 3 || !v.every((x) => typeof x === 'number' && Number.isFinite(x)))
+      bad(`${key} must be three finite numbers, got ${JSON.stringify(v)}`);
     // A coordinate finite in float64 but not in float32 would reach the kernels as Infinity;
     // far positions lose the box to float32 rounding (MAX_CAMERA_COORDINATE).
     const limit = key === 'up' ? FLOAT32_MAX : MAX_CAMERA_COORDINATE;
-    v.forEach((x, i) => { if (Math.abs(x) > limit) bad(`${key}[${i}] = ${x} exceeds the limit ±${limit}${key === 'up' ? ' (float32 range)' : ' (MAX_CAMERA_COORDINATE: the box has a longest side of 1; float32 ray arithmetic loses it further out)'}`); });
+    v.forEach((x, i) => {
+      if (Math.abs(x) > limit)
+        bad(
+          `${key}[${i}] = ${x} exceeds the limit ±${limit}${key === 'up' ? ' (float32 range)' : ' (MAX_CAMERA_COORDINATE: the box has a longest side of 1; float32 ray arithmetic loses it further out)'}`,
+        );
+    });
   }
-  if (typeof c.fovy !== 'number' || !Number.isFinite(c.fovy) || c.fovy <= 0 || c.fovy >= Math.PI) bad(`fovy must be in (0, π) radians, got ${c.fovy}`);
+  if (typeof c.fovy !== 'number' || !Number.isFinite(c.fovy) || c.fovy <= 0 || c.fovy >= Math.PI)
+    bad(`fovy must be in (0, π) radians, got ${c.fovy}`);
   const f = sub(c.target, c.position);
   if (Math.hypot(...f) < 1e-9) bad('position and target coincide');
   const side = cross(normalize(f), c.up);

@@ -53,9 +53,18 @@ export function downsampleVolume(volume: Volume, factors: readonly [number, numb
  * voxels first, so the result stays as close to isotropic as the input allows. [1, 1, 1]
  * when the volume fits as it is; null when not even one voxel fits.
  */
-export function fitFactors(dims: readonly [number, number, number], bytesPerVoxel: number, budgetBytes: number, max3D: number): [number, number, number] | null {
+export function fitFactors(
+  dims: readonly [number, number, number],
+  bytesPerVoxel: number,
+  budgetBytes: number,
+  max3D: number,
+): [number, number, number] | null {
   if (!(budgetBytes >= bytesPerVoxel)) return null;
-  const f: [number, number, number] = [0, 1, 2].map((i) => Math.max(1, Math.ceil(dims[i] / max3D))) as [number, number, number];
+  const f: [number, number, number] = [0, 1, 2].map((i) => Math.max(1, Math.ceil(dims[i] / max3D))) as [
+    number,
+    number,
+    number,
+  ];
   const out = (i: number) => Math.ceil(dims[i] / f[i]);
   while (out(0) * out(1) * out(2) * bytesPerVoxel > budgetBytes) {
     let axis = 0;

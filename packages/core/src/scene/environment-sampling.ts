@@ -38,7 +38,8 @@ export function directionToLatLong(d: Vec3): [number, number] {
 }
 
 export function latLongToDirection(u: number, v: number): Vec3 {
-  const phi = 2 * Math.PI * u, theta = Math.PI * v;
+  const phi = 2 * Math.PI * u,
+    theta = Math.PI * v;
   const st = Math.sin(theta);
   return [st * Math.sin(phi), Math.cos(theta), -st * Math.cos(phi)];
 }
@@ -53,8 +54,10 @@ export function latLongToDirection(u: number, v: number): Vec3 {
 export function buildEnvironmentSampling(env: LatLongEnvironment): EnvironmentSamplingTables {
   const { width: W, height: H, data } = env;
   const scale = env.scale ?? 1;
-  if (!Number.isFinite(scale) || scale < 0) throw new VptError('invalid-scene', `Environment: scale must be finite and non-negative, got ${scale}`);
-  if (data.length !== W * H * 3) throw new VptError('invalid-scene', 'Environment: lat-long image needs width*height*3 floats');
+  if (!Number.isFinite(scale) || scale < 0)
+    throw new VptError('invalid-scene', `Environment: scale must be finite and non-negative, got ${scale}`);
+  if (data.length !== W * H * 3)
+    throw new VptError('invalid-scene', 'Environment: lat-long image needs width*height*3 floats');
   const map = new Float32Array(W * H * 4);
   const weight = new Float64Array(W * H);
   const rowSum = new Float64Array(H);
@@ -63,8 +66,12 @@ export function buildEnvironmentSampling(env: LatLongEnvironment): EnvironmentSa
     const sinTheta = Math.sin((Math.PI * (j + 0.5)) / H);
     for (let i = 0; i < W; i++) {
       const k = j * W + i;
-      const r = data[3 * k] * scale, g = data[3 * k + 1] * scale, b = data[3 * k + 2] * scale;
-      map[4 * k] = r; map[4 * k + 1] = g; map[4 * k + 2] = b;
+      const r = data[3 * k] * scale,
+        g = data[3 * k + 1] * scale,
+        b = data[3 * k + 2] * scale;
+      map[4 * k] = r;
+      map[4 * k + 1] = g;
+      map[4 * k + 2] = b;
       const w = Math.max(0, luminance(r, g, b)) * sinTheta;
       weight[k] = w;
       rowSum[j] += w;
@@ -114,28 +121,42 @@ export function environmentLookupCpu(t: EnvironmentSamplingTables, d: Vec3): { r
   const j = Math.min(t.height - 1, Math.max(0, Math.floor(v * t.height)));
   const k = 4 * (j * t.width + i);
   const sinTheta = Math.sqrt(Math.max(0, (1 - d[1]) * (1 + d[1])));
-  return { radiance: [t.map[k], t.map[k + 1], t.map[k + 2]], pdf: sinTheta > 0 ? t.map[k + 3] / (2 * Math.PI * Math.PI * sinTheta) : 0 };
+  return {
+    radiance: [t.map[k], t.map[k + 1], t.map[k + 2]],
+    pdf: sinTheta > 0 ? t.map[k + 3] / (2 * Math.PI * Math.PI * sinTheta) : 0,
+  };
 }
 
 /** Largest index in [0, n-1] with cdf[offset + index] <= xi (the kernel's binary search). */
 function searchCdf(cdf: Float32Array, offset: number, n: number, xi: number): number {
-  let lo = 0, hi = n - 1;
+  let lo = 0,
+    hi = n - 1;
   while (lo < hi) {
     const mid = (lo + hi + 1) >> 1;
-    if (cdf[offset + mid] <= xi) lo = mid; else hi = mid - 1;
+    if (cdf[offset + mid] <= xi) lo = mid;
+    else hi = mid - 1;
   }
   return lo;
 }
 
 /** CPU twin of the kernel's sampleEnvironment. */
-export function sampleEnvironmentCpu(t: EnvironmentSamplingTables, xi1: number, xi2: number): { direction: Vec3; pdf: number; radiance: Vec3; texel: [number, number] } {
-  const W = t.width, H = t.height;
+export function sampleEnvironmentCpu(
+  t: EnvironmentSamplingTables,
+  xi1: number,
+  xi2: number,
+): { direction: Vec3; pdf: number; radiance: Vec3; texel: [number, number] } {
+  const W = t.width,
+    H = t.height;
   const j = searchCdf(t.marginal, 0, H, xi1);
   const dv = Math.min(0.99999994, Math.max(0, (xi1 - t.marginal[j]) / (t.marginal[j + 1] - t.marginal[j])));
   const o = j * (W + 1);
   const i = searchCdf(t.conditional, o, W, xi2);
-  const du = Math.min(0.99999994, Math.max(0, (xi2 - t.conditional[o + i]) / (t.conditional[o + i + 1] - t.conditional[o + i])));
-  const u = (i + du) / W, v = (j + dv) / H;
+  const du = Math.min(
+    0.99999994,
+    Math.max(0, (xi2 - t.conditional[o + i]) / (t.conditional[o + i + 1] - t.conditional[o + i])),
+  );
+  const u = (i + du) / W,
+    v = (j + dv) / H;
   const k = 4 * (j * W + i);
   const sinTheta = Math.sin(Math.PI * v);
   return {

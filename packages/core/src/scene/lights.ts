@@ -15,7 +15,13 @@ export type Light = DirectionalLight;
 /** Background radiance: constant, or an equirectangular (lat-long) HDR image. */
 export type Environment =
   | { type: 'constant'; radiance: Vec3 }
-  | { type: 'latlong'; width: number; height: number; /** RGB float, row 0 at the top (+y up is the image's top) */ data: Float32Array; scale?: number };
+  | {
+      type: 'latlong';
+      width: number;
+      height: number;
+      /** RGB float, row 0 at the top (+y up is the image's top) */ data: Float32Array;
+      scale?: number;
+    };
 
 /**
  * Lights: at most MAX_SCENE_LIGHTS, each with a finite non-zero direction and an irradiance in
@@ -23,14 +29,28 @@ export type Environment =
  */
 export function validateLights(lights: readonly Light[]): void {
   if (!Array.isArray(lights)) fail('lights', 'must be an array');
-  if (lights.length > MAX_SCENE_LIGHTS) fail('lights', `${lights.length} lights exceed the limit of ${MAX_SCENE_LIGHTS} (MAX_SCENE_LIGHTS)`, 'limit-exceeded');
+  if (lights.length > MAX_SCENE_LIGHTS)
+    fail(
+      'lights',
+      `${lights.length} lights exceed the limit of ${MAX_SCENE_LIGHTS} (MAX_SCENE_LIGHTS)`,
+      'limit-exceeded',
+    );
   lights.forEach((l, i) => {
     const field = `Light ${i}`;
     checkObject(field, l);
-    if (l.type !== 'directional') throw new VptError('invalid-scene', `Light ${i}: unknown type "${(l as { type: string }).type}" (supported: directional)`);
+    if (l.type !== 'directional')
+      throw new VptError(
+        'invalid-scene',
+        `Light ${i}: unknown type "${(l as { type: string }).type}" (supported: directional)`,
+      );
     const d = checkNumbers(`${field}: direction`, l.direction, 3, { min: -FLOAT32_MAX, max: FLOAT32_MAX });
-    if (Math.hypot(...d) < 1e-9) throw new VptError('invalid-scene', `Light ${i}: direction must be finite and non-zero`);
-    checkNumbers(`${field}: irradiance`, l.irradiance, 3, { min: 0, max: MAX_RADIANCE, unit: 'MAX_RADIANCE keeps float32 kernel arithmetic finite' });
+    if (Math.hypot(...d) < 1e-9)
+      throw new VptError('invalid-scene', `Light ${i}: direction must be finite and non-zero`);
+    checkNumbers(`${field}: irradiance`, l.irradiance, 3, {
+      min: 0,
+      max: MAX_RADIANCE,
+      unit: 'MAX_RADIANCE keeps float32 kernel arithmetic finite',
+    });
   });
 }
 
@@ -42,20 +62,45 @@ export function validateLights(lights: readonly Light[]): void {
 export function validateEnvironment(env: Environment): void {
   checkObject('Environment', env);
   if (env.type === 'constant') {
-    checkNumbers('Environment: radiance', env.radiance, 3, { min: 0, max: MAX_RADIANCE, unit: 'MAX_RADIANCE keeps float32 kernel arithmetic finite' });
+    checkNumbers('Environment: radiance', env.radiance, 3, {
+      min: 0,
+      max: MAX_RADIANCE,
+      unit: 'MAX_RADIANCE keeps float32 kernel arithmetic finite',
+    });
   } else if (env.type === 'latlong') {
-    const side = { min: 1, max: MAX_TEXTURE_SIDE_2D - 1, integer: true, maxCode: 'limit-exceeded' as const, unit: 'texels' };
+    const side = {
+      min: 1,
+      max: MAX_TEXTURE_SIDE_2D - 1,
+      integer: true,
+      maxCode: 'limit-exceeded' as const,
+      unit: 'texels',
+    };
     const { width, height } = env;
     checkNumbers('Environment: lat-long [width, height]', [width, height], 2, side);
-    if (!(env.data instanceof Float32Array) || env.data.length !== width * height * 3) throw new VptError('invalid-scene', `Environment: lat-long image needs width*height*3 = ${width * height * 3} floats in a Float32Array, got ${env.data instanceof Float32Array ? env.data.length : typeof env.data}`);
+    if (!(env.data instanceof Float32Array) || env.data.length !== width * height * 3)
+      throw new VptError(
+        'invalid-scene',
+        `Environment: lat-long image needs width*height*3 = ${width * height * 3} floats in a Float32Array, got ${env.data instanceof Float32Array ? env.data.length : typeof env.data}`,
+      );
     const scale = env.scale ?? 1;
     checkNumbers('Environment: scale', [scale], 1, { min: 0, max: MAX_RADIANCE });
     for (let i = 0; i < env.data.length; i++) {
       const x = env.data[i];
-      if (!Number.isFinite(x) || x < 0) throw new VptError('invalid-scene', `Environment: texel ${Math.floor(i / 3)} is not a finite non-negative radiance`);
-      if (x * scale > MAX_RADIANCE) throw new VptError('invalid-scene', `Environment: texel ${Math.floor(i / 3)} radiance ${x} × scale ${scale} exceeds the limit ${MAX_RADIANCE} (MAX_RADIANCE keeps float32 kernel arithmetic finite)`);
+      if (!Number.isFinite(x) || x < 0)
+        throw new VptError(
+          'invalid-scene',
+          `Environment: texel ${Math.floor(i / 3)} is not a finite non-negative radiance`,
+        );
+      if (x * scale > MAX_RADIANCE)
+        throw new VptError(
+          'invalid-scene',
+          `Environment: texel ${Math.floor(i / 3)} radiance ${x} × scale ${scale} exceeds the limit ${MAX_RADIANCE} (MAX_RADIANCE keeps float32 kernel arithmetic finite)`,
+        );
     }
   } else {
-    throw new VptError('invalid-scene', `Environment: unknown type "${(env as { type: string }).type}" (supported: constant, latlong)`);
+    throw new VptError(
+      'invalid-scene',
+      `Environment: unknown type "${(env as { type: string }).type}" (supported: constant, latlong)`,
+    );
   }
 }

@@ -12,23 +12,43 @@ export type ProceduralKind = 'sphere' | 'cube' | 'ramp' | 'blob';
  *  - blob:   a smooth Gaussian, exp(-r² / (2·0.18²)) in box units
  */
 export function createProceduralVolume(kind: ProceduralKind, size = 32): Volume {
-  if (!Number.isInteger(size) || size < 2) throw new VptError('invalid-scene', `Procedural volume size must be an integer >= 2, got ${size}`);
-  if (size > MAX_PROCEDURAL_SIZE) throw new VptError('limit-exceeded', `Procedural volume size ${size} exceeds the limit of ${MAX_PROCEDURAL_SIZE} voxels per side (MAX_PROCEDURAL_SIZE)`);
-  if (!['sphere', 'cube', 'ramp', 'blob'].includes(kind)) throw new VptError('invalid-scene', `Unknown procedural volume "${kind as string}" (sphere, cube, ramp, blob)`);
+  if (!Number.isInteger(size) || size < 2)
+    throw new VptError('invalid-scene', `Procedural volume size must be an integer >= 2, got ${size}`);
+  if (size > MAX_PROCEDURAL_SIZE)
+    throw new VptError(
+      'limit-exceeded',
+      `Procedural volume size ${size} exceeds the limit of ${MAX_PROCEDURAL_SIZE} voxels per side (MAX_PROCEDURAL_SIZE)`,
+    );
+  if (!['sphere', 'cube', 'ramp', 'blob'].includes(kind))
+    throw new VptError('invalid-scene', `Unknown procedural volume "${kind as string}" (sphere, cube, ramp, blob)`);
   const data = new Float32Array(size * size * size);
   for (let z = 0; z < size; z++) {
     for (let y = 0; y < size; y++) {
       for (let x = 0; x < size; x++) {
         // Voxel centre in box units [-0.5, 0.5] (cell-centred, docs/design.md).
-        const px = (x + 0.5) / size - 0.5, py = (y + 0.5) / size - 0.5, pz = (z + 0.5) / size - 0.5;
+        const px = (x + 0.5) / size - 0.5,
+          py = (y + 0.5) / size - 0.5,
+          pz = (z + 0.5) / size - 0.5;
         const r = Math.hypot(px, py, pz);
         let v: number;
         switch (kind) {
-          case 'sphere': v = Math.min(1, Math.max(0, (0.35 - r) * size + 0.5)); break;
-          case 'cube': v = 1; break;
-          case 'ramp': v = x / (size - 1); break;
-          case 'blob': v = Math.exp(-(r * r) / (2 * 0.18 * 0.18)); break;
-          default: throw new VptError('invalid-scene', `Unknown procedural volume "${kind as string}" (sphere, cube, ramp, blob)`);
+          case 'sphere':
+            v = Math.min(1, Math.max(0, (0.35 - r) * size + 0.5));
+            break;
+          case 'cube':
+            v = 1;
+            break;
+          case 'ramp':
+            v = x / (size - 1);
+            break;
+          case 'blob':
+            v = Math.exp(-(r * r) / (2 * 0.18 * 0.18));
+            break;
+          default:
+            throw new VptError(
+              'invalid-scene',
+              `Unknown procedural volume "${kind as string}" (sphere, cube, ramp, blob)`,
+            );
         }
         data[x + size * (y + size * z)] = v;
       }

@@ -51,47 +51,82 @@ export interface RawSidecar extends RawHeader {
  * Dims straight from a header: every one a positive integer, and a voxel count that can
  * be addressed. Zero is 'empty' (nothing to draw), a product ≥ 2^32 is 'overflow'.
  */
-export function checkRawDims(dims: readonly number[], name: string, source = 'header'): asserts dims is [number, number, number] {
+export function checkRawDims(
+  dims: readonly number[],
+  name: string,
+  source = 'header',
+): asserts dims is [number, number, number] {
   const shown = `[${dims.join(' × ')}]`;
   if (dims.length !== 3 || dims.some((d) => typeof d !== 'number' || !Number.isFinite(d) || !Number.isInteger(d))) {
-    throw new RawReadError('bad-header', `${name}: the ${source} gives dims ${shown}; they must be three whole numbers`);
+    throw new RawReadError(
+      'bad-header',
+      `${name}: the ${source} gives dims ${shown}; they must be three whole numbers`,
+    );
   }
-  if (dims.some((d) => d < 0)) throw new RawReadError('bad-header', `${name}: the ${source} gives negative dims ${shown}`);
-  if (dims.some((d) => d === 0)) throw new RawReadError('empty', `${name}: the ${source} gives dims ${shown}: the volume is empty`);
+  if (dims.some((d) => d < 0))
+    throw new RawReadError('bad-header', `${name}: the ${source} gives negative dims ${shown}`);
+  if (dims.some((d) => d === 0))
+    throw new RawReadError('empty', `${name}: the ${source} gives dims ${shown}: the volume is empty`);
   const count = dims[0] * dims[1] * dims[2];
   if (count >= MAX_RAW_VOXELS) {
-    throw new RawReadError('overflow', `${name}: the ${source} gives dims ${shown} = ${count.toExponential(3)} voxels, past the 2^32 a volume can address; the header is probably corrupt`);
+    throw new RawReadError(
+      'overflow',
+      `${name}: the ${source} gives dims ${shown} = ${count.toExponential(3)} voxels, past the 2^32 a volume can address; the header is probably corrupt`,
+    );
   }
 }
 
 /** Check a raw header given as options or read from a sidecar; anything wrong is 'bad-header' naming the field. */
 export function checkRawHeader(raw: Partial<RawHeader> | undefined, name: string, source = 'options.raw'): RawHeader {
   if (!raw || typeof raw !== 'object') {
-    throw new RawReadError('bad-header', `${name}: raw data has no header; pass options.raw = { dims: [NX, NY, NZ], type } or a JSON sidecar next to it`);
+    throw new RawReadError(
+      'bad-header',
+      `${name}: raw data has no header; pass options.raw = { dims: [NX, NY, NZ], type } or a JSON sidecar next to it`,
+    );
   }
   // Numbers only: "dims": ["256", …] is a mistake to report, not to convert silently.
   if (Array.isArray(raw.dims) && raw.dims.some((d) => typeof d !== 'number')) {
-    throw new RawReadError('bad-header', `${name}: ${source} dims ${JSON.stringify(raw.dims)} must be numbers, not strings`);
+    throw new RawReadError(
+      'bad-header',
+      `${name}: ${source} dims ${JSON.stringify(raw.dims)} must be numbers, not strings`,
+    );
   }
   const dims = Array.isArray(raw.dims) ? raw.dims.map(Number) : [];
   checkRawDims(dims, name, source);
   if (!RAW_VOXEL_TYPES.includes(raw.type as VoxelType)) {
-    throw new RawReadError('bad-header', `${name}: ${source} type "${String(raw.type)}" is not one of ${RAW_VOXEL_TYPES.join(', ')}`);
+    throw new RawReadError(
+      'bad-header',
+      `${name}: ${source} type "${String(raw.type)}" is not one of ${RAW_VOXEL_TYPES.join(', ')}`,
+    );
   }
-  const spacing = raw.spacing === undefined ? [1, 1, 1] : Array.isArray(raw.spacing) && raw.spacing.every((x) => typeof x === 'number') ? raw.spacing.map(Number) : [];
+  const spacing =
+    raw.spacing === undefined
+      ? [1, 1, 1]
+      : Array.isArray(raw.spacing) && raw.spacing.every((x) => typeof x === 'number')
+        ? raw.spacing.map(Number)
+        : [];
   if (spacing.length !== 3 || spacing.some((s) => !Number.isFinite(s) || s <= 0)) {
-    throw new RawReadError('bad-header', `${name}: ${source} spacing [${String(raw.spacing)}] must be three positive numbers`);
+    throw new RawReadError(
+      'bad-header',
+      `${name}: ${source} spacing [${String(raw.spacing)}] must be three positive numbers`,
+    );
   }
   const endianness = raw.endianness ?? 'little';
   if (endianness !== 'little' && endianness !== 'big') {
-    throw new RawReadError('bad-header', `${name}: ${source} endianness "${String(endianness)}" must be "little" or "big"`);
+    throw new RawReadError(
+      'bad-header',
+      `${name}: ${source} endianness "${String(endianness)}" must be "little" or "big"`,
+    );
   }
   return { dims, type: raw.type as VoxelType, spacing: spacing as [number, number, number], endianness };
 }
 
 /** Three letters, one of R/L, A/P and S/I each ("RAS", "PIR"…). */
 export function isAxisCodes(s: string): boolean {
-  const pairs = s.toUpperCase().split('').map((c) => 'RLAPSI'.indexOf(c) >> 1);
+  const pairs = s
+    .toUpperCase()
+    .split('')
+    .map((c) => 'RLAPSI'.indexOf(c) >> 1);
   return pairs.length === 3 && pairs.every((p) => p >= 0) && new Set(pairs).size === 3;
 }
 
@@ -101,38 +136,76 @@ export function parseRawSidecar(text: string, name: string): RawSidecar {
   try {
     json = JSON.parse(text);
   } catch (e) {
-    throw new RawReadError('bad-header', `${name}: the sidecar is not valid JSON (${(e as Error).message})`, { cause: e });
+    throw new RawReadError('bad-header', `${name}: the sidecar is not valid JSON (${(e as Error).message})`, {
+      cause: e,
+    });
   }
-  if (!json || typeof json !== 'object' || Array.isArray(json)) throw new RawReadError('bad-header', `${name}: the sidecar must be a JSON object`);
+  if (!json || typeof json !== 'object' || Array.isArray(json))
+    throw new RawReadError('bad-header', `${name}: the sidecar must be a JSON object`);
   if (json.layout !== undefined && typeof json.layout === 'string' && !/x fastest/i.test(json.layout)) {
-    throw new RawReadError('unsupported', `${name}: layout "${json.layout}" is not supported; vpt reads x-fastest data (index = x + NX·(y + NY·z))`);
+    throw new RawReadError(
+      'unsupported',
+      `${name}: layout "${json.layout}" is not supported; vpt reads x-fastest data (index = x + NX·(y + NY·z))`,
+    );
   }
-  const header = checkRawHeader({
-    dims: json.dims as RawHeader['dims'],
-    type: (json.voxel_type ?? json.type) as VoxelType,
-    spacing: json.spacing as RawHeader['spacing'],
-    endianness: json.endianness as RawHeader['endianness'],
-  }, name, 'sidecar');
+  const header = checkRawHeader(
+    {
+      dims: json.dims as RawHeader['dims'],
+      type: (json.voxel_type ?? json.type) as VoxelType,
+      spacing: json.spacing as RawHeader['spacing'],
+      endianness: json.endianness as RawHeader['endianness'],
+    },
+    name,
+    'sidecar',
+  );
   const vr = json.value_range;
   // An inverted range (min > max) is a deliberate inverted mapping; an empty or non-numeric one is a mistake.
-  if (vr !== undefined && (!Array.isArray(vr) || vr.length !== 2 || !vr.every((x) => typeof x === 'number' && Number.isFinite(x)) || vr[0] === vr[1])) {
-    throw new RawReadError('bad-header', `${name}: sidecar value_range ${JSON.stringify(vr)} must be two different finite numbers`);
+  if (
+    vr !== undefined &&
+    (!Array.isArray(vr) ||
+      vr.length !== 2 ||
+      !vr.every((x) => typeof x === 'number' && Number.isFinite(x)) ||
+      vr[0] === vr[1])
+  ) {
+    throw new RawReadError(
+      'bad-header',
+      `${name}: sidecar value_range ${JSON.stringify(vr)} must be two different finite numbers`,
+    );
   }
   const meta: Record<string, unknown> = {};
-  for (const key of ['title', 'modality', 'units', 'spacing_units', 'orientation', 'value_range', 'sha256', 'license', 'source']) {
+  for (const key of [
+    'title',
+    'modality',
+    'units',
+    'spacing_units',
+    'orientation',
+    'value_range',
+    'sha256',
+    'license',
+    'source',
+  ]) {
     if (json[key] !== undefined) meta[key === 'spacing_units' ? 'spacingUnits' : key] = json[key];
   }
   let axisCodes: string | undefined;
   if (json.axes !== undefined) {
     if (typeof json.axes !== 'string' || !isAxisCodes(json.axes)) {
-      throw new RawReadError('bad-header', `${name}: sidecar axes ${JSON.stringify(json.axes)} must be three letters, one of R/L, A/P and S/I each (like "RAS" or "PIR")`);
+      throw new RawReadError(
+        'bad-header',
+        `${name}: sidecar axes ${JSON.stringify(json.axes)} must be three letters, one of R/L, A/P and S/I each (like "RAS" or "PIR")`,
+      );
     }
     axisCodes = json.axes.toUpperCase();
     meta.axisCodes = axisCodes;
     meta.space = 'RAS';
   }
   const file = typeof json.file === 'string' && json.file ? json.file : undefined;
-  return { ...header, file, meta, ...(vr ? { valueRange: vr as [number, number] } : {}), ...(axisCodes ? { axisCodes } : {}) };
+  return {
+    ...header,
+    file,
+    meta,
+    ...(vr ? { valueRange: vr as [number, number] } : {}),
+    ...(axisCodes ? { axisCodes } : {}),
+  };
 }
 
 /**
@@ -140,7 +213,14 @@ export function parseRawSidecar(text: string, name: string): RawSidecar {
  * folders), else the sidecar's own base name with .raw.
  */
 export function rawFileBeside(sidecarUrl: string, sidecar: { file?: string }): string {
-  const file = sidecar.file && !/[\\/]/.test(sidecar.file) ? sidecar.file : sidecarUrl.split(/[?#]/)[0].split('/').pop()!.replace(/\.json$/i, '') + '.raw';
+  const file =
+    sidecar.file && !/[\\/]/.test(sidecar.file)
+      ? sidecar.file
+      : sidecarUrl
+          .split(/[?#]/)[0]
+          .split('/')
+          .pop()!
+          .replace(/\.json$/i, '') + '.raw';
   return new URL(file, sidecarUrl).href;
 }
 
@@ -155,14 +235,21 @@ export function rawHeaderFromName(name: string): Pick<RawHeader, 'dims' | 'type'
  * 'bad-header' when long); big-endian files are swapped in place (typed arrays use the
  * host's order, little-endian on every platform vpt targets).
  */
-export function rawVoxels(bytes: Uint8Array, header: Pick<RawHeader, 'dims' | 'type'> & { endianness?: 'little' | 'big' }, name: string): VoxelArray {
+export function rawVoxels(
+  bytes: Uint8Array,
+  header: Pick<RawHeader, 'dims' | 'type'> & { endianness?: 'little' | 'big' },
+  name: string,
+): VoxelArray {
   const { dims, type } = header;
   const Ctor = ARRAYS[type];
-  if (!Ctor) throw new RawReadError('bad-header', `${name}: unknown voxel type "${type}" (${RAW_VOXEL_TYPES.join(', ')})`);
+  if (!Ctor)
+    throw new RawReadError('bad-header', `${name}: unknown voxel type "${type}" (${RAW_VOXEL_TYPES.join(', ')})`);
   const need = dims[0] * dims[1] * dims[2] * Ctor.BYTES_PER_ELEMENT;
   if (bytes.byteLength !== need) {
-    throw new RawReadError(bytes.byteLength < need ? 'truncated' : 'bad-header',
-      `${name}: dims [${dims.join(', ')}] of ${type} need ${need} bytes, the file has ${bytes.byteLength}${bytes.byteLength > need ? ` (${bytes.byteLength - need} bytes past the declared size)` : ''}`);
+    throw new RawReadError(
+      bytes.byteLength < need ? 'truncated' : 'bad-header',
+      `${name}: dims [${dims.join(', ')}] of ${type} need ${need} bytes, the file has ${bytes.byteLength}${bytes.byteLength > need ? ` (${bytes.byteLength - need} bytes past the declared size)` : ''}`,
+    );
   }
   if (header.endianness === 'big' && Ctor.BYTES_PER_ELEMENT > 1) {
     const n = Ctor.BYTES_PER_ELEMENT;

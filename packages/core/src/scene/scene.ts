@@ -34,13 +34,23 @@ export function validateScene(s: Scene): void {
   validateLights(s.lights ?? []);
   validateEnvironment(s.environment);
   // Bounded so extinction (densityScale × opacity) and the free-flight steps stay finite in float32.
-  checkNumber('Scene: densityScale', s.densityScale, { min: 0, max: MAX_DENSITY_SCALE, unit: 'extinction per world unit; MAX_DENSITY_SCALE' });
-  const maxOpacity = s.transferFunction.dimensions === '2d'
-    ? Math.max(...s.transferFunction.widgets.map((w) => w.opacity))
-    : Math.max(...s.transferFunction.points.map((p) => p.opacity));
+  checkNumber('Scene: densityScale', s.densityScale, {
+    min: 0,
+    max: MAX_DENSITY_SCALE,
+    unit: 'extinction per world unit; MAX_DENSITY_SCALE',
+  });
+  const maxOpacity =
+    s.transferFunction.dimensions === '2d'
+      ? Math.max(...s.transferFunction.widgets.map((w) => w.opacity))
+      : Math.max(...s.transferFunction.points.map((p) => p.opacity));
   if (s.densityScale * maxOpacity > MAX_EXTINCTION) {
-    throw new VptError('invalid-scene', `Scene: densityScale ${s.densityScale} × the transfer function's largest opacity ${maxOpacity} = ${s.densityScale * maxOpacity} exceeds the limit ${MAX_EXTINCTION} (MAX_EXTINCTION: shorter free flights fall below float32 resolution)`);
+    throw new VptError(
+      'invalid-scene',
+      `Scene: densityScale ${s.densityScale} × the transfer function's largest opacity ${maxOpacity} = ${s.densityScale * maxOpacity} exceeds the limit ${MAX_EXTINCTION} (MAX_EXTINCTION: shorter free flights fall below float32 resolution)`,
+    );
   }
-  if (typeof s.seed !== 'number' || !Number.isInteger(s.seed) || s.seed < 0 || s.seed > 0xffffffff) throw new VptError('invalid-scene', `Scene: seed must be an integer in [0, 2^32), got ${s.seed}`);
-  if (s.sampling !== undefined && s.sampling !== 'fast' && s.sampling !== 'exact') throw new VptError('invalid-scene', `Scene: sampling must be 'fast' or 'exact', got ${JSON.stringify(s.sampling)}`);
+  if (typeof s.seed !== 'number' || !Number.isInteger(s.seed) || s.seed < 0 || s.seed > 0xffffffff)
+    throw new VptError('invalid-scene', `Scene: seed must be an integer in [0, 2^32), got ${s.seed}`);
+  if (s.sampling !== undefined && s.sampling !== 'fast' && s.sampling !== 'exact')
+    throw new VptError('invalid-scene', `Scene: sampling must be 'fast' or 'exact', got ${JSON.stringify(s.sampling)}`);
 }

@@ -31,14 +31,26 @@ function checkKeys(o: unknown, kind: string, where: string): void {
 /** A copy with the known keys in canonical order (what toJSON writes). */
 function canonical(tf: TransferFunction): TransferFunction {
   if (tf.dimensions === '1d') {
-    return { dimensions: '1d', points: tf.points.map((p) => ({ value: p.value, color: [...p.color], opacity: p.opacity })) };
+    return {
+      dimensions: '1d',
+      points: tf.points.map((p) => ({ value: p.value, color: [...p.color], opacity: p.opacity })),
+    };
   }
   return {
     dimensions: '2d',
     ...(tf.gradientMax !== undefined ? { gradientMax: tf.gradientMax } : {}),
-    widgets: tf.widgets.map((w): TransferWidget => (w.type === 'gaussian'
-      ? { type: 'gaussian', center: [...w.center], width: [...w.width], color: [...w.color], opacity: w.opacity }
-      : { type: 'box', min: [...w.min], max: [...w.max], ...(w.ramp ? { ramp: [...w.ramp] as [number, number] } : {}), color: [...w.color], opacity: w.opacity })),
+    widgets: tf.widgets.map((w): TransferWidget =>
+      w.type === 'gaussian'
+        ? { type: 'gaussian', center: [...w.center], width: [...w.width], color: [...w.color], opacity: w.opacity }
+        : {
+            type: 'box',
+            min: [...w.min],
+            max: [...w.max],
+            ...(w.ramp ? { ramp: [...w.ramp] as [number, number] } : {}),
+            color: [...w.color],
+            opacity: w.opacity,
+          },
+    ),
   };
 }
 
@@ -72,7 +84,8 @@ export function transferFunctionFromJSON(json: string | unknown): TransferFuncti
   } else if (Array.isArray(tf.widgets)) {
     tf.widgets.forEach((w, i) => {
       const type = (w as { type?: unknown } | null)?.type;
-      if (type !== 'gaussian' && type !== 'box') bad(`widget ${i}: unknown widget type ${JSON.stringify(type)} (supported: gaussian, box)`);
+      if (type !== 'gaussian' && type !== 'box')
+        bad(`widget ${i}: unknown widget type ${JSON.stringify(type)} (supported: gaussian, box)`);
       checkKeys(w, type, `widget ${i}`);
     });
   }

@@ -18,7 +18,12 @@ import { normalizationRange, type Volume } from './volume.js';
  */
 export type TransferFunctionPresetName = 'ct-bone' | 'ct-soft-tissue' | 'mri-brain' | 'microscopy';
 
-export const TRANSFER_FUNCTION_PRESETS: readonly TransferFunctionPresetName[] = ['ct-bone', 'ct-soft-tissue', 'mri-brain', 'microscopy'];
+export const TRANSFER_FUNCTION_PRESETS: readonly TransferFunctionPresetName[] = [
+  'ct-bone',
+  'ct-soft-tissue',
+  'mri-brain',
+  'microscopy',
+];
 
 /** HU range assumed by the CT presets when no volume is given (12-bit CT). */
 const DEFAULT_HU_RANGE: [number, number] = [-1024, 3071];
@@ -29,11 +34,19 @@ const DEFAULT_HU_RANGE: [number, number] = [-1024, 3071];
  */
 export function transferFunctionPreset(name: TransferFunctionPresetName, volume?: Volume): TransferFunction2D {
   switch (name) {
-    case 'ct-bone': return mirrorIfInverted(ctBone(huScale(volume)), volume);
-    case 'ct-soft-tissue': return mirrorIfInverted(ctSoftTissue(huScale(volume)), volume);
-    case 'mri-brain': return mriBrain(relativeScale(volume));
-    case 'microscopy': return microscopy(relativeScale(volume));
-    default: throw new VptError('invalid-scene', `Unknown transfer-function preset "${name as string}" (${TRANSFER_FUNCTION_PRESETS.join(', ')})`);
+    case 'ct-bone':
+      return mirrorIfInverted(ctBone(huScale(volume)), volume);
+    case 'ct-soft-tissue':
+      return mirrorIfInverted(ctSoftTissue(huScale(volume)), volume);
+    case 'mri-brain':
+      return mriBrain(relativeScale(volume));
+    case 'microscopy':
+      return microscopy(relativeScale(volume));
+    default:
+      throw new VptError(
+        'invalid-scene',
+        `Unknown transfer-function preset "${name as string}" (${TRANSFER_FUNCTION_PRESETS.join(', ')})`,
+      );
   }
 }
 
@@ -53,7 +66,8 @@ const clamp01 = (x: number) => Math.min(1, Math.max(0, x));
  */
 function huScale(volume?: Volume): Scale {
   const [a, b] = volume ? normalizationRange(volume) : DEFAULT_HU_RANGE;
-  const lo = Math.min(a, b), hi = Math.max(a, b);
+  const lo = Math.min(a, b),
+    hi = Math.max(a, b);
   return { v: (hu) => clamp01((hu - lo) / (hi - lo)), gradientMax: 1000 };
 }
 
@@ -62,9 +76,11 @@ function mirrorIfInverted(tf: TransferFunction2D, volume?: Volume): TransferFunc
   if (!volume) return tf;
   const [lo, hi] = normalizationRange(volume);
   if (lo < hi) return tf;
-  const widgets = tf.widgets.map((w): TransferWidget => (w.type === 'box'
-    ? { ...w, min: [1 - w.max[0], w.min[1]], max: [1 - w.min[0], w.max[1]] }
-    : { ...w, center: [1 - w.center[0], w.center[1]] }));
+  const widgets = tf.widgets.map((w): TransferWidget =>
+    w.type === 'box'
+      ? { ...w, min: [1 - w.max[0], w.min[1]], max: [1 - w.min[0], w.max[1]] }
+      : { ...w, center: [1 - w.center[0], w.center[1]] },
+  );
   return { ...tf, widgets };
 }
 
@@ -95,8 +111,22 @@ function relativeScale(volume?: Volume): Scale {
 /** Bone (> ~250 HU) opaque and bone-white at any gradient; the skin surface (the air–skin arch's top) faint. */
 function ctBone(s: Scale): TransferFunction2D {
   const widgets: TransferWidget[] = [
-    { type: 'box', min: [s.v(300), 0], max: [1, 1], ramp: [s.v(300) - s.v(150), 0], color: [0.95, 0.9, 0.8], opacity: 150 },
-    { type: 'box', min: [s.v(-550), 0.25], max: [s.v(-250), 1], ramp: [s.v(-250) - s.v(-400), 0.1], color: [0.8, 0.55, 0.45], opacity: 6 },
+    {
+      type: 'box',
+      min: [s.v(300), 0],
+      max: [1, 1],
+      ramp: [s.v(300) - s.v(150), 0],
+      color: [0.95, 0.9, 0.8],
+      opacity: 150,
+    },
+    {
+      type: 'box',
+      min: [s.v(-550), 0.25],
+      max: [s.v(-250), 1],
+      ramp: [s.v(-250) - s.v(-400), 0.1],
+      color: [0.8, 0.55, 0.45],
+      opacity: 6,
+    },
   ];
   return { dimensions: '2d', gradientMax: s.gradientMax, widgets };
 }
@@ -107,8 +137,22 @@ function ctBone(s: Scale): TransferFunction2D {
  */
 function ctSoftTissue(s: Scale): TransferFunction2D {
   const widgets: TransferWidget[] = [
-    { type: 'box', min: [s.v(-600), 0.2], max: [s.v(-300), 1], ramp: [s.v(-300) - s.v(-450), 0.1], color: [0.85, 0.6, 0.5], opacity: 12 },
-    { type: 'box', min: [s.v(0), 0], max: [s.v(100), 0.08], ramp: [s.v(100) - s.v(0), 0.04], color: [0.8, 0.25, 0.2], opacity: 6 },
+    {
+      type: 'box',
+      min: [s.v(-600), 0.2],
+      max: [s.v(-300), 1],
+      ramp: [s.v(-300) - s.v(-450), 0.1],
+      color: [0.85, 0.6, 0.5],
+      opacity: 12,
+    },
+    {
+      type: 'box',
+      min: [s.v(0), 0],
+      max: [s.v(100), 0.08],
+      ramp: [s.v(100) - s.v(0), 0.04],
+      color: [0.8, 0.25, 0.2],
+      opacity: 6,
+    },
     { type: 'box', min: [s.v(300), 0], max: [1, 1], ramp: [s.v(300) - s.v(150), 0], color: [1, 1, 0.95], opacity: 20 },
   ];
   return { dimensions: '2d', gradientMax: s.gradientMax, widgets };
@@ -116,20 +160,49 @@ function ctSoftTissue(s: Scale): TransferFunction2D {
 
 /** MRI head/brain: the bright tissue's surfaces at mid-high gradient, the brightest tissue faint inside. */
 function mriBrain(s: Scale): TransferFunction2D {
-  const mid = s.v(0.5), high = s.v(0.9);
+  const mid = s.v(0.5),
+    high = s.v(0.9);
   const widgets: TransferWidget[] = [
-    { type: 'box', min: [s.v(0.2), 0.25], max: [1, 1], ramp: [Math.max(0.01, s.v(0.2) - s.v(0.05)), 0.15], color: [0.9, 0.75, 0.65], opacity: 3 },
-    { type: 'gaussian', center: [high, 0], width: [Math.max(0.02, (high - mid) / 2), 0.2], color: [0.7, 0.5, 0.35], opacity: 1.5 },
+    {
+      type: 'box',
+      min: [s.v(0.2), 0.25],
+      max: [1, 1],
+      ramp: [Math.max(0.01, s.v(0.2) - s.v(0.05)), 0.15],
+      color: [0.9, 0.75, 0.65],
+      opacity: 3,
+    },
+    {
+      type: 'gaussian',
+      center: [high, 0],
+      width: [Math.max(0.02, (high - mid) / 2), 0.2],
+      color: [0.7, 0.5, 0.35],
+      opacity: 1.5,
+    },
   ];
   return { dimensions: '2d', gradientMax: s.gradientMax, widgets };
 }
 
 /** Fluorescence microscopy: bright structures (the top fifth of the foreground) with their boundaries emphasised; background clear. */
 function microscopy(s: Scale): TransferFunction2D {
-  const fg = s.v(0.8), top = s.v(0.98);
+  const fg = s.v(0.8),
+    top = s.v(0.98);
   const widgets: TransferWidget[] = [
-    { type: 'box', min: [fg, 0.15], max: [1, 1], ramp: [Math.max(0.01, fg - s.v(0.6)), 0.1], color: [0.3, 1, 0.5], opacity: 150 },
-    { type: 'box', min: [top, 0], max: [1, 1], ramp: [Math.max(0.01, top - fg), 0], color: [0.7, 1, 0.75], opacity: 60 },
+    {
+      type: 'box',
+      min: [fg, 0.15],
+      max: [1, 1],
+      ramp: [Math.max(0.01, fg - s.v(0.6)), 0.1],
+      color: [0.3, 1, 0.5],
+      opacity: 150,
+    },
+    {
+      type: 'box',
+      min: [top, 0],
+      max: [1, 1],
+      ramp: [Math.max(0.01, top - fg), 0],
+      color: [0.7, 1, 0.75],
+      opacity: 60,
+    },
   ];
   return { dimensions: '2d', gradientMax: s.gradientMax, widgets };
 }

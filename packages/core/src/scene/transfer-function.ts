@@ -88,24 +88,42 @@ type Bad = (m: string) => never;
 /** Most control points (1D) or widgets (2D) of a transfer function: rasterizing stays cheap. */
 export const MAX_TF_POINTS = 4096;
 
-const describe = (x: unknown) => (typeof x === 'number' ? String(x) : JSON.stringify(x) ?? String(x));
+const describe = (x: unknown) => (typeof x === 'number' ? String(x) : (JSON.stringify(x) ?? String(x)));
 
 function checkColor(c: unknown, where: string, bad: Bad): void {
   if (!Array.isArray(c) || c.length !== 3 || !c.every((x) => typeof x === 'number' && Number.isFinite(x) && x >= 0)) {
     bad(`${where}: color must be three finite non-negative numbers, got ${describe(c)}`);
   }
   // Emission (EAM) multiplies the colour like a radiance: the same float32 bound.
-  if ((c as number[]).some((x) => x > MAX_RADIANCE)) bad(`${where}: color ${describe(c)} exceeds the limit ${MAX_RADIANCE} (MAX_RADIANCE keeps float32 kernel arithmetic finite)`);
+  if ((c as number[]).some((x) => x > MAX_RADIANCE))
+    bad(
+      `${where}: color ${describe(c)} exceeds the limit ${MAX_RADIANCE} (MAX_RADIANCE keeps float32 kernel arithmetic finite)`,
+    );
 }
 
 function checkOpacity(o: unknown, where: string, bad: Bad): void {
-  if (typeof o !== 'number' || !Number.isFinite(o)) bad(`${where}: opacity must be a finite number, got ${describe(o)}`);
+  if (typeof o !== 'number' || !Number.isFinite(o))
+    bad(`${where}: opacity must be a finite number, got ${describe(o)}`);
   if ((o as number) < 0) bad(`${where}: opacity must be non-negative, got ${describe(o)}`);
-  if ((o as number) > MAX_OPACITY) bad(`${where}: opacity ${describe(o)} exceeds the limit ${MAX_OPACITY} (MAX_OPACITY: extinction densityScale × opacity must stay finite in float32)`);
+  if ((o as number) > MAX_OPACITY)
+    bad(
+      `${where}: opacity ${describe(o)} exceeds the limit ${MAX_OPACITY} (MAX_OPACITY: extinction densityScale × opacity must stay finite in float32)`,
+    );
 }
 
-function checkPair(p: unknown, where: string, name: string, bad: Bad, rule?: (x: number) => boolean, ruleText?: string): void {
-  if (!Array.isArray(p) || p.length !== 2 || !p.every((x) => typeof x === 'number' && Number.isFinite(x) && Math.abs(x) <= FLOAT32_MAX)) {
+function checkPair(
+  p: unknown,
+  where: string,
+  name: string,
+  bad: Bad,
+  rule?: (x: number) => boolean,
+  ruleText?: string,
+): void {
+  if (
+    !Array.isArray(p) ||
+    p.length !== 2 ||
+    !p.every((x) => typeof x === 'number' && Number.isFinite(x) && Math.abs(x) <= FLOAT32_MAX)
+  ) {
     bad(`${where}: ${name} must be two finite numbers [value, gradient], got ${describe(p)}`);
   }
   if (rule && !(p as number[]).every(rule)) bad(`${where}: ${name} must be ${ruleText}, got ${describe(p)}`);
@@ -120,10 +138,13 @@ function validateWidget(w: TransferWidget, i: number, bad: Bad): void {
   } else if (w.type === 'box') {
     checkPair(w.min, where, 'min', bad);
     checkPair(w.max, where, 'max', bad);
-    if (w.min[0] > w.max[0] || w.min[1] > w.max[1]) bad(`${where}: min must not exceed max, got min ${describe(w.min)} max ${describe(w.max)}`);
+    if (w.min[0] > w.max[0] || w.min[1] > w.max[1])
+      bad(`${where}: min must not exceed max, got min ${describe(w.min)} max ${describe(w.max)}`);
     if (w.ramp !== undefined) checkPair(w.ramp, where, 'ramp', bad, (x) => x >= 0, 'non-negative');
   } else {
-    bad(`${where}: unknown widget type ${describe((w as { type?: unknown }).type)} (supported: ${WIDGET_TYPES.join(', ')})`);
+    bad(
+      `${where}: unknown widget type ${describe((w as { type?: unknown }).type)} (supported: ${WIDGET_TYPES.join(', ')})`,
+    );
   }
   checkColor(w.color, where, bad);
   checkOpacity(w.opacity, where, bad);
@@ -131,24 +152,36 @@ function validateWidget(w: TransferWidget, i: number, bad: Bad): void {
 
 /** Check a transfer function against the model's rules; throws VptError('invalid-scene') naming the bad field. */
 export function validateTransferFunction(tf: TransferFunction): void {
-  const bad: Bad = (m: string) => { throw new VptError('invalid-scene', `TransferFunction: ${m}`); };
+  const bad: Bad = (m: string) => {
+    throw new VptError('invalid-scene', `TransferFunction: ${m}`);
+  };
   if (!tf || typeof tf !== 'object') bad(`must be an object, got ${describe(tf)}`);
   if (tf.dimensions === '2d') {
     if (!Array.isArray(tf.widgets) || tf.widgets.length === 0) bad('a 2D transfer function needs at least one widget');
-    if (tf.gradientMax !== undefined && !(typeof tf.gradientMax === 'number' && Number.isFinite(tf.gradientMax) && tf.gradientMax > 0 && tf.gradientMax <= FLOAT32_MAX)) {
+    if (
+      tf.gradientMax !== undefined &&
+      !(
+        typeof tf.gradientMax === 'number' &&
+        Number.isFinite(tf.gradientMax) &&
+        tf.gradientMax > 0 &&
+        tf.gradientMax <= FLOAT32_MAX
+      )
+    ) {
       bad(`gradientMax must be a positive finite number (or left out), got ${describe(tf.gradientMax)}`);
     }
     if (tf.widgets.length > MAX_TF_POINTS) bad(`${tf.widgets.length} widgets exceed the limit of ${MAX_TF_POINTS}`);
     tf.widgets.forEach((w, i) => validateWidget(w, i, bad));
     return;
   }
-  if (tf.dimensions !== '1d') bad(`unknown dimensions ${describe((tf as { dimensions?: unknown }).dimensions)} (supported: "1d", "2d")`);
+  if (tf.dimensions !== '1d')
+    bad(`unknown dimensions ${describe((tf as { dimensions?: unknown }).dimensions)} (supported: "1d", "2d")`);
   if (!Array.isArray(tf.points) || tf.points.length === 0) bad('needs at least one control point');
   let last = -Infinity;
   if (tf.points.length > MAX_TF_POINTS) bad(`${tf.points.length} control points exceed the limit of ${MAX_TF_POINTS}`);
   tf.points.forEach((p, i) => {
     if (!p || typeof p !== 'object') bad(`point ${i}: must be an object, got ${describe(p)}`);
-    if (typeof p.value !== 'number' || !Number.isFinite(p.value) || p.value < 0 || p.value > 1) bad(`point ${i}: value must be in [0, 1], got ${describe(p.value)}`);
+    if (typeof p.value !== 'number' || !Number.isFinite(p.value) || p.value < 0 || p.value > 1)
+      bad(`point ${i}: value must be in [0, 1], got ${describe(p.value)}`);
     if (p.value < last) bad(`point ${i}: values must be sorted ascending`);
     last = p.value;
     checkColor(p.color, `point ${i}`, bad);
@@ -173,10 +206,16 @@ export function rasterizeTransferFunction(tf: TransferFunction, resolution = TF_
     while (j < pts.length && pts[j].value < v) j++;
     let c: number[];
     let a: number;
-    if (j === 0) { c = pts[0].color; a = pts[0].opacity; }
-    else if (j === pts.length) { const p = pts[pts.length - 1]; c = p.color; a = p.opacity; }
-    else {
-      const p0 = pts[j - 1], p1 = pts[j];
+    if (j === 0) {
+      c = pts[0].color;
+      a = pts[0].opacity;
+    } else if (j === pts.length) {
+      const p = pts[pts.length - 1];
+      c = p.color;
+      a = p.opacity;
+    } else {
+      const p0 = pts[j - 1],
+        p1 = pts[j];
       const t = p1.value > p0.value ? (v - p0.value) / (p1.value - p0.value) : 1;
       c = [0, 1, 2].map((i) => p0.color[i] + t * (p1.color[i] - p0.color[i]));
       a = p0.opacity + t * (p1.opacity - p0.opacity);
@@ -209,7 +248,10 @@ function rasterize2D(tf: TransferFunction2D, width: number, height: number): Flo
     const g = j / (height - 1);
     for (let i = 0; i < width; i++) {
       const v = i / (width - 1);
-      let a = 0, r = 0, gr = 0, b = 0;
+      let a = 0,
+        r = 0,
+        gr = 0,
+        b = 0;
       for (const w of tf.widgets) {
         const s = w.opacity * widgetWeight(w, v, g);
         a += s;
@@ -219,7 +261,11 @@ function rasterize2D(tf: TransferFunction2D, width: number, height: number): Flo
       }
       const k = 4 * (i + width * j);
       // Extinction-weighted mean colour; where nothing is opaque the colour is irrelevant (0).
-      if (a > 0) { out[k] = r / a; out[k + 1] = gr / a; out[k + 2] = b / a; }
+      if (a > 0) {
+        out[k] = r / a;
+        out[k + 1] = gr / a;
+        out[k + 2] = b / a;
+      }
       out[k + 3] = a;
     }
   }
@@ -243,5 +289,11 @@ export function maxOpacityByValue(tf: TransferFunction, resolution = TF_RESOLUTI
 
 /** A grey ramp: opacity and brightness grow with the value. */
 export function rampTransferFunction(color: [number, number, number] = [1, 1, 1]): TransferFunction {
-  return { dimensions: '1d', points: [{ value: 0, color, opacity: 0 }, { value: 1, color, opacity: 1 }] };
+  return {
+    dimensions: '1d',
+    points: [
+      { value: 0, color, opacity: 0 },
+      { value: 1, color, opacity: 1 },
+    ],
+  };
 }

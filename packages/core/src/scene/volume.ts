@@ -26,7 +26,10 @@ export interface Volume {
 }
 
 const ARRAY_OF: Record<VoxelType, new (n: number) => VoxelArray> = {
-  uint8: Uint8Array, uint16: Uint16Array, int16: Int16Array, float32: Float32Array,
+  uint8: Uint8Array,
+  uint16: Uint16Array,
+  int16: Int16Array,
+  float32: Float32Array,
 };
 
 export function voxelCount(dims: readonly number[]): number {
@@ -35,20 +38,33 @@ export function voxelCount(dims: readonly number[]): number {
 
 /** Check a volume against the model's rules; throws VptError('invalid-scene'). */
 export function validateVolume(v: Volume): void {
-  const bad = (msg: string) => { throw new VptError('invalid-scene', `Volume${v.name ? ` "${v.name}"` : ''}: ${msg}`); };
+  const bad = (msg: string) => {
+    throw new VptError('invalid-scene', `Volume${v.name ? ` "${v.name}"` : ''}: ${msg}`);
+  };
   if (!v || typeof v !== 'object') bad('missing');
   if (!Array.isArray(v.dims) || v.dims.length !== 3) bad('dims must be [NX, NY, NZ]');
   for (const d of v.dims) {
-    if (typeof d !== 'number' || !Number.isInteger(d) || d < 1) bad(`every dimension must be a positive integer, got [${v.dims.join(', ')}]`);
+    if (typeof d !== 'number' || !Number.isInteger(d) || d < 1)
+      bad(`every dimension must be a positive integer, got [${v.dims.join(', ')}]`);
   }
-  if (!Array.isArray(v.spacing) || v.spacing.length !== 3 || v.spacing.some((s) => typeof s !== 'number' || !Number.isFinite(s) || s <= 0 || s > FLOAT32_MAX)) {
+  if (
+    !Array.isArray(v.spacing) ||
+    v.spacing.length !== 3 ||
+    v.spacing.some((s) => typeof s !== 'number' || !Number.isFinite(s) || s <= 0 || s > FLOAT32_MAX)
+  ) {
     bad(`spacing must be three positive finite (float32) numbers, got [${v.spacing}]`);
   }
   if (!(v.type in ARRAY_OF)) bad(`unknown voxel type "${v.type}"`);
   if (!(v.data instanceof ARRAY_OF[v.type])) bad(`data must be a ${ARRAY_OF[v.type].name} for type ${v.type}`);
   const n = voxelCount(v.dims);
   if (v.data.length !== n) bad(`dims [${v.dims.join(', ')}] need ${n} voxels, data has ${v.data.length}`);
-  if (v.valueRange && (!Array.isArray(v.valueRange) || v.valueRange.length !== 2 || !v.valueRange.every(Number.isFinite) || v.valueRange[0] === v.valueRange[1])) {
+  if (
+    v.valueRange &&
+    (!Array.isArray(v.valueRange) ||
+      v.valueRange.length !== 2 ||
+      !v.valueRange.every(Number.isFinite) ||
+      v.valueRange[0] === v.valueRange[1])
+  ) {
     bad(`valueRange must be two different finite numbers [LO, HI] (LO > HI inverts), got [${v.valueRange}]`);
   }
 }
@@ -58,7 +74,8 @@ export function normalizationRange(v: Volume): [number, number] {
   if (v.type === 'uint8' && !v.valueRange) return [0, 255];
   if (v.type === 'uint16' && !v.valueRange) return [0, 65535];
   if (v.valueRange) return v.valueRange;
-  let lo = Infinity, hi = -Infinity;
+  let lo = Infinity,
+    hi = -Infinity;
   for (let i = 0; i < v.data.length; i++) {
     const x = v.data[i];
     if (!Number.isFinite(x)) continue; // NaN/Inf voxels must not stretch the range
@@ -92,14 +109,27 @@ export function normalizedData(v: Volume): Float32Array {
 }
 
 /** Physical extent scaled so the longest side is 1, centred at the origin (docs/design.md). */
-export function volumeBox(v: Pick<Volume, 'dims' | 'spacing'>): { min: [number, number, number]; max: [number, number, number]; size: [number, number, number] } {
+export function volumeBox(v: Pick<Volume, 'dims' | 'spacing'>): {
+  min: [number, number, number];
+  max: [number, number, number];
+  size: [number, number, number];
+} {
   const ext = [0, 1, 2].map((i) => v.dims[i] * v.spacing[i]);
   const longest = Math.max(...ext);
   const size = ext.map((e) => e / longest) as [number, number, number];
-  return { min: size.map((s) => -s / 2) as [number, number, number], max: size.map((s) => s / 2) as [number, number, number], size };
+  return {
+    min: size.map((s) => -s / 2) as [number, number, number],
+    max: size.map((s) => s / 2) as [number, number, number],
+    size,
+  };
 }
 
-export function createVolume(dims: [number, number, number], type: VoxelType, data?: VoxelArray, spacing: [number, number, number] = [1, 1, 1]): Volume {
+export function createVolume(
+  dims: [number, number, number],
+  type: VoxelType,
+  data?: VoxelArray,
+  spacing: [number, number, number] = [1, 1, 1],
+): Volume {
   const v: Volume = { dims, spacing, type, data: data ?? new ARRAY_OF[type](voxelCount(dims)) };
   validateVolume(v);
   return v;

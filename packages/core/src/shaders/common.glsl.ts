@@ -193,11 +193,24 @@ vec4 transferAt(vec3 p) {
  * or 2D transfer function.
  */
 export const GENERATE_CHUNKS = [
-  RNG, RAY, SLICE_ATLAS, LERP,
-  '#if HARDWARE_FILTER', HARDWARE_FILTER, '#else', EXACT_FILTER, '#endif',
+  RNG,
+  RAY,
+  SLICE_ATLAS,
+  LERP,
+  '#if HARDWARE_FILTER',
+  HARDWARE_FILTER,
+  '#else',
+  EXACT_FILTER,
+  '#endif',
   SAMPLE_AND_LOOKUP,
-  '#if GRADIENT', GRADIENT, '#endif',
-  '#if TF_2D', TRANSFER_2D, '#else', TRANSFER_1D, '#endif',
+  '#if GRADIENT',
+  GRADIENT,
+  '#endif',
+  '#if TF_2D',
+  TRANSFER_2D,
+  '#else',
+  TRANSFER_1D,
+  '#endif',
 ].join('\n');
 
 /** The chunks of the integrate and render passes: texture-free RNG and rays. */

@@ -20,7 +20,11 @@ export interface CommonChunkOptions {
  * "Leave out what a scene does not need").
  */
 export function commonChunks(opts: CommonChunkOptions = {}): KernelSource {
-  const flags = { GRADIENT: !!(opts.gradient || opts.tf2d), TF_2D: !!opts.tf2d, HARDWARE_FILTER: !!opts.hardwareFilter };
+  const flags = {
+    GRADIENT: !!(opts.gradient || opts.tf2d),
+    TF_2D: !!opts.tf2d,
+    HARDWARE_FILTER: !!opts.hardwareFilter,
+  };
   return { glsl: preprocess(glsl.GENERATE_CHUNKS, flags), wgsl: preprocess(wgsl.GENERATE_CHUNKS, flags) };
 }
 

@@ -25,14 +25,21 @@ function evalTerm(term: string, flags: Flags): boolean {
   if (m) return m[1] ? value(m[2]) === 0 : value(m[2]) !== 0;
   m = /^([A-Za-z_][A-Za-z0-9_]*)\s*(==|!=|>=|<=|>|<)\s*(-?\d+)$/.exec(t);
   if (!m) throw new Error(`preprocess: cannot parse condition "${t}"`);
-  const a = value(m[1]), b = Number(m[3]);
+  const a = value(m[1]),
+    b = Number(m[3]);
   switch (m[2]) {
-    case '==': return a === b;
-    case '!=': return a !== b;
-    case '>=': return a >= b;
-    case '<=': return a <= b;
-    case '>': return a > b;
-    default: return a < b;
+    case '==':
+      return a === b;
+    case '!=':
+      return a !== b;
+    case '>=':
+      return a >= b;
+    case '<=':
+      return a <= b;
+    case '>':
+      return a > b;
+    default:
+      return a < b;
   }
 }
 

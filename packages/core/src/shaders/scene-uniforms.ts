@@ -43,7 +43,14 @@ export const SCENE_UNIFORM_FIELDS: readonly UniformField[] = [
  * uploaded volume's texel → value map (volumeValueMapping); without it, texels are taken to
  * hold the data values (the exact path's r32float).
  */
-export function sceneUniformValues(scene: Scene, width: number, height: number, iteration: number, tfSize: number, mapping?: { valueScale: number; valueOffset: number }): UniformValues {
+export function sceneUniformValues(
+  scene: Scene,
+  width: number,
+  height: number,
+  iteration: number,
+  tfSize: number,
+  mapping?: { valueScale: number; valueOffset: number },
+): UniformValues {
   const map = mapping ?? volumeValueMapping(scene.volume, { decodeScale: 1, decodeOffset: 0 });
   const basis = cameraBasis(scene.camera);
   const box = volumeBox(scene.volume);
@@ -66,7 +73,7 @@ export function sceneUniformValues(scene: Scene, width: number, height: number, 
     background: [bg[0], bg[1], bg[2], 1],
     tfHeight: transferFunctionSize(scene.transferFunction, tfSize)[1],
     gradientAtlasColumns: sliceAtlasLayout(scene.volume.dims).columns,
-    tfGradientMax: scene.transferFunction.dimensions === '2d' ? scene.transferFunction.gradientMax ?? 0 : 0,
+    tfGradientMax: scene.transferFunction.dimensions === '2d' ? (scene.transferFunction.gradientMax ?? 0) : 0,
     valueScale: map.valueScale,
     valueOffset: map.valueOffset,
   };

@@ -22,6 +22,12 @@ export function sliceAtlasLayout(dims: readonly [number, number, number] | reado
 }
 
 /** Atlas texel (column, row) of voxel (x, y, z); the shader twin is atlasTexel() of slice-atlas.glsl.ts / .wgsl.ts. */
-export function atlasTexel(layout: SliceAtlasLayout, dims: readonly number[], x: number, y: number, z: number): [number, number] {
+export function atlasTexel(
+  layout: SliceAtlasLayout,
+  dims: readonly number[],
+  x: number,
+  y: number,
+  z: number,
+): [number, number] {
   return [x + (z % layout.columns) * dims[0], y + Math.floor(z / layout.columns) * dims[1]];
 }

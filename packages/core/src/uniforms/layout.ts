@@ -27,10 +27,50 @@ export interface FieldPlacement extends UniformField {
   stride: number; // bytes between array elements (or the size, for a single value)
 }
 
-const ALIGN: Record<UniformType, number> = { f32: 4, i32: 4, u32: 4, vec2: 8, vec3: 16, vec4: 16, ivec4: 16, uvec4: 16, mat4: 16 };
-const SIZE: Record<UniformType, number> = { f32: 4, i32: 4, u32: 4, vec2: 8, vec3: 12, vec4: 16, ivec4: 16, uvec4: 16, mat4: 64 };
-const GLSL_TYPE: Record<UniformType, string> = { f32: 'float', i32: 'int', u32: 'uint', vec2: 'vec2', vec3: 'vec3', vec4: 'vec4', ivec4: 'ivec4', uvec4: 'uvec4', mat4: 'mat4' };
-const WGSL_TYPE: Record<UniformType, string> = { f32: 'f32', i32: 'i32', u32: 'u32', vec2: 'vec2f', vec3: 'vec3f', vec4: 'vec4f', ivec4: 'vec4i', uvec4: 'vec4u', mat4: 'mat4x4f' };
+const ALIGN: Record<UniformType, number> = {
+  f32: 4,
+  i32: 4,
+  u32: 4,
+  vec2: 8,
+  vec3: 16,
+  vec4: 16,
+  ivec4: 16,
+  uvec4: 16,
+  mat4: 16,
+};
+const SIZE: Record<UniformType, number> = {
+  f32: 4,
+  i32: 4,
+  u32: 4,
+  vec2: 8,
+  vec3: 12,
+  vec4: 16,
+  ivec4: 16,
+  uvec4: 16,
+  mat4: 64,
+};
+const GLSL_TYPE: Record<UniformType, string> = {
+  f32: 'float',
+  i32: 'int',
+  u32: 'uint',
+  vec2: 'vec2',
+  vec3: 'vec3',
+  vec4: 'vec4',
+  ivec4: 'ivec4',
+  uvec4: 'uvec4',
+  mat4: 'mat4',
+};
+const WGSL_TYPE: Record<UniformType, string> = {
+  f32: 'f32',
+  i32: 'i32',
+  u32: 'u32',
+  vec2: 'vec2f',
+  vec3: 'vec3f',
+  vec4: 'vec4f',
+  ivec4: 'vec4i',
+  uvec4: 'vec4u',
+  mat4: 'mat4x4f',
+};
 
 const roundUp = (n: number, a: number) => Math.ceil(n / a) * a;
 
@@ -43,7 +83,10 @@ export class UniformLayout {
   readonly byteSize: number;
   private readonly byName = new Map<string, FieldPlacement>();
 
-  constructor(readonly structName: string, fields: readonly UniformField[]) {
+  constructor(
+    readonly structName: string,
+    fields: readonly UniformField[],
+  ) {
     let offset = 0;
     const placed: FieldPlacement[] = [];
     for (const f of fields) {
@@ -75,7 +118,9 @@ export class UniformLayout {
 
   /** `layout(std140) uniform <Struct>Block { … } u;` — fields read as u.name in GLSL. */
   glslBlock(instance = 'u'): string {
-    const lines = this.fields.map((f) => `  ${GLSL_TYPE[f.type]} ${f.name}${f.count !== undefined ? `[${f.count}]` : ''};`);
+    const lines = this.fields.map(
+      (f) => `  ${GLSL_TYPE[f.type]} ${f.name}${f.count !== undefined ? `[${f.count}]` : ''};`,
+    );
     return `layout(std140) uniform ${this.structName}Block {\n${lines.join('\n')}\n} ${instance};\n`;
   }
 
@@ -102,7 +147,9 @@ export class UniformLayout {
       const view = f.type === 'i32' || f.type === 'ivec4' ? i32 : f.type === 'u32' || f.type === 'uvec4' ? u32 : f32;
       const flat: ArrayLike<number> = typeof value === 'number' ? [value] : value;
       if (flat.length !== comps * count) {
-        throw new Error(`uniform "${name}" (${f.type}${f.count !== undefined ? `[${f.count}]` : ''}) takes ${comps * count} numbers, got ${flat.length}`);
+        throw new Error(
+          `uniform "${name}" (${f.type}${f.count !== undefined ? `[${f.count}]` : ''}) takes ${comps * count} numbers, got ${flat.length}`,
+        );
       }
       for (let e = 0; e < count; e++) {
         const base = (f.offset + e * f.stride) / 4;
@@ -114,7 +161,15 @@ export class UniformLayout {
 }
 
 function componentsOf(t: UniformType): number {
-  return t === 'mat4' ? 16 : t === 'vec4' || t === 'ivec4' || t === 'uvec4' ? 4 : t === 'vec3' ? 3 : t === 'vec2' ? 2 : 1;
+  return t === 'mat4'
+    ? 16
+    : t === 'vec4' || t === 'ivec4' || t === 'uvec4'
+      ? 4
+      : t === 'vec3'
+        ? 3
+        : t === 'vec2'
+          ? 2
+          : 1;
 }
 
 function arrayElementType(t: UniformType): string {

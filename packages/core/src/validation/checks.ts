@@ -62,7 +62,8 @@ export function checkNumber(field: string, x: unknown, rule: NumberRule = {}): n
     if (Math.abs(n) > FLOAT32_MAX) fail(field, `${n} exceeds the float32 range (±${FLOAT32_MAX}) the GPU computes in`);
     if (rule.integer && !Number.isInteger(n)) fail(field, `must be ${rangeText(rule)}, got ${n}`);
   }
-  if (rule.min !== undefined && (rule.exclusiveMin ? !(n > rule.min) : !(n >= rule.min))) fail(field, `must be ${rangeText(rule)}, got ${n}`);
+  if (rule.min !== undefined && (rule.exclusiveMin ? !(n > rule.min) : !(n >= rule.min)))
+    fail(field, `must be ${rangeText(rule)}, got ${n}`);
   if (!unlimited && rule.max !== undefined && (rule.exclusiveMax ? !(n < rule.max) : !(n <= rule.max))) {
     fail(field, `${n} is above the limit: must be ${rangeText(rule)}`, rule.maxCode ?? 'invalid-scene');
   }
@@ -71,12 +72,14 @@ export function checkNumber(field: string, x: unknown, rule: NumberRule = {}): n
 
 /** A fixed-length array of numbers, each checked by `rule`. */
 export function checkNumbers(field: string, x: unknown, length: number, rule: NumberRule = {}): number[] {
-  if (!Array.isArray(x) || x.length !== length) fail(field, `must be an array of ${length} numbers, got ${describeValue(x)}`);
+  if (!Array.isArray(x) || x.length !== length)
+    fail(field, `must be an array of ${length} numbers, got ${describeValue(x)}`);
   return (x as unknown[]).map((v, i) => checkNumber(`${field}[${i}]`, v, rule));
 }
 
 export function checkOneOf<T extends string>(field: string, x: unknown, allowed: readonly T[]): T {
-  if (typeof x !== 'string' || !allowed.includes(x as T)) fail(field, `must be one of ${allowed.map((a) => JSON.stringify(a)).join(', ')}, got ${describeValue(x)}`);
+  if (typeof x !== 'string' || !allowed.includes(x as T))
+    fail(field, `must be one of ${allowed.map((a) => JSON.stringify(a)).join(', ')}, got ${describeValue(x)}`);
   return x as T;
 }
 
@@ -92,7 +95,8 @@ export function checkString(field: string, x: unknown): string {
 
 /** A plain object (not null, not an array). */
 export function checkObject(field: string, x: unknown): Record<string, unknown> {
-  if (!x || typeof x !== 'object' || Array.isArray(x) || ArrayBuffer.isView(x)) fail(field, `must be an object, got ${describeValue(x)}`);
+  if (!x || typeof x !== 'object' || Array.isArray(x) || ArrayBuffer.isView(x))
+    fail(field, `must be an object, got ${describeValue(x)}`);
   return x as Record<string, unknown>;
 }
 

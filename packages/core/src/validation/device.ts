@@ -9,14 +9,27 @@ import { validateStepParams } from './params.js';
  * validateScene: texture sizes against this device's limits, and renderer parameters whose
  * range depends on the scene (ray-march steps of at least MIN_STEP_VOXELS voxels).
  */
-export function validateSceneForDevice(scene: Scene, renderer: Renderer, limits: Pick<BackendLimits, 'maxTextureDimension2D'>): void {
+export function validateSceneForDevice(
+  scene: Scene,
+  renderer: Renderer,
+  limits: Pick<BackendLimits, 'maxTextureDimension2D'>,
+): void {
   const env = scene.environment;
   if (env.type === 'latlong') {
     // The conditional CDF texture is one texel wider than the map, the marginal one taller.
     const max = limits.maxTextureDimension2D;
     if (env.width + 1 > max || env.height + 1 > max) {
-      fail('Environment', `a ${env.width} x ${env.height} lat-long map needs ${env.width + 1} x ${env.height + 1} texel tables; this device's 2D texture limit is ${max} (maxTextureDimension2D)`, 'limit-exceeded');
+      fail(
+        'Environment',
+        `a ${env.width} x ${env.height} lat-long map needs ${env.width + 1} x ${env.height + 1} texel tables; this device's 2D texture limit is ${max} (maxTextureDimension2D)`,
+        'limit-exceeded',
+      );
     }
   }
-  validateStepParams(renderer.name.toUpperCase(), renderer.paramSpecs, renderer.getParams?.() as Record<string, unknown> | undefined, scene.volume.dims);
+  validateStepParams(
+    renderer.name.toUpperCase(),
+    renderer.paramSpecs,
+    renderer.getParams?.() as Record<string, unknown> | undefined,
+    scene.volume.dims,
+  );
 }

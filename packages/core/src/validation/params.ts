@@ -19,7 +19,7 @@ export type ParamSpec =
 export type ParamSpecs = Readonly<Record<string, ParamSpec>>;
 
 /** The scene-independent rule of a 'step' parameter. */
-export const STEP_RULE: NumberRule = { min: MIN_STEP_SIZE, max: 1, unit: 'world units; the box\'s longest side is 1' };
+export const STEP_RULE: NumberRule = { min: MIN_STEP_SIZE, max: 1, unit: "world units; the box's longest side is 1" };
 
 /** Check parameters against their declared specs; throws VptError('invalid-scene') naming `owner.key`. */
 export function validateParams(owner: string, specs: ParamSpecs, params: unknown): void {
@@ -30,11 +30,20 @@ export function validateParams(owner: string, specs: ParamSpecs, params: unknown
     if (v === undefined) continue;
     const field = `${owner}.${key}`;
     switch (spec.kind) {
-      case 'number': checkNumber(field, v, spec); break;
-      case 'step': checkNumber(field, v, STEP_RULE); break;
-      case 'enum': checkOneOf(field, v, spec.values); break;
-      case 'boolean': checkBoolean(field, v); break;
-      case 'custom': break;
+      case 'number':
+        checkNumber(field, v, spec);
+        break;
+      case 'step':
+        checkNumber(field, v, STEP_RULE);
+        break;
+      case 'enum':
+        checkOneOf(field, v, spec.values);
+        break;
+      case 'boolean':
+        checkBoolean(field, v);
+        break;
+      case 'custom':
+        break;
     }
   }
 }
@@ -49,14 +58,22 @@ export function minStepSize(dims: readonly number[]): number {
  * so a march across the box takes at most √3·max(dims)/MIN_STEP_VOXELS samples (below
  * MAX_MARCH_STEPS for dims ≤ 2048; the kernels clamp to MAX_MARCH_STEPS anyway).
  */
-export function validateStepParams(owner: string, specs: ParamSpecs | undefined, params: Record<string, unknown> | undefined, dims: readonly number[]): void {
+export function validateStepParams(
+  owner: string,
+  specs: ParamSpecs | undefined,
+  params: Record<string, unknown> | undefined,
+  dims: readonly number[],
+): void {
   if (!specs || !params) return;
   const min = minStepSize(dims);
   for (const [key, spec] of Object.entries(specs)) {
     const v = params[key];
     if (spec.kind !== 'step' || v === undefined) continue;
     if (typeof v !== 'number' || !(v >= min)) {
-      fail(`${owner}.${key}`, `${describeStep(v)} is below the smallest step for a volume of dims [${dims.join(', ')}]: ${min} world units (${MIN_STEP_VOXELS} voxel; a march is limited to ${MAX_MARCH_STEPS} steps)`);
+      fail(
+        `${owner}.${key}`,
+        `${describeStep(v)} is below the smallest step for a volume of dims [${dims.join(', ')}]: ${min} world units (${MIN_STEP_VOXELS} voxel; a march is limited to ${MAX_MARCH_STEPS} steps)`,
+      );
     }
   }
 }

@@ -54,8 +54,14 @@ export function parseRenderArgs(argv: string[]): RenderArgs {
     },
   });
   if (values.help) return { scene: '', keepAlpha: false, verbose: false, help: true };
-  if (positionals.length !== 1) throw new Error(positionals.length ? `expected one scene file, got ${positionals.length}: ${positionals.join(' ')}` : 'missing the scene file');
-  if (values.output === undefined && values.pfm === undefined) throw new Error('nothing to write: give -o out.png and/or --pfm out.pfm');
+  if (positionals.length !== 1)
+    throw new Error(
+      positionals.length
+        ? `expected one scene file, got ${positionals.length}: ${positionals.join(' ')}`
+        : 'missing the scene file',
+    );
+  if (values.output === undefined && values.pfm === undefined)
+    throw new Error('nothing to write: give -o out.png and/or --pfm out.pfm');
   if (values.backend !== undefined && !BACKEND_NAMES.includes(values.backend as BackendName)) {
     throw new Error(`--backend must be one of ${BACKEND_NAMES.join(', ')}, got "${values.backend}"`);
   }

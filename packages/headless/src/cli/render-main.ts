@@ -36,20 +36,25 @@ export async function runRender(argv: string[], io: CliIO = processIO): Promise<
       onConsole: args.verbose ? (line) => io.err(line) : undefined,
     });
     if (args.output !== undefined) {
-      if (!result.ldr) throw new Error('the scene\'s post chain is empty, so there is no LDR image to write with -o (use --pfm for the HDR image)');
+      if (!result.ldr)
+        throw new Error(
+          "the scene's post chain is empty, so there is no LDR image to write with -o (use --pfm for the HDR image)",
+        );
       writeFile(args.output, encodePNG(args.keepAlpha ? result.ldr : opaque(result.ldr), result.width, result.height));
     }
     if (args.pfm !== undefined) writeFile(args.pfm, encodePFM(result.hdr, result.width, result.height));
-    io.out(JSON.stringify({
-      ...result.timings,
-      width: result.width,
-      height: result.height,
-      backend: result.backend.kind,
-      device: result.backend.renderer,
-      gpuBytes: result.gpuBytes,
-      volumeDims: result.volumeDims,
-      ...(result.warnings.length > 0 ? { warnings: result.warnings } : {}),
-    }));
+    io.out(
+      JSON.stringify({
+        ...result.timings,
+        width: result.width,
+        height: result.height,
+        backend: result.backend.kind,
+        device: result.backend.renderer,
+        gpuBytes: result.gpuBytes,
+        volumeDims: result.volumeDims,
+        ...(result.warnings.length > 0 ? { warnings: result.warnings } : {}),
+      }),
+    );
     for (const w of result.warnings) io.err(`vpt-render: warning: ${w}`);
     return 0;
   } catch (e) {

@@ -49,7 +49,10 @@ async function check(url: string, io: CliIO): Promise<number> {
  * vpt-serve: serve the workspace root on 127.0.0.1 and print a page's URL. Resolves
  * with an exit code in --check mode (or on error); otherwise with `server` running.
  */
-export async function runServe(argv: string[], io: CliIO = processIO): Promise<{ code: number | null; server?: StaticServer }> {
+export async function runServe(
+  argv: string[],
+  io: CliIO = processIO,
+): Promise<{ code: number | null; server?: StaticServer }> {
   let server: StaticServer | undefined;
   try {
     const args = parseServeArgs(argv);

@@ -62,7 +62,10 @@ export interface VptPageApi {
   iso: typeof IsoModule;
   mcrt: typeof McrtModule;
   post: PostModule;
-  renderDescription(desc: SceneDescription, options?: { baseUrl?: string; warmup?: boolean }): Promise<PageRenderResult>;
+  renderDescription(
+    desc: SceneDescription,
+    options?: { baseUrl?: string; warmup?: boolean },
+  ): Promise<PageRenderResult>;
   buildScene(desc: SceneDescription, baseUrl?: string): Promise<Scene>;
   loadVolume(desc: VolumeDescription, baseUrl?: string): Promise<Volume>;
 }

@@ -6,7 +6,12 @@
  * sets `window.__vptReady`, or `window.__vptError` when a package cannot be loaded.
  */
 import type { Environment, Renderer, Scene, Volume } from '@vpt/core';
-import { SCENE_DEFAULTS, checkSceneDescription, type SceneDescription, type VolumeDescription } from '../scene-description.js';
+import {
+  SCENE_DEFAULTS,
+  checkSceneDescription,
+  type SceneDescription,
+  type VolumeDescription,
+} from '../scene-description.js';
 import type { PageRenderResult, PostModule, VptPageApi } from './types.js';
 
 type CoreModule = VptPageApi['core'];
@@ -56,7 +61,11 @@ async function buildScene(d: SceneDescription, baseUrl?: string): Promise<Scene>
   const tf = d.transferFunction;
   return {
     volume: await loadVolume(d.volume ?? SCENE_DEFAULTS.volume, baseUrl),
-    transferFunction: !tf ? core.rampTransferFunction() : tf.dimensions === '2d' ? core.transferFunctionFromJSON(tf) : { dimensions: '1d', points: tf.points },
+    transferFunction: !tf
+      ? core.rampTransferFunction()
+      : tf.dimensions === '2d'
+        ? core.transferFunctionFromJSON(tf)
+        : { dimensions: '1d', points: tf.points },
     camera: { ...core.defaultCamera(), ...d.camera },
     lights: d.lights ?? [],
     environment: environmentOf(d),
@@ -69,7 +78,8 @@ async function buildScene(d: SceneDescription, baseUrl?: string): Promise<Scene>
 /** A renderer of the catalog by name, constructed with its parameter object. */
 function createRenderer(name: string, params: Record<string, unknown> = {}): Renderer {
   const Ctor = rendererClasses.get(name);
-  if (!Ctor) throw new core.VptError('invalid-scene', `Unknown renderer "${name}" (${[...rendererClasses.keys()].join(', ')})`);
+  if (!Ctor)
+    throw new core.VptError('invalid-scene', `Unknown renderer "${name}" (${[...rendererClasses.keys()].join(', ')})`);
   return new Ctor(params);
 }
 
@@ -91,7 +101,10 @@ function toBase64(a: ArrayBufferView): string {
  * post passes, after one warm-up iteration has compiled the kernels (compilation is
  * reported in `setupMs`, with volume loading and upload).
  */
-async function renderDescription(desc: SceneDescription, options: { baseUrl?: string; warmup?: boolean } = {}): Promise<PageRenderResult> {
+async function renderDescription(
+  desc: SceneDescription,
+  options: { baseUrl?: string; warmup?: boolean } = {},
+): Promise<PageRenderResult> {
   const t0 = performance.now();
   checkSceneDescription(desc, [...rendererClasses.keys()]);
   const width = desc.width ?? SCENE_DEFAULTS.width;
@@ -103,7 +116,12 @@ async function renderDescription(desc: SceneDescription, options: { baseUrl?: st
   canvas.width = width;
   canvas.height = height;
   const ctx = await core.RenderContext.create({
-    canvas, backend: desc.backend ?? SCENE_DEFAULTS.backend, width, height, renderer: makeRenderer(desc), post: steps,
+    canvas,
+    backend: desc.backend ?? SCENE_DEFAULTS.backend,
+    width,
+    height,
+    renderer: makeRenderer(desc),
+    post: steps,
     ...(desc.maxGpuBytes ? { maxGpuBytes: desc.maxGpuBytes } : {}),
   });
   const warnings: string[] = [];
@@ -153,7 +171,16 @@ try {
     rendererClasses.set(e.name, Ctor as new (params?: Record<string, unknown>) => Renderer);
     renderers[e.name] = modules[i];
   });
-  window.vpt = { ...renderers, core, post, renderers, createRenderer, renderDescription, buildScene, loadVolume } as unknown as VptPageApi;
+  window.vpt = {
+    ...renderers,
+    core,
+    post,
+    renderers,
+    createRenderer,
+    renderDescription,
+    buildScene,
+    loadVolume,
+  } as unknown as VptPageApi;
   window.__vptReady = true;
 } catch (e) {
   window.__vptError = (e as Error).message;

@@ -30,9 +30,11 @@ export function finishVolume(v: DecodedVolume, ctx: LoadContext): LoadedVolume {
     meta.downsampled = { factors, originalDims: dims, originalSpacing: spacing };
     if (origin && v.orientation) {
       // The first output voxel's centre is the centre of the first input block.
-      const shift = [0, 1, 2].map((i) => (factors[i] - 1) / 2 * spacing[i]);
+      const shift = [0, 1, 2].map((i) => ((factors[i] - 1) / 2) * spacing[i]);
       const R = v.orientation;
-      origin = [0, 1, 2].map((r) => origin![r] + R[3 * r] * shift[0] + R[3 * r + 1] * shift[1] + R[3 * r + 2] * shift[2]) as [number, number, number];
+      origin = [0, 1, 2].map(
+        (r) => origin![r] + R[3 * r] * shift[0] + R[3 * r + 1] * shift[1] + R[3 * r + 2] * shift[2],
+      ) as [number, number, number];
     }
     dims = shrunk.dims;
     spacing = spacing.map((s, i) => s * factors[i]) as [number, number, number];
@@ -54,13 +56,20 @@ export function finishVolume(v: DecodedVolume, ctx: LoadContext): LoadedVolume {
   try {
     validateVolume(out);
   } catch (e) {
-    throw new LoaderError('invalid-data', `${ctx.name}: the loaded volume is not valid (${(e as Error).message})`, { cause: e });
+    throw new LoaderError('invalid-data', `${ctx.name}: the loaded volume is not valid (${(e as Error).message})`, {
+      cause: e,
+    });
   }
   return out;
 }
 
 /** Box-average `f`-sized blocks (partial blocks at the far edges average what they hold); NaN/±Inf are skipped. */
-export function downsample(data: VoxelArray, dims: readonly number[], f: readonly number[], type: VoxelType): { dims: [number, number, number]; data: VoxelArray } {
+export function downsample(
+  data: VoxelArray,
+  dims: readonly number[],
+  f: readonly number[],
+  type: VoxelType,
+): { dims: [number, number, number]; data: VoxelArray } {
   const [nx, ny, nz] = dims;
   const od = [0, 1, 2].map((i) => Math.ceil(dims[i] / f[i])) as [number, number, number];
   const n = od[0] * od[1] * od[2];

@@ -1,15 +1,28 @@
 import type { VoxelArray, VoxelType } from '@vpt/core';
 import { SOURCE_BYTES, type SourceType } from './size.js';
 
-export type SourceArray = Uint8Array | Int8Array | Uint16Array | Int16Array | Uint32Array | Int32Array | Float32Array | Float64Array;
+export type SourceArray =
+  Uint8Array | Int8Array | Uint16Array | Int16Array | Uint32Array | Int32Array | Float32Array | Float64Array;
 
-const SOURCE_ARRAY: Record<SourceType, { new (b: ArrayBuffer, o?: number, n?: number): SourceArray; new (n: number): SourceArray }> = {
-  uint8: Uint8Array, int8: Int8Array, uint16: Uint16Array, int16: Int16Array,
-  uint32: Uint32Array, int32: Int32Array, float32: Float32Array, float64: Float64Array,
+const SOURCE_ARRAY: Record<
+  SourceType,
+  { new (b: ArrayBuffer, o?: number, n?: number): SourceArray; new (n: number): SourceArray }
+> = {
+  uint8: Uint8Array,
+  int8: Int8Array,
+  uint16: Uint16Array,
+  int16: Int16Array,
+  uint32: Uint32Array,
+  int32: Int32Array,
+  float32: Float32Array,
+  float64: Float64Array,
 };
 
 export const OUTPUT_ARRAY: Record<VoxelType, new (n: number) => VoxelArray> = {
-  uint8: Uint8Array, uint16: Uint16Array, int16: Int16Array, float32: Float32Array,
+  uint8: Uint8Array,
+  uint16: Uint16Array,
+  int16: Int16Array,
+  float32: Float32Array,
 };
 
 export const OUTPUT_BYTES: Record<VoxelType, number> = { uint8: 1, uint16: 2, int16: 2, float32: 4 };
@@ -20,7 +33,13 @@ const HOST_LITTLE = new Uint8Array(new Uint16Array([1]).buffer)[0] === 1;
  * Copy `count` samples of `type` from `bytes` at `offset` into a fresh, aligned array in
  * this machine's byte order (the caller has checked that the bytes are there).
  */
-export function readSamples(bytes: Uint8Array, offset: number, count: number, type: SourceType, littleEndian: boolean): SourceArray {
+export function readSamples(
+  bytes: Uint8Array,
+  offset: number,
+  count: number,
+  type: SourceType,
+  littleEndian: boolean,
+): SourceArray {
   const size = SOURCE_BYTES[type];
   const copy = bytes.slice(offset, offset + count * size);
   if (size > 1 && littleEndian !== HOST_LITTLE) swapBytes(copy, size);
@@ -29,20 +48,33 @@ export function readSamples(bytes: Uint8Array, offset: number, count: number, ty
 
 function swapBytes(b: Uint8Array, size: number): void {
   if (size === 2) {
-    for (let i = 0; i + 1 < b.length; i += 2) { const t = b[i]; b[i] = b[i + 1]; b[i + 1] = t; }
+    for (let i = 0; i + 1 < b.length; i += 2) {
+      const t = b[i];
+      b[i] = b[i + 1];
+      b[i + 1] = t;
+    }
   } else {
     for (let i = 0; i + size <= b.length; i += size) b.subarray(i, i + size).reverse();
   }
 }
 
-export interface SampleRange { min: number; max: number; nonFinite: number }
+export interface SampleRange {
+  min: number;
+  max: number;
+  nonFinite: number;
+}
 
 /** Finite min/max and the number of NaN/±Inf samples. */
 export function scanRange(a: ArrayLike<number>): SampleRange {
-  let min = Infinity, max = -Infinity, nonFinite = 0;
+  let min = Infinity,
+    max = -Infinity,
+    nonFinite = 0;
   for (let i = 0; i < a.length; i++) {
     const x = a[i];
-    if (x !== x || x === Infinity || x === -Infinity) { nonFinite++; continue; }
+    if (x !== x || x === Infinity || x === -Infinity) {
+      nonFinite++;
+      continue;
+    }
     if (x < min) min = x;
     if (x > max) max = x;
   }
@@ -67,7 +99,10 @@ export function chooseType(source: SourceType, scaled: { min: number; max: numbe
   return 'float32';
 }
 
-export interface Scaling { slope: number; inter: number }
+export interface Scaling {
+  slope: number;
+  inter: number;
+}
 
 export const IDENTITY: Scaling = { slope: 1, inter: 0 };
 
@@ -77,7 +112,8 @@ export function integralScaling(s: Scaling): boolean {
 }
 
 export function scaledRange(r: { min: number; max: number }, s: Scaling): { min: number; max: number } {
-  const a = r.min * s.slope + s.inter, b = r.max * s.slope + s.inter;
+  const a = r.min * s.slope + s.inter,
+    b = r.max * s.slope + s.inter;
   return { min: Math.min(a, b), max: Math.max(a, b) };
 }
 

@@ -4,7 +4,18 @@ import type { LoadContext } from '../context.js';
 import type { LoadedVolume } from '../types.js';
 import { finishVolume } from '../convert/finish.js';
 import { checkDims, checkFits, type SourceType } from '../convert/size.js';
-import { chooseType, convertInto, integralScaling, readSamples, scaledRange, scanRange, OUTPUT_ARRAY, OUTPUT_BYTES, type Scaling, type SourceArray } from '../convert/voxels.js';
+import {
+  chooseType,
+  convertInto,
+  integralScaling,
+  readSamples,
+  scaledRange,
+  scanRange,
+  OUTPUT_ARRAY,
+  OUTPUT_BYTES,
+  type Scaling,
+  type SourceArray,
+} from '../convert/voxels.js';
 import { fflate, loadDependency } from '../io/deps.js';
 import { directionCosines } from './orientation.js';
 
@@ -27,10 +38,15 @@ const COMPRESSED: [RegExp, string][] = [
 ];
 
 export function hasDicomMagic(bytes: Uint8Array): boolean {
-  return bytes.length >= 132 && bytes[128] === 0x44 && bytes[129] === 0x49 && bytes[130] === 0x43 && bytes[131] === 0x4d;
+  return (
+    bytes.length >= 132 && bytes[128] === 0x44 && bytes[129] === 0x49 && bytes[130] === 0x43 && bytes[131] === 0x4d
+  );
 }
 
-export interface DicomFile { name: string; bytes: Uint8Array }
+export interface DicomFile {
+  name: string;
+  bytes: Uint8Array;
+}
 
 interface Slice {
   name: string;
@@ -67,7 +83,11 @@ const finite = (x: number | undefined): x is number => typeof x === 'number' && 
  * (a length past the end, a string VR with no text): a corrupt optional field reads as absent.
  */
 function safe<T>(f: () => T): T | undefined {
-  try { return f(); } catch { return undefined; }
+  try {
+    return f();
+  } catch {
+    return undefined;
+  }
 }
 
 function reader(ds: DataSet) {
@@ -108,7 +128,12 @@ function thrownMessage(e: unknown): string {
 }
 
 /** Parse one file with dicom-parser; null for a DICOM file without pixel data (a DICOMDIR, a report). */
-function parseFile(file: DicomFile, parser: Parser, inflateRaw: (b: Uint8Array) => Uint8Array, ctx: LoadContext): Slice | null {
+function parseFile(
+  file: DicomFile,
+  parser: Parser,
+  inflateRaw: (b: Uint8Array) => Uint8Array,
+  ctx: LoadContext,
+): Slice | null {
   const where = `${ctx.name}${file.name && file.name !== ctx.name ? ` (${file.name})` : ''}`;
   if (!hasDicomMagic(file.bytes)) {
     throw new LoaderError('bad-magic', `${where} is not a DICOM Part 10 file: no "DICM" at byte 128`);
@@ -128,7 +153,11 @@ function parseFile(file: DicomFile, parser: Parser, inflateRaw: (b: Uint8Array) 
   } catch (e) {
     const msg = thrownMessage(e);
     const reason = /overr(ead|un)|beyond|end of|past|eof|truncat/i.test(msg) ? 'truncated' : 'bad-header';
-    throw new LoaderError(reason, `${where}: the DICOM data cannot be parsed (${msg})${reason === 'truncated' ? '; the file is cut short' : ''}`, { cause: e });
+    throw new LoaderError(
+      reason,
+      `${where}: the DICOM data cannot be parsed (${msg})${reason === 'truncated' ? '; the file is cut short' : ''}`,
+      { cause: e },
+    );
   }
   const r = reader(ds);
   const syntax = (r.str('x00020010') ?? '').replace(/\0/g, '').trim();
@@ -138,12 +167,19 @@ function parseFile(file: DicomFile, parser: Parser, inflateRaw: (b: Uint8Array) 
   if (!native) {
     const known = COMPRESSED.find(([re]) => re.test(syntax));
     if (known || pixel.encapsulatedPixelData) {
-      throw new LoaderError('unsupported', `${where} uses the compressed transfer syntax ${syntax || '(none given)'}${known ? ` (${known[1]})` : ''}; `
-        + 'vpt reads uncompressed DICOM (Implicit/Explicit VR Little Endian, Explicit VR Big Endian, Deflated): decompress it first, e.g. gdcmconv --raw or dcmdjpeg');
+      throw new LoaderError(
+        'unsupported',
+        `${where} uses the compressed transfer syntax ${syntax || '(none given)'}${known ? ` (${known[1]})` : ''}; ` +
+          'vpt reads uncompressed DICOM (Implicit/Explicit VR Little Endian, Explicit VR Big Endian, Deflated): decompress it first, e.g. gdcmconv --raw or dcmdjpeg',
+      );
     }
     throw new LoaderError('bad-header', `${where}: transfer syntax "${syntax}" is unknown`);
   }
-  if (pixel.encapsulatedPixelData) throw new LoaderError('bad-header', `${where}: the pixel data is encapsulated although the transfer syntax (${native.name}) is uncompressed`);
+  if (pixel.encapsulatedPixelData)
+    throw new LoaderError(
+      'bad-header',
+      `${where}: the pixel data is encapsulated although the transfer syntax (${native.name}) is uncompressed`,
+    );
   const rows = r.u16('x00280010');
   const cols = r.u16('x00280011');
   const bitsAllocated = r.u16('x00280100');
@@ -151,12 +187,17 @@ function parseFile(file: DicomFile, parser: Parser, inflateRaw: (b: Uint8Array) 
   if (!finite(rows) || !finite(cols) || !finite(bitsAllocated)) {
     throw new LoaderError('bad-header', `${where}: Rows, Columns or BitsAllocated is missing`);
   }
-  if (samples !== 1) throw new LoaderError('unsupported', `${where}: ${samples} samples per pixel (colour) is not a scalar volume`);
+  if (samples !== 1)
+    throw new LoaderError('unsupported', `${where}: ${samples} samples per pixel (colour) is not a scalar volume`);
   if (bitsAllocated !== 8 && bitsAllocated !== 16 && bitsAllocated !== 32) {
-    throw new LoaderError('unsupported', `${where}: ${bitsAllocated} bits allocated per pixel is not supported (8, 16 or 32)`);
+    throw new LoaderError(
+      'unsupported',
+      `${where}: ${bitsAllocated} bits allocated per pixel is not supported (8, 16 or 32)`,
+    );
   }
   const bitsStoredRaw = r.u16('x00280101');
-  const bitsStored = finite(bitsStoredRaw) && bitsStoredRaw >= 1 && bitsStoredRaw <= bitsAllocated ? bitsStoredRaw : bitsAllocated;
+  const bitsStored =
+    finite(bitsStoredRaw) && bitsStoredRaw >= 1 && bitsStoredRaw <= bitsAllocated ? bitsStoredRaw : bitsAllocated;
   const framesText = r.int('x00280008');
   const frames = finite(framesText) && framesText >= 1 ? framesText : 1;
   let slope = r.num('x00281053');
@@ -168,13 +209,21 @@ function parseFile(file: DicomFile, parser: Parser, inflateRaw: (b: Uint8Array) 
   const array = ds.byteArray as Uint8Array;
   const available = Math.min(pixel.length, array.length - pixel.dataOffset);
   if (!(available >= need)) {
-    throw new LoaderError('truncated', `${where}: the pixel data holds ${Math.max(0, available)} bytes; ${rows}×${cols}${frames > 1 ? `×${frames}` : ''} pixels of ${bitsAllocated} bits need ${need}; the file is cut short or its header is wrong`);
+    throw new LoaderError(
+      'truncated',
+      `${where}: the pixel data holds ${Math.max(0, available)} bytes; ${rows}×${cols}${frames > 1 ? `×${frames}` : ''} pixels of ${bitsAllocated} bits need ${need}; the file is cut short or its header is wrong`,
+    );
   }
   const thickness = r.num('x00180050');
   const between = r.num('x00180088');
   const instance = r.int('x00200013');
   return {
-    name: file.name, rows, cols, frames, bitsAllocated, bitsStored,
+    name: file.name,
+    rows,
+    cols,
+    frames,
+    bitsAllocated,
+    bitsStored,
     signed: r.u16('x00280103') === 1,
     photometric: (r.str('x00280004') ?? '').trim(),
     scaling: { slope, inter },
@@ -193,7 +242,11 @@ function parseFile(file: DicomFile, parser: Parser, inflateRaw: (b: Uint8Array) 
   };
 }
 
-const cross = (a: number[], b: number[]) => [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
+const cross = (a: number[], b: number[]) => [
+  a[1] * b[2] - a[2] * b[1],
+  a[2] * b[0] - a[0] * b[2],
+  a[0] * b[1] - a[1] * b[0],
+];
 const dot = (a: number[], b: number[]) => a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 
 /** Pixels of one frame, BitsStored applied (masked, sign-extended when signed). */
@@ -204,10 +257,14 @@ function framePixels(s: Slice, frame: number): SourceArray {
   const raw = readSamples(s.pixels, frame * plane * size, plane, unsigned, s.little);
   if (!s.signed && s.bitsStored === s.bitsAllocated) return raw;
   if (s.signed && s.bitsStored === s.bitsAllocated) {
-    return size === 1 ? new Int8Array(raw.buffer) : size === 2 ? new Int16Array(raw.buffer) : new Int32Array(raw.buffer);
+    return size === 1
+      ? new Int8Array(raw.buffer)
+      : size === 2
+        ? new Int16Array(raw.buffer)
+        : new Int32Array(raw.buffer);
   }
   const bits = s.bitsStored;
-  const mask = bits >= 32 ? 0xffffffff : (2 ** bits) - 1;
+  const mask = bits >= 32 ? 0xffffffff : 2 ** bits - 1;
   const out = s.signed ? new (size === 1 ? Int8Array : size === 2 ? Int16Array : Int32Array)(plane) : raw;
   for (let i = 0; i < plane; i++) {
     let v = (raw[i] as number) & mask;
@@ -224,7 +281,13 @@ function sourceTypeOf(s: Slice): SourceType {
 }
 
 /** Geometry of the ordered slices: the z spacing from the positions, the direction cosines, the origin. */
-interface Geometry { order: Slice[]; zSpacing: number; orientation?: number[]; origin?: [number, number, number]; sortedBy: string }
+interface Geometry {
+  order: Slice[];
+  zSpacing: number;
+  orientation?: number[];
+  origin?: [number, number, number];
+  sortedBy: string;
+}
 
 function arrange(slices: Slice[], ctx: LoadContext): Geometry {
   const first = slices[0];
@@ -233,28 +296,53 @@ function arrange(slices: Slice[], ctx: LoadContext): Geometry {
   const cos = iop && normal ? directionCosines([iop.slice(0, 3), iop.slice(3, 6), normal]) : null;
   if (slices.length === 1) {
     const z = first.between ?? first.thickness ?? 1;
-    if (first.frames > 1 && first.between === undefined) ctx.warnings.push(`multi-frame spacing taken from ${first.thickness ? 'SliceThickness' : 'nothing (1 used)'}`);
-    return { order: slices, zSpacing: z, orientation: cos?.orientation, origin: first.ipp as [number, number, number] | undefined, sortedBy: 'single file' };
+    if (first.frames > 1 && first.between === undefined)
+      ctx.warnings.push(`multi-frame spacing taken from ${first.thickness ? 'SliceThickness' : 'nothing (1 used)'}`);
+    return {
+      order: slices,
+      zSpacing: z,
+      orientation: cos?.orientation,
+      origin: first.ipp as [number, number, number] | undefined,
+      sortedBy: 'single file',
+    };
   }
-  const positioned = cos && normal && slices.every((s) => s.ipp && s.iop && s.iop.every((v, i) => Math.abs(v - iop![i]) < 1e-3));
+  const positioned =
+    cos && normal && slices.every((s) => s.ipp && s.iop && s.iop.every((v, i) => Math.abs(v - iop![i]) < 1e-3));
   if (positioned) {
     const n = cos.orientation.filter((_, i) => i % 3 === 2); // the unit normal (third column)
     const keyed = slices.map((s) => ({ s, d: dot(s.ipp!, n) })).sort((a, b) => a.d - b.d);
     const gaps = keyed.slice(1).map((k, i) => k.d - keyed[i].d);
     const dup = gaps.findIndex((g) => g < 1e-4);
     if (dup >= 0) {
-      throw new LoaderError('invalid-data', `${ctx.name}: ${keyed[dup].s.name || 'a slice'} and ${keyed[dup + 1].s.name || 'another'} lie at the same position along the slice normal (${keyed[dup].d.toFixed(3)}); `
-        + 'the files hold more than one volume (echoes, time points, a repeated scan): load one of them');
+      throw new LoaderError(
+        'invalid-data',
+        `${ctx.name}: ${keyed[dup].s.name || 'a slice'} and ${keyed[dup + 1].s.name || 'another'} lie at the same position along the slice normal (${keyed[dup].d.toFixed(3)}); ` +
+          'the files hold more than one volume (echoes, time points, a repeated scan): load one of them',
+      );
     }
     const mean = (keyed[keyed.length - 1].d - keyed[0].d) / gaps.length;
     const spread = Math.max(...gaps) - Math.min(...gaps);
-    if (spread > 0.05 * mean) ctx.warnings.push(`slice spacing varies from ${Math.min(...gaps).toFixed(3)} to ${Math.max(...gaps).toFixed(3)} (a missing slice?); the mean ${mean.toFixed(3)} is used`);
+    if (spread > 0.05 * mean)
+      ctx.warnings.push(
+        `slice spacing varies from ${Math.min(...gaps).toFixed(3)} to ${Math.max(...gaps).toFixed(3)} (a missing slice?); the mean ${mean.toFixed(3)} is used`,
+      );
     const thick = first.thickness;
-    if (thick !== undefined && Math.abs(thick - mean) > 0.01 * mean) ctx.warnings.push(`SliceThickness ${thick} differs from the spacing of the positions ${mean.toFixed(4)}; the positions are used`);
+    if (thick !== undefined && Math.abs(thick - mean) > 0.01 * mean)
+      ctx.warnings.push(
+        `SliceThickness ${thick} differs from the spacing of the positions ${mean.toFixed(4)}; the positions are used`,
+      );
     const origin = keyed[0].s.ipp! as [number, number, number];
-    return { order: keyed.map((k) => k.s), zSpacing: mean, orientation: cos.orientation, origin: [origin[0], origin[1], origin[2]], sortedBy: 'position along the slice normal' };
+    return {
+      order: keyed.map((k) => k.s),
+      zSpacing: mean,
+      orientation: cos.orientation,
+      origin: [origin[0], origin[1], origin[2]],
+      sortedBy: 'position along the slice normal',
+    };
   }
-  ctx.warnings.push('the slices carry no usable ImagePositionPatient/ImageOrientationPatient; sorted by InstanceNumber, spacing from SpacingBetweenSlices or SliceThickness');
+  ctx.warnings.push(
+    'the slices carry no usable ImagePositionPatient/ImageOrientationPatient; sorted by InstanceNumber, spacing from SpacingBetweenSlices or SliceThickness',
+  );
   const order = [...slices].sort((a, b) => a.instance - b.instance);
   return { order, zSpacing: first.between ?? first.thickness ?? 1, sortedBy: 'InstanceNumber' };
 }
@@ -265,7 +353,13 @@ export async function decodeDicom(files: DicomFile[], ctx: LoadContext): Promise
   const parser = ((mod as { default?: Parser }).default ?? mod) as Parser;
   const { inflateSync } = await fflate();
   const inflateRaw = (b: Uint8Array) => {
-    try { return inflateSync(b); } catch (e) { throw new LoaderError('invalid-data', `${ctx.name}: the deflated DICOM data is corrupt (${thrownMessage(e)})`, { cause: e }); }
+    try {
+      return inflateSync(b);
+    } catch (e) {
+      throw new LoaderError('invalid-data', `${ctx.name}: the deflated DICOM data is corrupt (${thrownMessage(e)})`, {
+        cause: e,
+      });
+    }
   };
   const parsed: Slice[] = [];
   let skipped = 0;
@@ -273,25 +367,39 @@ export async function decodeDicom(files: DicomFile[], ctx: LoadContext): Promise
   for (let i = 0; i < files.length; i++) {
     ctx.checkAborted();
     const s = parseFile(files[i], parser, inflateRaw, ctx);
-    if (s) parsed.push(s); else skipped++;
+    if (s) parsed.push(s);
+    else skipped++;
     ctx.progress('parse', i + 1, files.length);
   }
-  if (!parsed.length) throw new LoaderError('empty', `${ctx.name}: none of the ${files.length} DICOM file(s) holds pixel data`);
+  if (!parsed.length)
+    throw new LoaderError('empty', `${ctx.name}: none of the ${files.length} DICOM file(s) holds pixel data`);
 
   // A dropped folder may hold several series: keep the largest, say so.
   const bySeries = new Map<string, Slice[]>();
   for (const s of parsed) bySeries.set(s.series, [...(bySeries.get(s.series) ?? []), s]);
   const series = [...bySeries.values()].sort((a, b) => b.length - a.length);
   const slices = series[0];
-  if (series.length > 1) ctx.warnings.push(`the files hold ${series.length} series; the largest (${slices.length} files) is loaded`);
+  if (series.length > 1)
+    ctx.warnings.push(`the files hold ${series.length} series; the largest (${slices.length} files) is loaded`);
   const first = slices[0];
   for (const s of slices) {
-    if (s.rows !== first.rows || s.cols !== first.cols || s.bitsAllocated !== first.bitsAllocated || s.signed !== first.signed) {
-      throw new LoaderError('invalid-data', `${ctx.name}: ${s.name || 'a slice'} is ${s.cols}×${s.rows}, ${s.bitsAllocated}-bit${s.signed ? ' signed' : ''}, unlike ${first.name || 'the first'} (${first.cols}×${first.rows}, ${first.bitsAllocated}-bit${first.signed ? ' signed' : ''}); the files are not one series`);
+    if (
+      s.rows !== first.rows ||
+      s.cols !== first.cols ||
+      s.bitsAllocated !== first.bitsAllocated ||
+      s.signed !== first.signed
+    ) {
+      throw new LoaderError(
+        'invalid-data',
+        `${ctx.name}: ${s.name || 'a slice'} is ${s.cols}×${s.rows}, ${s.bitsAllocated}-bit${s.signed ? ' signed' : ''}, unlike ${first.name || 'the first'} (${first.cols}×${first.rows}, ${first.bitsAllocated}-bit${first.signed ? ' signed' : ''}); the files are not one series`,
+      );
     }
   }
   if (slices.length > 1 && slices.some((s) => s.frames > 1)) {
-    throw new LoaderError('unsupported', `${ctx.name}: a series of several multi-frame files is not supported; load one file at a time`);
+    throw new LoaderError(
+      'unsupported',
+      `${ctx.name}: a series of several multi-frame files is not supported; load one file at a time`,
+    );
   }
   const geometry = arrange(slices, ctx);
   const depth = slices.length === 1 ? first.frames : slices.length;
@@ -303,13 +411,16 @@ export async function decodeDicom(files: DicomFile[], ctx: LoadContext): Promise
 
   // Two passes: find the scaled range of every frame (to choose the narrowest exact type),
   // then convert into one array, so only one slice at a time is held twice.
-  const frames: { s: Slice; f: number }[] = geometry.order.length === 1 && first.frames > 1
-    ? Array.from({ length: first.frames }, (_, f) => ({ s: first, f }))
-    : geometry.order.map((s) => ({ s, f: 0 }));
-  let lo = Infinity, hi = -Infinity;
+  const frames: { s: Slice; f: number }[] =
+    geometry.order.length === 1 && first.frames > 1
+      ? Array.from({ length: first.frames }, (_, f) => ({ s: first, f }))
+      : geometry.order.map((s) => ({ s, f: 0 }));
+  let lo = Infinity,
+    hi = -Infinity;
   for (const { s, f } of frames) {
     const r = scaledRange(scanRange(framePixels(s, f)), s.scaling);
-    lo = Math.min(lo, r.min); hi = Math.max(hi, r.max);
+    lo = Math.min(lo, r.min);
+    hi = Math.max(hi, r.max);
   }
   const type: VoxelType = chooseType(source, { min: lo, max: hi }, integral);
   const plane = first.rows * first.cols;
@@ -320,18 +431,38 @@ export async function decodeDicom(files: DicomFile[], ctx: LoadContext): Promise
     ctx.progress('convert', k + 1, frames.length);
   });
 
-  if (first.badPixelSpacing !== undefined) ctx.warnings.push(`invalid PixelSpacing "${first.badPixelSpacing}" (must be two positive numbers); 1 used in-plane`);
+  if (first.badPixelSpacing !== undefined)
+    ctx.warnings.push(
+      `invalid PixelSpacing "${first.badPixelSpacing}" (must be two positive numbers); 1 used in-plane`,
+    );
   else if (!first.pixelSpacing) ctx.warnings.push('no PixelSpacing; 1 used in-plane');
   const [rowSpacing, colSpacing] = first.pixelSpacing ?? [1, 1];
   const spacing: [number, number, number] = [colSpacing, rowSpacing, geometry.zSpacing];
   const meta: Record<string, unknown> = {
-    space: 'LPS', sortedBy: geometry.sortedBy, transferSyntax: first.syntax, photometric: first.photometric,
+    space: 'LPS',
+    sortedBy: geometry.sortedBy,
+    transferSyntax: first.syntax,
+    photometric: first.photometric,
     rescale: slices.every((s) => s.scaling.slope === first.scaling.slope && s.scaling.inter === first.scaling.inter)
-      ? first.scaling : 'per slice',
+      ? first.scaling
+      : 'per slice',
     files: geometry.order.map((s) => s.name),
   };
   if (first.modality) meta.modality = first.modality;
   if (skipped) meta.skippedFiles = skipped;
-  if (first.photometric === 'MONOCHROME1') ctx.warnings.push('MONOCHROME1: low values are displayed bright in DICOM viewers; the values are kept as stored');
-  return finishVolume({ format: 'dicom', dims: dims as [number, number, number], spacing, type, data, orientation: geometry.orientation, origin: geometry.origin, meta }, ctx);
+  if (first.photometric === 'MONOCHROME1')
+    ctx.warnings.push('MONOCHROME1: low values are displayed bright in DICOM viewers; the values are kept as stored');
+  return finishVolume(
+    {
+      format: 'dicom',
+      dims: dims as [number, number, number],
+      spacing,
+      type,
+      data,
+      orientation: geometry.orientation,
+      origin: geometry.origin,
+      meta,
+    },
+    ctx,
+  );
 }

@@ -3,7 +3,17 @@ import type { LoadContext } from '../context.js';
 import type { LoadedVolume } from '../types.js';
 import { finishVolume } from '../convert/finish.js';
 import { checkAvailable, checkDims, checkFits, SOURCE_BYTES, type SourceType } from '../convert/size.js';
-import { chooseType, integralScaling, readSamples, scanRange, scaledRange, toVoxelArray, IDENTITY, OUTPUT_BYTES, type Scaling } from '../convert/voxels.js';
+import {
+  chooseType,
+  integralScaling,
+  readSamples,
+  scanRange,
+  scaledRange,
+  toVoxelArray,
+  IDENTITY,
+  OUTPUT_BYTES,
+  type Scaling,
+} from '../convert/voxels.js';
 import { gunzip, isGzip } from '../io/gzip.js';
 import { loadDependency } from '../io/deps.js';
 import { axisCodes, directionCosines, isFiniteVector } from './orientation.js';
@@ -13,15 +23,36 @@ const MIN_OFFSET = 352; // header + the 4-byte extension flag
 
 /** NIfTI-1 datatype codes vpt reads, and the type they are read as. */
 const DATATYPES: Record<number, SourceType> = {
-  2: 'uint8', 4: 'int16', 8: 'int32', 16: 'float32', 64: 'float64', 256: 'int8', 512: 'uint16', 768: 'uint32',
+  2: 'uint8',
+  4: 'int16',
+  8: 'int32',
+  16: 'float32',
+  64: 'float64',
+  256: 'int8',
+  512: 'uint16',
+  768: 'uint32',
 };
 const UNSUPPORTED_TYPES: Record<number, string> = {
-  1: 'binary (1 bit)', 32: 'complex64', 128: 'RGB24', 1024: 'int64', 1280: 'uint64', 1536: 'float128', 1792: 'complex128', 2048: 'complex256', 2304: 'RGBA32',
+  1: 'binary (1 bit)',
+  32: 'complex64',
+  128: 'RGB24',
+  1024: 'int64',
+  1280: 'uint64',
+  1536: 'float128',
+  1792: 'complex128',
+  2048: 'complex256',
+  2304: 'RGBA32',
 };
 
 /** Is this a NIfTI-1 single file (magic "n+1\0" at byte 344)? */
 export function hasNiftiMagic(bytes: Uint8Array): boolean {
-  return bytes.length >= HEADER && bytes[344] === 0x6e && (bytes[345] === 0x2b || bytes[345] === 0x69) && bytes[346] === 0x31 && bytes[347] === 0;
+  return (
+    bytes.length >= HEADER &&
+    bytes[344] === 0x6e &&
+    (bytes[345] === 0x2b || bytes[345] === 0x69) &&
+    bytes[346] === 0x31 &&
+    bytes[347] === 0
+  );
 }
 
 interface NiftiHeader {
@@ -43,7 +74,14 @@ interface NiftiHeader {
   getQformMat(): number[][];
 }
 
-interface Plan { header: NiftiHeader; dims: [number, number, number]; source: SourceType; offset: number; count: number; extraVolumes: number }
+interface Plan {
+  header: NiftiHeader;
+  dims: [number, number, number];
+  source: SourceType;
+  offset: number;
+  count: number;
+  extraVolumes: number;
+}
 
 /**
  * Read the 348-byte header with nifti-reader-js and check everything the data step relies
@@ -53,28 +91,48 @@ interface Plan { header: NiftiHeader; dims: [number, number, number]; source: So
 type NiftiModule = typeof import('nifti-reader-js');
 
 function readPlan(head: Uint8Array, ctx: LoadContext, nifti: NiftiModule): Plan {
-  if (head.length < HEADER) throw new LoaderError('truncated', `${ctx.name}: ${head.length} bytes is shorter than a NIfTI-1 header (348 bytes)`);
+  if (head.length < HEADER)
+    throw new LoaderError(
+      'truncated',
+      `${ctx.name}: ${head.length} bytes is shorter than a NIfTI-1 header (348 bytes)`,
+    );
   const view = new DataView(head.buffer, head.byteOffset, HEADER);
-  const sizeLE = view.getInt32(0, true), sizeBE = view.getInt32(0, false);
+  const sizeLE = view.getInt32(0, true),
+    sizeBE = view.getInt32(0, false);
   if (sizeLE === 540 || sizeBE === 540) {
-    throw new LoaderError('unsupported', `${ctx.name} is NIfTI-2, which vpt does not read; save it as NIfTI-1 (e.g. nibabel.Nifti1Image)`);
+    throw new LoaderError(
+      'unsupported',
+      `${ctx.name} is NIfTI-2, which vpt does not read; save it as NIfTI-1 (e.g. nibabel.Nifti1Image)`,
+    );
   }
   if (sizeLE !== HEADER && sizeBE !== HEADER) {
-    throw new LoaderError('bad-magic', `${ctx.name} is not a NIfTI-1 file: its first 4 bytes (sizeof_hdr) are not 348 in either byte order`);
+    throw new LoaderError(
+      'bad-magic',
+      `${ctx.name} is not a NIfTI-1 file: its first 4 bytes (sizeof_hdr) are not 348 in either byte order`,
+    );
   }
   const header = new nifti.NIFTI1() as unknown as NiftiHeader & { readHeader(b: ArrayBuffer): void };
   try {
     header.readHeader(head.slice(0, HEADER).buffer);
   } catch (e) {
-    throw new LoaderError('bad-header', `${ctx.name}: the NIfTI header cannot be read (${(e as Error)?.message ?? e})`, { cause: e });
+    throw new LoaderError(
+      'bad-header',
+      `${ctx.name}: the NIfTI header cannot be read (${(e as Error)?.message ?? e})`,
+      { cause: e },
+    );
   }
   if (header.magic === 'ni1') {
-    throw new LoaderError('unsupported', `${ctx.name} is the header of a .hdr/.img pair; vpt reads single-file NIfTI (.nii, .nii.gz): convert it, e.g. with nibabel or fslchfiletype`);
+    throw new LoaderError(
+      'unsupported',
+      `${ctx.name} is the header of a .hdr/.img pair; vpt reads single-file NIfTI (.nii, .nii.gz): convert it, e.g. with nibabel or fslchfiletype`,
+    );
   }
-  if (header.magic !== 'n+1') throw new LoaderError('bad-magic', `${ctx.name}: the NIfTI magic at byte 344 is "${header.magic}", not "n+1"`);
+  if (header.magic !== 'n+1')
+    throw new LoaderError('bad-magic', `${ctx.name}: the NIfTI magic at byte 344 is "${header.magic}", not "n+1"`);
 
   const d = header.dims;
-  if (!(d[0] >= 1 && d[0] <= 7)) throw new LoaderError('bad-header', `${ctx.name}: dim[0] = ${d[0]} must be 1..7 (the number of dimensions)`);
+  if (!(d[0] >= 1 && d[0] <= 7))
+    throw new LoaderError('bad-header', `${ctx.name}: dim[0] = ${d[0]} must be 1..7 (the number of dimensions)`);
   const dims = [d[1], d[0] >= 2 ? d[2] : 1, d[0] >= 3 ? d[3] : 1];
   checkDims(dims, ctx, 'NIfTI header');
   let extraVolumes = 1;
@@ -85,8 +143,15 @@ function readPlan(head: Uint8Array, ctx: LoadContext, nifti: NiftiModule): Plan 
   const source = DATATYPES[header.datatypeCode];
   if (!source) {
     const known = UNSUPPORTED_TYPES[header.datatypeCode];
-    if (known) throw new LoaderError('unsupported', `${ctx.name}: NIfTI datatype ${header.datatypeCode} (${known}) is not supported; vpt reads scalar integer and float data`);
-    throw new LoaderError('bad-header', `${ctx.name}: NIfTI datatype code ${header.datatypeCode} is not a valid NIfTI-1 datatype`);
+    if (known)
+      throw new LoaderError(
+        'unsupported',
+        `${ctx.name}: NIfTI datatype ${header.datatypeCode} (${known}) is not supported; vpt reads scalar integer and float data`,
+      );
+    throw new LoaderError(
+      'bad-header',
+      `${ctx.name}: NIfTI datatype code ${header.datatypeCode} is not a valid NIfTI-1 datatype`,
+    );
   }
   const offset = header.vox_offset;
   if (!Number.isFinite(offset) || offset < HEADER || !Number.isInteger(offset)) {
@@ -112,7 +177,11 @@ function scalingOf(h: NiftiHeader, ctx: LoadContext): Scaling {
 }
 
 /** World placement: the sform when sform_code > 0, else the qform when qform_code > 0, else none (nibabel's order). */
-function placement(h: NiftiHeader, head: Uint8Array, ctx: LoadContext): { orientation?: number[]; origin?: [number, number, number]; xform: string } {
+function placement(
+  h: NiftiHeader,
+  head: Uint8Array,
+  ctx: LoadContext,
+): { orientation?: number[]; origin?: [number, number, number]; xform: string } {
   const view = new DataView(head.buffer, head.byteOffset, HEADER);
   if (h.sform_code > 0) {
     const rows = [0, 1, 2].map((r) => [0, 1, 2, 3].map((c) => view.getFloat32(280 + (4 * r + c) * 4, h.littleEndian)));
@@ -122,7 +191,9 @@ function placement(h: NiftiHeader, head: Uint8Array, ctx: LoadContext): { orient
   }
   if (h.qform_code > 0) {
     const q = h.getQformMat();
-    const cos = q.slice(0, 3).every(isFiniteVector) ? directionCosines([0, 1, 2].map((c) => [q[0][c], q[1][c], q[2][c]])) : null;
+    const cos = q.slice(0, 3).every(isFiniteVector)
+      ? directionCosines([0, 1, 2].map((c) => [q[0][c], q[1][c], q[2][c]]))
+      : null;
     if (cos) return { orientation: cos.orientation, origin: [q[0][3], q[1][3], q[2][3]], xform: 'qform' };
     ctx.warnings.push('the qform is degenerate; ignored');
   }
@@ -137,7 +208,8 @@ function isNifti2(head: Uint8Array): boolean {
 /** Limit check before allocating, at the smallest size the result can have; finishVolume checks the exact one. */
 function earlyFits(plan: Plan, ctx: LoadContext): void {
   const integral = integralScaling(scalingOf(plan.header, { ...ctx, warnings: [] }));
-  const bytes = plan.source === 'uint8' && integral ? 1 : integral && SOURCE_BYTES[plan.source] <= 4 ? 2 : OUTPUT_BYTES.float32;
+  const bytes =
+    plan.source === 'uint8' && integral ? 1 : integral && SOURCE_BYTES[plan.source] <= 4 ? 2 : OUTPUT_BYTES.float32;
   checkFits(plan.dims, bytes, ctx);
 }
 
@@ -157,7 +229,10 @@ export async function decodeNifti(input: Uint8Array, ctx: LoadContext): Promise<
       headBytes: MIN_OFFSET,
       onHead: (head) => {
         if (!hasNiftiMagic(head) && head.length >= HEADER && !isNifti2(head)) {
-          throw new LoaderError('bad-magic', `${ctx.name}: gzip-compressed data that is not NIfTI-1 (no "n+1" magic at byte 344)`);
+          throw new LoaderError(
+            'bad-magic',
+            `${ctx.name}: gzip-compressed data that is not NIfTI-1 (no "n+1" magic at byte 344)`,
+          );
         }
         plan = readPlan(head, ctx, nifti);
         earlyFits(plan, ctx);
@@ -167,12 +242,14 @@ export async function decodeNifti(input: Uint8Array, ctx: LoadContext): Promise<
   }
   plan ??= readPlan(bytes, ctx, nifti);
   const { header, dims, source, offset, count } = plan;
-  if (plan.extraVolumes > 1) ctx.warnings.push(`the file holds ${plan.extraVolumes} volumes (4D or more); the first is loaded`);
+  if (plan.extraVolumes > 1)
+    ctx.warnings.push(`the file holds ${plan.extraVolumes} volumes (4D or more); the first is loaded`);
   const scaling = scalingOf(header, ctx);
   const integral = integralScaling(scaling);
   checkAvailable(bytes.length - offset, count * SOURCE_BYTES[source], ctx);
   const extra = bytes.length - offset - count * SOURCE_BYTES[source] * Math.max(1, plan.extraVolumes);
-  if (bytes === input && extra > 0) ctx.warnings.push(`${extra} bytes past the data the header declares are ignored; check the dims and datatype`);
+  if (bytes === input && extra > 0)
+    ctx.warnings.push(`${extra} bytes past the data the header declares are ignored; check the dims and datatype`);
   earlyFits(plan, ctx);
   ctx.progress('convert', 0, count);
   const samples = readSamples(bytes, offset, count, source, header.littleEndian);
@@ -188,13 +265,21 @@ export async function decodeNifti(input: Uint8Array, ctx: LoadContext): Promise<
   }) as [number, number, number];
   const place = placement(header, bytes, ctx);
   const meta: Record<string, unknown> = {
-    space: 'RAS', xform: place.xform, sclSlope: scaling.slope, sclInter: scaling.inter,
-    littleEndian: header.littleEndian, datatype: source,
+    space: 'RAS',
+    xform: place.xform,
+    sclSlope: scaling.slope,
+    sclInter: scaling.inter,
+    littleEndian: header.littleEndian,
+    datatype: source,
   };
   if (place.orientation) meta.axisCodes = axisCodes(place.orientation, 'RAS');
   const units = SPATIAL_UNITS[header.xyzt_units & 7];
   if (units) meta.spacingUnits = units;
   if (header.description) meta.description = header.description;
-  if (Number.isFinite(header.cal_min) && Number.isFinite(header.cal_max) && header.cal_max > header.cal_min) meta.calRange = [header.cal_min, header.cal_max];
-  return finishVolume({ format: 'nifti', dims, spacing, type, data, orientation: place.orientation, origin: place.origin, meta }, ctx);
+  if (Number.isFinite(header.cal_min) && Number.isFinite(header.cal_max) && header.cal_max > header.cal_min)
+    meta.calRange = [header.cal_min, header.cal_max];
+  return finishVolume(
+    { format: 'nifti', dims, spacing, type, data, orientation: place.orientation, origin: place.origin, meta },
+    ctx,
+  );
 }

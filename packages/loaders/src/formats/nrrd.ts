@@ -3,7 +3,15 @@ import type { LoadContext } from '../context.js';
 import type { LoadedVolume } from '../types.js';
 import { finishVolume } from '../convert/finish.js';
 import { checkAvailable, checkDims, checkFits, SOURCE_BYTES, type SourceType } from '../convert/size.js';
-import { chooseType, readSamples, scanRange, toVoxelArray, IDENTITY, OUTPUT_BYTES, type SourceArray } from '../convert/voxels.js';
+import {
+  chooseType,
+  readSamples,
+  scanRange,
+  toVoxelArray,
+  IDENTITY,
+  OUTPUT_BYTES,
+  type SourceArray,
+} from '../convert/voxels.js';
 import { gunzip } from '../io/gzip.js';
 import { directionCosines, isFiniteVector } from './orientation.js';
 
@@ -26,10 +34,24 @@ for (const [type, names] of Object.entries({
   uint32: ['uint', 'unsigned int', 'uint32', 'uint32_t'],
   float32: ['float'],
   float64: ['double'],
-})) for (const n of names) TYPES[n] = type as SourceType;
+}))
+  for (const n of names) TYPES[n] = type as SourceType;
 
-const UNSUPPORTED_TYPES = ['longlong', 'long long', 'long long int', 'signed long long', 'signed long long int', 'int64', 'int64_t',
-  'ulonglong', 'unsigned long long', 'unsigned long long int', 'uint64', 'uint64_t', 'block'];
+const UNSUPPORTED_TYPES = [
+  'longlong',
+  'long long',
+  'long long int',
+  'signed long long',
+  'signed long long int',
+  'int64',
+  'int64_t',
+  'ulonglong',
+  'unsigned long long',
+  'unsigned long long int',
+  'uint64',
+  'uint64_t',
+  'block',
+];
 
 export interface NrrdHeader {
   fields: Record<string, string>;
@@ -39,22 +61,41 @@ export interface NrrdHeader {
 }
 
 export function hasNrrdMagic(bytes: Uint8Array): boolean {
-  return bytes.length >= 8 && String.fromCharCode(...bytes.subarray(0, 7)) === 'NRRD000' && bytes[7] >= 0x30 && bytes[7] <= 0x39;
+  return (
+    bytes.length >= 8 &&
+    String.fromCharCode(...bytes.subarray(0, 7)) === 'NRRD000' &&
+    bytes[7] >= 0x30 &&
+    bytes[7] <= 0x39
+  );
 }
 
 /** Split the header text into fields (`name: value`) and key/values (`key:=value`). */
 export function parseNrrdHeader(bytes: Uint8Array, ctx: LoadContext): NrrdHeader {
-  if (!hasNrrdMagic(bytes)) throw new LoaderError('bad-magic', `${ctx.name} is not NRRD: it does not start with "NRRD000x"`);
+  if (!hasNrrdMagic(bytes))
+    throw new LoaderError('bad-magic', `${ctx.name} is not NRRD: it does not start with "NRRD000x"`);
   // The header ends at the first empty line (or at the end of a detached .nhdr).
-  let end = -1, dataStart = bytes.length;
+  let end = -1,
+    dataStart = bytes.length;
   const limit = Math.min(bytes.length, MAX_HEADER);
   for (let i = 0; i < limit; i++) {
     if (bytes[i] !== 0x0a) continue;
-    if (bytes[i + 1] === 0x0a) { end = i; dataStart = i + 2; break; }
-    if (bytes[i + 1] === 0x0d && bytes[i + 2] === 0x0a) { end = i; dataStart = i + 3; break; }
+    if (bytes[i + 1] === 0x0a) {
+      end = i;
+      dataStart = i + 2;
+      break;
+    }
+    if (bytes[i + 1] === 0x0d && bytes[i + 2] === 0x0a) {
+      end = i;
+      dataStart = i + 3;
+      break;
+    }
   }
   if (end < 0) {
-    if (bytes.length > MAX_HEADER) throw new LoaderError('bad-header', `${ctx.name}: no empty line ends the NRRD header within its first ${MAX_HEADER} bytes`);
+    if (bytes.length > MAX_HEADER)
+      throw new LoaderError(
+        'bad-header',
+        `${ctx.name}: no empty line ends the NRRD header within its first ${MAX_HEADER} bytes`,
+      );
     end = bytes.length;
   }
   const text = new TextDecoder('latin1').decode(bytes.subarray(0, end));
@@ -66,8 +107,15 @@ export function parseNrrdHeader(bytes: Uint8Array, ctx: LoadContext): NrrdHeader
     if (line === '' || line.startsWith('#')) continue;
     const kv = line.indexOf(':=');
     const colon = line.indexOf(': ');
-    if (kv >= 0 && (colon < 0 || kv < colon)) { keyValues[line.slice(0, kv)] = line.slice(kv + 2); continue; }
-    if (colon < 0) throw new LoaderError('bad-header', `${ctx.name}: NRRD header line ${n + 1} "${line.slice(0, 60)}" is not "field: value"`);
+    if (kv >= 0 && (colon < 0 || kv < colon)) {
+      keyValues[line.slice(0, kv)] = line.slice(kv + 2);
+      continue;
+    }
+    if (colon < 0)
+      throw new LoaderError(
+        'bad-header',
+        `${ctx.name}: NRRD header line ${n + 1} "${line.slice(0, 60)}" is not "field: value"`,
+      );
     fields[line.slice(0, colon).trim().toLowerCase()] = line.slice(colon + 2).trim();
   }
   return { fields, keyValues, dataStart };
@@ -75,7 +123,8 @@ export function parseNrrdHeader(bytes: Uint8Array, ctx: LoadContext): NrrdHeader
 
 /** Data past the size the header declares is ignored, with a warning (it may mean wrong dims). */
 function warnExtra(extra: number, ctx: LoadContext): void {
-  if (extra > 0) ctx.warnings.push(`${extra} bytes past the data the header declares are ignored; check the sizes and type`);
+  if (extra > 0)
+    ctx.warnings.push(`${extra} bytes past the data the header declares are ignored; check the sizes and type`);
 }
 
 function numbers(text: string | undefined): number[] {
@@ -89,14 +138,24 @@ function vectors(text: string, ctx: LoadContext, field: string): (number[] | nul
   let m: RegExpExecArray | null;
   while ((m = re.exec(text))) out.push(m[1] === undefined ? null : m[1].split(',').map(Number));
   if (out.some((v) => v && (v.length !== 3 || !isFiniteVector(v)))) {
-    throw new LoaderError('bad-header', `${ctx.name}: NRRD "${field}: ${text.slice(0, 80)}" must hold vectors of three numbers`);
+    throw new LoaderError(
+      'bad-header',
+      `${ctx.name}: NRRD "${field}: ${text.slice(0, 80)}" must hold vectors of three numbers`,
+    );
   }
   return out;
 }
 
 const SPACES: Record<string, string> = {
-  'right-anterior-superior': 'RAS', ras: 'RAS', 'left-anterior-superior': 'LAS', las: 'LAS',
-  'left-posterior-superior': 'LPS', lps: 'LPS', 'scanner-xyz': 'scanner-xyz', '3d-right-handed': '3D-right-handed', '3d-left-handed': '3D-left-handed',
+  'right-anterior-superior': 'RAS',
+  ras: 'RAS',
+  'left-anterior-superior': 'LAS',
+  las: 'LAS',
+  'left-posterior-superior': 'LPS',
+  lps: 'LPS',
+  'scanner-xyz': 'scanner-xyz',
+  '3d-right-handed': '3D-right-handed',
+  '3d-left-handed': '3D-left-handed',
 };
 
 export interface DetachedResolver {
@@ -105,7 +164,11 @@ export interface DetachedResolver {
 }
 
 /** NRRD with raw, gzip, ascii or hex encoding, attached or detached data, spatial axes via space directions or spacings. */
-export async function decodeNrrd(bytes: Uint8Array, ctx: LoadContext, resolve?: DetachedResolver): Promise<LoadedVolume> {
+export async function decodeNrrd(
+  bytes: Uint8Array,
+  ctx: LoadContext,
+  resolve?: DetachedResolver,
+): Promise<LoadedVolume> {
   const { fields, keyValues, dataStart } = parseNrrdHeader(bytes, ctx);
   const need = (f: string) => {
     const v = fields[f];
@@ -115,29 +178,45 @@ export async function decodeNrrd(bytes: Uint8Array, ctx: LoadContext, resolve?: 
   const typeName = need('type').toLowerCase();
   const source = TYPES[typeName];
   if (!source) {
-    if (UNSUPPORTED_TYPES.includes(typeName)) throw new LoaderError('unsupported', `${ctx.name}: NRRD type "${typeName}" is not supported; vpt reads 8/16/32-bit integer, float and double`);
+    if (UNSUPPORTED_TYPES.includes(typeName))
+      throw new LoaderError(
+        'unsupported',
+        `${ctx.name}: NRRD type "${typeName}" is not supported; vpt reads 8/16/32-bit integer, float and double`,
+      );
     throw new LoaderError('bad-header', `${ctx.name}: "${typeName}" is not an NRRD type`);
   }
   const dimension = Number(need('dimension'));
   const sizes = numbers(need('sizes'));
   if (!Number.isInteger(dimension) || dimension < 1 || sizes.length !== dimension) {
-    throw new LoaderError('bad-header', `${ctx.name}: NRRD dimension ${fields.dimension} does not match sizes "${fields.sizes}"`);
+    throw new LoaderError(
+      'bad-header',
+      `${ctx.name}: NRRD dimension ${fields.dimension} does not match sizes "${fields.sizes}"`,
+    );
   }
   // Spatial axes: all of them, or all but a leading length-1 axis.
   let axes = sizes.map((_, i) => i);
   if (dimension === 4) {
-    if (sizes[0] !== 1) throw new LoaderError('unsupported', `${ctx.name}: a 4D NRRD with ${sizes[0]} values per voxel (kinds: ${fields.kinds ?? 'none'}) is not a scalar volume`);
+    if (sizes[0] !== 1)
+      throw new LoaderError(
+        'unsupported',
+        `${ctx.name}: a 4D NRRD with ${sizes[0]} values per voxel (kinds: ${fields.kinds ?? 'none'}) is not a scalar volume`,
+      );
     axes = [1, 2, 3];
   } else if (dimension > 4) {
-    throw new LoaderError('unsupported', `${ctx.name}: a ${dimension}-dimensional NRRD is not supported; vpt reads 2D and 3D scalar data`);
+    throw new LoaderError(
+      'unsupported',
+      `${ctx.name}: a ${dimension}-dimensional NRRD is not supported; vpt reads 2D and 3D scalar data`,
+    );
   }
   const dims = [0, 1, 2].map((i) => (i < axes.length ? sizes[axes[i]] : 1));
   checkDims(dims, ctx, 'NRRD header');
   const count = dims[0] * dims[1] * dims[2];
   const size = SOURCE_BYTES[source];
   const endian = (fields.endian ?? 'little').toLowerCase();
-  if (endian !== 'little' && endian !== 'big') throw new LoaderError('bad-header', `${ctx.name}: NRRD endian "${fields.endian}" must be little or big`);
-  if (size > 1 && fields.endian === undefined) ctx.warnings.push('the NRRD header has no endian field; little-endian assumed');
+  if (endian !== 'little' && endian !== 'big')
+    throw new LoaderError('bad-header', `${ctx.name}: NRRD endian "${fields.endian}" must be little or big`);
+  if (size > 1 && fields.endian === undefined)
+    ctx.warnings.push('the NRRD header has no endian field; little-endian assumed');
 
   const encoding = (fields.encoding ?? '').toLowerCase();
   const outBytes = source === 'uint8' ? 1 : SOURCE_BYTES[source] <= 2 ? 2 : 4;
@@ -148,21 +227,34 @@ export async function decodeNrrd(bytes: Uint8Array, ctx: LoadContext, resolve?: 
   let data = bytes.subarray(dataStart);
   if (dataFile !== undefined) {
     if (/^LIST\b/.test(dataFile) || /%/.test(dataFile) || /\s/.test(dataFile.trim())) {
-      throw new LoaderError('unsupported', `${ctx.name}: NRRD "data file: ${dataFile}" names several files; vpt reads one detached data file`);
+      throw new LoaderError(
+        'unsupported',
+        `${ctx.name}: NRRD "data file: ${dataFile}" names several files; vpt reads one detached data file`,
+      );
     }
     if (!resolve) {
-      throw new LoaderError('unsupported', `${ctx.name}: the data is in a separate file "${dataFile}"; load the header by URL, or drop both files together`);
+      throw new LoaderError(
+        'unsupported',
+        `${ctx.name}: the data is in a separate file "${dataFile}"; load the header by URL, or drop both files together`,
+      );
     }
     data = await resolve(dataFile);
   }
   const lineSkip = Number(fields['line skip'] ?? fields.lineskip ?? 0);
   const byteSkip = Number(fields['byte skip'] ?? fields.byteskip ?? 0);
   if (!Number.isInteger(lineSkip) || lineSkip < 0 || !Number.isInteger(byteSkip) || byteSkip < -1) {
-    throw new LoaderError('bad-header', `${ctx.name}: NRRD line skip ${fields['line skip']} / byte skip ${fields['byte skip']} must be whole numbers ≥ 0 (byte skip may be -1)`);
+    throw new LoaderError(
+      'bad-header',
+      `${ctx.name}: NRRD line skip ${fields['line skip']} / byte skip ${fields['byte skip']} must be whole numbers ≥ 0 (byte skip may be -1)`,
+    );
   }
   for (let l = 0; l < lineSkip; l++) {
     const nl = data.indexOf(0x0a);
-    if (nl < 0) throw new LoaderError('truncated', `${ctx.name}: the data ends before the ${lineSkip} lines "line skip" asks to skip`);
+    if (nl < 0)
+      throw new LoaderError(
+        'truncated',
+        `${ctx.name}: the data ends before the ${lineSkip} lines "line skip" asks to skip`,
+      );
     data = data.subarray(nl + 1);
   }
 
@@ -196,9 +288,15 @@ export async function decodeNrrd(bytes: Uint8Array, ctx: LoadContext, resolve?: 
   } else if (encoding === 'hex') {
     samples = readSamples(parseHex(data, dataBytes, ctx), 0, count, source, endian === 'little');
   } else if (encoding === 'bzip2' || encoding === 'bz2') {
-    throw new LoaderError('unsupported', `${ctx.name}: NRRD bzip2 encoding is not supported; re-save with gzip or raw encoding (e.g. unu save -e gzip)`);
+    throw new LoaderError(
+      'unsupported',
+      `${ctx.name}: NRRD bzip2 encoding is not supported; re-save with gzip or raw encoding (e.g. unu save -e gzip)`,
+    );
   } else {
-    throw new LoaderError('bad-header', `${ctx.name}: NRRD encoding "${fields.encoding ?? ''}" is not raw, gzip, ascii, hex or bzip2`);
+    throw new LoaderError(
+      'bad-header',
+      `${ctx.name}: NRRD encoding "${fields.encoding ?? ''}" is not raw, gzip, ascii, hex or bzip2`,
+    );
   }
 
   const range = scanRange(samples);
@@ -213,17 +311,27 @@ export async function decodeNrrd(bytes: Uint8Array, ctx: LoadContext, resolve?: 
   const meta: Record<string, unknown> = { encoding, datatype: source, endianness: endian };
   if (fields['space directions']) {
     const dirs = vectors(fields['space directions'], ctx, 'space directions');
-    if (dirs.length !== dimension) throw new LoaderError('bad-header', `${ctx.name}: NRRD space directions has ${dirs.length} entries for ${dimension} axes`);
+    if (dirs.length !== dimension)
+      throw new LoaderError(
+        'bad-header',
+        `${ctx.name}: NRRD space directions has ${dirs.length} entries for ${dimension} axes`,
+      );
     const spatial = axes.map((a) => dirs[a]);
-    if (spatial.some((v) => v === null)) throw new LoaderError('bad-header', `${ctx.name}: a spatial NRRD axis has space direction "none"`);
+    if (spatial.some((v) => v === null))
+      throw new LoaderError('bad-header', `${ctx.name}: a spatial NRRD axis has space direction "none"`);
     const cols = [0, 1, 2].map((i) => spatial[i] ?? [0, 0, 0]);
     if (spatial.length < 3) cols[2] = cross(cols[0], cols[1]); // a 2D image: its normal, unit length
     const cos = directionCosines(cols);
     if (!cos) throw new LoaderError('bad-header', `${ctx.name}: NRRD space directions has a zero-length axis`);
     // Collinear (or coplanar) axes span no volume: index → world is not invertible.
     const o = cos.orientation;
-    const det = o[0] * (o[4] * o[8] - o[5] * o[7]) - o[1] * (o[3] * o[8] - o[5] * o[6]) + o[2] * (o[3] * o[7] - o[4] * o[6]);
-    if (!(Math.abs(det) > 1e-6)) throw new LoaderError('bad-header', `${ctx.name}: NRRD space directions "${fields['space directions'].slice(0, 80)}" are collinear or coplanar (the axes span no volume)`);
+    const det =
+      o[0] * (o[4] * o[8] - o[5] * o[7]) - o[1] * (o[3] * o[8] - o[5] * o[6]) + o[2] * (o[3] * o[7] - o[4] * o[6]);
+    if (!(Math.abs(det) > 1e-6))
+      throw new LoaderError(
+        'bad-header',
+        `${ctx.name}: NRRD space directions "${fields['space directions'].slice(0, 80)}" are collinear or coplanar (the axes span no volume)`,
+      );
     orientation = cos.orientation;
     spacing = cos.lengths.map((l, i) => (i < spatial.length ? l : 1)) as [number, number, number];
   } else if (fields.spacings) {
@@ -233,7 +341,8 @@ export async function decodeNrrd(bytes: Uint8Array, ctx: LoadContext, resolve?: 
       const v = Math.abs(s[axes[i]]);
       if (Number.isFinite(v) && v > 0) return v;
       // As NIfTI does for pixdim: say so rather than silently use 1.
-      if (dims[i] > 1 || s[axes[i]] !== undefined) ctx.warnings.push(`NRRD spacings[${axes[i]}] = ${s[axes[i]]} is not a positive finite size; 1 used`);
+      if (dims[i] > 1 || s[axes[i]] !== undefined)
+        ctx.warnings.push(`NRRD spacings[${axes[i]}] = ${s[axes[i]]} is not a positive finite size; 1 used`);
       return 1;
     }) as [number, number, number];
   }
@@ -245,7 +354,10 @@ export async function decodeNrrd(bytes: Uint8Array, ctx: LoadContext, resolve?: 
   if (space) meta.space = SPACES[space] ?? fields.space;
   if (fields['space units']) meta.spaceUnits = fields['space units'];
   if (Object.keys(keyValues).length) meta.keyValues = keyValues;
-  return finishVolume({ format: 'nrrd', dims: dims as [number, number, number], spacing, type, data: voxels, orientation, origin, meta }, ctx);
+  return finishVolume(
+    { format: 'nrrd', dims: dims as [number, number, number], spacing, type, data: voxels, orientation, origin, meta },
+    ctx,
+  );
 }
 
 function cross(a: number[], b: number[]): number[] {
@@ -255,32 +367,56 @@ function cross(a: number[], b: number[]): number[] {
 }
 
 function parseAscii(data: Uint8Array, count: number, source: SourceType, ctx: LoadContext): SourceArray {
-  const words = new TextDecoder('latin1').decode(data).split(/[\s,]+/).filter(Boolean);
-  if (words.length < count) throw new LoaderError('truncated', `${ctx.name}: the ASCII data holds ${words.length} values, the header announces ${count}`);
+  const words = new TextDecoder('latin1')
+    .decode(data)
+    .split(/[\s,]+/)
+    .filter(Boolean);
+  if (words.length < count)
+    throw new LoaderError(
+      'truncated',
+      `${ctx.name}: the ASCII data holds ${words.length} values, the header announces ${count}`,
+    );
   const out = new Float64Array(count);
   for (let i = 0; i < count; i++) {
     const x = Number(words[i]);
-    if (Number.isNaN(x) && !/^[-+]?nan$/i.test(words[i])) throw new LoaderError('invalid-data', `${ctx.name}: ASCII value ${i} "${words[i].slice(0, 20)}" is not a number`);
+    if (Number.isNaN(x) && !/^[-+]?nan$/i.test(words[i]))
+      throw new LoaderError('invalid-data', `${ctx.name}: ASCII value ${i} "${words[i].slice(0, 20)}" is not a number`);
     out[i] = x;
   }
   // Through the declared type, so integer data wraps and rounds as a binary file would.
-  const typed = new ({ uint8: Uint8Array, int8: Int8Array, uint16: Uint16Array, int16: Int16Array, uint32: Uint32Array, int32: Int32Array, float32: Float32Array, float64: Float64Array }[source])(count);
+  const typed = new {
+    uint8: Uint8Array,
+    int8: Int8Array,
+    uint16: Uint16Array,
+    int16: Int16Array,
+    uint32: Uint32Array,
+    int32: Int32Array,
+    float32: Float32Array,
+    float64: Float64Array,
+  }[source](count);
   typed.set(out);
   return typed;
 }
 
 function parseHex(data: Uint8Array, need: number, ctx: LoadContext): Uint8Array {
   const out = new Uint8Array(need);
-  let n = 0, hi = -1;
+  let n = 0,
+    hi = -1;
   for (let i = 0; i < data.length && n < need; i++) {
     const c = data[i];
-    const v = c >= 0x30 && c <= 0x39 ? c - 0x30 : c >= 0x61 && c <= 0x66 ? c - 0x57 : c >= 0x41 && c <= 0x46 ? c - 0x37 : -1;
+    const v =
+      c >= 0x30 && c <= 0x39 ? c - 0x30 : c >= 0x61 && c <= 0x66 ? c - 0x57 : c >= 0x41 && c <= 0x46 ? c - 0x37 : -1;
     if (v < 0) {
       if (c === 0x20 || c === 0x0a || c === 0x0d || c === 0x09) continue;
       throw new LoaderError('invalid-data', `${ctx.name}: byte ${i} of the hex data is not a hex digit`);
     }
-    if (hi < 0) hi = v; else { out[n++] = (hi << 4) | v; hi = -1; }
+    if (hi < 0) hi = v;
+    else {
+      out[n++] = (hi << 4) | v;
+      hi = -1;
+    }
   }
-  if (n < need) throw new LoaderError('truncated', `${ctx.name}: the hex data holds ${n} bytes, the header announces ${need}`);
+  if (n < need)
+    throw new LoaderError('truncated', `${ctx.name}: the hex data holds ${n} bytes, the header announces ${need}`);
   return out;
 }

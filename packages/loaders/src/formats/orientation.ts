@@ -38,7 +38,14 @@ export function isFiniteVector(v: readonly number[]): boolean {
  * name three different world axes.
  */
 export function orientationFromAxisCodes(codes: string): number[] | null {
-  const DIRS: Record<string, [number, number]> = { R: [0, 1], L: [0, -1], A: [1, 1], P: [1, -1], S: [2, 1], I: [2, -1] };
+  const DIRS: Record<string, [number, number]> = {
+    R: [0, 1],
+    L: [0, -1],
+    A: [1, 1],
+    P: [1, -1],
+    S: [2, 1],
+    I: [2, -1],
+  };
   if (typeof codes !== 'string' || codes.length !== 3) return null;
   const o = new Array<number>(9).fill(0);
   const used = new Set<number>();

@@ -8,8 +8,12 @@ export async function loadDependency<T>(name: string, load: () => Promise<T>): P
   try {
     return await load();
   } catch (e) {
-    throw new LoaderError('unsupported', `Could not load the parser module "${name}" (${(e as Error)?.message ?? e}). `
-      + 'Use a bundler, or load through the worker (dist/worker/), which has its parsers built in', { cause: e });
+    throw new LoaderError(
+      'unsupported',
+      `Could not load the parser module "${name}" (${(e as Error)?.message ?? e}). ` +
+        'Use a bundler, or load through the worker (dist/worker/), which has its parsers built in',
+      { cause: e },
+    );
   }
 }
 

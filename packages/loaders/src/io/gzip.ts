@@ -75,7 +75,11 @@ export async function gunzip(input: Uint8Array, ctx: LoadContext, options: Gunzi
     chunks = [head];
     const expected = options.onHead!(head);
     if (expected !== undefined) {
-      if (expected > cap) throw new LoaderError('limit', `${ctx.name}: its header announces ${expected} bytes, more than the ${cap} allowed (limits.maxBytes is ${ctx.limits.maxBytes})`);
+      if (expected > cap)
+        throw new LoaderError(
+          'limit',
+          `${ctx.name}: its header announces ${expected} bytes, more than the ${cap} allowed (limits.maxBytes is ${ctx.limits.maxBytes})`,
+        );
       cap = expected;
       out = new Uint8Array(expected);
       out.set(head.subarray(0, Math.min(head.length, expected)));
@@ -91,13 +95,18 @@ export async function gunzip(input: Uint8Array, ctx: LoadContext, options: Gunzi
     crc = crc32(crc, chunk);
     total += chunk.length;
     if (produced + chunk.length > cap) {
-      if (!out) throw new LoaderError('limit', `${ctx.name}: inflates to more than ${cap} bytes (limits.maxBytes is ${ctx.limits.maxBytes})`);
+      if (!out)
+        throw new LoaderError(
+          'limit',
+          `${ctx.name}: inflates to more than ${cap} bytes (limits.maxBytes is ${ctx.limits.maxBytes})`,
+        );
       // The header's size is reached: keep what it announced, only check the rest.
       out.set(chunk.subarray(0, out.length - produced), produced);
       produced = out.length;
       return;
     }
-    if (out) out.set(chunk, produced); else chunks.push(chunk);
+    if (out) out.set(chunk, produced);
+    else chunks.push(chunk);
     produced += chunk.length;
   });
 
@@ -106,14 +115,20 @@ export async function gunzip(input: Uint8Array, ctx: LoadContext, options: Gunzi
   const STEP = gunzipStep(cap);
   for (let at = 0; at < input.length; at += STEP) {
     ctx.checkAborted();
-    if (out && produced >= out.length && total - produced > MAX_DISCARD) { stoppedEarly = true; break; }
+    if (out && produced >= out.length && total - produced > MAX_DISCARD) {
+      stoppedEarly = true;
+      break;
+    }
     const end = Math.min(input.length, at + STEP);
     try {
       inflater.push(input.subarray(at, end), end === input.length);
     } catch (e) {
       if (e instanceof LoaderError) throw e;
       const msg = (e as Error)?.message ?? String(e);
-      if (/unexpected EOF/i.test(msg)) throw new LoaderError('truncated', `${ctx.name}: the gzip stream ends early (${msg}); the file is cut short`, { cause: e });
+      if (/unexpected EOF/i.test(msg))
+        throw new LoaderError('truncated', `${ctx.name}: the gzip stream ends early (${msg}); the file is cut short`, {
+          cause: e,
+        });
       throw new LoaderError('invalid-data', `${ctx.name}: the gzip data is corrupt (${msg})`, { cause: e });
     }
     if (!headDone && (produced >= headBytes || end === input.length)) takeHead();
@@ -121,22 +136,38 @@ export async function gunzip(input: Uint8Array, ctx: LoadContext, options: Gunzi
   }
   if (!headDone) takeHead();
   if (out && produced < out.length) {
-    throw new LoaderError('truncated', `${ctx.name}: the compressed data holds ${produced} bytes, the header announces ${out.length}; the file is cut short or its header lies`);
+    throw new LoaderError(
+      'truncated',
+      `${ctx.name}: the compressed data holds ${produced} bytes, the header announces ${out.length}; the file is cut short or its header lies`,
+    );
   }
   if (stoppedEarly) {
     ctx.warnings.push('the gzip checksum was not verified (the stream continues far past the data loaded)');
     return out!;
   }
-  if (!ended) throw new LoaderError('truncated', `${ctx.name}: the gzip stream ends early (no final block); the file is cut short`);
-  if (input.length < 18) throw new LoaderError('truncated', `${ctx.name}: ${input.length} bytes is too short for a gzip stream`);
+  if (!ended)
+    throw new LoaderError(
+      'truncated',
+      `${ctx.name}: the gzip stream ends early (no final block); the file is cut short`,
+    );
+  if (input.length < 18)
+    throw new LoaderError('truncated', `${ctx.name}: ${input.length} bytes is too short for a gzip stream`);
   // The trailer of the (last) member: CRC-32 then ISIZE, little-endian. Bytes after the
   // member (padding, a second member) make this check fail too: such files are rare.
   const tail = input.length - 8;
   const read32 = (i: number) => (input[i] | (input[i + 1] << 8) | (input[i + 2] << 16) | (input[i + 3] << 24)) >>> 0;
   if (read32(tail + 4) !== total % 0x100000000) {
-    throw new LoaderError('truncated', `${ctx.name}: the gzip trailer announces ${read32(tail + 4)} bytes but ${total} came out; the file is cut short or corrupt`);
+    throw new LoaderError(
+      'truncated',
+      `${ctx.name}: the gzip trailer announces ${read32(tail + 4)} bytes but ${total} came out; the file is cut short or corrupt`,
+    );
   }
-  if (read32(tail) !== crc) throw new LoaderError('invalid-data', `${ctx.name}: the gzip checksum (CRC-32) does not match; the file is corrupt`);
-  if (out && total > produced) ctx.warnings.push(`${total - produced} inflated bytes past the data the header declares are ignored`);
+  if (read32(tail) !== crc)
+    throw new LoaderError(
+      'invalid-data',
+      `${ctx.name}: the gzip checksum (CRC-32) does not match; the file is corrupt`,
+    );
+  if (out && total > produced)
+    ctx.warnings.push(`${total - produced} inflated bytes past the data the header declares are ignored`);
   return out ?? concat(chunks, produced);
 }

@@ -23,15 +23,21 @@ export async function fetchText(url: string, ctx: LoadContext): Promise<string> 
 
 async function fetchResponse(url: string, ctx: LoadContext): Promise<Response> {
   ctx.checkAborted();
-  if (typeof fetch !== 'function') throw new LoaderError('unsupported', `Cannot load ${url}: this environment has no fetch(); pass the bytes (ArrayBuffer or Blob) instead`);
+  if (typeof fetch !== 'function')
+    throw new LoaderError(
+      'unsupported',
+      `Cannot load ${url}: this environment has no fetch(); pass the bytes (ArrayBuffer or Blob) instead`,
+    );
   let response: Response;
   try {
     response = await fetch(url, { signal: ctx.signal });
   } catch (e) {
     if (isAbort(e) || ctx.signal?.aborted) throw new LoaderError('aborted', `Loading ${url} was aborted`, { cause: e });
     const scheme = safeProtocol(url);
-    const hint = scheme === 'file:' ? 'file: URLs cannot be fetched here; pass the file\'s bytes or a File instead'
-      : 'check the address, that the server is running, and that it allows cross-origin requests (CORS)';
+    const hint =
+      scheme === 'file:'
+        ? "file: URLs cannot be fetched here; pass the file's bytes or a File instead"
+        : 'check the address, that the server is running, and that it allows cross-origin requests (CORS)';
     throw new LoaderError('network', `Could not fetch ${url}: ${(e as Error)?.message ?? e}; ${hint}`, { cause: e });
   }
   if (response.status === 404 || response.status === 410) {
@@ -40,13 +46,20 @@ async function fetchResponse(url: string, ctx: LoadContext): Promise<Response> {
   }
   if (!response.ok) {
     void response.body?.cancel().catch(() => {});
-    throw new LoaderError('network', `Fetching ${url} failed with HTTP ${response.status} ${response.statusText}`.trim());
+    throw new LoaderError(
+      'network',
+      `Fetching ${url} failed with HTTP ${response.status} ${response.statusText}`.trim(),
+    );
   }
   return response;
 }
 
 function safeProtocol(url: string): string {
-  try { return new URL(url).protocol; } catch { return ''; }
+  try {
+    return new URL(url).protocol;
+  } catch {
+    return '';
+  }
 }
 
 /** Read a Blob or File with 'fetch' progress (Blob.stream where there is one). */
@@ -63,9 +76,16 @@ export async function readBlob(blob: Blob, ctx: LoadContext): Promise<Uint8Array
  * Drain a byte stream. With a known length the chunks go straight into one preallocated
  * buffer (no second copy of a large volume); otherwise they are joined at the end.
  */
-async function readStream(stream: ReadableStream<Uint8Array>, total: number | undefined, name: string, ctx: LoadContext): Promise<Uint8Array> {
+async function readStream(
+  stream: ReadableStream<Uint8Array>,
+  total: number | undefined,
+  name: string,
+  ctx: LoadContext,
+): Promise<Uint8Array> {
   const reader = stream.getReader();
-  const onAbort = () => { void reader.cancel().catch(() => {}); };
+  const onAbort = () => {
+    void reader.cancel().catch(() => {});
+  };
   ctx.signal?.addEventListener('abort', onAbort, { once: true });
   let out = total !== undefined ? new Uint8Array(total) : undefined;
   const chunks: Uint8Array[] = [];
@@ -80,7 +100,10 @@ async function readStream(stream: ReadableStream<Uint8Array>, total: number | un
         out.set(value, loaded);
       } else {
         // The body is longer than announced: fall back to collecting chunks.
-        if (out) { chunks.push(out.subarray(0, loaded)); out = undefined; }
+        if (out) {
+          chunks.push(out.subarray(0, loaded));
+          out = undefined;
+        }
         chunks.push(value);
       }
       loaded += value.length;
@@ -91,7 +114,10 @@ async function readStream(stream: ReadableStream<Uint8Array>, total: number | un
   }
   if (out) {
     if (loaded < out.length) {
-      throw new LoaderError('truncated', `${name}: the transfer ended after ${loaded} of ${out.length} bytes; try again or check the connection`);
+      throw new LoaderError(
+        'truncated',
+        `${name}: the transfer ended after ${loaded} of ${out.length} bytes; try again or check the connection`,
+      );
     }
     return out;
   }
@@ -102,7 +128,10 @@ export function concat(chunks: Uint8Array[], length = chunks.reduce((n, c) => n 
   if (chunks.length === 1) return chunks[0];
   const out = new Uint8Array(length);
   let at = 0;
-  for (const c of chunks) { out.set(c, at); at += c.length; }
+  for (const c of chunks) {
+    out.set(c, at);
+    at += c.length;
+  }
   return out;
 }
 
@@ -111,7 +140,8 @@ async function guard<T>(f: () => Promise<T>, name: string, ctx: LoadContext): Pr
     return await f();
   } catch (e) {
     if (e instanceof LoaderError) throw e;
-    if (isAbort(e) || ctx.signal?.aborted) throw new LoaderError('aborted', `Loading ${name} was aborted`, { cause: e });
+    if (isAbort(e) || ctx.signal?.aborted)
+      throw new LoaderError('aborted', `Loading ${name} was aborted`, { cause: e });
     throw new LoaderError('network', `Reading ${name} failed: ${(e as Error)?.message ?? e}`, { cause: e });
   }
 }

@@ -4,7 +4,11 @@ import type { LoadedVolume, LoadOptions, LoadProgress, VolumeSource } from '../t
 /** Options that cross the worker boundary (the signal and the callback stay on the caller's side). */
 export type WorkerOptions = Omit<LoadOptions, 'signal' | 'onProgress' | 'worker'> & { progress: boolean };
 
-export interface LoadRequest { type: 'load'; source: VolumeSource; options: WorkerOptions }
+export interface LoadRequest {
+  type: 'load';
+  source: VolumeSource;
+  options: WorkerOptions;
+}
 
 export type WorkerMessage =
   | { type: 'ready' }

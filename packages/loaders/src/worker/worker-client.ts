@@ -15,9 +15,14 @@ export function workersAvailable(): boolean {
 /** Make the source cloneable and independent of the caller's base URL. */
 function portable(source: VolumeSource): VolumeSource {
   if (typeof source === 'string') {
-    const base = (globalThis as { document?: { baseURI: string }; location?: { href: string } }).document?.baseURI
-      ?? (globalThis as { location?: { href: string } }).location?.href;
-    try { return new URL(source, base).href; } catch { return source; }
+    const base =
+      (globalThis as { document?: { baseURI: string }; location?: { href: string } }).document?.baseURI ??
+      (globalThis as { location?: { href: string } }).location?.href;
+    try {
+      return new URL(source, base).href;
+    } catch {
+      return source;
+    }
   }
   if (source instanceof URL) return source.href;
   if (ArrayBuffer.isView(source)) {
@@ -50,8 +55,12 @@ export function loadInWorker(source: VolumeSource, options: LoadOptions): Promis
       worker.terminate();
       f();
     };
-    const readyTimer = setTimeout(() => finish(() => reject(new WorkerUnavailable('the loader worker did not start in time'))), READY_TIMEOUT_MS);
-    const onAbort = () => finish(() => reject(new LoaderError('aborted', 'Loading was aborted', { cause: options.signal?.reason })));
+    const readyTimer = setTimeout(
+      () => finish(() => reject(new WorkerUnavailable('the loader worker did not start in time'))),
+      READY_TIMEOUT_MS,
+    );
+    const onAbort = () =>
+      finish(() => reject(new LoaderError('aborted', 'Loading was aborted', { cause: options.signal?.reason })));
     options.signal?.addEventListener('abort', onAbort, { once: true });
 
     worker.onmessage = (event: MessageEvent<WorkerMessage>) => {
@@ -60,14 +69,24 @@ export function loadInWorker(source: VolumeSource, options: LoadOptions): Promis
         ready = true;
         clearTimeout(readyTimer);
         const { signal: _s, onProgress, worker: _w, ...rest } = options;
-        const request: LoadRequest = { type: 'load', source: portable(source), options: { ...rest, progress: !!onProgress } as WorkerOptions };
+        const request: LoadRequest = {
+          type: 'load',
+          source: portable(source),
+          options: { ...rest, progress: !!onProgress } as WorkerOptions,
+        };
         try {
           worker.postMessage(request);
         } catch (e) {
-          finish(() => reject(new WorkerUnavailable(`the source cannot be sent to a worker (${(e as Error).message})`)));
+          finish(() =>
+            reject(new WorkerUnavailable(`the source cannot be sent to a worker (${(e as Error).message})`)),
+          );
         }
       } else if (m.type === 'progress') {
-        try { options.onProgress?.(m.progress); } catch { /* a throwing callback must not break the load */ }
+        try {
+          options.onProgress?.(m.progress);
+        } catch {
+          /* a throwing callback must not break the load */
+        }
       } else if (m.type === 'result') {
         finish(() => resolve(m.volume));
       } else if (m.type === 'error') {
@@ -77,8 +96,17 @@ export function loadInWorker(source: VolumeSource, options: LoadOptions): Promis
     worker.onerror = (event: ErrorEvent) => {
       event.preventDefault?.();
       if (!ready) finish(() => reject(new WorkerUnavailable(event.message || 'the loader worker failed to start')));
-      else finish(() => reject(new LoaderError('invalid-data', `The loader worker crashed (${event.message || 'no message'}); the file may be too large for memory`)));
+      else
+        finish(() =>
+          reject(
+            new LoaderError(
+              'invalid-data',
+              `The loader worker crashed (${event.message || 'no message'}); the file may be too large for memory`,
+            ),
+          ),
+        );
     };
-    worker.onmessageerror = () => finish(() => reject(new LoaderError('invalid-data', 'The loader worker sent a message that could not be read')));
+    worker.onmessageerror = () =>
+      finish(() => reject(new LoaderError('invalid-data', 'The loader worker sent a message that could not be read')));
   });
 }

@@ -29,4 +29,3 @@ void main() {
   vpt_out0 = vec4(color + transmittance * u.background.rgb, 1.0 - transmittance);
 }
 `;
-

@@ -181,7 +181,13 @@ vec3 isoShade(vec3 p, vec3 n, vec3 wo, vec3 albedo, inout uint rng) {
 `;
 
 // The environment-map chunk names the envMap textures, bound for a lat-long map only.
-export const generate = GLSL_SAMPLING + '\n#if ISO_ENV == 2\n' + GLSL_ENVIRONMENT_MAP + '\n#endif\n' + ISO_COMMON + /* glsl */ `
+export const generate =
+  GLSL_SAMPLING +
+  '\n#if ISO_ENV == 2\n' +
+  GLSL_ENVIRONMENT_MAP +
+  '\n#endif\n' +
+  ISO_COMMON +
+  /* glsl */ `
 // out0: shaded radiance of this sample (a = 1 where a surface was hit, else the environment, a = 0).
 // out1: the first visible crossing: (t along the unit camera ray, viewer-facing normal), t = -1 for none.
 void main() {

@@ -161,7 +161,13 @@ fn isoShade(p: vec3f, n: vec3f, wo: vec3f, albedo: vec3f, rng: ptr<function, u32
 `;
 
 // The environment-map chunk names the envMap textures, bound for a lat-long map only.
-export const generate = WGSL_SAMPLING + '\n#if ISO_ENV == 2\n' + WGSL_ENVIRONMENT_MAP + '\n#endif\n' + ISO_COMMON + /* wgsl */ `
+export const generate =
+  WGSL_SAMPLING +
+  '\n#if ISO_ENV == 2\n' +
+  WGSL_ENVIRONMENT_MAP +
+  '\n#endif\n' +
+  ISO_COMMON +
+  /* wgsl */ `
 @fragment fn fs_main(@builtin(position) fragCoord: vec4f) -> VptOut {
   let pixel = vptPixel(fragCoord);
   let size = vptTargetSize();

@@ -7,14 +7,27 @@ import { FloatType } from 'three';
 import { EXRLoader } from 'three/addons/loaders/EXRLoader.js';
 import { HDRLoader } from 'three/addons/loaders/HDRLoader.js';
 
-interface Decoded { width: number; height: number; data: ArrayLike<number>; bottomUp: boolean }
+interface Decoded {
+  width: number;
+  height: number;
+  data: ArrayLike<number>;
+  bottomUp: boolean;
+}
 
 function decode(url: string, buffer: ArrayBuffer): Decoded {
   if (/\.exr(\?|#|$)/i.test(url)) {
-    const r = new EXRLoader().setDataType(FloatType).parse(buffer) as { width: number; height: number; data: Float32Array };
+    const r = new EXRLoader().setDataType(FloatType).parse(buffer) as {
+      width: number;
+      height: number;
+      data: Float32Array;
+    };
     return { width: r.width, height: r.height, data: r.data, bottomUp: true };
   }
-  const r = new HDRLoader().setDataType(FloatType).parse(buffer) as { width: number; height: number; data: Float32Array };
+  const r = new HDRLoader().setDataType(FloatType).parse(buffer) as {
+    width: number;
+    height: number;
+    data: Float32Array;
+  };
   return { width: r.width, height: r.height, data: r.data, bottomUp: false };
 }
 
@@ -32,10 +45,15 @@ export async function loadEnvironment(url: string, scale = 1, signal?: AbortSign
   try {
     d = decode(href, buffer);
   } catch (e) {
-    throw new VptError('load-failed', `environment: ${href} is not a readable .hdr/.exr image (${(e as Error).message})`, { cause: e });
+    throw new VptError(
+      'load-failed',
+      `environment: ${href} is not a readable .hdr/.exr image (${(e as Error).message})`,
+      { cause: e },
+    );
   }
   const channels = d.data.length / (d.width * d.height);
-  if (!d.width || !d.height || !Number.isInteger(channels) || channels < 1) throw new VptError('load-failed', `environment: ${href} decoded to an unexpected layout`);
+  if (!d.width || !d.height || !Number.isInteger(channels) || channels < 1)
+    throw new VptError('load-failed', `environment: ${href} decoded to an unexpected layout`);
   const rgb = new Float32Array(d.width * d.height * 3);
   for (let row = 0; row < d.height; row++) {
     const srcRow = d.bottomUp ? d.height - 1 - row : row;

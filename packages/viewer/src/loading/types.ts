@@ -14,7 +14,12 @@ export interface LoadProgress {
 
 export interface LoadOptions {
   format?: 'auto' | 'raw' | 'nrrd' | 'nifti' | 'dicom';
-  raw?: { dims: [number, number, number]; type: 'uint8' | 'uint16' | 'int16' | 'float32'; spacing?: [number, number, number]; endianness?: 'little' | 'big' };
+  raw?: {
+    dims: [number, number, number];
+    type: 'uint8' | 'uint16' | 'int16' | 'float32';
+    spacing?: [number, number, number];
+    endianness?: 'little' | 'big';
+  };
   signal?: AbortSignal;
   onProgress?: (p: LoadProgress) => void;
   limits?: { maxTextureDimension3D?: number; maxBytes?: number };

@@ -17,7 +17,8 @@ export function volumeLoader(): Promise<{ loadVolume: LoadVolumeFn; name: string
     try {
       // @ts-ignore -- optional package, may be absent when this is type-checked
       const m = (await import('@vpt/loaders')) as { loadVolume?: LoadVolumeFn; __vptMissing?: string };
-      if (!m.__vptMissing && typeof m.loadVolume === 'function') return { loadVolume: m.loadVolume, name: '@vpt/loaders' };
+      if (!m.__vptMissing && typeof m.loadVolume === 'function')
+        return { loadVolume: m.loadVolume, name: '@vpt/loaders' };
     } catch {
       // Not installed (or not built): the fallback handles sidecar URLs.
     }
@@ -31,9 +32,11 @@ export function proceduralVolume(source: VolumeSource): LoadedVolumeLike | null 
   if (typeof source !== 'string' || !source.startsWith('procedural:')) return null;
   const url = new URL(source);
   const kind = url.pathname.replace(/^\/+/, '') as ProceduralKind;
-  if (!PROCEDURAL.includes(kind)) throw new VptError('load-failed', `${source}: unknown procedural volume "${kind}" (${PROCEDURAL.join(', ')})`);
+  if (!PROCEDURAL.includes(kind))
+    throw new VptError('load-failed', `${source}: unknown procedural volume "${kind}" (${PROCEDURAL.join(', ')})`);
   const size = url.searchParams.has('size') ? Number(url.searchParams.get('size')) : 64;
-  if (!Number.isInteger(size) || size < 2 || size > 512) throw new VptError('load-failed', `${source}: size must be an integer in [2, 512]`);
+  if (!Number.isInteger(size) || size < 2 || size > 512)
+    throw new VptError('load-failed', `${source}: size must be an integer in [2, 512]`);
   return Object.assign(createProceduralVolume(kind, size), { format: 'procedural' });
 }
 
@@ -46,7 +49,13 @@ export async function loadVolumeSource(source: VolumeSource, options: LoadOption
   // (vpt-render) reads scene files; @vpt/loaders keeps it in meta only. Applying it here
   // makes the element show exactly what vpt-render renders for the same scene.
   const range = volume.meta?.value_range;
-  if (!volume.valueRange && Array.isArray(range) && range.length === 2 && range.every(Number.isFinite) && range[1] !== range[0] /* LO > HI inverts */) {
+  if (
+    !volume.valueRange &&
+    Array.isArray(range) &&
+    range.length === 2 &&
+    range.every(Number.isFinite) &&
+    range[1] !== range[0] /* LO > HI inverts */
+  ) {
     volume.valueRange = [range[0], range[1]];
   }
   return volume;

@@ -24,7 +24,10 @@ export function acquireContext(canvas: HTMLCanvasElement | OffscreenCanvas): Web
     throw new VptError('no-backend', 'WebGL 2 is not available: creating a webgl2 context failed', { cause: e });
   }
   if (!gl) {
-    throw new VptError('no-backend', 'WebGL 2 is not available: canvas.getContext("webgl2") returned null (unsupported browser, disabled GPU, or the canvas already has another context)');
+    throw new VptError(
+      'no-backend',
+      'WebGL 2 is not available: canvas.getContext("webgl2") returned null (unsupported browser, disabled GPU, or the canvas already has another context)',
+    );
   }
   return gl;
 }
@@ -32,7 +35,10 @@ export function acquireContext(canvas: HTMLCanvasElement | OffscreenCanvas): Web
 /** Float render targets are the core of vpt's accumulation buffers; without them nothing works. */
 export function requireColorBufferFloat(gl: WebGL2RenderingContext): void {
   if (!gl.getExtension('EXT_color_buffer_float')) {
-    throw new VptError('missing-extension', 'WebGL 2 without the EXT_color_buffer_float extension: vpt needs float render targets (R32F, RGBA32F)');
+    throw new VptError(
+      'missing-extension',
+      'WebGL 2 without the EXT_color_buffer_float extension: vpt needs float render targets (R32F, RGBA32F)',
+    );
   }
 }
 
@@ -46,7 +52,10 @@ export function readLimits(gl: WebGL2RenderingContext): GlLimits {
   return {
     maxTextureDimension2D: gl.getParameter(gl.MAX_TEXTURE_SIZE) as number,
     maxTextureDimension3D: gl.getParameter(gl.MAX_3D_TEXTURE_SIZE) as number,
-    maxColorAttachments: Math.min(gl.getParameter(gl.MAX_COLOR_ATTACHMENTS) as number, gl.getParameter(gl.MAX_DRAW_BUFFERS) as number),
+    maxColorAttachments: Math.min(
+      gl.getParameter(gl.MAX_COLOR_ATTACHMENTS) as number,
+      gl.getParameter(gl.MAX_DRAW_BUFFERS) as number,
+    ),
     maxTextureUnits: gl.getParameter(gl.MAX_TEXTURE_IMAGE_UNITS) as number,
     maxUniformBlockSize: gl.getParameter(gl.MAX_UNIFORM_BLOCK_SIZE) as number,
   };

@@ -29,20 +29,29 @@ export function excerptSource(source: string, log: string): string {
 
 export function compileShader(gl: WebGL2RenderingContext, type: number, source: string, label: string): WebGLShader {
   const shader = gl.createShader(type);
-  if (!shader) throw new VptError('shader-compile', `Pass "${label}": could not create a shader object (is the context lost?)`);
+  if (!shader)
+    throw new VptError('shader-compile', `Pass "${label}": could not create a shader object (is the context lost?)`);
   gl.shaderSource(shader, source);
   gl.compileShader(shader);
   if (!gl.getShaderParameter(shader, gl.COMPILE_STATUS) && !gl.isContextLost()) {
     const log = (gl.getShaderInfoLog(shader) ?? '').trim();
     gl.deleteShader(shader);
     const stage = type === gl.VERTEX_SHADER ? 'vertex' : 'fragment';
-    throw new VptError('shader-compile', `Pass "${label}": ${stage} shader failed to compile:\n${log}\n${excerptSource(source, log)}`);
+    throw new VptError(
+      'shader-compile',
+      `Pass "${label}": ${stage} shader failed to compile:\n${log}\n${excerptSource(source, log)}`,
+    );
   }
   return shader;
 }
 
 /** Link a program from a shared vertex shader and a freshly compiled fragment shader. */
-export function linkProgram(gl: WebGL2RenderingContext, vertex: WebGLShader, fragmentSource: string, label: string): WebGLProgram {
+export function linkProgram(
+  gl: WebGL2RenderingContext,
+  vertex: WebGLShader,
+  fragmentSource: string,
+  label: string,
+): WebGLProgram {
   const fragment = compileShader(gl, gl.FRAGMENT_SHADER, fragmentSource, label);
   const program = gl.createProgram();
   if (!program) {
@@ -58,7 +67,10 @@ export function linkProgram(gl: WebGL2RenderingContext, vertex: WebGLShader, fra
   if (!gl.getProgramParameter(program, gl.LINK_STATUS) && !gl.isContextLost()) {
     const log = (gl.getProgramInfoLog(program) ?? '').trim();
     gl.deleteProgram(program);
-    throw new VptError('shader-compile', `Pass "${label}": program failed to link:\n${log}\n${excerptSource(fragmentSource, log)}`);
+    throw new VptError(
+      'shader-compile',
+      `Pass "${label}": program failed to link:\n${log}\n${excerptSource(fragmentSource, log)}`,
+    );
   }
   return program;
 }

@@ -31,13 +31,62 @@ const GL_R16_EXT = 0x822a;
 const GL_R16_SNORM_EXT = 0x8f98;
 
 const FORMATS: Record<TextureFormat, GlFormat> = {
-  r32float: { internalFormat: GL_R32F, format: GL_RED, type: GL_FLOAT, channels: 1, array: Float32Array, readsAsFloat: true },
-  rgba32float: { internalFormat: GL_RGBA32F, format: GL_RGBA, type: GL_FLOAT, channels: 4, array: Float32Array, readsAsFloat: true },
-  rgba8unorm: { internalFormat: GL_RGBA8, format: GL_RGBA, type: GL_UNSIGNED_BYTE, channels: 4, array: Uint8Array, readsAsFloat: false },
-  r8unorm: { internalFormat: GL_R8, format: GL_RED, type: GL_UNSIGNED_BYTE, channels: 1, array: Uint8Array, readsAsFloat: true },
-  r16float: { internalFormat: GL_R16F, format: GL_RED, type: GL_HALF_FLOAT, channels: 1, array: Uint16Array, readsAsFloat: true },
-  r16unorm: { internalFormat: GL_R16_EXT, format: GL_RED, type: GL_UNSIGNED_SHORT, channels: 1, array: Uint16Array, readsAsFloat: true },
-  r16snorm: { internalFormat: GL_R16_SNORM_EXT, format: GL_RED, type: GL_SHORT, channels: 1, array: Int16Array, readsAsFloat: true },
+  r32float: {
+    internalFormat: GL_R32F,
+    format: GL_RED,
+    type: GL_FLOAT,
+    channels: 1,
+    array: Float32Array,
+    readsAsFloat: true,
+  },
+  rgba32float: {
+    internalFormat: GL_RGBA32F,
+    format: GL_RGBA,
+    type: GL_FLOAT,
+    channels: 4,
+    array: Float32Array,
+    readsAsFloat: true,
+  },
+  rgba8unorm: {
+    internalFormat: GL_RGBA8,
+    format: GL_RGBA,
+    type: GL_UNSIGNED_BYTE,
+    channels: 4,
+    array: Uint8Array,
+    readsAsFloat: false,
+  },
+  r8unorm: {
+    internalFormat: GL_R8,
+    format: GL_RED,
+    type: GL_UNSIGNED_BYTE,
+    channels: 1,
+    array: Uint8Array,
+    readsAsFloat: true,
+  },
+  r16float: {
+    internalFormat: GL_R16F,
+    format: GL_RED,
+    type: GL_HALF_FLOAT,
+    channels: 1,
+    array: Uint16Array,
+    readsAsFloat: true,
+  },
+  r16unorm: {
+    internalFormat: GL_R16_EXT,
+    format: GL_RED,
+    type: GL_UNSIGNED_SHORT,
+    channels: 1,
+    array: Uint16Array,
+    readsAsFloat: true,
+  },
+  r16snorm: {
+    internalFormat: GL_R16_SNORM_EXT,
+    format: GL_RED,
+    type: GL_SHORT,
+    channels: 1,
+    array: Int16Array,
+    readsAsFloat: true,
+  },
 };
 
 export function glFormat(format: TextureFormat): GlFormat {
@@ -52,6 +101,8 @@ export function checkTextureData(label: string, format: TextureFormat, texels: n
   if (!(data instanceof f.array)) throw new TypeError(`texture "${label}" (${format}) needs a ${f.array.name}`);
   const expected = texels * f.channels;
   if (data.length !== expected) {
-    throw new RangeError(`texture "${label}" (${format}) needs ${expected} values (${texels} texels x ${f.channels}), got ${data.length}`);
+    throw new RangeError(
+      `texture "${label}" (${format}) needs ${expected} values (${texels} texels x ${f.channels}), got ${data.length}`,
+    );
   }
 }

@@ -4,8 +4,18 @@
  */
 import { VptError } from '../../errors.js';
 import type {
-  BackendCapabilities, BackendInfo, BackendLimits, DrawCall, GpuBackend, GpuPass, GpuTexture, PassDescriptor, RenderTarget,
-  TextureData, TextureDescriptor, TextureFormat,
+  BackendCapabilities,
+  BackendInfo,
+  BackendLimits,
+  DrawCall,
+  GpuBackend,
+  GpuPass,
+  GpuTexture,
+  PassDescriptor,
+  RenderTarget,
+  TextureData,
+  TextureDescriptor,
+  TextureFormat,
 } from '../backend.js';
 import { sliceCount } from '../backend.js';
 import { type GlLimits, acquireContext, readInfo, readLimits, requireColorBufferFloat } from './context-setup.js';
@@ -13,8 +23,18 @@ import { ProgramCache, UNIFORM_BLOCK_BINDING } from './program-cache.js';
 import { WebGL2Pass, WebGL2RenderTarget, WebGL2Texture } from './resources.js';
 import { checkTextureData, glFormat } from './texture-formats.js';
 import {
-  checkBoundTexture, checkCanvasOutputs, checkPassOutputs, checkReadable, checkTargetFormats, checkTargetOutputs,
-  checkTextureCapabilities, checkTextureSize, checkUniformBytes, givenTexture, textureLabelAndDepth, type TextureSizeLimits,
+  checkBoundTexture,
+  checkCanvasOutputs,
+  checkPassOutputs,
+  checkReadable,
+  checkTargetFormats,
+  checkTargetOutputs,
+  checkTextureCapabilities,
+  checkTextureSize,
+  checkUniformBytes,
+  givenTexture,
+  textureLabelAndDepth,
+  type TextureSizeLimits,
 } from '../validation.js';
 import { BackendBase, runCallbacks } from '../backend-base.js';
 
@@ -25,7 +45,10 @@ export function createWebGL2Backend(canvas: HTMLCanvasElement | OffscreenCanvas)
 /** How long simulateLoss() waits for the browser to restore the context before giving up. */
 const RESTORE_TIMEOUT_MS = 10_000;
 
-interface Waiter { resolve: () => void; reject: (e: unknown) => void }
+interface Waiter {
+  resolve: () => void;
+  reject: (e: unknown) => void;
+}
 
 class WebGL2Backend extends BackendBase implements GpuBackend {
   readonly kind = 'webgl2' as const;
@@ -47,7 +70,8 @@ class WebGL2Backend extends BackendBase implements GpuBackend {
   constructor(readonly canvas: HTMLCanvasElement | OffscreenCanvas) {
     super({ backend: 'WebGL 2', lossTarget: 'WebGL context' });
     const gl = acquireContext(canvas);
-    if (gl.isContextLost()) throw new VptError('context-lost', 'The WebGL 2 context was lost as soon as it was created');
+    if (gl.isContextLost())
+      throw new VptError('context-lost', 'The WebGL 2 context was lost as soon as it was created');
     requireColorBufferFloat(gl);
     this.gl = gl;
     this.info = readInfo(gl);
@@ -60,7 +84,10 @@ class WebGL2Backend extends BackendBase implements GpuBackend {
   }
 
   get limits(): BackendLimits {
-    return { maxTextureDimension2D: this.glLimits.maxTextureDimension2D, maxTextureDimension3D: this.glLimits.maxTextureDimension3D };
+    return {
+      maxTextureDimension2D: this.glLimits.maxTextureDimension2D,
+      maxTextureDimension3D: this.glLimits.maxTextureDimension3D,
+    };
   }
 
   get capabilities(): BackendCapabilities {
@@ -78,9 +105,21 @@ class WebGL2Backend extends BackendBase implements GpuBackend {
     const { label, depth } = textureLabelAndDepth(desc);
     checkTextureSize(label, desc.dimension, desc.width, desc.height, depth, this.sizeLimits());
     if (desc.data) checkTextureData(label, desc.format, desc.width * desc.height * depth, desc.data);
-    checkTextureCapabilities(label, desc, this.caps, { norm16: 'EXT_texture_norm16', float32Filterable: 'OES_texture_float_linear' });
+    checkTextureCapabilities(label, desc, this.caps, {
+      norm16: 'EXT_texture_norm16',
+      float32Filterable: 'OES_texture_float_linear',
+    });
     const linear = desc.filter === 'linear';
-    const tex = this.allocTexture(desc.dimension, desc.width, desc.height, depth, desc.format, label, desc.data ?? null, linear);
+    const tex = this.allocTexture(
+      desc.dimension,
+      desc.width,
+      desc.height,
+      depth,
+      desc.format,
+      label,
+      desc.data ?? null,
+      linear,
+    );
     this.textures.add(tex);
     return tex;
   }
@@ -124,27 +163,42 @@ class WebGL2Backend extends BackendBase implements GpuBackend {
 
   // ——— render targets ———
 
-  createRenderTarget(width: number, height: number, formats: readonly TextureFormat[], label = 'render target'): RenderTarget {
+  createRenderTarget(
+    width: number,
+    height: number,
+    formats: readonly TextureFormat[],
+    label = 'render target',
+  ): RenderTarget {
     this.assertNotDisposed();
     checkTargetFormats(label, formats);
     if (formats.length > this.glLimits.maxColorAttachments) {
-      throw new VptError('limit-exceeded', `Render target "${label}" has ${formats.length} colour attachments; this device allows ${this.glLimits.maxColorAttachments} (MAX_COLOR_ATTACHMENTS / MAX_DRAW_BUFFERS)`);
+      throw new VptError(
+        'limit-exceeded',
+        `Render target "${label}" has ${formats.length} colour attachments; this device allows ${this.glLimits.maxColorAttachments} (MAX_COLOR_ATTACHMENTS / MAX_DRAW_BUFFERS)`,
+      );
     }
     checkTextureSize(label, '2d', width, height, 1, this.sizeLimits());
-    const textures = formats.map((f, k) => this.allocTexture('2d', width, height, 1, f, `${label} [${k}]`, null, false));
+    const textures = formats.map((f, k) =>
+      this.allocTexture('2d', width, height, 1, f, `${label} [${k}]`, null, false),
+    );
     if (this.isLost) return new WebGL2RenderTarget(width, height, textures, label, null, this.generation);
 
     const gl = this.gl;
     const framebuffer = gl.createFramebuffer();
     gl.bindFramebuffer(gl.DRAW_FRAMEBUFFER, framebuffer);
-    textures.forEach((t, k) => gl.framebufferTexture2D(gl.DRAW_FRAMEBUFFER, gl.COLOR_ATTACHMENT0 + k, gl.TEXTURE_2D, t.handle, 0));
+    textures.forEach((t, k) =>
+      gl.framebufferTexture2D(gl.DRAW_FRAMEBUFFER, gl.COLOR_ATTACHMENT0 + k, gl.TEXTURE_2D, t.handle, 0),
+    );
     gl.drawBuffers(textures.map((_, k) => gl.COLOR_ATTACHMENT0 + k));
     const status = gl.checkFramebufferStatus(gl.DRAW_FRAMEBUFFER);
     gl.bindFramebuffer(gl.DRAW_FRAMEBUFFER, null);
     if (status !== gl.FRAMEBUFFER_COMPLETE && !gl.isContextLost()) {
       gl.deleteFramebuffer(framebuffer);
       textures.forEach((t) => this.deleteTexture(t));
-      throw new VptError('missing-extension', `Render target "${label}" (${formats.join(', ')}, ${width}x${height}) cannot be rendered to on this device: framebuffer status 0x${status.toString(16)}`);
+      throw new VptError(
+        'missing-extension',
+        `Render target "${label}" (${formats.join(', ')}, ${width}x${height}) cannot be rendered to on this device: framebuffer status 0x${status.toString(16)}`,
+      );
     }
     const target = new WebGL2RenderTarget(width, height, textures, label, framebuffer, this.generation);
     this.targets.add(target);
@@ -163,14 +217,23 @@ class WebGL2Backend extends BackendBase implements GpuBackend {
   createPass(desc: PassDescriptor): GpuPass {
     this.assertNotDisposed();
     if (desc.textures.length > this.glLimits.maxTextureUnits) {
-      throw new VptError('limit-exceeded', `Pass "${desc.label}" reads ${desc.textures.length} textures; this device allows ${this.glLimits.maxTextureUnits} (MAX_TEXTURE_IMAGE_UNITS)`);
+      throw new VptError(
+        'limit-exceeded',
+        `Pass "${desc.label}" reads ${desc.textures.length} textures; this device allows ${this.glLimits.maxTextureUnits} (MAX_TEXTURE_IMAGE_UNITS)`,
+      );
     }
     checkPassOutputs(desc);
     if (desc.outputs.length > this.glLimits.maxColorAttachments) {
-      throw new VptError('limit-exceeded', `Pass "${desc.label}" writes ${desc.outputs.length} outputs; this device allows 1 to ${this.glLimits.maxColorAttachments} (MAX_DRAW_BUFFERS)`);
+      throw new VptError(
+        'limit-exceeded',
+        `Pass "${desc.label}" writes ${desc.outputs.length} outputs; this device allows 1 to ${this.glLimits.maxColorAttachments} (MAX_DRAW_BUFFERS)`,
+      );
     }
     if (desc.uniforms.byteSize > this.glLimits.maxUniformBlockSize) {
-      throw new VptError('limit-exceeded', `Pass "${desc.label}" has a ${desc.uniforms.byteSize}-byte uniform block; this device allows ${this.glLimits.maxUniformBlockSize} (MAX_UNIFORM_BLOCK_SIZE)`);
+      throw new VptError(
+        'limit-exceeded',
+        `Pass "${desc.label}" has a ${desc.uniforms.byteSize}-byte uniform block; this device allows ${this.glLimits.maxUniformBlockSize} (MAX_UNIFORM_BLOCK_SIZE)`,
+      );
     }
     if (this.isLost) return new WebGL2Pass(desc, null, this.generation);
     return new WebGL2Pass(desc, this.programs.get(desc), this.generation);
@@ -241,7 +304,8 @@ class WebGL2Backend extends BackendBase implements GpuBackend {
     this.assertNotDisposed();
     const tex = this.own(texture, WebGL2Texture, 'texture');
     checkReadable(tex);
-    if (this.isLost) throw new VptError('context-lost', `Cannot read texture "${tex.label}": the WebGL context is lost`);
+    if (this.isLost)
+      throw new VptError('context-lost', `Cannot read texture "${tex.label}": the WebGL context is lost`);
     this.assertCurrent(tex, `texture "${tex.label}"`);
     const gl = this.gl;
     this.readFramebuffer ??= gl.createFramebuffer();
@@ -266,7 +330,8 @@ class WebGL2Backend extends BackendBase implements GpuBackend {
     }
     gl.framebufferTexture2D(gl.READ_FRAMEBUFFER, gl.COLOR_ATTACHMENT0, gl.TEXTURE_2D, null, 0);
     gl.bindFramebuffer(gl.READ_FRAMEBUFFER, null);
-    if (gl.isContextLost()) throw new VptError('context-lost', `Reading texture "${tex.label}" failed: the WebGL context was lost`);
+    if (gl.isContextLost())
+      throw new VptError('context-lost', `Reading texture "${tex.label}" failed: the WebGL context was lost`);
     return out;
   }
 
@@ -295,29 +360,47 @@ class WebGL2Backend extends BackendBase implements GpuBackend {
   simulateLoss(restoreAfterMs = 50): Promise<void> {
     if (this.disposed) return Promise.reject(new VptError('disposed', 'This WebGL 2 backend was disposed'));
     const ext = this.loseContextExt;
-    if (!ext) return Promise.reject(new VptError('missing-extension', 'WEBGL_lose_context is not available, so a context loss cannot be simulated'));
+    if (!ext)
+      return Promise.reject(
+        new VptError('missing-extension', 'WEBGL_lose_context is not available, so a context loss cannot be simulated'),
+      );
     if (this.isLost) return Promise.reject(new VptError('context-lost', 'The WebGL context is already lost'));
     return new Promise<void>((resolve, reject) => {
       const timer = setTimeout(() => {
         this.restoreWaiters = this.restoreWaiters.filter((w) => w !== waiter);
-        reject(new VptError('context-lost', `The WebGL context was not restored within ${restoreAfterMs + RESTORE_TIMEOUT_MS} ms`));
+        reject(
+          new VptError(
+            'context-lost',
+            `The WebGL context was not restored within ${restoreAfterMs + RESTORE_TIMEOUT_MS} ms`,
+          ),
+        );
       }, restoreAfterMs + RESTORE_TIMEOUT_MS);
       const waiter: Waiter = {
-        resolve: () => { clearTimeout(timer); resolve(); },
-        reject: (e) => { clearTimeout(timer); reject(e); },
+        resolve: () => {
+          clearTimeout(timer);
+          resolve();
+        },
+        reject: (e) => {
+          clearTimeout(timer);
+          reject(e);
+        },
       };
       this.restoreWaiters.push(waiter);
       // Registered after handleLost, so preventDefault() (which makes the context restorable) has run.
-      (this.canvas as EventTarget).addEventListener('webglcontextlost', () => {
-        setTimeout(() => {
-          try {
-            ext.restoreContext();
-          } catch (e) {
-            this.restoreWaiters = this.restoreWaiters.filter((w) => w !== waiter);
-            waiter.reject(new VptError('context-lost', 'WEBGL_lose_context.restoreContext() failed', { cause: e }));
-          }
-        }, restoreAfterMs);
-      }, { once: true });
+      (this.canvas as EventTarget).addEventListener(
+        'webglcontextlost',
+        () => {
+          setTimeout(() => {
+            try {
+              ext.restoreContext();
+            } catch (e) {
+              this.restoreWaiters = this.restoreWaiters.filter((w) => w !== waiter);
+              waiter.reject(new VptError('context-lost', 'WEBGL_lose_context.restoreContext() failed', { cause: e }));
+            }
+          }, restoreAfterMs);
+        },
+        { once: true },
+      );
       ext.loseContext();
     });
   }
@@ -406,12 +489,21 @@ class WebGL2Backend extends BackendBase implements GpuBackend {
     this.vao = gl.createVertexArray();
     this.loseContextExt = gl.getExtension('WEBGL_lose_context');
     // Optional: compact 16-bit volumes and filtered float volumes (see BackendCapabilities).
-    this.caps = { norm16: !!gl.getExtension('EXT_texture_norm16'), float32Filterable: !!gl.getExtension('OES_texture_float_linear') };
+    this.caps = {
+      norm16: !!gl.getExtension('EXT_texture_norm16'),
+      float32Filterable: !!gl.getExtension('OES_texture_float_linear'),
+    };
   }
 
   private allocTexture(
-    dimension: '2d' | '3d', width: number, height: number, depth: number, format: TextureFormat, label: string,
-    data: TextureData | null, linear: boolean,
+    dimension: '2d' | '3d',
+    width: number,
+    height: number,
+    depth: number,
+    format: TextureFormat,
+    label: string,
+    data: TextureData | null,
+    linear: boolean,
   ): WebGL2Texture {
     if (this.isLost) return new WebGL2Texture(dimension, width, height, depth, format, label, null, this.generation);
     const gl = this.gl;
@@ -437,9 +529,13 @@ class WebGL2Backend extends BackendBase implements GpuBackend {
   }
 
   private sizeLimits(): TextureSizeLimits {
-    return { max2D: this.glLimits.maxTextureDimension2D, max3D: this.glLimits.maxTextureDimension3D, name2D: 'MAX_TEXTURE_SIZE', name3D: 'MAX_3D_TEXTURE_SIZE' };
+    return {
+      max2D: this.glLimits.maxTextureDimension2D,
+      max3D: this.glLimits.maxTextureDimension3D,
+      name2D: 'MAX_TEXTURE_SIZE',
+      name3D: 'MAX_3D_TEXTURE_SIZE',
+    };
   }
-
 
   private deleteTexture(tex: WebGL2Texture): void {
     // Objects of an older generation died with the lost context.

@@ -14,11 +14,18 @@ export interface CompileMessage {
  * the whole generated module, prelude included). `extra` is a validation error that
  * came without a position (pipeline creation, layout mismatch).
  */
-export function formatCompileError(label: string, source: string, messages: readonly CompileMessage[], extra?: string): string {
+export function formatCompileError(
+  label: string,
+  source: string,
+  messages: readonly CompileMessage[],
+  extra?: string,
+): string {
   const lines = source.split('\n');
   const width = String(lines.length).length;
   const compiled = !messages.some((m) => m.type === 'error');
-  const out = [`Pass "${label}": ${compiled ? 'the kernel compiled but failed validation' : 'WGSL compilation failed'}`];
+  const out = [
+    `Pass "${label}": ${compiled ? 'the kernel compiled but failed validation' : 'WGSL compilation failed'}`,
+  ];
   for (const m of messages) {
     if (m.type === 'info') continue;
     if (m.lineNum > 0) {

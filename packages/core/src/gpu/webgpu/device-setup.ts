@@ -44,18 +44,29 @@ const RAISED_LIMITS = [
 const OPTIONAL_FEATURES = ['timestamp-query', 'texture-formats-tier1', 'float32-filterable'];
 
 /** Request an adapter and a device, or throw VptError('no-backend'). */
-export async function requestGpuDevice(options: Pick<BackendOptions, 'powerPreference'> = {}): Promise<GpuDeviceHandle> {
+export async function requestGpuDevice(
+  options: Pick<BackendOptions, 'powerPreference'> = {},
+): Promise<GpuDeviceHandle> {
   const gpu = gpuOrNull();
   if (!gpu) {
-    throw new VptError('no-backend', 'WebGPU is not available: this browser has no navigator.gpu (needs a WebGPU-capable browser on a secure origin: https or localhost)');
+    throw new VptError(
+      'no-backend',
+      'WebGPU is not available: this browser has no navigator.gpu (needs a WebGPU-capable browser on a secure origin: https or localhost)',
+    );
   }
   let adapter: GPUAdapter | null;
   try {
-    adapter = await gpu.requestAdapter(options.powerPreference ? { powerPreference: options.powerPreference } : undefined);
+    adapter = await gpu.requestAdapter(
+      options.powerPreference ? { powerPreference: options.powerPreference } : undefined,
+    );
   } catch (e) {
     throw new VptError('no-backend', 'WebGPU is not available: navigator.gpu.requestAdapter() failed', { cause: e });
   }
-  if (!adapter) throw new VptError('no-backend', 'WebGPU is not available: navigator.gpu.requestAdapter() returned no adapter (no supported GPU, or WebGPU is disabled)');
+  if (!adapter)
+    throw new VptError(
+      'no-backend',
+      'WebGPU is not available: navigator.gpu.requestAdapter() returned no adapter (no supported GPU, or WebGPU is disabled)',
+    );
 
   const requiredLimits: Record<string, number> = {};
   for (const name of RAISED_LIMITS) {
@@ -80,6 +91,7 @@ function adapterInfo(adapter: GPUAdapter): BackendInfo {
   const a: Partial<GPUAdapterInfo> = adapter.info ?? {};
   const description = a.description ?? '';
   const architecture = a.architecture ?? '';
-  const renderer = description && architecture ? `${description} (${architecture})` : description || architecture || 'WebGPU adapter';
+  const renderer =
+    description && architecture ? `${description} (${architecture})` : description || architecture || 'WebGPU adapter';
   return { kind: 'webgpu', renderer, vendor: a.vendor || 'unknown' };
 }

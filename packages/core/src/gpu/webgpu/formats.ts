@@ -19,9 +19,30 @@ export interface GpuFormatInfo {
 }
 
 const FORMATS: Record<TextureFormat, GpuFormatInfo> = {
-  r32float: { bytesPerTexel: 4, channels: 1, array: Float32Array, isFloat: true, renderByteCost: 4, renderByteAlign: 4 },
-  rgba32float: { bytesPerTexel: 16, channels: 4, array: Float32Array, isFloat: true, renderByteCost: 16, renderByteAlign: 4 },
-  rgba8unorm: { bytesPerTexel: 4, channels: 4, array: Uint8Array, isFloat: false, renderByteCost: 8, renderByteAlign: 1 },
+  r32float: {
+    bytesPerTexel: 4,
+    channels: 1,
+    array: Float32Array,
+    isFloat: true,
+    renderByteCost: 4,
+    renderByteAlign: 4,
+  },
+  rgba32float: {
+    bytesPerTexel: 16,
+    channels: 4,
+    array: Float32Array,
+    isFloat: true,
+    renderByteCost: 16,
+    renderByteAlign: 4,
+  },
+  rgba8unorm: {
+    bytesPerTexel: 4,
+    channels: 4,
+    array: Uint8Array,
+    isFloat: false,
+    renderByteCost: 8,
+    renderByteAlign: 1,
+  },
   // Volume formats (r16float is also the fast path's gradient target). r8unorm/r16* are only sampled.
   r8unorm: { bytesPerTexel: 1, channels: 1, array: Uint8Array, isFloat: true, renderByteCost: 1, renderByteAlign: 1 },
   r16unorm: { bytesPerTexel: 2, channels: 1, array: Uint16Array, isFloat: true, renderByteCost: 2, renderByteAlign: 2 },
@@ -42,7 +63,10 @@ export function formatInfo(format: TextureFormat): GpuFormatInfo {
 export function textureUsage(dimension: '2d' | '3d'): GPUTextureUsageFlags {
   return dimension === '3d'
     ? GPUTextureUsage.TEXTURE_BINDING | GPUTextureUsage.COPY_DST
-    : GPUTextureUsage.TEXTURE_BINDING | GPUTextureUsage.COPY_DST | GPUTextureUsage.COPY_SRC | GPUTextureUsage.RENDER_ATTACHMENT;
+    : GPUTextureUsage.TEXTURE_BINDING |
+        GPUTextureUsage.COPY_DST |
+        GPUTextureUsage.COPY_SRC |
+        GPUTextureUsage.RENDER_ATTACHMENT;
 }
 
 /** Bytes per sample of a set of colour attachments, as the spec adds them up (aligned running sum). */
@@ -61,6 +85,8 @@ export function checkTextureData(label: string, format: TextureFormat, texels: n
   if (!(data instanceof f.array)) throw new TypeError(`texture "${label}" (${format}) needs a ${f.array.name}`);
   const expected = texels * f.channels;
   if (data.length !== expected) {
-    throw new RangeError(`texture "${label}" (${format}) needs ${expected} values (${texels} texels x ${f.channels}), got ${data.length}`);
+    throw new RangeError(
+      `texture "${label}" (${format}) needs ${expected} values (${texels} texels x ${f.channels}), got ${data.length}`,
+    );
   }
 }

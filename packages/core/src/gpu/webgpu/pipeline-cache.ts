@@ -15,7 +15,15 @@ import { VptError } from '../../errors.js';
 import type { PassDescriptor } from '../backend.js';
 import { formatCompileError } from './compile-errors.js';
 import type { DeferredErrors } from './deferred-errors.js';
-import { BUILTINS_BYTE_SIZE, FRAGMENT_ENTRY, FULLSCREEN_VERTEX_WGSL, VERTEX_ENTRY, buildWgslSource, linearSamplerBinding, usesLinearSampler } from './wgsl-prelude.js';
+import {
+  BUILTINS_BYTE_SIZE,
+  FRAGMENT_ENTRY,
+  FULLSCREEN_VERTEX_WGSL,
+  VERTEX_ENTRY,
+  buildWgslSource,
+  linearSamplerBinding,
+  usesLinearSampler,
+} from './wgsl-prelude.js';
 
 export interface PipelineEntry {
   readonly label: string;
@@ -38,11 +46,20 @@ export class PipelineCache {
   /** Group 1: the backend-owned VptBuiltins, the same for every pass. */
   readonly builtinsLayout: GPUBindGroupLayout;
 
-  constructor(private readonly device: GPUDevice, private readonly errors: DeferredErrors) {
+  constructor(
+    private readonly device: GPUDevice,
+    private readonly errors: DeferredErrors,
+  ) {
     this.vertexModule = device.createShaderModule({ label: 'vpt full-screen triangle', code: FULLSCREEN_VERTEX_WGSL });
     this.builtinsLayout = device.createBindGroupLayout({
       label: 'vpt builtins',
-      entries: [{ binding: 0, visibility: GPUShaderStage.FRAGMENT, buffer: { type: 'uniform', minBindingSize: BUILTINS_BYTE_SIZE } }],
+      entries: [
+        {
+          binding: 0,
+          visibility: GPUShaderStage.FRAGMENT,
+          buffer: { type: 'uniform', minBindingSize: BUILTINS_BYTE_SIZE },
+        },
+      ],
     });
   }
 
@@ -64,7 +81,11 @@ export class PipelineCache {
     const bindGroupLayout = device.createBindGroupLayout({
       label: desc.label,
       entries: [
-        { binding: 0, visibility: GPUShaderStage.FRAGMENT, buffer: { type: 'uniform', minBindingSize: desc.uniforms.byteSize } },
+        {
+          binding: 0,
+          visibility: GPUShaderStage.FRAGMENT,
+          buffer: { type: 'uniform', minBindingSize: desc.uniforms.byteSize },
+        },
         // Kernels read with textureLoad, so 'unfilterable-float' admits every format (r32float
         // included); a filtered binding (the volume's fast path) needs a filterable format.
         ...desc.textures.map((t, k): GPUBindGroupLayoutEntry => ({
@@ -72,23 +93,43 @@ export class PipelineCache {
           visibility: GPUShaderStage.FRAGMENT,
           texture: { sampleType: t.filter === 'linear' ? 'float' : 'unfilterable-float', viewDimension: t.dimension },
         })),
-        ...(usesLinearSampler(desc) ? [{ binding: linearSamplerBinding(desc), visibility: GPUShaderStage.FRAGMENT, sampler: { type: 'filtering' as const } }] : []),
+        ...(usesLinearSampler(desc)
+          ? [
+              {
+                binding: linearSamplerBinding(desc),
+                visibility: GPUShaderStage.FRAGMENT,
+                sampler: { type: 'filtering' as const },
+              },
+            ]
+          : []),
       ],
     });
-    const pipelineLayout = device.createPipelineLayout({ label: desc.label, bindGroupLayouts: [bindGroupLayout, this.builtinsLayout] });
+    const pipelineLayout = device.createPipelineLayout({
+      label: desc.label,
+      bindGroupLayouts: [bindGroupLayout, this.builtinsLayout],
+    });
     const scope = device.popErrorScope();
 
     const entry: PipelineEntry = {
-      label: desc.label, source, module, bindGroupLayout, pipelineLayout, pipelines: new Map(), error: null, checked: Promise.resolve(null),
+      label: desc.label,
+      source,
+      module,
+      bindGroupLayout,
+      pipelineLayout,
+      pipelines: new Map(),
+      error: null,
+      checked: Promise.resolve(null),
     };
-    entry.checked = Promise.all([module.getCompilationInfo().catch(() => null), scope.catch(() => null)]).then(([info, scopeError]) => {
-      const messages = info?.messages ?? [];
-      if (!entry.error && (scopeError || messages.some((m) => m.type === 'error'))) {
-        const extra = messages.length === 0 && scopeError ? scopeError.message : undefined;
-        entry.error = new VptError('shader-compile', formatCompileError(desc.label, source, messages, extra));
-      }
-      return entry.error;
-    });
+    entry.checked = Promise.all([module.getCompilationInfo().catch(() => null), scope.catch(() => null)]).then(
+      ([info, scopeError]) => {
+        const messages = info?.messages ?? [];
+        if (!entry.error && (scopeError || messages.some((m) => m.type === 'error'))) {
+          const extra = messages.length === 0 && scopeError ? scopeError.message : undefined;
+          entry.error = new VptError('shader-compile', formatCompileError(desc.label, source, messages, extra));
+        }
+        return entry.error;
+      },
+    );
     this.errors.track(entry.checked);
     this.entries.set(key, entry);
     // Offscreen targets are the common case: build their pipeline now rather than at the first draw.
@@ -118,7 +159,10 @@ export class PipelineCache {
       // An invalid module also makes the pipeline invalid: report the compiler's log, not that.
       if (compileError) return compileError;
       if (err && !entry.error) {
-        entry.error = new VptError('shader-compile', formatCompileError(entry.label, entry.source, [], `render pipeline for [${key}]: ${err.message}`));
+        entry.error = new VptError(
+          'shader-compile',
+          formatCompileError(entry.label, entry.source, [], `render pipeline for [${key}]: ${err.message}`),
+        );
       }
       return entry.error;
     });

@@ -14,10 +14,21 @@ export interface PendingReadback {
 }
 
 /** Encode and submit the copy; the caller maps `buffer` and then calls unpackReadback. */
-export function submitReadback(device: GPUDevice, texture: GPUTexture, width: number, height: number, format: TextureFormat, label: string): PendingReadback {
+export function submitReadback(
+  device: GPUDevice,
+  texture: GPUTexture,
+  width: number,
+  height: number,
+  format: TextureFormat,
+  label: string,
+): PendingReadback {
   const tight = width * formatInfo(format).bytesPerTexel;
   const bytesPerRow = Math.ceil(tight / ROW_ALIGN) * ROW_ALIGN;
-  const buffer = device.createBuffer({ label: `vpt readback of ${label}`, size: bytesPerRow * height, usage: GPUBufferUsage.COPY_DST | GPUBufferUsage.MAP_READ });
+  const buffer = device.createBuffer({
+    label: `vpt readback of ${label}`,
+    size: bytesPerRow * height,
+    usage: GPUBufferUsage.COPY_DST | GPUBufferUsage.MAP_READ,
+  });
   const encoder = device.createCommandEncoder({ label: `vpt readback of ${label}` });
   encoder.copyTextureToBuffer({ texture }, { buffer, bytesPerRow, rowsPerImage: height }, [width, height, 1]);
   device.queue.submit([encoder.finish()]);
@@ -29,7 +40,13 @@ export function submitReadback(device: GPUDevice, texture: GPUTexture, width: nu
  * so rows are copied in order: Float32Array (W*H for r32float, W*H*4 for rgba32float)
  * or Uint8Array W*H*4 for rgba8unorm.
  */
-export function unpackReadback(mapped: ArrayBuffer, bytesPerRow: number, width: number, height: number, format: TextureFormat): Float32Array | Uint8Array {
+export function unpackReadback(
+  mapped: ArrayBuffer,
+  bytesPerRow: number,
+  width: number,
+  height: number,
+  format: TextureFormat,
+): Float32Array | Uint8Array {
   const info = formatInfo(format);
   const tight = width * info.bytesPerTexel;
   const src = new Uint8Array(mapped);

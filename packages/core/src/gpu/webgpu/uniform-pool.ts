@@ -21,7 +21,11 @@ export class UniformBufferPool {
     const size = Math.ceil(byteSize / BUCKET) * BUCKET;
     let buffer = this.free.get(size)?.pop();
     if (!buffer) {
-      buffer = this.device.createBuffer({ label: `vpt uniforms (${size} B)`, size, usage: GPUBufferUsage.UNIFORM | GPUBufferUsage.COPY_DST });
+      buffer = this.device.createBuffer({
+        label: `vpt uniforms (${size} B)`,
+        size,
+        usage: GPUBufferUsage.UNIFORM | GPUBufferUsage.COPY_DST,
+      });
       this.all.add(buffer);
     }
     this.inUse.push(buffer);

@@ -10,15 +10,36 @@
  */
 import { VptError } from '../../errors.js';
 import type {
-  BackendCapabilities, BackendInfo, BackendLimits, BackendOptions, DrawCall, GpuBackend, GpuPass, GpuTexture, PassDescriptor, RenderTarget,
-  TextureData, TextureDescriptor, TextureFormat,
+  BackendCapabilities,
+  BackendInfo,
+  BackendLimits,
+  BackendOptions,
+  DrawCall,
+  GpuBackend,
+  GpuPass,
+  GpuTexture,
+  PassDescriptor,
+  RenderTarget,
+  TextureData,
+  TextureDescriptor,
+  TextureFormat,
 } from '../backend.js';
 import { DeferredErrors } from './deferred-errors.js';
 import { type GpuDeviceHandle, requestGpuDevice } from './device-setup.js';
 import { checkTextureData, colorAttachmentBytesPerSample, formatInfo, textureUsage } from './formats.js';
 import {
-  checkBoundTexture, checkCanvasOutputs, checkPassOutputs, checkReadable, checkTargetFormats, checkTargetOutputs,
-  checkTextureCapabilities, checkTextureSize, checkUniformBytes, givenTexture, textureLabelAndDepth, type TextureSizeLimits,
+  checkBoundTexture,
+  checkCanvasOutputs,
+  checkPassOutputs,
+  checkReadable,
+  checkTargetFormats,
+  checkTargetOutputs,
+  checkTextureCapabilities,
+  checkTextureSize,
+  checkUniformBytes,
+  givenTexture,
+  textureLabelAndDepth,
+  type TextureSizeLimits,
 } from '../validation.js';
 import { BackendBase, runCallbacks } from '../backend-base.js';
 import { PipelineCache } from './pipeline-cache.js';
@@ -30,7 +51,10 @@ import { sliceCount } from '../backend.js';
 
 export { isWebGPUAvailable } from './device-setup.js';
 
-export async function createWebGPUBackend(canvas: HTMLCanvasElement | OffscreenCanvas, options: BackendOptions = {}): Promise<GpuBackend> {
+export async function createWebGPUBackend(
+  canvas: HTMLCanvasElement | OffscreenCanvas,
+  options: BackendOptions = {},
+): Promise<GpuBackend> {
   const handle = await requestGpuDevice(options);
   return new WebGPUBackend(canvas, options, handle);
 }
@@ -40,7 +64,10 @@ const RESTORE_TIMEOUT_MS = 10_000;
 /** Delays between attempts to get a new device after a loss; a GPU process restart can take a moment. */
 const RESTORE_RETRY_MS = [0, 250, 1000, 4000];
 
-interface Waiter { resolve: () => void; reject: (e: unknown) => void }
+interface Waiter {
+  resolve: () => void;
+  reject: (e: unknown) => void;
+}
 
 /** Everything that lives and dies with one GPUDevice. */
 interface DeviceState {
@@ -71,14 +98,23 @@ class WebGPUBackend extends BackendBase implements GpuBackend {
    * The current GPUDevice (a new one after a restore), for tools that time or inspect the
    * device, such as the benchmarks' timestamp queries. Rendering goes through the pass interface.
    */
-  get device(): GPUDevice { return this.state.device; }
+  get device(): GPUDevice {
+    return this.state.device;
+  }
 
-  constructor(readonly canvas: HTMLCanvasElement | OffscreenCanvas, private readonly options: BackendOptions, handle: GpuDeviceHandle) {
+  constructor(
+    readonly canvas: HTMLCanvasElement | OffscreenCanvas,
+    private readonly options: BackendOptions,
+    handle: GpuDeviceHandle,
+  ) {
     super({ backend: 'WebGPU', lossTarget: 'WebGPU device' });
     const context = canvas.getContext('webgpu') as GPUCanvasContext | null;
     if (!context) {
       handle.device.destroy();
-      throw new VptError('no-backend', 'This canvas cannot give a WebGPU context (it already has a WebGL or 2D context); use a fresh canvas');
+      throw new VptError(
+        'no-backend',
+        'This canvas cannot give a WebGPU context (it already has a WebGL or 2D context); use a fresh canvas',
+      );
     }
     this.context = context;
     this.canvasFormat = navigator.gpu.getPreferredCanvasFormat();
@@ -92,13 +128,27 @@ class WebGPUBackend extends BackendBase implements GpuBackend {
 
   get limits(): BackendLimits {
     const l = this.state.device.limits;
-    return { maxTextureDimension2D: l.maxTextureDimension2D, maxTextureDimension3D: l.maxTextureDimension3D, maxBufferSize: l.maxBufferSize };
+    return {
+      maxTextureDimension2D: l.maxTextureDimension2D,
+      maxTextureDimension3D: l.maxTextureDimension3D,
+      maxBufferSize: l.maxBufferSize,
+    };
   }
 
   private linearSampler(): GPUSampler {
     const device = this.state.device;
     if (this.sampler?.device !== device) {
-      this.sampler = { device, sampler: device.createSampler({ label: 'vpt linear clamp', magFilter: 'linear', minFilter: 'linear', addressModeU: 'clamp-to-edge', addressModeV: 'clamp-to-edge', addressModeW: 'clamp-to-edge' }) };
+      this.sampler = {
+        device,
+        sampler: device.createSampler({
+          label: 'vpt linear clamp',
+          magFilter: 'linear',
+          minFilter: 'linear',
+          addressModeU: 'clamp-to-edge',
+          addressModeV: 'clamp-to-edge',
+          addressModeW: 'clamp-to-edge',
+        }),
+      };
     }
     return this.sampler.sampler;
   }
@@ -118,7 +168,10 @@ class WebGPUBackend extends BackendBase implements GpuBackend {
     this.assertNotDisposed();
     const { label, depth } = textureLabelAndDepth(desc);
     formatInfo(desc.format);
-    checkTextureCapabilities(label, desc, this.capabilities, { norm16: "the 'texture-formats-tier1' feature", float32Filterable: "the 'float32-filterable' feature" });
+    checkTextureCapabilities(label, desc, this.capabilities, {
+      norm16: "the 'texture-formats-tier1' feature",
+      float32Filterable: "the 'float32-filterable' feature",
+    });
     checkTextureSize(label, desc.dimension, desc.width, desc.height, depth, this.sizeLimits());
     if (desc.data) checkTextureData(label, desc.format, desc.width * desc.height * depth, desc.data);
     const tex = this.allocTexture(desc.dimension, desc.width, desc.height, depth, desc.format, label);
@@ -145,8 +198,14 @@ class WebGPUBackend extends BackendBase implements GpuBackend {
     this.assertCurrent(tex, `texture "${tex.label}"`);
     if (!tex.handle) throw new RangeError(`texture "${tex.label}" was destroyed`);
     const bytesPerRow = tex.width * formatInfo(tex.format).bytesPerTexel;
-    const view = data as Float32Array<ArrayBuffer> | Uint8Array<ArrayBuffer> | Uint16Array<ArrayBuffer> | Int16Array<ArrayBuffer>;
-    this.state.device.queue.writeTexture({ texture: tex.handle, origin: [0, 0, zOffset] }, view, { bytesPerRow, rowsPerImage: tex.height }, [tex.width, tex.height, depth]);
+    const view = data as
+      Float32Array<ArrayBuffer> | Uint8Array<ArrayBuffer> | Uint16Array<ArrayBuffer> | Int16Array<ArrayBuffer>;
+    this.state.device.queue.writeTexture(
+      { texture: tex.handle, origin: [0, 0, zOffset] },
+      view,
+      { bytesPerRow, rowsPerImage: tex.height },
+      [tex.width, tex.height, depth],
+    );
   }
 
   destroyTexture(texture: GpuTexture): void {
@@ -159,7 +218,12 @@ class WebGPUBackend extends BackendBase implements GpuBackend {
 
   // ——— render targets ———
 
-  createRenderTarget(width: number, height: number, formats: readonly TextureFormat[], label = 'render target'): RenderTarget {
+  createRenderTarget(
+    width: number,
+    height: number,
+    formats: readonly TextureFormat[],
+    label = 'render target',
+  ): RenderTarget {
     this.assertNotDisposed();
     checkTargetFormats(label, formats);
     formats.forEach((f) => formatInfo(f));
@@ -184,13 +248,19 @@ class WebGPUBackend extends BackendBase implements GpuBackend {
     this.assertNotDisposed();
     const limits = this.state.device.limits;
     if (desc.textures.length > limits.maxSampledTexturesPerShaderStage) {
-      throw new VptError('limit-exceeded', `Pass "${desc.label}" reads ${desc.textures.length} textures; this device allows ${limits.maxSampledTexturesPerShaderStage} (maxSampledTexturesPerShaderStage)`);
+      throw new VptError(
+        'limit-exceeded',
+        `Pass "${desc.label}" reads ${desc.textures.length} textures; this device allows ${limits.maxSampledTexturesPerShaderStage} (maxSampledTexturesPerShaderStage)`,
+      );
     }
     checkPassOutputs(desc);
     desc.outputs.forEach((f) => formatInfo(f));
     this.checkColorAttachments(`Pass "${desc.label}"`, desc.outputs);
     if (desc.uniforms.byteSize > limits.maxUniformBufferBindingSize) {
-      throw new VptError('limit-exceeded', `Pass "${desc.label}" has a ${desc.uniforms.byteSize}-byte uniform struct; this device allows ${limits.maxUniformBufferBindingSize} (maxUniformBufferBindingSize)`);
+      throw new VptError(
+        'limit-exceeded',
+        `Pass "${desc.label}" has a ${desc.uniforms.byteSize}-byte uniform struct; this device allows ${limits.maxUniformBufferBindingSize} (maxUniformBufferBindingSize)`,
+      );
     }
     if (this.lost) return new WebGPUPass(desc, null, this.generation);
     return new WebGPUPass(desc, this.state.pipelines.get(desc), this.generation);
@@ -242,7 +312,9 @@ class WebGPUBackend extends BackendBase implements GpuBackend {
 
     // One buffer holds the pass's uniforms at 0 and VptBuiltins at the next aligned offset.
     const userSize = desc.uniforms.byteSize;
-    const builtinsOffset = Math.ceil(userSize / device.limits.minUniformBufferOffsetAlignment) * device.limits.minUniformBufferOffsetAlignment;
+    const builtinsOffset =
+      Math.ceil(userSize / device.limits.minUniformBufferOffsetAlignment) *
+      device.limits.minUniformBufferOffsetAlignment;
     const buffer = uniforms.acquire(builtinsOffset + BUILTINS_BYTE_SIZE);
     device.queue.writeBuffer(buffer, 0, call.uniforms, 0, userSize);
     device.queue.writeBuffer(buffer, builtinsOffset, new Int32Array([width, height, 0, 0]));
@@ -252,7 +324,8 @@ class WebGPUBackend extends BackendBase implements GpuBackend {
       label: desc.label,
       layout: entry.bindGroupLayout,
       entries: [
-        { binding: 0, resource: { buffer, offset: 0, size: userSize } }, ...textureEntries,
+        { binding: 0, resource: { buffer, offset: 0, size: userSize } },
+        ...textureEntries,
         ...(usesLinearSampler(desc) ? [{ binding: linearSamplerBinding(desc), resource: this.linearSampler() }] : []),
       ],
     });
@@ -293,7 +366,14 @@ class WebGPUBackend extends BackendBase implements GpuBackend {
     this.assertCurrent(tex, `texture "${tex.label}"`);
     if (!tex.handle) throw new RangeError(`readTexture: texture "${tex.label}" was destroyed`);
     const state = this.state;
-    const { buffer, bytesPerRow } = submitReadback(state.device, tex.handle, tex.width, tex.height, tex.format, tex.label);
+    const { buffer, bytesPerRow } = submitReadback(
+      state.device,
+      tex.handle,
+      tex.width,
+      tex.height,
+      tex.format,
+      tex.label,
+    );
     this.readbacks.add(buffer);
     try {
       // A kernel that failed to compile wrote nothing: report that rather than stale texels.
@@ -327,11 +407,22 @@ class WebGPUBackend extends BackendBase implements GpuBackend {
     return new Promise<void>((resolve, reject) => {
       const timer = setTimeout(() => {
         this.restoreWaiters = this.restoreWaiters.filter((w) => w !== waiter);
-        reject(new VptError('context-lost', `No new WebGPU device within ${restoreAfterMs + RESTORE_TIMEOUT_MS} ms of the simulated loss`));
+        reject(
+          new VptError(
+            'context-lost',
+            `No new WebGPU device within ${restoreAfterMs + RESTORE_TIMEOUT_MS} ms of the simulated loss`,
+          ),
+        );
       }, restoreAfterMs + RESTORE_TIMEOUT_MS);
       const waiter: Waiter = {
-        resolve: () => { clearTimeout(timer); resolve(); },
-        reject: (e) => { clearTimeout(timer); reject(e); },
+        resolve: () => {
+          clearTimeout(timer);
+          resolve();
+        },
+        reject: (e) => {
+          clearTimeout(timer);
+          reject(e);
+        },
       };
       this.restoreWaiters.push(waiter);
       this.restoreDelayMs = restoreAfterMs;
@@ -347,7 +438,8 @@ class WebGPUBackend extends BackendBase implements GpuBackend {
     runCallbacks(this.lostCallbacks, 'device-loss');
     const delay = this.restoreDelayMs ?? 0;
     this.restoreDelayMs = null;
-    if (info.reason !== 'destroyed') console.warn(`vpt: the WebGPU device was lost (${info.message}); requesting a new one`);
+    if (info.reason !== 'destroyed')
+      console.warn(`vpt: the WebGPU device was lost (${info.message}); requesting a new one`);
     setTimeout(() => void this.restore(state), delay);
   }
 
@@ -372,7 +464,9 @@ class WebGPUBackend extends BackendBase implements GpuBackend {
     const waiters = this.restoreWaiters;
     this.restoreWaiters = [];
     if (!handle) {
-      const err = new VptError('context-lost', 'The WebGPU device was lost and no new device could be obtained', { cause: failure });
+      const err = new VptError('context-lost', 'The WebGPU device was lost and no new device could be obtained', {
+        cause: failure,
+      });
       console.error(err);
       waiters.forEach((w) => w.reject(err));
       return; // stays lost
@@ -408,12 +502,22 @@ class WebGPUBackend extends BackendBase implements GpuBackend {
   private attach(handle: GpuDeviceHandle): DeviceState {
     const device = handle.device;
     const errors = new DeferredErrors();
-    const state: DeviceState = { device, pipelines: new PipelineCache(device, errors), uniforms: new UniformBufferPool(device), errors };
+    const state: DeviceState = {
+      device,
+      pipelines: new PipelineCache(device, errors),
+      uniforms: new UniformBufferPool(device),
+      errors,
+    };
     device.lost.then((info) => this.handleLost(state, info));
     device.addEventListener('uncapturederror', (event) => {
       console.error(`vpt: uncaptured WebGPU error: ${(event as GPUUncapturedErrorEvent).error.message}`);
     });
-    this.context.configure({ device, format: this.canvasFormat, alphaMode: 'premultiplied', usage: GPUTextureUsage.RENDER_ATTACHMENT });
+    this.context.configure({
+      device,
+      format: this.canvasFormat,
+      alphaMode: 'premultiplied',
+      usage: GPUTextureUsage.RENDER_ATTACHMENT,
+    });
     return state;
   }
 
@@ -427,9 +531,22 @@ class WebGPUBackend extends BackendBase implements GpuBackend {
     this.state.pipelines.clear();
   }
 
-  private allocTexture(dimension: '2d' | '3d', width: number, height: number, depth: number, format: TextureFormat, label: string): WebGPUTexture {
+  private allocTexture(
+    dimension: '2d' | '3d',
+    width: number,
+    height: number,
+    depth: number,
+    format: TextureFormat,
+    label: string,
+  ): WebGPUTexture {
     if (this.lost) return new WebGPUTexture(dimension, width, height, depth, format, label, null, this.generation);
-    const handle = this.state.device.createTexture({ label, dimension, format, size: [width, height, depth], usage: textureUsage(dimension) });
+    const handle = this.state.device.createTexture({
+      label,
+      dimension,
+      format,
+      size: [width, height, depth],
+      usage: textureUsage(dimension),
+    });
     return new WebGPUTexture(dimension, width, height, depth, format, label, handle, this.generation);
   }
 
@@ -437,30 +554,49 @@ class WebGPUBackend extends BackendBase implements GpuBackend {
     if (!tex.handle) throw new RangeError(`texture "${tex.label}" was destroyed`);
     const bytesPerRow = tex.width * formatInfo(tex.format).bytesPerTexel;
     // The IDL takes [AllowShared] views; the typings only admit views over a plain ArrayBuffer.
-    const view = data as Float32Array<ArrayBuffer> | Uint8Array<ArrayBuffer> | Uint16Array<ArrayBuffer> | Int16Array<ArrayBuffer>;
-    this.state.device.queue.writeTexture({ texture: tex.handle }, view, { bytesPerRow, rowsPerImage: tex.height }, [tex.width, tex.height, tex.depth]);
+    const view = data as
+      Float32Array<ArrayBuffer> | Uint8Array<ArrayBuffer> | Uint16Array<ArrayBuffer> | Int16Array<ArrayBuffer>;
+    this.state.device.queue.writeTexture({ texture: tex.handle }, view, { bytesPerRow, rowsPerImage: tex.height }, [
+      tex.width,
+      tex.height,
+      tex.depth,
+    ]);
   }
 
   private sizeLimits(): TextureSizeLimits {
     const limits = this.state.device.limits;
-    return { max2D: limits.maxTextureDimension2D, max3D: limits.maxTextureDimension3D, name2D: 'maxTextureDimension2D', name3D: 'maxTextureDimension3D' };
+    return {
+      max2D: limits.maxTextureDimension2D,
+      max3D: limits.maxTextureDimension3D,
+      name2D: 'maxTextureDimension2D',
+      name3D: 'maxTextureDimension3D',
+    };
   }
-
 
   private checkColorAttachments(what: string, formats: readonly TextureFormat[]): void {
     const limits = this.state.device.limits;
     if (formats.length > limits.maxColorAttachments) {
-      throw new VptError('limit-exceeded', `${what} has ${formats.length} colour attachments; this device allows ${limits.maxColorAttachments} (maxColorAttachments)`);
+      throw new VptError(
+        'limit-exceeded',
+        `${what} has ${formats.length} colour attachments; this device allows ${limits.maxColorAttachments} (maxColorAttachments)`,
+      );
     }
     const bytes = colorAttachmentBytesPerSample(formats);
     if (bytes > limits.maxColorAttachmentBytesPerSample) {
-      throw new VptError('limit-exceeded', `${what} writes ${bytes} bytes per pixel ([${formats.join(', ')}]); this device allows ${limits.maxColorAttachmentBytesPerSample} (maxColorAttachmentBytesPerSample)`);
+      throw new VptError(
+        'limit-exceeded',
+        `${what} writes ${bytes} bytes per pixel ([${formats.join(', ')}]); this device allows ${limits.maxColorAttachmentBytesPerSample} (maxColorAttachmentBytesPerSample)`,
+      );
     }
   }
 
   private readFailure(label: string, state: DeviceState, cause?: unknown): VptError {
-    if (this.disposed) return new VptError('disposed', `Reading texture "${label}" was cut short: the WebGPU backend was disposed`, { cause });
-    if (this.lost || this.state !== state) return new VptError('context-lost', `Reading texture "${label}" failed: the WebGPU device was lost`, { cause });
+    if (this.disposed)
+      return new VptError('disposed', `Reading texture "${label}" was cut short: the WebGPU backend was disposed`, {
+        cause,
+      });
+    if (this.lost || this.state !== state)
+      return new VptError('context-lost', `Reading texture "${label}" failed: the WebGPU device was lost`, { cause });
     return new VptError('context-lost', `Reading texture "${label}" failed: mapAsync was rejected`, { cause });
   }
 }

@@ -45,7 +45,10 @@ export function wgslDefine(name: string, value: boolean | number): string {
 /** Define constants sorted by name, so equal define sets give equal sources (and cache keys). */
 export function wgslDefines(defines: PassDescriptor['defines']): string {
   if (!defines) return '';
-  return Object.keys(defines).sort().map((name) => wgslDefine(name, defines[name])).join('');
+  return Object.keys(defines)
+    .sort()
+    .map((name) => wgslDefine(name, defines[name]))
+    .join('');
 }
 
 /** A pass with a `filter: 'linear'` binding gets the clamp-to-edge linear sampler `vptLinearSampler`. */
@@ -69,9 +72,12 @@ export function buildWgslSource(desc: PassDescriptor): string {
   }
   desc.textures.forEach((t, k) => {
     if (!IDENT.test(t.name)) throw new RangeError(`bad texture name "${t.name}" in pass "${desc.label}"`);
-    parts.push(`@group(0) @binding(${1 + k}) var ${t.name}: ${t.dimension === '3d' ? 'texture_3d<f32>' : 'texture_2d<f32>'};\n`);
+    parts.push(
+      `@group(0) @binding(${1 + k}) var ${t.name}: ${t.dimension === '3d' ? 'texture_3d<f32>' : 'texture_2d<f32>'};\n`,
+    );
   });
-  if (usesLinearSampler(desc)) parts.push(`@group(0) @binding(${linearSamplerBinding(desc)}) var vptLinearSampler: sampler;\n`);
+  if (usesLinearSampler(desc))
+    parts.push(`@group(0) @binding(${linearSamplerBinding(desc)}) var vptLinearSampler: sampler;\n`);
   parts.push('struct VptBuiltins { targetSize: vec2i, flipY: i32, pad: i32 };\n');
   parts.push('@group(1) @binding(0) var<uniform> vpt: VptBuiltins;\n');
   if (desc.outputs.length === 0) throw new RangeError(`pass "${desc.label}" has no outputs`);
