@@ -54,7 +54,7 @@ export const TRANSFER_FUNCTION_PRESETS: Readonly<Record<string, TransferFunction
     dimensions: '2d',
     widgets: [
       { type: 'box', min: [0.12, 0.18], max: [0.55, 1], ramp: [0.05, 0.08], color: [0.9, 0.55, 0.4], opacity: 0.15 },
-      { type: 'box', min: [0.55, 0.12], max: [1, 1], ramp: [0.05, 0.08], color: [2, 1.9, 1.7], opacity: 0.8 },
+      { type: 'box', min: [0.55, 0.12], max: [1, 1], ramp: [0.05, 0.08], color: [1, 0.95, 0.85], opacity: 0.8 },
     ],
   },
   /** Blue → cyan → white, moderately dense: microscopy and simulation fields. */
