@@ -1,6 +1,7 @@
 import fs from 'node:fs';
 import path from 'node:path';
-import { checkNumbers, checkOneOf, VptError } from '@vpt/core';
+import { pathToFileURL, fileURLToPath } from 'node:url';
+import { checkRawByteLength, parseRawSidecar, rawFileBeside, VptError } from '@vpt/core';
 import type { RawVolumeDescription, SceneDescription, VolumeDescription } from './scene-description.js';
 import type { StaticServer } from './server.js';
 import { validateSceneDescription } from './validate-description.js';
@@ -8,7 +9,6 @@ import { validateSceneDescription } from './validate-description.js';
 /** Largest scene or sidecar file read (a lat-long environment inline in JSON can be large). */
 const MAX_SCENE_FILE_BYTES = 256 * 1024 * 1024;
 const MAX_SIDECAR_BYTES = 1024 * 1024;
-const VOXEL_BYTES = { uint8: 1, uint16: 2, int16: 2, float32: 4 } as const;
 
 export interface SceneFileOptions {
   /**
@@ -82,62 +82,32 @@ function statFile(file: string): fs.Stats | null {
   }
 }
 
-/** The byte count dims × type needs, compared with the file's size from its metadata (nothing is read). */
-function checkRawSize(file: string, dims: readonly number[], type: keyof typeof VOXEL_BYTES, size: number): void {
-  const need = dims[0] * dims[1] * dims[2] * VOXEL_BYTES[type];
-  if (size !== need) {
-    throw new VptError(
-      'load-failed',
-      `${file}: dims [${dims.join(', ')}] of ${type} need ${need} bytes, the file has ${size}${size > need ? ` (${size - need} bytes past the declared size)` : ''}`,
-    );
-  }
-}
-
 /**
- * A sidecar as the page reads it, checked in Node before a browser starts: dims (integers,
- * not strings), voxel_type, spacing, value_range (two finite, different numbers), endianness;
- * returns the raw file beside it, whose size is checked against the dims from its metadata.
+ * A sidecar as the page reads it, checked in Node before a browser starts by the same reader
+ * (core's parseRawSidecar: dims, voxel_type, spacing, value_range, endianness, axes, layout);
+ * returns the raw file beside it (rawFileBeside), whose size is checked against the dims from
+ * its metadata, nothing read.
  */
 export function checkSidecarFile(sidecar: string): { rawFile: string } {
+  const name = `Sidecar ${sidecar}`;
   const size = statFile(sidecar)?.size ?? 0;
   if (size > MAX_SIDECAR_BYTES)
     throw new VptError(
       'limit-exceeded',
-      `${sidecar}: ${size} bytes exceed the limit of ${MAX_SIDECAR_BYTES} for a sidecar`,
+      `${name}: ${size} bytes exceed the limit of ${MAX_SIDECAR_BYTES} for a sidecar`,
     );
-  let meta: Record<string, unknown>;
+  let text: string;
   try {
-    meta = JSON.parse(fs.readFileSync(sidecar, 'utf8'));
+    text = fs.readFileSync(sidecar, 'utf8');
   } catch (e) {
-    throw new VptError('load-failed', `${sidecar}: not valid JSON (${(e as Error).message})`);
+    throw new VptError('load-failed', `${name}: cannot be read (${(e as Error).message})`, { cause: e });
   }
-  try {
-    if (!meta || typeof meta !== 'object' || Array.isArray(meta))
-      throw new VptError('load-failed', 'must be a JSON object');
-    const dims = checkNumbers('dims', meta.dims, 3, { min: 1, integer: true });
-    const type = checkOneOf('voxel_type', meta.voxel_type, ['uint8', 'uint16', 'int16', 'float32'] as const);
-    if (meta.spacing !== undefined) checkNumbers('spacing', meta.spacing, 3, { min: 0, exclusiveMin: true });
-    if (meta.value_range !== undefined) {
-      const [lo, hi] = checkNumbers('value_range', meta.value_range, 2);
-      if (lo === hi) throw new VptError('invalid-scene', `value_range: min and max are equal (${lo}), an empty range`);
-    }
-    if (meta.endianness !== undefined) checkOneOf('endianness', meta.endianness, ['little', 'big'] as const);
-    const name =
-      typeof meta.file === 'string' && meta.file && !/[\\/]/.test(meta.file)
-        ? meta.file
-        : path.basename(sidecar).replace(/\.json$/i, '') + '.raw';
-    const rawFile = path.join(path.dirname(sidecar), name);
-    const st = statFile(rawFile);
-    if (!st) throw new VptError('load-failed', `its raw file ${rawFile} was not found`);
-    checkRawSize(rawFile, dims, type, st.size);
-    return { rawFile };
-  } catch (e) {
-    if (e instanceof VptError)
-      throw new VptError(e.code === 'limit-exceeded' ? e.code : 'load-failed', `Sidecar ${sidecar}: ${e.message}`, {
-        cause: e,
-      });
-    throw e;
-  }
+  const header = parseRawSidecar(text, name);
+  const rawFile = fileURLToPath(rawFileBeside(pathToFileURL(sidecar).href, header));
+  const st = statFile(rawFile);
+  if (!st) throw new VptError('load-failed', `${name}: its raw file ${rawFile} was not found`);
+  checkRawByteLength(st.size, header, `${name}: raw file ${rawFile}`);
+  return { rawFile };
 }
 
 /**
@@ -183,7 +153,7 @@ export function resolveSceneFiles(
         );
     } else {
       const v = volume as RawVolumeDescription;
-      checkRawSize(file, v.dims, v.type, st.size);
+      checkRawByteLength(st.size, v, file);
     }
     return file;
   });

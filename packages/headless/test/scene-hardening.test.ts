@@ -208,20 +208,36 @@ describe('scene files: only what the scene names is served, sizes checked from m
     expect(e.code).toBe('load-failed');
     expect(e.message).toMatch(/need 1 bytes, the file has 1610612736 \(1610612735 bytes past the declared size\)/);
   });
-  it('a sidecar with dims as strings or an equal value_range is refused, naming the field', () => {
+  it('a sidecar with dims as strings, an equal value_range or bad axes is refused, naming the field', () => {
     fs.writeFileSync(
       path.join(dir, 'strdims.json'),
       JSON.stringify({ dims: ['2', '2', '2'], voxel_type: 'uint8', file: 'outside.raw' }),
     );
     expect(thrown(() => resolveSceneFiles({ volume: { sidecar: 'strdims.json' } }, dir)).message).toMatch(
-      /dims\[0\]: must be an integer/,
+      /dims \["2","2","2"\] must be numbers, not strings/,
     );
     fs.writeFileSync(
       path.join(dir, 'eq.json'),
       JSON.stringify({ dims: [2, 2, 2], voxel_type: 'uint8', value_range: [5, 5], file: 'outside.raw' }),
     );
     expect(thrown(() => resolveSceneFiles({ volume: { sidecar: 'eq.json' } }, dir)).message).toMatch(
-      /value_range: min and max are equal/,
+      /value_range \[5,5\] must be two different finite numbers/,
+    );
+    // The page's reader refuses these axes; the Node-side check, the same reader, does too.
+    fs.writeFileSync(
+      path.join(dir, 'axes.json'),
+      JSON.stringify({ dims: [2, 2, 2], voxel_type: 'uint8', axes: 'RRS', file: 'outside.raw' }),
+    );
+    const e = thrown(() => resolveSceneFiles({ volume: { sidecar: 'axes.json' } }, dir));
+    expect(e.code).toBe('load-failed');
+    expect(e.message).toMatch(/^Sidecar .*axes\.json: sidecar axes "RRS" must be three letters/);
+    // A good sidecar next to a raw file of the wrong size: the size from the file's metadata.
+    fs.writeFileSync(
+      path.join(dir, 'short.json'),
+      JSON.stringify({ dims: [3, 2, 2], voxel_type: 'uint8', file: 'outside.raw' }),
+    );
+    expect(thrown(() => resolveSceneFiles({ volume: { sidecar: 'short.json' } }, dir)).message).toMatch(
+      /raw file .*outside\.raw: dims \[3, 2, 2\] of uint8 need 12 bytes, the file has 8/,
     );
   });
 });

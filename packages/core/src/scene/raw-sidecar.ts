@@ -230,32 +230,45 @@ export function rawHeaderFromName(name: string): Pick<RawHeader, 'dims' | 'type'
   return m ? { dims: [Number(m[1]), Number(m[2]), Number(m[3])], type: m[4].toLowerCase() as VoxelType } : undefined;
 }
 
+function voxelArrayType(type: VoxelType, name: string) {
+  const Ctor = ARRAYS[type];
+  if (!Ctor)
+    throw new RawReadError('bad-header', `${name}: unknown voxel type "${type}" (${RAW_VOXEL_TYPES.join(', ')})`);
+  return Ctor;
+}
+
 /**
- * The voxels of a raw file: its size must be exactly dims × type ('truncated' when short,
- * 'bad-header' when long); big-endian files are swapped in place (typed arrays use the
- * host's order, little-endian on every platform vpt targets).
+ * A raw file's size must be exactly dims × type: 'truncated' when short, 'bad-header' when
+ * long. Takes only the size, so a caller can check a file from its metadata without reading it.
+ */
+export function checkRawByteLength(byteLength: number, header: Pick<RawHeader, 'dims' | 'type'>, name: string): void {
+  const { dims, type } = header;
+  const need = dims[0] * dims[1] * dims[2] * voxelArrayType(type, name).BYTES_PER_ELEMENT;
+  if (byteLength !== need) {
+    throw new RawReadError(
+      byteLength < need ? 'truncated' : 'bad-header',
+      `${name}: dims [${dims.join(', ')}] of ${type} need ${need} bytes, the file has ${byteLength}${byteLength > need ? ` (${byteLength - need} bytes past the declared size)` : ''}`,
+    );
+  }
+}
+
+/**
+ * The voxels of a raw file: its size must be exactly dims × type (checkRawByteLength);
+ * big-endian files are swapped in place (typed arrays use the host's order, little-endian
+ * on every platform vpt targets).
  */
 export function rawVoxels(
   bytes: Uint8Array,
   header: Pick<RawHeader, 'dims' | 'type'> & { endianness?: 'little' | 'big' },
   name: string,
 ): VoxelArray {
-  const { dims, type } = header;
-  const Ctor = ARRAYS[type];
-  if (!Ctor)
-    throw new RawReadError('bad-header', `${name}: unknown voxel type "${type}" (${RAW_VOXEL_TYPES.join(', ')})`);
-  const need = dims[0] * dims[1] * dims[2] * Ctor.BYTES_PER_ELEMENT;
-  if (bytes.byteLength !== need) {
-    throw new RawReadError(
-      bytes.byteLength < need ? 'truncated' : 'bad-header',
-      `${name}: dims [${dims.join(', ')}] of ${type} need ${need} bytes, the file has ${bytes.byteLength}${bytes.byteLength > need ? ` (${bytes.byteLength - need} bytes past the declared size)` : ''}`,
-    );
-  }
+  const Ctor = voxelArrayType(header.type, name);
+  checkRawByteLength(bytes.byteLength, header, name);
   if (header.endianness === 'big' && Ctor.BYTES_PER_ELEMENT > 1) {
     const n = Ctor.BYTES_PER_ELEMENT;
     for (let i = 0; i < bytes.length; i += n) bytes.subarray(i, i + n).reverse();
   }
   // Copy when the bytes are a view at an offset the typed array cannot start at.
   const aligned = bytes.byteOffset % Ctor.BYTES_PER_ELEMENT === 0 ? bytes : bytes.slice();
-  return new Ctor(aligned.buffer as ArrayBuffer, aligned.byteOffset, need / Ctor.BYTES_PER_ELEMENT);
+  return new Ctor(aligned.buffer as ArrayBuffer, aligned.byteOffset, bytes.byteLength / Ctor.BYTES_PER_ELEMENT);
 }
