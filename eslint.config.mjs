@@ -5,7 +5,15 @@ import tseslint from 'typescript-eslint';
 
 export default tseslint.config(
   {
-    ignores: ['**/dist/**', '**/node_modules/**', 'benchmarks/results/**', 'apps/gallery/dist/**', 'out/**', 'data/**'],
+    ignores: [
+      '**/dist/**',
+      '**/node_modules/**',
+      'benchmarks/results/**',
+      'docs/benchmarks/**',
+      'apps/gallery/dist/**',
+      'out/**',
+      'data/**',
+    ],
   },
   js.configs.recommended,
   ...tseslint.configs.recommended,

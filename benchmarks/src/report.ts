@@ -1,6 +1,7 @@
-import { readFileSync } from 'node:fs';
+import { copyFileSync, mkdirSync, readFileSync, writeFileSync } from 'node:fs';
 import { createRequire } from 'node:module';
 import path from 'node:path';
+import { drawCharts, type ChartSpec } from './report-charts.js';
 import type { ErrorCurveResult } from './suites/error-vs-time.js';
 import type { FrameTimeRow } from './suites/frame-time.js';
 import type { ConvergenceResult } from './suites/convergence.js';
@@ -26,15 +27,39 @@ const esc = (s: unknown) =>
 const fmt = (ms: number | null) =>
   ms === null ? '—' : ms < 1000 ? `${ms.toFixed(0)} ms` : `${(ms / 1000).toFixed(2)} s`;
 
-/** A self-contained HTML report: tables plus uPlot charts (the library is inlined). */
-export function htmlReport(r: Results): string {
-  const require = createRequire(import.meta.url);
-  const uplotDir = path.dirname(require.resolve('uplot/dist/uPlot.iife.min.js'));
-  const uplotJs = readFileSync(path.join(uplotDir, 'uPlot.iife.min.js'), 'utf8');
-  const uplotCss = readFileSync(path.join(uplotDir, 'uPlot.min.css'), 'utf8');
+/** The report's own style, beside uPlot's. */
+const REPORT_CSS = `body{font-family:system-ui,sans-serif;max-width:1100px;margin:2rem auto;padding:0 1rem;color:#222}
+table{border-collapse:collapse;margin:0.5rem 0 1.5rem}td,th{border:1px solid #ccc;padding:0.25rem 0.5rem;text-align:right}td:first-child,th:first-child{text-align:left}
+table.setup td{text-align:left}`;
 
+function uplotFile(name: 'uPlot.iife.min.js' | 'uPlot.min.css'): string {
+  const require = createRequire(import.meta.url);
+  return path.join(path.dirname(require.resolve('uplot/dist/uPlot.iife.min.js')), name);
+}
+
+/** What a report page shows, before it is wrapped in HTML. */
+export interface ReportContent {
+  date: string;
+  preset: string;
+  /** Machine, browser, flags, commit and adapters, one row per leaf. */
+  setup: Record<string, unknown>;
+  skipped: string[];
+  /** The sections' HTML (tables, chart placeholders), one line each. */
+  sections: string[];
+  charts: ChartSpec[];
+}
+
+/**
+ * `inline`: one self-contained file (what a run writes into benchmarks/results/). `linked`:
+ * the page loads uPlot, the style and the chart code from `report-assets/` beside it, so
+ * the published reports in docs/benchmarks/ share one copy (writeReportAssets).
+ */
+export type ReportAssets = 'inline' | 'linked';
+
+/** The report's tables and chart specifications from a run's results. */
+export function reportContent(r: Results): ReportContent {
   const sections: string[] = [];
-  const charts: unknown[] = [];
+  const charts: ChartSpec[] = [];
 
   if (r.errorVsTime?.length) {
     const rows = r.errorVsTime
@@ -172,26 +197,60 @@ export function htmlReport(r: Results): string {
 ${c.ctSkipped.length ? `<p>Not measured: ${c.ctSkipped.map(esc).join('; ')}</p>` : ''}`);
   }
 
-  return `<!doctype html><html lang="en"><head><meta charset="utf-8"><title>vpt benchmarks — ${esc(r.machine.date)}</title>
-<style>${uplotCss}
-body{font-family:system-ui,sans-serif;max-width:1100px;margin:2rem auto;padding:0 1rem;color:#222}
-table{border-collapse:collapse;margin:0.5rem 0 1.5rem}td,th{border:1px solid #ccc;padding:0.25rem 0.5rem;text-align:right}td:first-child,th:first-child{text-align:left}
-pre{background:#f4f4f4;padding:0.5rem;overflow:auto}</style></head><body>
-<h1>vpt benchmarks (${esc(r.preset)} preset)</h1>
-<pre>${esc(JSON.stringify({ machine: r.machine, backends: r.backends }, null, 2))}</pre>
-${r.skipped.length ? `<p>Skipped: ${r.skipped.map(esc).join('; ')}</p>` : ''}
-${sections.join('\n')}
-<script>${uplotJs}</script>
-<script>
-const charts = ${JSON.stringify(charts)};
-const palette = ['#1f77b4','#ff7f0e','#2ca02c','#d62728','#9467bd','#8c564b','#e377c2','#7f7f7f','#bcbd22','#17becf'];
-for (const c of charts) {
-  const xs = [...new Set(c.series.flatMap((s) => s.x))].sort((a, b) => a - b);
-  const data = [xs, ...c.series.map((s) => xs.map((x) => { const i = s.x.indexOf(x); return i < 0 ? null : s.y[i]; }))];
-  const el = document.createElement('div'); document.getElementById(c.id).appendChild(el);
-  new uPlot({ title: c.title, width: 1000, height: 360, scales: { x: { time: false, distr: c.logX ? 3 : 1 } },
-    axes: [{ label: c.xLabel }, { label: c.yLabel }],
-    series: [{ label: c.xLabel }, ...c.series.map((s, i) => ({ label: s.label, stroke: palette[i % palette.length], spanGaps: true, points: { show: true } }))] }, data, el);
+  return {
+    date: String(r.machine.date),
+    preset: r.preset,
+    setup: { machine: r.machine, backends: r.backends },
+    skipped: r.skipped,
+    sections,
+    charts,
+  };
 }
-</script></body></html>`;
+
+/** Nested setup data as "a.b.c → value" rows, on one line (the same keys recur in every report). */
+function setupTable(setup: Record<string, unknown>): string {
+  const rows: string[] = [];
+  const walk = (prefix: string, v: unknown) => {
+    if (v && typeof v === 'object' && !Array.isArray(v))
+      for (const [k, x] of Object.entries(v)) walk(prefix ? `${prefix}.${k}` : k, x);
+    else rows.push(`<tr><th>${esc(prefix)}</th><td>${esc(Array.isArray(v) ? v.join(' ') : v)}</td></tr>`);
+  };
+  walk('', setup);
+  return `<table class="setup">${rows.join('')}</table>`;
+}
+
+/** A report page: tables plus uPlot charts, with its assets inlined or linked (see ReportAssets). */
+export function reportPage(c: ReportContent, assets: ReportAssets): string {
+  const head =
+    assets === 'inline'
+      ? `<style>${readFileSync(uplotFile('uPlot.min.css'), 'utf8')}\n${REPORT_CSS}</style>`
+      : '<link rel="stylesheet" href="report-assets/uPlot.min.css"><link rel="stylesheet" href="report-assets/report.css">';
+  const scripts =
+    assets === 'inline'
+      ? `<script>${readFileSync(uplotFile('uPlot.iife.min.js'), 'utf8')}</script>\n<script>(${drawCharts.toString()})(${JSON.stringify(c.charts)});</script>`
+      : `<script src="report-assets/uPlot.iife.min.js"></script><script src="report-assets/report-charts.js"></script>\n<script>drawCharts(${JSON.stringify(c.charts)});</script>`;
+  return `<!doctype html><html lang="en"><head><meta charset="utf-8"><title>vpt benchmarks — ${esc(c.date)}</title>${head}</head><body>
+<h1>vpt benchmarks (${esc(c.preset)} preset)</h1>
+${setupTable(c.setup)}
+${c.skipped.length ? `<p>Skipped: ${c.skipped.map(esc).join('; ')}</p>` : ''}
+${c.sections.join('\n')}
+${scripts}</body></html>`;
+}
+
+/** A self-contained HTML report of a run: tables plus uPlot charts (the library is inlined). */
+export function htmlReport(r: Results): string {
+  return reportPage(reportContent(r), 'inline');
+}
+
+/** Write `report-assets/` (uPlot, the style, the chart code) into a folder of linked reports. */
+export function writeReportAssets(dir: string): void {
+  const assets = path.join(dir, 'report-assets');
+  mkdirSync(assets, { recursive: true });
+  copyFileSync(uplotFile('uPlot.iife.min.js'), path.join(assets, 'uPlot.iife.min.js'));
+  copyFileSync(uplotFile('uPlot.min.css'), path.join(assets, 'uPlot.min.css'));
+  writeFileSync(path.join(assets, 'report.css'), REPORT_CSS + '\n');
+  writeFileSync(
+    path.join(assets, 'report-charts.js'),
+    `// Generated by benchmarks/src/report.ts from report-charts.ts.\n${drawCharts.toString()}\n`,
+  );
 }
