@@ -5,9 +5,7 @@ const page = usePage();
 
 describe.each(BACKENDS)('accumulation on %s', (backend) => {
   it('the running mean after N iterations equals the mean of the N single-iteration images', async () => {
-    const r = await page().page.evaluate(async (backend) => {
-      const t = (window as any).t;
-      const { core } = (window as any).vpt;
+    const r = await page.run(async ({ core, t }, backend) => {
       const ctx = await t.context({ backend, renderer: 'eam', width: 16, height: 16 });
       ctx.setScene(
         t.scene({
@@ -43,9 +41,7 @@ describe.each(BACKENDS)('accumulation on %s', (backend) => {
   });
 
   it('changing the camera resets accumulation', async () => {
-    const r = await page().page.evaluate(async (backend) => {
-      const t = (window as any).t;
-      const { core } = (window as any).vpt;
+    const r = await page.run(async ({ core, t }, backend) => {
       const ctx = await t.context({ backend, renderer: 'eam', width: 16, height: 16 });
       const scene = t.scene({ volume: core.createProceduralVolume('sphere', 12), densityScale: 6, seed: 5 });
       ctx.setScene(scene);

@@ -6,9 +6,7 @@ const page = usePage();
 describe.each(BACKENDS)('bad scene input on %s', (backend) => {
   // Dims above the device's 3D limit are downsampled with a warning, not refused (tests/compact-volumes.test.ts).
   it('rejects a NaN camera and a zero-size volume with clear typed errors, and stays usable', async () => {
-    const r = await page().page.evaluate(async (backend) => {
-      const t = (window as any).t;
-      const { core } = (window as any).vpt;
+    const r = await page.run(async ({ core, t }, backend) => {
       const ctx = await t.context({ backend, renderer: 'eam', width: 8, height: 8 });
       const good = t.scene({ volume: core.createProceduralVolume('blob', 8), densityScale: 4 });
       ctx.setScene(good);
@@ -42,8 +40,7 @@ describe.each(BACKENDS)('bad scene input on %s', (backend) => {
   });
 
   it('rejects a render size above the device limit', async () => {
-    const r = await page().page.evaluate(async (backend) => {
-      const t = (window as any).t;
+    const r = await page.run(async ({ t }, backend) => {
       try {
         await t.context({ backend, renderer: 'mip', width: 1e6, height: 4 });
         return 'none';
@@ -57,8 +54,7 @@ describe.each(BACKENDS)('bad scene input on %s', (backend) => {
 
 describe('backend selection', () => {
   it('WebGL 2 without EXT_color_buffer_float gets a missing-extension error', async () => {
-    const r = await page().page.evaluate(async () => {
-      const { core } = (window as any).vpt;
+    const r = await page.run(async ({ core }) => {
       const proto = WebGL2RenderingContext.prototype as any;
       const original = proto.getExtension;
       proto.getExtension = function (name: string) {
@@ -78,8 +74,7 @@ describe('backend selection', () => {
   });
 
   it("a browser with neither API gets a no-backend error from 'auto'", async () => {
-    const r = await page().page.evaluate(async () => {
-      const { core } = (window as any).vpt;
+    const r = await page.run(async ({ core }) => {
       const gpuDesc = Object.getOwnPropertyDescriptor(Navigator.prototype, 'gpu');
       const getContext = HTMLCanvasElement.prototype.getContext;
       Object.defineProperty(Navigator.prototype, 'gpu', { configurable: true, get: () => undefined });
@@ -98,8 +93,7 @@ describe('backend selection', () => {
   });
 
   it("'auto' picks WebGPU where the browser offers it", async () => {
-    const kind = await page().page.evaluate(async () => {
-      const { core } = (window as any).vpt;
+    const kind = await page.run(async ({ core }) => {
       const b = await core.createBackend({ backend: 'auto' });
       const k = b.kind;
       b.dispose();

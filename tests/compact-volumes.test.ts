@@ -1,4 +1,4 @@
-import { beforeAll, describe, expect, it } from 'vitest';
+import { describe, expect, it } from 'vitest';
 import {
   createProceduralVolume,
   createVolume,
@@ -7,7 +7,6 @@ import {
   type Vec3,
   type Volume,
 } from '../packages/core/src/index.js';
-import { installMcrtHelpers } from './helpers/mcrt-in-page.js';
 import { zSummary } from './helpers/mcrt-stats.js';
 import { opticalDepth, pixelExpectations } from './helpers/mcrt-reference.js';
 import { BACKENDS, usePage } from './helpers/session.js';
@@ -19,10 +18,7 @@ import { testVolumes } from './helpers/test-volumes.js';
  * backend, MCRT without bias between them, an inverted value range against a CPU
  * expectation, and the memory budget / 3D-limit downsampling.
  */
-const page = usePage();
-beforeAll(async () => {
-  await installMcrtHelpers(page().page);
-});
+const page = usePage({ mcrt: true });
 
 /**
  * The 16³ blob (values in [0, 1]) stored as each voxel type, with the value range that maps it
@@ -49,9 +45,8 @@ describe.each(BACKENDS)('compact volumes on %s', (backend) => {
   it.each(TYPES)(
     '%s: compact bytes per voxel, and the fast path agrees with the exact path (EAM, MIP)',
     async (type) => {
-      const r = await page().page.evaluate(
-        async (backend, type, tf, camera) => {
-          const t = (window as any).t;
+      const r = await page.run(
+        async ({ t }, backend, type, tf, camera) => {
           const volume = window.tv.blobAs(type, false);
           const out: Record<string, { hdr: number[]; bytes: number }> = {};
           for (const renderer of ['eam', 'mip']) {
@@ -115,9 +110,8 @@ describe.each(BACKENDS)('compact volumes on %s', (backend) => {
   );
 
   it('MCRT: the fast path is unbiased against the exact path (multiple scattering, z-scores)', async () => {
-    const r = await page().page.evaluate(
-      async (backend, tf, camera) => {
-        const mt = (window as any).mt;
+    const r = await page.run(
+      async ({ mt }, backend, tf, camera) => {
         const volume = window.tv.blobAs('int16', false);
         const scene = (sampling: string, seed: number) => ({
           volume,
@@ -157,10 +151,8 @@ describe.each(BACKENDS)('compact volumes on %s', (backend) => {
       const W = 16,
         H = 16,
         N = 64;
-      const gpu = await page().page.evaluate(
-        async (backend, tf, camera, W, H, N, sampling) => {
-          const mt = (window as any).mt;
-          const t = (window as any).t;
+      const gpu = await page.run(
+        async ({ t, mt }, backend, tf, camera, W, H, N, sampling) => {
           const run = (inverted: boolean) =>
             mt.run({
               backend,
@@ -232,10 +224,8 @@ describe.each(BACKENDS)('compact volumes on %s', (backend) => {
   );
 
   it('changes the value range (to an inverted one) without re-uploading the volume, as a fresh context renders it', async () => {
-    const r = await page().page.evaluate(
-      async (backend, tf, camera) => {
-        const t = (window as any).t;
-        const mt = (window as any).mt;
+    const r = await page.run(
+      async ({ t, mt }, backend, tf, camera) => {
         const volume = window.tv.blobAs('int16', false);
         const inverted = { ...volume, valueRange: [volume.valueRange[1], volume.valueRange[0]] };
         const scene = (v: unknown) => ({
@@ -295,9 +285,7 @@ describe.each(BACKENDS)('compact volumes on %s', (backend) => {
     // 256 x 256 x 260 voxels: the int16 copy is converted to r16float and written in slabs, the
     // uint8 original uploaded as it is; with the range [0, 255] both hold the same values
     // (integers ≤ 2048 are exact in half), so a misplaced slab would show as a gross difference.
-    const r = await page().page.evaluate(async (backend) => {
-      const { core } = (window as any).vpt;
-      const t = (window as any).t;
+    const r = await page.run(async ({ core, t }, backend) => {
       const dims = [256, 256, 260];
       const u8 = new Uint8Array(dims[0] * dims[1] * dims[2]);
       for (let z = 0; z < dims[2]; z++)
@@ -332,9 +320,7 @@ describe.each(BACKENDS)('compact volumes on %s', (backend) => {
   });
 
   it('downsamples a volume over the memory budget, with a warning naming the factors', async () => {
-    const r = await page().page.evaluate(async (backend) => {
-      const { core } = (window as any).vpt;
-      const t = (window as any).t;
+    const r = await page.run(async ({ core, t }, backend) => {
       const volume = core.createProceduralVolume('blob', 64); // float32 64³: 1 MiB as r32float
       const budget = 24 * 24 * 16 * 4 + 256 * 256 * 16 + 300 * 1024; // 4 rgba32float targets + the context's TF allowance (256² rgba32float) + 300 KiB for the volume
       const ctx = await t.context({ backend, renderer: 'eam', width: 24, height: 24, maxGpuBytes: budget });
@@ -368,9 +354,7 @@ describe.each(BACKENDS)('compact volumes on %s', (backend) => {
   });
 
   it('downsamples a volume with a side above the 3D texture limit, with a clear message, instead of failing', async () => {
-    const r = await page().page.evaluate(async (backend) => {
-      const { core } = (window as any).vpt;
-      const t = (window as any).t;
+    const r = await page.run(async ({ core, t }, backend) => {
       const ctx = await t.context({ backend, renderer: 'mip', width: 8, height: 8 });
       const max3D = ctx.backend.limits.maxTextureDimension3D;
       const n = max3D + 100;

@@ -5,9 +5,7 @@ const page = usePage();
 
 describe.each(BACKENDS)('GPU loss on %s', (backend) => {
   it('recovers from a loss in the middle of a render and the final image still matches', async () => {
-    const r = await page().page.evaluate(async (backend) => {
-      const t = (window as any).t;
-      const { core } = (window as any).vpt;
+    const r = await page.run(async ({ core, t }, backend) => {
       const scene = t.scene({ volume: core.createProceduralVolume('blob', 12), densityScale: 8, seed: 9 });
       const opts = {
         backend,

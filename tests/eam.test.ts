@@ -74,10 +74,8 @@ describe.each(BACKENDS)('EAM on %s', (backend) => {
     const color: Vec3 = [1, 0.5, 0.25];
     const bg: Vec3 = [0.2, 0.3, 0.4];
     const camera = { position: [0.4, 0.5, 2.6] as Vec3, target: [0, 0, 0] as Vec3, up: [0, 1, 0] as Vec3, fovy: 0.9 };
-    const gpu: number[] = await page().page.evaluate(
-      async (backend, W, H, ITER, camera, color, bg, sigma) => {
-        const { core } = (window as any).vpt;
-        const t = (window as any).t;
+    const gpu: number[] = await page.run(
+      async ({ core, t }, backend, W, H, ITER, camera, color, bg, sigma) => {
         const ctx = await t.context({ backend, renderer: 'eam', width: W, height: H, params: { cutoff: 0 } });
         ctx.setScene(
           t.scene({
@@ -217,10 +215,8 @@ describe.each(BACKENDS)('EAM on %s against a CPU twin', (backend) => {
       densityScale: 12,
       seed: 9,
     };
-    const gpu: number[] = await page().page.evaluate(
-      async (backend, W, H, ITER, STEP, camera, tf, bg) => {
-        const { core } = (window as any).vpt;
-        const t = (window as any).t;
+    const gpu: number[] = await page.run(
+      async ({ core, t }, backend, W, H, ITER, STEP, camera, tf, bg) => {
         // sampling: 'exact': the twin samples with float64 trilinear weights (a hardware filter's are coarser).
         const ctx = await t.context({
           backend,

@@ -18,10 +18,8 @@ const PROBE_KERNELS = {
 
 describe.each(BACKENDS)('renderer extension points on %s', (backend) => {
   it('binds auxiliary textures, rebuilds them only when their key changes, and estimates the error from half accumulations', async () => {
-    const r = await page().page.evaluate(
-      async (backend, kernels) => {
-        const { core } = (window as any).vpt;
-        const t = (window as any).t;
+    const r = await page.run(
+      async ({ core, t }, backend, kernels) => {
         class Probe extends core.BaseRenderer {
           auxBuilds = 0;
           constructor() {

@@ -1,23 +1,17 @@
-import { beforeAll, describe, expect, it } from 'vitest';
-import { installMcrtHelpers } from './helpers/mcrt-in-page.js';
+import { describe, expect, it } from 'vitest';
 import { BACKENDS, usePage } from './helpers/session.js';
 
 /**
  * Issue 15 in the browser: the brightest accepted sky keeps its energy under MIS, a step
  * too small for the volume is refused before a kernel can spin, a constant volume renders.
  */
-const page = usePage();
-beforeAll(async () => {
-  await installMcrtHelpers(page().page);
-});
+const page = usePage({ mcrt: true });
 
 describe.each(BACKENDS)('limits on %s', (backend) => {
   it('MCRT with MIS under a sky of MAX_RADIANCE (constant and lat-long) gives exactly MAX_RADIANCE × the image under radiance 1; 3e38 is refused', async () => {
-    const r = (await page().page.evaluate(async (backend) => {
-      const { core } = (window as any).vpt;
-      const mt = (window as any).mt;
+    const r = (await page.run(async ({ core, t, mt }, backend) => {
       const L = core.MAX_RADIANCE;
-      const ctx = await (window as any).t.context({
+      const ctx = await t.context({
         backend,
         renderer: 'mcrt',
         width: 8,
@@ -86,9 +80,7 @@ describe.each(BACKENDS)('limits on %s', (backend) => {
   });
 
   it('an EAM step below a tenth of a voxel is refused at setScene and the previous scene keeps rendering', async () => {
-    const r = await page().page.evaluate(async (backend) => {
-      const t = (window as any).t;
-      const { core } = (window as any).vpt;
+    const r = await page.run(async ({ core, t }, backend) => {
       const ctx = await t.context({ backend, renderer: 'eam', width: 8, height: 8 });
       try {
         const good = t.scene({ volume: core.createProceduralVolume('blob', 64), densityScale: 4 });
@@ -124,9 +116,7 @@ describe.each(BACKENDS)('limits on %s', (backend) => {
   });
 
   it('a constant float32 volume renders as the homogeneous cube (bit-identical to the procedural cube), not empty', async () => {
-    const r = await page().page.evaluate(async (backend) => {
-      const t = (window as any).t;
-      const { core } = (window as any).vpt;
+    const r = await page.run(async ({ core, t }, backend) => {
       const ctx = await t.context({ backend, renderer: 'eam', width: 8, height: 8 });
       try {
         ctx.setScene(

@@ -11,9 +11,7 @@ const page = usePage();
 
 describe('MCRT live error estimate (webgl2)', () => {
   it('tracks the true RMSE against a long-run reference', async () => {
-    const r = await page().page.evaluate(async () => {
-      const t = (window as any).t;
-      const { core } = (window as any).vpt;
+    const r = await page.run(async ({ core, t }) => {
       const W = 12,
         H = 12;
       const scene = (seed: number) => ({

@@ -1,5 +1,4 @@
-import { beforeAll, describe, expect, it } from 'vitest';
-import { installMcrtHelpers } from './helpers/mcrt-in-page.js';
+import { describe, expect, it } from 'vitest';
 import { zSummary } from './helpers/mcrt-stats.js';
 import { BACKENDS, usePage } from './helpers/session.js';
 
@@ -8,10 +7,7 @@ import { BACKENDS, usePage } from './helpers/session.js';
  * multiple scattering with unlimited depth, must look exactly like the environment: every
  * pixel 1, whatever the density and the phase function. The camera sees only the cube's face.
  */
-const page = usePage();
-beforeAll(async () => {
-  await installMcrtHelpers(page().page);
-});
+const page = usePage({ mcrt: true });
 
 const DENSITIES = [0.01, 10, 100, 1000];
 const GS = [-0.99, 0, 0.99];
@@ -22,10 +18,9 @@ describe.each(BACKENDS)('MCRT white furnace on %s', (backend) => {
   // Phase sampling only: every path carries throughput 1 until it escapes to radiance 1, so
   // each sample is exactly 1 and the only admissible error is float rounding (none, in fact).
   it('phase sampling: every pixel is 1 (to 1e-6) for density 0.01–1000 and g = −0.99, 0, 0.99', async () => {
-    const results = await page().page.evaluate(
-      async (backend, W, H, densities, gs) => {
-        const mt = (window as any).mt;
-        const ctx = await (window as any).t.context({
+    const results = await page.run(
+      async ({ t, mt }, backend, W, H, densities, gs) => {
+        const ctx = await t.context({
           backend,
           renderer: 'mcrt',
           width: W,
@@ -76,10 +71,9 @@ describe('MCRT white furnace with next-event estimation and MIS (webgl2)', () =>
     'every pixel is 1 within its Monte Carlo error at density %s, g = −0.99, 0, 0.99',
     async (density) => {
       const N = 48;
-      const runs = await page().page.evaluate(
-        async (W, H, density, gs, N) => {
-          const mt = (window as any).mt;
-          const ctx = await (window as any).t.context({
+      const runs = await page.run(
+        async ({ t, mt }, W, H, density, gs, N) => {
+          const ctx = await t.context({
             backend: 'webgl2',
             renderer: 'mcrt',
             width: W,

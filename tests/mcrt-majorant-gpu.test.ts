@@ -1,4 +1,4 @@
-import { beforeAll, describe, expect, it } from 'vitest';
+import { describe, expect, it } from 'vitest';
 import {
   createVolume,
   sliceAtlasLayout,
@@ -8,7 +8,6 @@ import {
 } from '../packages/core/src/index.js';
 import { gridCells } from '../packages/renderer-mcrt/src/index.js';
 import { opacityLookup } from './helpers/mcrt-reference.js';
-import { installMcrtHelpers } from './helpers/mcrt-in-page.js';
 import { usePage } from './helpers/session.js';
 
 /**
@@ -22,17 +21,13 @@ import { usePage } from './helpers/session.js';
  * CPU twin of the kernel's trilinear + TF lookup) never exceeds the cell's GPU majorant, on
  * smooth data whose cells have narrow value ranges (so a dropped cell border shows).
  */
-const page = usePage();
-beforeAll(async () => {
-  await installMcrtHelpers(page().page);
-});
+const page = usePage({ mcrt: true });
 
 describe('MCRT majorant grid built on the GPU', () => {
   for (const backend of ['webgl2', 'webgpu']) {
     it(`equals the CPU build, and follows TF and density changes (${backend})`, async () => {
-      const results = await page().page.evaluate(async (backend) => {
-        const { core } = (window as any).vpt;
-        const ctx = await (window as any).t.context({
+      const results = await page.run(async ({ core, t }, backend) => {
+        const ctx = await t.context({
           backend,
           renderer: 'mcrt',
           width: 8,
@@ -134,10 +129,9 @@ describe('MCRT majorant grid built on the GPU', () => {
 
   for (const backend of ['webgl2', 'webgpu']) {
     it(`is itself a true upper bound of σ_t at random points of every cell, on smooth data (${backend})`, async () => {
-      const gpu = await page().page.evaluate(
-        async (backend, dims, smooth, tf, density, cell) => {
-          const { core } = (window as any).vpt;
-          const ctx = await (window as any).t.context({
+      const gpu = await page.run(
+        async ({ core, t }, backend, dims, smooth, tf, density, cell) => {
+          const ctx = await t.context({
             backend,
             renderer: 'mcrt',
             width: 4,

@@ -1,7 +1,6 @@
 import fs from 'node:fs';
-import { beforeAll, describe, expect, it } from 'vitest';
+import { describe, expect, it } from 'vitest';
 import { decodePFM } from '../packages/headless/src/index.js';
-import { installMcrtHelpers } from './helpers/mcrt-in-page.js';
 import { zSummary } from './helpers/mcrt-stats.js';
 import { usePage } from './helpers/session.js';
 
@@ -14,10 +13,7 @@ import { usePage } from './helpers/session.js';
  * scaled to N; Mitsuba: over its independent runs).
  * Noise, not bias: per channel |Σz|/√n < 3 and no pixel beyond 5.5σ.
  */
-const page = usePage();
-beforeAll(async () => {
-  await installMcrtHelpers(page().page);
-});
+const page = usePage({ mcrt: true });
 
 const DIR = new URL('../benchmarks/reference/', import.meta.url);
 // mitsuba-blob-inverted: vpt stores the blob as int16 with an inverted value range
@@ -31,13 +27,11 @@ describe('MCRT vs Mitsuba 3 (webgl2)', () => {
     const mean = decodePFM(fs.readFileSync(new URL(desc.reference.mean, DIR)));
     const stderr = decodePFM(fs.readFileSync(new URL(desc.reference.stderr, DIR)));
     expect([mean.width, mean.height]).toEqual([desc.width, desc.height]);
-    const gpu = await page().page.evaluate(
-      async (desc, N) => {
-        const mt = (window as any).mt;
+    const gpu = await page.run(
+      async ({ vpt, core, mt }, desc, N) => {
         const { reference: _r, invertedStorage, ...sceneDesc } = desc;
-        const scene = await (window as any).vpt.buildScene(sceneDesc);
+        const scene = await vpt.buildScene(sceneDesc);
         if (invertedStorage) {
-          const { core } = (window as any).vpt;
           const [lo, hi] = invertedStorage.valueRange;
           const v = scene.volume;
           const stored = Int16Array.from(v.data as Float32Array, (x: number) => Math.round(lo + (hi - lo) * x));

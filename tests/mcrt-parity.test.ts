@@ -20,9 +20,7 @@ describe('MCRT WebGL 2 / WebGPU parity', () => {
   it.each(VARIANTS.map((v) => [JSON.stringify(v), v]))(
     '%s: HDR image and last frame are bit-identical, and so is the error estimate from the half accumulations',
     async (_name, params) => {
-      const r = await page().page.evaluate(async (params) => {
-        const t = (window as any).t;
-        const { core } = (window as any).vpt;
+      const r = await page.run(async ({ core, t }, params) => {
         const W = 16,
           H = 12;
         const env = {

@@ -1,6 +1,5 @@
-import { beforeAll, describe, expect, it } from 'vitest';
+import { describe, expect, it } from 'vitest';
 import { createProceduralVolume, type Scene, type Vec3 } from '../packages/core/src/index.js';
-import { installMcrtHelpers } from './helpers/mcrt-in-page.js';
 import { pixelExpectations, singleScatteringRadiance } from './helpers/mcrt-reference.js';
 import { zSummary } from './helpers/mcrt-stats.js';
 import { usePage } from './helpers/session.js';
@@ -13,10 +12,7 @@ import { usePage } from './helpers/session.js';
  * flipped phase-function convention would fail. Each shadow-ray estimator is checked.
  * Tolerance: standard errors from the frames (aggregate |Σz|/√n < 3, max |z| < 5).
  */
-const page = usePage();
-beforeAll(async () => {
-  await installMcrtHelpers(page().page);
-});
+const page = usePage({ mcrt: true });
 
 const W = 16,
   H = 16,
@@ -34,9 +30,8 @@ describe('MCRT single scattering vs CPU quadrature (webgl2)', () => {
     [-0.6, 'delta'],
   ] as const;
   it.each(cases)('g = %s, %s tracking', async (g, tracking) => {
-    const gpu = await page().page.evaluate(
-      (W, H, N, sigma, albedo, light, camera, g, tracking) => {
-        const mt = (window as any).mt;
+    const gpu = await page.run(
+      ({ mt }, W, H, N, sigma, albedo, light, camera, g, tracking) => {
         return mt.run({
           backend: 'webgl2',
           width: W,

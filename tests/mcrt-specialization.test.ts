@@ -1,5 +1,4 @@
-import { beforeAll, describe, expect, it } from 'vitest';
-import { installMcrtHelpers } from './helpers/mcrt-in-page.js';
+import { describe, expect, it } from 'vitest';
 import { zSummary } from './helpers/mcrt-stats.js';
 import { usePage } from './helpers/session.js';
 
@@ -12,10 +11,7 @@ import { usePage } from './helpers/session.js';
  * importance-samples the constant map where the specialised one samples the sphere
  * uniformly: same expectation, different noise, compared by per-pixel z-scores.
  */
-const page = usePage();
-beforeAll(async () => {
-  await installMcrtHelpers(page().page);
-});
+const page = usePage({ mcrt: true });
 
 const W = 16,
   H = 16;
@@ -30,10 +26,8 @@ async function render(
   iterations: number,
   frames: boolean,
 ): Promise<Run> {
-  return page().page.evaluate(
-    async (backend, W, H, params, lightCount, seed, iterations, frames) => {
-      const mt = (window as any).mt;
-      const { core } = (window as any).vpt;
+  return page.run(
+    async ({ core, mt }, backend, W, H, params, lightCount, seed, iterations, frames) => {
       const lights = [
         { type: 'directional', direction: [-0.4, 1, 0.3], irradiance: [2, 1.8, 1.5] },
         { type: 'directional', direction: [1, 0.2, -0.5], irradiance: [0.5, 0.7, 1.2] },

@@ -1,4 +1,4 @@
-import { beforeAll, describe, expect, it } from 'vitest';
+import { describe, expect, it } from 'vitest';
 import {
   buildEnvironmentSampling,
   createProceduralVolume,
@@ -8,7 +8,6 @@ import {
   type TransferFunction,
   type Vec3,
 } from '../packages/core/src/index.js';
-import { installMcrtHelpers } from './helpers/mcrt-in-page.js';
 import { opticalDepth, pixelExpectations } from './helpers/mcrt-reference.js';
 import { zSummary } from './helpers/mcrt-stats.js';
 import { BACKENDS, usePage } from './helpers/session.js';
@@ -20,22 +19,18 @@ import { BACKENDS, usePage } from './helpers/session.js';
  * known the image must show it, by z-tests against it: the thin absorber's exp(−σ·chord),
  * the white furnace's 1, and the HDR environment seen through an absorbing blob.
  */
-const page = usePage();
-beforeAll(async () => {
-  await installMcrtHelpers(page().page);
-});
+const page = usePage({ mcrt: true });
 
 describe.each(BACKENDS)('MCRT stiff media on %s', (backend) => {
   it('densities 1e-3 and 1e4, albedo 0 and 1, g = ±0.999: finite, and the known answers', async () => {
     // 24 frames where a pixel is a Bernoulli draw (the thin absorber); 8 in the dense media, whose long walks are slow.
     const ITER_THIN = 24,
       ITER_DENSE = 8;
-    const results = await page().page.evaluate(
-      async (backend, ITER_THIN, ITER_DENSE) => {
-        const mt = (window as any).mt;
+    const results = await page.run(
+      async ({ t, mt }, backend, ITER_THIN, ITER_DENSE) => {
         const out = [];
         for (const environmentSampling of ['mis', 'phase']) {
-          const ctx = await (window as any).t.context({
+          const ctx = await t.context({
             backend,
             renderer: 'mcrt',
             width: 4,
@@ -180,10 +175,8 @@ describe.each(BACKENDS)('MCRT stiff media on %s', (backend) => {
     const attenuated = transmittance.filter((p, k) => inOneTexel[k] && p.value[0] < 0.9 && p.value[0] > 0.05).length;
     expect(attenuated).toBeGreaterThan(10); // pixels where the blob really changes the answer
     for (const environmentSampling of ['mis', 'light', 'phase']) {
-      const r = await page().page.evaluate(
-        (backend, environmentSampling, W, H, ITER, scene, data) => {
-          const mt = (window as any).mt;
-          const { core } = (window as any).vpt;
+      const r = await page.run(
+        ({ core, mt }, backend, environmentSampling, W, H, ITER, scene, data) => {
           const s = {
             ...scene,
             volume: core.createProceduralVolume('blob', 16),
@@ -232,10 +225,8 @@ describe.each(BACKENDS)('MCRT stiff media on %s', (backend) => {
 
   it('an HDR environment from 1e-4 to 1e4 with a 1e4 sun and light, scattering medium: finite under every sampling strategy', async () => {
     for (const environmentSampling of ['mis', 'light', 'phase']) {
-      const r = await page().page.evaluate(
-        (backend, environmentSampling) => {
-          const mt = (window as any).mt;
-          const { core } = (window as any).vpt;
+      const r = await page.run(
+        ({ core, mt }, backend, environmentSampling) => {
           const W = 32,
             H = 16;
           const data = new Float32Array(W * H * 3);
@@ -285,9 +276,8 @@ describe('MCRT environment map as seen by the camera (webgl2)', () => {
     const data = new Float32Array(EW * EH * 3);
     for (let k = 0; k < EW * EH; k++) data.set([k + 1, 100 + k, 0.5 * (k + 1)], 3 * k);
     const camera = { position: [0, 0, 0.9] as Vec3, target: [0.3, 0.2, 0] as Vec3, up: [0, 1, 0] as Vec3, fovy: 2.2 };
-    const gpu: number[] = await page().page.evaluate(
-      async (W, H, camera, data, EW, EH) => {
-        const mt = (window as any).mt;
+    const gpu: number[] = await page.run(
+      async ({ mt }, W, H, camera, data, EW, EH) => {
         const r = await mt.run({
           backend: 'webgl2',
           width: W,
@@ -343,9 +333,7 @@ describe('MCRT long accumulation (webgl2, 1×1 image, 100 000 iterations)', () =
   // had been averaged (float32 running means stop refining long before they drift), and the
   // even and odd half-means must agree with it.
   it('the accumulated mean does not drift', async () => {
-    const r = await page().page.evaluate(async () => {
-      const t = (window as any).t;
-      const mt = (window as any).mt;
+    const r = await page.run(async ({ t, mt }) => {
       const ctx = await t.context({
         backend: 'webgl2',
         renderer: 'mcrt',

@@ -1,6 +1,5 @@
-import { beforeAll, describe, expect, it } from 'vitest';
+import { describe, expect, it } from 'vitest';
 import { createProceduralVolume, type Scene, type TransferFunction, type Vec3 } from '../packages/core/src/index.js';
-import { installMcrtHelpers } from './helpers/mcrt-in-page.js';
 import { binomialZ, zSummary } from './helpers/mcrt-stats.js';
 import { opticalDepth, pixelExpectations } from './helpers/mcrt-reference.js';
 import { BACKENDS, usePage } from './helpers/session.js';
@@ -14,10 +13,7 @@ import { BACKENDS, usePage } from './helpers/session.js';
  * Tolerances are the standard errors measured from the frames: aggregate bias |Σz|/√n < 3,
  * no pixel beyond 5σ, at most 3 % beyond 3σ.
  */
-const page = usePage();
-beforeAll(async () => {
-  await installMcrtHelpers(page().page);
-});
+const page = usePage({ mcrt: true });
 
 const W = 16,
   H = 16,
@@ -62,9 +58,8 @@ const camera = { position: [0.4, 0.5, 2.6] as Vec3, target: [0, 0, 0] as Vec3, u
 describe.each(BACKENDS)('MCRT homogeneous slab transmittance on %s', (backend) => {
   it.each([0.5, 3])('albedo 0: the image is L_env · exp(−σ·chord), σ = %s', async (sigma) => {
     const env: Vec3 = [0.8, 0.9, 1.0];
-    const gpu = await page().page.evaluate(
-      (backend, W, H, N, sigma, camera, env) => {
-        const mt = (window as any).mt;
+    const gpu = await page.run(
+      ({ mt }, backend, W, H, N, sigma, camera, env) => {
         return mt.run({
           backend,
           width: W,
@@ -138,10 +133,8 @@ describe('MCRT shadow-ray estimators on a heterogeneous medium (webgl2)', () => 
     ['ratio', false],
     ['residual', false],
   ] as const)('%s tracking (majorant grid %s) estimates exp(−∫σ_t) without bias', async (tracking, majorantGrid) => {
-    const gpu = await page().page.evaluate(
-      (W, H, N, scene, tracking, majorantGrid) => {
-        const mt = (window as any).mt;
-        const { core } = (window as any).vpt;
+    const gpu = await page.run(
+      ({ core, mt }, W, H, N, scene, tracking, majorantGrid) => {
         return mt.run({
           backend: 'webgl2',
           width: W,
@@ -209,10 +202,8 @@ describe.each(BACKENDS)('MCRT ratio tracking in a dense medium (Russian roulette
   it.each(['ratio', 'residual'] as const)(
     '%s tracking (majorant grid) estimates exp(−∫σ_t) without bias where roulette decides',
     async (tracking) => {
-      const gpu = await page().page.evaluate(
-        (backend, W, H, N, scene, tracking) => {
-          const mt = (window as any).mt;
-          const { core } = (window as any).vpt;
+      const gpu = await page.run(
+        ({ core, mt }, backend, W, H, N, scene, tracking) => {
           return mt.run({
             backend,
             width: W,

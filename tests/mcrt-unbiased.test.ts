@@ -1,5 +1,4 @@
-import { beforeAll, describe, expect, it } from 'vitest';
-import { installMcrtHelpers } from './helpers/mcrt-in-page.js';
+import { describe, expect, it } from 'vitest';
 import { zSummary } from './helpers/mcrt-stats.js';
 import { usePage } from './helpers/session.js';
 
@@ -13,10 +12,7 @@ import { usePage } from './helpers/session.js';
  * Pass: per channel |Σz|/√n < 4 (no aggregate bias; 9 comparisons × 3 channels, so 4σ keeps
  * false alarms below 0.2 %) and max |z| < 5.5 over ~370 channel values per comparison.
  */
-const page = usePage();
-beforeAll(async () => {
-  await installMcrtHelpers(page().page);
-});
+const page = usePage({ mcrt: true });
 
 const W = 16,
   H = 16,
@@ -43,10 +39,8 @@ async function render(
   sceneKind: 'tracking' | 'environment',
   seed: number,
 ): Promise<Run> {
-  return page().page.evaluate(
-    async (W, H, N, params, sceneKind, seed) => {
-      const mt = (window as any).mt;
-      const { core } = (window as any).vpt;
+  return page.run(
+    async ({ core, mt }, W, H, N, params, sceneKind, seed) => {
       const environment =
         sceneKind === 'environment'
           ? {

@@ -60,10 +60,8 @@ describe.each(BACKENDS)('MIP on %s', (backend) => {
       densityScale: 1,
       seed: 7,
     };
-    const gpu: number[] = await page().page.evaluate(
-      async (backend, W, H, ITER, camera) => {
-        const { core } = (window as any).vpt;
-        const t = (window as any).t;
+    const gpu: number[] = await page.run(
+      async ({ core, t }, backend, W, H, ITER, camera) => {
         const ctx = await t.context({ backend, renderer: 'mip', width: W, height: H });
         ctx.setScene(t.scene({ volume: core.createProceduralVolume('blob', 16), camera, seed: 7 }));
         await ctx.renderIterations(ITER);
@@ -109,9 +107,8 @@ describe.each(BACKENDS)('MIP on %s', (backend) => {
     };
     const w = 16,
       h = 16;
-    const gpu: number[] = await page().page.evaluate(
-      async (backend, w, h, camera) => {
-        const t = (window as any).t;
+    const gpu: number[] = await page.run(
+      async ({ t }, backend, w, h, camera) => {
         const volume = await t.loadRaw(
           '/data/mri_head_volpack_brainsmall_128x128x84_uint8.raw',
           [128, 128, 84],

@@ -6,9 +6,7 @@ const page = usePage();
 // docs/design.md: with the same seed both backends produce the same image on SwiftShader, bit for bit.
 describe('WebGL 2 / WebGPU parity', () => {
   it.each(['mip', 'eam'])('%s: HDR and LDR images are bit-identical', async (renderer) => {
-    const result = await page().page.evaluate(async (renderer) => {
-      const t = (window as any).t;
-      const { core } = (window as any).vpt;
+    const result = await page.run(async ({ core, t }, renderer) => {
       const out: Record<string, { hdr: Float32Array; ldr: Uint8Array }> = {};
       const volume = core.createProceduralVolume('blob', 20);
       for (const backend of ['webgl2', 'webgpu']) {

@@ -26,9 +26,9 @@ const CHAINS = [
 
 /** Run a chain on the GPU: float output after every step but the last, rgba8 after the last. */
 async function runChain(backend: string, chain: object[]) {
-  return page().page.evaluate(
-    async (backend, chain, hdrIn, W, H) => {
-      const { core, post } = (window as any).vpt;
+  return page.run(
+    async ({ core, vpt }, backend, chain, hdrIn, W, H) => {
+      const { post } = vpt;
       const b = await core.createBackend({ backend });
       const steps = post.postChainFromJSON(chain);
       let input = b.createTexture({

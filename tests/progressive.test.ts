@@ -5,17 +5,10 @@ const page = usePage();
 
 describe.each(BACKENDS)('progressive loop on %s', (backend) => {
   it('refines in the background, stops at maxIterations, restarts after a camera change, and presents the LDR image', async () => {
-    const r = await page().page.evaluate(async (backend) => {
-      const t = (window as any).t;
-      const { core } = (window as any).vpt;
-      const canvas = document.createElement('canvas');
-      document.body.appendChild(canvas);
-      const renderer = new (window as any).vpt.eam.EamRenderer();
-      const steps = (window as any).vpt.post.postChainFromJSON([
-        { type: 'tonemap', operator: 'reinhard' },
-        { type: 'srgb' },
-      ]);
-      const ctx = await core.RenderContext.create({ backend, canvas, width: 16, height: 12, renderer, post: steps });
+    const r = await page.run(async ({ vpt, core, t }, backend) => {
+      const canvas = document.body.appendChild(document.createElement('canvas'));
+      const post = [{ type: 'tonemap', operator: 'reinhard' }, { type: 'srgb' }];
+      const ctx = await t.context({ backend, canvas, renderer: 'eam', width: 16, height: 12, post });
       const scene = t.scene({
         volume: core.createProceduralVolume('blob', 12),
         densityScale: 8,
@@ -45,7 +38,7 @@ describe.each(BACKENDS)('progressive loop on %s', (backend) => {
       // What the canvas shows is the LDR image (read through a 2D canvas; row 0 at the top).
       // Headless Chrome snapshots a WebGPU canvas as blank once its frame was presented,
       // so present once more and read it in the same task (screenshots show it on screen).
-      ctx.setPost(steps);
+      ctx.setPost(vpt.post.postChainFromJSON(post));
       ctx.present();
       const c2 = document.createElement('canvas');
       c2.width = 16;

@@ -94,9 +94,8 @@ function cpuModel(volume: Volume, tf: TransferFunction2D) {
 const page = usePage();
 
 async function renderAlpha(backend: string, tf: object, iterations: number): Promise<number[]> {
-  return page().page.evaluate(
-    async (backend, tf, iterations, n, half, camera, density, W, H) => {
-      const t = (window as any).t;
+  return page.run(
+    async ({ t }, backend, tf, iterations, n, half, camera, density, W, H) => {
       const ctx = await t.context({ backend, renderer: 'eam', width: W, height: H, params: { cutoff: 0 } });
       ctx.setScene(t.scene({ volume: window.tv.block(n, half), camera, densityScale: density, transferFunction: tf }));
       await ctx.renderIterations(iterations);
@@ -181,9 +180,7 @@ describe.each(BACKENDS)('EAM with a 2D transfer function on %s', (backend) => {
 
 describe('EAM with a 2D transfer function: WebGL 2 / WebGPU parity', () => {
   it('gives bit-identical HDR images', async () => {
-    const r = await page().page.evaluate(async () => {
-      const { core } = (window as any).vpt;
-      const t = (window as any).t;
+    const r = await page.run(async ({ core, t }) => {
       const volume = core.createProceduralVolume('blob', 20);
       const out: Float32Array[] = [];
       for (const backend of ['webgl2', 'webgpu']) {
@@ -219,9 +216,7 @@ describe('EAM with a 2D transfer function: WebGL 2 / WebGPU parity', () => {
 
 describe('2D transfer functions in a RenderContext', () => {
   it('switches between 1D and 2D on one context exactly as fresh contexts render them, and refuses a bad 2D TF', async () => {
-    const r = await page().page.evaluate(async () => {
-      const { core } = (window as any).vpt;
-      const t = (window as any).t;
+    const r = await page.run(async ({ core, t }) => {
       const volume = core.createProceduralVolume('sphere', 16);
       const tf1 = {
         dimensions: '1d',

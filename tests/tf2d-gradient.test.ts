@@ -36,9 +36,8 @@ async function gpuGradient(
   field: Field,
   sampling: 'fast' | 'exact' = 'exact',
 ): Promise<{ magnitudes: number[]; max: number }> {
-  return page().page.evaluate(
-    async (backend, field, sampling) => {
-      const t = (window as any).t;
+  return page.run(
+    async ({ t }, backend, field, sampling) => {
       const volume = window.tv.field(field);
       const ctx = await t.context({ backend, renderer: 'eam', width: 4, height: 4, sampling });
       ctx.setScene(
@@ -113,10 +112,8 @@ describe.each(BACKENDS)('gradient magnitude on the GPU (%s)', (backend) => {
     const W = 16,
       H = 12,
       Z = 0.37;
-    const out: number[] = await page().page.evaluate(
-      async (backend, field, W, H, Z) => {
-        const { core } = (window as any).vpt;
-        const t = (window as any).t;
+    const out: number[] = await page.run(
+      async ({ core, t }, backend, field, W, H, Z) => {
         const volume = window.tv.field(field);
         const body = (g: boolean) =>
           g

@@ -7,17 +7,10 @@ const page = usePage();
 // "Use it from code" snippet reads the image straight after updateScene().
 describe.each(BACKENDS)('waiting for samples on %s', (backend) => {
   it('whenSamples waits for the background loop or runs the iterations itself; readHDR right after a change waits for the first sample', async () => {
-    const r = await page().page.evaluate(async (backend) => {
-      const t = (window as any).t;
-      const { core } = (window as any).vpt;
-      const canvas = document.createElement('canvas');
-      document.body.appendChild(canvas);
-      const renderer = new (window as any).vpt.eam.EamRenderer();
-      const post = (window as any).vpt.post.postChainFromJSON([
-        { type: 'tonemap', operator: 'aces' },
-        { type: 'srgb' },
-      ]);
-      const ctx = await core.RenderContext.create({ backend, canvas, width: 12, height: 12, renderer, post });
+    const r = await page.run(async ({ core, t }, backend) => {
+      const canvas = document.body.appendChild(document.createElement('canvas'));
+      const post = [{ type: 'tonemap', operator: 'aces' }, { type: 'srgb' }];
+      const ctx = await t.context({ backend, canvas, renderer: 'eam', width: 12, height: 12, post });
       const errors: string[] = [];
       const code = async (p: () => Promise<unknown>) => {
         try {

@@ -28,6 +28,8 @@ export interface TestContextOptions {
   sampling?: VolumeSampling;
   /** The GPU memory budget in bytes (RenderContextOptions.maxGpuBytes). */
   maxGpuBytes?: number;
+  /** A canvas to present to (RenderContextOptions.canvas); none when omitted. */
+  canvas?: HTMLCanvasElement;
 }
 
 /** The shared test scene: a ramp TF, the default camera, no lights, a black sky, density 1, seed 1. */
@@ -71,6 +73,7 @@ export function installInPageHelpers(): void {
         post: steps,
         sampling: opts.sampling,
         maxGpuBytes: opts.maxGpuBytes,
+        canvas: opts.canvas,
       });
     },
     scene(spec) {
