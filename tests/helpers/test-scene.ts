@@ -39,3 +39,14 @@ export function expectVptError(fn: () => unknown, code: VptErrorCode, pattern: R
   if (!pattern.test((error as Error).message))
     throw new Error(`expected the message to match ${pattern}, got "${(error as Error).message}"`);
 }
+
+/** The VptError `fn` throws, as its code and message; fails when it throws nothing or something else. */
+export function thrownVptError(fn: () => unknown): { code: VptErrorCode; message: string } {
+  try {
+    fn();
+  } catch (e) {
+    if (!isVptError(e)) throw new Error(`expected a VptError, got ${String(e)}`);
+    return { code: e.code, message: (e as Error).message };
+  }
+  throw new Error('expected a VptError, nothing was thrown');
+}

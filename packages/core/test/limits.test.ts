@@ -4,43 +4,17 @@ import {
   createVolume,
   defaultCamera,
   FLOAT32_MAX,
-  isVptError,
   MAX_CAMERA_COORDINATE,
   MAX_DENSITY_SCALE,
   MAX_RADIANCE,
   normalizationRange,
   normalizedData,
-  rampTransferFunction,
   validateParams,
   validateScene,
   validateSceneForDevice,
   type Renderer,
-  type Scene,
 } from '../src/index.js';
-
-function scene(overrides: Partial<Scene> = {}): Scene {
-  return {
-    volume: createProceduralVolume('blob', 8),
-    transferFunction: rampTransferFunction(),
-    camera: defaultCamera(),
-    lights: [],
-    environment: { type: 'constant', radiance: [1, 1, 1] },
-    densityScale: 1,
-    seed: 0,
-    ...overrides,
-  };
-}
-
-/** The VptError a call throws: its code and message (fails when nothing or something else is thrown). */
-function thrown(f: () => unknown): { code: string; message: string } {
-  try {
-    f();
-  } catch (e) {
-    expect(isVptError(e), `not a VptError: ${String(e)}`).toBe(true);
-    return { code: (e as { code: string }).code, message: (e as Error).message };
-  }
-  throw new Error('expected a VptError');
-}
+import { testScene as scene, thrownVptError as thrown } from '../../../tests/helpers/test-scene.js';
 
 describe('numbers the GPU cannot represent (float32) are refused, naming the field and the limit', () => {
   // 1e39 is finite in float64 but Infinity in float32: it used to pass and render black.

@@ -6,20 +6,10 @@ import { EamRenderer } from '@vpt/renderer-eam';
 import { MipRenderer } from '@vpt/renderer-mip';
 import { IsoRenderer } from '@vpt/renderer-iso';
 import { McrtRenderer } from '@vpt/renderer-mcrt';
-import { isVptError } from '@vpt/core';
 import { mountSceneFiles, resolveSceneFiles } from '../src/scene-files.js';
 import { startStaticServer, type StaticServer } from '../src/server.js';
 import { validateSceneDescription } from '../src/validate-description.js';
-
-function thrown(f: () => unknown): { code: string; message: string } {
-  try {
-    f();
-  } catch (e) {
-    expect(isVptError(e), `not a VptError: ${String(e)}`).toBe(true);
-    return { code: (e as { code: string }).code, message: (e as Error).message };
-  }
-  throw new Error('expected a VptError');
-}
+import { thrownVptError as thrown } from '../../../tests/helpers/test-scene.js';
 
 describe('renderer step parameters are validated where they are set', () => {
   it('EAM stepSize 1e-9, 0 and negative are refused by the constructor and by setParams', () => {
