@@ -163,6 +163,19 @@ export function installBenchPage(): void {
     });
   }
 
+  /** The plain scene the memory measurements render: ramp TF, default camera, no lights, a white sky. */
+  function rampScene(volume: Volume, densityScale: number): Scene {
+    return {
+      volume,
+      transferFunction: vpt.core.rampTransferFunction(),
+      camera: vpt.core.defaultCamera(),
+      lights: [],
+      environment: { type: 'constant', radiance: [1, 1, 1] },
+      densityScale,
+      seed: 1,
+    };
+  }
+
   function errors(hdr: Float32Array, ldr: Uint8Array, ref: Reference) {
     let se = 0,
       seL = 0,
@@ -395,15 +408,7 @@ export function installBenchPage(): void {
         const volume = vpt.core.createVolume([size, size, size], type, data);
         for (const sampling of ['fast', 'exact'] as const) {
           const ctx = await context({ label: 'eam', renderer: 'eam', backend, sampling }, 16, 16);
-          ctx.setScene({
-            volume,
-            transferFunction: vpt.core.rampTransferFunction(),
-            camera: vpt.core.defaultCamera(),
-            lights: [],
-            environment: { type: 'constant', radiance: [1, 1, 1] },
-            densityScale: 1,
-            seed: 1,
-          });
+          ctx.setScene(rampScene(volume, 1));
           await ctx.renderIterations(1);
           const b = ctx.stats.gpuBytes;
           rows.push({ backend, type, sampling, bytesPerVoxel: b.volume / data.length, total: b.total });
@@ -444,15 +449,7 @@ export function installBenchPage(): void {
       const warnings: string[] = [];
       ctx.onWarning((w) => warnings.push(w.message));
       const t2 = performance.now();
-      ctx.setScene({
-        volume,
-        transferFunction: vpt.core.rampTransferFunction(),
-        camera: vpt.core.defaultCamera(),
-        lights: [],
-        environment: { type: 'constant', radiance: [1, 1, 1] },
-        densityScale: 10,
-        seed: 1,
-      });
+      ctx.setScene(rampScene(volume, 10));
       const t3 = performance.now();
       await ctx.renderIterations(1);
       const t4 = performance.now();

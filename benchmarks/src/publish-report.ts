@@ -15,5 +15,5 @@ if (!resultsFile || !outFile) {
 }
 const results = JSON.parse(readFileSync(resultsFile, 'utf8')) as Results;
 writeFileSync(outFile, reportPage(reportContent(results), 'linked'));
-writeReportAssets(path.dirname(outFile));
+await writeReportAssets(path.dirname(outFile));
 console.log(`wrote ${outFile} and ${path.join(path.dirname(outFile), 'report-assets')}/`);

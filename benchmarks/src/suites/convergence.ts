@@ -1,7 +1,7 @@
 import { scenes } from '../configs.js';
 import type { CurvePoint } from '../metrics.js';
-import { referenceKey } from './error-vs-time.js';
-import { bench, type SuiteContext } from './types.js';
+import { errorCurve, referenceKey, renderReference } from './error-vs-time.js';
+import type { SuiteContext } from './types.js';
 
 export interface ConvergenceResult {
   label: string;
@@ -19,28 +19,8 @@ export async function convergence(s: SuiteContext): Promise<ConvergenceResult[]>
     for (const config of s.renderers) {
       const refKey = referenceKey('cloud', config.label, size); // shared with error-vs-time where the sizes match
       s.log(`convergence: ${config.label} ${backend} ${size}²`);
-      await bench(
-        s.page,
-        'reference',
-        refKey,
-        { ...config, backend },
-        spec,
-        size,
-        size,
-        s.preset.referenceIterations[config.renderer],
-      );
-      const points = await bench<CurvePoint[]>(
-        s.page,
-        'errorCurve',
-        { ...config, backend },
-        spec,
-        size,
-        size,
-        refKey,
-        s.preset.curveIterations,
-        s.preset.curveBudgetMs,
-        false,
-      );
+      await renderReference(s, refKey, config, backend, spec, size, s.preset.referenceIterations[config.renderer]);
+      const points = await errorCurve(s, config, backend, spec, size, refKey, false);
       out.push({ label: config.label, backend, size, points });
     }
   }

@@ -1,4 +1,4 @@
-import { scenes, type RendererConfig } from '../configs.js';
+import { scenes, type Backend, type RendererConfig, type SceneSpec } from '../configs.js';
 import { timeToPsnr, type CurvePoint } from '../metrics.js';
 import { bench, type SuiteContext } from './types.js';
 
@@ -39,28 +39,8 @@ export async function errorVsTime(s: SuiteContext): Promise<ErrorCurveResult[]> 
         s.log(
           `error-vs-time: ${sceneName} ${config.label} ${backend} (reference: ${refConfig.label}, ${refIterations} it)`,
         );
-        const ref = await bench<{ rmse: number | null }>(
-          s.page,
-          'reference',
-          refKey,
-          { ...refConfig, backend: s.backends[0] },
-          spec,
-          size,
-          size,
-          refIterations,
-        );
-        const points = await bench<CurvePoint[]>(
-          s.page,
-          'errorCurve',
-          { ...config, backend },
-          spec,
-          size,
-          size,
-          refKey,
-          s.preset.curveIterations,
-          s.preset.curveBudgetMs,
-          !!config.halves,
-        );
+        const ref = await renderReference(s, refKey, refConfig, s.backends[0], spec, size, refIterations);
+        const points = await errorCurve(s, config, backend, spec, size, refKey, !!config.halves);
         out.push({
           scene: sceneName,
           label: config.label,
@@ -81,6 +61,43 @@ export async function errorVsTime(s: SuiteContext): Promise<ErrorCurveResult[]> 
 /** The configuration whose converged image is `config`'s reference (its referenceGroup, else itself). */
 export function referenceConfig(config: RendererConfig, all: readonly RendererConfig[]): RendererConfig {
   return (config.referenceGroup && all.find((c) => c.label === config.referenceGroup)) || config;
+}
+
+/** Render a converged reference in the page and keep it there under `refKey`; returns its own RMSE estimate. */
+export function renderReference(
+  s: SuiteContext,
+  refKey: string,
+  config: RendererConfig,
+  backend: Backend,
+  spec: SceneSpec,
+  size: number,
+  iterations: number,
+): Promise<{ rmse: number | null }> {
+  return bench(s.page, 'reference', refKey, { ...config, backend }, spec, size, size, iterations);
+}
+
+/** The PSNR/RMSE curve of `config` against the reference kept under `refKey`, at the preset's checkpoints and budget. */
+export function errorCurve(
+  s: SuiteContext,
+  config: RendererConfig,
+  backend: Backend,
+  spec: SceneSpec,
+  size: number,
+  refKey: string,
+  halves: boolean,
+): Promise<CurvePoint[]> {
+  return bench(
+    s.page,
+    'errorCurve',
+    { ...config, backend },
+    spec,
+    size,
+    size,
+    refKey,
+    s.preset.curveIterations,
+    s.preset.curveBudgetMs,
+    halves,
+  );
 }
 
 /** References live in the page by this key, so suites that need the same one share it. */

@@ -1,4 +1,4 @@
-import { scenes } from '../configs.js';
+import { scenes, type Backend, type RendererConfig, type SceneSpec } from '../configs.js';
 import { median, spread } from '../metrics.js';
 import { bench, type SuiteContext } from './types.js';
 
@@ -19,6 +19,26 @@ export interface FrameTimeRow {
   gpuTimer: string;
 }
 
+/** ms per iteration of `config` at size², the preset's batches of iterations between GPU syncs (wall clock and GPU timer). */
+export function frameTimes(
+  s: SuiteContext,
+  config: RendererConfig,
+  backend: Backend,
+  spec: SceneSpec,
+  size: number,
+): Promise<{ samples: number[]; gpuSamples: number[]; gpuTimer: string }> {
+  return bench(
+    s.page,
+    'frameTime',
+    { ...config, backend },
+    spec,
+    size,
+    size,
+    s.preset.frameIterations,
+    s.preset.frameRepeats,
+  );
+}
+
 /**
  * The paper's Table 1: ms per iteration by volume size (at a fixed framebuffer size) and by
  * framebuffer size (at 128³). Each sample is a batch of iterations bracketed by GPU syncs
@@ -34,16 +54,7 @@ export async function frameTime(s: SuiteContext): Promise<FrameTimeRow[]> {
     for (const backend of s.backends) {
       for (const config of s.renderers) {
         s.log(`frame-time: ${table} ${config.label} ${backend} volume ${volumeSize}³ at ${size}²`);
-        const r = await bench<{ samples: number[]; gpuSamples: number[]; gpuTimer: string }>(
-          s.page,
-          'frameTime',
-          { ...config, backend },
-          spec,
-          size,
-          size,
-          p.frameIterations,
-          p.frameRepeats,
-        );
+        const r = await frameTimes(s, config, backend, spec, size);
         const sp = spread(r.samples);
         const gp = r.gpuSamples.length ? spread(r.gpuSamples) : null;
         rows.push({

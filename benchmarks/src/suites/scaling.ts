@@ -1,6 +1,7 @@
 import { scenes } from '../configs.js';
 import { median } from '../metrics.js';
-import { bench, type SuiteContext } from './types.js';
+import type { SuiteContext } from './types.js';
+import { frameTimes } from './frame-time.js';
 
 export interface ScalingRow {
   axis: 'volume-size' | 'empty-fraction';
@@ -21,16 +22,7 @@ export async function scaling(s: SuiteContext): Promise<ScalingRow[]> {
   const per = async (axis: ScalingRow['axis'], x: number, spec: ReturnType<typeof scenes>['cloud']) => {
     for (const config of s.renderers) {
       s.log(`scaling: ${axis} ${x} ${config.label}`);
-      const r = await bench<{ samples: number[] }>(
-        s.page,
-        'frameTime',
-        { ...config, backend },
-        spec,
-        size,
-        size,
-        s.preset.frameIterations,
-        s.preset.frameRepeats,
-      );
+      const r = await frameTimes(s, config, backend, spec, size);
       rows.push({ axis, label: config.label, backend, x, nsPerPath: (median(r.samples) * 1e6) / (size * size) });
     }
   };
