@@ -78,7 +78,7 @@ export async function createRenderer(name: string, params: Record<string, unknow
 // package of the catalog (the viewer's build replaces an uninstalled optional one with a
 // stub that says so: see rollup.config.mjs). A catalog entry without a loader here is
 // imported by its bare name, which works in a page with an import map.
-const PACKAGE_LOADERS: Record<string, () => Promise<Record<string, unknown>>> = {
+export const PACKAGE_LOADERS: Readonly<Record<string, () => Promise<Record<string, unknown>>>> = {
   '@vpt/renderer-mip': () => import('@vpt/renderer-mip'),
   // @ts-ignore -- optional package, may be absent when this is type-checked
   '@vpt/renderer-iso': () => import('@vpt/renderer-iso'),
