@@ -71,6 +71,7 @@ export { SAMPLING as WGSL_SAMPLING, ENVIRONMENT_MAP as WGSL_ENVIRONMENT_MAP } fr
 export { SLICE_ATLAS as GLSL_SLICE_ATLAS } from './shaders/slice-atlas.glsl.js';
 export { SLICE_ATLAS as WGSL_SLICE_ATLAS } from './shaders/slice-atlas.wgsl.js';
 export { sliceAtlasLayout, atlasTexel, type SliceAtlasLayout } from './shaders/slice-atlas.js';
+export { environmentTextures, environmentTexturesKey, objectId } from './shaders/environment-textures.js';
 export { preprocess, evalCondition, type Flags } from './shaders/preprocess.js';
 export { gradientMagnitudes, maxGradientMagnitude } from './gradient/gradient-cpu.js';
 export { buildGradientVolume, destroyGradientVolume, type GradientVolume } from './gradient/gradient-volume.js';

@@ -2,6 +2,7 @@ import {
   BaseRenderer,
   buildEnvironmentSampling,
   environmentEmits,
+  environmentTextures,
   volumeBox,
   VptError,
   type AuxiliaryTexture,
@@ -33,18 +34,6 @@ export const ISO_PARAM_FIELDS: readonly UniformField[] = [
   { name: 'aoRadius', type: 'f32' },
   { name: 'rayEpsilon', type: 'f32' },
 ];
-
-// Stable ids for environment images (the auxiliary textures' key), without hashing pixels.
-const ids = new WeakMap<object, number>();
-let nextId = 1;
-const idOf = (o: object) => {
-  let i = ids.get(o);
-  if (i === undefined) {
-    i = nextId++;
-    ids.set(o, i);
-  }
-  return i;
-};
 
 const OUTPUT_CODE = { shaded: 0, depth: 1, normal: 2 } as const;
 
@@ -155,50 +144,8 @@ export class IsoRenderer extends BaseRenderer<IsoParams> {
     const env = scene.environment;
     if (env.type === 'latlong' && environmentEmits(env)) {
       const e = env as LatLongEnvironment;
-      const key = `${idOf(e.data)}|${e.scale ?? 1}|${e.width}x${e.height}`;
       let tables: ReturnType<typeof buildEnvironmentSampling> | null = null;
-      const t = () => (tables ??= buildEnvironmentSampling(e));
-      return [
-        {
-          name: 'envMap',
-          dimension: '2d',
-          key,
-          create: () => ({
-            dimension: '2d',
-            width: e.width,
-            height: e.height,
-            format: 'rgba32float',
-            data: t().map,
-            label: 'environment map',
-          }),
-        },
-        {
-          name: 'envMarginal',
-          dimension: '2d',
-          key,
-          create: () => ({
-            dimension: '2d',
-            width: e.height + 1,
-            height: 1,
-            format: 'r32float',
-            data: t().marginal,
-            label: 'environment marginal CDF',
-          }),
-        },
-        {
-          name: 'envConditional',
-          dimension: '2d',
-          key,
-          create: () => ({
-            dimension: '2d',
-            width: e.width + 1,
-            height: e.height,
-            format: 'r32float',
-            data: t().conditional,
-            label: 'environment conditional CDFs',
-          }),
-        },
-      ];
+      return environmentTextures(e, () => (tables ??= buildEnvironmentSampling(e)));
     }
     return [];
   }

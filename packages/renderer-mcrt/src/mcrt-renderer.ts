@@ -2,6 +2,9 @@ import {
   BaseRenderer,
   validateParams,
   buildEnvironmentSampling,
+  environmentTextures,
+  environmentTexturesKey,
+  objectId,
   COPY_ACCUMULATION_RENDER,
   GLSL_SLICE_ATLAS,
   sliceAtlasLayout,
@@ -40,18 +43,6 @@ export const MCRT_PARAM_FIELDS: readonly UniformField[] = [
   { name: 'lightDirection', type: 'vec4', count: MAX_LIGHTS },
   { name: 'lightIrradiance', type: 'vec4', count: MAX_LIGHTS },
 ];
-
-// Stable ids for the objects whose identity keys the auxiliary textures.
-const ids = new WeakMap<object, number>();
-let nextId = 1;
-const idOf = (o: object) => {
-  let i = ids.get(o);
-  if (i === undefined) {
-    i = nextId++;
-    ids.set(o, i);
-  }
-  return i;
-};
 
 /**
  * Monte Carlo volumetric path tracer (docs/design.md; issue 3). HDR = estimated radiance,
@@ -156,49 +147,7 @@ export class McrtRenderer extends BaseRenderer<McrtParams> {
     if (f.MAJORANT_GRID) aux.push(...this.majorantGridTextures(scene, volume));
     if (f.ENV_MAP) {
       const env = this.environmentMap(scene);
-      const key = `${idOf(env.data)}|${env.scale ?? 1}|${env.width}x${env.height}`;
-      const tables = () => this.environmentTables(env, key);
-      aux.push(
-        {
-          name: 'envMap',
-          dimension: '2d',
-          key,
-          create: () => ({
-            dimension: '2d',
-            width: env.width,
-            height: env.height,
-            format: 'rgba32float',
-            data: tables().map,
-            label: 'environment map',
-          }),
-        },
-        {
-          name: 'envMarginal',
-          dimension: '2d',
-          key,
-          create: () => ({
-            dimension: '2d',
-            width: env.height + 1,
-            height: 1,
-            format: 'r32float',
-            data: tables().marginal,
-            label: 'environment marginal CDF',
-          }),
-        },
-        {
-          name: 'envConditional',
-          dimension: '2d',
-          key,
-          create: () => ({
-            dimension: '2d',
-            width: env.width + 1,
-            height: env.height,
-            format: 'r32float',
-            data: tables().conditional,
-            label: 'environment conditional CDFs',
-          }),
-        },
-      );
+      aux.push(...environmentTextures(env, () => this.environmentTables(env, environmentTexturesKey(env))));
     }
     return aux;
   }
@@ -220,7 +169,7 @@ export class McrtRenderer extends BaseRenderer<McrtParams> {
         name: 'majorantRanges',
         dimension: '2d',
         bind: false,
-        key: `${idOf(scene.volume as Volume)}|${cellSize}|${volume.format}|${volume.key.split('|')[0]}`,
+        key: `${objectId(scene.volume as Volume)}|${cellSize}|${volume.format}|${volume.key.split('|')[0]}`,
         render: {
           label: 'majorant grid value ranges',
           width: layout.width,
@@ -284,7 +233,7 @@ export class McrtRenderer extends BaseRenderer<McrtParams> {
   }
 
   private gridKey(scene: Scene): string {
-    return `${idOf(scene.volume as Volume)}|${this.cellSize(scene)}|${scene.densityScale}|${JSON.stringify(scene.transferFunction)}`;
+    return `${objectId(scene.volume as Volume)}|${this.cellSize(scene)}|${scene.densityScale}|${JSON.stringify(scene.transferFunction)}`;
   }
 
   /** The `gridCells` uniform: cells per axis and the slice atlas's column count. */
