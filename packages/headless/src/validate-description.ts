@@ -20,7 +20,7 @@ import {
   rendererNames,
   MAX_PROCEDURAL_SIZE,
   MAX_RENDER_SIDE,
-  MAX_TEXTURE_SIDE_2D,
+  LATLONG_SIDE_RULE,
   transferFunctionFromJSON,
   validateCamera,
   validateEnvironment,
@@ -124,15 +124,8 @@ function checkEnvironment(e: unknown): Environment {
     return env as unknown as Environment;
   }
   checkKnownKeys('environment', env, ['type', 'width', 'height', 'data', 'scale']);
-  const side = {
-    min: 1,
-    max: MAX_TEXTURE_SIDE_2D - 1,
-    integer: true,
-    maxCode: 'limit-exceeded' as const,
-    unit: 'texels',
-  };
-  const width = checkNumber('environment.width', env.width, side);
-  const height = checkNumber('environment.height', env.height, side);
+  const width = checkNumber('environment.width', env.width, LATLONG_SIDE_RULE);
+  const height = checkNumber('environment.height', env.height, LATLONG_SIDE_RULE);
   if (!Array.isArray(env.data) || env.data.length !== width * height * 3) {
     throw new VptError(
       'invalid-scene',

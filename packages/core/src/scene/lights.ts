@@ -1,7 +1,7 @@
 import { VptError } from '../errors.js';
 import type { Vec3 } from './camera.js';
 import { checkNumbers, checkObject, fail } from '../validation/checks.js';
-import { FLOAT32_MAX, MAX_SCENE_LIGHTS, MAX_RADIANCE, MAX_TEXTURE_SIDE_2D } from '../validation/limits.js';
+import { FLOAT32_MAX, MAX_SCENE_LIGHTS, MAX_RADIANCE, LATLONG_SIDE_RULE } from '../validation/limits.js';
 
 /** A distant light: irradiance E (linear RGB) measured perpendicular to the beam. */
 export interface DirectionalLight {
@@ -68,15 +68,8 @@ export function validateEnvironment(env: Environment): void {
       unit: 'MAX_RADIANCE keeps float32 kernel arithmetic finite',
     });
   } else if (env.type === 'latlong') {
-    const side = {
-      min: 1,
-      max: MAX_TEXTURE_SIDE_2D - 1,
-      integer: true,
-      maxCode: 'limit-exceeded' as const,
-      unit: 'texels',
-    };
     const { width, height } = env;
-    checkNumbers('Environment: lat-long [width, height]', [width, height], 2, side);
+    checkNumbers('Environment: lat-long [width, height]', [width, height], 2, LATLONG_SIDE_RULE);
     if (!(env.data instanceof Float32Array) || env.data.length !== width * height * 3)
       throw new VptError(
         'invalid-scene',
