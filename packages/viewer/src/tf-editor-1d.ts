@@ -7,6 +7,7 @@
  * carry `detail.transferFunction`.
  */
 import { LitElement, css, html, svg, nothing, type PropertyValues } from 'lit';
+import { tfEditorStyles } from './tf-editor-styles.js';
 import type { TransferFunction, TransferPoint } from '@vpt/core';
 import { cssColor, hexToLinear, intensityOf, linearToHex, round4 } from './color.js';
 import type { Histogram1D } from './histogram.js';
@@ -34,103 +35,50 @@ export class VptTfEditor extends LitElement {
     this.selected = -1;
   }
 
-  static override styles = css`
-    :host {
-      display: block;
-      font: inherit;
-      color: inherit;
-    }
-    .plot {
-      position: relative;
-      height: 120px;
-      background: #0b0b0d;
-      border: 1px solid #444;
-      border-radius: 4px;
-      touch-action: none;
-      cursor: crosshair;
-      margin: 6px 7px;
-    }
-    svg {
-      position: absolute;
-      inset: 0;
-      width: 100%;
-      height: 100%;
-      display: block;
-    }
-    .pt {
-      position: absolute;
-      width: 12px;
-      height: 12px;
-      margin: -7px 0 0 -7px;
-      border: 2px solid #ddd;
-      border-radius: 50%;
-      transform: translateY(0);
-      cursor: grab;
-      box-sizing: content-box;
-      padding: 0;
-    }
-    .pt[aria-selected='true'] {
-      border-color: #6af;
-      box-shadow: 0 0 0 2px #6af8;
-    }
-    .pt:focus-visible {
-      outline: 2px solid #fff;
-      outline-offset: 2px;
-    }
-    .strip {
-      height: 12px;
-      margin: 2px 7px 8px;
-      border-radius: 3px;
-      border: 1px solid #444;
-    }
-    form {
-      display: grid;
-      grid-template-columns: auto 1fr auto 1fr;
-      gap: 4px 6px;
-      align-items: center;
-      font-size: 0.85em;
-    }
-    label {
-      white-space: nowrap;
-    }
-    input {
-      min-width: 0;
-      font: inherit;
-      background: #1c1c20;
-      color: inherit;
-      border: 1px solid #555;
-      border-radius: 3px;
-      padding: 2px 4px;
-    }
-    input[type='color'] {
-      padding: 0;
-      height: 1.6em;
-    }
-    .buttons {
-      grid-column: 1 / -1;
-      display: flex;
-      gap: 6px;
-    }
-    button {
-      font: inherit;
-      background: #2a2a30;
-      color: inherit;
-      border: 1px solid #555;
-      border-radius: 3px;
-      padding: 2px 8px;
-      cursor: pointer;
-    }
-    button:focus-visible,
-    input:focus-visible {
-      outline: 2px solid #6af;
-      outline-offset: 1px;
-    }
-    .hint {
-      font-size: 0.8em;
-      opacity: 0.7;
-      margin: 0 0 4px;
-    }
-  `;
+  static override styles = [
+    tfEditorStyles,
+    css`
+      .plot {
+        height: 120px;
+        cursor: crosshair;
+      }
+      .pt {
+        position: absolute;
+        width: 12px;
+        height: 12px;
+        margin: -7px 0 0 -7px;
+        border: 2px solid #ddd;
+        border-radius: 50%;
+        transform: translateY(0);
+        cursor: grab;
+        box-sizing: content-box;
+        padding: 0;
+      }
+      .pt[aria-selected='true'] {
+        border-color: #6af;
+        box-shadow: 0 0 0 2px #6af8;
+      }
+      .pt:focus-visible {
+        outline: 2px solid #fff;
+        outline-offset: 2px;
+      }
+      .strip {
+        height: 12px;
+        margin: 2px 7px 8px;
+        border-radius: 3px;
+        border: 1px solid #444;
+      }
+      form {
+        grid-template-columns: auto 1fr auto 1fr;
+      }
+      label {
+        white-space: nowrap;
+      }
+      .buttons {
+        grid-column: 1 / -1;
+      }
+    `,
+  ];
 
   private get points(): TransferPoint[] {
     return this.value?.points ?? [];

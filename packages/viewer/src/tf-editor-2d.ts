@@ -8,6 +8,7 @@
  * an edit is done, with `detail.transferFunction`.
  */
 import { LitElement, css, html, svg, nothing, type PropertyValues } from 'lit';
+import { tfEditorStyles } from './tf-editor-styles.js';
 import type { BoxWidget, GaussianWidget, TransferFunction, TransferWidget } from '@vpt/core';
 import { cssColor, hexToLinear, intensityOf, linearToHex, round4 } from './color.js';
 import { valueGradientHistogram, type GradientSamples, type Histogram2D } from './histogram.js';
@@ -66,111 +67,56 @@ export class VptTf2dEditor extends LitElement {
     this.selected = 0;
   }
 
-  static override styles = css`
-    :host {
-      display: block;
-      font: inherit;
-      color: inherit;
-    }
-    .plot {
-      position: relative;
-      aspect-ratio: 2 / 1;
-      background: #0b0b0d;
-      border: 1px solid #444;
-      border-radius: 4px;
-      touch-action: none;
-      margin: 6px 7px;
-    }
-    canvas,
-    svg {
-      position: absolute;
-      inset: 0;
-      width: 100%;
-      height: 100%;
-      display: block;
-    }
-    canvas {
-      image-rendering: pixelated;
-    }
-    .h {
-      position: absolute;
-      width: 10px;
-      height: 10px;
-      margin: -6px 0 0 -6px;
-      border: 2px solid #ddd;
-      background: #222;
-      cursor: move;
-      padding: 0;
-      box-sizing: content-box;
-    }
-    .h.size {
-      border-radius: 50%;
-      cursor: nwse-resize;
-      width: 8px;
-      height: 8px;
-      margin: -5px 0 0 -5px;
-    }
-    .h[aria-selected='true'] {
-      border-color: #6af;
-    }
-    .h:focus-visible {
-      outline: 2px solid #fff;
-      outline-offset: 2px;
-    }
-    .axes {
-      display: flex;
-      justify-content: space-between;
-      font-size: 0.75em;
-      opacity: 0.7;
-      margin: 0 7px 6px;
-    }
-    form {
-      display: grid;
-      grid-template-columns: auto 1fr 1fr;
-      gap: 4px 6px;
-      align-items: center;
-      font-size: 0.85em;
-    }
-    input,
-    select {
-      min-width: 0;
-      font: inherit;
-      background: #1c1c20;
-      color: inherit;
-      border: 1px solid #555;
-      border-radius: 3px;
-      padding: 2px 4px;
-    }
-    input[type='color'] {
-      padding: 0;
-      height: 1.6em;
-    }
-    .buttons {
-      display: flex;
-      gap: 6px;
-      flex-wrap: wrap;
-      margin: 6px 0;
-    }
-    button {
-      font: inherit;
-      background: #2a2a30;
-      color: inherit;
-      border: 1px solid #555;
-      border-radius: 3px;
-      padding: 2px 8px;
-      cursor: pointer;
-    }
-    button:focus-visible,
-    input:focus-visible {
-      outline: 2px solid #6af;
-      outline-offset: 1px;
-    }
-    .hint {
-      font-size: 0.8em;
-      opacity: 0.7;
-      margin: 0 0 4px;
-    }
-  `;
+  static override styles = [
+    tfEditorStyles,
+    css`
+      .plot {
+        aspect-ratio: 2 / 1;
+      }
+      canvas {
+        image-rendering: pixelated;
+      }
+      .h {
+        position: absolute;
+        width: 10px;
+        height: 10px;
+        margin: -6px 0 0 -6px;
+        border: 2px solid #ddd;
+        background: #222;
+        cursor: move;
+        padding: 0;
+        box-sizing: content-box;
+      }
+      .h.size {
+        border-radius: 50%;
+        cursor: nwse-resize;
+        width: 8px;
+        height: 8px;
+        margin: -5px 0 0 -5px;
+      }
+      .h[aria-selected='true'] {
+        border-color: #6af;
+      }
+      .h:focus-visible {
+        outline: 2px solid #fff;
+        outline-offset: 2px;
+      }
+      .axes {
+        display: flex;
+        justify-content: space-between;
+        font-size: 0.75em;
+        opacity: 0.7;
+        margin: 0 7px 6px;
+      }
+      form {
+        grid-template-columns: auto 1fr 1fr;
+      }
+      .buttons {
+        flex-wrap: wrap;
+        margin: 6px 0;
+      }
+    `,
+  ];
 
   private get widgets(): TransferWidget[] {
     return this.value?.widgets ?? [];
@@ -228,36 +174,8 @@ export class VptTf2dEditor extends LitElement {
           const [cv, cg] = centre(w);
           const [, , v1, g1] = extent(w);
           const label = `Widget ${i + 1} of ${ws.length} (${w.type})`;
-          return html` <div
-              class="h"
-              role="slider"
-              tabindex="0"
-              aria-label="${label}: move"
-              aria-describedby="hint2d"
-              aria-valuetext="value ${cv.toFixed(2)}, gradient ${cg.toFixed(2)}"
-              aria-selected=${i === this.selected ? 'true' : 'false'}
-              style="left:${clamp01(cv) * 100}%;top:${(1 - clamp01(cg)) * 100}%"
-              @pointerdown=${(e: PointerEvent) => this.startDrag(e, i, 'move')}
-              @keydown=${(e: KeyboardEvent) => this.onKey(e, i, 'move')}
-              @focus=${() => {
-                this.selected = i;
-              }}
-            ></div>
-            <div
-              class="h size"
-              role="slider"
-              tabindex="0"
-              aria-label="${label}: size"
-              aria-describedby="hint2d"
-              aria-valuetext="up to value ${v1.toFixed(2)}, gradient ${g1.toFixed(2)}"
-              aria-selected=${i === this.selected ? 'true' : 'false'}
-              style="left:${clamp01(v1) * 100}%;top:${(1 - clamp01(g1)) * 100}%"
-              @pointerdown=${(e: PointerEvent) => this.startDrag(e, i, 'size')}
-              @keydown=${(e: KeyboardEvent) => this.onKey(e, i, 'size')}
-              @focus=${() => {
-                this.selected = i;
-              }}
-            ></div>`;
+          return html`${this.renderHandle(i, 'move', `${label}: move`, cv, cg, `value ${cv.toFixed(2)}, gradient ${cg.toFixed(2)}`)}
+          ${this.renderHandle(i, 'size', `${label}: size`, v1, g1, `up to value ${v1.toFixed(2)}, gradient ${g1.toFixed(2)}`)}`;
         })}
       </div>
       <div class="axes" aria-hidden="true">
@@ -288,6 +206,25 @@ export class VptTf2dEditor extends LitElement {
         />
         <span></span>
       </form>`;
+  }
+
+  /** A widget's handle at (value, gradient) in the plot: a slider for the pointer and the keys. */
+  private renderHandle(i: number, handle: Handle, label: string, v: number, g: number, valueText: string) {
+    return html`<div
+      class=${handle === 'size' ? 'h size' : 'h'}
+      role="slider"
+      tabindex="0"
+      aria-label=${label}
+      aria-describedby="hint2d"
+      aria-valuetext=${valueText}
+      aria-selected=${i === this.selected ? 'true' : 'false'}
+      style="left:${clamp01(v) * 100}%;top:${(1 - clamp01(g)) * 100}%"
+      @pointerdown=${(e: PointerEvent) => this.startDrag(e, i, handle)}
+      @keydown=${(e: KeyboardEvent) => this.onKey(e, i, handle)}
+      @focus=${() => {
+        this.selected = i;
+      }}
+    ></div>`;
   }
 
   private renderWidget(w: TransferWidget, i: number) {
