@@ -86,10 +86,7 @@ describe.each(BACKENDS)('EAM on %s', (backend) => {
             environment: { type: 'constant', radiance: bg },
           }),
         );
-        await ctx.renderIterations(ITER);
-        const hdr = await ctx.readHDR();
-        ctx.dispose();
-        return Array.from(hdr as Float32Array);
+        return t.finalHDR(ctx, ITER);
       },
       backend,
       W,
@@ -236,10 +233,7 @@ describe.each(BACKENDS)('EAM on %s against a CPU twin', (backend) => {
             environment: { type: 'constant', radiance: bg },
           }),
         );
-        await ctx.renderIterations(ITER);
-        const hdr = await ctx.readHDR();
-        ctx.dispose();
-        return Array.from(hdr as Float32Array);
+        return t.finalHDR(ctx, ITER);
       },
       backend,
       W,

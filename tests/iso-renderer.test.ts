@@ -23,16 +23,12 @@ async function renderIso(
   iterations: number,
   size = [W, H],
 ): Promise<number[]> {
-  return page().page.evaluate(
-    async (backend, params, scene, iterations, n, camera, size) => {
-      const t = (window as any).t;
+  return page.run(
+    async ({ t }, backend, params, scene, iterations, n, camera, size) => {
       const volume = window.tv.sphereDistance(n);
       const ctx = await t.context({ backend, renderer: 'iso', width: size[0], height: size[1], params });
       ctx.setScene({ ...t.scene({ volume, camera }), ...scene });
-      await ctx.renderIterations(iterations);
-      const hdr = await ctx.readHDR();
-      ctx.dispose();
-      return Array.from(hdr as Float32Array);
+      return t.finalHDR(ctx, iterations);
     },
     backend,
     params,
@@ -54,6 +50,24 @@ function sphereHit(origin: Vec3, dir: Vec3, r: number): { t: number; dist: numbe
 }
 
 const scene = { camera: CAMERA } as Scene;
+
+/**
+ * Pixel (x, y) of the W × H image against the sphere of radius r at the origin: 'inside' when
+ * the rays through its four corners all pass within r − VOXEL of the centre (full coverage,
+ * clear of the voxelised surface's error), 'outside' when all pass farther than r + VOXEL.
+ */
+function pixelAgainstSphere(x: number, y: number, r: number): 'inside' | 'outside' | 'edge' {
+  const dists = [
+    [0, 0],
+    [1, 0],
+    [0, 1],
+    [1, 1],
+  ].map(([cx, cy]) => {
+    const ray = reference.cameraRay(scene, W, H, (x + cx) / W, (y + cy) / H);
+    return sphereHit(ray.origin, ray.dir, r).dist;
+  });
+  return Math.max(...dists) < r - VOXEL ? 'inside' : Math.min(...dists) > r + VOXEL ? 'outside' : 'edge';
+}
 const centreRay = (x: number, y: number, w = W, h = H) =>
   reference.cameraRay(scene, w, h, (x + 0.5) / w, (y + 0.5) / h);
 const at = (o: Vec3, d: Vec3, t: number): Vec3 => [o[0] + d[0] * t, o[1] + d[1] * t, o[2] + d[2] * t];
@@ -186,10 +200,8 @@ describe.each(BACKENDS)('ISO renderer on %s', (backend) => {
     const radius = 0.15,
       E = 3,
       ITER = 64;
-    const img: number[] = await page().page.evaluate(
-      async (backend, A, B, cam, radius, E, ITER, n) => {
-        const { core } = (window as any).vpt;
-        const t = (window as any).t;
+    const img: number[] = await page.run(
+      async ({ core, t }, backend, A, B, cam, radius, E, ITER, n) => {
         const data = new Float32Array(n * n * n);
         for (let z = 0; z < n; z++)
           for (let y = 0; y < n; y++)
@@ -220,10 +232,7 @@ describe.each(BACKENDS)('ISO renderer on %s', (backend) => {
           ...t.scene({ volume, camera: cam }),
           lights: [{ type: 'directional', direction: [0, 1, 0], irradiance: [E, E, E] }],
         });
-        await ctx.renderIterations(ITER);
-        const hdr = await ctx.readHDR();
-        ctx.dispose();
-        return Array.from(hdr as Float32Array);
+        return t.finalHDR(ctx, ITER);
       },
       backend,
       A,
@@ -296,20 +305,12 @@ describe.each(BACKENDS)('ISO renderer on %s', (backend) => {
     for (let y = 0; y < H; y++) {
       for (let x = 0; x < W; x++) {
         const i = 4 * (x + W * y);
-        const corners = [
-          [0, 0],
-          [1, 0],
-          [0, 1],
-          [1, 1],
-        ].map(([cx, cy]) => {
-          const ray = reference.cameraRay(scene, W, H, (x + cx) / W, (y + cy) / H);
-          return sphereHit(ray.origin, ray.dir, R).dist;
-        });
-        if (Math.max(...corners) < R - VOXEL) {
+        const where = pixelAgainstSphere(x, y, R);
+        if (where === 'inside') {
           interior++;
           for (let c = 0; c < 3; c++) expect(img[i + c]).toBeCloseTo(albedo[c] * L[c], 4);
           expect(img[i + 3]).toBe(1);
-        } else if (Math.min(...corners) > R + VOXEL) {
+        } else if (where === 'outside') {
           background++;
           expect(Array.from(img.slice(i, i + 4))).toEqual([...L.map((v) => Math.fround(v)), 0]);
         }
@@ -324,9 +325,8 @@ describe.each(BACKENDS)('ISO renderer on %s', (backend) => {
     const L: Vec3 = [1.5, 1, 2];
     const ITER = 24;
     const env = { type: 'latlong', width: 16, height: 8, data: Array.from({ length: 16 * 8 * 3 }, (_, i) => L[i % 3]) };
-    const img: number[] = await page().page.evaluate(
-      async (backend, albedo, env, ITER, n, camera) => {
-        const t = (window as any).t;
+    const img: number[] = await page.run(
+      async ({ t }, backend, albedo, env, ITER, n, camera) => {
         const ctx = await t.context({
           backend,
           renderer: 'iso',
@@ -338,10 +338,7 @@ describe.each(BACKENDS)('ISO renderer on %s', (backend) => {
           ...t.scene({ volume: window.tv.sphereDistance(n), camera }),
           environment: { ...env, data: Float32Array.from(env.data) },
         });
-        await ctx.renderIterations(ITER);
-        const hdr = await ctx.readHDR();
-        ctx.dispose();
-        return Array.from(hdr as Float32Array);
+        return t.finalHDR(ctx, ITER);
       },
       backend,
       albedo,
@@ -355,19 +352,11 @@ describe.each(BACKENDS)('ISO renderer on %s', (backend) => {
     for (let y = 0; y < H; y++) {
       for (let x = 0; x < W; x++) {
         const i = 4 * (x + W * y);
-        const corners = [
-          [0, 0],
-          [1, 0],
-          [0, 1],
-          [1, 1],
-        ].map(([cx, cy]) => {
-          const ray = reference.cameraRay(scene, W, H, (x + cx) / W, (y + cy) / H);
-          return sphereHit(ray.origin, ray.dir, R).dist;
-        });
-        if (Math.max(...corners) < R - VOXEL) {
+        const where = pixelAgainstSphere(x, y, R);
+        if (where === 'inside') {
           interior++;
           for (let c = 0; c < 3; c++) sum[c] += img[i + c];
-        } else if (Math.min(...corners) > R + VOXEL) {
+        } else if (where === 'outside') {
           // The background is the map itself.
           for (let c = 0; c < 3; c++) expect(img[i + c]).toBeCloseTo(L[c], 5);
         }
@@ -401,16 +390,7 @@ describe.each(BACKENDS)('ISO renderer on %s', (backend) => {
     let n = 0;
     for (let y = 0; y < H; y++) {
       for (let x = 0; x < W; x++) {
-        const corners = [
-          [0, 0],
-          [1, 0],
-          [0, 1],
-          [1, 1],
-        ].map(([cx, cy]) => {
-          const ray = reference.cameraRay(scene, W, H, (x + cx) / W, (y + cy) / H);
-          return sphereHit(ray.origin, ray.dir, 0.2).dist;
-        });
-        if (Math.max(...corners) > 0.2 - VOXEL) continue;
+        if (pixelAgainstSphere(x, y, 0.2) !== 'inside') continue;
         const i = 4 * (x + W * y);
         for (let c = 0; c < 3; c++) sum[c] += img[i + c];
         expect(img[i + 3]).toBe(1);
@@ -429,8 +409,7 @@ describe.each(BACKENDS)('ISO renderer on %s', (backend) => {
 
 describe('ISO renderer: WebGL 2 / WebGPU parity', () => {
   it('gives bit-identical images and depth buffers (2 surfaces, transparency, soft shadows, lat-long environment)', async () => {
-    const r = await page().page.evaluate(async (camera) => {
-      const t = (window as any).t;
+    const r = await page.run(async ({ t }, camera) => {
       const volume = window.tv.sphereDistance(20);
       const env = {
         type: 'latlong',

@@ -64,10 +64,7 @@ describe.each(BACKENDS)('MIP on %s', (backend) => {
       async ({ core, t }, backend, W, H, ITER, camera) => {
         const ctx = await t.context({ backend, renderer: 'mip', width: W, height: H });
         ctx.setScene(t.scene({ volume: core.createProceduralVolume('blob', 16), camera, seed: 7 }));
-        await ctx.renderIterations(ITER);
-        const hdr = await ctx.readHDR();
-        ctx.dispose();
-        return Array.from(hdr as Float32Array);
+        return t.finalHDR(ctx, ITER);
       },
       backend,
       W,
@@ -116,10 +113,7 @@ describe.each(BACKENDS)('MIP on %s', (backend) => {
         );
         const ctx = await t.context({ backend, renderer: 'mip', width: w, height: h });
         ctx.setScene(t.scene({ volume, camera, seed: 3 }));
-        await ctx.renderIterations(2);
-        const hdr = await ctx.readHDR();
-        ctx.dispose();
-        return Array.from(hdr as Float32Array);
+        return t.finalHDR(ctx, 2);
       },
       backend,
       w,

@@ -47,6 +47,8 @@ export interface InPageHelpers {
   context(opts: TestContextOptions): Promise<RenderContext>;
   scene(spec: TestSceneSpec): Scene;
   loadRaw(url: string, dims: [number, number, number], type: VoxelType): Promise<Volume>;
+  /** Render `iterations` more, read the HDR image back (as numbers, for the trip to Node) and dispose of the context. */
+  finalHDR(ctx: RenderContext, iterations: number): Promise<number[]>;
   /** How many 32-bit words differ (−1 when the lengths differ). */
   sameBits(a: ArrayBufferView, b: ArrayBufferView): number;
   hasNonFinite(a: ArrayLike<number>): boolean;
@@ -92,6 +94,12 @@ export function installInPageHelpers(): void {
     // The headless page's own raw reader (one place reads raw files in the page).
     loadRaw(url, dims, type) {
       return window.vpt.loadVolume({ raw: url, dims, type });
+    },
+    async finalHDR(ctx, iterations) {
+      await ctx.renderIterations(iterations);
+      const hdr = await ctx.readHDR();
+      ctx.dispose();
+      return Array.from(hdr);
     },
     sameBits(a, b) {
       const x = new Uint32Array(a.buffer, a.byteOffset, a.byteLength / 4),
