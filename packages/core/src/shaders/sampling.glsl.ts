@@ -29,7 +29,7 @@ vec3 sampleUniformSphere(float xi1, float xi2) {
   float phi = 2.0 * VPT_PI * xi2;
   return vec3(r * cos(phi), r * sin(phi), z);
 }
-// Henyey–Greenstein phase function (Henyey & Greenstein 1941, "Diffuse radiation in the Galaxy", ApJ 93) from a = 1 − cosθ and b = 1 + cosθ,
+// Henyey–Greenstein phase function (Henyey & Greenstein 1941, "Diffuse radiation in the Galaxy", ApJ 93; PBR 4th ed. §11.3, p_HG) from a = 1 − cosθ and b = 1 + cosθ,
 // cosθ between the propagation directions before and after scattering, g > 0 forward (docs/design.md).
 // 1 + g² − 2g·cosθ is written (1−g)² + 2g·a for g ≥ 0 and (1+g)² − 2g·b for g < 0: no cancellation as |g| → 1.
 float hgPhaseAB(float g, float a, float b) {
@@ -39,7 +39,7 @@ float hgPhaseAB(float g, float a, float b) {
 float hgPhase(float g, float cosTheta) {
   return hgPhaseAB(g, 1.0 - cosTheta, 1.0 + cosTheta);
 }
-// Sample HG about the propagation direction w by inverting its CDF in closed form, with
+// Sample HG about the propagation direction w by inverting its CDF in closed form (PBR 4th ed. §11.3), with
 // 1 − cosθ = 2(1−g)²(1−ξ)(1+gξ)/(1−g+2gξ)² and 1 + cosθ = 2(1+g)²ξ(1−g+gξ)/(1−g+2gξ)²: the
 // classic cosθ = (1 + g² − ((1−g²)/(1−g+2gξ))²)/2g rearranged so that g = 0 needs no special
 // case and |g| → 1 loses no precision (no division by g, no difference of near-equal terms).

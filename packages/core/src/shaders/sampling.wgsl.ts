@@ -23,7 +23,7 @@ fn sampleUniformSphere(xi1: f32, xi2: f32) -> vec3f {
   let phi = 2.0 * VPT_PI * xi2;
   return vec3f(r * cos(phi), r * sin(phi), z);
 }
-// Henyey & Greenstein 1941, cancellation-free for |g| → 1 (see sampling.glsl.ts).
+// Henyey–Greenstein phase function (Henyey & Greenstein 1941, ApJ 93; PBR 4th ed. §11.3, p_HG), cancellation-free for |g| → 1 (see sampling.glsl.ts).
 fn hgPhaseAB(g: f32, a: f32, b: f32) -> f32 {
   let d = select((1.0 + g) * (1.0 + g) - 2.0 * g * b, (1.0 - g) * (1.0 - g) + 2.0 * g * a, g >= 0.0);
   return (1.0 - g) * (1.0 + g) * VPT_INV_4PI / (d * sqrt(d));
@@ -31,7 +31,7 @@ fn hgPhaseAB(g: f32, a: f32, b: f32) -> f32 {
 fn hgPhase(g: f32, cosTheta: f32) -> f32 {
   return hgPhaseAB(g, 1.0 - cosTheta, 1.0 + cosTheta);
 }
-// HG sampling by closed-form CDF inversion, 1 ∓ cosθ computed directly (see sampling.glsl.ts).
+// HG sampling by closed-form CDF inversion (PBR 4th ed. §11.3), 1 ∓ cosθ computed directly (see sampling.glsl.ts).
 fn sampleHG(w: vec3f, g: f32, xi1: f32, xi2: f32) -> vec4f {
   let den = 1.0 - g + 2.0 * g * xi1;
   let q = 2.0 / (den * den);
