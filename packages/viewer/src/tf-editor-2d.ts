@@ -243,22 +243,17 @@ export class VptTf2dEditor extends LitElement {
   private renderForm(w: TransferWidget) {
     const pair = (label: string, key: string, values: [number, number], min: number) =>
       html` <label>${label}</label>
-        <input
-          type="number"
-          step="0.01"
-          min=${min}
-          aria-label="${label}, value axis"
-          .value=${String(round4(values[0]))}
-          @change=${(e: Event) => this.setPair(key, 0, Number((e.target as HTMLInputElement).value))}
-        />
-        <input
-          type="number"
-          step="0.01"
-          min=${min}
-          aria-label="${label}, gradient axis"
-          .value=${String(round4(values[1]))}
-          @change=${(e: Event) => this.setPair(key, 1, Number((e.target as HTMLInputElement).value))}
-        />`;
+        ${(['value', 'gradient'] as const).map(
+          (axis, i) =>
+            html`<input
+              type="number"
+              step="0.01"
+              min=${min}
+              aria-label="${label}, ${axis} axis"
+              .value=${String(round4(values[i]))}
+              @change=${(e: Event) => this.setPair(key, i as 0 | 1, Number((e.target as HTMLInputElement).value))}
+            />`,
+        )}`;
     return html`<form @submit=${(e: Event) => e.preventDefault()} aria-label="Selected widget">
       <span></span><span>value</span><span>gradient</span>
       ${
