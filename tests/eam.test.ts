@@ -160,9 +160,7 @@ function cpuEam(scene: Scene, w: number, h: number, iterations: number, stepSize
     for (let x = 0; x < w; x++) {
       for (let it = 0; it < iterations; it++) {
         const rng = new reference.CpuRng(x, y, it, scene.seed);
-        const jx = rng.next(),
-          jy = rng.next();
-        const { origin, dir } = reference.cameraRay(scene, w, h, (x + jx) / w, (y + jy) / h);
+        const { origin, dir } = reference.jitteredCameraRay(scene, w, h, x, y, rng);
         const [t0, t1] = reference.intersectBox(origin, dir, sampler.box.min, sampler.box.max);
         const color = [0, 0, 0];
         let T = 1;

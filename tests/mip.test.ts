@@ -23,9 +23,7 @@ function cpuMip(scene: Scene, w: number, h: number, iterations: number, stepSize
       let best = 0;
       for (let it = 0; it < iterations; it++) {
         const rng = new reference.CpuRng(x, y, it, scene.seed);
-        const jx = rng.next(),
-          jy = rng.next();
-        const { origin, dir } = reference.cameraRay(scene, w, h, (x + jx) / w, (y + jy) / h);
+        const { origin, dir } = reference.jitteredCameraRay(scene, w, h, x, y, rng);
         const [t0, t1] = reference.intersectBox(origin, dir, sampler.box.min, sampler.box.max);
         if (!(t0 < t1)) continue;
         const offset = rng.next();

@@ -54,6 +54,20 @@ export function cameraRay(
   return { origin: scene.camera.position, dir: [d[0] / l, d[1] / l, d[2] / l] };
 }
 
+/** CPU twin of the kernels' jitteredCameraRay (shaders/common): a uniform point inside pixel (x, y), two numbers drawn from `rng`. */
+export function jitteredCameraRay(
+  scene: Scene,
+  width: number,
+  height: number,
+  x: number,
+  y: number,
+  rng: CpuRng,
+): { origin: Vec3; dir: Vec3 } {
+  const jx = rng.next(),
+    jy = rng.next();
+  return cameraRay(scene, width, height, (x + jx) / width, (y + jy) / height);
+}
+
 /**
  * Cell-centred trilinear sampling with clamp-to-edge, in world coordinates, of the data
  * mapped by the value range (LO → 0, HI → 1; LO > HI inverts) and then clamped to [0, 1],
