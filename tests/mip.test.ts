@@ -45,19 +45,24 @@ const W = 24,
   H = 20,
   ITER = 4;
 
+/** A MIP scene: a white transfer function (MIP reads values only), no lights, a black sky. */
+function mipScene(volume: Scene['volume'], camera: Scene['camera'], seed: number): Scene {
+  return {
+    volume,
+    transferFunction: { dimensions: '1d', points: [{ value: 0, color: [1, 1, 1], opacity: 1 }] },
+    camera,
+    lights: [],
+    environment: { type: 'constant', radiance: [0, 0, 0] },
+    densityScale: 1,
+    seed,
+  };
+}
+
 describe.each(BACKENDS)('MIP on %s', (backend) => {
   it('equals a CPU MIP of a smooth procedural volume', async () => {
     const camera = { position: [0.9, 0.6, 1.6] as Vec3, target: [0, 0, 0] as Vec3, up: [0, 1, 0] as Vec3, fovy: 0.7 };
     const volume = createProceduralVolume('blob', 16);
-    const scene: Scene = {
-      volume,
-      transferFunction: { dimensions: '1d', points: [{ value: 0, color: [1, 1, 1], opacity: 1 }] },
-      camera,
-      lights: [],
-      environment: { type: 'constant', radiance: [0, 0, 0] },
-      densityScale: 1,
-      seed: 7,
-    };
+    const scene = mipScene(volume, camera, 7);
     const gpu: number[] = await page.run(
       async ({ core, t }, backend, W, H, ITER, camera) => {
         const ctx = await t.context({ backend, renderer: 'mip', width: W, height: H });
@@ -91,15 +96,7 @@ describe.each(BACKENDS)('MIP on %s', (backend) => {
       up: [0, -1, 0] as Vec3,
       fovy: 0.8,
     };
-    const scene: Scene = {
-      volume,
-      transferFunction: { dimensions: '1d', points: [{ value: 0, color: [1, 1, 1], opacity: 1 }] },
-      camera,
-      lights: [],
-      environment: { type: 'constant', radiance: [0, 0, 0] },
-      densityScale: 1,
-      seed: 3,
-    };
+    const scene = mipScene(volume, camera, 3);
     const w = 16,
       h = 16;
     const gpu: number[] = await page.run(
