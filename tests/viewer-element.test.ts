@@ -58,9 +58,8 @@ describe('<vpt-viewer> renders what the headless renderer renders', () => {
         'hide-progress': '',
         'hide-stats': '',
       };
-      const got = await vp.page.evaluate(
-        async (attrs, size) => {
-          const vt = (window as any).vt;
+      const got = await vp.run(
+        async (vt, attrs, size) => {
           const el = vt.create(attrs, `width:${size}px;height:${size}px;position:absolute;left:0;top:0`);
           el.id = 'match';
           await vt.converged(el);
@@ -110,8 +109,7 @@ describe('<vpt-viewer> attributes', () => {
   };
 
   it('changing renderer, transfer-function and camera changes the image and restarts the sample count; setting current values does not', async () => {
-    const r = await vp.page.evaluate(async (attrs) => {
-      const vt = (window as any).vt;
+    const r = await vp.run(async (vt, attrs) => {
       const el = vt.create(attrs);
       await vt.converged(el);
       const out: Record<string, unknown> = {};
@@ -177,8 +175,7 @@ describe('<vpt-viewer> attributes', () => {
   });
 
   it('reflects properties to attributes and reports invalid values with a typed error, keeping the last valid one', async () => {
-    const r = await vp.page.evaluate(async (attrs) => {
-      const vt = (window as any).vt;
+    const r = await vp.run(async (vt, attrs) => {
       const el = vt.create(attrs);
       await el.whenSettled();
       el.camera = { position: [0, 0, 2.5], target: [0, 0, 0], up: [0, 1, 0], fovy: 0.6 };
@@ -231,8 +228,7 @@ describe('<vpt-viewer> attributes', () => {
   });
 
   it('number attributes above their maximum (seed 2^32, exposure 100, resolution-scale 5) are refused, keeping the last valid value', async () => {
-    const r = await vp.page.evaluate(async (attrs) => {
-      const vt = (window as any).vt;
+    const r = await vp.run(async (vt, attrs) => {
       const el = vt.create({ ...attrs, seed: '7', exposure: '0.5', 'resolution-scale': '1' });
       await el.whenSettled();
       const errors: { code: string; source: string; message: string }[] = [];
@@ -301,8 +297,7 @@ describe('<vpt-viewer> size', () => {
 
 describe('<vpt-viewer> stopping rules', () => {
   it('with a renderer that estimates its error, progress reports it and refinement stops at target-error', async () => {
-    const r = await vp.page.evaluate(async () => {
-      const vt = (window as any).vt;
+    const r = await vp.run(async (vt) => {
       const el = vt.create(
         {
           src: 'procedural:blob?size=16',
@@ -336,8 +331,7 @@ describe('<vpt-viewer> stopping rules', () => {
 
 describe('<vpt-viewer> interaction', () => {
   it('dragging on the canvas orbits the camera, changes the image, and returns to full resolution when still', async () => {
-    await vp.page.evaluate(async () => {
-      const vt = (window as any).vt;
+    await vp.run(async (vt) => {
       // A ramp (value = x), not a blob: a round blob looks the same from every side.
       const el = vt.create(
         {
@@ -360,8 +354,7 @@ describe('<vpt-viewer> interaction', () => {
     await vp.page.mouse.down();
     for (let i = 1; i <= 6; i++) await vp.page.mouse.move(124 + 4 * i, 124 + i);
     await vp.page.mouse.up();
-    const r = await vp.page.evaluate(async () => {
-      const vt = (window as any).vt;
+    const r = await vp.run(async (vt) => {
       const el = document.getElementById('drag') as any;
       const before = (window as any).dragBefore;
       await vt.next(el, 'converged');
@@ -404,8 +397,7 @@ describe('<vpt-viewer> keyboard', () => {
       'resolution-scale': '0.2',
       'transfer-function': 'tissue',
     };
-    await vp.page.evaluate(async (attrs) => {
-      const vt = (window as any).vt;
+    await vp.run(async (vt, attrs) => {
       const el = vt.create(attrs, 'width:380px;height:300px;position:absolute;left:0;top:0');
       el.id = 'keys';
       await vt.converged(el);
@@ -482,8 +474,7 @@ describe('<vpt-viewer> keyboard', () => {
 
 describe('<vpt-viewer> failures', () => {
   it('a bad src fires a clear load error and shows it; a good src afterwards loads and renders', async () => {
-    const r = await vp.page.evaluate(async () => {
-      const vt = (window as any).vt;
+    const r = await vp.run(async (vt) => {
       const el = vt.create({
         src: '/data/no-such-volume.json',
         renderer: 'mip',
@@ -531,8 +522,7 @@ describe('<vpt-viewer> failures', () => {
   });
 
   it('a renderer that cannot be loaded fails alone; the element keeps rendering and accepts another renderer', async () => {
-    const r = await vp.page.evaluate(async () => {
-      const vt = (window as any).vt;
+    const r = await vp.run(async (vt) => {
       const viewer = (window as any).ref.viewer;
       viewer.registerRenderer({
         name: 'broken',
@@ -571,8 +561,7 @@ describe('<vpt-viewer> failures', () => {
   });
 
   it('a lost GPU context shows a message, recovers, and refines again', async () => {
-    const r = await vp.page.evaluate(async () => {
-      const vt = (window as any).vt;
+    const r = await vp.run(async (vt) => {
       const el = vt.create({
         src: 'procedural:blob?size=16',
         renderer: 'eam',
@@ -600,8 +589,7 @@ describe('<vpt-viewer> failures', () => {
 
 describe('<vpt-viewer> export', () => {
   it('screenshot is a PNG of the displayed image; HDR export writes PFM and OpenEXR', async () => {
-    const r = await vp.page.evaluate(async () => {
-      const vt = (window as any).vt;
+    const r = await vp.run(async (vt) => {
       const el = vt.create(
         { src: 'procedural:blob?size=16', renderer: 'eam', backend: 'webgl2', panels: 'none', 'max-samples': '2' },
         'width:20px;height:12px',
@@ -641,8 +629,7 @@ describe('<vpt-viewer> export', () => {
 
 describe('<vpt-viewer> small and narrow', () => {
   it('a 400x300 element shows only its image at rest (panels an overlay behind a button), with a progress bar and a stats line that attributes hide; Escape closes the overlay', async () => {
-    const r = await vp.page.evaluate(async () => {
-      const vt = (window as any).vt;
+    const r = await vp.run(async (vt) => {
       const el = vt.create(
         {
           src: 'procedural:blob?size=16',
@@ -700,8 +687,7 @@ describe('<vpt-viewer> small and narrow', () => {
 
 describe('<vpt-viewer> renderer changes while a renderer package loads', () => {
   it('a slow renderer load that lands after the page chose another renderer never renders (the gallery deep-link race)', async () => {
-    const r = await vp.page.evaluate(async () => {
-      const vt = (window as any).vt;
+    const r = await vp.run(async (vt) => {
       const viewer = (window as any).ref.viewer;
       // "slow" is EAM behind a load that resolves only when the test says so.
       let release!: () => void;

@@ -24,8 +24,7 @@ describe('<vpt-viewer> attribute removal', () => {
   it(
     'removing exposure, density-scale, seed, renderer, tone-mapper, max-samples returns each to its default, with no error and no exception',
     async () => {
-      const r = await vp.page.evaluate(async () => {
-        const vt = (window as any).vt;
+      const r = await vp.run(async (vt) => {
         const el = vt.create({
           src: 'procedural:blob?size=16',
           renderer: 'mip',
@@ -70,8 +69,7 @@ describe('<vpt-viewer> attribute removal', () => {
 
 describe('<vpt-viewer> renderer-params', () => {
   it('an EAM stepSize of 1e-9, 0 or -1 fires a typed error naming the parameter and the element keeps rendering', async () => {
-    const r = await vp.page.evaluate(async () => {
-      const vt = (window as any).vt;
+    const r = await vp.run(async (vt) => {
       const el = vt.create({
         src: 'procedural:blob?size=16',
         renderer: 'eam',
@@ -108,8 +106,7 @@ describe('<vpt-viewer> renderer-params', () => {
 
 describe('<vpt-viewer> context loss that is never restored', () => {
   it('fires error with code context-lost after the timeout, shows Retry, and Retry renders again', async () => {
-    const r = await vp.page.evaluate(async () => {
-      const vt = (window as any).vt;
+    const r = await vp.run(async (vt) => {
       const el = vt.create({
         src: 'procedural:blob?size=16',
         renderer: 'eam',

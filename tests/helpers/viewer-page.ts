@@ -143,6 +143,11 @@ export interface ViewerPage {
   page: Page;
   /** Console errors and uncaught exceptions seen so far. */
   errors: string[];
+  /**
+   * Run `fn` in the page, like `page.evaluate(fn, ...args)`, with the viewer helpers
+   * (`window.vt`, loosely typed as test bodies use them) as its first argument.
+   */
+  run<A extends unknown[], R>(fn: (vt: any, ...args: A) => R | Promise<R>, ...args: A): Promise<Awaited<R>>;
   close(): Promise<void>;
 }
 
@@ -164,6 +169,14 @@ export async function openViewerPage(browser?: Browser): Promise<ViewerPage> {
     server,
     page,
     errors,
+    async run(fn, ...args) {
+      const vt = await page.evaluateHandle(() => (window as any).vt);
+      try {
+        return (await page.evaluate(fn as (vt: unknown, ...a: unknown[]) => unknown, vt, ...args)) as never;
+      } finally {
+        await vt.dispose();
+      }
+    },
     async close() {
       await page.close().catch(() => {});
       if (!browser) await b.close().catch(() => {});
