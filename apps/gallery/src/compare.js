@@ -3,7 +3,7 @@
 // (and the page settings backend, scale, max) deep-link it.
 import './vpt-viewer.bundle.js';
 import { loadCatalog, presetFor, RENDERERS } from './catalog.js';
-import { encodeCamera, readState } from './state.js';
+import { encodeCamera, readState, wireCopyLink } from './state.js';
 
 const $ = (id) => document.getElementById(id);
 const page = readState();
@@ -87,15 +87,7 @@ async function show(id, camera) {
 }
 
 select.addEventListener('change', () => show(select.value));
-$('copy-link').addEventListener('click', async () => {
-  updateUrl();
-  try {
-    await navigator.clipboard.writeText(location.href);
-    $('link-status').value = 'Link copied.';
-  } catch {
-    $('link-status').value = location.href;
-  }
-});
+wireCopyLink(updateUrl);
 
 window.compare = {
   views: views.map((v) => v.el),

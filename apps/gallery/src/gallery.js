@@ -3,7 +3,7 @@
 // lives in the URL, so any view can be linked to; the link restores it.
 import './vpt-viewer.bundle.js';
 import { catalogInfo, loadCatalog, presetFor, RENDERERS } from './catalog.js';
-import { overridesOf, readState, stateQuery } from './state.js';
+import { overridesOf, readState, stateQuery, wireCopyLink } from './state.js';
 
 const $ = (id) => document.getElementById(id);
 const viewer = $('viewer');
@@ -148,15 +148,7 @@ window.addEventListener('popstate', () => {
   const s = readState();
   select(s.dataset ?? current?.dataset.id, s.renderer ?? 'eam', overridesOf(s));
 });
-$('copy-link').addEventListener('click', async () => {
-  updateUrl(false);
-  try {
-    await navigator.clipboard.writeText(location.href);
-    $('link-status').value = 'Link copied.';
-  } catch {
-    $('link-status').value = location.href;
-  }
-});
+wireCopyLink(() => updateUrl(false));
 
 // Test and console access.
 window.gallery = {

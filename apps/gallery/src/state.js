@@ -68,3 +68,20 @@ export function stateQuery(datasetId, viewer, page = readState()) {
   for (const k of ['backend', 'scale', 'max']) if (page[k] !== undefined) q.set(k, String(page[k]));
   return `?${q}`;
 }
+
+/**
+ * The "Copy link" button (#copy-link): bring the URL up to date (`updateUrl`), copy it, and
+ * say so in #link-status, or show the link there where the clipboard is not available.
+ */
+export function wireCopyLink(updateUrl) {
+  document.getElementById('copy-link').addEventListener('click', async () => {
+    updateUrl();
+    const status = document.getElementById('link-status');
+    try {
+      await navigator.clipboard.writeText(location.href);
+      status.value = 'Link copied.';
+    } catch {
+      status.value = location.href;
+    }
+  });
+}
