@@ -90,6 +90,8 @@ export * from './validation/limits.js';
 export {
   describeValue,
   checkNumber,
+  countUpTo,
+  LATLONG_SIDE_RULE,
   checkNumbers,
   checkOneOf,
   checkBoolean,

@@ -9,6 +9,7 @@ import { BACKEND_NAMES, SCENE_DEFAULTS, type RendererName, type SceneDescription
 import {
   checkKnownKeys,
   checkNumber,
+  countUpTo,
   checkNumbers,
   checkObject,
   checkOneOf,
@@ -82,13 +83,7 @@ function checkVolume(v: unknown): void {
   if ('raw' in vol) {
     checkKnownKeys('volume', vol, ['raw', 'dims', 'type', 'spacing', 'valueRange', 'endianness']);
     checkString('volume.raw', vol.raw);
-    checkNumbers('volume.dims', vol.dims, 3, {
-      min: 1,
-      max: MAX_VOLUME_SIDE,
-      integer: true,
-      maxCode: 'limit-exceeded',
-      unit: 'voxels',
-    });
+    checkNumbers('volume.dims', vol.dims, 3, countUpTo(MAX_VOLUME_SIDE, 'voxels'));
     checkOneOf('volume.type', vol.type, VOXEL_TYPES);
     if (vol.spacing !== undefined) checkNumbers('volume.spacing', vol.spacing, 3, { min: 0, exclusiveMin: true });
     if (vol.valueRange !== undefined) {
@@ -104,13 +99,7 @@ function checkVolume(v: unknown): void {
     checkKnownKeys('volume', vol, ['procedural', 'size']);
     checkOneOf('volume.procedural', vol.procedural, PROCEDURAL_KINDS);
     if (vol.size !== undefined)
-      checkNumber('volume.size', vol.size, {
-        min: 2,
-        max: MAX_PROCEDURAL_SIZE,
-        integer: true,
-        maxCode: 'limit-exceeded',
-        unit: 'voxels per side',
-      });
+      checkNumber('volume.size', vol.size, countUpTo(MAX_PROCEDURAL_SIZE, 'voxels per side', 2));
   } else {
     throw new VptError('invalid-scene', 'volume: needs one of "raw" (with dims and type), "sidecar" or "procedural"');
   }
@@ -162,21 +151,8 @@ export function validateSceneDescription(d: unknown): SceneDescription {
     const s = checkObject('scene', d);
     checkKnownKeys('scene', s, TOP_KEYS);
     for (const k of ['width', 'height'] as const)
-      if (s[k] !== undefined)
-        checkNumber(k, s[k], {
-          min: 1,
-          max: MAX_RENDER_SIDE,
-          integer: true,
-          maxCode: 'limit-exceeded',
-          unit: 'pixels',
-        });
-    if (s.iterations !== undefined)
-      checkNumber('iterations', s.iterations, {
-        min: 1,
-        max: MAX_ITERATIONS,
-        integer: true,
-        maxCode: 'limit-exceeded',
-      });
+      if (s[k] !== undefined) checkNumber(k, s[k], countUpTo(MAX_RENDER_SIDE, 'pixels'));
+    if (s.iterations !== undefined) checkNumber('iterations', s.iterations, countUpTo(MAX_ITERATIONS));
     if (s.seed !== undefined) checkNumber('seed', s.seed, { min: 0, max: 0xffffffff, integer: true });
     if (s.densityScale !== undefined)
       checkNumber('densityScale', s.densityScale, {

@@ -1,7 +1,7 @@
 import { VptError } from '../errors.js';
 import type { Vec3 } from './camera.js';
-import { checkNumbers, checkObject, fail } from '../validation/checks.js';
-import { FLOAT32_MAX, MAX_SCENE_LIGHTS, MAX_RADIANCE, LATLONG_SIDE_RULE } from '../validation/limits.js';
+import { checkNumbers, checkObject, fail, LATLONG_SIDE_RULE } from '../validation/checks.js';
+import { FLOAT32_MAX, MAX_SCENE_LIGHTS, MAX_RADIANCE } from '../validation/limits.js';
 
 /** A distant light: irradiance E (linear RGB) measured perpendicular to the beam. */
 export interface DirectionalLight {

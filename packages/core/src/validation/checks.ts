@@ -1,5 +1,5 @@
 import { VptError, type VptErrorCode } from '../errors.js';
-import { FLOAT32_MAX } from './limits.js';
+import { FLOAT32_MAX, MAX_TEXTURE_SIDE_2D } from './limits.js';
 
 /**
  * Field checks shared by every validator (the scene model, renderer parameters, the
@@ -41,6 +41,14 @@ export interface NumberRule {
   /** Unit named in messages ("world units", "radians"…). */
   unit?: string;
 }
+
+/** An integer from `min` (default 1) to a limit of vpt's: above it is 'limit-exceeded', named with `unit`. */
+export function countUpTo(max: number, unit?: string, min = 1): NumberRule {
+  return { min, max, integer: true, maxCode: 'limit-exceeded', ...(unit ? { unit } : {}) };
+}
+
+/** The rule for a lat-long environment's width and height: one less than the 2D limit, for the CDF tables' extra column. */
+export const LATLONG_SIDE_RULE: NumberRule = countUpTo(MAX_TEXTURE_SIDE_2D - 1, 'texels');
 
 function rangeText(r: NumberRule): string {
   const lo = r.min === undefined ? '' : `${r.exclusiveMin ? '>' : '>='} ${r.min}`;

@@ -3,7 +3,6 @@
  * in the kernels stays finite and every loop ends. Each limit is named in the VptError a
  * scene breaking it gets.
  */
-import type { NumberRule } from './checks.js';
 
 /** The largest finite float32 (2^128 − 2^104). A number above it becomes Infinity on upload. */
 export const FLOAT32_MAX = 3.4028234663852886e38;
@@ -56,15 +55,6 @@ export const MAX_PROCEDURAL_SIZE = 512;
 
 /** Largest side of a texture checked before a device is known (WebGPU's default limit). */
 export const MAX_TEXTURE_SIDE_2D = 8192;
-
-/** The rule for a lat-long environment's width and height: one less than the 2D limit, for the CDF tables' extra column. */
-export const LATLONG_SIDE_RULE: NumberRule = {
-  min: 1,
-  max: MAX_TEXTURE_SIDE_2D - 1,
-  integer: true,
-  maxCode: 'limit-exceeded',
-  unit: 'texels',
-};
 
 /** Most directional lights in a scene (MCRT compiles up to 8; ISO uses the first 4). */
 export const MAX_SCENE_LIGHTS = 8;
