@@ -390,3 +390,23 @@ describe('OME-Zarr over HTTP', () => {
     server.faults.clear();
   });
 });
+
+describe('OME-Zarr progress', () => {
+  it('reports chunks read out of the chunks the level spans', async () => {
+    const dims: [number, number, number] = [20, 12, 9];
+    const dir = await writeZarrFolder(
+      path.join(TMP, 'progress.ome.zarr'),
+      { dims, type: 'uint8', spacing: [1, 1, 1], images: [[pattern(dims, 'uint8')]] },
+      { version: '0.4', codec: 'gzip', chunk: [8, 8, 4] },
+    );
+    const events: { stage: string; loaded: number; total?: number }[] = [];
+    await loadVolume(dir, { onProgress: (p) => events.push(p) });
+    // 3 × 2 × 3 chunks; the last event says all of them.
+    expect(events.at(-1)).toEqual({ stage: 'fetch', loaded: 18, total: 18 });
+    const box = await (
+      await openOmeZarr(dir, { onChunks: (done, total) => events.push({ stage: 'box', loaded: done, total }) })
+    ).readRegion(0, [7, 0, 0], [9, 1, 1]);
+    expect(box.length).toBe(2);
+    expect(events.at(-1)).toEqual({ stage: 'box', loaded: 2, total: 2 }); // x 7–8 straddles chunks 0 and 1
+  });
+});

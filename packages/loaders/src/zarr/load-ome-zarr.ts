@@ -14,16 +14,13 @@ import { splitZarrLocation } from './location.js';
 export async function loadOmeZarr(location: string, options: ZarrLoadOptions, ctx: LoadContext): Promise<LoadedVolume> {
   const { store, selection } = splitZarrLocation(location);
   const wanted = { ...selection, ...definedOnly(options) };
-  let fetched = 0;
   const source = await openOmeZarr(store, {
     ...options,
     ...(wanted.channel !== undefined ? { channel: wanted.channel } : {}),
     ...(wanted.time !== undefined ? { time: wanted.time } : {}),
     signal: ctx.signal,
-    onBytes: (n) => {
-      fetched += n;
-      ctx.progress('fetch', fetched);
-    },
+    // Progress in chunks: their compressed sizes are unknown until they arrive.
+    onChunks: (done, total) => ctx.progress('fetch', done, total),
   });
   const last = source.levels.length - 1;
   const level = wanted.level === 'coarsest' ? last : (wanted.level ?? 0);

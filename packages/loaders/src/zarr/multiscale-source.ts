@@ -56,6 +56,8 @@ export interface OmeZarrOptions extends ZarrStoreOptions {
   time?: number;
   /** Most chunk requests in flight at once (default 8). */
   concurrency?: number;
+  /** Chunks read so far of the region being read, and how many it spans (progress; for the latest read when reads overlap). */
+  onChunks?: (done: number, total: number) => void;
 }
 
 /**
@@ -115,56 +117,65 @@ export function zarrError(e: unknown, where: string): LoaderError {
 
 /**
  * zarrita copies a decoded chunk without checking its length, so an uncompressed chunk cut
- * short would read as wrong voxels; this refuses it.
+ * short would read as wrong voxels: this extension refuses it, and tells `onChunk` of
+ * every chunk read (progress).
  */
-const checkedChunks = zarr.defineArrayExtension((array) => ({
-  async getChunk(coords: number[], options?: zarr.GetOptions, opts?: { useSharedArrayBuffer?: boolean }) {
-    const chunk = await array.getChunk(coords, options, opts);
-    const want = chunk.shape.reduce((a, b) => a * b, 1);
-    if ((chunk.data as ArrayLike<unknown>).length !== want)
-      throw new LoaderError(
-        'truncated',
-        `${array.path}: chunk ${coords.join('/')} holds ${(chunk.data as ArrayLike<unknown>).length} of its ${want} values`,
-      );
-    return chunk;
-  },
-}));
+function checkedChunks(onChunk: () => void) {
+  return zarr.defineArrayExtension((array) => ({
+    async getChunk(coords: number[], options?: zarr.GetOptions, opts?: { useSharedArrayBuffer?: boolean }) {
+      const chunk = await array.getChunk(coords, options, opts);
+      const want = chunk.shape.reduce((a, b) => a * b, 1);
+      if ((chunk.data as ArrayLike<unknown>).length !== want)
+        throw new LoaderError(
+          'truncated',
+          `${array.path}: chunk ${coords.join('/')} holds ${(chunk.data as ArrayLike<unknown>).length} of its ${want} values`,
+        );
+      onChunk();
+      return chunk;
+    },
+  }));
+}
 
 /** Open the OME-Zarr image at `location` (an http(s) URL, or a folder path / file: URL in Node). */
 export async function openOmeZarr(location: string, options: OmeZarrOptions = {}): Promise<MultiscaleSource> {
   const store = await openZarrStore(location, options);
+  let chunkListener: (() => void) | null = null;
   const where = location;
-  // Zarr v3 keeps metadata in zarr.json, v2 in .zgroup/.zattrs/.zarray. Reading it here first
-  // turns "not JSON" into a clear error (zarrita would report it as "not found").
+  // Zarr v3 keeps a group's attributes in zarr.json, v2 in .zattrs (.zgroup marks the
+  // group). They are read here, once (zarrita would fetch them again and would report bad
+  // JSON as "not found"); the levels' array metadata is then fetched in parallel.
   const v3 = await store.get('/zarr.json');
   const v2 = v3 ? undefined : ((await store.get('/.zattrs')) ?? (await store.get('/.zgroup')));
   if (!v3 && !v2)
     throw new LoaderError('not-found', `${where}: no Zarr group here (neither zarr.json nor .zgroup/.zattrs)`);
+  let json: { node_type?: unknown; attributes?: unknown } & Record<string, unknown>;
   try {
-    JSON.parse(new TextDecoder().decode(v3 ?? v2));
+    json = JSON.parse(new TextDecoder().decode(v3 ?? v2));
   } catch (e) {
     throw new LoaderError(
       'bad-header',
       `${where}: ${v3 ? 'zarr.json' : '.zattrs'} is not valid JSON (${(e as Error).message})`,
     );
   }
+  if (v3 && json?.node_type !== 'group')
+    throw new LoaderError('bad-header', `${where}: zarr.json describes a ${String(json?.node_type)}, not a group`);
   const zarrFormat = v3 ? 3 : 2;
-  const openIn = zarrFormat === 3 ? zarr.open.v3 : zarr.open.v2;
-  let group: zarr.Group<CountingStore>;
-  try {
-    group = await openIn(store, { kind: 'group' });
-  } catch (e) {
-    throw zarrError(e, where);
-  }
-  const ms: OmeMultiscale = parseOmeMultiscales(group.attrs, where);
-  const arrays: ZArray[] = [];
-  for (const d of ms.datasets) {
-    try {
-      arrays.push(checkedChunks((await openIn(group.resolve(d.path), { kind: 'array' })) as ZArray) as ZArray);
-    } catch (e) {
-      throw zarrError(e, `${where}/${d.path}`);
-    }
-  }
+  const ms: OmeMultiscale = parseOmeMultiscales(v3 ? json.attributes : json, where);
+  const rootLocation = zarr.root(store);
+  const arrays: ZArray[] = await Promise.all(
+    ms.datasets.map(async (d) => {
+      try {
+        const location = rootLocation.resolve(d.path);
+        const array =
+          zarrFormat === 3
+            ? await zarr.open.v3(location, { kind: 'array' })
+            : await zarr.open.v2(location, { kind: 'array', attrs: false });
+        return checkedChunks(() => chunkListener?.())(array as ZArray) as ZArray;
+      } catch (e) {
+        throw zarrError(e, `${where}/${d.path}`);
+      }
+    }),
+  );
   const first = arrays[0];
   const ndim = ms.axes.length;
   const dtype = String(first.dtype);
@@ -243,10 +254,16 @@ export async function openOmeZarr(location: string, options: OmeZarrOptions = {}
     if (c !== undefined) selection[c] = channel;
     if (t !== undefined) selection[t] = time;
     let got: zarr.Chunk<zarr.DataType>;
+    const chunk = levels[level].chunk;
+    const total = [0, 1, 2].reduce((n, i) => n * (Math.ceil(max[i] / chunk[i]) - Math.floor(min[i] / chunk[i])), 1);
+    let done = 0;
+    chunkListener = () => options.onChunks?.(++done, total);
     try {
       got = await zarr.get(a, selection, { createQueue: () => limitedQueue(concurrency), opts: { signal } });
     } catch (e) {
       throw zarrError(e, `${where}/${ms.datasets[level].path}`);
+    } finally {
+      chunkListener = null;
     }
     if (signal?.aborted) throw new LoaderError('aborted', `Loading ${where} was aborted`);
     return toVoxels(got, [x, y, z], mapped.type, max.map((m, i) => m - min[i]) as Vec3);
