@@ -10,6 +10,7 @@ import {
   writeZarrFolder,
   type FaultServer,
 } from '../packages/loaders/test/zarr-fixtures.js';
+import { openOmeZarr } from '../packages/loaders/src/index.js';
 import { BACKENDS, usePage } from './helpers/session.js';
 
 // OME-Zarr end to end: the headless page reads a store through @vpt/loaders' worker
@@ -120,6 +121,23 @@ describe('OME-Zarr renders like the raw data', () => {
     const side = await silhouette([d, 0, 0]);
     expect(Math.abs(side.w - px(0.5, d - 0.125))).toBeLessThanOrEqual(1.5);
     expect(Math.abs(side.h - px(0.25, d - 0.125))).toBeLessThanOrEqual(1.5);
+  });
+});
+
+describe('openOmeZarr in the page thread (the import map serves zarrita and the codecs)', () => {
+  it('reads the levels and a region of a v0.5 zstd store like Node does', async () => {
+    const dir = path.join(TMP, 'head-v05-zstd.ome.zarr');
+    const base = page().mount(dir);
+    const inPage = await page().page.evaluate(async (url: string) => {
+      const { openOmeZarr } = await (0, eval)("import('/packages/loaders/dist/index.js')");
+      const source = await openOmeZarr(url);
+      const box = await source.readRegion(1, [10, 20, 5], [40, 50, 30]);
+      return { levels: source.levels, type: source.type, box: Array.from(box as Uint8Array) };
+    }, new URL(base, page().url).href);
+    const node = await openOmeZarr(dir);
+    expect(inPage.levels).toEqual(node.levels);
+    expect(inPage.type).toBe('uint8');
+    expect(inPage.box).toEqual(Array.from(await node.readRegion(1, [10, 20, 5], [40, 50, 30])));
   });
 });
 

@@ -1,8 +1,11 @@
 import fs from 'node:fs';
+import http from 'node:http';
+import type { AddressInfo } from 'node:net';
 import path from 'node:path';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { LoaderError, loadVolume, openOmeZarr, parseOmeMultiscales, splitZarrLocation } from '../src/index.js';
 import { expectLoaderError } from './helpers.js';
+import { openZarrStore } from '../src/zarr/store.js';
 import {
   headVoxels,
   pattern,
@@ -376,6 +379,25 @@ describe('OME-Zarr over HTTP', () => {
     server.faults.set('/0/c/1/0/1', 'truncate');
     const e = await expectLoaderError(loadVolume(url(), { zarr: { retries: 1 } }), 'truncated');
     expect(e.message).toMatch(/1\/0\/1/);
+  });
+
+  it('range reads (as sharded v3 arrays make) get the bytes asked for, also from a server that ignores Range', async () => {
+    server.faults.clear();
+    const key = '/0/c/0/0/0' as const;
+    const whole = new Uint8Array(fs.readFileSync(path.join(root, 'head.ome.zarr', '0', 'c', '0', '0', '0')));
+    const store = await openZarrStore(url());
+    expect(Array.from((await store.getRange!(key, { offset: 3, length: 7 }))!)).toEqual(
+      Array.from(whole.subarray(3, 10)),
+    );
+    expect(Array.from((await store.getRange!(key, { suffixLength: 5 }))!)).toEqual(Array.from(whole.subarray(-5)));
+    // The same cut made here when the answer is the whole object (HTTP 200).
+    const plain = http.createServer((_req, res) => res.writeHead(200, { 'content-length': whole.length }).end(whole));
+    await new Promise<void>((r) => plain.listen(0, '127.0.0.1', r));
+    const ignoring = await openZarrStore(`http://127.0.0.1:${(plain.address() as AddressInfo).port}/s.zarr`);
+    expect(Array.from((await ignoring.getRange!(key, { offset: 3, length: 7 }))!)).toEqual(
+      Array.from(whole.subarray(3, 10)),
+    );
+    await new Promise<void>((r) => plain.close(() => r()));
   });
 
   it('a stalled chunk times out (no hang), and an abort stops the load', async () => {
