@@ -10,6 +10,9 @@
  *   pnpm data:fetch -- --list           list them and stop
  *   pnpm data:fetch -- --keep-work      keep data/fetched/.work/ (downloads, venvs) afterwards
  *
+ * A dataset with an "omeZarr" entry also gets a multiscale OME-Zarr copy (the gallery's
+ * OME-Zarr example), written by scripts/raw-to-ome-zarr.mjs from the verified raw file.
+ *
  * Where a dataset was converted from a NIfTI or NRRD file, that original is kept beside
  * it too (datasets.json "original"); packages/loaders/test/fetched.test.ts then checks the
  * loaders on these real files against the verified raw data (skipped when not fetched).
@@ -129,6 +132,25 @@ for (const d of selected) {
   }
 }
 if (!flag('--keep-work')) fs.rmSync(workRoot, { recursive: true, force: true });
+
+// Multiscale OME-Zarr copies (datasets.json "omeZarr"), written from the verified raw data
+// with @vpt/loaders' writer; needs the packages built (pnpm run build).
+for (const d of selected.filter((x) => x.omeZarr)) {
+  const sidecarPath = path.join(outDir, d.file).replace(/\.raw$/, '.json');
+  if (!fs.existsSync(sidecarPath) || failures.some((f) => f.startsWith(`${d.name}:`))) continue;
+  const out = path.join(outDir, d.omeZarr.file);
+  if (!fs.existsSync(path.join(root, 'packages', 'loaders', 'dist', 'index.js'))) {
+    console.log(
+      `\n${d.omeZarr.file}: skipped, build the packages first (pnpm run build), then run pnpm data:fetch again`,
+    );
+    continue;
+  }
+  const { convertRawToOmeZarr } = await import('./raw-to-ome-zarr.mjs');
+  await convertRawToOmeZarr(sidecarPath, out, d.omeZarr);
+  console.log(
+    `\n${d.omeZarr.file}: OME-Zarr v${d.omeZarr.version}, ${d.omeZarr.levels} levels, ${d.omeZarr.codec} (from ${d.file})`,
+  );
+}
 console.log(`\n${selected.length - failures.length} of ${selected.length} datasets in ${path.relative(root, outDir)}/`);
 if (failures.length) {
   console.error(`Failed:\n  ${failures.join('\n  ')}`);

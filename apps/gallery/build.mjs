@@ -4,7 +4,7 @@
 //                                      the one-file <vpt-viewer> bundle with its lazy chunks
 //   dist/data/                         the bundled volumes (copied) and data/fetched/
 //                                      (linked: up to hundreds of MB; `cp -rL dist …` to deploy)
-//   dist/data/manifest.json            what is there: every sidecar and real-format file found
+//   dist/data/manifest.json            what is there: every sidecar, real-format file and OME-Zarr store found
 //   dist/scenes/                       the CLI's scene files (the bundled head's presets)
 // Usage: node build.mjs [--production]   (pnpm --filter @vpt/gallery run build[:production])
 // A production build (the site visitors see) leaves out developer hints such as `pnpm data:fetch`.
@@ -88,6 +88,27 @@ function scan(folder, urlPrefix, bundled) {
         bytes: fs.statSync(path.join(folder, raw)).size,
         license: meta.license ?? reg?.license ?? '',
         gpl: reg?.gpl ?? false,
+      });
+    } else if (/\.ome\.zarr$/i.test(f) && ['.zattrs', 'zarr.json'].some((m) => fs.existsSync(path.join(file, m)))) {
+      // A multiscale OME-Zarr copy (the fetch script's "omeZarr"): the viewer refines it level by level.
+      const reg = registry.find((d) => d.omeZarr?.file === f);
+      const twin = reg ? readJson(path.join(folder, `${reg.name}.json`)) : null;
+      const levels = fs.readdirSync(file).filter((l) => /^\d+$/.test(l)).length;
+      out.push({
+        id: f.replace(/\.ome\.zarr$/i, '') + '-ome-zarr',
+        url: `${urlPrefix}${f}`,
+        format: 'ome-zarr',
+        bundled,
+        title: `${twin?.title ?? f} — OME-Zarr, ${levels} levels, refined level by level`,
+        modality: twin?.modality ?? '',
+        dims: twin?.dims ?? null,
+        type: twin?.voxel_type ?? null,
+        spacing: twin?.spacing ?? null,
+        valueRange: twin?.value_range ?? null,
+        bytes: null,
+        license: twin?.license ?? reg?.license ?? '',
+        gpl: reg?.gpl ?? false,
+        sameAs: reg?.name ?? null,
       });
     } else if (REAL_FORMATS.some((re) => re.test(f))) {
       const reg = registryEntry(f);

@@ -78,6 +78,36 @@ export function mountPagePackages(server: StaticServer, overrides: Record<string
   for (const [folder, name] of Object.entries(PAGE_PACKAGES)) {
     server.mount(overrides[folder] ?? findPackageDir(name, self), `/packages/${folder}/`);
   }
+  mountThirdParty(server, overrides.loaders ?? findPackageDir('@vpt/loaders', self));
+}
+
+/**
+ * Third-party modules page code may import through @vpt/loaders (its OME-Zarr reader,
+ * openOmeZarr, in the page's own thread): URL folder → [package, the package that depends
+ * on it, whose folder it is resolved from]. page/index.html's import map names their files.
+ */
+export const PAGE_THIRD_PARTY: Record<string, [string, string]> = {
+  zarrita: ['zarrita', '@vpt/loaders'],
+  numcodecs: ['numcodecs', '@vpt/loaders'],
+  fflate: ['fflate', '@vpt/loaders'],
+  'zarrita-storage': ['@zarrita/storage', 'zarrita'],
+};
+
+/**
+ * Mount PAGE_THIRD_PARTY at /packages/<folder>/ (also needed when the workspace root is
+ * served: these are not workspace folders); one that cannot be found is left out (its
+ * import then fails alone).
+ */
+export function mountThirdParty(server: StaticServer, loadersDir = findPackageDir('@vpt/loaders')): void {
+  const dirs: Record<string, string> = { '@vpt/loaders': loadersDir };
+  for (const [folder, [name, parent]] of Object.entries(PAGE_THIRD_PARTY)) {
+    try {
+      dirs[name] = findPackageDir(name, dirs[parent] ?? loadersDir);
+      server.mount(dirs[name], `/packages/${folder}/`);
+    } catch {
+      // Not installed: only OME-Zarr reading in the page's own thread needs it.
+    }
+  }
 }
 
 /** URL path of the headless page. */

@@ -32,13 +32,30 @@ export interface SidecarVolumeDescription {
   sidecar: string;
 }
 
+/**
+ * An OME-Zarr image (NGFF v0.4 or v0.5): a folder path (relative to the scene file) or an
+ * http(s) URL of the store. `level` 0 is the finest (default); `channel` and `time` pick
+ * along the `c` and `t` axes (default 0). The normalization range is `valueRange`, else
+ * the channel's omero window, else the data type's (as for raw data).
+ */
+export interface ZarrVolumeDescription {
+  zarr: string;
+  level?: number;
+  channel?: number;
+  time?: number;
+  valueRange?: [number, number];
+  /** A chunk the store lacks: 'error' (default) or 'fill' (the array's fill value). */
+  missingChunks?: 'error' | 'fill';
+}
+
 /** A test volume generated in code (core `createProceduralVolume`). */
 export interface ProceduralVolumeDescription {
   procedural: 'sphere' | 'cube' | 'ramp' | 'blob';
   size?: number;
 }
 
-export type VolumeDescription = RawVolumeDescription | SidecarVolumeDescription | ProceduralVolumeDescription;
+export type VolumeDescription =
+  RawVolumeDescription | SidecarVolumeDescription | ZarrVolumeDescription | ProceduralVolumeDescription;
 
 export interface TransferPointDescription {
   value: number;
@@ -141,8 +158,8 @@ export function checkSceneDescription(d: unknown, rendererNames?: readonly strin
       if (!Array.isArray(v.dims) || v.dims.length !== 3) bad('"volume.dims" must be [nx, ny, nz]');
       if (!['uint8', 'uint16', 'int16', 'float32'].includes(v.type as string))
         bad(`"volume.type" must be uint8, uint16, int16 or float32, got ${JSON.stringify(v.type)}`);
-    } else if (typeof v.sidecar !== 'string' && typeof v.procedural !== 'string') {
-      bad('"volume" needs one of "raw" (with dims and type), "sidecar" or "procedural"');
+    } else if (typeof v.sidecar !== 'string' && typeof v.procedural !== 'string' && typeof v.zarr !== 'string') {
+      bad('"volume" needs one of "raw" (with dims and type), "sidecar", "zarr" or "procedural"');
     }
   }
 }

@@ -61,9 +61,11 @@ function mapVolumeRefs(
   const volume = desc.volume;
   if (!volume || 'procedural' in volume) return desc;
   const mapped: VolumeDescription =
-    'sidecar' in volume
-      ? { ...volume, sidecar: map(volume.sidecar, volume) }
-      : { ...volume, raw: map(volume.raw, volume) };
+    'zarr' in volume
+      ? { ...volume, zarr: map(volume.zarr, volume) }
+      : 'sidecar' in volume
+        ? { ...volume, sidecar: map(volume.sidecar, volume) }
+        : { ...volume, raw: map(volume.raw, volume) };
   return { ...desc, volume: mapped };
 }
 
@@ -133,6 +135,7 @@ export function resolveSceneFiles(
       return ref;
     }
     const file = path.resolve(baseDir, ref);
+    if ('zarr' in volume) return resolveZarrFolder(ref, file, options);
     const st = statFile(file);
     if (!st) {
       if (ref.startsWith('/') && !confined) return ref;
@@ -159,6 +162,35 @@ export function resolveSceneFiles(
   });
 }
 
+/** An OME-Zarr store is a folder holding zarr.json (v3) or .zattrs / .zgroup (v2). */
+function isZarrFolder(dir: string): boolean {
+  try {
+    if (!fs.statSync(dir).isDirectory()) return false;
+  } catch {
+    return false;
+  }
+  return ['zarr.json', '.zattrs', '.zgroup'].some((f) => statFile(path.join(dir, f)) !== null);
+}
+
+/** A scene's `volume.zarr` path: an OME-Zarr folder (inside `root` when confined), as an absolute path. */
+function resolveZarrFolder(ref: string, dir: string, options: SceneFileOptions): string {
+  const confined = options.root !== undefined;
+  if (!isZarrFolder(dir)) {
+    if (ref.startsWith('/') && !confined && !fs.existsSync(dir)) return ref; // a URL path on the page's server
+    throw new VptError(
+      'load-failed',
+      `OME-Zarr store not found: ${dir} is not a folder holding zarr.json, .zattrs or .zgroup`,
+    );
+  }
+  if (confined && !insideRoot(dir, options.root!)) {
+    throw new VptError(
+      'invalid-scene',
+      `OME-Zarr store ${dir} is outside ${path.resolve(options.root!)}, the folder scene paths are confined to (--root)`,
+    );
+  }
+  return dir;
+}
+
 /**
  * Make the files a description refers to reachable from the page: exactly those files (a
  * sidecar with its raw file), each set under its own `/__files/<n>/`, never their folders;
@@ -171,6 +203,11 @@ export function mountSceneFiles(
   options: SceneFileOptions = {},
 ): SceneDescription {
   return mapVolumeRefs(resolveSceneFiles(desc, baseDir, options), (ref, volume) => {
+    if ('zarr' in volume) {
+      // A store is a folder of many files: that folder alone is served (symlinks that leave it refused).
+      if (!path.isAbsolute(ref) || !isZarrFolder(ref)) return ref;
+      return server.mount(ref, undefined, { confine: true });
+    }
     if (!path.isAbsolute(ref) || !statFile(ref)) return ref;
     const files = 'sidecar' in volume ? [ref, checkSidecarFile(ref).rawFile] : [ref];
     return server.mountFiles(files) + encodeURIComponent(path.basename(ref));

@@ -14,9 +14,10 @@ export interface StaticServer {
   /**
    * Serve `dir` under the URL path `urlPath` (e.g. `/packages/core/`); without a path a
    * fresh `/__mount/<n>/` is chosen. Mounting the same folder twice returns the first
-   * path. Returns the URL path, with a trailing slash.
+   * path. Returns the URL path, with a trailing slash. With `confine`, a file whose real
+   * path (symlinks followed) leaves `dir` is not served.
    */
-  mount(dir: string, urlPath?: string): string;
+  mount(dir: string, urlPath?: string, options?: { confine?: boolean }): string;
   /**
    * Serve exactly these files (nothing else of their folders) under a fresh
    * `/__files/<n>/`, each by its base name; returns that URL path. Files sharing a base
@@ -68,12 +69,24 @@ export function resolveInside(dir: string, relUrlPath: string): string | null {
   return target;
 }
 
+/** Does `file` (symlinks followed) lie inside `dir`? False for a file that does not exist. */
+function realpathInside(file: string, dir: string): boolean {
+  try {
+    const real = fs.realpathSync(file),
+      base = fs.realpathSync(dir);
+    return real === base || real.startsWith(base + path.sep);
+  } catch {
+    return false;
+  }
+}
+
 /**
  * Serve `root` (or only mounted folders when root is null) over HTTP. Mounts take
  * precedence over the root, the longest matching prefix first.
  */
 export async function startStaticServer(root: string | null, options: StaticServerOptions = {}): Promise<StaticServer> {
   const mounts = new Map<string, string | Map<string, string>>(); // url prefix -> absolute dir, or base name -> file
+  const confined = new Set<string>(); // prefixes whose files must really lie inside their folder
   let mountCount = 0;
   let fileMountCount = 0;
 
@@ -83,7 +96,9 @@ export async function startStaticServer(root: string | null, options: StaticServ
       if (urlPath.startsWith(prefix) || `${urlPath}/` === prefix) {
         const target = mounts.get(prefix)!;
         if (typeof target !== 'string') return target.get(urlPath.slice(prefix.length)) ?? null;
-        return resolveInside(target, urlPath.slice(prefix.length));
+        const file = resolveInside(target, urlPath.slice(prefix.length));
+        if (file && confined.has(prefix) && !realpathInside(file, target)) return null;
+        return file;
       }
     }
     return root === null ? null : resolveInside(root, urlPath);
@@ -144,14 +159,16 @@ export async function startStaticServer(root: string | null, options: StaticServ
   return {
     url: `http://${host}:${port}/`,
     port,
-    mount(dir: string, urlPath?: string): string {
+    mount(dir: string, urlPath?: string, options: { confine?: boolean } = {}): string {
       const abs = path.resolve(dir);
       if (urlPath === undefined) {
-        for (const [prefix, d] of mounts) if (d === abs) return prefix;
+        for (const [prefix, d] of mounts) if (d === abs && confined.has(prefix) === !!options.confine) return prefix;
         urlPath = `/__mount/${mountCount++}/`;
       }
       const prefix = normalizePrefix(urlPath);
       mounts.set(prefix, abs);
+      if (options.confine) confined.add(prefix);
+      else confined.delete(prefix);
       return prefix;
     },
     mountFiles(files: readonly string[]): string {

@@ -95,13 +95,28 @@ function checkVolume(v: unknown): void {
   } else if ('sidecar' in vol) {
     checkKnownKeys('volume', vol, ['sidecar']);
     checkString('volume.sidecar', vol.sidecar);
+  } else if ('zarr' in vol) {
+    checkKnownKeys('volume', vol, ['zarr', 'level', 'channel', 'time', 'valueRange', 'missingChunks']);
+    checkString('volume.zarr', vol.zarr);
+    for (const k of ['level', 'channel', 'time'] as const)
+      if (vol[k] !== undefined) checkNumber(`volume.${k}`, vol[k], { min: 0, max: 1e6, integer: true });
+    if (vol.valueRange !== undefined) {
+      const [lo, hi] = checkNumbers('volume.valueRange', vol.valueRange, 2);
+      if (lo === hi)
+        throw new VptError('invalid-scene', `volume.valueRange: min and max are equal (${lo}), an empty range`);
+    }
+    if (vol.missingChunks !== undefined)
+      checkOneOf('volume.missingChunks', vol.missingChunks, ['error', 'fill'] as const);
   } else if ('procedural' in vol) {
     checkKnownKeys('volume', vol, ['procedural', 'size']);
     checkOneOf('volume.procedural', vol.procedural, PROCEDURAL_KINDS);
     if (vol.size !== undefined)
       checkNumber('volume.size', vol.size, countUpTo(MAX_PROCEDURAL_SIZE, 'voxels per side', 2));
   } else {
-    throw new VptError('invalid-scene', 'volume: needs one of "raw" (with dims and type), "sidecar" or "procedural"');
+    throw new VptError(
+      'invalid-scene',
+      'volume: needs one of "raw" (with dims and type), "sidecar", "zarr" or "procedural"',
+    );
   }
 }
 

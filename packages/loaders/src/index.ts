@@ -13,3 +13,5 @@ export {
 } from './types.js';
 export { parseSidecar, rawFromName } from './formats/raw.js';
 export { axisCodes } from './formats/orientation.js';
+export * from './zarr/index.js';
+export type { ZarrLoadOptions } from './types.js';

@@ -7,6 +7,7 @@ import { checkRawOptions, decodeRaw, parseSidecar, rawFromName, type RawDescript
 import { decodeDicom, type DicomFile } from './formats/dicom.js';
 import { decodeNifti } from './formats/nifti.js';
 import { decodeNrrd } from './formats/nrrd.js';
+import { isZarrLocation } from './zarr/location.js';
 
 /** A short name for messages. */
 export function describeSource(source: unknown): string {
@@ -37,10 +38,13 @@ export async function loadInThread(source: VolumeSource, options: LoadOptions = 
   const ctx = createContext(name, options);
   try {
     ctx.checkAborted();
-    if (options.format !== undefined && !['auto', 'raw', 'nrrd', 'nifti', 'dicom'].includes(options.format)) {
+    if (
+      options.format !== undefined &&
+      !['auto', 'raw', 'nrrd', 'nifti', 'dicom', 'ome-zarr'].includes(options.format)
+    ) {
       throw new LoaderError(
         'unsupported',
-        `format "${String(options.format)}" is not one of auto, raw, nrrd, nifti, dicom`,
+        `format "${String(options.format)}" is not one of auto, raw, nrrd, nifti, dicom, ome-zarr`,
       );
     }
     return await dispatch(source, options, ctx);
@@ -52,8 +56,19 @@ export async function loadInThread(source: VolumeSource, options: LoadOptions = 
 async function dispatch(source: VolumeSource, options: LoadOptions, ctx: LoadContext): Promise<LoadedVolume> {
   const wanted = options.format && options.format !== 'auto' ? options.format : undefined;
   if (typeof source === 'string' || (typeof URL !== 'undefined' && source instanceof URL)) {
+    const location = String(source);
+    if (wanted === 'ome-zarr' || (!wanted && isZarrLocation(location))) {
+      // zarrita and the codecs load only when an OME-Zarr store is asked for.
+      const { loadOmeZarr } = await import('./zarr/load-ome-zarr.js');
+      return loadOmeZarr(zarrPathOrUrl(location), options.zarr ?? {}, ctx);
+    }
     return loadUrl(String(source), wanted, options, ctx);
   }
+  if (wanted === 'ome-zarr')
+    throw new LoaderError(
+      'unsupported',
+      'An OME-Zarr store is read from a URL (or a folder path in Node), not from bytes or files',
+    );
   if (Array.isArray(source)) return loadFiles(source as readonly File[], wanted, options, ctx);
   if (typeof Blob !== 'undefined' && source instanceof Blob) {
     const name = fileName(source);
@@ -67,6 +82,11 @@ async function dispatch(source: VolumeSource, options: LoadOptions, ctx: LoadCon
     'unsupported',
     `Cannot load ${Object.prototype.toString.call(source)}: pass a URL, a File or Blob, an ArrayBuffer, or an array of Files`,
   );
+}
+
+/** A relative location: a page-relative URL in a browser, a path in Node (no page to be relative to). */
+function zarrPathOrUrl(location: string): string {
+  return (globalThis as { location?: unknown }).location ? absoluteUrl(location) : location;
 }
 
 function absoluteUrl(url: string): string {

@@ -14,7 +14,26 @@ export interface LoadProgress {
   total?: number;
 }
 
-export type LoaderFormat = 'auto' | 'raw' | 'nrrd' | 'nifti' | 'dicom';
+export type LoaderFormat = 'auto' | 'raw' | 'nrrd' | 'nifti' | 'dicom' | 'ome-zarr';
+
+/**
+ * What to read from an OME-Zarr store (a URL or, in Node, a folder path ending in .zarr;
+ * the URL's fragment `#level=2&channel=1&time=0` does the same, these fields win).
+ */
+export interface ZarrLoadOptions {
+  /** Level index, 0 = finest (default), or 'coarsest'. */
+  level?: number | 'coarsest';
+  /** Index along the `c` axis (default 0). */
+  channel?: number;
+  /** Index along the `t` axis (default 0). */
+  time?: number;
+  /** A chunk the store lacks: 'error' (default, reason 'not-found') or 'fill' (the array's fill value). */
+  missingChunks?: 'error' | 'fill';
+  /** Longest wait for one HTTP request before it fails with reason 'network' (ms, default 30 000). */
+  requestTimeoutMs?: number;
+  /** Retries of a request that failed for a transient reason (default 2). */
+  retries?: number;
+}
 
 export interface RawOptions {
   dims: [number, number, number];
@@ -40,6 +59,8 @@ export interface LoadOptions {
   limits?: LoadLimits;
   /** Shrink by integer factors (box average) to fit the limits instead of failing. */
   downsample?: boolean;
+  /** OME-Zarr: level, channel, time and how to treat missing chunks. */
+  zarr?: ZarrLoadOptions;
   /** Parse in a Web Worker. Default true where Worker exists (browsers); Node parses in-thread. */
   worker?: boolean;
 }

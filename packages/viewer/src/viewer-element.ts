@@ -49,6 +49,15 @@ import { gradientSamples, valueHistogram, type GradientSamples, type Histogram1D
 import { loadEnvironment } from './loading/environment-loader.js';
 import type { LoadedVolumeLike, VolumeSource } from './loading/types.js';
 import { loadVolumeSource } from './loading/volume-source.js';
+import {
+  finestFittingLevel,
+  isProgressiveSource,
+  refinementPlan,
+  sourceAtLevel,
+  type Dims,
+} from './loading/multiscale.js';
+
+const BYTES_PER_VOXEL: Record<string, number> = { uint8: 1, uint16: 2, int16: 2, float32: 4 };
 import { OrbitCamera } from './orbit.js';
 import { renderPanels, type PanelName, PANEL_NAMES } from './panels.js';
 import { DEFAULT_TRANSFER_FUNCTION, transferFunctionPreset } from './presets.js';
@@ -72,6 +81,11 @@ export interface ViewerLoadDetail {
   format: string;
   dims: [number, number, number];
   type: string;
+  /**
+   * For a multiscale store (OME-Zarr) loaded level by level: the level now shown (0 =
+   * finest), how many the store has, its dims, and whether it is the last one coming.
+   */
+  level?: { index: number; count: number; dims: [number, number, number]; final: boolean };
 }
 export interface ViewerChangeDetail {
   property: string;
@@ -136,6 +150,7 @@ export class VptViewer extends LitElement {
     _lostGaveUp: { state: true },
     _stats: { state: true },
     _histogram: { state: true },
+    _dataLevel: { state: true },
     _dragOver: { state: true },
   };
 
@@ -188,6 +203,8 @@ export class VptViewer extends LitElement {
   declare private _stats: RefinementStats | null;
   declare private _histogram: Histogram1D | null;
   declare private _dragOver: boolean;
+  /** A multiscale volume's levels: shown, how many, the one that fits the budget, the one loading (null: none). */
+  declare private _dataLevel: { shown: number; count: number; target: number; loading: number | null } | null;
 
   private session: RenderSession | null = null;
   private canvas: HTMLCanvasElement | null = null;
@@ -239,6 +256,7 @@ export class VptViewer extends LitElement {
     this._overlayOpen = false;
     this._error = null;
     this._status = '';
+    this._dataLevel = null;
     this._lost = false;
     this._lostGaveUp = false;
     this._stats = null;
@@ -502,6 +520,9 @@ export class VptViewer extends LitElement {
       `${s.samples} / ${this.maxSamples} spp`,
       `${s.msPerIteration < 10 ? s.msPerIteration.toFixed(1) : Math.round(s.msPerIteration)} ms/it`,
     ];
+    const level = this._dataLevel;
+    if (level)
+      parts.push(`level ${level.shown}${level.loading !== null ? ` → ${level.loading}…` : ''} of ${level.count}`);
     if (s.error !== null)
       parts.push(
         `err ${(100 * s.error).toFixed(1)}%${this.targetError > 0 ? ` → ${(100 * this.targetError).toFixed(1)}%` : ''}`,
@@ -771,65 +792,140 @@ export class VptViewer extends LitElement {
   private async loadSource(source: VolumeSource | null): Promise<void> {
     const token = ++this.tokens.src;
     this.srcAbort?.abort();
+    this._dataLevel = null;
     if (source === null || source === '') return;
     const abort = new AbortController();
     this.srcAbort = abort;
-    this._status = 'Loading…';
-    this._loading = NaN;
+    if (isProgressiveSource(source)) return this.loadLevels(source, token, abort.signal);
     try {
-      const limits = this.session
-        ? { maxTextureDimension3D: this.session.ctx.backend.limits.maxTextureDimension3D }
-        : undefined;
-      const volume = await loadVolumeSource(source, {
-        signal: abort.signal,
-        limits,
-        onProgress: (p) => {
-          if (token !== this.tokens.src) return;
-          this._status = p.total
-            ? `Loading… ${Math.round((100 * p.loaded) / p.total)}%`
-            : `Loading… ${(p.loaded / 1048576).toFixed(1)} MB`;
-          this._loading = p.total ? Math.min(1, p.loaded / p.total) : NaN;
-          this.dispatchEvent(
-            new CustomEvent<ViewerProgressDetail>('vpt-progress', { detail: { phase: 'loading', ...p } }),
-          );
-        },
-      });
+      const volume = await this.loadOnce(source, token, abort.signal);
       if (token !== this.tokens.src) return;
-      this.volume = volume;
-      this.loadedSource = source;
-      this._status = '';
-      this._loading = null;
-      this._histogram = valueHistogram(volume);
-      this.autoTransferFunction = autoTransferFunction(volume);
-      if (this.fittedPreset) {
-        const name = this.fittedPreset;
-        this.transferFunction = parseTransferFunction(name, volume);
-        this.fittedPreset = name; // the willUpdate for this set would clear it
-        this.keepFittedPreset = true;
-      }
-      if (this.cameraIsAuto || !this.camera) {
-        const fit = fitCamera(volume, (this.camera as Camera | null)?.fovy);
-        this.internalChange.add('camera');
-        this.camera = fit;
-        this.cameraIsAuto = true;
-        this.orbit.set(fit);
-      }
-      this.lightCamera = (this.camera as Camera | null) ?? null;
-      this.clearError('src');
-      this.applySync();
-      // Renderer parameters that follow the data (iso's default surface) may have changed.
-      if (this.session && this.desiredRendererKey() !== this.rendererKey) this.track(this.switchRenderer());
-      this.dispatchEvent(
-        new CustomEvent<ViewerLoadDetail>('vpt-load', {
-          detail: { volume, format: volume.format, dims: [...volume.dims], type: volume.type },
-        }),
-      );
+      this.applyVolume(volume, source, null);
     } catch (e) {
       if (token !== this.tokens.src) return;
       this._status = '';
       this._loading = null;
       this.fail(e, 'src');
     }
+  }
+
+  /** One volume load with the loading status, bar and `vpt-progress` events. */
+  private async loadOnce(source: VolumeSource, token: number, signal: AbortSignal): Promise<LoadedVolumeLike> {
+    this._status = this._dataLevel ? `Refining data… level ${this._dataLevel.loading}` : 'Loading…';
+    this._loading = NaN;
+    const prefix = this._dataLevel ? `Refining data… level ${this._dataLevel.loading}: ` : 'Loading… ';
+    const limits = this.session
+      ? { maxTextureDimension3D: this.session.ctx.backend.limits.maxTextureDimension3D }
+      : undefined;
+    return loadVolumeSource(source, {
+      signal,
+      limits,
+      onProgress: (p) => {
+        if (token !== this.tokens.src) return;
+        this._status = p.total
+          ? `${prefix}${Math.round((100 * p.loaded) / p.total)}%`
+          : `${prefix}${(p.loaded / 1048576).toFixed(1)} MB`;
+        this._loading = p.total ? Math.min(1, p.loaded / p.total) : NaN;
+        this.dispatchEvent(
+          new CustomEvent<ViewerProgressDetail>('vpt-progress', { detail: { phase: 'loading', ...p } }),
+        );
+      },
+    });
+  }
+
+  /**
+   * A multiscale store (OME-Zarr without a level in its URL): the coarsest level first, then
+   * finer ones up to the finest that fits the GPU memory budget (loading/multiscale.ts).
+   * Each level replaces the volume; the camera stays. A finer level that fails to load
+   * leaves the coarser one on screen and reports the error.
+   */
+  private async loadLevels(source: string, token: number, signal: AbortSignal): Promise<void> {
+    let shown = false;
+    try {
+      const t0 = performance.now();
+      const first = await this.loadOnce(sourceAtLevel(source, 'coarsest'), token, signal);
+      if (token !== this.tokens.src) return;
+      const zarr = first.meta?.zarr as { level: number; levels: { dims: Dims }[] } | undefined;
+      const levels = zarr?.levels.map((l) => l.dims) ?? [first.dims];
+      const ms = Math.max(1, performance.now() - t0);
+      const target = finestFittingLevel(levels, BYTES_PER_VOXEL[first.type], this.volumeBudget(), this.max3D());
+      const plan = refinementPlan(levels, target, (first.dims[0] * first.dims[1] * first.dims[2]) / ms);
+      this._dataLevel = { shown: levels.length - 1, count: levels.length, target, loading: plan[0] ?? null };
+      this.applyVolume(first, source, this.levelDetail(levels.length - 1, levels, plan.length === 0));
+      shown = true;
+      for (const [i, level] of plan.entries()) {
+        this._dataLevel = { ...this._dataLevel, loading: level };
+        const volume = await this.loadOnce(sourceAtLevel(source, level), token, signal);
+        if (token !== this.tokens.src) return;
+        this._dataLevel = { ...this._dataLevel, shown: level, loading: plan[i + 1] ?? null };
+        this.applyVolume(volume, source, this.levelDetail(level, levels, i === plan.length - 1));
+      }
+    } catch (e) {
+      if (token !== this.tokens.src) return;
+      this._status = '';
+      this._loading = null;
+      if (shown && this._dataLevel) this._dataLevel = { ...this._dataLevel, loading: null };
+      this.fail(e, 'src');
+    }
+  }
+
+  private levelDetail(index: number, levels: readonly Dims[], final: boolean): ViewerLoadDetail['level'] {
+    return { index, count: levels.length, dims: [...levels[index]] as Dims, final };
+  }
+
+  /** Bytes a volume may take: the context's maxGpuBytes less its render targets and the TF (1 GiB before a context exists). */
+  private volumeBudget(): number {
+    const ctx = this.session?.ctx;
+    if (!ctx) return 1 << 30;
+    return ctx.maxGpuBytes - ctx.stats.gpuBytes.targets - (1 << 20);
+  }
+
+  private max3D(): number {
+    return this.session?.ctx.backend.limits.maxTextureDimension3D ?? 2048;
+  }
+
+  /**
+   * Show a loaded volume: histogram, fitted transfer function and preset, the framing
+   * camera while it is automatic (not for a finer level of the volume already shown),
+   * `vpt-load`. `level` is set for the levels of a multiscale store.
+   */
+  private applyVolume(volume: LoadedVolumeLike, source: VolumeSource, level: ViewerLoadDetail['level'] | null): void {
+    const refinement = level !== null && this.loadedSource === source && this.volume !== null;
+    this.volume = volume;
+    this.loadedSource = source;
+    this._status = '';
+    this._loading = null;
+    this._histogram = valueHistogram(volume);
+    this.autoTransferFunction = autoTransferFunction(volume);
+    if (this.fittedPreset) {
+      const name = this.fittedPreset;
+      this.transferFunction = parseTransferFunction(name, volume);
+      this.fittedPreset = name; // the willUpdate for this set would clear it
+      this.keepFittedPreset = true;
+    }
+    if (!refinement && (this.cameraIsAuto || !this.camera)) {
+      const fit = fitCamera(volume, (this.camera as Camera | null)?.fovy);
+      this.internalChange.add('camera');
+      this.camera = fit;
+      this.cameraIsAuto = true;
+      this.orbit.set(fit);
+    }
+    if (!refinement) this.lightCamera = (this.camera as Camera | null) ?? null;
+    this.clearError('src');
+    this.applySync();
+    // Renderer parameters that follow the data (iso's default surface) may have changed.
+    if (this.session && this.desiredRendererKey() !== this.rendererKey) this.track(this.switchRenderer());
+    this.dispatchEvent(
+      new CustomEvent<ViewerLoadDetail>('vpt-load', {
+        detail: {
+          volume,
+          format: volume.format,
+          dims: [...volume.dims],
+          type: volume.type,
+          ...(level ? { level } : {}),
+        },
+      }),
+    );
   }
 
   private async resolveEnvironment(): Promise<void> {

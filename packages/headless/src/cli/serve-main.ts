@@ -1,5 +1,5 @@
 import path from 'node:path';
-import { mountPagePackages, workspaceRoot } from '../packages.js';
+import { mountPagePackages, mountThirdParty, workspaceRoot } from '../packages.js';
 import { startStaticServer, type StaticServer } from '../server.js';
 import { parseServeArgs, SERVE_USAGE } from './args.js';
 import { oneLine, processIO, type CliIO } from './io.js';
@@ -66,6 +66,7 @@ export async function runServe(
     // Outside the repository the packages are not under the root: serve the installed
     // ones at the URLs the pages' import maps use.
     if (root !== workspace) mountPagePackages(server);
+    else mountThirdParty(server); // the headless page's third-party imports live in node_modules
     const url = new URL(args.open.replace(/^\/+/, ''), server.url).href;
     if (args.check) {
       const code = await check(url, io);

@@ -11,10 +11,18 @@ import {
   checkSceneDescription,
   type SceneDescription,
   type VolumeDescription,
+  type ZarrVolumeDescription,
 } from '../scene-description.js';
 import type { PageRenderResult, PostModule, VptPageApi } from './types.js';
 
 type CoreModule = VptPageApi['core'];
+/** The part of @vpt/loaders this page uses (imported on first use; not a dependency of this package's types). */
+interface LoadersModule {
+  loadVolume(
+    url: string,
+    options: { format: 'ome-zarr'; zarr: Record<string, unknown> },
+  ): Promise<Volume & { meta?: Record<string, unknown> }>;
+}
 
 let core!: CoreModule;
 let post!: PostModule;
@@ -35,6 +43,7 @@ async function fetchOk(url: string): Promise<Response> {
 /** Turn a volume description into a core Volume; relative URLs resolve against baseUrl. */
 async function loadVolume(desc: VolumeDescription, baseUrl: string = document.baseURI): Promise<Volume> {
   if ('procedural' in desc) return core.createProceduralVolume(desc.procedural, desc.size ?? 32);
+  if ('zarr' in desc) return loadZarr(desc, baseUrl);
   if ('sidecar' in desc) {
     // core's raw reader parses the sidecar (as @vpt/loaders and the viewer's fallback do).
     const sidecarUrl = new URL(desc.sidecar, baseUrl).href;
@@ -46,6 +55,36 @@ async function loadVolume(desc: VolumeDescription, baseUrl: string = document.ba
   const volume = core.createVolume(desc.dims, desc.type, data, desc.spacing ?? [1, 1, 1]);
   if (desc.valueRange) volume.valueRange = desc.valueRange;
   volume.name = url.split('/').pop();
+  return volume;
+}
+
+/**
+ * An OME-Zarr level through @vpt/loaders (its worker holds zarrita and the codecs, so this
+ * page's import map needs nothing more). The omero window is the normalization range
+ * unless the description gives one, as a sidecar's value_range is for raw data.
+ */
+async function loadZarr(desc: ZarrVolumeDescription, baseUrl: string): Promise<Volume> {
+  const url = new URL(desc.zarr, baseUrl).href;
+  const loaders = await load<LoadersModule>('@vpt/loaders');
+  let loaded: Awaited<ReturnType<LoadersModule['loadVolume']>>;
+  try {
+    loaded = await loaders.loadVolume(url, {
+      format: 'ome-zarr',
+      zarr: {
+        level: desc.level ?? 0,
+        ...(desc.channel !== undefined ? { channel: desc.channel } : {}),
+        ...(desc.time !== undefined ? { time: desc.time } : {}),
+        ...(desc.missingChunks ? { missingChunks: desc.missingChunks } : {}),
+      },
+    });
+  } catch (e) {
+    throw new core.VptError('load-failed', `Could not load OME-Zarr ${url}: ${(e as Error).message}`, { cause: e });
+  }
+  const volume = core.createVolume(loaded.dims, loaded.type, loaded.data, loaded.spacing);
+  const window = loaded.meta?.value_range as [number, number] | undefined;
+  const range = desc.valueRange ?? window;
+  if (range) volume.valueRange = [range[0], range[1]];
+  volume.name = loaded.name ?? url.split('/').filter(Boolean).pop();
   return volume;
 }
 

@@ -1,0 +1,231 @@
+/**
+ * The read-only key → bytes store zarrita reads an OME-Zarr through: HTTP(S) with range
+ * requests, or a folder on disk in Node. It exists (rather than zarrita's FetchStore) so
+ * every failure is a LoaderError with a reason, a request that stalls times out instead of
+ * hanging, a failed request is retried, and the bytes fetched are counted.
+ */
+import { LoaderError, isAbort } from '../errors.js';
+
+/** The zarrita store contract (`AsyncReadable` of @zarrita/storage), restated so this module needs no import. */
+export interface ZarrReadStore {
+  get(key: `/${string}`, opts?: { signal?: AbortSignal }): Promise<Uint8Array | undefined>;
+  getRange?(
+    key: `/${string}`,
+    range: { offset: number; length: number } | { suffixLength: number },
+    opts?: { signal?: AbortSignal },
+  ): Promise<Uint8Array | undefined>;
+}
+
+export interface ZarrStoreOptions {
+  signal?: AbortSignal;
+  /** Longest wait for one request, in ms, before it fails with reason 'network' (default 30 000). */
+  requestTimeoutMs?: number;
+  /** Retries of a request that failed for a transient reason (network error, 5xx, timeout); default 2. */
+  retries?: number;
+  /**
+   * A chunk the store does not have: 'error' (default) fails with reason 'not-found';
+   * 'fill' reads it as the array's fill value, as the Zarr spec allows for stores written
+   * without empty chunks.
+   */
+  missingChunks?: 'error' | 'fill';
+  /** Called with the byte count of every answer (for progress and benchmarks). */
+  onBytes?: (bytes: number) => void;
+}
+
+export interface CountingStore extends ZarrReadStore {
+  /** Where the store reads from, for messages. */
+  readonly location: string;
+  /** Bytes received so far. */
+  bytesRead: number;
+}
+
+const METADATA_KEY = /(^|\/)(zarr\.json|\.zarray|\.zattrs|\.zgroup|\.zmetadata)$/;
+
+/** A URL with a scheme other than file: goes over fetch; anything else is a path (Node). */
+export function isHttpLocation(location: string): boolean {
+  return /^[a-z][a-z0-9+.-]*:/i.test(location) && !/^file:/i.test(location);
+}
+
+export async function openZarrStore(location: string, options: ZarrStoreOptions = {}): Promise<CountingStore> {
+  const base = isHttpLocation(location) ? httpReader(location, options) : await fileReader(location);
+  const missing = options.missingChunks ?? 'error';
+  const store: CountingStore = {
+    location,
+    bytesRead: 0,
+    async get(key, opts) {
+      const bytes = await base.read(key, undefined, opts?.signal ?? options.signal);
+      return counted(key, bytes);
+    },
+    async getRange(key, range, opts) {
+      const bytes = await base.read(key, range, opts?.signal ?? options.signal);
+      return counted(key, bytes);
+    },
+  };
+  function counted(key: string, bytes: Uint8Array | undefined): Uint8Array | undefined {
+    if (bytes === undefined) {
+      // Metadata keys are probed (v3 zarr.json, then v2 .zarray/.zgroup): absent is an answer.
+      if (!METADATA_KEY.test(key) && missing === 'error')
+        throw new LoaderError(
+          'not-found',
+          `${location}: chunk ${key} is missing (the store answered "not found"); ` +
+            "pass zarr.missingChunks = 'fill' for stores written without empty chunks",
+        );
+      return undefined;
+    }
+    store.bytesRead += bytes.length;
+    options.onBytes?.(bytes.length);
+    return bytes;
+  }
+  return store;
+}
+
+interface Reader {
+  read(
+    key: string,
+    range: { offset: number; length: number } | { suffixLength: number } | undefined,
+    signal: AbortSignal | undefined,
+  ): Promise<Uint8Array | undefined>;
+}
+
+function httpReader(location: string, options: ZarrStoreOptions): Reader {
+  const root = location.replace(/[?#].*$/, '').replace(/\/*$/, '/');
+  const timeoutMs = options.requestTimeoutMs ?? 30_000;
+  const retries = options.retries ?? 2;
+  return {
+    async read(key, range, signal) {
+      const url = root + key.replace(/^\/+/, '');
+      const headers: Record<string, string> = {};
+      if (range) {
+        headers.Range =
+          'suffixLength' in range
+            ? `bytes=-${range.suffixLength}`
+            : `bytes=${range.offset}-${range.offset + range.length - 1}`;
+      }
+      for (let attempt = 0; ; attempt++) {
+        try {
+          return await fetchOnce(url, headers, range, signal, timeoutMs);
+        } catch (e) {
+          const transient = e instanceof LoaderError && (e.reason === 'network' || e.reason === 'truncated');
+          if (!transient || attempt >= retries || signal?.aborted) throw e;
+          await new Promise((r) => setTimeout(r, 100 * 2 ** attempt));
+        }
+      }
+    },
+  };
+}
+
+async function fetchOnce(
+  url: string,
+  headers: Record<string, string>,
+  range: { offset: number; length: number } | { suffixLength: number } | undefined,
+  signal: AbortSignal | undefined,
+  timeoutMs: number,
+): Promise<Uint8Array | undefined> {
+  if (signal?.aborted) throw new LoaderError('aborted', `Loading ${url} was aborted`, { cause: signal.reason });
+  // One controller for the caller's abort and this request's deadline, which covers the
+  // body too: a server that sends headers and then stalls must not hang the load.
+  const controller = new AbortController();
+  let timedOut = false;
+  const timer = setTimeout(() => {
+    timedOut = true;
+    controller.abort();
+  }, timeoutMs);
+  const onAbort = () => controller.abort();
+  signal?.addEventListener('abort', onAbort, { once: true });
+  try {
+    const response = await fetch(url, { headers, signal: controller.signal });
+    if (response.status === 404 || response.status === 410 || response.status === 403) {
+      void response.body?.cancel().catch(() => {});
+      // 403: object stores answer it for absent keys of a private listing.
+      return undefined;
+    }
+    if (response.status !== 200 && response.status !== 206) {
+      void response.body?.cancel().catch(() => {});
+      throw new LoaderError('network', `Fetching ${url} failed with HTTP ${response.status}`);
+    }
+    let bytes: Uint8Array;
+    try {
+      bytes = new Uint8Array(await response.arrayBuffer());
+    } catch (e) {
+      if (signal?.aborted || timedOut) throw e;
+      // The headers came, the body broke off (a dropped connection mid-answer).
+      throw new LoaderError('truncated', `${url}: the answer broke off (${(e as Error)?.message ?? e})`, { cause: e });
+    }
+    const declared = response.headers.get('content-length');
+    if (declared !== null && !response.headers.get('content-encoding') && Number(declared) !== bytes.length)
+      throw new LoaderError('truncated', `${url}: the answer ended after ${bytes.length} of ${declared} bytes`);
+    // A server that ignores Range sends the whole object: cut the range out here.
+    if (range && response.status === 200) {
+      if ('suffixLength' in range) return bytes.subarray(Math.max(0, bytes.length - range.suffixLength));
+      return bytes.subarray(range.offset, range.offset + range.length);
+    }
+    return bytes;
+  } catch (e) {
+    if (e instanceof LoaderError) throw e;
+    if (signal?.aborted) throw new LoaderError('aborted', `Loading ${url} was aborted`, { cause: e });
+    if (timedOut)
+      throw new LoaderError('network', `${url}: no complete answer within ${timeoutMs} ms (timed out)`, { cause: e });
+    if (isAbort(e)) throw new LoaderError('aborted', `Loading ${url} was aborted`, { cause: e });
+    throw new LoaderError('network', `Could not fetch ${url}: ${(e as Error)?.message ?? e}`, { cause: e });
+  } finally {
+    clearTimeout(timer);
+    signal?.removeEventListener('abort', onAbort);
+  }
+}
+
+/** The few Node functions the folder reader uses (this package is built without Node's types). */
+interface NodeFs {
+  stat(p: string): Promise<{ isDirectory(): boolean }>;
+  readFile(p: string): Promise<Uint8Array>;
+}
+interface NodePath {
+  resolve(...p: string[]): string;
+  join(...p: string[]): string;
+}
+interface NodeUrl {
+  fileURLToPath(u: string): string;
+}
+
+/** A folder in Node (a path or file: URL). node:fs is imported by a computed name so browser bundles never see it. */
+async function fileReader(location: string): Promise<Reader> {
+  const names = ['node:fs/promises', 'node:path', 'node:url'];
+  let fs: NodeFs, path: NodePath, url: NodeUrl;
+  try {
+    [fs, path, url] = (await Promise.all(names.map((n) => import(/* @vite-ignore */ n)))) as [
+      NodeFs,
+      NodePath,
+      NodeUrl,
+    ];
+  } catch (e) {
+    throw new LoaderError(
+      'unsupported',
+      `${location}: a path can be read only in Node; in a browser give an http(s) URL of the store`,
+      { cause: e },
+    );
+  }
+  const root = /^file:/i.test(location) ? url.fileURLToPath(location) : path.resolve(location);
+  try {
+    if (!(await fs.stat(root)).isDirectory())
+      throw new LoaderError('bad-header', `${location} is a file; an OME-Zarr store is a folder`);
+  } catch (e) {
+    if (e instanceof LoaderError) throw e;
+    throw new LoaderError('not-found', `${location}: no such folder`, { cause: e });
+  }
+  return {
+    async read(key, range, signal) {
+      if (signal?.aborted) throw new LoaderError('aborted', `Loading ${location} was aborted`);
+      const file = path.join(root, ...key.split('/').filter((p) => p && p !== '..' && p !== '.'));
+      let bytes: Uint8Array;
+      try {
+        bytes = new Uint8Array(await fs.readFile(file));
+      } catch (e) {
+        const code = (e as { code?: string }).code;
+        if (code === 'ENOENT' || code === 'ENOTDIR' || code === 'EISDIR') return undefined;
+        throw new LoaderError('network', `${file}: ${(e as Error).message}`, { cause: e });
+      }
+      if (!range) return bytes;
+      if ('suffixLength' in range) return bytes.subarray(Math.max(0, bytes.length - range.suffixLength));
+      return bytes.subarray(range.offset, range.offset + range.length);
+    },
+  };
+}

@@ -1,0 +1,77 @@
+#!/usr/bin/env node
+/**
+ * Convert a raw volume with its JSON sidecar into a multiscale OME-Zarr image, with
+ * @vpt/loaders' writeOmeZarr (build the packages first: pnpm run build).
+ *
+ *   node scripts/raw-to-ome-zarr.mjs data/mri_head_volpack_brainsmall_128x128x84_uint8.json out/head.ome.zarr \
+ *     [--version 0.4|0.5] [--codec raw|gzip|zstd|blosc] [--levels N] [--chunk N] [--unit micrometer]
+ *
+ * Levels are 2× box averages (every side longer than 1 halves); the sidecar's value_range
+ * becomes the omero channel window, which vpt reads as the normalization range.
+ * The fetch script (pnpm data:fetch) uses convertRawToOmeZarr for the gallery's copy.
+ */
+import fs from 'node:fs';
+import path from 'node:path';
+import { fileURLToPath } from 'node:url';
+
+const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..');
+
+const ARRAYS = { uint8: Uint8Array, uint16: Uint16Array, int16: Int16Array, float32: Float32Array };
+
+/** Write `outDir` (replaced) from a sidecar and the raw file beside it. */
+export async function convertRawToOmeZarr(sidecarPath, outDir, options = {}) {
+  const { writeOmeZarr } = await import(path.join(root, 'packages', 'loaders', 'dist', 'index.js'));
+  const sidecar = JSON.parse(fs.readFileSync(sidecarPath, 'utf8'));
+  const rawPath = path.join(
+    path.dirname(sidecarPath),
+    sidecar.file ?? path.basename(sidecarPath).replace(/\.json$/, '.raw'),
+  );
+  const Ctor = ARRAYS[sidecar.voxel_type];
+  if (!Ctor) throw new Error(`${sidecarPath}: voxel_type ${sidecar.voxel_type} is not uint8, uint16, int16 or float32`);
+  if ((sidecar.endianness ?? 'little') !== 'little')
+    throw new Error(`${sidecarPath}: only little-endian raw data is converted`);
+  const bytes = fs.readFileSync(rawPath);
+  const data = new Ctor(bytes.buffer.slice(bytes.byteOffset, bytes.byteOffset + bytes.byteLength));
+  fs.rmSync(outDir, { recursive: true, force: true });
+  fs.mkdirSync(outDir, { recursive: true });
+  const chunk = options.chunk ?? 64;
+  await writeOmeZarr(
+    (key, value) => {
+      const file = path.join(outDir, ...key.split('/'));
+      fs.mkdirSync(path.dirname(file), { recursive: true });
+      fs.writeFileSync(file, value);
+    },
+    { dims: sidecar.dims, type: sidecar.voxel_type, spacing: sidecar.spacing ?? [1, 1, 1], images: [[data]] },
+    {
+      version: options.version ?? '0.4',
+      codec: options.codec ?? 'zstd',
+      levels: options.levels ?? 1,
+      chunk: [chunk, chunk, chunk],
+      unit: options.unit ?? 'micrometer',
+      name: sidecar.title ?? path.basename(sidecarPath, '.json'),
+      ...(Array.isArray(sidecar.value_range) ? { windows: [sidecar.value_range] } : {}),
+    },
+  );
+  return outDir;
+}
+
+if (process.argv[1] && path.resolve(process.argv[1]) === fileURLToPath(import.meta.url)) {
+  const positional = [];
+  const options = {};
+  const args = process.argv.slice(2).filter((a) => a !== '--');
+  for (let i = 0; i < args.length; i++) {
+    const a = args[i];
+    if (a === '--version' || a === '--codec' || a === '--unit') options[a.slice(2)] = args[++i];
+    else if (a === '--levels' || a === '--chunk') options[a.slice(2)] = Number(args[++i]);
+    else positional.push(a);
+  }
+  const [sidecar, out] = positional;
+  if (!sidecar || !out) {
+    console.error(
+      'usage: node scripts/raw-to-ome-zarr.mjs SIDECAR.json OUT.ome.zarr [--version 0.4|0.5] [--codec raw|gzip|zstd|blosc] [--levels N] [--chunk N] [--unit U]',
+    );
+    process.exit(2);
+  }
+  await convertRawToOmeZarr(sidecar, out, options);
+  console.log(`wrote ${out}`);
+}
