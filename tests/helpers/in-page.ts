@@ -28,6 +28,10 @@ export interface TestContextOptions {
   sampling?: VolumeSampling;
   /** The GPU memory budget in bytes (RenderContextOptions.maxGpuBytes). */
   maxGpuBytes?: number;
+  /** RenderContextOptions.bricking / brickSize / brickUploadsPerFrame. */
+  bricking?: 'off' | 'auto' | 'force';
+  brickSize?: number;
+  brickUploadsPerFrame?: number;
 }
 
 /** The shared test scene: a ramp TF, the default camera, no lights, a black sky, density 1, seed 1. */
@@ -71,6 +75,9 @@ export function installInPageHelpers(): void {
         post: steps,
         sampling: opts.sampling,
         maxGpuBytes: opts.maxGpuBytes,
+        bricking: opts.bricking,
+        brickSize: opts.brickSize,
+        brickUploadsPerFrame: opts.brickUploadsPerFrame,
       });
     },
     scene(spec) {

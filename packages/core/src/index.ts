@@ -38,6 +38,7 @@ export {
   type VolumeFormatOptions,
 } from './gpu/volume-format.js';
 export { downsampleVolume, fitFactors } from './scene/downsample.js';
+export * from './bricking/index.js';
 export { BaseRenderer } from './base-renderer.js';
 export { RUNNING_MEAN_INTEGRATE, HALF_MEANS_INTEGRATE, COPY_ACCUMULATION_RENDER } from './shaders/accumulation.js';
 export type { PostStep } from './post-step.js';

@@ -18,7 +18,8 @@ import { sliceAtlasLayout } from '../shaders/slice-atlas.js';
 import { UniformLayout } from '../uniforms/layout.js';
 import { PRESENT_PASS } from './present-pass.js';
 import { ProgressiveLoop } from './progressive-loop.js';
-import { SceneResources, sameVoxels } from './scene-resources.js';
+import { SceneResources, sameVoxels, type BrickPlan } from './scene-resources.js';
+import type { BrickingStats } from '../bricking/bricked-volume.js';
 
 export interface RenderContextOptions {
   backend?: BackendPreference;
@@ -43,6 +44,17 @@ export interface RenderContextOptions {
    * (WebGL 2).
    */
   maxGpuBytes?: number;
+  /**
+   * Volumes larger than one texture or the budget: 'off' (default) downsamples them to fit;
+   * 'auto' holds them as bricks in an atlas with a page table instead (bricking/; a scene
+   * with a 2D transfer function, or a renderer that needs the gradient volume, is still
+   * downsampled); 'force' bricks every volume (tests, benchmarks).
+   */
+  bricking?: 'off' | 'auto' | 'force';
+  /** Data voxels per brick side, a power of two (default 32). */
+  brickSize?: number;
+  /** Bricks uploaded per frame at most (default 16); each upload restarts accumulation. */
+  brickUploadsPerFrame?: number;
 }
 
 /** GPU memory the context holds, in bytes (texture sizes × bytes per texel, as allocated). */
@@ -81,6 +93,8 @@ export interface RenderStats {
   msPerIteration: number;
   /** GPU memory held now. */
   gpuBytes: GpuBytes;
+  /** The brick cache's state when the volume is bricked, else null. */
+  bricking: BrickingStats | null;
 }
 
 type RendererPasses = { generate: GpuPass; integrate: GpuPass; render: GpuPass };
@@ -106,7 +120,11 @@ export class RenderContext {
   // Volume, transfer function, gradient and auxiliary textures, with their lifetimes.
   private readonly resources: SceneResources;
   // The last budget fit: a scene volume → the volume actually uploaded (itself when it fits).
-  private fitted: { source: Scene['volume']; key: string; volume: Scene['volume'] } | null = null;
+  private fitted: { source: Scene['volume']; key: string; volume: Scene['volume']; bricks: BrickPlan | null } | null =
+    null;
+  private readonly bricking: 'off' | 'auto' | 'force';
+  private readonly brickSize: number;
+  private readonly brickUploadsPerFrame: number;
   private readonly sampling: VolumeSampling;
   readonly maxGpuBytes: number;
   private readonly warningListeners = new Set<(w: RenderWarning) => void>();
@@ -141,6 +159,21 @@ export class RenderContext {
     if (opts.maxGpuBytes !== undefined && !(opts.maxGpuBytes > 0))
       throw new VptError('invalid-scene', `maxGpuBytes must be a positive number of bytes, got ${opts.maxGpuBytes}`);
     this.maxGpuBytes = opts.maxGpuBytes ?? defaultGpuBytes(backend);
+    this.bricking = opts.bricking ?? 'off';
+    if (!['off', 'auto', 'force'].includes(this.bricking))
+      throw new VptError(
+        'invalid-scene',
+        `bricking must be 'off', 'auto' or 'force', got ${JSON.stringify(opts.bricking)}`,
+      );
+    this.brickSize = opts.brickSize ?? 32;
+    if (!Number.isInteger(Math.log2(this.brickSize)) || this.brickSize < 8 || this.brickSize > 256)
+      throw new VptError('invalid-scene', `brickSize must be a power of two from 8 to 256, got ${opts.brickSize}`);
+    this.brickUploadsPerFrame = opts.brickUploadsPerFrame ?? 16;
+    if (!Number.isInteger(this.brickUploadsPerFrame) || this.brickUploadsPerFrame < 1)
+      throw new VptError(
+        'invalid-scene',
+        `brickUploadsPerFrame must be a positive integer, got ${opts.brickUploadsPerFrame}`,
+      );
     checkSize(opts.width, opts.height, backend);
     this.width = opts.width;
     this.height = opts.height;
@@ -184,6 +217,7 @@ export class RenderContext {
       samplesPerPixel: this.iteration,
       msPerIteration: this.msPerIteration,
       gpuBytes: this.gpuBytes(),
+      bricking: this.resources.bricked?.stats() ?? null,
     };
   }
 
@@ -199,7 +233,7 @@ export class RenderContext {
       t ? t.width * t.height * t.depth * BYTES_PER_TEXEL[t.format] : 0;
     const target = (t: RenderTarget | null | undefined) => (t ? t.textures.reduce((a, x) => a + tex(x), 0) : 0);
     const res = this.resources;
-    const volume = tex(res.volumeTexture);
+    const volume = res.bricked ? res.bricked.gpuBytes() : tex(res.volumeTexture);
     const gradient = res.gradient ? target(res.gradient.atlas) + target(res.gradient.max) : 0;
     let auxiliary = tex(res.tfTexture);
     for (const a of res.auxTextures.values()) auxiliary += tex(a.texture);
@@ -237,8 +271,33 @@ export class RenderContext {
       }
     }
     this.scene = scene;
+    this.resources.setBrickPlan(this.fitted?.bricks ?? null);
     this.resources.sync();
     this.reset();
+  }
+
+  /**
+   * Resolves once a bricked volume has loaded what it can (every brick resident, or the
+   * atlas full of wanted ones), uploading arrived bricks itself when no loop runs; at once
+   * for an unbricked volume. Rejects with the source's error.
+   */
+  async whenBricksSettled(): Promise<BrickingStats | null> {
+    this.assertAlive();
+    for (;;) {
+      this.assertAlive();
+      const bricked = this.resources.bricked;
+      if (!bricked) return null;
+      if (!this.loop.running && this.updateBricks()) this.reset();
+      const stats = bricked.stats();
+      if (stats.complete) return stats;
+      await (this.loop.running ? new Promise((r) => setTimeout(r, 10)) : bricked.nextArrival());
+    }
+  }
+
+  /** One frame's brick residency work; true when what the kernels read changed. */
+  private updateBricks(): boolean {
+    const bricked = this.resources.bricked;
+    return !!bricked && !this.backend.isLost && bricked.update();
   }
 
   /**
@@ -256,10 +315,14 @@ export class RenderContext {
     if (f && f.key === key && f.source === scene.volume) {
       return f.volume === scene.volume ? scene : { ...scene, volume: f.volume };
     }
+    if (f && f.key === key && f.bricks && sameVoxels(f.source, scene.volume)) {
+      this.fitted = { ...f, source: scene.volume, volume: scene.volume };
+      return scene;
+    }
     if (f && f.key === key && sameVoxels(f.source, scene.volume) && f.volume !== f.source) {
       // The same voxels with another value range: keep the downsampled copy, take the new range.
       const volume = { ...f.volume, valueRange: scene.volume.valueRange };
-      this.fitted = { source: scene.volume, key, volume };
+      this.fitted = { source: scene.volume, key, volume, bricks: null };
       return { ...scene, volume };
     }
     const upload = this.resources.planUpload(scene.volume, sampling);
@@ -279,6 +342,17 @@ export class RenderContext {
         `maxGpuBytes (${this.maxGpuBytes} bytes) leaves no room for a volume next to the ${this.width} x ${this.height} render targets`,
       );
     }
+    // Bricks instead of a downsampled copy: the full data stays available to the view.
+    const brickable = scene.transferFunction.dimensions !== '2d' && !gradient;
+    if (brickable && (this.bricking === 'force' || (this.bricking === 'auto' && factors.some((f) => f > 1)))) {
+      const bricks: BrickPlan = {
+        capacityBytes: budget,
+        brickSize: this.brickSize,
+        uploadsPerFrame: this.brickUploadsPerFrame,
+      };
+      this.fitted = { source: scene.volume, key, volume: scene.volume, bricks };
+      return scene;
+    }
     let volume = scene.volume;
     if (factors.some((f) => f > 1)) {
       volume = downsampleVolume(scene.volume, factors);
@@ -296,7 +370,7 @@ export class RenderContext {
       if (this.warningListeners.size === 0) console.warn(`vpt: ${warning.message}`);
       this.warningListeners.forEach((l) => l(warning));
     }
-    this.fitted = { source: scene.volume, key, volume };
+    this.fitted = { source: scene.volume, key, volume, bricks: null };
     return volume === scene.volume ? scene : { ...scene, volume };
   }
 
@@ -344,6 +418,8 @@ export class RenderContext {
   iterate(n = 1): void {
     this.assertAlive();
     if (!this.scene || this.backend.isLost) return;
+    // A bricked volume's uploads of this frame: what the kernels read changes, so the estimate restarts.
+    if (this.updateBricks()) this.reset();
     this.prepare();
     const scene = this.scene;
     const passes = this.passes!;
@@ -351,6 +427,11 @@ export class RenderContext {
       volume: this.resources.volumeTexture!,
       transferFunction: this.resources.tfTexture!,
     };
+    const bricked = this.resources.bricked;
+    if (bricked) {
+      textures.pageTable = bricked.pageTable;
+      textures.brickLevels = bricked.levels;
+    }
     if (this.resources.gradient && this.wantsGradient(scene)) {
       textures.gradientMagnitude = this.resources.gradient.atlas.textures[0];
       textures.gradientMax = this.resources.gradient.max.textures[0];
@@ -621,6 +702,7 @@ export class RenderContext {
       tf2d,
       gradient: this.wantsGradient(scene),
       hardwareFilter: this.resources.volumeUpload?.filter === 'linear',
+      bricked: this.resources.bricked !== null,
     };
   }
 
@@ -645,7 +727,7 @@ export class RenderContext {
           { name: 'gradientMax', dimension: '2d' as const },
         ]
       : [];
-    const key = `${r.name}|${JSON.stringify(features)}|${auxBindings.map((b) => b.name).join(',')}|${chunks.hardwareFilter ? 'filtered' : 'exact'}`;
+    const key = `${r.name}|${JSON.stringify(features)}|${auxBindings.map((b) => b.name).join(',')}|${chunks.hardwareFilter ? 'filtered' : 'exact'}${chunks.bricked ? '|bricked' : ''}`;
     if (!this.passes || key !== this.variantKey) {
       this.layout = new UniformLayout('Params', [...SCENE_UNIFORM_FIELDS, ...r.paramFields]);
       // The volume/TF chunks read the `volume` and `transferFunction` (and gradient) textures,
@@ -676,6 +758,12 @@ export class RenderContext {
           [
             { name: 'volume', dimension: '3d', ...(chunks.hardwareFilter ? { filter: 'linear' as const } : {}) },
             { name: 'transferFunction', dimension: '2d' },
+            ...(chunks.bricked
+              ? [
+                  { name: 'pageTable', dimension: '3d' as const },
+                  { name: 'brickLevels', dimension: '2d' as const },
+                ]
+              : []),
             ...gradientBindings,
             ...auxBindings,
           ],

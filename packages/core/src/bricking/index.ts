@@ -1,0 +1,4 @@
+export * from './source.js';
+export * from './brick-geometry.js';
+export * from './brick-cache.js';
+export { BrickedVolume, atlasSlots, type BrickingOptions, type BrickingStats } from './bricked-volume.js';

@@ -1,0 +1,115 @@
+import { beforeAll, describe, expect, it } from 'vitest';
+import { installBrickingHelpers, type BrickRenderOptions } from './helpers/bricking-in-page.js';
+import { zSummary } from './helpers/mcrt-stats.js';
+import { BACKENDS, usePage } from './helpers/session.js';
+
+/**
+ * Bricked volumes (core/src/bricking): a volume held as bricks in an atlas with a page table
+ * renders like the same volume in one texture. The test volume is uint8 [72, 60, 52] (partial
+ * bricks on every axis at brick size 16), exactly 0 outside a ball, so corner bricks are
+ * constant and take no slot.
+ */
+const page = usePage();
+beforeAll(async () => {
+  await installBrickingHelpers(page().page);
+});
+
+const render = (o: BrickRenderOptions) => page().page.evaluate((o) => window.bt.render(o), o);
+
+/** [72, 60, 52]: partial bricks on every axis at brick size 16; the ball leaves the corners empty. */
+const LUMPY = { dims: [72, 60, 52] as [number, number, number], radius: 0.4 };
+/** [96, 96, 80] with a small ball: most bricks are empty, so its level-0 bricks fit in less than the plain volume takes. */
+const SPARSE = { dims: [96, 96, 80] as [number, number, number], radius: 0.22 };
+
+function maxAbsDiff(a: number[], b: number[]): number {
+  let m = 0;
+  for (let i = 0; i < a.length; i++) m = Math.max(m, Math.abs(a[i] - b[i]));
+  return m;
+}
+
+describe.each(BACKENDS)('bricked volumes (%s)', (backend) => {
+  it.each(['eam', 'mip', 'iso'])(
+    '%s: exact sampling of a fully resident bricked volume gives the unbricked image',
+    async (renderer) => {
+      const base = { backend, renderer, sampling: 'exact' as const, size: 32, iterations: 3, ...LUMPY };
+      const plain = await render({ ...base, bricking: 'off' });
+      const bricked = await render({ ...base, bricking: 'force' });
+      expect(bricked.bricking).not.toBeNull();
+      const b = bricked.bricking!;
+      expect(b.complete).toBe(true);
+      expect(b.finest).toBe(5 * 4 * 4); // every level-0 brick served by its own data
+      expect(b.constant).toBeGreaterThan(0); // the empty corners take no slot
+      expect(plain.bricking).toBeNull();
+      expect(bricked.nonFinite || plain.nonFinite).toBe(false);
+      expect(Math.max(...plain.hdr)).toBeGreaterThan(0.05); // something to compare
+      // Same texels, same weights, same arithmetic: bit for bit.
+      expect(maxAbsDiff(bricked.hdr, plain.hdr)).toBe(0);
+    },
+  );
+
+  it('eam: the hardware-filtered bricked volume agrees with the unbricked one within the filter precision', async () => {
+    const base = { backend, renderer: 'eam', sampling: 'fast' as const, size: 32, iterations: 3, ...LUMPY };
+    const plain = await render({ ...base, bricking: 'off' });
+    const bricked = await render({ ...base, bricking: 'force' });
+    expect(bricked.bricking?.complete).toBe(true);
+    // The texture unit's weights are computed from other coordinates (atlas vs whole volume).
+    expect(maxAbsDiff(bricked.hdr, plain.hdr)).toBeLessThan(1e-4);
+  });
+});
+
+/** Per-pixel z-scores of two Monte Carlo runs (pixels both estimate exactly, e.g. background only, are skipped). */
+function compareRuns(
+  a: { mean: number[] | null; se: number[] | null },
+  b: { mean: number[] | null; se: number[] | null },
+) {
+  const z: number[] = [];
+  for (let i = 0; i < a.mean!.length; i += 4) {
+    if (a.se![i] === 0 && b.se![i] === 0 && a.mean![i] === b.mean![i]) continue;
+    for (let c = 0; c < 3; c++) z.push((a.mean![i + c] - b.mean![i + c]) / Math.hypot(a.se![i + c], b.se![i + c]));
+  }
+  return zSummary(z, 3);
+}
+
+describe('bricked volumes above the memory budget (MCRT, webgl2)', () => {
+  const mcrt = {
+    backend: 'webgl2' as const,
+    renderer: 'mcrt',
+    sampling: 'fast' as const,
+    size: 16,
+    iterations: 64,
+    frames: true,
+    ...SPARSE,
+  };
+
+  it('a volume over the budget is bricked, not downsampled, and agrees by z-scores with the unbricked render', async () => {
+    const plain = await render({ ...mcrt, bricking: 'off', seed: 1 });
+    const bricked = await render({ ...mcrt, bricking: 'auto', volumeBytes: 600_000, seed: 2 });
+    const b = bricked.bricking!;
+    expect(b).not.toBeNull();
+    expect(bricked.dims).toEqual(SPARSE.dims); // not downsampled
+    expect(bricked.plainVolumeBytes).toBeGreaterThan(600_000); // the volume alone exceeds the budget…
+    expect(bricked.gpuVolumeBytes).toBeLessThanOrEqual(600_000); // …its bricks do not
+    expect(b.complete).toBe(true);
+    expect(b.finest).toBe(6 * 6 * 5); // every level-0 brick served by its own data (or its constant)
+    expect(bricked.nonFinite || plain.nonFinite).toBe(false);
+    const s = compareRuns(bricked, plain);
+    expect(Math.abs(s.meanScaled), JSON.stringify(s)).toBeLessThan(4);
+    expect(s.maxAbs, JSON.stringify(s)).toBeLessThan(5.5);
+    expect(Math.max(...plain.mean!)).toBeGreaterThan(0.2);
+  });
+
+  it('with the atlas too small for level 0, coarser bricks serve the rest and the majorant grid still bounds them (grid vs one global majorant)', async () => {
+    const base = { ...mcrt, ...LUMPY, bricking: 'force' as const, volumeBytes: 40 * 18 ** 3 + 20_000 };
+    const grid = await render({ ...base, params: { majorantGrid: true, tracking: 'delta' }, seed: 3 });
+    const global = await render({ ...base, params: { majorantGrid: false, tracking: 'delta' }, seed: 4 });
+    const b = grid.bricking!;
+    expect(b.slots).toBeLessThanOrEqual(40);
+    expect(b.complete).toBe(true);
+    expect(b.finest).toBeLessThan(5 * 4 * 4); // some level-0 bricks are served by a coarser level
+    expect(b.finest).toBeGreaterThan(0);
+    expect(global.bricking).toEqual(b); // the same residency in both runs
+    const s = compareRuns(grid, global);
+    expect(Math.abs(s.meanScaled), JSON.stringify(s)).toBeLessThan(4);
+    expect(s.maxAbs, JSON.stringify(s)).toBeLessThan(5.5);
+  });
+});
