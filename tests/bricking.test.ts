@@ -47,6 +47,61 @@ describe.each(BACKENDS)('bricked volumes (%s)', (backend) => {
     },
   );
 
+  it('uploads at most brickUploadsPerFrame bricks a frame, restarts accumulation at every residency change, and ends at the settled image', async () => {
+    const o = {
+      backend,
+      renderer: 'eam',
+      sampling: 'exact' as const,
+      size: 24,
+      iterations: 2,
+      ...LUMPY,
+      bricking: 'force' as const,
+      uploadsPerFrame: 4,
+    };
+    const streamed = await page().page.evaluate((o) => window.bt.stream(o), o);
+    const settled = await render(o);
+    const log = streamed.log;
+    let prev = { iterations: 0, uploaded: 0, held: 0 };
+    for (const f of log) {
+      expect(f.uploaded - prev.uploaded).toBeLessThanOrEqual(4);
+      // A frame that changed what is held started a new estimate; any other frame added one sample.
+      expect(f.iterations).toBe(f.held > prev.held ? 1 : prev.iterations + 1);
+      prev = f;
+    }
+    expect(prev.uploaded).toBe(settled.bricking!.uploaded);
+    expect(log.filter((f, i) => f.uploaded > (i ? log[i - 1].uploaded : 0)).length).toBeGreaterThanOrEqual(
+      Math.ceil(prev.uploaded / 4),
+    );
+    expect(maxAbsDiff(streamed.hdr, settled.hdr)).toBe(0);
+  });
+
+  it('a volume streamed from a multiscale source renders like the bricked volume; a failed brick read warns and leaves a coarser level in its place', async () => {
+    // EAM's default step derives from the scene's volume, here the coarsest level [9, 8, 7]
+    // (docs/architecture.md, "Bricked volumes"): the direct render is given that step.
+    const o = {
+      backend,
+      renderer: 'eam',
+      sampling: 'exact' as const,
+      size: 24,
+      iterations: 2,
+      ...LUMPY,
+      bricking: 'off' as const,
+    };
+    const direct = await render({ ...o, bricking: 'force', params: { stepSize: 0.5 / 9 } });
+    const streamed = await page().page.evaluate((o) => window.bt.streamed(o, null), o);
+    expect(streamed.bricking!.complete).toBe(true);
+    expect(streamed.bricking!.finest).toBe(5 * 4 * 4);
+    expect(streamed.warnings).toEqual([]);
+    // The box comes from level 0 (the stand-in is the coarsest level): equal up to the float rounding of the box.
+    expect(maxAbsDiff(streamed.hdr, direct.hdr)).toBeLessThan(1e-5);
+    const failing = await page().page.evaluate((o) => window.bt.streamed(o, [31, 15, 15]), o); // level-0 brick [2, 1, 1], inside the ball
+    expect(failing.codes).toEqual(['brick-load-failed']);
+    expect(failing.warnings[0]).toMatch(/brick \[2, 1, 1\] of level 0.*HTTP 404/);
+    expect(failing.bricking).toMatchObject({ complete: true, failed: 1, finest: 5 * 4 * 4 - 1 });
+    expect(failing.hdr.every(Number.isFinite)).toBe(true);
+    expect(maxAbsDiff(failing.hdr, direct.hdr)).toBeGreaterThan(1e-3); // that region shows level 1
+  });
+
   it('eam: the hardware-filtered bricked volume agrees with the unbricked one within the filter precision', async () => {
     const base = { backend, renderer: 'eam', sampling: 'fast' as const, size: 32, iterations: 3, ...LUMPY };
     const plain = await render({ ...base, bricking: 'off' });

@@ -4,7 +4,7 @@
  * from this module's scope, only `window.vpt` and `window.t`.
  */
 import type { Page } from 'puppeteer-core';
-import type { BrickingStats, Volume, VolumeSampling } from '@vpt/core';
+import type { BrickingStats, MultiscaleSource, RenderContext, Scene, Volume, VolumeSampling } from '@vpt/core';
 import type { TestContextOptions } from './in-page.js';
 
 export interface BrickRenderOptions {
@@ -41,9 +41,29 @@ export interface BrickRenderResult {
 }
 
 export interface BrickingInPageHelpers {
+  context(opts: BrickRenderOptions): Promise<RenderContext>;
+  /** The test scene: the volume of opts.dims and opts.radius, a TF that hides the smallest values, a light and a sky. */
+  scene(opts: BrickRenderOptions): Scene;
   /** A uint8 volume, spacing [1, 1, 1.25]: a smooth lumpy ball of the given radius (box = 1), exactly 0 outside it (so bricks away from it are constant). */
   volume(dims: [number, number, number], radius: number): Volume;
   render(opts: BrickRenderOptions): Promise<BrickRenderResult>;
+  /**
+   * Set the scene and run one iteration per frame (yielding between frames so bricks arrive)
+   * until the bricks are settled, logging per frame the accumulated iterations, the bricks
+   * uploaded so far and the bricks held (slots and constants); then renders `iterations`. Returns the log and the final image.
+   */
+  /**
+   * Render the test volume streamed through RenderContext.setVolumeSource: a source that reads
+   * the in-memory levels a millisecond later and fails the level-0 brick read at `failAt` (its
+   * region's min corner), with the coarsest level as the scene's stand-in.
+   */
+  streamed(
+    opts: BrickRenderOptions,
+    failAt: [number, number, number] | null,
+  ): Promise<{ hdr: number[]; warnings: string[]; codes: string[]; bricking: BrickingStats | null; reads: number }>;
+  stream(
+    opts: BrickRenderOptions,
+  ): Promise<{ log: { iterations: number; uploaded: number; held: number }[]; hdr: number[] }>;
 }
 
 declare global {
@@ -71,11 +91,10 @@ function installBrickingInPage(): void {
           }
       return core.createVolume(dims, 'uint8', data, [1, 1, 1.25]);
     },
-    async render(o) {
-      const t = window.t;
+    context(o) {
       const W = o.size;
       const targets = W * W * 16 * 12; // frame, accumulations, HDR: an upper bound for every renderer here
-      const ctx = await t.context({
+      return window.t.context({
         backend: o.backend,
         renderer: o.renderer,
         params: o.params,
@@ -87,22 +106,83 @@ function installBrickingInPage(): void {
         brickUploadsPerFrame: o.uploadsPerFrame,
         ...(o.volumeBytes ? { maxGpuBytes: targets + 256 * 256 * 16 + o.volumeBytes } : {}),
       });
+    },
+    scene(o) {
+      const volume = window.bt.volume(o.dims, o.radius);
+      return {
+        ...window.t.scene({ volume, sampling: o.sampling, densityScale: o.densityScale ?? 30, seed: o.seed ?? 1 }),
+        transferFunction: {
+          dimensions: '1d',
+          points: [
+            { value: 0.02, color: [0.2, 0.5, 0.9], opacity: 0 },
+            { value: 0.35, color: [0.9, 0.6, 0.3], opacity: 0.4 },
+            { value: 0.8, color: [1, 0.95, 0.9], opacity: 1 },
+          ],
+        },
+        camera: { position: [0.9, 0.5, 1.7], target: [0, 0, 0], up: [0, 1, 0], fovy: 0.62 },
+        lights: [{ type: 'directional', direction: [-0.4, 1, 0.3], irradiance: [2, 1.8, 1.5] }],
+        environment: { type: 'constant', radiance: [0.3, 0.35, 0.45] },
+      };
+    },
+    async streamed(o, failAt) {
+      const { core } = window.vpt;
+      const ctx = await window.bt.context(o);
+      try {
+        const mem = core.inMemoryMultiscaleSource(window.bt.volume(o.dims, o.radius), {
+          coarsestSide: o.brickSize ?? 16,
+        });
+        let reads = 0;
+        const source: MultiscaleSource = {
+          type: mem.type,
+          levels: mem.levels,
+          readLevel: (level) => mem.readLevel(level),
+          async readRegion(level, min, max) {
+            reads++;
+            await new Promise((resolve) => setTimeout(resolve, 1));
+            if (failAt && level === 0 && min.every((m, a) => m === failAt[a])) throw new Error('HTTP 404 (test)');
+            return mem.readRegion(level, min, max);
+          },
+        };
+        const standIn = await source.readLevel(mem.levels.length - 1);
+        const warnings: string[] = [];
+        const codes: string[] = [];
+        ctx.onWarning((w) => {
+          warnings.push(w.message);
+          codes.push(w.code);
+        });
+        ctx.setVolumeSource(standIn, source);
+        ctx.setScene({ ...window.bt.scene(o), volume: standIn });
+        const bricking = await ctx.whenBricksSettled();
+        await ctx.renderIterations(o.iterations);
+        return { hdr: Array.from(await ctx.readHDR()), warnings, codes, bricking, reads };
+      } finally {
+        ctx.dispose();
+      }
+    },
+    async stream(o) {
+      const ctx = await window.bt.context(o);
+      try {
+        ctx.setScene(window.bt.scene(o));
+        const log: { iterations: number; uploaded: number; held: number }[] = [];
+        for (let frame = 0; frame < 1000 && !ctx.stats.bricking?.complete; frame++) {
+          ctx.iterate(1);
+          const b = ctx.stats.bricking!;
+          log.push({ iterations: ctx.stats.iterations, uploaded: b.uploaded, held: b.resident + b.constant });
+          await new Promise((resolve) => setTimeout(resolve, 0)); // let requested bricks arrive
+        }
+        await ctx.renderIterations(o.iterations);
+        return { log, hdr: Array.from(await ctx.readHDR()) };
+      } finally {
+        ctx.dispose();
+      }
+    },
+    async render(o) {
+      const t = window.t;
+      const W = o.size;
+      const ctx = await window.bt.context(o);
       try {
         const volume = window.bt.volume(o.dims, o.radius);
-        ctx.setScene({
-          ...t.scene({ volume, sampling: o.sampling, densityScale: o.densityScale ?? 30, seed: o.seed ?? 1 }),
-          transferFunction: {
-            dimensions: '1d',
-            points: [
-              { value: 0.02, color: [0.2, 0.5, 0.9], opacity: 0 },
-              { value: 0.35, color: [0.9, 0.6, 0.3], opacity: 0.4 },
-              { value: 0.8, color: [1, 0.95, 0.9], opacity: 1 },
-            ],
-          },
-          camera: { position: [0.9, 0.5, 1.7], target: [0, 0, 0], up: [0, 1, 0], fovy: 0.62 },
-          lights: [{ type: 'directional', direction: [-0.4, 1, 0.3], irradiance: [2, 1.8, 1.5] }],
-          environment: { type: 'constant', radiance: [0.3, 0.35, 0.45] },
-        });
+        ctx.setScene({ ...window.bt.scene(o), volume });
         await ctx.whenBricksSettled();
         const n = W * W * 4;
         let mean: number[] | null = null,

@@ -49,6 +49,8 @@ export {
   type RenderStats,
   type GpuBytes,
   type RenderWarning,
+  type BrickLoadWarning,
+  type VolumeDownsampledWarning,
 } from './context/render-context.js';
 
 export { SCENE_UNIFORM_FIELDS, sceneUniformValues } from './shaders/scene-uniforms.js';

@@ -1,6 +1,7 @@
 import { describe, expect, it } from 'vitest';
 import {
   atlasSlots,
+  brickPriority,
   BrickCache,
   BrickGeometry,
   createVolume,
@@ -318,5 +319,52 @@ describe('atlasSlots', () => {
       expect(Math.max(x, y, z)).toBeLessThanOrEqual(perAxis);
       expect(x * y * z).toBeGreaterThanOrEqual(Math.min(want, max, perAxis ** 3) * (max >= want ? 1 : 0.5));
     }
+  });
+});
+
+describe('brick priority (what the view needs, in load order)', () => {
+  const source = inMemoryMultiscaleSource(createVolume([64, 64, 64], 'uint8'), { coarsestSide: 16 });
+  const g = new BrickGeometry(source.levels, 16); // levels 64³, 32³, 16³: 64 + 8 + 1 bricks
+  const level0 = source.levels[0];
+  // A narrow view along −z: at most ±0.125 wide across the box, so it sees the central 2 × 2 columns of level-0 bricks.
+  const camera = {
+    position: [0, 0, 2] as [number, number, number],
+    target: [0, 0, 0] as [number, number, number],
+    up: [0, 1, 0] as [number, number, number],
+    fovy: 0.1,
+  };
+  const central = (k: number) =>
+    g
+      .brickOf(k)
+      .brick.slice(0, 2)
+      .every((b) => b === 1 || b === 2);
+
+  it('without a view: every brick, coarsest level first', () => {
+    const keys = brickPriority(g, level0, null);
+    expect(keys).toHaveLength(g.brickCount);
+    expect(new Set(keys).size).toBe(g.brickCount);
+    const levels = keys.map((k) => g.brickOf(k).level);
+    expect(levels).toEqual([...levels].sort((a, b) => b - a));
+  });
+
+  it('the coarsest level, then the visible bricks level by level, nearest first, then the bricks outside the frustum', () => {
+    const keys = brickPriority(g, level0, { camera, width: 64, height: 64, lod: false });
+    expect(keys).toHaveLength(g.brickCount);
+    expect(new Set(keys).size).toBe(g.brickCount);
+    expect(g.brickOf(keys[0]).level).toBe(2);
+    expect(keys.slice(1, 9).map((k) => g.brickOf(k).level)).toEqual(new Array(8).fill(1)); // all of level 1 is in view
+    const visible = keys.slice(9, 25);
+    expect(visible.every((k) => g.brickOf(k).level === 0 && central(k))).toBe(true);
+    const z = visible.map((k) => g.brickOf(k).brick[2]);
+    expect(z).toEqual([...z].sort((a, b) => b - a)); // the z = 3 layer (nearest the camera) first
+    expect(keys.slice(25).every((k) => !central(k))).toBe(true);
+  });
+
+  it('level of detail leaves out the bricks finer than the pixels need', () => {
+    // 4 pixels high: a level-1 voxel (1/32 of the box) at distance ≥ 1.5 projects to under a pixel, a level-2 one does not.
+    const lod = brickPriority(g, level0, { camera, width: 4, height: 4, lod: true });
+    expect(lod.slice(0, 9).map((k) => g.brickOf(k).level)).toEqual([2, 1, 1, 1, 1, 1, 1, 1, 1]);
+    expect(lod.slice(9).every((k) => !central(k))).toBe(true); // no visible level-0 brick is wanted
+    expect(lod).toHaveLength(9 + 48);
   });
 });

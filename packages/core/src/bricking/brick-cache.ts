@@ -53,6 +53,11 @@ export class BrickCache {
     return this.entries.has(key);
   }
 
+  /** The brick arrived and holds one value (it takes no slot). */
+  isConstant(key: number): boolean {
+    return this.entries.get(key)?.slot === -1;
+  }
+
   /** Resident bricks with a slot, and constant ones. */
   counts(): { slots: number; constant: number } {
     let slots = 0,

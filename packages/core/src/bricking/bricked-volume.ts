@@ -3,11 +3,12 @@
  * upload format), the page table (one RGBA float per level-0 brick) and the level table
  * (brick-cache.ts, brick-geometry.ts), filled incrementally from a MultiscaleSource.
  *
- * Every frame (`update`) the wanted bricks — all bricks of every level, coarsest level first,
- * so a coarse brick serves a region until its finer bricks arrive — are requested from the
- * source (a bounded number in flight), at most `uploadsPerFrame` arrived bricks are written
- * to their slots (least recently used bricks evicted when the atlas is full), and the page
- * table is rewritten. `update` returns true when what the kernels read changed: the caller
+ * Every frame (`update`) the wanted bricks — the view's priority list (brick-priority.ts:
+ * the coarsest level, then visible bricks level by level towards level 0, nearest first,
+ * then the rest) cut where the atlas is full — are requested from the source (a bounded
+ * number in flight), at most `uploadsPerFrame` arrived bricks are written to their slots
+ * (evicting the least recently used bricks the view no longer wants), and the page table is
+ * rewritten. `update` returns true when what the kernels read changed: the caller
  * restarts accumulation, so every image is an unbiased estimate for the data it shows.
  */
 import { VptError } from '../errors.js';
@@ -17,6 +18,7 @@ import { volumeTextureData, type VolumeUpload } from '../gpu/volume-format.js';
 import type { Volume, VoxelArray } from '../scene/volume.js';
 import { BrickCache } from './brick-cache.js';
 import { BrickGeometry, fillSlot, type Vec3i } from './brick-geometry.js';
+import { brickPriority, type BrickView } from './brick-priority.js';
 import type { MultiscaleSource } from './source.js';
 
 export interface BrickingOptions {
@@ -24,6 +26,8 @@ export interface BrickingOptions {
   brickSize: number;
   /** Bricks written to the atlas per frame at most (default 16). */
   uploadsPerFrame: number;
+  /** Level of detail: load no brick finer than the view's pixels need (brick-priority.ts). */
+  lod: boolean;
 }
 
 export interface BrickingStats {
@@ -38,6 +42,8 @@ export interface BrickingStats {
   pending: number;
   /** Bricks written to the atlas since the volume was set. */
   uploaded: number;
+  /** Bricks whose read failed: not retried, served by a coarser level. */
+  failed: number;
   /** Level-0 bricks served by level 0 (their own data). */
   finest: number;
   /** Nothing left to load: every wanted brick is resident, or the atlas is full of wanted bricks. */
@@ -59,7 +65,9 @@ export class BrickedVolume {
   private readonly inFlight = new Set<number>();
   private readonly arrived: { key: number; values: VoxelArray }[] = [];
   private full = false;
-  private failure: unknown = null;
+  private view: BrickView | null = null;
+  private priority: { key: string; keys: number[] } | null = null;
+  private readonly failed = new Set<number>();
   private readonly abort = new AbortController();
   private arrival: (() => void) | null = null;
   private readonly range: [number, number];
@@ -72,6 +80,8 @@ export class BrickedVolume {
     private readonly opts: BrickingOptions,
     /** The data range mapped to [0, 1] (normalizationRange of the level-0 volume). */
     range: [number, number],
+    /** Called once per brick whose read fails (the brick stays served by a coarser level). */
+    private readonly onFailure: (message: string) => void = () => {},
   ) {
     this.range = range;
     this.geometry = new BrickGeometry(source.levels, opts.brickSize);
@@ -127,14 +137,9 @@ export class BrickedVolume {
   /**
    * One frame's residency work: request wanted bricks, write up to uploadsPerFrame arrived
    * ones, rewrite the page table. True when the page table changed (restart accumulation).
-   * Throws the source's error (a VptError 'load-failed' when it was not one already).
    */
-  update(): boolean {
-    if (this.failure) {
-      const e = this.failure;
-      this.failure = null;
-      throw e instanceof VptError ? e : new VptError('load-failed', `Reading a brick failed: ${String(e)}`);
-    }
+  update(view: BrickView | null = this.view): boolean {
+    if (view) this.view = view;
     this.frame++;
     const wanted = this.wantedKeys();
     for (const k of wanted) this.cache.touch(k, this.frame);
@@ -175,6 +180,7 @@ export class BrickedVolume {
       constant,
       pending: this.inFlight.size + this.arrived.length,
       uploaded: this.cache.uploads,
+      failed: this.failed.size,
       finest,
       complete: this.inFlight.size === 0 && this.arrived.length === 0 && (this.full || !wantedMissing),
       gpuBytes: this.gpuBytes(),
@@ -202,23 +208,38 @@ export class BrickedVolume {
     this.backend.destroyTexture(this.levels);
   }
 
-  /** Keys of every brick, coarsest level first (the order in which they are loaded). */
+  /**
+   * The view's priority list (recomputed when the view changes) cut after as many bricks as
+   * there are slots; bricks known to be constant take no slot and do not count.
+   */
   private wantedKeys(): number[] {
-    const g = this.geometry;
-    const keys: number[] = [];
-    for (let level = g.coarsest; level >= 0; level--) {
-      const l = g.levels[level];
-      const n = l.bricks[0] * l.bricks[1] * l.bricks[2];
-      for (let i = 0; i < n; i++) keys.push(l.firstKey + i);
+    const v = this.view;
+    const viewKey = v ? JSON.stringify([v.camera, v.width, v.height, v.lod]) : '';
+    if (this.priority?.key !== viewKey) {
+      this.priority = { key: viewKey, keys: brickPriority(this.geometry, this.source.levels[0], v) };
+      this.full = false;
     }
-    return keys;
+    const wanted: number[] = [];
+    let slots = 0;
+    for (const k of this.priority.keys) {
+      if (this.failed.has(k)) continue;
+      if (!this.cache.isConstant(k) && ++slots > this.cache.capacity) break;
+      wanted.push(k);
+    }
+    return wanted;
   }
 
   private request(wanted: number[]): void {
     const maxInFlight = 2 * this.opts.uploadsPerFrame;
     for (const key of wanted) {
       if (this.inFlight.size >= maxInFlight) break;
-      if (this.cache.has(key) || this.inFlight.has(key) || this.arrived.some((a) => a.key === key)) continue;
+      if (
+        this.cache.has(key) ||
+        this.inFlight.has(key) ||
+        this.failed.has(key) ||
+        this.arrived.some((a) => a.key === key)
+      )
+        continue;
       const { level, brick } = this.geometry.brickOf(key);
       const { min, max } = this.geometry.readRegion(level, brick);
       this.inFlight.add(key);
@@ -238,7 +259,13 @@ export class BrickedVolume {
         },
         (e: unknown) => {
           this.inFlight.delete(key);
-          if (!this.abort.signal.aborted) this.failure = e;
+          if (!this.abort.signal.aborted) {
+            this.failed.add(key);
+            const why = e instanceof Error ? e.message : String(e);
+            this.onFailure(
+              `Reading brick [${brick.join(', ')}] of level ${level} failed (it stays served by a coarser level): ${why}`,
+            );
+          }
           this.wake();
         },
       );

@@ -20,6 +20,7 @@ import { PRESENT_PASS } from './present-pass.js';
 import { ProgressiveLoop } from './progressive-loop.js';
 import { SceneResources, sameVoxels, type BrickPlan } from './scene-resources.js';
 import type { BrickingStats } from '../bricking/bricked-volume.js';
+import type { MultiscaleSource } from '../bricking/source.js';
 
 export interface RenderContextOptions {
   backend?: BackendPreference;
@@ -55,6 +56,12 @@ export interface RenderContextOptions {
   brickSize?: number;
   /** Bricks uploaded per frame at most (default 16); each upload restarts accumulation. */
   brickUploadsPerFrame?: number;
+  /**
+   * Level of detail for bricked volumes: load no brick finer than the render's pixels need
+   * (a voxel of the next coarser level projects to at most one pixel). Default false: every
+   * visible brick at the finest level the atlas holds.
+   */
+  brickLod?: boolean;
 }
 
 /** GPU memory the context holds, in bytes (texture sizes × bytes per texel, as allocated). */
@@ -70,8 +77,16 @@ export interface GpuBytes {
   total: number;
 }
 
-/** Something the context changed to make a scene fit, reported through onWarning (and console.warn without a listener). */
-export interface RenderWarning {
+/** Something the context changed to make a scene fit or could not load, reported through onWarning (and console.warn without a listener). */
+export type RenderWarning = VolumeDownsampledWarning | BrickLoadWarning;
+
+/** A brick of a streamed volume (setVolumeSource) could not be read; a coarser level keeps serving its region. */
+export interface BrickLoadWarning {
+  code: 'brick-load-failed';
+  message: string;
+}
+
+export interface VolumeDownsampledWarning {
   code: 'volume-downsampled';
   message: string;
   /** Integer box-average factors per axis. */
@@ -125,6 +140,9 @@ export class RenderContext {
   private readonly bricking: 'off' | 'auto' | 'force';
   private readonly brickSize: number;
   private readonly brickUploadsPerFrame: number;
+  private readonly brickLod: boolean;
+  // Volumes backed by a multiscale source (setVolumeSource): the scene's volume is a stand-in.
+  private readonly volumeSources = new WeakMap<Scene['volume'], MultiscaleSource>();
   private readonly sampling: VolumeSampling;
   readonly maxGpuBytes: number;
   private readonly warningListeners = new Set<(w: RenderWarning) => void>();
@@ -169,6 +187,7 @@ export class RenderContext {
     if (!Number.isInteger(Math.log2(this.brickSize)) || this.brickSize < 8 || this.brickSize > 256)
       throw new VptError('invalid-scene', `brickSize must be a power of two from 8 to 256, got ${opts.brickSize}`);
     this.brickUploadsPerFrame = opts.brickUploadsPerFrame ?? 16;
+    this.brickLod = opts.brickLod === true;
     if (!Number.isInteger(this.brickUploadsPerFrame) || this.brickUploadsPerFrame < 1)
       throw new VptError(
         'invalid-scene',
@@ -277,6 +296,40 @@ export class RenderContext {
   }
 
   /**
+   * Back a volume by a multiscale source (an OME-Zarr store, say): whenever a scene's volume
+   * is this object, the context bricks it from `source` (levels streamed as the view needs
+   * them) instead of uploading its voxels. `standIn` is typically the source's coarsest
+   * level (readLevel): CPU-side users of the scene (histograms, the viewer) read it, and
+   * with a 2D transfer function or a renderer that needs the gradient volume it is rendered
+   * as it is. The box is the source's level 0.
+   */
+  setVolumeSource(standIn: Scene['volume'], source: MultiscaleSource): void {
+    this.assertAlive();
+    const l = source?.levels;
+    const ok =
+      Array.isArray(l) &&
+      l.length > 0 &&
+      l.every(
+        (v) =>
+          [v.dims, v.spacing, v.origin].every((a) => Array.isArray(a) && a.length === 3 && a.every(Number.isFinite)) &&
+          v.dims.every((d) => Number.isInteger(d) && d >= 1) &&
+          v.spacing.every((x) => x > 0),
+      ) &&
+      typeof source.readRegion === 'function';
+    if (!ok)
+      throw new VptError(
+        'invalid-scene',
+        'setVolumeSource: the source needs levels (level 0 finest) with positive integer dims, positive spacing, an origin each, and readRegion()',
+      );
+    if (source.type !== standIn.type)
+      throw new VptError(
+        'invalid-scene',
+        `setVolumeSource: the stand-in volume is ${standIn.type}, the source ${source.type}; they must match`,
+      );
+    this.volumeSources.set(standIn, source);
+  }
+
+  /**
    * Resolves once a bricked volume has loaded what it can (every brick resident, or the
    * atlas full of wanted ones), uploading arrived bricks itself when no loop runs; at once
    * for an unbricked volume. Rejects with the source's error.
@@ -297,7 +350,8 @@ export class RenderContext {
   /** One frame's brick residency work; true when what the kernels read changed. */
   private updateBricks(): boolean {
     const bricked = this.resources.bricked;
-    return !!bricked && !this.backend.isLost && bricked.update();
+    if (!bricked || !this.scene || this.backend.isLost) return false;
+    return bricked.update({ camera: this.scene.camera, width: this.width, height: this.height, lod: this.brickLod });
   }
 
   /**
@@ -315,7 +369,7 @@ export class RenderContext {
     if (f && f.key === key && f.source === scene.volume) {
       return f.volume === scene.volume ? scene : { ...scene, volume: f.volume };
     }
-    if (f && f.key === key && f.bricks && sameVoxels(f.source, scene.volume)) {
+    if (f && f.key === key && f.bricks && !f.bricks.source && sameVoxels(f.source, scene.volume)) {
       this.fitted = { ...f, source: scene.volume, volume: scene.volume };
       return scene;
     }
@@ -344,14 +398,22 @@ export class RenderContext {
     }
     // Bricks instead of a downsampled copy: the full data stays available to the view.
     const brickable = scene.transferFunction.dimensions !== '2d' && !gradient;
-    if (brickable && (this.bricking === 'force' || (this.bricking === 'auto' && factors.some((f) => f > 1)))) {
+    const source = this.volumeSources.get(scene.volume);
+    if (
+      brickable &&
+      (source || this.bricking === 'force' || (this.bricking === 'auto' && factors.some((f) => f > 1)))
+    ) {
       const bricks: BrickPlan = {
         capacityBytes: budget,
         brickSize: this.brickSize,
         uploadsPerFrame: this.brickUploadsPerFrame,
+        lod: this.brickLod,
+        onFailure: (message) => this.warn({ code: 'brick-load-failed', message }),
+        ...(source ? { source } : {}),
       };
-      this.fitted = { source: scene.volume, key, volume: scene.volume, bricks };
-      return scene;
+      const volume = source ? standInWithLevel0Box(scene.volume, source) : scene.volume;
+      this.fitted = { source: scene.volume, key, volume, bricks };
+      return volume === scene.volume ? scene : { ...scene, volume };
     }
     let volume = scene.volume;
     if (factors.some((f) => f > 1)) {
@@ -360,18 +422,21 @@ export class RenderContext {
       const why = over3D
         ? `a side exceeds this device's 3D texture limit of ${max3D} (maxTextureDimension3D)`
         : `${voxelCount(from)} voxels x ${perVoxel} bytes exceed the GPU memory budget of ${this.maxGpuBytes} bytes (maxGpuBytes)`;
-      const warning: RenderWarning = {
+      this.warn({
         code: 'volume-downsampled',
         factors,
         from,
         to: [...volume.dims] as [number, number, number],
         message: `Volume [${from.join(', ')}] downsampled by [${factors.join(', ')}] to [${volume.dims.join(', ')}]: ${why}`,
-      };
-      if (this.warningListeners.size === 0) console.warn(`vpt: ${warning.message}`);
-      this.warningListeners.forEach((l) => l(warning));
+      });
     }
     this.fitted = { source: scene.volume, key, volume, bricks: null };
     return volume === scene.volume ? scene : { ...scene, volume };
+  }
+
+  private warn(warning: RenderWarning): void {
+    if (this.warningListeners.size === 0) console.warn(`vpt: ${warning.message}`);
+    this.warningListeners.forEach((l) => l(warning));
   }
 
   /** Shallow-merge changes into the current scene (camera, lights, TF…) and reset. */
@@ -877,4 +942,16 @@ function checkSize(width: number, height: number, backend: GpuBackend): void {
       'limit-exceeded',
       `Render size ${width} x ${height} exceeds this device's 2D texture limit of ${max} (maxTextureDimension2D)`,
     );
+}
+
+/**
+ * The stand-in of a streamed volume as the scene renders it: its voxels, with the spacing
+ * stretched so that its box is the source's level 0 (a coarser level's box can be a little
+ * larger or smaller, its sides rounded to whole voxels), and the source's value range.
+ */
+function standInWithLevel0Box(standIn: Scene['volume'], source: MultiscaleSource): Scene['volume'] {
+  const l0 = source.levels[0];
+  const spacing = [0, 1, 2].map((a) => (l0.dims[a] * l0.spacing[a]) / standIn.dims[a]) as [number, number, number];
+  const valueRange = source.valueRange ?? standIn.valueRange;
+  return { ...standIn, spacing, ...(valueRange ? { valueRange: [valueRange[0], valueRange[1]] } : {}) };
 }

@@ -13,13 +13,17 @@ import {
 } from '../gpu/volume-format.js';
 import { buildGradientVolume, destroyGradientVolume, type GradientVolume } from '../gradient/gradient-volume.js';
 import { BrickedVolume, type BrickingOptions } from '../bricking/bricked-volume.js';
-import { inMemoryMultiscaleSource } from '../bricking/source.js';
+import { inMemoryMultiscaleSource, type MultiscaleSource } from '../bricking/source.js';
 import { normalizationRange } from '../scene/volume.js';
 
 /** How RenderContext wants the scene's volume bricked (null: one texture). */
 export interface BrickPlan extends BrickingOptions {
   /** Bytes for the atlas, page table and level table. */
   capacityBytes: number;
+  /** Where the bricks come from (RenderContext.setVolumeSource); default: levels made from the scene's volume. */
+  source?: MultiscaleSource;
+  /** Called once per brick whose read failed. */
+  onFailure?: (message: string) => void;
 }
 
 /**
@@ -111,15 +115,25 @@ export class SceneResources {
   /** The brick cache for the scene's volume: kept while the voxels, format and plan stay, else rebuilt empty. */
   private syncBricked(volume: Scene['volume'], upload: VolumeUpload): void {
     const plan = this.brickPlan!;
-    const key = `${upload.format}|${upload.filter}|${upload.decodeScale}|${upload.decodeOffset}|${JSON.stringify(plan)}`;
+    const key = [
+      upload.format,
+      upload.filter,
+      upload.decodeScale,
+      upload.decodeOffset,
+      plan.capacityBytes,
+      plan.brickSize,
+      plan.uploadsPerFrame,
+      plan.lod,
+      plan.source ? sourceId(plan.source) : 0,
+    ].join('|');
     if (this.bricked && this.brickKey === key && this.volumeSource && sameVoxels(this.volumeSource, volume)) {
       this.volumeSource = volume;
       return;
     }
     this.dropVolume();
     const range = normalizationRange(volume);
-    const source = inMemoryMultiscaleSource(volume, { coarsestSide: plan.brickSize });
-    this.bricked = new BrickedVolume(this.backend, source, upload, plan.capacityBytes, plan, range);
+    const source = plan.source ?? inMemoryMultiscaleSource(volume, { coarsestSide: plan.brickSize });
+    this.bricked = new BrickedVolume(this.backend, source, upload, plan.capacityBytes, plan, range, plan.onFailure);
     this.brickKey = key;
     this.volumeTexture = this.bricked.atlas;
     this.volumeSource = volume;
@@ -406,4 +420,12 @@ const SLAB_VOXELS = 1 << 24;
 /** Two volumes with the same voxels (the same array, dims and type): they differ at most in value range or name. */
 export function sameVoxels(a: Scene['volume'], b: Scene['volume']): boolean {
   return a.data === b.data && a.type === b.type && a.dims.every((d, i) => d === b.dims[i]);
+}
+
+const sourceIds = new WeakMap<MultiscaleSource, number>();
+let nextSourceId = 1;
+function sourceId(source: MultiscaleSource): number {
+  let id = sourceIds.get(source);
+  if (id === undefined) sourceIds.set(source, (id = nextSourceId++));
+  return id;
 }

@@ -113,11 +113,12 @@ float sampleVolumeTexel(vec3 p) {
  */
 export const BRICK_LOOKUP = /* glsl */ `
 struct VptBrick { vec3 x; ivec3 first; ivec3 shift; ivec3 dims; int size; float constant; bool isConstant; };
-// x: the point in the serving level's voxel coordinates; first: that level's voxel in slot texel 0;
+// x0: the point in level-0 voxel coordinates (level 0's dims from brickLevels: a streamed volume's
+// scene may carry a coarser level); x: in the serving level's voxel coordinates; first: that level's voxel in slot texel 0;
 // shift: atlas texel = level voxel + shift.
 VptBrick brickAt(vec3 p) {
   VptBrick r;
-  vec3 x0 = (p - u.boxMin) / (u.boxMax - u.boxMin) * vec3(u.volumeDims.xyz);
+  vec3 x0 = (p - u.boxMin) / (u.boxMax - u.boxMin) * texelFetch(brickLevels, ivec2(2, 0), 0).xyz;
   float B = texelFetch(brickLevels, ivec2(0, 0), 0).w;
   r.size = int(B);
   ivec3 b0 = clamp(ivec3(floor(x0 / B)), ivec3(0), textureSize(pageTable, 0) - 1);

@@ -92,7 +92,7 @@ struct VptBrick { x: vec3f, first: vec3i, shift: vec3i, dims: vec3i, size: i32, 
 // Beyer, Hadwiger, Pfister 2015, CGF 34(8), §5: page-table virtual texturing with one-voxel aprons.
 fn brickAt(p: vec3f) -> VptBrick {
   var r: VptBrick;
-  let x0 = (p - u.boxMin) / (u.boxMax - u.boxMin) * vec3f(u.volumeDims.xyz);
+  let x0 = (p - u.boxMin) / (u.boxMax - u.boxMin) * textureLoad(brickLevels, vec2i(2, 0), 0).xyz;
   let B = textureLoad(brickLevels, vec2i(0, 0), 0).w;
   r.size = i32(B);
   let b0 = clamp(vec3i(floor(x0 / B)), vec3i(0), vec3i(textureDimensions(pageTable)) - 1);
