@@ -121,7 +121,7 @@ export class BrickedVolume {
     });
     const levelData = new Float32Array(4 * 3 * g.levels.length);
     g.levels.forEach((l, i) => {
-      levelData.set([...l.scale, g.brickSize, ...l.offset, 0, ...l.dims, 0], 12 * i);
+      levelData.set([...l.scale, g.brickSize, ...l.offset, 0, ...l.dims, g.brickSize], 12 * i);
     });
     this.levels = backend.createTexture({
       dimension: '2d',

@@ -742,6 +742,7 @@ export class RenderContext {
   }
 
   private uniforms(scene: Scene, iteration = this.iteration): ArrayBuffer {
+    const bricked = this.resources.bricked;
     return this.layout.pack({
       ...sceneUniformValues(
         scene,
@@ -751,6 +752,9 @@ export class RenderContext {
         TF_RESOLUTION,
         this.resources.volumeMapping(scene),
       ),
+      // The bricked sampler reads level 0's dims and the brick size from here (a streamed
+      // scene's volume is a coarser stand-in); nothing else reads volumeDims when bricked.
+      ...(bricked ? { volumeDims: [...bricked.geometry.levels[0].dims, bricked.geometry.brickSize] } : {}),
       ...this._renderer.paramValues(scene),
     });
   }

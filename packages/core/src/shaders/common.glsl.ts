@@ -105,7 +105,7 @@ float sampleVolumeTexel(vec3 p) {
  * The bricked volume (bricking/): `volume` is the brick atlas, `pageTable` (3D, one RGBA float
  * per level-0 brick) says where the brick holding a point is served from — (atlas origin of
  * its slot, level) or (texel value, 0, 0, −1) for a constant brick — and `brickLevels` (3 × L)
- * holds per level (scale.xyz, brick size), (offset.xyz, 0) and (dims.xyz, 0), the map
+ * holds per level (scale.xyz, brick size), (offset.xyz, 0) and (dims.xyz, brick size), the map
  * x_l = x0 · scale + offset from level-0 voxel coordinates. Virtual texturing of volumes with a
  * page table (Beyer, Hadwiger, Pfister 2015, "State-of-the-Art in GPU-Based Large-Scale
  * Volume Visualization", CGF 34(8), §5): one-voxel aprons make trilinear filtering inside a
@@ -113,27 +113,33 @@ float sampleVolumeTexel(vec3 p) {
  */
 export const BRICK_LOOKUP = /* glsl */ `
 struct VptBrick { vec3 x; ivec3 first; ivec3 shift; ivec3 dims; int size; float constant; bool isConstant; };
-// x0: the point in level-0 voxel coordinates (level 0's dims from brickLevels: a streamed volume's
-// scene may carry a coarser level); x: in the serving level's voxel coordinates; first: that level's voxel in slot texel 0;
+// x0: the point in level-0 voxel coordinates; x: in the serving level's voxel coordinates; first: that level's voxel in slot texel 0;
 // shift: atlas texel = level voxel + shift.
 VptBrick brickAt(vec3 p) {
   VptBrick r;
-  vec3 x0 = (p - u.boxMin) / (u.boxMax - u.boxMin) * texelFetch(brickLevels, ivec2(2, 0), 0).xyz;
-  float B = texelFetch(brickLevels, ivec2(0, 0), 0).w;
-  r.size = int(B);
+  // u.volumeDims: level 0's dims and the brick size (RenderContext sets them for a bricked volume).
+  float B = float(u.volumeDims.w);
+  r.size = u.volumeDims.w;
+  vec3 x0 = (p - u.boxMin) / (u.boxMax - u.boxMin) * vec3(u.volumeDims.xyz);
   ivec3 b0 = clamp(ivec3(floor(x0 / B)), ivec3(0), textureSize(pageTable, 0) - 1);
   vec4 e = texelFetch(pageTable, b0, 0);
   r.isConstant = e.w < 0.0;
   r.constant = e.x;
   int level = max(int(e.w), 0);
-  vec3 s = texelFetch(brickLevels, ivec2(0, level), 0).xyz;
-  vec3 o = texelFetch(brickLevels, ivec2(1, level), 0).xyz;
-  r.dims = ivec3(texelFetch(brickLevels, ivec2(2, level), 0).xyz);
-  ivec3 bricks = (r.dims + int(B) - 1) / int(B);
-  ivec3 bl = clamp(ivec3(floor(((vec3(b0) + 0.5) * B * s + o) / B)), ivec3(0), bricks - 1);
-  r.first = bl * int(B) - 1;
+  r.dims = u.volumeDims.xyz;
+  r.first = b0 * r.size - 1;
+  r.x = x0;
+  if (level > 0) {
+    // A coarser level serves this brick: its voxel coordinates and the brick holding b0's centre.
+    vec3 s = texelFetch(brickLevels, ivec2(0, level), 0).xyz;
+    vec3 o = texelFetch(brickLevels, ivec2(1, level), 0).xyz;
+    r.dims = ivec3(texelFetch(brickLevels, ivec2(2, level), 0).xyz);
+    ivec3 bricks = (r.dims + r.size - 1) / r.size;
+    ivec3 bl = clamp(ivec3(floor(((vec3(b0) + 0.5) * B * s + o) / B)), ivec3(0), bricks - 1);
+    r.first = bl * r.size - 1;
+    r.x = x0 * s + o;
+  }
   r.shift = ivec3(e.xyz) - r.first;
-  r.x = x0 * s + o;
   return r;
 }
 `;

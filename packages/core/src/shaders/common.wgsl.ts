@@ -92,22 +92,27 @@ struct VptBrick { x: vec3f, first: vec3i, shift: vec3i, dims: vec3i, size: i32, 
 // Beyer, Hadwiger, Pfister 2015, CGF 34(8), §5: page-table virtual texturing with one-voxel aprons.
 fn brickAt(p: vec3f) -> VptBrick {
   var r: VptBrick;
-  let x0 = (p - u.boxMin) / (u.boxMax - u.boxMin) * textureLoad(brickLevels, vec2i(2, 0), 0).xyz;
-  let B = textureLoad(brickLevels, vec2i(0, 0), 0).w;
-  r.size = i32(B);
+  let B = f32(u.volumeDims.w);
+  r.size = u.volumeDims.w;
+  let x0 = (p - u.boxMin) / (u.boxMax - u.boxMin) * vec3f(u.volumeDims.xyz);
   let b0 = clamp(vec3i(floor(x0 / B)), vec3i(0), vec3i(textureDimensions(pageTable)) - 1);
   let e = textureLoad(pageTable, b0, 0);
   r.isConstant = e.w < 0.0;
   r.constant = e.x;
   let level = max(i32(e.w), 0);
-  let s = textureLoad(brickLevels, vec2i(0, level), 0).xyz;
-  let o = textureLoad(brickLevels, vec2i(1, level), 0).xyz;
-  r.dims = vec3i(textureLoad(brickLevels, vec2i(2, level), 0).xyz);
-  let bricks = (r.dims + r.size - 1) / r.size;
-  let bl = clamp(vec3i(floor(((vec3f(b0) + 0.5) * B * s + o) / B)), vec3i(0), bricks - 1);
-  r.first = bl * r.size - 1;
+  r.dims = u.volumeDims.xyz;
+  r.first = b0 * r.size - 1;
+  r.x = x0;
+  if (level > 0) {
+    let s = textureLoad(brickLevels, vec2i(0, level), 0).xyz;
+    let o = textureLoad(brickLevels, vec2i(1, level), 0).xyz;
+    r.dims = vec3i(textureLoad(brickLevels, vec2i(2, level), 0).xyz);
+    let bricks = (r.dims + r.size - 1) / r.size;
+    let bl = clamp(vec3i(floor(((vec3f(b0) + 0.5) * B * s + o) / B)), vec3i(0), bricks - 1);
+    r.first = bl * r.size - 1;
+    r.x = x0 * s + o;
+  }
   r.shift = vec3i(e.xyz) - r.first;
-  r.x = x0 * s + o;
   return r;
 }
 `;
