@@ -112,6 +112,45 @@ describe.each(BACKENDS)('bricked volumes (%s)', (backend) => {
   });
 });
 
+describe('bricked volumes: bad budgets (webgl2)', () => {
+  it('a budget without room for the coarsest level refuses the scene with limit-exceeded and keeps rendering the previous one', async () => {
+    const r = await page().page.evaluate(async () => {
+      const { core } = window.vpt;
+      const t = window.t;
+      const W = 8;
+      const ctx = await t.context({
+        backend: 'webgl2',
+        renderer: 'eam',
+        width: W,
+        height: W,
+        bricking: 'auto',
+        brickSize: 16,
+        maxGpuBytes: W * W * 16 * 4 + 256 * 256 * 16 + 3000, // 3000 bytes for a volume: the 8³ float32 blob, not one 18³ uint8 slot
+      });
+      const small = t.scene({ volume: core.createProceduralVolume('blob', 8), densityScale: 20 });
+      ctx.setScene(small);
+      const before = Array.from(await ctx.readHDR());
+      let error: { code: string; message: string } | null = null;
+      try {
+        ctx.setScene({ ...small, volume: window.bt.volume([72, 60, 52], 0.4) });
+      } catch (e) {
+        error = { code: (e as { code: string }).code, message: (e as Error).message };
+      }
+      await ctx.renderIterations(1);
+      const after = Array.from(await ctx.readHDR());
+      const out = { error, before, after, dims: ctx.getScene()!.volume.dims, bricking: ctx.stats.bricking };
+      ctx.dispose();
+      return out;
+    });
+    expect(r.error?.code).toBe('limit-exceeded');
+    expect(r.error?.message).toMatch(/maxGpuBytes.*coarsest level/);
+    expect(r.dims).toEqual([8, 8, 8]);
+    expect(r.bricking).toBeNull();
+    expect(r.after).toEqual(r.before);
+    expect(Math.max(...r.after)).toBeGreaterThan(0);
+  });
+});
+
 /** Per-pixel z-scores of two Monte Carlo runs (pixels both estimate exactly, e.g. background only, are skipped). */
 function compareRuns(
   a: { mean: number[] | null; se: number[] | null },

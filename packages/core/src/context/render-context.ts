@@ -277,7 +277,6 @@ export class RenderContext {
     validateScene(input);
     validateSceneForDevice(input, this.renderer, this.backend.limits);
     const scene = this.fitScene(input);
-    this.input = input;
     const [nx, ny, nz] = scene.volume.dims;
     if (this.wantsGradient(scene)) {
       const atlas = sliceAtlasLayout(scene.volume.dims);
@@ -289,9 +288,19 @@ export class RenderContext {
         );
       }
     }
+    const previous = { scene: this.scene, plan: this.resources.brickPlanNow() };
     this.scene = scene;
     this.resources.setBrickPlan(this.fitted?.bricks ?? null);
-    this.resources.sync();
+    try {
+      this.resources.sync();
+    } catch (e) {
+      // A bricked volume that cannot be held (VptError 'limit-exceeded'): keep the previous scene.
+      this.scene = previous.scene;
+      this.resources.setBrickPlan(previous.plan);
+      this.fitted = null;
+      throw e;
+    }
+    this.input = input;
     this.reset();
   }
 

@@ -107,6 +107,10 @@ export class SceneResources {
     };
   }
 
+  brickPlanNow(): BrickPlan | null {
+    return this.brickPlan;
+  }
+
   /** Brick the next volumes (RenderContext decides, per scene), or hold them in one texture (null). */
   setBrickPlan(plan: BrickPlan | null): void {
     this.brickPlan = plan;
@@ -130,10 +134,12 @@ export class SceneResources {
       this.volumeSource = volume;
       return;
     }
-    this.dropVolume();
     const range = normalizationRange(volume);
     const source = plan.source ?? inMemoryMultiscaleSource(volume, { coarsestSide: plan.brickSize });
-    this.bricked = new BrickedVolume(this.backend, source, upload, plan.capacityBytes, plan, range, plan.onFailure);
+    // Made before the old volume goes: a VptError here (no room for the coarsest level) changes nothing.
+    const bricked = new BrickedVolume(this.backend, source, upload, plan.capacityBytes, plan, range, plan.onFailure);
+    this.dropVolume();
+    this.bricked = bricked;
     this.brickKey = key;
     this.volumeTexture = this.bricked.atlas;
     this.volumeSource = volume;
