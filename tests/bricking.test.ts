@@ -102,6 +102,37 @@ describe.each(BACKENDS)('bricked volumes (%s)', (backend) => {
     expect(maxAbsDiff(failing.hdr, direct.hdr)).toBeGreaterThan(1e-3); // that region shows level 1
   });
 
+  it('a lost context rebuilds the bricked volume (reloading its bricks) and renders the same image', async () => {
+    const r = await page().page.evaluate(async (backend) => {
+      const o = {
+        backend,
+        renderer: 'eam',
+        sampling: 'exact' as const,
+        size: 16,
+        iterations: 2,
+        dims: [72, 60, 52] as [number, number, number],
+        radius: 0.4,
+        bricking: 'force' as const,
+      };
+      const ctx = await window.bt.context(o);
+      ctx.setScene(window.bt.scene(o));
+      await ctx.whenBricksSettled();
+      await ctx.renderIterations(2);
+      const want = Array.from(await ctx.readHDR());
+      await ctx.backend.simulateLoss(30);
+      const afterLoss = ctx.stats.bricking!;
+      const settled = await ctx.whenBricksSettled();
+      await ctx.renderIterations(2);
+      const got = Array.from(await ctx.readHDR());
+      ctx.dispose();
+      return { want, got, uploadedAfterLoss: afterLoss.uploaded, settled };
+    }, backend);
+    expect(r.uploadedAfterLoss).toBe(0); // a new, empty cache
+    expect(r.settled!.complete).toBe(true);
+    expect(r.settled!.uploaded).toBeGreaterThan(0);
+    expect(maxAbsDiff(r.got, r.want)).toBe(0);
+  });
+
   it('eam: the hardware-filtered bricked volume agrees with the unbricked one within the filter precision', async () => {
     const base = { backend, renderer: 'eam', sampling: 'fast' as const, size: 32, iterations: 3, ...LUMPY };
     const plain = await render({ ...base, bricking: 'off' });
