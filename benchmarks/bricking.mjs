@@ -90,9 +90,11 @@ try {
         ctxs.plain.ctx.dispose();
         ctxs.bricked.ctx.dispose();
       }
-      // Under a budget: half the plain volume's bytes for the bricks (plus what targets and TF take).
-      const targets = size * size * 16 * 12 + 256 * 256 * 16;
-      const half = await make('eam', scenes.eam, 'auto', targets + plainBytes / 2);
+      // Under a budget: half the plain volume's bytes for the bricks, beside what the context
+      // counts for the render targets (frame, 2 × accumulation, HDR; no post chain here) and the TF.
+      const eam = window.vpt.createRenderer('eam', {});
+      const targets = size * size * 16 * (eam.frameFormats.length + 2 * eam.accumulationFormats.length + 1);
+      const half = await make('eam', scenes.eam, 'auto', targets + 256 * 256 * 16 + plainBytes / 2);
       const underBudget = {
         budgetForVolume: plainBytes / 2,
         volumeBytes: half.ctx.stats.gpuBytes.volume,

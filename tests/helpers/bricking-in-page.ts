@@ -14,7 +14,7 @@ export interface BrickRenderOptions {
   sampling: VolumeSampling;
   bricking: 'off' | 'force' | 'auto';
   brickSize?: number;
-  /** Budget for the volume's bricks (added to what the targets and the TF take). */
+  /** Budget for the volume's bricks, exactly (maxGpuBytes = this + what the context counts for the targets and the TF). */
   volumeBytes?: number;
   size: number;
   iterations: number;
@@ -93,7 +93,9 @@ function installBrickingInPage(): void {
     },
     context(o) {
       const W = o.size;
-      const targets = W * W * 16 * 12; // frame, accumulations, HDR: an upper bound for every renderer here
+      // What RenderContext counts beside the volume: frame, 2 × accumulation and HDR targets (no post chain) and the TF.
+      const r = window.vpt.createRenderer(o.renderer, o.params || {});
+      const targets = W * W * 16 * (r.frameFormats.length + 2 * r.accumulationFormats.length + 1) + 256 * 256 * 16;
       return window.t.context({
         backend: o.backend,
         renderer: o.renderer,
@@ -104,7 +106,7 @@ function installBrickingInPage(): void {
         bricking: o.bricking,
         brickSize: o.brickSize ?? 16,
         brickUploadsPerFrame: o.uploadsPerFrame,
-        ...(o.volumeBytes ? { maxGpuBytes: targets + 256 * 256 * 16 + o.volumeBytes } : {}),
+        ...(o.volumeBytes ? { maxGpuBytes: targets + o.volumeBytes } : {}),
       });
     },
     scene(o) {

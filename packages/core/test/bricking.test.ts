@@ -305,19 +305,20 @@ describe('bricked sampling (CPU twin) and majorant ranges', () => {
 });
 
 describe('atlasSlots', () => {
-  it('lays out at least the wanted slots within the budget and the per-axis limit', () => {
-    for (const [want, max, perAxis] of [
-      [1, 1, 10],
-      [95, 100, 20],
-      [1000, 700, 30],
-      [27, 27, 3],
-      [50, 10, 4],
-      [64, 64, 2],
+  it('lays out the wanted slots (or as many as a box can) within the budget and the per-axis limit', () => {
+    for (const [want, max, perAxis, expected] of [
+      [1, 1, 10, 1],
+      [95, 100, 20, 95],
+      [1000, 700, 30, 700],
+      [27, 27, 3, 27],
+      [64, 64, 2, 8],
+      [57, 17, 60, 17], // the head's bricks under half its bytes: all 17 slots, not a 3 × 3 × 1 box
+      [57, 64, 60, 57],
+      [50, 10, 4, 9], // 10 slots fit no box with sides ≤ 4
     ]) {
       const [x, y, z] = atlasSlots(want, max, perAxis);
-      expect(x * y * z).toBeLessThanOrEqual(max);
+      expect(x * y * z).toBe(expected);
       expect(Math.max(x, y, z)).toBeLessThanOrEqual(perAxis);
-      expect(x * y * z).toBeGreaterThanOrEqual(Math.min(want, max, perAxis ** 3) * (max >= want ? 1 : 0.5));
     }
   });
 });

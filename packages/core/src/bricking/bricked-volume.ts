@@ -325,19 +325,30 @@ export class BrickedVolume {
 }
 
 /**
- * Slots per atlas axis for `want` slots, at most `max` in all and `perAxis` per axis: near
- * cubic, so each side stays far below the 3D texture limit.
+ * Slots per atlas axis for `want` slots, at most `max` in all and `perAxis` per axis: the box
+ * that holds the most of the wanted slots (all of them when the budget allows), then the
+ * fewest beyond them, then the most cubic (so no side nears the 3D texture limit).
  */
 export function atlasSlots(want: number, max: number, perAxis: number): Vec3i {
   const n = Math.min(want, max, perAxis ** 3);
   if (n < 1) return [0, 0, 0];
-  const sx = Math.min(perAxis, Math.ceil(Math.cbrt(n)));
-  const sy = Math.min(perAxis, Math.ceil(Math.sqrt(n / sx)));
-  const sz = Math.min(perAxis, Math.ceil(n / (sx * sy)));
-  if (sx * sy * sz <= max) return [sx, sy, sz];
-  // Rounding up overshot the budget: whole layers, else whole rows, below it.
-  const layers = Math.floor(max / (sx * sy));
-  if (layers >= 1) return [sx, sy, layers];
-  const rows = Math.floor(max / sx);
-  return rows >= 1 ? [sx, rows, 1] : [max, 1, 1];
+  let best: Vec3i = [0, 0, 0];
+  let bestScore = [-1, 0, 0];
+  for (let sx = 1; sx <= Math.min(perAxis, n); sx++)
+    for (let sy = 1; sy <= Math.min(perAxis, Math.ceil(n / sx)); sy++) {
+      let sz = Math.min(perAxis, Math.ceil(n / (sx * sy)));
+      if (sx * sy * sz > max) sz = Math.floor(max / (sx * sy));
+      if (sz < 1) continue;
+      const p = sx * sy * sz;
+      const score = [Math.min(p, n), -p, -Math.max(sx, sy, sz)];
+      if (
+        score[0] > bestScore[0] ||
+        (score[0] === bestScore[0] &&
+          (score[1] > bestScore[1] || (score[1] === bestScore[1] && score[2] > bestScore[2])))
+      ) {
+        best = [sx, sy, sz];
+        bestScore = score;
+      }
+    }
+  return best;
 }
