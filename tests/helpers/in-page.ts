@@ -30,6 +30,10 @@ export interface TestContextOptions {
   maxGpuBytes?: number;
   /** A canvas to present to (RenderContextOptions.canvas); none when omitted. */
   canvas?: HTMLCanvasElement;
+  /** RenderContextOptions.bricking / brickSize / brickUploadsPerFrame. */
+  bricking?: 'off' | 'auto' | 'force';
+  brickSize?: number;
+  brickUploadsPerFrame?: number;
 }
 
 /** The shared test scene: a ramp TF, the default camera, no lights, a black sky, density 1, seed 1. */
@@ -76,6 +80,9 @@ export function installInPageHelpers(): void {
         sampling: opts.sampling,
         maxGpuBytes: opts.maxGpuBytes,
         canvas: opts.canvas,
+        bricking: opts.bricking,
+        brickSize: opts.brickSize,
+        brickUploadsPerFrame: opts.brickUploadsPerFrame,
       });
     },
     scene(spec) {

@@ -38,6 +38,7 @@ export {
   type VolumeFormatOptions,
 } from './gpu/volume-format.js';
 export { downsampleVolume, fitFactors } from './scene/downsample.js';
+export * from './bricking/index.js';
 export { BaseRenderer } from './base-renderer.js';
 export { RUNNING_MEAN_INTEGRATE, HALF_MEANS_INTEGRATE, COPY_ACCUMULATION_RENDER } from './shaders/accumulation.js';
 export type { PostStep } from './post-step.js';
@@ -48,6 +49,8 @@ export {
   type RenderStats,
   type GpuBytes,
   type RenderWarning,
+  type BrickLoadWarning,
+  type VolumeDownsampledWarning,
 } from './context/render-context.js';
 
 export { SCENE_UNIFORM_FIELDS, sceneUniformValues } from './shaders/scene-uniforms.js';

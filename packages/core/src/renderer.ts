@@ -98,6 +98,18 @@ export interface VolumeBinding {
   valueOffset: number;
   format: string;
   key: string;
+  /**
+   * Set when the volume is bricked (bricking/): the `volume` texture is then a brick atlas,
+   * not the voxel grid, so a pass must not read its texels as voxels. Instead this gives, per
+   * cell of a grid of `cells` over the box, the [min, max] of the normalized values the
+   * kernels can read there — resident bricks' own data, a coarser level's bounds where a
+   * brick is not resident yet. `key` changes whenever it does.
+   */
+  cellRanges?: (cells: readonly [number, number, number]) => {
+    cells: [number, number, number];
+    vmin: Float32Array;
+    vmax: Float32Array;
+  };
 }
 
 /**

@@ -7,6 +7,7 @@ import {
   objectId,
   COPY_ACCUMULATION_RENDER,
   GLSL_SLICE_ATLAS,
+  atlasTexel,
   sliceAtlasLayout,
   WGSL_SLICE_ATLAS,
   rasterizeTransferFunction,
@@ -159,6 +160,7 @@ export class McrtRenderer extends BaseRenderer<McrtParams> {
    * the slice-atlas layout of the cell counts; only the grid is bound to the kernel.
    */
   private majorantGridTextures(scene: Scene, volume: VolumeBinding): AuxiliaryTexture[] {
+    if (volume.cellRanges) return [this.brickedMajorantGrid(scene, volume, volume.cellRanges)];
     const map = { valueScale: volume.valueScale, valueOffset: volume.valueOffset };
     const cellSize = this.cellSize(scene);
     const geometry = this.gridGeometry(scene);
@@ -219,6 +221,46 @@ export class McrtRenderer extends BaseRenderer<McrtParams> {
         },
       },
     ];
+  }
+
+  /**
+   * A bricked volume's majorant grid, built on the CPU from the value ranges the brick cache
+   * reports per cell (resident bricks' data, a coarser level's bounds elsewhere), since the
+   * volume texture is then a brick atlas the GPU build cannot read as voxels. Rebuilt when
+   * the residency changes (the binding's key).
+   */
+  private brickedMajorantGrid(
+    scene: Scene,
+    volume: VolumeBinding,
+    cellRanges: NonNullable<VolumeBinding['cellRanges']>,
+  ): AuxiliaryTexture {
+    const geometry = this.gridGeometry(scene);
+    const cells = geometry.slice(0, 3) as [number, number, number];
+    const layout = sliceAtlasLayout(cells);
+    return {
+      name: 'majorantGrid',
+      dimension: '2d',
+      key: `${this.gridKey(scene)}|${volume.key}`,
+      create: () => {
+        const tf = rasterizeTransferFunction(scene.transferFunction, TF_RESOLUTION);
+        const grid = buildMajorantGrid(cellRanges(cells), tf, scene.densityScale);
+        const data = new Float32Array(4 * layout.width * layout.height);
+        for (let z = 0; z < cells[2]; z++)
+          for (let y = 0; y < cells[1]; y++) {
+            const [ax, ay] = atlasTexel(layout, cells, 0, y, z);
+            const from = 4 * cells[0] * (y + cells[1] * z);
+            data.set(grid.data.subarray(from, from + 4 * cells[0]), 4 * (ax + layout.width * ay));
+          }
+        return {
+          dimension: '2d',
+          width: layout.width,
+          height: layout.height,
+          format: 'rgba32float',
+          data,
+          label: 'majorant grid (bricked)',
+        };
+      },
+    };
   }
 
   /** The majorant grid of a scene computed on the CPU (cached by volume, TF, density scale and cell size): the reference the GPU build is tested against, and the global bounds without a grid. */

@@ -18,7 +18,9 @@ import { sliceAtlasLayout } from '../shaders/slice-atlas.js';
 import { UniformLayout } from '../uniforms/layout.js';
 import { PRESENT_PASS } from './present-pass.js';
 import { ProgressiveLoop } from './progressive-loop.js';
-import { SceneResources, sameVoxels } from './scene-resources.js';
+import { SceneResources, sameVoxels, type BrickPlan } from './scene-resources.js';
+import type { BrickingStats } from '../bricking/bricked-volume.js';
+import type { MultiscaleSource } from '../bricking/source.js';
 
 export interface RenderContextOptions {
   backend?: BackendPreference;
@@ -43,6 +45,23 @@ export interface RenderContextOptions {
    * (WebGL 2).
    */
   maxGpuBytes?: number;
+  /**
+   * Volumes larger than one texture or the budget: 'off' (default) downsamples them to fit;
+   * 'auto' holds them as bricks in an atlas with a page table instead (bricking/; a scene
+   * with a 2D transfer function, or a renderer that needs the gradient volume, is still
+   * downsampled); 'force' bricks every volume (tests, benchmarks).
+   */
+  bricking?: 'off' | 'auto' | 'force';
+  /** Data voxels per brick side, a power of two (default 32). */
+  brickSize?: number;
+  /** Bricks uploaded per frame at most (default 16); each upload restarts accumulation. */
+  brickUploadsPerFrame?: number;
+  /**
+   * Level of detail for bricked volumes: load no brick finer than the render's pixels need
+   * (a voxel of the next coarser level projects to at most one pixel). Default false: every
+   * visible brick at the finest level the atlas holds.
+   */
+  brickLod?: boolean;
 }
 
 /** GPU memory the context holds, in bytes (texture sizes × bytes per texel, as allocated). */
@@ -58,8 +77,16 @@ export interface GpuBytes {
   total: number;
 }
 
-/** Something the context changed to make a scene fit, reported through onWarning (and console.warn without a listener). */
-export interface RenderWarning {
+/** Something the context changed to make a scene fit or could not load, reported through onWarning (and console.warn without a listener). */
+export type RenderWarning = VolumeDownsampledWarning | BrickLoadWarning;
+
+/** A brick of a streamed volume (setVolumeSource) could not be read; a coarser level keeps serving its region. */
+export interface BrickLoadWarning {
+  code: 'brick-load-failed';
+  message: string;
+}
+
+export interface VolumeDownsampledWarning {
   code: 'volume-downsampled';
   message: string;
   /** Integer box-average factors per axis. */
@@ -81,6 +108,8 @@ export interface RenderStats {
   msPerIteration: number;
   /** GPU memory held now. */
   gpuBytes: GpuBytes;
+  /** The brick cache's state when the volume is bricked, else null. */
+  bricking: BrickingStats | null;
 }
 
 type RendererPasses = { generate: GpuPass; integrate: GpuPass; render: GpuPass };
@@ -106,7 +135,14 @@ export class RenderContext {
   // Volume, transfer function, gradient and auxiliary textures, with their lifetimes.
   private readonly resources: SceneResources;
   // The last budget fit: a scene volume → the volume actually uploaded (itself when it fits).
-  private fitted: { source: Scene['volume']; key: string; volume: Scene['volume'] } | null = null;
+  private fitted: { source: Scene['volume']; key: string; volume: Scene['volume']; bricks: BrickPlan | null } | null =
+    null;
+  private readonly bricking: 'off' | 'auto' | 'force';
+  private readonly brickSize: number;
+  private readonly brickUploadsPerFrame: number;
+  private readonly brickLod: boolean;
+  // Volumes backed by a multiscale source (setVolumeSource): the scene's volume is a stand-in.
+  private readonly volumeSources = new WeakMap<Scene['volume'], MultiscaleSource>();
   private readonly sampling: VolumeSampling;
   readonly maxGpuBytes: number;
   private readonly warningListeners = new Set<(w: RenderWarning) => void>();
@@ -141,6 +177,22 @@ export class RenderContext {
     if (opts.maxGpuBytes !== undefined && !(opts.maxGpuBytes > 0))
       throw new VptError('invalid-scene', `maxGpuBytes must be a positive number of bytes, got ${opts.maxGpuBytes}`);
     this.maxGpuBytes = opts.maxGpuBytes ?? defaultGpuBytes(backend);
+    this.bricking = opts.bricking ?? 'off';
+    if (!['off', 'auto', 'force'].includes(this.bricking))
+      throw new VptError(
+        'invalid-scene',
+        `bricking must be 'off', 'auto' or 'force', got ${JSON.stringify(opts.bricking)}`,
+      );
+    this.brickSize = opts.brickSize ?? 32;
+    if (!Number.isInteger(Math.log2(this.brickSize)) || this.brickSize < 8 || this.brickSize > 256)
+      throw new VptError('invalid-scene', `brickSize must be a power of two from 8 to 256, got ${opts.brickSize}`);
+    this.brickUploadsPerFrame = opts.brickUploadsPerFrame ?? 16;
+    this.brickLod = opts.brickLod === true;
+    if (!Number.isInteger(this.brickUploadsPerFrame) || this.brickUploadsPerFrame < 1)
+      throw new VptError(
+        'invalid-scene',
+        `brickUploadsPerFrame must be a positive integer, got ${opts.brickUploadsPerFrame}`,
+      );
     checkSize(opts.width, opts.height, backend);
     this.width = opts.width;
     this.height = opts.height;
@@ -184,6 +236,7 @@ export class RenderContext {
       samplesPerPixel: this.iteration,
       msPerIteration: this.msPerIteration,
       gpuBytes: this.gpuBytes(),
+      bricking: this.resources.bricked?.stats() ?? null,
     };
   }
 
@@ -199,7 +252,7 @@ export class RenderContext {
       t ? t.width * t.height * t.depth * BYTES_PER_TEXEL[t.format] : 0;
     const target = (t: RenderTarget | null | undefined) => (t ? t.textures.reduce((a, x) => a + tex(x), 0) : 0);
     const res = this.resources;
-    const volume = tex(res.volumeTexture);
+    const volume = res.bricked ? res.bricked.gpuBytes() : tex(res.volumeTexture);
     const gradient = res.gradient ? target(res.gradient.atlas) + target(res.gradient.max) : 0;
     let auxiliary = tex(res.tfTexture);
     for (const a of res.auxTextures.values()) auxiliary += tex(a.texture);
@@ -224,7 +277,6 @@ export class RenderContext {
     validateScene(input);
     validateSceneForDevice(input, this.renderer, this.backend.limits);
     const scene = this.fitScene(input);
-    this.input = input;
     const [nx, ny, nz] = scene.volume.dims;
     if (this.wantsGradient(scene)) {
       const atlas = sliceAtlasLayout(scene.volume.dims);
@@ -236,9 +288,79 @@ export class RenderContext {
         );
       }
     }
+    const previous = { scene: this.scene, plan: this.resources.brickPlanNow() };
     this.scene = scene;
-    this.resources.sync();
+    this.resources.setBrickPlan(this.fitted?.bricks ?? null);
+    try {
+      this.resources.sync();
+    } catch (e) {
+      // A bricked volume that cannot be held (VptError 'limit-exceeded'): keep the previous scene.
+      this.scene = previous.scene;
+      this.resources.setBrickPlan(previous.plan);
+      this.fitted = null;
+      throw e;
+    }
+    this.input = input;
     this.reset();
+  }
+
+  /**
+   * Back a volume by a multiscale source (an OME-Zarr store, say): whenever a scene's volume
+   * is this object, the context bricks it from `source` (levels streamed as the view needs
+   * them) instead of uploading its voxels. `standIn` is typically the source's coarsest
+   * level (readLevel): CPU-side users of the scene (histograms, the viewer) read it, and
+   * with a 2D transfer function or a renderer that needs the gradient volume it is rendered
+   * as it is. The box is the source's level 0.
+   */
+  setVolumeSource(standIn: Scene['volume'], source: MultiscaleSource): void {
+    this.assertAlive();
+    const l = source?.levels;
+    const ok =
+      Array.isArray(l) &&
+      l.length > 0 &&
+      l.every(
+        (v) =>
+          [v.dims, v.spacing, v.origin].every((a) => Array.isArray(a) && a.length === 3 && a.every(Number.isFinite)) &&
+          v.dims.every((d) => Number.isInteger(d) && d >= 1) &&
+          v.spacing.every((x) => x > 0),
+      ) &&
+      typeof source.readRegion === 'function';
+    if (!ok)
+      throw new VptError(
+        'invalid-scene',
+        'setVolumeSource: the source needs levels (level 0 finest) with positive integer dims, positive spacing, an origin each, and readRegion()',
+      );
+    if (source.type !== standIn.type)
+      throw new VptError(
+        'invalid-scene',
+        `setVolumeSource: the stand-in volume is ${standIn.type}, the source ${source.type}; they must match`,
+      );
+    this.volumeSources.set(standIn, source);
+  }
+
+  /**
+   * Resolves once a bricked volume has loaded what it can (every brick resident, or the
+   * atlas full of wanted ones), uploading arrived bricks itself when no loop runs; at once
+   * for an unbricked volume. Rejects with the source's error.
+   */
+  async whenBricksSettled(): Promise<BrickingStats | null> {
+    this.assertAlive();
+    for (;;) {
+      this.assertAlive();
+      const bricked = this.resources.bricked;
+      if (!bricked) return null;
+      if (!this.loop.running && this.updateBricks()) this.reset();
+      const stats = bricked.stats();
+      if (stats.complete) return stats;
+      await (this.loop.running ? new Promise((r) => setTimeout(r, 10)) : bricked.nextArrival());
+    }
+  }
+
+  /** One frame's brick residency work; true when what the kernels read changed. */
+  private updateBricks(): boolean {
+    const bricked = this.resources.bricked;
+    if (!bricked || !this.scene || this.backend.isLost) return false;
+    return bricked.update({ camera: this.scene.camera, width: this.width, height: this.height, lod: this.brickLod });
   }
 
   /**
@@ -256,10 +378,14 @@ export class RenderContext {
     if (f && f.key === key && f.source === scene.volume) {
       return f.volume === scene.volume ? scene : { ...scene, volume: f.volume };
     }
+    if (f && f.key === key && f.bricks && !f.bricks.source && sameVoxels(f.source, scene.volume)) {
+      this.fitted = { ...f, source: scene.volume, volume: scene.volume };
+      return scene;
+    }
     if (f && f.key === key && sameVoxels(f.source, scene.volume) && f.volume !== f.source) {
       // The same voxels with another value range: keep the downsampled copy, take the new range.
       const volume = { ...f.volume, valueRange: scene.volume.valueRange };
-      this.fitted = { source: scene.volume, key, volume };
+      this.fitted = { source: scene.volume, key, volume, bricks: null };
       return { ...scene, volume };
     }
     const upload = this.resources.planUpload(scene.volume, sampling);
@@ -279,6 +405,25 @@ export class RenderContext {
         `maxGpuBytes (${this.maxGpuBytes} bytes) leaves no room for a volume next to the ${this.width} x ${this.height} render targets`,
       );
     }
+    // Bricks instead of a downsampled copy: the full data stays available to the view.
+    const brickable = scene.transferFunction.dimensions !== '2d' && !gradient;
+    const source = this.volumeSources.get(scene.volume);
+    if (
+      brickable &&
+      (source || this.bricking === 'force' || (this.bricking === 'auto' && factors.some((f) => f > 1)))
+    ) {
+      const bricks: BrickPlan = {
+        capacityBytes: budget,
+        brickSize: this.brickSize,
+        uploadsPerFrame: this.brickUploadsPerFrame,
+        lod: this.brickLod,
+        onFailure: (message) => this.warn({ code: 'brick-load-failed', message }),
+        ...(source ? { source } : {}),
+      };
+      const volume = source ? standInWithLevel0Box(scene.volume, source) : scene.volume;
+      this.fitted = { source: scene.volume, key, volume, bricks };
+      return volume === scene.volume ? scene : { ...scene, volume };
+    }
     let volume = scene.volume;
     if (factors.some((f) => f > 1)) {
       volume = downsampleVolume(scene.volume, factors);
@@ -286,18 +431,21 @@ export class RenderContext {
       const why = over3D
         ? `a side exceeds this device's 3D texture limit of ${max3D} (maxTextureDimension3D)`
         : `${voxelCount(from)} voxels x ${perVoxel} bytes exceed the GPU memory budget of ${this.maxGpuBytes} bytes (maxGpuBytes)`;
-      const warning: RenderWarning = {
+      this.warn({
         code: 'volume-downsampled',
         factors,
         from,
         to: [...volume.dims] as [number, number, number],
         message: `Volume [${from.join(', ')}] downsampled by [${factors.join(', ')}] to [${volume.dims.join(', ')}]: ${why}`,
-      };
-      if (this.warningListeners.size === 0) console.warn(`vpt: ${warning.message}`);
-      this.warningListeners.forEach((l) => l(warning));
+      });
     }
-    this.fitted = { source: scene.volume, key, volume };
+    this.fitted = { source: scene.volume, key, volume, bricks: null };
     return volume === scene.volume ? scene : { ...scene, volume };
+  }
+
+  private warn(warning: RenderWarning): void {
+    if (this.warningListeners.size === 0) console.warn(`vpt: ${warning.message}`);
+    this.warningListeners.forEach((l) => l(warning));
   }
 
   /** Shallow-merge changes into the current scene (camera, lights, TF…) and reset. */
@@ -344,6 +492,8 @@ export class RenderContext {
   iterate(n = 1): void {
     this.assertAlive();
     if (!this.scene || this.backend.isLost) return;
+    // A bricked volume's uploads of this frame: what the kernels read changes, so the estimate restarts.
+    if (this.updateBricks()) this.reset();
     this.prepare();
     const scene = this.scene;
     const passes = this.passes!;
@@ -351,6 +501,11 @@ export class RenderContext {
       volume: this.resources.volumeTexture!,
       transferFunction: this.resources.tfTexture!,
     };
+    const bricked = this.resources.bricked;
+    if (bricked) {
+      textures.pageTable = bricked.pageTable;
+      textures.brickLevels = bricked.levels;
+    }
     if (this.resources.gradient && this.wantsGradient(scene)) {
       textures.gradientMagnitude = this.resources.gradient.atlas.textures[0];
       textures.gradientMax = this.resources.gradient.max.textures[0];
@@ -596,6 +751,7 @@ export class RenderContext {
   }
 
   private uniforms(scene: Scene, iteration = this.iteration): ArrayBuffer {
+    const bricked = this.resources.bricked;
     return this.layout.pack({
       ...sceneUniformValues(
         scene,
@@ -605,6 +761,9 @@ export class RenderContext {
         TF_RESOLUTION,
         this.resources.volumeMapping(scene),
       ),
+      // The bricked sampler reads level 0's dims and the brick size from here (a streamed
+      // scene's volume is a coarser stand-in); nothing else reads volumeDims when bricked.
+      ...(bricked ? { volumeDims: [...bricked.geometry.levels[0].dims, bricked.geometry.brickSize] } : {}),
       ...this._renderer.paramValues(scene),
     });
   }
@@ -621,6 +780,7 @@ export class RenderContext {
       tf2d,
       gradient: this.wantsGradient(scene),
       hardwareFilter: this.resources.volumeUpload?.filter === 'linear',
+      bricked: this.resources.bricked !== null,
     };
   }
 
@@ -645,7 +805,7 @@ export class RenderContext {
           { name: 'gradientMax', dimension: '2d' as const },
         ]
       : [];
-    const key = `${r.name}|${JSON.stringify(features)}|${auxBindings.map((b) => b.name).join(',')}|${chunks.hardwareFilter ? 'filtered' : 'exact'}`;
+    const key = `${r.name}|${JSON.stringify(features)}|${auxBindings.map((b) => b.name).join(',')}|${chunks.hardwareFilter ? 'filtered' : 'exact'}${chunks.bricked ? '|bricked' : ''}`;
     if (!this.passes || key !== this.variantKey) {
       this.layout = new UniformLayout('Params', [...SCENE_UNIFORM_FIELDS, ...r.paramFields]);
       // The volume/TF chunks read the `volume` and `transferFunction` (and gradient) textures,
@@ -676,6 +836,12 @@ export class RenderContext {
           [
             { name: 'volume', dimension: '3d', ...(chunks.hardwareFilter ? { filter: 'linear' as const } : {}) },
             { name: 'transferFunction', dimension: '2d' },
+            ...(chunks.bricked
+              ? [
+                  { name: 'pageTable', dimension: '3d' as const },
+                  { name: 'brickLevels', dimension: '2d' as const },
+                ]
+              : []),
             ...gradientBindings,
             ...auxBindings,
           ],
@@ -789,4 +955,16 @@ function checkSize(width: number, height: number, backend: GpuBackend): void {
       'limit-exceeded',
       `Render size ${width} x ${height} exceeds this device's 2D texture limit of ${max} (maxTextureDimension2D)`,
     );
+}
+
+/**
+ * The stand-in of a streamed volume as the scene renders it: its voxels, with the spacing
+ * stretched so that its box is the source's level 0 (a coarser level's box can be a little
+ * larger or smaller, its sides rounded to whole voxels), and the source's value range.
+ */
+function standInWithLevel0Box(standIn: Scene['volume'], source: MultiscaleSource): Scene['volume'] {
+  const l0 = source.levels[0];
+  const spacing = [0, 1, 2].map((a) => (l0.dims[a] * l0.spacing[a]) / standIn.dims[a]) as [number, number, number];
+  const valueRange = source.valueRange ?? standIn.valueRange;
+  return { ...standIn, spacing, ...(valueRange ? { valueRange: [valueRange[0], valueRange[1]] } : {}) };
 }

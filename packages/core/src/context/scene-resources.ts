@@ -12,6 +12,19 @@ import {
   type VolumeUpload,
 } from '../gpu/volume-format.js';
 import { buildGradientVolume, destroyGradientVolume, type GradientVolume } from '../gradient/gradient-volume.js';
+import { BrickedVolume, type BrickingOptions } from '../bricking/bricked-volume.js';
+import { inMemoryMultiscaleSource, type MultiscaleSource } from '../bricking/source.js';
+import { normalizationRange } from '../scene/volume.js';
+
+/** How RenderContext wants the scene's volume bricked (null: one texture). */
+export interface BrickPlan extends BrickingOptions {
+  /** Bytes for the atlas, page table and level table. */
+  capacityBytes: number;
+  /** Where the bricks come from (RenderContext.setVolumeSource); default: levels made from the scene's volume. */
+  source?: MultiscaleSource;
+  /** Called once per brick whose read failed. */
+  onFailure?: (message: string) => void;
+}
 
 /**
  * The GPU resources a scene needs beside the renderer's targets, and their lifetimes: the
@@ -24,6 +37,10 @@ import { buildGradientVolume, destroyGradientVolume, type GradientVolume } from 
  */
 export class SceneResources {
   volumeTexture: GpuTexture | null = null;
+  /** The brick cache when the volume is bricked (then volumeTexture is its atlas). */
+  bricked: BrickedVolume | null = null;
+  private brickPlan: BrickPlan | null = null;
+  private brickKey = '';
   private volumeSource: Scene['volume'] | null = null;
   volumeUpload: VolumeUpload | null = null;
   private volumeKey = 0; // bumped on every volume upload (VolumeBinding.key)
@@ -44,10 +61,11 @@ export class SceneResources {
   private gradientKey = '';
   // Renderer-declared textures by name; `target` is set for GPU-made ones (AuxiliaryPass).
   readonly auxTextures = new Map<string, AuxEntry>();
-  private auxFor: { scene: Scene | null; renderer: Renderer | null; version: number } = {
+  private auxFor: { scene: Scene | null; renderer: Renderer | null; version: number; volumeKey: string } = {
     scene: null,
     renderer: null,
     version: -1,
+    volumeKey: '',
   };
 
   constructor(
@@ -80,11 +98,62 @@ export class SceneResources {
   /** What auxiliary passes need to read the volume texture's texels (Renderer.auxiliaryTextures). */
   volumeBinding(scene: Scene): VolumeBinding {
     const m = this.volumeMapping(scene);
+    const bricked = this.bricked;
     return {
       ...m,
       format: this.volumeUpload?.format ?? 'r32float',
-      key: `${this.volumeKey}|${m.valueScale}|${m.valueOffset}`,
+      key: `${this.volumeKey}|${m.valueScale}|${m.valueOffset}${bricked ? `|bricks ${bricked.generation}` : ''}`,
+      ...(bricked ? { cellRanges: (cells: readonly [number, number, number]) => bricked.cellRanges(cells) } : {}),
     };
+  }
+
+  brickPlanNow(): BrickPlan | null {
+    return this.brickPlan;
+  }
+
+  /** Brick the next volumes (RenderContext decides, per scene), or hold them in one texture (null). */
+  setBrickPlan(plan: BrickPlan | null): void {
+    this.brickPlan = plan;
+  }
+
+  /** The brick cache for the scene's volume: kept while the voxels, format and plan stay, else rebuilt empty. */
+  private syncBricked(volume: Scene['volume'], upload: VolumeUpload): void {
+    const plan = this.brickPlan!;
+    const key = [
+      upload.format,
+      upload.filter,
+      upload.decodeScale,
+      upload.decodeOffset,
+      plan.capacityBytes,
+      plan.brickSize,
+      plan.uploadsPerFrame,
+      plan.lod,
+      plan.source ? sourceId(plan.source) : 0,
+    ].join('|');
+    if (this.bricked && this.brickKey === key && this.volumeSource && sameVoxels(this.volumeSource, volume)) {
+      this.volumeSource = volume;
+      return;
+    }
+    const range = normalizationRange(volume);
+    const source = plan.source ?? inMemoryMultiscaleSource(volume, { coarsestSide: plan.brickSize });
+    // Made before the old volume goes: a VptError here (no room for the coarsest level) changes nothing.
+    const bricked = new BrickedVolume(this.backend, source, upload, plan.capacityBytes, plan, range, plan.onFailure);
+    this.dropVolume();
+    this.bricked = bricked;
+    this.brickKey = key;
+    this.volumeTexture = this.bricked.atlas;
+    this.volumeSource = volume;
+    this.volumeUpload = upload;
+    this.volumeKey++;
+  }
+
+  private dropVolume(): void {
+    if (this.bricked) this.bricked.release();
+    else if (this.volumeTexture) this.backend.destroyTexture(this.volumeTexture);
+    this.bricked = null;
+    this.brickKey = '';
+    this.volumeTexture = null;
+    this.dropGradient();
   }
 
   /** The upload plan of a volume, kept per volume and sampling (a uint16 or half-float plan scans the data once). */
@@ -133,6 +202,8 @@ export class SceneResources {
   sync(): void {
     const scene = this.scene!;
     const upload = this.planUpload(scene.volume, this.samplingOf(scene));
+    if (this.brickPlan) this.syncBricked(scene.volume, upload);
+    else if (this.bricked) this.dropVolume();
     const same =
       this.volumeUpload &&
       this.volumeUpload.format === upload.format &&
@@ -140,6 +211,7 @@ export class SceneResources {
       this.volumeUpload.decodeScale === upload.decodeScale &&
       this.volumeUpload.decodeOffset === upload.decodeOffset;
     if (
+      !this.bricked &&
       this.volumeTexture &&
       same &&
       this.volumeSource !== scene.volume &&
@@ -150,10 +222,8 @@ export class SceneResources {
       this.volumeSource = scene.volume;
       this.dropGradient();
     }
-    if (this.volumeSource !== scene.volume || !this.volumeTexture || !same) {
-      if (this.volumeTexture) this.backend.destroyTexture(this.volumeTexture);
-      this.volumeTexture = null;
-      this.dropGradient();
+    if (!this.bricked && (this.volumeSource !== scene.volume || !this.volumeTexture || !same)) {
+      this.dropVolume();
       this.volumeTexture = this.uploadVolume(scene.volume, upload);
       this.volumeSource = scene.volume;
       this.volumeUpload = upload;
@@ -229,9 +299,16 @@ export class SceneResources {
   /** Build, reuse or free the renderer's auxiliary textures (only when scene or renderer changed). */
   syncAuxiliaryTextures(): void {
     const r = this._renderer;
-    if (this.auxFor.scene === this.scene && this.auxFor.renderer === r && this.auxFor.version === r.version) return;
-    const specs: readonly AuxiliaryTexture[] =
-      r.auxiliaryTextures?.(this.scene!, this.volumeBinding(this.scene!)) ?? [];
+    // A bricked volume's residency changes its binding (key, cell ranges) without a new scene.
+    const binding = this.volumeBinding(this.scene!);
+    if (
+      this.auxFor.scene === this.scene &&
+      this.auxFor.renderer === r &&
+      this.auxFor.version === r.version &&
+      this.auxFor.volumeKey === binding.key
+    )
+      return;
+    const specs: readonly AuxiliaryTexture[] = r.auxiliaryTextures?.(this.scene!, binding) ?? [];
     const wanted = new Set(specs.map((a) => a.name));
     for (const [name, aux] of this.auxTextures) {
       if (!wanted.has(name)) {
@@ -258,7 +335,7 @@ export class SceneResources {
             },
       );
     }
-    this.auxFor = { scene: this.scene, renderer: r, version: r.version };
+    this.auxFor = { scene: this.scene, renderer: r, version: r.version, volumeKey: binding.key };
   }
 
   private auxDescriptor(spec: AuxiliaryTexture) {
@@ -303,18 +380,21 @@ export class SceneResources {
 
   /** Destroy every texture (dispose, or before rebuilding all). */
   release(): void {
-    if (this.volumeTexture) this.backend.destroyTexture(this.volumeTexture);
+    this.dropVolume();
     if (this.tfTexture) this.backend.destroyTexture(this.tfTexture);
     this.volumeTexture = null;
     this.tfTexture = null;
     this.dropGradient();
     this.auxTextures.forEach((a) => this.releaseAux(a));
     this.auxTextures.clear();
-    this.auxFor = { scene: null, renderer: null, version: -1 };
+    this.auxFor = { scene: null, renderer: null, version: -1, volumeKey: '' };
   }
 
   /** After a context/device loss: the old handles belong to the lost context; forget them without calling destroy. */
   forget(): void {
+    this.bricked?.release(false);
+    this.bricked = null;
+    this.brickKey = '';
     this.volumeTexture = null;
     this.volumeSource = null;
     this.tfTexture = null;
@@ -325,7 +405,7 @@ export class SceneResources {
     this.volumeUpload = null;
     this.planMemo = null;
     this.auxTextures.clear();
-    this.auxFor = { scene: null, renderer: null, version: -1 };
+    this.auxFor = { scene: null, renderer: null, version: -1, volumeKey: '' };
   }
 }
 
@@ -346,4 +426,12 @@ const SLAB_VOXELS = 1 << 24;
 /** Two volumes with the same voxels (the same array, dims and type): they differ at most in value range or name. */
 export function sameVoxels(a: Scene['volume'], b: Scene['volume']): boolean {
   return a.data === b.data && a.type === b.type && a.dims.every((d, i) => d === b.dims[i]);
+}
+
+const sourceIds = new WeakMap<MultiscaleSource, number>();
+let nextSourceId = 1;
+function sourceId(source: MultiscaleSource): number {
+  let id = sourceIds.get(source);
+  if (id === undefined) sourceIds.set(source, (id = nextSourceId++));
+  return id;
 }

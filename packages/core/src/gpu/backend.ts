@@ -149,6 +149,29 @@ export function isFilterable(format: TextureFormat, caps: BackendCapabilities): 
 }
 
 /** The number of whole slices `texels` makes at zOffset of a 3D texture; throws when they do not fit. */
+/** Checks that [origin, origin + size) is a non-empty box inside a 3D texture (writeTextureRegion). */
+export function checkTextureRegion(
+  tex: GpuTexture,
+  origin: readonly [number, number, number],
+  size: readonly [number, number, number],
+): void {
+  const ext = [tex.width, tex.height, tex.depth];
+  const ok =
+    tex.dimension === '3d' &&
+    [0, 1, 2].every(
+      (a) =>
+        Number.isInteger(origin[a]) &&
+        Number.isInteger(size[a]) &&
+        origin[a] >= 0 &&
+        size[a] >= 1 &&
+        origin[a] + size[a] <= ext[a],
+    );
+  if (!ok)
+    throw new RangeError(
+      `texture "${tex.label}": the region at [${origin.join(', ')}] of size [${size.join(', ')}] is not inside its ${ext.join('x')} (${tex.dimension})`,
+    );
+}
+
 export function sliceCount(tex: GpuTexture, zOffset: number, texels: number): number {
   const depth = texels / (tex.width * tex.height);
   if (
@@ -199,6 +222,16 @@ export interface GpuBackend {
    * packed): large volumes are converted and uploaded in slabs, so no full-size copy exists.
    */
   writeTextureSlices(texture: GpuTexture, zOffset: number, data: TextureData): void;
+  /**
+   * Replace the box [origin, origin + size) of a 3D texture (tightly packed, x fastest): the
+   * brick cache writes one brick into its atlas slot (bricking/bricked-volume.ts).
+   */
+  writeTextureRegion(
+    texture: GpuTexture,
+    origin: readonly [number, number, number],
+    size: readonly [number, number, number],
+    data: TextureData,
+  ): void;
   destroyTexture(texture: GpuTexture): void;
 
   createRenderTarget(width: number, height: number, formats: readonly TextureFormat[], label?: string): RenderTarget;

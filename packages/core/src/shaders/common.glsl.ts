@@ -101,6 +101,87 @@ float sampleVolumeTexel(vec3 p) {
   return texture(volume, (p - u.boxMin) / (u.boxMax - u.boxMin)).r;
 }
 `;
+/**
+ * The bricked volume (bricking/): `volume` is the brick atlas, `pageTable` (3D, one RGBA float
+ * per level-0 brick) says where the brick holding a point is served from — (atlas origin of
+ * its slot, level) or (texel value, 0, 0, −1) for a constant brick — and `brickLevels` (3 × L)
+ * holds per level (scale.xyz, brick size), (offset.xyz, 0) and (dims.xyz, brick size), the map
+ * x_l = x0 · scale + offset from level-0 voxel coordinates. Virtual texturing of volumes with a
+ * page table (Beyer, Hadwiger, Pfister 2015, "State-of-the-Art in GPU-Based Large-Scale
+ * Volume Visualization", CGF 34(8), §5): one-voxel aprons make trilinear filtering inside a
+ * slot equal the unbricked filter, so a fully resident level 0 gives the unbricked values.
+ */
+export const BRICK_LOOKUP = /* glsl */ `
+struct VptBrick { vec3 x; ivec3 first; ivec3 shift; ivec3 dims; int size; float constant; bool isConstant; };
+// x0: the point in level-0 voxel coordinates; x: in the serving level's voxel coordinates; first: that level's voxel in slot texel 0;
+// shift: atlas texel = level voxel + shift.
+VptBrick brickAt(vec3 p) {
+  VptBrick r;
+  // u.volumeDims: level 0's dims and the brick size (RenderContext sets them for a bricked volume).
+  float B = float(u.volumeDims.w);
+  r.size = u.volumeDims.w;
+  vec3 x0 = (p - u.boxMin) / (u.boxMax - u.boxMin) * vec3(u.volumeDims.xyz);
+  ivec3 b0 = clamp(ivec3(floor(x0 / B)), ivec3(0), textureSize(pageTable, 0) - 1);
+  vec4 e = texelFetch(pageTable, b0, 0);
+  r.isConstant = e.w < 0.0;
+  r.constant = e.x;
+  int level = max(int(e.w), 0);
+  r.dims = u.volumeDims.xyz;
+  r.first = b0 * r.size - 1;
+  r.x = x0;
+  if (level > 0) {
+    // A coarser level serves this brick: its voxel coordinates and the brick holding b0's centre.
+    vec3 s = texelFetch(brickLevels, ivec2(0, level), 0).xyz;
+    vec3 o = texelFetch(brickLevels, ivec2(1, level), 0).xyz;
+    r.dims = ivec3(texelFetch(brickLevels, ivec2(2, level), 0).xyz);
+    ivec3 bricks = (r.dims + r.size - 1) / r.size;
+    ivec3 bl = clamp(ivec3(floor(((vec3(b0) + 0.5) * B * s + o) / B)), ivec3(0), bricks - 1);
+    r.first = bl * r.size - 1;
+    r.x = x0 * s + o;
+  }
+  r.shift = ivec3(e.xyz) - r.first;
+  return r;
+}
+`;
+export const BRICKED_EXACT_FILTER = /* glsl */ `
+float brickTexel(VptBrick b, ivec3 i) {
+  ivec3 c = clamp(clamp(i, ivec3(0), b.dims - 1), b.first, b.first + b.size + 1);
+  return texelFetch(volume, c + b.shift, 0).r;
+}
+float sampleVolumeTexel(vec3 p) {
+  VptBrick b = brickAt(p);
+  if (b.isConstant) return b.constant;
+  vec3 g = b.x - 0.5;
+  vec3 g0 = floor(g);
+  vec3 f = g - g0;
+  ivec3 i0 = ivec3(g0);
+  ivec3 i1 = ivec3(g0) + 1;
+  float c000 = brickTexel(b, ivec3(i0.x, i0.y, i0.z));
+  float c100 = brickTexel(b, ivec3(i1.x, i0.y, i0.z));
+  float c010 = brickTexel(b, ivec3(i0.x, i1.y, i0.z));
+  float c110 = brickTexel(b, ivec3(i1.x, i1.y, i0.z));
+  float c001 = brickTexel(b, ivec3(i0.x, i0.y, i1.z));
+  float c101 = brickTexel(b, ivec3(i1.x, i0.y, i1.z));
+  float c011 = brickTexel(b, ivec3(i0.x, i1.y, i1.z));
+  float c111 = brickTexel(b, ivec3(i1.x, i1.y, i1.z));
+  float c00 = lerp1(c000, c100, f.x);
+  float c10 = lerp1(c010, c110, f.x);
+  float c01 = lerp1(c001, c101, f.x);
+  float c11 = lerp1(c011, c111, f.x);
+  return lerp1(lerp1(c00, c10, f.y), lerp1(c01, c11, f.y), f.z);
+}
+`;
+// One filtered fetch inside the slot: the coordinate is kept between the slot's first and last
+// texel centres, so the filter never blends a neighbouring slot.
+export const BRICKED_HARDWARE_FILTER = /* glsl */ `
+float sampleVolumeTexel(vec3 p) {
+  VptBrick b = brickAt(p);
+  if (b.isConstant) return b.constant;
+  vec3 lo = vec3(b.first) + 0.5;
+  vec3 x = clamp(b.x, lo, lo + float(b.size + 1));
+  return texture(volume, (x + vec3(b.shift)) / vec3(textureSize(volume, 0))).r;
+}
+`;
 /** sampleVolume() (the filtered texel, value-mapped) and the 1D TF lookup. */
 export const SAMPLE_AND_LOOKUP = /* glsl */ `
 float sampleVolume(vec3 p) { return volumeValue(sampleVolumeTexel(p)); }
@@ -197,7 +278,14 @@ export const GENERATE_CHUNKS = [
   RAY,
   SLICE_ATLAS,
   LERP,
+  '#if BRICKED',
+  BRICK_LOOKUP,
   '#if HARDWARE_FILTER',
+  BRICKED_HARDWARE_FILTER,
+  '#else',
+  BRICKED_EXACT_FILTER,
+  '#endif',
+  '#elif HARDWARE_FILTER',
   HARDWARE_FILTER,
   '#else',
   EXACT_FILTER,

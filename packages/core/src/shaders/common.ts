@@ -11,6 +11,8 @@ export interface CommonChunkOptions {
   gradient?: boolean;
   /** The volume texture is bound with `filter: 'linear'`: sample it with one filtered fetch (volume-format.ts). */
   hardwareFilter?: boolean;
+  /** The volume is bricked (bricking/): `volume` is the brick atlas, read through `pageTable` and `brickLevels`. */
+  bricked?: boolean;
 }
 
 /**
@@ -24,6 +26,7 @@ export function commonChunks(opts: CommonChunkOptions = {}): KernelSource {
     GRADIENT: !!(opts.gradient || opts.tf2d),
     TF_2D: !!opts.tf2d,
     HARDWARE_FILTER: !!opts.hardwareFilter,
+    BRICKED: !!opts.bricked,
   };
   return { glsl: preprocess(glsl.GENERATE_CHUNKS, flags), wgsl: preprocess(wgsl.GENERATE_CHUNKS, flags) };
 }

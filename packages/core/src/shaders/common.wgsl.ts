@@ -86,6 +86,73 @@ fn sampleVolumeTexel(p: vec3f) -> f32 {
   return textureSampleLevel(volume, vptLinearSampler, (p - u.boxMin) / (u.boxMax - u.boxMin), 0.0).r;
 }
 `;
+/** The bricked volume: twins of BRICK_LOOKUP and the bricked filters of common.glsl.ts (see there). */
+export const BRICK_LOOKUP = /* wgsl */ `
+struct VptBrick { x: vec3f, first: vec3i, shift: vec3i, dims: vec3i, size: i32, constant: f32, isConstant: bool };
+// Beyer, Hadwiger, Pfister 2015, CGF 34(8), §5: page-table virtual texturing with one-voxel aprons.
+fn brickAt(p: vec3f) -> VptBrick {
+  var r: VptBrick;
+  let B = f32(u.volumeDims.w);
+  r.size = u.volumeDims.w;
+  let x0 = (p - u.boxMin) / (u.boxMax - u.boxMin) * vec3f(u.volumeDims.xyz);
+  let b0 = clamp(vec3i(floor(x0 / B)), vec3i(0), vec3i(textureDimensions(pageTable)) - 1);
+  let e = textureLoad(pageTable, b0, 0);
+  r.isConstant = e.w < 0.0;
+  r.constant = e.x;
+  let level = max(i32(e.w), 0);
+  r.dims = u.volumeDims.xyz;
+  r.first = b0 * r.size - 1;
+  r.x = x0;
+  if (level > 0) {
+    let s = textureLoad(brickLevels, vec2i(0, level), 0).xyz;
+    let o = textureLoad(brickLevels, vec2i(1, level), 0).xyz;
+    r.dims = vec3i(textureLoad(brickLevels, vec2i(2, level), 0).xyz);
+    let bricks = (r.dims + r.size - 1) / r.size;
+    let bl = clamp(vec3i(floor(((vec3f(b0) + 0.5) * B * s + o) / B)), vec3i(0), bricks - 1);
+    r.first = bl * r.size - 1;
+    r.x = x0 * s + o;
+  }
+  r.shift = vec3i(e.xyz) - r.first;
+  return r;
+}
+`;
+export const BRICKED_EXACT_FILTER = /* wgsl */ `
+fn brickTexel(b: VptBrick, i: vec3i) -> f32 {
+  let c = clamp(clamp(i, vec3i(0), b.dims - 1), b.first, b.first + b.size + 1);
+  return textureLoad(volume, c + b.shift, 0).r;
+}
+fn sampleVolumeTexel(p: vec3f) -> f32 {
+  let b = brickAt(p);
+  if (b.isConstant) { return b.constant; }
+  let g = b.x - 0.5;
+  let g0 = floor(g);
+  let f = g - g0;
+  let i0 = vec3i(g0);
+  let i1 = vec3i(g0) + 1;
+  let c000 = brickTexel(b, vec3i(i0.x, i0.y, i0.z));
+  let c100 = brickTexel(b, vec3i(i1.x, i0.y, i0.z));
+  let c010 = brickTexel(b, vec3i(i0.x, i1.y, i0.z));
+  let c110 = brickTexel(b, vec3i(i1.x, i1.y, i0.z));
+  let c001 = brickTexel(b, vec3i(i0.x, i0.y, i1.z));
+  let c101 = brickTexel(b, vec3i(i1.x, i0.y, i1.z));
+  let c011 = brickTexel(b, vec3i(i0.x, i1.y, i1.z));
+  let c111 = brickTexel(b, vec3i(i1.x, i1.y, i1.z));
+  let c00 = lerp1(c000, c100, f.x);
+  let c10 = lerp1(c010, c110, f.x);
+  let c01 = lerp1(c001, c101, f.x);
+  let c11 = lerp1(c011, c111, f.x);
+  return lerp1(lerp1(c00, c10, f.y), lerp1(c01, c11, f.y), f.z);
+}
+`;
+export const BRICKED_HARDWARE_FILTER = /* wgsl */ `
+fn sampleVolumeTexel(p: vec3f) -> f32 {
+  let b = brickAt(p);
+  if (b.isConstant) { return b.constant; }
+  let lo = vec3f(b.first) + 0.5;
+  let x = clamp(b.x, lo, lo + f32(b.size + 1));
+  return textureSampleLevel(volume, vptLinearSampler, (x + vec3f(b.shift)) / vec3f(textureDimensions(volume)), 0.0).r;
+}
+`;
 export const SAMPLE_AND_LOOKUP = /* wgsl */ `
 fn sampleVolume(p: vec3f) -> f32 { return volumeValue(sampleVolumeTexel(p)); }
 fn transferLookup(value: f32) -> vec4f {
@@ -167,7 +234,14 @@ export const GENERATE_CHUNKS = [
   RAY,
   SLICE_ATLAS,
   LERP,
+  '#if BRICKED',
+  BRICK_LOOKUP,
   '#if HARDWARE_FILTER',
+  BRICKED_HARDWARE_FILTER,
+  '#else',
+  BRICKED_EXACT_FILTER,
+  '#endif',
+  '#elif HARDWARE_FILTER',
   HARDWARE_FILTER,
   '#else',
   EXACT_FILTER,

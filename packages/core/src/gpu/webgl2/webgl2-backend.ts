@@ -17,7 +17,7 @@ import type {
   TextureDescriptor,
   TextureFormat,
 } from '../backend.js';
-import { sliceCount } from '../backend.js';
+import { checkTextureRegion, sliceCount } from '../backend.js';
 import { type GlLimits, acquireContext, readInfo, readLimits, requireColorBufferFloat } from './context-setup.js';
 import { ProgramCache, UNIFORM_BLOCK_BINDING } from './program-cache.js';
 import { WebGL2Pass, WebGL2RenderTarget, WebGL2Texture } from './resources.js';
@@ -152,6 +152,24 @@ class WebGL2Backend extends BackendBase implements GpuBackend {
     const f = glFormat(tex.format);
     gl.bindTexture(gl.TEXTURE_3D, tex.handle);
     gl.texSubImage3D(gl.TEXTURE_3D, 0, 0, 0, zOffset, tex.width, tex.height, depth, f.format, f.type, data);
+  }
+
+  writeTextureRegion(
+    texture: GpuTexture,
+    origin: readonly [number, number, number],
+    size: readonly [number, number, number],
+    data: TextureData,
+  ): void {
+    this.assertNotDisposed();
+    const tex = this.own(texture, WebGL2Texture, 'texture');
+    checkTextureRegion(tex, origin, size);
+    checkTextureData(tex.label, tex.format, size[0] * size[1] * size[2], data);
+    if (this.isLost) return;
+    this.assertCurrent(tex, `texture "${tex.label}"`);
+    const gl = this.gl;
+    const f = glFormat(tex.format);
+    gl.bindTexture(gl.TEXTURE_3D, tex.handle);
+    gl.texSubImage3D(gl.TEXTURE_3D, 0, ...origin, ...size, f.format, f.type, data);
   }
 
   destroyTexture(texture: GpuTexture): void {

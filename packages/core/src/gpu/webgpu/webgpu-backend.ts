@@ -47,7 +47,7 @@ import { submitReadback, unpackReadback } from './readback.js';
 import { WebGPUPass, WebGPURenderTarget, WebGPUTexture } from './resources.js';
 import { UniformBufferPool } from './uniform-pool.js';
 import { BUILTINS_BYTE_SIZE, linearSamplerBinding, usesLinearSampler } from './wgsl-prelude.js';
-import { sliceCount } from '../backend.js';
+import { checkTextureRegion, sliceCount } from '../backend.js';
 
 export { isWebGPUAvailable } from './device-setup.js';
 
@@ -205,6 +205,29 @@ class WebGPUBackend extends BackendBase implements GpuBackend {
       view,
       { bytesPerRow, rowsPerImage: tex.height },
       [tex.width, tex.height, depth],
+    );
+  }
+
+  writeTextureRegion(
+    texture: GpuTexture,
+    origin: readonly [number, number, number],
+    size: readonly [number, number, number],
+    data: TextureData,
+  ): void {
+    this.assertNotDisposed();
+    const tex = this.own(texture, WebGPUTexture, 'texture');
+    checkTextureRegion(tex, origin, size);
+    checkTextureData(tex.label, tex.format, size[0] * size[1] * size[2], data);
+    if (this.lost) return;
+    this.assertCurrent(tex, `texture "${tex.label}"`);
+    if (!tex.handle) throw new RangeError(`texture "${tex.label}" was destroyed`);
+    const view = data as
+      Float32Array<ArrayBuffer> | Uint8Array<ArrayBuffer> | Uint16Array<ArrayBuffer> | Int16Array<ArrayBuffer>;
+    this.state.device.queue.writeTexture(
+      { texture: tex.handle, origin: [...origin] },
+      view,
+      { bytesPerRow: size[0] * formatInfo(tex.format).bytesPerTexel, rowsPerImage: size[1] },
+      [...size],
     );
   }
 

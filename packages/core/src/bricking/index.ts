@@ -1,0 +1,5 @@
+export * from './source.js';
+export * from './brick-geometry.js';
+export * from './brick-cache.js';
+export { BrickedVolume, atlasSlots, type BrickingOptions, type BrickingStats } from './bricked-volume.js';
+export { brickPriority, type BrickView } from './brick-priority.js';
