@@ -75,6 +75,9 @@ export { preprocess, evalCondition, type Flags } from './shaders/preprocess.js';
 export { gradientMagnitudes, maxGradientMagnitude } from './gradient/gradient-cpu.js';
 export { buildGradientVolume, destroyGradientVolume, type GradientVolume } from './gradient/gradient-volume.js';
 export * from './scene/environment-sampling.js';
+export * from './majorant/majorant-grid.js';
+export * as GLSL_MAJORANT_BUILD from './majorant/majorant-build.glsl.js';
+export * as WGSL_MAJORANT_BUILD from './majorant/majorant-build.wgsl.js';
 
 export * as reference from './reference/cpu-reference.js';
 

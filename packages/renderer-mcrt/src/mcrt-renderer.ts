@@ -19,12 +19,15 @@ import {
   type Volume,
   type VolumeBinding,
   volumeValueMapping,
+  buildMajorantGrid,
+  gridCells,
+  volumeCellRanges,
+  type MajorantGrid,
+  GLSL_MAJORANT_BUILD as glslBuild,
+  WGSL_MAJORANT_BUILD as wgslBuild,
 } from '@vpt/core';
 import { activeLights, computeFeatures, featureKey, MAX_LIGHTS, type McrtFeatures } from './features.js';
 import { generateKernel, INTEGRATE_HALVES } from './kernel-sources.js';
-import { buildMajorantGrid, gridCells, volumeCellRanges, type MajorantGrid } from './majorant-grid.js';
-import * as glslBuild from './kernels/majorant-build.glsl.js';
-import * as wgslBuild from './kernels/majorant-build.wgsl.js';
 import { MCRT_PARAM_SPECS, resolveParams, type McrtParams, type ResolvedMcrtParams } from './params.js';
 
 export const MCRT_PARAM_FIELDS: readonly UniformField[] = [
