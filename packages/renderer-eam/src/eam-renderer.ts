@@ -1,11 +1,17 @@
 import {
   BaseRenderer,
   COPY_ACCUMULATION_RENDER,
+  DEFAULT_SKIP_CELL_SIZE,
+  GRID_CELLS_FIELD,
+  gridGeometry,
+  majorantGridTextures,
   RUNNING_MEAN_INTEGRATE,
+  type AuxiliaryTexture,
   type ParamSpecs,
   type Scene,
   type UniformField,
   type UniformValues,
+  type VolumeBinding,
 } from '@vpt/core';
 import * as glsl from './kernels/eam.glsl.js';
 import * as wgsl from './kernels/eam.wgsl.js';
@@ -18,12 +24,19 @@ export interface EamParams {
    * 0 disables it. The remaining light is dropped, a bias of at most `cutoff`.
    */
   cutoff?: number;
+  /**
+   * Jump over the majorant-grid cells whose opacity bound is 0 (default true). Their samples
+   * add nothing, so the image is the same bits either way; false is the plain march, for
+   * tests and benchmarks.
+   */
+  emptySpaceSkipping?: boolean;
 }
 
 /** EAM's parameters and their ranges (core's validateParams; steps also ≥ MIN_STEP_VOXELS voxels per scene). */
 export const EAM_PARAM_SPECS: ParamSpecs = {
   stepSize: { kind: 'step' },
   cutoff: { kind: 'number', min: 0, max: 1 },
+  emptySpaceSkipping: { kind: 'boolean' },
 };
 
 /** Emission-absorption: HDR = emitted colour + transmittance x background, a = 1 - transmittance. */
@@ -39,10 +52,15 @@ export class EamRenderer extends BaseRenderer<EamParams> {
   readonly paramFields: readonly UniformField[] = [
     { name: 'stepSize', type: 'f32' },
     { name: 'cutoff', type: 'f32' },
+    GRID_CELLS_FIELD,
   ];
 
   constructor(params: EamParams = {}) {
     super(params, EAM_PARAM_SPECS, 'EAM');
+  }
+
+  override features(_scene: Scene): Record<string, boolean | number> {
+    return { SKIP_EMPTY: this.skipping };
   }
 
   paramValues(scene: Scene): UniformValues {
@@ -50,6 +68,16 @@ export class EamRenderer extends BaseRenderer<EamParams> {
     return {
       stepSize: p.stepSize ?? 0.5 / Math.max(...scene.volume.dims),
       cutoff: p.cutoff ?? 1e-6,
+      gridCells: gridGeometry(scene.volume.dims, DEFAULT_SKIP_CELL_SIZE),
     };
+  }
+
+  /** With skipping, the majorant grid (max of densityScale·opacity per cell; 0 = empty), built on the GPU. */
+  auxiliaryTextures(scene: Scene, volume: VolumeBinding): readonly AuxiliaryTexture[] {
+    return this.skipping ? majorantGridTextures(scene, volume, DEFAULT_SKIP_CELL_SIZE, 'majorants') : [];
+  }
+
+  private get skipping(): boolean {
+    return this.getParams().emptySpaceSkipping ?? true;
   }
 }

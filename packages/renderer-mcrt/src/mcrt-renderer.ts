@@ -3,12 +3,8 @@ import {
   validateParams,
   buildEnvironmentSampling,
   COPY_ACCUMULATION_RENDER,
-  GLSL_SLICE_ATLAS,
-  sliceAtlasLayout,
-  WGSL_SLICE_ATLAS,
   rasterizeTransferFunction,
   TF_RESOLUTION,
-  UniformLayout,
   type AuxiliaryTexture,
   type EnvironmentSamplingTables,
   type KernelSource,
@@ -20,11 +16,10 @@ import {
   type VolumeBinding,
   volumeValueMapping,
   buildMajorantGrid,
-  gridCells,
   volumeCellRanges,
+  gridGeometry,
+  majorantGridTextures,
   type MajorantGrid,
-  GLSL_MAJORANT_BUILD as glslBuild,
-  WGSL_MAJORANT_BUILD as wgslBuild,
 } from '@vpt/core';
 import { activeLights, computeFeatures, featureKey, MAX_LIGHTS, type McrtFeatures } from './features.js';
 import { generateKernel, INTEGRATE_HALVES } from './kernel-sources.js';
@@ -206,73 +201,9 @@ export class McrtRenderer extends BaseRenderer<McrtParams> {
     return aux;
   }
 
-  /**
-   * The majorant grid as three GPU-made auxiliary textures, no voxel loop on the CPU: the
-   * per-cell value ranges (once per volume and cell size), each TF column's opacity bounds
-   * (on a TF change) and the grid itself (on a volume, TF or density change). All three use
-   * the slice-atlas layout of the cell counts; only the grid is bound to the kernel.
-   */
+  /** The majorant grid as GPU-made auxiliary textures (core's majorantGridTextures); only the grid is bound. */
   private majorantGridTextures(scene: Scene, volume: VolumeBinding): AuxiliaryTexture[] {
-    const map = { valueScale: volume.valueScale, valueOffset: volume.valueOffset };
-    const cellSize = this.cellSize(scene);
-    const geometry = this.gridGeometry(scene);
-    const layout = sliceAtlasLayout(geometry.slice(0, 3));
-    const tfKey = JSON.stringify(scene.transferFunction);
-    return [
-      {
-        name: 'majorantRanges',
-        dimension: '2d',
-        bind: false,
-        key: `${idOf(scene.volume as Volume)}|${cellSize}|${volume.format}|${volume.key.split('|')[0]}`,
-        render: {
-          label: 'majorant grid value ranges',
-          width: layout.width,
-          height: layout.height,
-          format: 'rgba32float',
-          glsl: GLSL_SLICE_ATLAS + glslBuild.cellRanges,
-          wgsl: WGSL_SLICE_ATLAS + wgslBuild.cellRanges,
-          uniforms: BUILD_UNIFORMS,
-          values: { gridCells: geometry, gridDensity: 0, ...map },
-          inputs: [{ name: 'volume', dimension: '3d' }],
-        },
-      },
-      {
-        name: 'opacityBounds',
-        dimension: '2d',
-        bind: false,
-        key: tfKey,
-        render: {
-          label: 'transfer function opacity bounds',
-          width: TF_RESOLUTION,
-          height: 1,
-          format: 'rgba32float',
-          glsl: glslBuild.opacityBounds,
-          wgsl: wgslBuild.opacityBounds,
-          uniforms: BUILD_UNIFORMS,
-          values: { gridCells: [0, 0, 0, 0], gridDensity: 0, ...map },
-          inputs: [{ name: 'transferFunction', dimension: '2d' }],
-        },
-      },
-      {
-        name: 'majorantGrid',
-        dimension: '2d',
-        key: `${this.gridKey(scene)}|${volume.key}`,
-        render: {
-          label: 'majorant grid',
-          width: layout.width,
-          height: layout.height,
-          format: 'rgba32float',
-          glsl: GLSL_SLICE_ATLAS + glslBuild.majorantGrid,
-          wgsl: WGSL_SLICE_ATLAS + wgslBuild.majorantGrid,
-          uniforms: BUILD_UNIFORMS,
-          values: { gridCells: geometry, gridDensity: scene.densityScale, ...map },
-          inputs: [
-            { name: 'majorantRanges', dimension: '2d' },
-            { name: 'opacityBounds', dimension: '2d' },
-          ],
-        },
-      },
-    ];
+    return majorantGridTextures(scene, volume, this.cellSize(scene), 'majorants');
   }
 
   /** The majorant grid of a scene computed on the CPU (cached by volume, TF, density scale and cell size): the reference the GPU build is tested against, and the global bounds without a grid. */
@@ -292,8 +223,7 @@ export class McrtRenderer extends BaseRenderer<McrtParams> {
 
   /** The `gridCells` uniform: cells per axis and the slice atlas's column count. */
   private gridGeometry(scene: Scene): [number, number, number, number] {
-    const cells = gridCells(scene.volume.dims, this.cellSize(scene));
-    return [...cells, sliceAtlasLayout(cells).columns];
+    return gridGeometry(scene.volume.dims, this.cellSize(scene));
   }
 
   /** Majorant-grid cell edge in voxels: the generic kernel always walks a grid, of one cell when the grid is off. */
@@ -334,14 +264,6 @@ const DEFAULT_FEATURES: McrtFeatures = {
   DEBUG_OUTPUT: 0,
   GENERIC: false,
 };
-
-const BUILD_UNIFORMS = new UniformLayout('MajorantBuild', [
-  { name: 'gridCells', type: 'ivec4' },
-  { name: 'gridDensity', type: 'f32' },
-  // Volume texel → normalized value (RenderContext's VolumeBinding; gpu/volume-format.ts in core).
-  { name: 'valueScale', type: 'f32' },
-  { name: 'valueOffset', type: 'f32' },
-]);
 
 /** A constant sky as a map for the generic kernel: small, since every texel is the same. */
 const CONSTANT_MAP_SIZE = [16, 8] as const;
