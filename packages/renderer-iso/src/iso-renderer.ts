@@ -1,7 +1,11 @@
 import {
   BaseRenderer,
   buildEnvironmentSampling,
+  DEFAULT_SKIP_CELL_SIZE,
   environmentEmits,
+  GRID_CELLS_FIELD,
+  gridGeometry,
+  majorantGridTextures,
   volumeBox,
   VptError,
   type AuxiliaryTexture,
@@ -9,6 +13,7 @@ import {
   type Scene,
   type UniformField,
   type UniformValues,
+  type VolumeBinding,
 } from '@vpt/core';
 import * as glsl from './kernels/iso.glsl.js';
 import * as wgsl from './kernels/iso.wgsl.js';
@@ -32,6 +37,7 @@ export const ISO_PARAM_FIELDS: readonly UniformField[] = [
   { name: 'shininess', type: 'f32' },
   { name: 'aoRadius', type: 'f32' },
   { name: 'rayEpsilon', type: 'f32' },
+  GRID_CELLS_FIELD,
 ];
 
 // Stable ids for environment images (the auxiliary textures' key), without hashing pixels.
@@ -110,6 +116,7 @@ export class IsoRenderer extends BaseRenderer<IsoParams> {
       ISO_SOFT_LIGHTS: p.lightAngularRadius > 0,
       ISO_JITTER: p.jitter,
       ISO_OUTPUT: OUTPUT_CODE[p.output],
+      SKIP_EMPTY: p.emptySpaceSkipping,
     };
   }
 
@@ -144,6 +151,7 @@ export class IsoRenderer extends BaseRenderer<IsoParams> {
       aoRadius: Number.isFinite(p.aoRadius) ? p.aoRadius : 1e30,
       // Shadow/AO rays start half a voxel off the surface, outside the crossing they left.
       rayEpsilon: 0.5 * Math.min(...voxel),
+      gridCells: gridGeometry(scene.volume.dims, DEFAULT_SKIP_CELL_SIZE),
     };
   }
 
@@ -151,7 +159,12 @@ export class IsoRenderer extends BaseRenderer<IsoParams> {
    * The environment's lookup and sampling textures (shared chunk GLSL_ENVIRONMENT_MAP), for
    * a lat-long map only: other scenes compile the ISO_ENV < 2 variant, which names none.
    */
-  auxiliaryTextures(scene: Scene): readonly AuxiliaryTexture[] {
+  auxiliaryTextures(scene: Scene, volume?: VolumeBinding): readonly AuxiliaryTexture[] {
+    // With skipping (and a volume binding: inside a RenderContext), each grid cell's range of volume texels.
+    const grid =
+      this.resolved.emptySpaceSkipping && volume
+        ? majorantGridTextures(scene, volume, DEFAULT_SKIP_CELL_SIZE, 'ranges')
+        : [];
     const env = scene.environment;
     if (env.type === 'latlong' && environmentEmits(env)) {
       const e = env as LatLongEnvironment;
@@ -159,6 +172,7 @@ export class IsoRenderer extends BaseRenderer<IsoParams> {
       let tables: ReturnType<typeof buildEnvironmentSampling> | null = null;
       const t = () => (tables ??= buildEnvironmentSampling(e));
       return [
+        ...grid,
         {
           name: 'envMap',
           dimension: '2d',
@@ -200,6 +214,6 @@ export class IsoRenderer extends BaseRenderer<IsoParams> {
         },
       ];
     }
-    return [];
+    return grid;
   }
 }
