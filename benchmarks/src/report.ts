@@ -7,6 +7,7 @@ import type { ConvergenceResult } from './suites/convergence.js';
 import type { ScalingRow } from './suites/scaling.js';
 import type { SpecializationRow } from './suites/specialization.js';
 import type { CompactResults } from './suites/compact.js';
+import type { SkippingResults } from './suites/skipping.js';
 
 export interface Results {
   machine: Record<string, unknown>;
@@ -18,6 +19,7 @@ export interface Results {
   scaling?: ScalingRow[];
   specialization?: SpecializationRow[];
   compact?: CompactResults;
+  skipping?: SkippingResults;
   skipped: string[];
 }
 
