@@ -1,5 +1,5 @@
 /**
- * `pnpm bench [--preset quick|full] [--suites error,frame,convergence,scaling,specialization,compact] [--backends webgl2,webgpu]`
+ * `pnpm bench [--preset quick|full] [--suites error,frame,convergence,scaling,specialization,compact,skipping] [--backends webgl2,webgpu]`
  * Runs the suites in headless Chromium and writes benchmarks/results/<stamp>/results.json
  * and report.html. Nothing here asserts a time: comparisons are ratios within one run.
  */
