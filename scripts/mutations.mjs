@@ -81,6 +81,16 @@ export const MUTATIONS = [
     only: 'true upper bound',
   },
   {
+    name: 'mip-skip-bound-too-low-glsl',
+    why: 'MIP skips cells whose largest value is underestimated (a bound that is not one)',
+    file: 'packages/renderer-mip/src/kernels/mip.glsl.ts',
+    find: 'return m > 0.0 ? m + 1e-5 : 0.0;',
+    replace: 'return m > 0.0 ? m - 0.05 : 0.0;',
+    build: '@vpt/renderer-mip',
+    tests: ['tests/empty-space-skipping.test.ts'],
+    only: 'webgl2.*MIP',
+  },
+  {
     name: 'hg-sign-flipped-glsl',
     why: 'HG phase of the light direction evaluated with −g',
     file: 'packages/renderer-mcrt/src/kernels/path.glsl.ts',
