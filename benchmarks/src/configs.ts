@@ -18,7 +18,7 @@ export interface RendererConfig {
 
 export interface SceneSpec {
   volume:
-    | { kind: 'cloud' | 'head' | 'sphere' | 'blob' | 'cube' | 'ball'; size?: number; radius?: number }
+    | { kind: 'cloud' | 'head' | 'sphere' | 'blob' | 'cube' | 'ball' | 'anchor'; size?: number; radius?: number }
     /** A raw volume served by the headless server (a fetched dataset), described by its sidecar. */
     | { kind: 'raw'; url: string; dims: number[]; type: string; valueRange?: number[]; spacing: number[] };
   transferFunction: unknown;

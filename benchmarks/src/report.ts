@@ -9,6 +9,7 @@ import type { ConvergenceResult } from './suites/convergence.js';
 import type { ScalingRow } from './suites/scaling.js';
 import type { SpecializationRow } from './suites/specialization.js';
 import type { CompactResults } from './suites/compact.js';
+import type { SkippingResults } from './suites/skipping.js';
 
 export interface Results {
   machine: Record<string, unknown>;
@@ -20,6 +21,7 @@ export interface Results {
   scaling?: ScalingRow[];
   specialization?: SpecializationRow[];
   compact?: CompactResults;
+  skipping?: SkippingResults;
   skipped: string[];
 }
 
@@ -196,6 +198,27 @@ export function reportContent(r: Results): ReportContent {
 <p>Synthetic int16 CT: generated in the page, then setScene (upload) and the first image (EAM, 64²). JS heap: V8 heap + array-buffer backing stores, before → peak.</p>
 <table><tr><th>volume</th><th>backend</th><th>generate ms</th><th>setScene ms</th><th>first image ms</th><th>load ms</th><th>JS heap MiB</th><th>GPU volume MiB</th><th>uploaded</th></tr>${ct}</table>
 ${c.ctSkipped.length ? `<p>Not measured: ${c.ctSkipped.map(esc).join('; ')}</p>` : ''}`);
+  }
+
+  if (r.skipping) {
+    const k = r.skipping;
+    const load = (l: number[]) => l.map((x) => x.toFixed(2)).join(', ');
+    const fr = k.frame
+      .map(
+        (x) =>
+          `<tr><td>${esc(x.scene)}</td><td>${esc(x.renderer)}</td><td>${x.backend}</td><td>${x.stepVoxels}</td><td>${x.skipMs.toFixed(1)}</td><td>${x.plainMs.toFixed(1)}</td><td>${x.ratio.toFixed(2)}×</td></tr>`,
+      )
+      .join('');
+    const st = k.steps
+      .map(
+        (x) =>
+          `<tr><td>${esc(x.scene)}</td><td>${esc(x.renderer)}</td><td>${x.backend}</td><td>${x.stepVoxels}</td><td>${x.msPerIteration.toFixed(1)}</td>${[30, 35, 40].map((d) => `<td>${fmt(x.ownTimeToDb[d])}</td>`).join('')}<td>${x.ownIterationsToDb[35]?.toFixed(1) ?? '—'}</td>${[30, 35].map((d) => `<td>${fmt(x.fineTimeToDb[d])}</td>`).join('')}<td>${x.ceilingDb === null ? '—' : x.ceilingDb.toFixed(1)}</td></tr>`,
+      )
+      .join('');
+    sections.push(`<h2>Empty-space skipping and the ray-march step</h2><p>Load average at the start ${load(k.loadAverageStart)}, at the end ${load(k.loadAverageEnd)}. Median ms per iteration at ${k.frameSize}² with skipping on and off (<code>emptySpaceSkipping: false</code>), alternately (A/B, B/A) in one run; ratio = off / on.</p>
+<table><tr><th>scene</th><th>renderer</th><th>backend</th><th>step (voxels)</th><th>on ms/it</th><th>off ms/it</th><th>off / on</th></tr>${fr}</table>
+<p>Step sweep at ${k.size}², skipping on: time to a PSNR (HDR) against the step's own converged image (${k.refIterations} iterations, another seed), the iterations to 35 dB, the time against the finest step's converged image, and the PSNR of the step's converged image against the finest's (the ceiling its bias sets).</p>
+<table><tr><th>scene</th><th>renderer</th><th>backend</th><th>step (voxels)</th><th>ms/it</th><th>own 30 dB</th><th>own 35 dB</th><th>own 40 dB</th><th>it to own 35 dB</th><th>finest 30 dB</th><th>finest 35 dB</th><th>ceiling</th></tr>${st}</table>`);
   }
 
   return {

@@ -1,5 +1,5 @@
 /**
- * `pnpm bench [--preset quick|full] [--suites error,frame,convergence,scaling,specialization,compact] [--backends webgl2,webgpu]`
+ * `pnpm bench [--preset quick|full] [--suites error,frame,convergence,scaling,specialization,compact,skipping] [--backends webgl2,webgpu]`
  * Runs the suites in headless Chromium and writes benchmarks/results/<stamp>/results.json
  * and report.html. Nothing here asserts a time: comparisons are ratios within one run.
  */
@@ -17,6 +17,7 @@ import { frameTime } from './suites/frame-time.js';
 import { scaling } from './suites/scaling.js';
 import { specialization } from './suites/specialization.js';
 import { compact } from './suites/compact.js';
+import { skipping } from './suites/skipping.js';
 import type { SuiteContext } from './suites/types.js';
 
 function arg(name: string, fallback: string): string {
@@ -106,6 +107,7 @@ try {
   if (suites.includes('specialization') && available.includes('mcrt'))
     results.specialization = await specialization(ctx);
   if (suites.includes('compact')) results.compact = await compact(ctx);
+  if (suites.includes('skipping')) results.skipping = await skipping(ctx);
 
   const dir = path.join(
     fileURLToPath(new URL('..', import.meta.url)),

@@ -79,6 +79,12 @@ export { preprocess, evalCondition, type Flags } from './shaders/preprocess.js';
 export { gradientMagnitudes, maxGradientMagnitude } from './gradient/gradient-cpu.js';
 export { buildGradientVolume, destroyGradientVolume, type GradientVolume } from './gradient/gradient-volume.js';
 export * from './scene/environment-sampling.js';
+export * from './majorant/majorant-grid.js';
+export * as GLSL_MAJORANT_BUILD from './majorant/majorant-build.glsl.js';
+export * as WGSL_MAJORANT_BUILD from './majorant/majorant-build.wgsl.js';
+export * from './majorant/grid-textures.js';
+export { CELL_WALK as GLSL_CELL_WALK } from './majorant/cell-walk.glsl.js';
+export { CELL_WALK as WGSL_CELL_WALK } from './majorant/cell-walk.wgsl.js';
 
 export * as reference from './reference/cpu-reference.js';
 

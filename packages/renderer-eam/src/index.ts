@@ -1,1 +1,1 @@
-export { EamRenderer, EAM_PARAM_SPECS, type EamParams } from './eam-renderer.js';
+export { EamRenderer, EAM_PARAM_SPECS, DEFAULT_EAM_STEP_VOXELS, type EamParams } from './eam-renderer.js';

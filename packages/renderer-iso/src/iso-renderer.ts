@@ -1,8 +1,12 @@
 import {
   BaseRenderer,
   buildEnvironmentSampling,
+  DEFAULT_SKIP_CELL_SIZE,
   environmentEmits,
   environmentTextures,
+  GRID_CELLS_FIELD,
+  gridGeometry,
+  majorantGridTextures,
   volumeBox,
   VptError,
   type AuxiliaryTexture,
@@ -10,6 +14,7 @@ import {
   type Scene,
   type UniformField,
   type UniformValues,
+  type VolumeBinding,
 } from '@vpt/core';
 import * as glsl from './kernels/iso.glsl.js';
 import * as wgsl from './kernels/iso.wgsl.js';
@@ -33,6 +38,7 @@ export const ISO_PARAM_FIELDS: readonly UniformField[] = [
   { name: 'shininess', type: 'f32' },
   { name: 'aoRadius', type: 'f32' },
   { name: 'rayEpsilon', type: 'f32' },
+  GRID_CELLS_FIELD,
 ];
 
 const OUTPUT_CODE = { shaded: 0, depth: 1, normal: 2 } as const;
@@ -99,6 +105,7 @@ export class IsoRenderer extends BaseRenderer<IsoParams> {
       ISO_SOFT_LIGHTS: p.lightAngularRadius > 0,
       ISO_JITTER: p.jitter,
       ISO_OUTPUT: OUTPUT_CODE[p.output],
+      SKIP_EMPTY: p.emptySpaceSkipping,
     };
   }
 
@@ -133,6 +140,7 @@ export class IsoRenderer extends BaseRenderer<IsoParams> {
       aoRadius: Number.isFinite(p.aoRadius) ? p.aoRadius : 1e30,
       // Shadow/AO rays start half a voxel off the surface, outside the crossing they left.
       rayEpsilon: 0.5 * Math.min(...voxel),
+      gridCells: gridGeometry(scene.volume.dims, DEFAULT_SKIP_CELL_SIZE),
     };
   }
 
@@ -140,13 +148,18 @@ export class IsoRenderer extends BaseRenderer<IsoParams> {
    * The environment's lookup and sampling textures (shared chunk GLSL_ENVIRONMENT_MAP), for
    * a lat-long map only: other scenes compile the ISO_ENV < 2 variant, which names none.
    */
-  auxiliaryTextures(scene: Scene): readonly AuxiliaryTexture[] {
+  auxiliaryTextures(scene: Scene, volume?: VolumeBinding): readonly AuxiliaryTexture[] {
+    // With skipping (and a volume binding: inside a RenderContext), each grid cell's range of volume texels.
+    const grid =
+      this.resolved.emptySpaceSkipping && volume
+        ? majorantGridTextures(scene, volume, DEFAULT_SKIP_CELL_SIZE, 'ranges')
+        : [];
     const env = scene.environment;
     if (env.type === 'latlong' && environmentEmits(env)) {
       const e = env as LatLongEnvironment;
       let tables: ReturnType<typeof buildEnvironmentSampling> | null = null;
-      return environmentTextures(e, () => (tables ??= buildEnvironmentSampling(e)));
+      return [...grid, ...environmentTextures(e, () => (tables ??= buildEnvironmentSampling(e)))];
     }
-    return [];
+    return grid;
   }
 }

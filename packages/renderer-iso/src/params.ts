@@ -45,6 +45,11 @@ export interface IsoParams {
    * hit so far; 'normal' (n, 1) its viewer-facing unit normal; (0, 0, 0, 0) where nothing was hit.
    */
   output?: IsoOutput;
+  /**
+   * Skip the majorant-grid cells whose value range holds none of the visible iso values (default
+   * true). No crossing is lost, so the image is the same bits either way; false is the plain march.
+   */
+  emptySpaceSkipping?: boolean;
 }
 
 export const MAX_ISO_SURFACES = 4;
@@ -61,6 +66,7 @@ export interface ResolvedIsoParams {
   lightAngularRadius: number;
   jitter: boolean;
   output: IsoOutput;
+  emptySpaceSkipping: boolean;
 }
 
 const OUTPUTS: readonly IsoOutput[] = ['shaded', 'depth', 'normal'];
@@ -77,6 +83,7 @@ export const ISO_PARAM_SPECS: ParamSpecs = {
   lightAngularRadius: { kind: 'number', min: 0, max: Math.PI / 2, exclusiveMax: true, unit: 'radians' },
   jitter: { kind: 'boolean' },
   output: { kind: 'enum', values: OUTPUTS },
+  emptySpaceSkipping: { kind: 'boolean' },
 };
 
 /** Defaults filled in and every value checked; throws VptError('invalid-scene') naming the parameter. */
@@ -117,7 +124,7 @@ export function resolveIsoParams(p: IsoParams): ResolvedIsoParams {
     bad(`lightAngularRadius must be in [0, π/2) radians, got ${p.lightAngularRadius}`);
   const output = p.output ?? 'shaded';
   if (!OUTPUTS.includes(output)) bad(`output must be one of ${OUTPUTS.join(', ')}, got ${JSON.stringify(p.output)}`);
-  for (const k of ['shadows', 'ambientOcclusion', 'jitter'] as const) {
+  for (const k of ['shadows', 'ambientOcclusion', 'jitter', 'emptySpaceSkipping'] as const) {
     if (p[k] !== undefined && typeof p[k] !== 'boolean') bad(`${k} must be true or false, got ${JSON.stringify(p[k])}`);
   }
   return {
@@ -131,5 +138,6 @@ export function resolveIsoParams(p: IsoParams): ResolvedIsoParams {
     lightAngularRadius,
     jitter: p.jitter ?? true,
     output,
+    emptySpaceSkipping: p.emptySpaceSkipping ?? true,
   };
 }

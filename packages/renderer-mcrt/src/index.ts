@@ -20,5 +20,5 @@ export {
   MAX_GRID_CELLS_PER_AXIS,
   type MajorantGrid,
   type CellValueRanges,
-} from './majorant-grid.js';
+} from '@vpt/core';
 export { generateKernel } from './kernel-sources.js';

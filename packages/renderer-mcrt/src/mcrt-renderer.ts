@@ -6,13 +6,8 @@ import {
   environmentTexturesKey,
   objectId,
   COPY_ACCUMULATION_RENDER,
-  GLSL_SLICE_ATLAS,
-  atlasTexel,
-  sliceAtlasLayout,
-  WGSL_SLICE_ATLAS,
   rasterizeTransferFunction,
   TF_RESOLUTION,
-  UniformLayout,
   type AuxiliaryTexture,
   type EnvironmentSamplingTables,
   type KernelSource,
@@ -23,12 +18,14 @@ import {
   type Volume,
   type VolumeBinding,
   volumeValueMapping,
+  buildMajorantGrid,
+  volumeCellRanges,
+  gridGeometry,
+  majorantGridTextures,
+  type MajorantGrid,
 } from '@vpt/core';
 import { activeLights, computeFeatures, featureKey, MAX_LIGHTS, type McrtFeatures } from './features.js';
 import { generateKernel, INTEGRATE_HALVES } from './kernel-sources.js';
-import { buildMajorantGrid, gridCells, volumeCellRanges, type MajorantGrid } from './majorant-grid.js';
-import * as glslBuild from './kernels/majorant-build.glsl.js';
-import * as wgslBuild from './kernels/majorant-build.wgsl.js';
 import { MCRT_PARAM_SPECS, resolveParams, type McrtParams, type ResolvedMcrtParams } from './params.js';
 
 export const MCRT_PARAM_FIELDS: readonly UniformField[] = [
@@ -153,114 +150,9 @@ export class McrtRenderer extends BaseRenderer<McrtParams> {
     return aux;
   }
 
-  /**
-   * The majorant grid as three GPU-made auxiliary textures, no voxel loop on the CPU: the
-   * per-cell value ranges (once per volume and cell size), each TF column's opacity bounds
-   * (on a TF change) and the grid itself (on a volume, TF or density change). All three use
-   * the slice-atlas layout of the cell counts; only the grid is bound to the kernel.
-   */
+  /** The majorant grid as GPU-made auxiliary textures (core's majorantGridTextures); only the grid is bound. */
   private majorantGridTextures(scene: Scene, volume: VolumeBinding): AuxiliaryTexture[] {
-    if (volume.cellRanges) return [this.brickedMajorantGrid(scene, volume, volume.cellRanges)];
-    const map = { valueScale: volume.valueScale, valueOffset: volume.valueOffset };
-    const cellSize = this.cellSize(scene);
-    const geometry = this.gridGeometry(scene);
-    const layout = sliceAtlasLayout(geometry.slice(0, 3));
-    const tfKey = JSON.stringify(scene.transferFunction);
-    return [
-      {
-        name: 'majorantRanges',
-        dimension: '2d',
-        bind: false,
-        key: `${objectId(scene.volume as Volume)}|${cellSize}|${volume.format}|${volume.key.split('|')[0]}`,
-        render: {
-          label: 'majorant grid value ranges',
-          width: layout.width,
-          height: layout.height,
-          format: 'rgba32float',
-          glsl: GLSL_SLICE_ATLAS + glslBuild.cellRanges,
-          wgsl: WGSL_SLICE_ATLAS + wgslBuild.cellRanges,
-          uniforms: BUILD_UNIFORMS,
-          values: { gridCells: geometry, gridDensity: 0, ...map },
-          inputs: [{ name: 'volume', dimension: '3d' }],
-        },
-      },
-      {
-        name: 'opacityBounds',
-        dimension: '2d',
-        bind: false,
-        key: tfKey,
-        render: {
-          label: 'transfer function opacity bounds',
-          width: TF_RESOLUTION,
-          height: 1,
-          format: 'rgba32float',
-          glsl: glslBuild.opacityBounds,
-          wgsl: wgslBuild.opacityBounds,
-          uniforms: BUILD_UNIFORMS,
-          values: { gridCells: [0, 0, 0, 0], gridDensity: 0, ...map },
-          inputs: [{ name: 'transferFunction', dimension: '2d' }],
-        },
-      },
-      {
-        name: 'majorantGrid',
-        dimension: '2d',
-        key: `${this.gridKey(scene)}|${volume.key}`,
-        render: {
-          label: 'majorant grid',
-          width: layout.width,
-          height: layout.height,
-          format: 'rgba32float',
-          glsl: GLSL_SLICE_ATLAS + glslBuild.majorantGrid,
-          wgsl: WGSL_SLICE_ATLAS + wgslBuild.majorantGrid,
-          uniforms: BUILD_UNIFORMS,
-          values: { gridCells: geometry, gridDensity: scene.densityScale, ...map },
-          inputs: [
-            { name: 'majorantRanges', dimension: '2d' },
-            { name: 'opacityBounds', dimension: '2d' },
-          ],
-        },
-      },
-    ];
-  }
-
-  /**
-   * A bricked volume's majorant grid, built on the CPU from the value ranges the brick cache
-   * reports per cell (resident bricks' data, a coarser level's bounds elsewhere), since the
-   * volume texture is then a brick atlas the GPU build cannot read as voxels. Rebuilt when
-   * the residency changes (the binding's key).
-   */
-  private brickedMajorantGrid(
-    scene: Scene,
-    volume: VolumeBinding,
-    cellRanges: NonNullable<VolumeBinding['cellRanges']>,
-  ): AuxiliaryTexture {
-    const geometry = this.gridGeometry(scene);
-    const cells = geometry.slice(0, 3) as [number, number, number];
-    const layout = sliceAtlasLayout(cells);
-    return {
-      name: 'majorantGrid',
-      dimension: '2d',
-      key: `${this.gridKey(scene)}|${volume.key}`,
-      create: () => {
-        const tf = rasterizeTransferFunction(scene.transferFunction, TF_RESOLUTION);
-        const grid = buildMajorantGrid(cellRanges(cells), tf, scene.densityScale);
-        const data = new Float32Array(4 * layout.width * layout.height);
-        for (let z = 0; z < cells[2]; z++)
-          for (let y = 0; y < cells[1]; y++) {
-            const [ax, ay] = atlasTexel(layout, cells, 0, y, z);
-            const from = 4 * cells[0] * (y + cells[1] * z);
-            data.set(grid.data.subarray(from, from + 4 * cells[0]), 4 * (ax + layout.width * ay));
-          }
-        return {
-          dimension: '2d',
-          width: layout.width,
-          height: layout.height,
-          format: 'rgba32float',
-          data,
-          label: 'majorant grid (bricked)',
-        };
-      },
-    };
+    return majorantGridTextures(scene, volume, this.cellSize(scene), 'majorants');
   }
 
   /** The majorant grid of a scene computed on the CPU (cached by volume, TF, density scale and cell size): the reference the GPU build is tested against, and the global bounds without a grid. */
@@ -280,8 +172,7 @@ export class McrtRenderer extends BaseRenderer<McrtParams> {
 
   /** The `gridCells` uniform: cells per axis and the slice atlas's column count. */
   private gridGeometry(scene: Scene): [number, number, number, number] {
-    const cells = gridCells(scene.volume.dims, this.cellSize(scene));
-    return [...cells, sliceAtlasLayout(cells).columns];
+    return gridGeometry(scene.volume.dims, this.cellSize(scene));
   }
 
   /** Majorant-grid cell edge in voxels: the generic kernel always walks a grid, of one cell when the grid is off. */
@@ -322,14 +213,6 @@ const DEFAULT_FEATURES: McrtFeatures = {
   DEBUG_OUTPUT: 0,
   GENERIC: false,
 };
-
-const BUILD_UNIFORMS = new UniformLayout('MajorantBuild', [
-  { name: 'gridCells', type: 'ivec4' },
-  { name: 'gridDensity', type: 'f32' },
-  // Volume texel → normalized value (RenderContext's VolumeBinding; gpu/volume-format.ts in core).
-  { name: 'valueScale', type: 'f32' },
-  { name: 'valueOffset', type: 'f32' },
-]);
 
 /** A constant sky as a map for the generic kernel: small, since every texel is the same. */
 const CONSTANT_MAP_SIZE = [16, 8] as const;

@@ -107,7 +107,7 @@ export const RENDERER_CATALOG: readonly RendererCatalogEntry[] = [
     packageName: '@vpt/renderer-eam',
     exportName: 'EamRenderer',
     params: [
-      step('half a voxel'),
+      step('one voxel'),
       { name: 'cutoff', label: 'Early-exit transmittance', min: 0, max: 0.1, step: 0.0001, placeholder: '1e-6' },
     ],
   },

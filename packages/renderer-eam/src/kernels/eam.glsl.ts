@@ -1,10 +1,25 @@
-import { MAX_MARCH_STEPS } from '@vpt/core';
+import { GLSL_CELL_WALK, MAX_MARCH_STEPS } from '@vpt/core';
 
 // Emission-absorption (Max 1995, "Optical models for direct volume rendering", IEEE TVCG 1(2), the emission + absorption model)
 // by a stratified, randomly offset ray march; alpha = 1 - exp(-sigma_t * segment length),
 // so a homogeneous medium yields exactly c·(1 - exp(-sigma_t·L)).
+// SKIP_EMPTY (empty-space skipping through the majorant grid, core's cell walk): a cell whose
+// opacity bound is 0 holds only samples with alpha = 0, which add exactly 0 colour and leave the
+// transmittance as it is, so the march jumps over its samples and the image keeps its bits.
 
 export const generate = /* glsl */ `
+#if SKIP_EMPTY
+${GLSL_CELL_WALK}
+#endif
+// One sample of the march at distance s; false once the transmittance fell below the cutoff.
+bool eamSample(vec3 dir, float s, float seg, inout vec3 color, inout float transmittance) {
+  vec4 tf = transferAt(u.cameraPosition + dir * s);
+  float alpha = 1.0 - exp(-(u.densityScale * tf.a) * seg);
+  color += (transmittance * alpha) * tf.rgb;
+  transmittance *= 1.0 - alpha;
+  if (transmittance < u.cutoff) { transmittance = 0.0; return false; }
+  return true;
+}
 void main() {
   ivec2 pixel = vptPixel();
   uint rng = rngInit(pixel, u.iteration, u.seed);
@@ -17,14 +32,24 @@ void main() {
     float len = t.y - t.x;
     int n = max(1, int(min(ceil(len / u.stepSize), ${MAX_MARCH_STEPS}.0)));
     float seg = len / float(n);
-    for (int k = 0; k < n; k++) {
-      float s = t.x + (float(k) + offset) * seg;
-      vec4 tf = transferAt(u.cameraPosition + dir * s);
-      float alpha = 1.0 - exp(-(u.densityScale * tf.a) * seg);
-      color += (transmittance * alpha) * tf.rgb;
-      transmittance *= 1.0 - alpha;
-      if (transmittance < u.cutoff) { transmittance = 0.0; break; }
+    int k = 0;
+    bool going = true;
+#if SKIP_EMPTY
+    CellWalk walk = cellWalkStart(u.cameraPosition, dir, t.x);
+    int maxCells = u.gridCells.x + u.gridCells.y + u.gridCells.z + 3;
+    for (int c = 0; c < maxCells && k < n && going; c++) {
+      bool empty = texelFetch(majorantGrid, cellWalkTexel(walk), 0).r == 0.0;
+      float tExit = cellWalkStep(walk);
+      float tEnd = tExit >= t.y ? 3.0e38 : tExit;
+      if (empty) { k = latticeIndexAt(tEnd, t.x, seg, offset, k, n); continue; }
+      for (; k < n && going; k++) {
+        float s = t.x + (float(k) + offset) * seg;
+        if (s >= tEnd) break;
+        going = eamSample(dir, s, seg, color, transmittance);
+      }
     }
+#endif
+    for (; k < n && going; k++) going = eamSample(dir, t.x + (float(k) + offset) * seg, seg, color, transmittance);
   }
   vpt_out0 = vec4(color + transmittance * u.background.rgb, 1.0 - transmittance);
 }

@@ -1,9 +1,21 @@
-import { MAX_MARCH_STEPS } from '@vpt/core';
+import { MAX_MARCH_STEPS, WGSL_CELL_WALK } from '@vpt/core';
 
 // Emission-absorption (Max 1995, "Optical models for direct volume rendering", IEEE TVCG 1(2), the emission + absorption model)
 // by a stratified, randomly offset ray march; alpha = 1 - exp(-sigma_t * segment length).
+// Twin of eam.glsl.ts (SKIP_EMPTY: cells whose opacity bound is 0 are jumped over, bit for bit).
 
 export const generate = /* wgsl */ `
+#if SKIP_EMPTY
+${WGSL_CELL_WALK}
+#endif
+fn eamSample(dir: vec3f, s: f32, seg: f32, color: ptr<function, vec3f>, transmittance: ptr<function, f32>) -> bool {
+  let tf = transferAt(u.cameraPosition + dir * s);
+  let alpha = 1.0 - exp(-(u.densityScale * tf.a) * seg);
+  *color += (*transmittance * alpha) * tf.rgb;
+  *transmittance *= 1.0 - alpha;
+  if (*transmittance < u.cutoff) { *transmittance = 0.0; return false; }
+  return true;
+}
 @fragment fn fs_main(@builtin(position) fragCoord: vec4f) -> VptOut {
   let pixel = vptPixel(fragCoord);
   var rng = rngInit(pixel, u.iteration, u.seed);
@@ -16,14 +28,24 @@ export const generate = /* wgsl */ `
     let len = t.y - t.x;
     let n = max(1, i32(min(ceil(len / u.stepSize), ${MAX_MARCH_STEPS}.0)));
     let seg = len / f32(n);
-    for (var k = 0; k < n; k++) {
-      let s = t.x + (f32(k) + offset) * seg;
-      let tf = transferAt(u.cameraPosition + dir * s);
-      let alpha = 1.0 - exp(-(u.densityScale * tf.a) * seg);
-      color += (transmittance * alpha) * tf.rgb;
-      transmittance *= 1.0 - alpha;
-      if (transmittance < u.cutoff) { transmittance = 0.0; break; }
+    var k = 0;
+    var going = true;
+#if SKIP_EMPTY
+    var walk = cellWalkStart(u.cameraPosition, dir, t.x);
+    let maxCells = u.gridCells.x + u.gridCells.y + u.gridCells.z + 3;
+    for (var c = 0; c < maxCells && k < n && going; c++) {
+      let empty = textureLoad(majorantGrid, cellWalkTexel(walk), 0).r == 0.0;
+      let tExit = cellWalkStep(&walk);
+      let tEnd = select(tExit, 3.0e38, tExit >= t.y);
+      if (empty) { k = latticeIndexAt(tEnd, t.x, seg, offset, k, n); continue; }
+      for (; k < n && going; k++) {
+        let s = t.x + (f32(k) + offset) * seg;
+        if (s >= tEnd) { break; }
+        going = eamSample(dir, s, seg, &color, &transmittance);
+      }
     }
+#endif
+    for (; k < n && going; k++) { going = eamSample(dir, t.x + (f32(k) + offset) * seg, seg, &color, &transmittance); }
   }
   var o: VptOut;
   o.out0 = vec4f(color + transmittance * u.background.rgb, 1.0 - transmittance);

@@ -1,4 +1,4 @@
-import { GLSL_ENVIRONMENT_MAP, GLSL_SAMPLING, MAX_MARCH_STEPS } from '@vpt/core';
+import { GLSL_CELL_WALK, GLSL_ENVIRONMENT_MAP, GLSL_SAMPLING, MAX_MARCH_STEPS } from '@vpt/core';
 
 // Monte Carlo isosurface rendering (Lesar et al. 2018, "Real-Time Interactive Platform-
 // Agnostic Volumetric Path Tracing in WebGL 2.0", the ISO renderer): each iteration finds
@@ -13,6 +13,36 @@ import { GLSL_ENVIRONMENT_MAP, GLSL_SAMPLING, MAX_MARCH_STEPS } from '@vpt/core'
 /** Helpers shared by the generate kernel (twin of iso.wgsl.ts). */
 const ISO_COMMON = /* glsl */ `
 const int ISO_REFINE_STEPS = 10;
+
+#if SKIP_EMPTY
+${GLSL_CELL_WALK}
+// Empty-space skipping through the majorant grid's per-cell value ranges: a cell none of whose
+// visible iso values lies inside its range (padded against the filter's rounding) holds no
+// crossing, so the samples after the first one in it lie on that one's side of every surface.
+bool isoCellCrossable(ivec2 texel) {
+  vec2 r = texelFetch(majorantRanges, texel, 0).rg;
+  float lo = min(volumeValue(r.x), volumeValue(r.y)) - 1e-5;
+  float hi = max(volumeValue(r.x), volumeValue(r.y)) + 1e-5;
+  for (int k = 0; k < ISO_COUNT; k++) {
+    if (u.isoSurface[k].a > 0.0 && lo < u.isoValues[k] && u.isoValues[k] <= hi) { return true; }
+  }
+  return false;
+}
+struct IsoCells { CellWalk walk; float tEnd; bool crossable; };
+IsoCells isoCellsStart(vec3 o, vec3 d, float t0) { return IsoCells(cellWalkStart(o, d, t0), -1.0, true); }
+// The index of the next sample of the march t0 + (j + offset)·seg after sample i at t: i + 1, or past the end of
+// t's cell when no surface can cross it (the caller re-samples the one before).
+int isoNextSample(inout IsoCells c, float t, float t0, float t1, float seg, float offset, int i, int n) {
+  int maxCells = u.gridCells.x + u.gridCells.y + u.gridCells.z + 3;
+  for (int g = 0; g < maxCells && t >= c.tEnd; g++) {
+    c.crossable = isoCellCrossable(cellWalkTexel(c.walk));
+    float e = cellWalkStep(c.walk);
+    c.tEnd = e >= t1 ? 3.0e38 : e;
+  }
+  if (c.crossable || t >= c.tEnd) { return i + 1; }
+  return max(i + 1, latticeIndexAt(c.tEnd, t0, seg, offset, i + 1, n + 1));
+}
+#endif
 
 // Bisection on f(t) = sample(o + t d) - iso between ta (f = fa) and tb, which bracket a crossing.
 float isoRefine(vec3 o, vec3 d, float ta, float fa, float tb, float iso) {
@@ -34,6 +64,9 @@ vec4 isoTrace(vec3 o, vec3 d, float t0, float t1, inout uint rng) {
   float tPrev = t0;
   float vPrev = sampleVolume(o + d * t0);
   vec4 r = vec4(-1.0);
+#if SKIP_EMPTY
+  IsoCells cells = isoCellsStart(o, d, t0);
+#endif
   for (int i = 0; i <= n; i++) {
     float t = min(t0 + (float(i) + offset) * seg, t1);
     float v = sampleVolume(o + d * t);
@@ -51,6 +84,14 @@ vec4 isoTrace(vec3 o, vec3 d, float t0, float t1, inout uint rng) {
     if (r.x >= 0.0) { return r; }
     tPrev = t;
     vPrev = v;
+#if SKIP_EMPTY
+    int next = isoNextSample(cells, t, t0, t1, seg, offset, i, n);
+    if (next > i + 1 && next <= n) {
+      tPrev = min(t0 + (float(next - 1) + offset) * seg, t1);
+      vPrev = sampleVolume(o + d * tPrev);
+    }
+    i = next - 1;
+#endif
   }
   return r;
 }
@@ -66,6 +107,9 @@ float isoVisibility(vec3 o, vec3 d, float maxDist, inout uint rng) {
   int n = max(1, int(min(ceil((t1 - t0) / u.stepSize), ${MAX_MARCH_STEPS}.0)));
   float seg = (t1 - t0) / float(n);
   float vPrev = sampleVolume(o + d * t0);
+#if SKIP_EMPTY
+  IsoCells cells = isoCellsStart(o, d, t0);
+#endif
   for (int i = 0; i <= n; i++) {
     float t = min(t0 + (float(i) + offset) * seg, t1);
     float v = sampleVolume(o + d * t);
@@ -78,6 +122,11 @@ float isoVisibility(vec3 o, vec3 d, float maxDist, inout uint rng) {
       }
     }
     vPrev = v;
+#if SKIP_EMPTY
+    int next = isoNextSample(cells, t, t0, t1, seg, offset, i, n);
+    if (next > i + 1 && next <= n) { vPrev = sampleVolume(o + d * min(t0 + (float(next - 1) + offset) * seg, t1)); }
+    i = next - 1;
+#endif
   }
   return 1.0;
 }

@@ -1,4 +1,4 @@
-import { WGSL_ENVIRONMENT_MAP, WGSL_SAMPLING, MAX_MARCH_STEPS } from '@vpt/core';
+import { WGSL_CELL_WALK, WGSL_ENVIRONMENT_MAP, WGSL_SAMPLING, MAX_MARCH_STEPS } from '@vpt/core';
 
 // Monte Carlo isosurface rendering (Lesar et al. 2018, the ISO renderer) with stochastic
 // transparency (Enderton et al. 2010): twin of iso.glsl.ts, same arithmetic in the same
@@ -6,6 +6,31 @@ import { WGSL_ENVIRONMENT_MAP, WGSL_SAMPLING, MAX_MARCH_STEPS } from '@vpt/core'
 
 const ISO_COMMON = /* wgsl */ `
 const ISO_REFINE_STEPS: i32 = 10;
+
+#if SKIP_EMPTY
+${WGSL_CELL_WALK}
+fn isoCellCrossable(texel: vec2i) -> bool {
+  let r = textureLoad(majorantRanges, texel, 0).rg;
+  let lo = min(volumeValue(r.x), volumeValue(r.y)) - 1e-5;
+  let hi = max(volumeValue(r.x), volumeValue(r.y)) + 1e-5;
+  for (var k = 0; k < ISO_COUNT; k++) {
+    if (u.isoSurface[k].a > 0.0 && lo < u.isoValues[k] && u.isoValues[k] <= hi) { return true; }
+  }
+  return false;
+}
+struct IsoCells { walk: CellWalk, tEnd: f32, crossable: bool };
+fn isoCellsStart(o: vec3f, d: vec3f, t0: f32) -> IsoCells { return IsoCells(cellWalkStart(o, d, t0), -1.0, true); }
+fn isoNextSample(c: ptr<function, IsoCells>, t: f32, t0: f32, t1: f32, seg: f32, offset: f32, i: i32, n: i32) -> i32 {
+  let maxCells = u.gridCells.x + u.gridCells.y + u.gridCells.z + 3;
+  for (var g = 0; g < maxCells && t >= (*c).tEnd; g++) {
+    (*c).crossable = isoCellCrossable(cellWalkTexel((*c).walk));
+    let e = cellWalkStep(&(*c).walk);
+    (*c).tEnd = select(e, 3.0e38, e >= t1);
+  }
+  if ((*c).crossable || t >= (*c).tEnd) { return i + 1; }
+  return max(i + 1, latticeIndexAt((*c).tEnd, t0, seg, offset, i + 1, n + 1));
+}
+#endif
 
 fn isoRefine(o: vec3f, d: vec3f, ta0: f32, fa0: f32, tb0: f32, iso: f32) -> f32 {
   var ta = ta0;
@@ -26,6 +51,9 @@ fn isoTrace(o: vec3f, d: vec3f, t0: f32, t1: f32, rng: ptr<function, u32>) -> ve
   var tPrev = t0;
   var vPrev = sampleVolume(o + d * t0);
   var r = vec4f(-1.0);
+#if SKIP_EMPTY
+  var cells = isoCellsStart(o, d, t0);
+#endif
   for (var i = 0; i <= n; i++) {
     let t = min(t0 + (f32(i) + offset) * seg, t1);
     let v = sampleVolume(o + d * t);
@@ -43,6 +71,14 @@ fn isoTrace(o: vec3f, d: vec3f, t0: f32, t1: f32, rng: ptr<function, u32>) -> ve
     if (r.x >= 0.0) { return r; }
     tPrev = t;
     vPrev = v;
+#if SKIP_EMPTY
+    let next = isoNextSample(&cells, t, t0, t1, seg, offset, i, n);
+    if (next > i + 1 && next <= n) {
+      tPrev = min(t0 + (f32(next - 1) + offset) * seg, t1);
+      vPrev = sampleVolume(o + d * tPrev);
+    }
+    i = next - 1;
+#endif
   }
   return r;
 }
@@ -56,6 +92,9 @@ fn isoVisibility(o: vec3f, d: vec3f, maxDist: f32, rng: ptr<function, u32>) -> f
   let n = max(1, i32(min(ceil((t1 - t0) / u.stepSize), ${MAX_MARCH_STEPS}.0)));
   let seg = (t1 - t0) / f32(n);
   var vPrev = sampleVolume(o + d * t0);
+#if SKIP_EMPTY
+  var cells = isoCellsStart(o, d, t0);
+#endif
   for (var i = 0; i <= n; i++) {
     let t = min(t0 + (f32(i) + offset) * seg, t1);
     let v = sampleVolume(o + d * t);
@@ -68,6 +107,11 @@ fn isoVisibility(o: vec3f, d: vec3f, maxDist: f32, rng: ptr<function, u32>) -> f
       }
     }
     vPrev = v;
+#if SKIP_EMPTY
+    let next = isoNextSample(&cells, t, t0, t1, seg, offset, i, n);
+    if (next > i + 1 && next <= n) { vPrev = sampleVolume(o + d * min(t0 + (f32(next - 1) + offset) * seg, t1)); }
+    i = next - 1;
+#endif
   }
   return 1.0;
 }

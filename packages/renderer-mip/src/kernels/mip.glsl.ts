@@ -1,9 +1,22 @@
-import { MAX_MARCH_STEPS } from '@vpt/core';
+import { GLSL_CELL_WALK, MAX_MARCH_STEPS } from '@vpt/core';
 
 // Monte Carlo maximum intensity projection (Lesar, Bohak, Marolt 2018, "Real-Time Interactive Platform-Agnostic Volumetric Path Tracing in WebGL 2.0", its MIP renderer): each
 // iteration marches a jittered ray with a random offset; the accumulation keeps the max.
+// SKIP_EMPTY (empty-space skipping through the majorant grid's value ranges, core's cell walk):
+// a cell whose largest value cannot exceed the running maximum is jumped over, and the march
+// ends once the maximum is 1 (the largest normalized value); the maximum keeps its bits.
 
 export const generate = /* glsl */ `
+#if SKIP_EMPTY
+${GLSL_CELL_WALK}
+// The largest normalized value a point of the current cell can have: its texel range mapped as
+// sampleVolume maps a texel (an inverted range swaps the ends), padded against the filter's rounding.
+float cellMaxValue(CellWalk walk) {
+  vec2 r = texelFetch(majorantRanges, cellWalkTexel(walk), 0).rg;
+  float m = max(volumeValue(r.x), volumeValue(r.y));
+  return m > 0.0 ? m + 1e-5 : 0.0;
+}
+#endif
 void main() {
   ivec2 pixel = vptPixel();
   uint rng = rngInit(pixel, u.iteration, u.seed);
@@ -17,7 +30,24 @@ void main() {
     float len = t.y - t.x;
     int n = max(1, int(min(ceil(len / u.stepSize), ${MAX_MARCH_STEPS}.0)));
     float seg = len / float(n);
-    for (int k = 0; k < n; k++) {
+    int k = 0;
+#if SKIP_EMPTY
+    CellWalk walk = cellWalkStart(u.cameraPosition, dir, t.x);
+    int maxCells = u.gridCells.x + u.gridCells.y + u.gridCells.z + 3;
+    for (int c = 0; c < maxCells && k < n && maxValue < 1.0; c++) {
+      bool below = cellMaxValue(walk) <= maxValue;
+      float tExit = cellWalkStep(walk);
+      float tEnd = tExit >= t.y ? 3.0e38 : tExit;
+      if (below) { k = latticeIndexAt(tEnd, t.x, seg, offset, k, n); continue; }
+      for (; k < n; k++) {
+        float s = t.x + (float(k) + offset) * seg;
+        if (s >= tEnd) break;
+        maxValue = max(maxValue, sampleVolume(u.cameraPosition + dir * s));
+      }
+    }
+    if (maxValue >= 1.0) k = n;
+#endif
+    for (; k < n; k++) {
       float s = t.x + (float(k) + offset) * seg;
       maxValue = max(maxValue, sampleVolume(u.cameraPosition + dir * s));
     }

@@ -1,9 +1,18 @@
-import { MAX_MARCH_STEPS } from '@vpt/core';
+import { MAX_MARCH_STEPS, WGSL_CELL_WALK } from '@vpt/core';
 
 // Monte Carlo maximum intensity projection (Lesar, Bohak, Marolt 2018, Web3D, its MIP renderer): each
 // iteration marches a jittered ray with a random offset; the accumulation keeps the max.
+// Twin of mip.glsl.ts (SKIP_EMPTY: cells whose largest value cannot raise the maximum are jumped over).
 
 export const generate = /* wgsl */ `
+#if SKIP_EMPTY
+${WGSL_CELL_WALK}
+fn cellMaxValue(walk: CellWalk) -> f32 {
+  let r = textureLoad(majorantRanges, cellWalkTexel(walk), 0).rg;
+  let m = max(volumeValue(r.x), volumeValue(r.y));
+  return select(0.0, m + 1e-5, m > 0.0);
+}
+#endif
 @fragment fn fs_main(@builtin(position) fragCoord: vec4f) -> VptOut {
   let pixel = vptPixel(fragCoord);
   var rng = rngInit(pixel, u.iteration, u.seed);
@@ -17,7 +26,24 @@ export const generate = /* wgsl */ `
     let len = t.y - t.x;
     let n = max(1, i32(min(ceil(len / u.stepSize), ${MAX_MARCH_STEPS}.0)));
     let seg = len / f32(n);
-    for (var k = 0; k < n; k++) {
+    var k = 0;
+#if SKIP_EMPTY
+    var walk = cellWalkStart(u.cameraPosition, dir, t.x);
+    let maxCells = u.gridCells.x + u.gridCells.y + u.gridCells.z + 3;
+    for (var c = 0; c < maxCells && k < n && maxValue < 1.0; c++) {
+      let below = cellMaxValue(walk) <= maxValue;
+      let tExit = cellWalkStep(&walk);
+      let tEnd = select(tExit, 3.0e38, tExit >= t.y);
+      if (below) { k = latticeIndexAt(tEnd, t.x, seg, offset, k, n); continue; }
+      for (; k < n; k++) {
+        let s = t.x + (f32(k) + offset) * seg;
+        if (s >= tEnd) { break; }
+        maxValue = max(maxValue, sampleVolume(u.cameraPosition + dir * s));
+      }
+    }
+    if (maxValue >= 1.0) { k = n; }
+#endif
+    for (; k < n; k++) {
       let s = t.x + (f32(k) + offset) * seg;
       maxValue = max(maxValue, sampleVolume(u.cameraPosition + dir * s));
     }

@@ -22,7 +22,8 @@
  * on every transfer-function or density change. This CPU build is its reference in the
  * tests and gives the one global bound of `majorantGrid: false` (cached per Volume object).
  */
-import { normalizedData, TF_RESOLUTION, type Volume } from '@vpt/core';
+import { TF_RESOLUTION } from '../scene/transfer-function.js';
+import { normalizedData, type Volume } from '../scene/volume.js';
 
 export const MAX_GRID_CELLS_PER_AXIS = 64;
 const PAD = 1e-5;
