@@ -1,4 +1,5 @@
 /**
+ * `pnpm bench --vpt DIR [--quick]`: only the side-by-side suite against the original VPT (vpt-side/run-side.ts).
  * `pnpm bench [--preset quick|full] [--suites error,frame,convergence,scaling,specialization,compact] [--backends webgl2,webgpu]`
  * Runs the suites in headless Chromium and writes benchmarks/results/<stamp>/results.json
  * and report.html. Nothing here asserts a time: comparisons are ratios within one run.
@@ -18,6 +19,12 @@ import { scaling } from './suites/scaling.js';
 import { specialization } from './suites/specialization.js';
 import { compact } from './suites/compact.js';
 import type { SuiteContext } from './suites/types.js';
+import { runSide } from './vpt-side/run-side.js';
+
+if (process.argv.includes('--vpt')) {
+  await runSide(process.argv);
+  process.exit(0);
+}
 
 function arg(name: string, fallback: string): string {
   const i = process.argv.indexOf(`--${name}`);
