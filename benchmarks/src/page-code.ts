@@ -132,6 +132,12 @@ export function installBenchPage(): void {
     return volumes.get(key)!;
   }
 
+  // A lat-long map's texels cross from Node as a plain array: the scene wants a Float32Array.
+  function environment(spec: unknown): Scene['environment'] {
+    const env = (spec || { type: 'constant', radiance: [1, 1, 1] }) as Scene['environment'];
+    return env.type === 'latlong' && Array.isArray(env.data) ? { ...env, data: new Float32Array(env.data) } : env;
+  }
+
   async function scene(spec: SceneSpec): Promise<Scene> {
     const vol = await volume(spec.volume);
     return {
@@ -139,7 +145,7 @@ export function installBenchPage(): void {
       transferFunction: spec.transferFunction as Scene['transferFunction'],
       camera: spec.camera as Scene['camera'],
       lights: (spec.lights || []) as Scene['lights'],
-      environment: (spec.environment || { type: 'constant', radiance: [1, 1, 1] }) as Scene['environment'],
+      environment: environment(spec.environment),
       densityScale: spec.densityScale,
       seed: spec.seed ?? 1,
     };
@@ -301,6 +307,15 @@ export function installBenchPage(): void {
       refs.set(key, { hdr, ldr, peak, noiseMse, info });
       ctx.dispose();
       return info;
+    },
+
+    /** The renderer's own choices for a scene (RenderContext.stats.renderer: MCRT's estimator). */
+    async rendererStats(config: PageConfig, sceneSpec: SceneSpec) {
+      const ctx = await context(config, 8, 8);
+      ctx.setScene(await scene(sceneSpec));
+      const stats = ctx.stats.renderer;
+      ctx.dispose();
+      return stats;
     },
 
     /** Error against wall-clock time and iterations, at doubling iteration checkpoints. */

@@ -8,7 +8,15 @@ import { existsSync, mkdirSync, readFileSync, writeFileSync } from 'node:fs';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { openVptPage, CHROMIUM_FLAGS, WEBGPU_FLAGS } from '@vpt/headless';
-import { FETCHED_SCENES, MCRT_VARIANTS, PRESETS, RENDERERS, type Backend, type SceneSpec } from './configs.js';
+import {
+  ESTIMATOR_VARIANTS,
+  FETCHED_SCENES,
+  MCRT_VARIANTS,
+  PRESETS,
+  RENDERERS,
+  type Backend,
+  type SceneSpec,
+} from './configs.js';
 import { machineRecord } from './environment.js';
 import { installBenchPage } from './page-code.js';
 import { htmlReport, type Results } from './report.js';
@@ -101,8 +109,8 @@ try {
     page: session.page,
     preset,
     backends,
-    renderers: RENDERERS.filter(keep),
-    mcrtVariants: MCRT_VARIANTS.filter(keep),
+    renderers: RENDERERS.filter(keep).filter((r) => !preset.rendererLabels || preset.rendererLabels.includes(r.label)),
+    mcrtVariants: (preset.estimatorStudy ? ESTIMATOR_VARIANTS : MCRT_VARIANTS).filter(keep),
     fetchedScenes: fetched.present,
     log,
   };

@@ -1,4 +1,4 @@
-import { scenes, type RendererConfig } from '../configs.js';
+import { estimatorScenes, scenes, type RendererConfig } from '../configs.js';
 import { timeToPsnr, type CurvePoint } from '../metrics.js';
 import { bench, type SuiteContext } from './types.js';
 
@@ -15,6 +15,8 @@ export interface ErrorCurveResult {
   points: CurvePoint[];
   timeToDb: Record<string, number | null>;
   timeToDbLdr: Record<string, number | null>;
+  /** What the renderer chose for the scene (RenderContext.stats.renderer; MCRT: the estimator). */
+  rendererStats?: Record<string, string>;
 }
 
 /**
@@ -26,11 +28,13 @@ export async function errorVsTime(s: SuiteContext): Promise<ErrorCurveResult[]> 
   const out: ErrorCurveResult[] = [];
   const size = s.preset.errorSize;
   const all = [...s.renderers, ...s.mcrtVariants];
-  for (const [sceneName, spec] of Object.entries({ ...scenes(s.preset.cloudSize), ...s.fetchedScenes })) {
+  const study = s.preset.estimatorStudy ? estimatorScenes(s.preset.cloudSize) : {};
+  for (const [sceneName, spec] of Object.entries({ ...scenes(s.preset.cloudSize), ...study, ...s.fetchedScenes })) {
     if (s.preset.errorScenes && !s.preset.errorScenes.includes(sceneName)) continue;
     for (const backend of s.backends) {
       for (const config of all) {
-        if (sceneName !== 'cloud' && s.mcrtVariants.includes(config)) continue; // variants on the procedural scene only
+        // Variants on the procedural scene only, except in the estimator study.
+        if (sceneName !== 'cloud' && !s.preset.estimatorStudy && s.mcrtVariants.includes(config)) continue;
         const refIterations = s.preset.referenceIterations[config.renderer];
         // One reference per configuration, made on the first backend: the backends give
         // bit-identical images (tests/*parity*), so it is the reference for both.
@@ -61,7 +65,14 @@ export async function errorVsTime(s: SuiteContext): Promise<ErrorCurveResult[]> 
           s.preset.curveBudgetMs,
           !!config.halves,
         );
+        const rendererStats = await bench<Record<string, string>>(
+          s.page,
+          'rendererStats',
+          { ...config, backend },
+          spec,
+        );
         out.push({
+          rendererStats,
           scene: sceneName,
           label: config.label,
           backend,

@@ -81,6 +81,8 @@ export interface RenderStats {
   msPerIteration: number;
   /** GPU memory held now. */
   gpuBytes: GpuBytes;
+  /** The renderer's own choices for the current scene (Renderer.stats; empty when it has none). */
+  renderer: Record<string, string>;
 }
 
 type RendererPasses = { generate: GpuPass; integrate: GpuPass; render: GpuPass };
@@ -184,6 +186,7 @@ export class RenderContext {
       samplesPerPixel: this.iteration,
       msPerIteration: this.msPerIteration,
       gpuBytes: this.gpuBytes(),
+      renderer: this._renderer.stats?.() ?? {},
     };
   }
 
