@@ -17,7 +17,7 @@ import {
   VPT_SKY_ROWS,
 } from '../vpt-side/anchor-scene.js';
 import type { SideEngineConfig, SidePoint, SideSceneConfig } from '../vpt-side/side-page.js';
-import { formatRatio, ratioSummary, sideTimeTo } from '../vpt-side/side-metrics.js';
+import { formatRatio, ratioSummary, sideIterationsTo, sideTimeTo } from '../vpt-side/side-metrics.js';
 
 export const SIDE_TARGETS_DB = [30, 35];
 
@@ -120,6 +120,10 @@ export interface SideOptions {
   /** Shortens references and curves (1 = the full run). */
   scale: number;
   budgetMs: number;
+  /** Only the pairs with these ids (multiple, single, eam, mip); all when absent. */
+  pairs?: string[];
+  /** Parameters merged into every vpt MCRT configuration (e.g. an estimator to compare). */
+  mcrtParams?: Record<string, unknown>;
   log: (line: string) => void;
   /** Keeps a reference image (base64 sRGB RGBA8, top row first) to look at. */
   saveImage?: (name: string, rgba8Base64: string, size: number) => void;
@@ -129,6 +133,8 @@ interface EngineRound {
   msPerIteration: number;
   points: SidePoint[];
   timeToDb: Record<string, number | null>;
+  /** Iterations to each target: how much one iteration buys, whatever the load. */
+  iterationsToDb: Record<string, number | null>;
 }
 
 export interface SidePairResult {
@@ -170,6 +176,9 @@ export async function vptSide(page: Page, o: SideOptions): Promise<SideResults> 
   o.log(`vpt-side: anchor volume ${o.volumeSide}³, mean ${init.mean.toFixed(2)}/255; load average ${fmtLoad(start)}`);
   const pairs: SidePairResult[] = [];
   for (const pair of sidePairs(o.scale)) {
+    if (o.pairs && !o.pairs.includes(pair.id)) continue;
+    if (o.mcrtParams && pair.vpt.config.engine === 'vpt' && pair.vpt.config.renderer === 'mcrt')
+      pair.vpt.config = { ...pair.vpt.config, params: { ...pair.vpt.config.params, ...o.mcrtParams } };
     const engines = { vptRef: pair.vptRef, vpt: pair.vpt };
     const result: SidePairResult = {
       name: pair.name,
@@ -191,7 +200,10 @@ export async function vptSide(page: Page, o: SideOptions): Promise<SideResults> 
         const timeToDb = Object.fromEntries(
           SIDE_TARGETS_DB.map((db) => [db, sideTimeTo(points, pair.mean ? e.referenceIterations : Infinity, db)]),
         );
-        result[key].rounds.push({ msPerIteration: median(samples), points, timeToDb });
+        const iterationsToDb = Object.fromEntries(
+          SIDE_TARGETS_DB.map((db) => [db, sideIterationsTo(points, pair.mean ? e.referenceIterations : Infinity, db)]),
+        );
+        result[key].rounds.push({ msPerIteration: median(samples), points, timeToDb, iterationsToDb });
         o.log(
           `vpt-side: ${pair.name}: round ${round + 1} ${key}: ${median(samples).toFixed(1)} ms/it, ` +
             SIDE_TARGETS_DB.map((db) => `${db} dB ${fmtMs(timeToDb[db])}`).join(', '),
@@ -221,6 +233,7 @@ export async function vptSide(page: Page, o: SideOptions): Promise<SideResults> 
 }
 
 const fmtMs = (ms: number | null) => (ms === null ? 'not reached' : `${(ms / 1000).toFixed(2)} s`);
+const fmtIt = (n: number | null) => (n === null ? '—' : n.toFixed(1));
 const fmtLoad = (l: number[]) => l.map((x) => x.toFixed(2)).join(' / ');
 
 /** The results as a markdown table (ratios vpt / VPT, median and range over the rounds). */
@@ -236,7 +249,11 @@ export function sideMarkdown(r: SideResults): string {
     lines.push(
       `| ${p.name} | ${formatRatio(p.ratios['ms per iteration'])} | ${formatRatio(p.ratios['time to 30 dB'])} | ${formatRatio(p.ratios['time to 35 dB'])} |`,
     );
-  lines.push('', '| pair | engine | ms/it (rounds) | 30 dB (s) | 35 dB (s) |', '|---|---|---|---|---|');
+  lines.push(
+    '',
+    '| pair | engine | ms/it (rounds) | 30 dB (s) | 35 dB (s) | iterations to 30 / 35 dB |',
+    '|---|---|---|---|---|---|',
+  );
   for (const p of r.pairs)
     for (const [label, e] of [
       ['VPT', p.vptRef],
@@ -244,7 +261,8 @@ export function sideMarkdown(r: SideResults): string {
     ] as const)
       lines.push(
         `| ${p.name} | ${label} | ${e.rounds.map((x) => x.msPerIteration.toFixed(1)).join(', ')} | ` +
-          `${e.rounds.map((x) => fmtMs(x.timeToDb[30])).join(', ')} | ${e.rounds.map((x) => fmtMs(x.timeToDb[35])).join(', ')} |`,
+          `${e.rounds.map((x) => fmtMs(x.timeToDb[30])).join(', ')} | ${e.rounds.map((x) => fmtMs(x.timeToDb[35])).join(', ')} | ` +
+          `${e.rounds.map((x) => `${fmtIt(x.iterationsToDb[30])} / ${fmtIt(x.iterationsToDb[35])}`).join(', ')} |`,
       );
   return lines.join('\n');
 }

@@ -1,5 +1,6 @@
 /**
- * `pnpm bench --vpt DIR [--quick] [--size N] [--rounds R] [--volume N]`: the side-by-side
+ * `pnpm bench --vpt DIR [--quick] [--size N] [--rounds R] [--volume N] [--pairs single,multiple,eam,mip]
+ * [--mcrt-params JSON]`: the side-by-side
  * suite against a build of the original VPT (DIR = a clone holding build/, or the build
  * folder itself; never stored in this repository). Serves that build read-only under /vpt/
  * from the same static server as vpt's page, so both run in one page of one Chromium.
@@ -69,6 +70,8 @@ export async function runSide(argv: readonly string[]): Promise<void> {
       rounds,
       scale,
       budgetMs: quick ? 5_000 : 300_000,
+      pairs: arg('pairs', '') ? arg('pairs', '').split(',') : undefined,
+      mcrtParams: arg('mcrt-params', '') ? JSON.parse(arg('mcrt-params', '')) : undefined,
       log,
       saveImage: (name, rgba, side) =>
         writeFileSync(

@@ -39,6 +39,13 @@ export function sideCurve(points: readonly SidePoint[], referenceIterations: num
 export const sideTimeTo = (points: readonly SidePoint[], referenceIterations: number, db: number) =>
   timeToPsnr(sideCurve(points, referenceIterations), db);
 
+/** Iterations at which a side curve first reaches `db` (interpolated like time), or null: the load-independent half of time to quality. */
+export const sideIterationsTo = (points: readonly SidePoint[], referenceIterations: number, db: number) =>
+  timeToPsnr(
+    sideCurve(points, referenceIterations).map((p) => ({ ...p, ms: p.iterations })),
+    db,
+  );
+
 /** Median and range of per-round ratios a_i / b_i (rounds where either is missing are left out); null when none. */
 export function ratioSummary(
   a: readonly (number | null)[],
