@@ -313,9 +313,44 @@ export function installBenchPage(): void {
     async rendererStats(config: PageConfig, sceneSpec: SceneSpec) {
       const ctx = await context(config, 8, 8);
       ctx.setScene(await scene(sceneSpec));
+      await ctx.renderIterations(1); // the renderer chooses when the context first builds its passes
       const stats = ctx.stats.renderer;
       ctx.dispose();
       return stats;
+    },
+
+    /**
+     * ms per iteration of several configurations on one scene, measured round-robin (one
+     * synchronised batch of each per round, `rounds` rounds) so a changing machine load
+     * falls on all of them alike; kernels compile before the first round.
+     */
+    async interleavedCost(
+      configs: PageConfig[],
+      sceneSpec: SceneSpec,
+      width: number,
+      height: number,
+      iterations: number,
+      rounds: number,
+    ) {
+      const sc = await scene(sceneSpec);
+      const ctxs: RenderContext[] = [];
+      for (const c of configs) {
+        const ctx = await context(c, width, height);
+        ctx.setScene(sc);
+        await ctx.renderIterations(1);
+        ctxs.push(ctx);
+      }
+      const samples: number[][] = configs.map(() => []);
+      for (let r = 0; r < rounds; r++)
+        for (let i = 0; i < ctxs.length; i++) {
+          await ctxs[i].backend.finish();
+          const t0 = performance.now();
+          ctxs[i].iterate(iterations);
+          await ctxs[i].backend.finish();
+          samples[i].push((performance.now() - t0) / iterations);
+        }
+      for (const ctx of ctxs) ctx.dispose();
+      return samples;
     },
 
     /** Error against wall-clock time and iterations, at doubling iteration checkpoints. */

@@ -17,6 +17,8 @@ export interface ErrorCurveResult {
   timeToDbLdr: Record<string, number | null>;
   /** What the renderer chose for the scene (RenderContext.stats.renderer; MCRT: the estimator). */
   rendererStats?: Record<string, string>;
+  /** Estimator study: ms per iteration measured round-robin with the scene's other configurations (one sample per round). */
+  interleavedMsPerIteration?: number[];
 }
 
 /**
@@ -86,7 +88,37 @@ export async function errorVsTime(s: SuiteContext): Promise<ErrorCurveResult[]> 
       }
     }
   }
+  if (s.preset.estimatorStudy) await interleavedCosts(s, out);
   return out;
+}
+
+/**
+ * The estimator study's cost side: per scene and backend, every configuration's ms per
+ * iteration measured round-robin (5 rounds of 2-iteration batches) at the curves' size, so the
+ * comparison does not depend on how the machine's load moved while the curves ran one after
+ * another. Time to a target is then iterations to it (from the curve: variance, independent of
+ * the load) × this cost.
+ */
+async function interleavedCosts(s: SuiteContext, out: ErrorCurveResult[]): Promise<void> {
+  const all = [...s.renderers, ...s.mcrtVariants];
+  const specs = { ...scenes(s.preset.cloudSize), ...estimatorScenes(s.preset.cloudSize), ...s.fetchedScenes };
+  for (const sceneName of [...new Set(out.map((r) => r.scene))])
+    for (const backend of s.backends) {
+      const rows = out.filter((r) => r.scene === sceneName && r.backend === backend);
+      const configs = rows.map((r) => ({ ...all.find((c) => c.label === r.label)!, backend }));
+      s.log(`error-vs-time: ${sceneName} ${backend}: interleaved ms per iteration of ${configs.length} configurations`);
+      const samples = await bench<number[][]>(
+        s.page,
+        'interleavedCost',
+        configs,
+        specs[sceneName as keyof typeof specs],
+        s.preset.errorSize,
+        s.preset.errorSize,
+        2,
+        5,
+      );
+      rows.forEach((r, i) => (r.interleavedMsPerIteration = samples[i]));
+    }
 }
 
 /** The configuration whose converged image is `config`'s reference (its referenceGroup, else itself). */
