@@ -94,9 +94,16 @@ async function render(params: Record<string, unknown>, sceneClass: SceneClass, s
 }
 
 /** What the rules must choose per class (estimator-choice.ts), and fixed estimators unlike it in every choice. */
-const CASES: { sceneClass: SceneClass; chosen: Record<string, string>; others: Record<string, unknown>[] }[] = [
+const CASES: {
+  sceneClass: SceneClass;
+  /** Parameters besides the estimator (the scattering order). */
+  base: Record<string, unknown>;
+  chosen: Record<string, string>;
+  others: Record<string, unknown>[];
+}[] = [
   {
     sceneClass: 'constant sky and sun',
+    base: { scattering: 'multiple' },
     chosen: { tracking: 'delta', environmentSampling: 'phase', majorantGrid: 'grid' },
     others: [
       { estimator: 'fixed' }, // residual, MIS, grid
@@ -105,6 +112,7 @@ const CASES: { sceneClass: SceneClass; chosen: Record<string, string>; others: R
   },
   {
     sceneClass: 'map with a small sun',
+    base: { scattering: 'multiple' },
     chosen: { tracking: 'delta', environmentSampling: 'mis', majorantGrid: 'grid' },
     others: [
       // Not phase sampling alone: with so few samples its per-pixel means are skewed by the rare
@@ -114,7 +122,14 @@ const CASES: { sceneClass: SceneClass; chosen: Record<string, string>; others: R
     ],
   },
   {
+    sceneClass: 'constant sky and sun',
+    base: { scattering: 'single' },
+    chosen: { tracking: 'residual', environmentSampling: 'phase', majorantGrid: 'grid' },
+    others: [{ tracking: 'delta', environmentSampling: 'mis', majorantGrid: false }],
+  },
+  {
     sceneClass: 'homogeneous',
+    base: { scattering: 'multiple' },
     chosen: { tracking: 'residual', environmentSampling: 'phase', majorantGrid: 'global' },
     others: [{ tracking: 'delta', environmentSampling: 'mis', majorantGrid: true }],
   },
@@ -122,16 +137,16 @@ const CASES: { sceneClass: SceneClass; chosen: Record<string, string>; others: R
 
 describe("MCRT estimator 'auto' (webgl2)", () => {
   it.each(CASES)(
-    '$sceneClass: the rule’s choice, unbiased against fixed estimators',
-    async ({ sceneClass, chosen, others }) => {
-      const auto = await render({}, sceneClass, 1);
+    '$sceneClass $base: the rule’s choice, unbiased against fixed estimators',
+    async ({ sceneClass, base, chosen, others }) => {
+      const auto = await render({ ...base }, sceneClass, 1);
       expect(auto.nonFinite).toBe(false);
       expect(auto.renderer).toMatchObject({ estimator: 'auto', ...chosen });
       expect(Math.max(...auto.mean)).toBeGreaterThan(0.1); // something to compare
       const lines: string[] = [];
       let seed = 2; // independent runs: a shared seed would correlate them and hide a bias
       for (const params of others) {
-        const fixed = await render(params, sceneClass, seed++);
+        const fixed = await render({ ...base, ...params }, sceneClass, seed++);
         expect(fixed.nonFinite).toBe(false);
         const s = compareRuns(auto, fixed);
         lines.push(`${JSON.stringify(params)} (${JSON.stringify(fixed.renderer)}): ${JSON.stringify(s)}`);

@@ -29,6 +29,17 @@ export function timeTo(c: ErrorCurveResult, db: number): number | null {
   return n * ms;
 }
 
+/**
+ * The fixed variant whose curve is auto's, point for point: auto compiled to that estimator
+ * and drew the same random numbers, so both are one computation, and their cost samples are
+ * pooled (their difference measures only the timing noise of the run).
+ */
+function twinOf(auto: ErrorCurveResult, fixed: readonly ErrorCurveResult[]): ErrorCurveResult | undefined {
+  return fixed.find(
+    (c) => c.points.length === auto.points.length && c.points.every((p, i) => p.psnr === auto.points[i].psnr),
+  );
+}
+
 export function estimatorTable(curves: readonly ErrorCurveResult[]): string {
   const lines: string[] = [];
   const f = (x: number | null | undefined, d = 2) => (x == null ? '—' : x.toFixed(d));
@@ -37,10 +48,18 @@ export function estimatorTable(curves: readonly ErrorCurveResult[]): string {
     const rows = curves.filter((c) => c.scene === scene);
     const auto = rows.find((c) => c.label === AUTO);
     const fixed = rows.filter((c) => c.label !== AUTO);
+    const twin = auto && twinOf(auto, fixed);
+    let note = '';
+    if (auto && twin && auto.interleavedMsPerIteration && twin.interleavedMsPerIteration) {
+      const pooled = [...auto.interleavedMsPerIteration, ...twin.interleavedMsPerIteration];
+      note = `(auto = ${name(twin)}, the same computation: cost medians ${f(median(auto.interleavedMsPerIteration), 1)} and ${f(median(twin.interleavedMsPerIteration), 1)} ms pooled to ${f(median(pooled), 1)})`;
+      auto.interleavedMsPerIteration = twin.interleavedMsPerIteration = pooled;
+    }
     const ch = auto?.rendererStats;
     lines.push(
       `**${scene}** — auto chose ${ch?.tracking ? `${ch.tracking}, ${ch.environmentSampling}, ${ch.majorantGrid} (${ch.trackingReason}; ${ch.environmentSamplingReason}; ${ch.majorantGridReason})` : '?'}`,
       '',
+      ...(note ? [note, ''] : []),
       '| estimator | ms / it | iterations to 30 / 35 dB | time to 30 / 35 dB (s) |',
       '|---|---|---|---|',
     );

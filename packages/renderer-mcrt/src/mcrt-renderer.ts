@@ -313,6 +313,7 @@ export class McrtRenderer extends BaseRenderer<McrtParams> {
           tracking: given(set.tracking),
           environmentSampling: given(set.environmentSampling),
           majorantGrid: set.majorantGrid,
+          singleScattering: this.resolved.scattering === 'single',
         },
         () => this.gridStats.get(scene, this.resolved.majorantCellSize),
       );

@@ -82,7 +82,7 @@ describe("MCRT estimator: 'auto' rules", () => {
     }
   });
 
-  it('a map with a small bright sun gets MIS; a smooth map phase sampling', () => {
+  it('a map gets MIS, even a smooth one; a map of one value is a constant sky', () => {
     const sun = skyMap(0.2, 2000);
     expect(environmentPeakRatio(sun)).toBeGreaterThan(ENV_PEAK_RATIO_FOR_MIS);
     expect(chooseEstimator(sparse({ environment: sun }), {}, open).environmentSampling).toBe('mis');
@@ -94,7 +94,10 @@ describe("MCRT estimator: 'auto' rules", () => {
       data.fill(0.05 + 0.95 * ((1 + Math.cos((Math.PI * (j + 0.5)) / H)) / 2) ** 2, 3 * W * j, 3 * W * (j + 1));
     const smooth: Environment = { type: 'latlong', width: W, height: H, data };
     expect(environmentPeakRatio(smooth)).toBeCloseTo(1 / (0.05 + 0.95 / 3), 1);
-    expect(chooseEstimator(sparse({ environment: smooth }), {}, open).environmentSampling).toBe('phase');
+    expect(chooseEstimator(sparse({ environment: smooth }), {}, open).environmentSampling).toBe('mis');
+    const flat = skyMap(0.7, 0.7);
+    expect(environmentPeakRatio(flat)).toBeCloseTo(1, 6);
+    expect(chooseEstimator(sparse({ environment: flat }), {}, open).environmentSampling).toBe('phase');
     expect(environmentPeakRatio({ type: 'constant', radiance: [0.3, 0.3, 0.3] })).toBe(1);
   });
 
@@ -105,6 +108,13 @@ describe("MCRT estimator: 'auto' rules", () => {
     expect(s.globalMajorant / s.meanMajorant).toBeGreaterThan(2);
     const c = chooseEstimator(scene, {}, () => s);
     expect([c.tracking, c.majorantGrid]).toEqual(['delta', true]);
+  });
+
+  it('single scattering takes residual (ratio) tracking for its shadow rays, whatever the minorants', () => {
+    const c = chooseEstimator(sparse(), { singleScattering: true }, open);
+    expect(c.tracking).toBe('residual');
+    expect(c.reasons.tracking).toMatch(/single scattering/);
+    expect(new McrtRenderer({ scattering: 'single' }).features(sparse()).TRACKING).toBe(2);
   });
 
   it('a homogeneous volume takes the global majorant and residual tracking (the control is the whole extinction)', () => {
