@@ -113,11 +113,11 @@ const CASES: {
   {
     sceneClass: 'map with a small sun',
     base: { scattering: 'multiple' },
-    chosen: { tracking: 'delta', environmentSampling: 'mis', majorantGrid: 'grid' },
+    chosen: { tracking: 'residual', environmentSampling: 'mis', majorantGrid: 'grid' },
     others: [
       // Not phase sampling alone: with so few samples its per-pixel means are skewed by the rare
       // sun hits and the z-test would flag the skew (mcrt-unbiased.test.ts covers phase vs MIS).
-      { tracking: 'residual', environmentSampling: 'light', majorantGrid: false },
+      { tracking: 'delta', environmentSampling: 'light', majorantGrid: false },
       { tracking: 'ratio', environmentSampling: 'mis', misHeuristic: 'balance' },
     ],
   },

@@ -14,15 +14,17 @@
  *  - Majorant grid: walked unless it barely lowers the bound (global majorant below
  *    GRID_GAIN_FOR_WALK times the mean cell majorant: a near-homogeneous volume), where the
  *    DDA's cell steps cost more than the null collisions they save.
- *  - Shadow rays: with single scattering, residual ratio tracking (ratio tracking where the
- *    minorants are 0): every path's light comes through its shadow rays, and a continuous
- *    transmittance estimate instead of delta tracking's 0/1 one took the VPT anchor scene from
- *    10.5 to 7.7 iterations to 35 dB at the same cost. With multiple scattering, residual
- *    ratio tracking when the cells' minorants are a substantial fraction of their majorants
- *    (RESIDUAL_MINORANT_FRACTION; Novák et al. 2014: the control extinction then carries most
- *    of the optical depth in closed form); otherwise delta tracking, which stops at the first
- *    real collision where ratio tracking looks the medium up at every tentative one (on the
- *    CT and head scenes ratio tracking saved ~12% of the iterations and cost as much more).
+ *  - Shadow rays: residual ratio tracking (ratio tracking where the minorants are 0) wherever
+ *    shadow rays carry the light: single scattering, and an environment sampled by MIS (a
+ *    shadow ray at every event). There a continuous transmittance estimate instead of delta
+ *    tracking's 0/1 one saved 21–27% of the iterations to 30/35 dB (the cloud under a sun map,
+ *    the VPT anchor's single scattering) at a cost within the measurement's noise. Otherwise
+ *    (multiple scattering under a phase-sampled environment: shadow rays only toward
+ *    directional lights) residual tracking only where the cells' minorants are a substantial
+ *    fraction of their majorants (RESIDUAL_MINORANT_FRACTION; Novák et al. 2014: the control
+ *    then carries most of the optical depth in closed form), else delta tracking, which stops
+ *    at the first real collision: there ratio tracking saved 12–13% of the iterations and cost
+ *    about as much more per iteration (cloud, head, CT).
  *
  * The grid statistics are computed on the CPU from a strided subsample of the volume (at most
  * about 2²¹ voxels, so a large volume costs milliseconds): they steer a choice between unbiased
@@ -161,9 +163,11 @@ export function chooseEstimator(scene: Scene, request: EstimatorRequest, stats: 
       majorantGrid = gain >= GRID_GAIN_FOR_WALK;
       reasons.majorantGrid = `global/mean cell majorant ${gain.toFixed(2)} ${majorantGrid ? '≥' : '<'} ${GRID_GAIN_FOR_WALK}`;
     }
-    if (tracking === undefined && request.singleScattering) {
+    if (tracking === undefined && (request.singleScattering || environmentSampling !== 'phase')) {
       tracking = 'residual';
-      reasons.tracking = 'single scattering: the shadow rays carry all the light';
+      reasons.tracking = request.singleScattering
+        ? 'single scattering: the shadow rays carry all the light'
+        : 'the environment is light-sampled: a shadow ray at every event';
     } else if (tracking === undefined) {
       // Without the grid the one control is the global minorant (0 in most real volumes, the majorant in a homogeneous one).
       const fraction = majorantGrid
