@@ -52,3 +52,18 @@ describe('the anchor scene', () => {
     expect(vptBuildDir('/nonexistent-vpt-dir')).toBeNull();
   });
 });
+
+describe('pnpm bench --vpt without a VPT build', () => {
+  it('says why and returns without opening a browser', async () => {
+    const { runSide } = await import('../src/vpt-side/run-side.js');
+    const lines: string[] = [];
+    const log = console.log;
+    console.log = (line: string) => lines.push(line);
+    try {
+      await runSide(['--vpt', '/nonexistent-vpt-dir']);
+    } finally {
+      console.log = log;
+    }
+    expect(lines.join('\n')).toMatch(/skipped: no VPT build at "\/nonexistent-vpt-dir"/);
+  });
+});
