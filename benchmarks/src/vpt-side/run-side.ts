@@ -32,11 +32,13 @@ export async function runSide(argv: readonly string[]): Promise<void> {
     const i = argv.indexOf(`--${name}`);
     return i >= 0 && argv[i + 1] && !argv[i + 1].startsWith('--') ? argv[i + 1] : fallback;
   };
-  const dir = arg('vpt', '');
+  // Relative to where `pnpm bench` was typed (pnpm runs the script in benchmarks/ and keeps that folder in INIT_CWD).
+  const given = arg('vpt', '');
+  const dir = given && path.resolve(process.env.INIT_CWD ?? process.cwd(), given);
   const build = dir ? vptBuildDir(dir) : null;
   if (!build) {
     console.log(
-      `vpt-side: skipped: no VPT build at ${dir ? JSON.stringify(dir) : '(no --vpt DIR given)'} ` +
+      `vpt-side: skipped: no VPT build at ${given ? JSON.stringify(dir) : '(no --vpt DIR given)'} ` +
         '(DIR must be a clone of terier/vpt built into DIR/build, or that build folder)',
     );
     return;
