@@ -78,7 +78,9 @@ describe('MCRT white furnace with next-event estimation and MIS (webgl2)', () =>
             renderer: 'mcrt',
             width: W,
             height: H,
-            params: { maxDepth: -1 },
+            // The fixed estimator (MIS, residual tracking), whose noise gives the z-test power;
+            // 'auto' samples this constant sky by the phase function alone (exactly 1, tested above).
+            params: { maxDepth: -1, estimator: 'fixed' },
           });
           const out = [];
           try {

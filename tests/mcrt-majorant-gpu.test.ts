@@ -32,7 +32,7 @@ describe('MCRT majorant grid built on the GPU', () => {
           renderer: 'mcrt',
           width: 8,
           height: 8,
-          params: { majorantCellSize: 4 },
+          params: { majorantCellSize: 4, majorantGrid: true }, // set: 'auto' may take the global bound
         });
         const base = {
           volume: core.createProceduralVolume('blob', 22),
@@ -136,7 +136,7 @@ describe('MCRT majorant grid built on the GPU', () => {
             renderer: 'mcrt',
             width: 4,
             height: 4,
-            params: { majorantCellSize: cell },
+            params: { majorantCellSize: cell, majorantGrid: true },
           });
           const volume = core.createVolume(dims, 'float32', new Float32Array(smooth));
           volume.valueRange = [0, 1];

@@ -71,6 +71,28 @@ export function scenes(cloudSize: number): Record<string, SceneSpec> {
   };
 }
 
+/**
+ * The extra scenes of the estimator study (preset 'estimators'): the cloud under the sky
+ * alone, and under a lat-long map with a small bright sun (the lighting MIS exists for).
+ */
+export function estimatorScenes(cloudSize: number): Record<string, SceneSpec> {
+  const cloud = scenes(cloudSize).cloud;
+  const W = 64,
+    H = 32;
+  const data: number[] = [];
+  for (let j = 0; j < H; j++)
+    for (let i = 0; i < W; i++) {
+      // A bluish sky brighter toward the zenith, and a 2 × 2-texel sun of radiance 400 at 35° from it.
+      const sun = (j === 6 || j === 7) && (i === 20 || i === 21);
+      const sky = 0.15 + 0.35 * Math.cos((Math.PI * (j + 0.5)) / H) ** 2;
+      data.push(...(sun ? [400, 380, 350] : [0.8 * sky, 0.9 * sky, 1.2 * sky]));
+    }
+  return {
+    'cloud-sky': { ...cloud, lights: [] },
+    'cloud-sun-map': { ...cloud, lights: [], environment: { type: 'latlong', width: W, height: H, data } },
+  };
+}
+
 /** Normalized value of a CT number in the chest CT's value range [-1024, 1671]. */
 const hu = (h: number) => (h + 1024) / 2695;
 
@@ -152,8 +174,39 @@ export const MCRT_VARIANTS: RendererConfig[] = [
   },
 ];
 
+/**
+ * Fixed MCRT estimators the default `estimator: 'auto'` is measured against (preset
+ * 'estimators'): every shadow tracking with both environment strategies over the majorant
+ * grid, and delta tracking with one global majorant. Multiple scattering, as the default.
+ */
+export const ESTIMATOR_VARIANTS: RendererConfig[] = [
+  ...(['delta', 'ratio', 'residual'] as const).flatMap((tracking) =>
+    (['phase', 'mis'] as const).map((environmentSampling) => ({
+      label: `mcrt fixed: ${tracking}, ${environmentSampling}, grid`,
+      renderer: 'mcrt',
+      params: { scattering: 'multiple', estimator: 'fixed', tracking, environmentSampling, majorantGrid: true },
+      halves: true,
+      referenceGroup: 'mcrt multiple',
+    })),
+  ),
+  ...(['phase', 'mis'] as const).map((environmentSampling) => ({
+    label: `mcrt fixed: delta, ${environmentSampling}, global majorant`,
+    renderer: 'mcrt',
+    params: { scattering: 'multiple', estimator: 'fixed', tracking: 'delta', environmentSampling, majorantGrid: false },
+    halves: true,
+    referenceGroup: 'mcrt multiple',
+  })),
+];
+
 export interface Preset {
   name: string;
+  /**
+   * The estimator study: the MCRT variants are ESTIMATOR_VARIANTS and run on every error
+   * scene (with estimatorScenes added), against 'mcrt multiple' (the default, 'auto').
+   */
+  estimatorStudy?: boolean;
+  /** Only these renderer configurations (by label) besides the variants. */
+  rendererLabels?: string[];
   errorSize: number;
   referenceIterations: Record<string, number>;
   curveIterations: number;
@@ -243,6 +296,29 @@ export const PRESETS: Record<string, Preset> = {
     scalingEmptyFractions: [0],
     errorScenes: ['cloud'],
     compactSize: 256,
+    ctDepths: [64],
+  },
+  /** `estimator: 'auto'` against every fixed estimator (issue 14): time to 30/35 dB at 64² on five scenes. */
+  estimators: {
+    name: 'estimators',
+    estimatorStudy: true,
+    rendererLabels: ['mcrt multiple'],
+    errorScenes: ['cloud-sky', 'cloud', 'cloud-sun-map', 'head', 'ct-chest'],
+    specializationSize: 64,
+    errorSize: 64,
+    referenceIterations: { mip: 64, eam: 64, iso: 64, mcrt: 384 },
+    curveIterations: 192,
+    curveBudgetMs: 20_000,
+    frameSizes: [64],
+    frameVolumeSizes: [],
+    frameSizeAtVolume: 64,
+    frameIterations: 1,
+    frameRepeats: 3,
+    convergenceSizes: [64],
+    cloudSize: 128,
+    scalingVolumeSizes: [64],
+    scalingEmptyFractions: [0],
+    compactSize: 64,
     ctDepths: [64],
   },
   quick: {

@@ -210,6 +210,12 @@ export function installBenchPage(): void {
     return volumes.get(key)!;
   }
 
+  // A lat-long map's texels cross from Node as a plain array: the scene wants a Float32Array.
+  function environment(spec: unknown): Scene['environment'] {
+    const env = (spec || { type: 'constant', radiance: [1, 1, 1] }) as Scene['environment'];
+    return env.type === 'latlong' && Array.isArray(env.data) ? { ...env, data: new Float32Array(env.data) } : env;
+  }
+
   async function scene(spec: SceneSpec): Promise<Scene> {
     const vol = await volume(spec.volume);
     return {
@@ -217,7 +223,7 @@ export function installBenchPage(): void {
       transferFunction: spec.transferFunction as Scene['transferFunction'],
       camera: spec.camera as Scene['camera'],
       lights: (spec.lights || []) as Scene['lights'],
-      environment: (spec.environment || { type: 'constant', radiance: [1, 1, 1] }) as Scene['environment'],
+      environment: environment(spec.environment),
       densityScale: spec.densityScale,
       seed: spec.seed ?? 1,
     };
@@ -401,6 +407,50 @@ export function installBenchPage(): void {
       let se = 0;
       for (let i = 0; i < a.hdr.length; i += 4) for (let c = 0; c < 3; c++) se += (a.hdr[i + c] - b.hdr[i + c]) ** 2;
       return 20 * Math.log10(b.peak / Math.max(Math.sqrt(se / ((3 * a.hdr.length) / 4)), 1e-12));
+    },
+
+    /** The renderer's own choices for a scene (RenderContext.stats.renderer: MCRT's estimator). */
+    async rendererStats(config: PageConfig, sceneSpec: SceneSpec) {
+      const ctx = await context(config, 8, 8);
+      ctx.setScene(await scene(sceneSpec));
+      await ctx.renderIterations(1); // the renderer chooses when the context first builds its passes
+      const stats = ctx.stats.renderer;
+      ctx.dispose();
+      return stats;
+    },
+
+    /**
+     * ms per iteration of several configurations on one scene, measured round-robin (one
+     * synchronised batch of each per round, `rounds` rounds) so a changing machine load
+     * falls on all of them alike; kernels compile before the first round.
+     */
+    async interleavedCost(
+      configs: PageConfig[],
+      sceneSpec: SceneSpec,
+      width: number,
+      height: number,
+      iterations: number,
+      rounds: number,
+    ) {
+      const sc = await scene(sceneSpec);
+      const ctxs: RenderContext[] = [];
+      for (const c of configs) {
+        const ctx = await context(c, width, height);
+        ctx.setScene(sc);
+        await ctx.renderIterations(1);
+        ctxs.push(ctx);
+      }
+      const samples: number[][] = configs.map(() => []);
+      for (let r = 0; r < rounds; r++)
+        for (let i = 0; i < ctxs.length; i++) {
+          await ctxs[i].backend.finish();
+          const t0 = performance.now();
+          ctxs[i].iterate(iterations);
+          await ctxs[i].backend.finish();
+          samples[i].push((performance.now() - t0) / iterations);
+        }
+      for (const ctx of ctxs) ctx.dispose();
+      return samples;
     },
 
     /** Error against wall-clock time and iterations, at doubling iteration checkpoints. */

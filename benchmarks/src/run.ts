@@ -1,4 +1,5 @@
 /**
+ * `pnpm bench --vpt DIR [--quick]`: only the side-by-side suite against the original VPT (vpt-side/run-side.ts).
  * `pnpm bench [--preset quick|full] [--suites error,frame,convergence,scaling,specialization,compact,skipping] [--backends webgl2,webgpu]`
  * Runs the suites in headless Chromium and writes benchmarks/results/<stamp>/results.json
  * and report.html. Nothing here asserts a time: comparisons are ratios within one run.
@@ -7,7 +8,15 @@ import { existsSync, mkdirSync, readFileSync, writeFileSync } from 'node:fs';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { openVptPage, CHROMIUM_FLAGS, WEBGPU_FLAGS } from '@vpt/headless';
-import { FETCHED_SCENES, MCRT_VARIANTS, PRESETS, RENDERERS, type Backend, type SceneSpec } from './configs.js';
+import {
+  ESTIMATOR_VARIANTS,
+  FETCHED_SCENES,
+  MCRT_VARIANTS,
+  PRESETS,
+  RENDERERS,
+  type Backend,
+  type SceneSpec,
+} from './configs.js';
 import { machineRecord } from './environment.js';
 import { installBenchPage } from './page-code.js';
 import { htmlReport, type Results } from './report.js';
@@ -19,6 +28,12 @@ import { specialization } from './suites/specialization.js';
 import { compact } from './suites/compact.js';
 import { skipping } from './suites/skipping.js';
 import type { SuiteContext } from './suites/types.js';
+import { runSide } from './vpt-side/run-side.js';
+
+if (process.argv.includes('--vpt')) {
+  await runSide(process.argv);
+  process.exit(0);
+}
 
 function arg(name: string, fallback: string): string {
   const i = process.argv.indexOf(`--${name}`);
@@ -95,8 +110,8 @@ try {
     page: session.page,
     preset,
     backends,
-    renderers: RENDERERS.filter(keep),
-    mcrtVariants: MCRT_VARIANTS.filter(keep),
+    renderers: RENDERERS.filter(keep).filter((r) => !preset.rendererLabels || preset.rendererLabels.includes(r.label)),
+    mcrtVariants: (preset.estimatorStudy ? ESTIMATOR_VARIANTS : MCRT_VARIANTS).filter(keep),
     fetchedScenes: fetched.present,
     log,
   };

@@ -30,6 +30,8 @@ export interface McrtRunResult {
   iterations: number;
   ms: number;
   err: Awaited<ReturnType<RenderContext['estimateError']>>;
+  /** The renderer's choices for the scene (RenderContext.stats.renderer: the estimator MCRT chose). */
+  renderer: Record<string, string>;
 }
 
 export interface CubeSceneOptions {
@@ -117,6 +119,7 @@ function installMcrtInPage(): void {
         iterations: ctx.stats.iterations,
         ms,
         err,
+        renderer: ctx.stats.renderer,
       };
     },
     cubeScene(o) {

@@ -1,4 +1,4 @@
-import { scenes, type Backend, type RendererConfig, type SceneSpec } from '../configs.js';
+import { estimatorScenes, scenes, type Backend, type RendererConfig, type SceneSpec } from '../configs.js';
 import { timeToPsnr, type CurvePoint } from '../metrics.js';
 import { bench, type SuiteContext } from './types.js';
 
@@ -15,6 +15,10 @@ export interface ErrorCurveResult {
   points: CurvePoint[];
   timeToDb: Record<string, number | null>;
   timeToDbLdr: Record<string, number | null>;
+  /** What the renderer chose for the scene (RenderContext.stats.renderer; MCRT: the estimator). */
+  rendererStats?: Record<string, string>;
+  /** Estimator study: ms per iteration measured round-robin with the scene's other configurations (one sample per round). */
+  interleavedMsPerIteration?: number[];
 }
 
 /**
@@ -26,11 +30,13 @@ export async function errorVsTime(s: SuiteContext): Promise<ErrorCurveResult[]> 
   const out: ErrorCurveResult[] = [];
   const size = s.preset.errorSize;
   const all = [...s.renderers, ...s.mcrtVariants];
-  for (const [sceneName, spec] of Object.entries({ ...scenes(s.preset.cloudSize), ...s.fetchedScenes })) {
+  const study = s.preset.estimatorStudy ? estimatorScenes(s.preset.cloudSize) : {};
+  for (const [sceneName, spec] of Object.entries({ ...scenes(s.preset.cloudSize), ...study, ...s.fetchedScenes })) {
     if (s.preset.errorScenes && !s.preset.errorScenes.includes(sceneName)) continue;
     for (const backend of s.backends) {
       for (const config of all) {
-        if (sceneName !== 'cloud' && s.mcrtVariants.includes(config)) continue; // variants on the procedural scene only
+        // Variants on the procedural scene only, except in the estimator study.
+        if (sceneName !== 'cloud' && !s.preset.estimatorStudy && s.mcrtVariants.includes(config)) continue;
         const refIterations = s.preset.referenceIterations[config.renderer];
         // One reference per configuration, made on the first backend: the backends give
         // bit-identical images (tests/*parity*), so it is the reference for both.
@@ -41,7 +47,14 @@ export async function errorVsTime(s: SuiteContext): Promise<ErrorCurveResult[]> 
         );
         const ref = await renderReference(s, refKey, refConfig, s.backends[0], spec, size, refIterations);
         const points = await errorCurve(s, config, backend, spec, size, refKey, !!config.halves);
+        const rendererStats = await bench<Record<string, string>>(
+          s.page,
+          'rendererStats',
+          { ...config, backend },
+          spec,
+        );
         out.push({
+          rendererStats,
           scene: sceneName,
           label: config.label,
           backend,
@@ -55,7 +68,37 @@ export async function errorVsTime(s: SuiteContext): Promise<ErrorCurveResult[]> 
       }
     }
   }
+  if (s.preset.estimatorStudy) await interleavedCosts(s, out);
   return out;
+}
+
+/**
+ * The estimator study's cost side: per scene and backend, every configuration's ms per
+ * iteration measured round-robin (5 rounds of 2-iteration batches) at the curves' size, so the
+ * comparison does not depend on how the machine's load moved while the curves ran one after
+ * another. Time to a target is then iterations to it (from the curve: variance, independent of
+ * the load) × this cost.
+ */
+async function interleavedCosts(s: SuiteContext, out: ErrorCurveResult[]): Promise<void> {
+  const all = [...s.renderers, ...s.mcrtVariants];
+  const specs = { ...scenes(s.preset.cloudSize), ...estimatorScenes(s.preset.cloudSize), ...s.fetchedScenes };
+  for (const sceneName of [...new Set(out.map((r) => r.scene))])
+    for (const backend of s.backends) {
+      const rows = out.filter((r) => r.scene === sceneName && r.backend === backend);
+      const configs = rows.map((r) => ({ ...all.find((c) => c.label === r.label)!, backend }));
+      s.log(`error-vs-time: ${sceneName} ${backend}: interleaved ms per iteration of ${configs.length} configurations`);
+      const samples = await bench<number[][]>(
+        s.page,
+        'interleavedCost',
+        configs,
+        specs[sceneName as keyof typeof specs],
+        s.preset.errorSize,
+        s.preset.errorSize,
+        2,
+        5,
+      );
+      rows.forEach((r, i) => (r.interleavedMsPerIteration = samples[i]));
+    }
 }
 
 /** The configuration whose converged image is `config`'s reference (its referenceGroup, else itself). */

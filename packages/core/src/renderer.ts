@@ -73,6 +73,12 @@ export interface Renderer {
   readonly paramSpecs?: ParamSpecs;
   /** The current parameter values (as given, defaults not filled in). */
   getParams?(): object;
+  /**
+   * What the renderer chose for the current scene, as short labelled strings (MCRT: its
+   * estimator choices and why); RenderContext.stats.renderer passes it on and the viewer
+   * shows it.
+   */
+  stats?(): Record<string, string>;
 }
 
 export interface AuxiliaryTexture {

@@ -22,3 +22,14 @@ export {
   type CellValueRanges,
 } from '@vpt/core';
 export { generateKernel } from './kernel-sources.js';
+export {
+  chooseEstimator,
+  environmentPeakRatio,
+  gridStatistics,
+  ENV_PEAK_RATIO_FOR_MIS,
+  GRID_GAIN_FOR_WALK,
+  RESIDUAL_MINORANT_FRACTION,
+  type EstimatorChoice,
+  type EstimatorRequest,
+  type GridStatistics,
+} from './estimator-choice.js';

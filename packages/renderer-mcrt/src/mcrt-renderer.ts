@@ -27,6 +27,7 @@ import {
 import { activeLights, computeFeatures, featureKey, MAX_LIGHTS, type McrtFeatures } from './features.js';
 import { generateKernel, INTEGRATE_HALVES } from './kernel-sources.js';
 import { MCRT_PARAM_SPECS, resolveParams, type McrtParams, type ResolvedMcrtParams } from './params.js';
+import { chooseEstimator, GridStatisticsMemo, type EstimatorChoice } from './estimator-choice.js';
 
 export const MCRT_PARAM_FIELDS: readonly UniformField[] = [
   { name: 'phaseG', type: 'f32' },
@@ -64,6 +65,8 @@ export class McrtRenderer extends BaseRenderer<McrtParams> {
   private gridMemo: { key: string; grid: MajorantGrid } | null = null;
   private envMemo: { key: string; tables: EnvironmentSamplingTables } | null = null;
   private constantMapMemo: { key: string; map: LatLongEnvironment } | null = null;
+  private readonly gridStats = new GridStatisticsMemo();
+  private choiceMemo: { scene: Scene; params: ResolvedMcrtParams; choice: EstimatorChoice | null } | null = null;
 
   constructor(params: McrtParams = {}) {
     validateParams('MCRT', MCRT_PARAM_SPECS, params);
@@ -101,13 +104,13 @@ export class McrtRenderer extends BaseRenderer<McrtParams> {
   }
 
   override features(scene: Scene): Record<string, boolean | number> {
-    const f = computeFeatures(scene, this.resolved);
+    const f = computeFeatures(scene, this.paramsFor(scene));
     this.current = f;
     return { ...f };
   }
 
   paramValues(scene: Scene): UniformValues {
-    const p = this.resolved;
+    const p = this.paramsFor(scene);
     // With the grid the bounds live on the GPU; one global bound is computed here only without it.
     const onGpu = computeFeatures(scene, p).MAJORANT_GRID;
     const grid = onGpu ? null : this.majorantGrid(scene);
@@ -141,7 +144,7 @@ export class McrtRenderer extends BaseRenderer<McrtParams> {
     },
   ): readonly AuxiliaryTexture[] {
     const aux: AuxiliaryTexture[] = [];
-    const f = computeFeatures(scene, this.resolved);
+    const f = computeFeatures(scene, this.paramsFor(scene));
     if (f.MAJORANT_GRID) aux.push(...this.majorantGridTextures(scene, volume));
     if (f.ENV_MAP) {
       const env = this.environmentMap(scene);
@@ -175,9 +178,60 @@ export class McrtRenderer extends BaseRenderer<McrtParams> {
     return gridGeometry(scene.volume.dims, this.cellSize(scene));
   }
 
+  /**
+   * The parameters for a scene: with `estimator: 'auto'` the environment sampling, tracking
+   * and majorant grid the caller left unset are chosen for it (estimator-choice.ts).
+   */
+  paramsFor(scene: Scene): ResolvedMcrtParams {
+    const m = this.choiceMemo;
+    if (m && m.scene === scene && m.params === this.resolved) return this.applyChoice(m.choice);
+    let choice: EstimatorChoice | null = null;
+    if (this.resolved.estimator === 'auto') {
+      const set = this.getParams();
+      const given = <T>(v: T | 'auto' | undefined) => (v === 'auto' ? undefined : v);
+      choice = chooseEstimator(
+        scene,
+        {
+          tracking: given(set.tracking),
+          environmentSampling: given(set.environmentSampling),
+          majorantGrid: set.majorantGrid,
+          singleScattering: this.resolved.scattering === 'single',
+        },
+        () => this.gridStats.get(scene, this.resolved.majorantCellSize),
+      );
+    }
+    this.choiceMemo = { scene, params: this.resolved, choice };
+    return this.applyChoice(choice);
+  }
+
+  private applyChoice(choice: EstimatorChoice | null): ResolvedMcrtParams {
+    if (!choice) return this.resolved;
+    const { tracking, environmentSampling, majorantGrid } = choice;
+    return { ...this.resolved, tracking, environmentSampling, majorantGrid };
+  }
+
+  /**
+   * What the renderer chose for the last scene it was given (RenderContext.stats.renderer):
+   * `estimator` ('auto' or 'fixed'), the tracking, environment sampling and grid in use,
+   * and with 'auto' the reason for each.
+   */
+  stats(): Record<string, string> {
+    const m = this.choiceMemo;
+    if (!m) return { estimator: this.resolved.estimator };
+    const p = this.applyChoice(m.choice);
+    const out: Record<string, string> = {
+      estimator: p.estimator,
+      tracking: p.tracking,
+      environmentSampling: p.environmentSampling,
+      majorantGrid: p.majorantGrid ? 'grid' : 'global',
+    };
+    if (m.choice) for (const [k, reason] of Object.entries(m.choice.reasons)) out[`${k}Reason`] = reason;
+    return out;
+  }
+
   /** Majorant-grid cell edge in voxels: the generic kernel always walks a grid, of one cell when the grid is off. */
   private cellSize(scene: Scene): number {
-    const p = this.resolved;
+    const p = this.paramsFor(scene);
     return !p.specialize && !p.majorantGrid ? Math.max(...scene.volume.dims) : p.majorantCellSize;
   }
 

@@ -6,6 +6,13 @@ export type TrackingMode = 'delta' | 'ratio' | 'residual';
 export type EnvironmentSampling = 'mis' | 'light' | 'phase';
 
 export interface McrtParams {
+  /**
+   * 'auto' (default): MCRT chooses the environment sampling, the shadow-ray tracking and
+   * whether the majorant grid is walked per scene (estimator-choice.ts); any of those three
+   * set here overrides its choice. 'fixed': the unset ones take the fixed defaults
+   * (residual ratio tracking, majorant grid, MIS).
+   */
+  estimator?: 'auto' | 'fixed';
   /** 'single': one real scattering event per path (as in the seed paper); 'multiple' (default): up to `maxDepth`. */
   scattering?: 'single' | 'multiple';
   /** Multiple scattering: most real scattering events per path; -1 (default) = unlimited (Russian roulette ends paths). */
@@ -14,17 +21,18 @@ export interface McrtParams {
   rouletteDepth?: number;
   /** Henyey–Greenstein asymmetry g in [-0.9999, 0.9999]; g > 0 scatters forward. Default 0. */
   anisotropy?: number;
-  /** Transmittance estimator for shadow rays. Default 'residual' (Novák et al. 2014). */
-  tracking?: TrackingMode;
-  /** Traverse a coarse grid of per-cell extinction bounds (default) instead of one global majorant. */
+  /** Transmittance estimator for shadow rays. Chosen per scene with `estimator: 'auto'`; else default 'residual' (Novák et al. 2014). */
+  tracking?: TrackingMode | 'auto';
+  /** Traverse a coarse grid of per-cell extinction bounds instead of one global majorant. Chosen per scene with `estimator: 'auto'`; else default true. */
   majorantGrid?: boolean;
   /** Edge of a majorant-grid cell in voxels (default 8; at most 64 cells per axis). */
   majorantCellSize?: number;
   /**
-   * Environment light: 'mis' (default) = light sampling and phase sampling combined by multiple
+   * Environment light: 'mis' = light sampling and phase sampling combined by multiple
    * importance sampling; 'light' = light sampling only; 'phase' = phase sampling only.
+   * Chosen per scene with `estimator: 'auto'`; else default 'mis'.
    */
-  environmentSampling?: EnvironmentSampling;
+  environmentSampling?: EnvironmentSampling | 'auto';
   /** MIS heuristic: 'power' (β = 2, default) or 'balance'. */
   misHeuristic?: 'power' | 'balance';
   /**
@@ -45,9 +53,15 @@ export interface McrtParams {
   specialize?: boolean;
 }
 
-export type ResolvedMcrtParams = Required<McrtParams>;
+/** Every parameter filled in; 'auto' tracking / environment sampling resolve to the fixed defaults here (the renderer chooses per scene). */
+export type ResolvedMcrtParams = Omit<Required<McrtParams>, 'tracking' | 'environmentSampling'> & {
+  tracking: TrackingMode;
+  environmentSampling: EnvironmentSampling;
+};
 
+/** The defaults; tracking, majorantGrid and environmentSampling are those of `estimator: 'fixed'`. */
 export const MCRT_DEFAULTS: ResolvedMcrtParams = {
+  estimator: 'auto',
   scattering: 'multiple',
   maxDepth: -1,
   rouletteDepth: 2,
@@ -66,14 +80,15 @@ export const MAX_ANISOTROPY = 0.9999;
 
 /** MCRT's parameters and their ranges (core's validateParams; resolveParams adds the rules across them). */
 export const MCRT_PARAM_SPECS: ParamSpecs = {
+  estimator: { kind: 'enum', values: ['auto', 'fixed'] },
   scattering: { kind: 'enum', values: ['single', 'multiple'] },
   maxDepth: { kind: 'number', integer: true, min: -1, max: 1 << 20 },
   rouletteDepth: { kind: 'number', integer: true, min: 1, max: 1 << 20 },
   anisotropy: { kind: 'number', min: -MAX_ANISOTROPY, max: MAX_ANISOTROPY },
-  tracking: { kind: 'enum', values: ['delta', 'ratio', 'residual'] },
+  tracking: { kind: 'enum', values: ['auto', 'delta', 'ratio', 'residual'] },
   majorantGrid: { kind: 'boolean' },
   majorantCellSize: { kind: 'number', integer: true, min: 1, max: 4096, unit: 'voxels' },
-  environmentSampling: { kind: 'enum', values: ['mis', 'light', 'phase'] },
+  environmentSampling: { kind: 'enum', values: ['auto', 'mis', 'light', 'phase'] },
   misHeuristic: { kind: 'enum', values: ['power', 'balance'] },
   debugOutput: { kind: 'enum', values: ['none', 'transmittance', 'fetches'] },
   specialize: { kind: 'boolean' },
@@ -87,7 +102,8 @@ const oneOf = <T extends string>(name: string, v: unknown, allowed: readonly T[]
 /** Defaults filled in and every value checked; throws VptError('invalid-scene') naming the bad field. */
 export function resolveParams(p: McrtParams): ResolvedMcrtParams {
   const r: ResolvedMcrtParams = { ...MCRT_DEFAULTS };
-  for (const [k, v] of Object.entries(p)) if (v !== undefined) (r as Record<string, unknown>)[k] = v;
+  for (const [k, v] of Object.entries(p)) if (v !== undefined && v !== 'auto') (r as Record<string, unknown>)[k] = v;
+  oneOf('estimator', r.estimator, ['auto', 'fixed'] as const);
   oneOf('scattering', r.scattering, ['single', 'multiple'] as const);
   oneOf('tracking', r.tracking, ['delta', 'ratio', 'residual'] as const);
   oneOf('environmentSampling', r.environmentSampling, ['mis', 'light', 'phase'] as const);

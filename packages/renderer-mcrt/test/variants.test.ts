@@ -131,7 +131,7 @@ describe('MCRT feature variants', () => {
   });
 
   it('lists the majorant grid (value ranges, TF bounds, grid) and environment tables as auxiliary textures with content keys', () => {
-    const r = new McrtRenderer();
+    const r = new McrtRenderer({ majorantGrid: true }); // set: the rules would take the global majorant for this blob under the ramp TF
     const s = scene({
       volume: createProceduralVolume('blob', 20),
       environment: { type: 'latlong', width: 4, height: 2, data: new Float32Array(24).fill(1) },

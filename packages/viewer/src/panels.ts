@@ -409,6 +409,14 @@ function paramControl(v: VptViewer, spec: RendererParamSpec, params: Record<stri
   return html`<div class="row"><label for=${pid}>${spec.label}</label>${control}</div>`;
 }
 
+/** MCRT's reasons for its estimator choices, one per line (the readout's tooltip). */
+function rendererChoiceReasons(r: Record<string, string>): string {
+  return Object.entries(r)
+    .filter(([k]) => k.endsWith('Reason'))
+    .map(([k, reason]) => `${k.slice(0, -'Reason'.length)}: ${reason}`)
+    .join('\n');
+}
+
 function statsPanel(v: VptViewer) {
   const st = v.panelState;
   const s = st.stats;
@@ -427,6 +435,15 @@ function statsPanel(v: VptViewer) {
         <dd>${s ? `${s.width} × ${s.height}` : '—'}</dd>
         <dt>Backend</dt>
         <dd>${st.backendKind ?? '—'}</dd>
+        ${
+          s?.renderer.tracking
+            ? html`<dt>Estimator</dt>
+                <dd data-stat="estimator" title=${rendererChoiceReasons(s.renderer)}>
+                  ${s.renderer.estimator}: ${s.renderer.tracking} tracking, ${s.renderer.environmentSampling}
+                  environment, ${s.renderer.majorantGrid} majorant
+                </dd>`
+            : ''
+        }
         <dt>Volume</dt>
         <dd>${vol ? `${vol.dims.join('×')} ${vol.type}` : '—'}</dd>
       </dl>

@@ -14,6 +14,8 @@ export interface RefinementStats {
   error: number | null;
   width: number;
   height: number;
+  /** The renderer's own choices for the scene (RenderContext.stats.renderer; MCRT: its estimator). */
+  renderer: Record<string, string>;
 }
 
 export interface SessionCallbacks {
@@ -150,7 +152,7 @@ export class RenderSession {
 
   private stats(samples = this.samples, ms = this.ctx.stats.msPerIteration): RefinementStats {
     const { width, height } = this.ctx.size;
-    return { samples, msPerIteration: ms, error: this.error, width, height };
+    return { samples, msPerIteration: ms, error: this.error, width, height, renderer: this.ctx.stats.renderer };
   }
 
   private onStats(samples: number, ms: number): void {

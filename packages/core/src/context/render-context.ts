@@ -110,6 +110,8 @@ export interface RenderStats {
   gpuBytes: GpuBytes;
   /** The brick cache's state when the volume is bricked, else null. */
   bricking: BrickingStats | null;
+  /** The renderer's own choices for the current scene (Renderer.stats; empty when it has none). */
+  renderer: Record<string, string>;
 }
 
 type RendererPasses = { generate: GpuPass; integrate: GpuPass; render: GpuPass };
@@ -237,6 +239,7 @@ export class RenderContext {
       msPerIteration: this.msPerIteration,
       gpuBytes: this.gpuBytes(),
       bricking: this.resources.bricked?.stats() ?? null,
+      renderer: this._renderer.stats?.() ?? {},
     };
   }
 

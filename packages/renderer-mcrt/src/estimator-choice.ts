@@ -1,0 +1,201 @@
+/**
+ * `estimator: 'auto'`: the estimator choices MCRT makes per scene, from quantities the scene
+ * already provides (the environment's radiance, the volume and the transfer function). Every
+ * choice is unbiased; they differ only in cost and variance. The thresholds come from the
+ * time-to-30/35 dB measurements in docs/benchmarks.md ("MCRT: estimator 'auto'").
+ *
+ *  - Environment: phase sampling alone for a constant environment (or a map whose texels are
+ *    all within ENV_PEAK_RATIO_FOR_MIS of its mean: a constant one), MIS for any other map.
+ *    Under a constant sky the phase function samples the light as well as uniform light
+ *    sampling would, and light sampling adds a shadow ray per event (fewer iterations to a
+ *    target and cheaper ones on the cloud, head and CT scenes); even a smooth gradient sky (the
+ *    VPT anchor's, peak 2.7× its mean) needs 2.6–3.6× the iterations without light sampling.
+ *    Directional lights are sampled by next-event estimation either way.
+ *  - Majorant grid: walked unless it barely lowers the bound (global majorant below
+ *    GRID_GAIN_FOR_WALK times the mean cell majorant: a near-homogeneous volume), where the
+ *    DDA's cell steps cost more than the null collisions they save.
+ *  - Shadow rays: residual ratio tracking (ratio tracking where the minorants are 0) wherever
+ *    shadow rays carry the light: single scattering, and an environment sampled by MIS (a
+ *    shadow ray at every event). There a continuous transmittance estimate instead of delta
+ *    tracking's 0/1 one saved 21–27% of the iterations to 30/35 dB (the cloud under a sun map,
+ *    the VPT anchor's single scattering) at a cost within the measurement's noise. Otherwise
+ *    (multiple scattering under a phase-sampled environment: shadow rays only toward
+ *    directional lights) residual tracking only where the cells' minorants are a substantial
+ *    fraction of their majorants (RESIDUAL_MINORANT_FRACTION; Novák et al. 2014: the control
+ *    then carries most of the optical depth in closed form), else delta tracking, which stops
+ *    at the first real collision: there ratio tracking saved 12–13% of the iterations and cost
+ *    about as much more per iteration (cloud, head, CT).
+ *
+ * The grid statistics are computed on the CPU from a strided subsample of the volume (at most
+ * about 2²¹ voxels, so a large volume costs milliseconds): they steer a choice between unbiased
+ * estimators, so approximate ranges suffice; the kernel's own grid is still the GPU-built one.
+ */
+import {
+  normalizationRange,
+  buildMajorantGrid,
+  computeCellValueRanges,
+  gridCells,
+  rasterizeTransferFunction,
+  TF_RESOLUTION,
+  type Environment,
+  type Scene,
+  type Volume,
+} from '@vpt/core';
+import type { EnvironmentSampling, TrackingMode } from './params.js';
+
+export const ENV_PEAK_RATIO_FOR_MIS = 1.05;
+export const GRID_GAIN_FOR_WALK = 1.5;
+export const RESIDUAL_MINORANT_FRACTION = 0.5;
+const MAX_SAMPLED_VOXELS = 1 << 21;
+
+/** What the choice rules read from the volume and TF (all extinctions in the box's units). */
+export interface GridStatistics {
+  /** Largest cell majorant: the bound of a walk without the grid. */
+  globalMajorant: number;
+  /** Smallest cell minorant: the control of residual tracking without the grid. */
+  globalMinorant: number;
+  /** Mean cell majorant (cells of equal volume): the bound a ray meets on average with the grid. */
+  meanMajorant: number;
+  /** Σ minorant / Σ majorant over the cells: how much of the bound residual tracking takes in closed form. */
+  minorantFraction: number;
+}
+
+const peakMemo = new WeakMap<Float32Array, number>();
+
+/** The environment's peak luminance over its mean over the sphere (1 for a constant sky, 0 for a black one). */
+export function environmentPeakRatio(env: Environment): number {
+  if (env.type !== 'latlong') return env.radiance.some((x) => x > 0) ? 1 : 0;
+  const { width: W, height: H, data } = env;
+  const memo = peakMemo.get(data);
+  if (memo !== undefined) return memo;
+  let peak = 0,
+    weighted = 0,
+    weights = 0;
+  for (let j = 0; j < H; j++) {
+    const sinTheta = Math.sin((Math.PI * (j + 0.5)) / H);
+    for (let i = 0; i < W; i++) {
+      const k = 3 * (j * W + i);
+      const lum = 0.2126 * data[k] + 0.7152 * data[k + 1] + 0.0722 * data[k + 2];
+      if (lum > peak) peak = lum;
+      weighted += lum * sinTheta;
+      weights += sinTheta;
+    }
+  }
+  const mean = weighted / Math.max(weights, 1e-30);
+  const ratio = mean > 0 ? peak / mean : 0;
+  peakMemo.set(data, ratio);
+  return ratio;
+}
+
+/** Grid statistics from every `stride`-th voxel per axis (stride ≥ 1 so that at most ~2²¹ voxels are read). */
+export function gridStatistics(scene: Scene, cellSize: number): GridStatistics {
+  const v = scene.volume;
+  const [nx, ny, nz] = v.dims;
+  const stride = Math.max(1, Math.ceil(Math.cbrt((nx * ny * nz) / MAX_SAMPLED_VOXELS)));
+  const sub: [number, number, number] = [Math.ceil(nx / stride), Math.ceil(ny / stride), Math.ceil(nz / stride)];
+  const [lo, hi] = normalizationRange(v);
+  const scale = 1 / (hi - lo);
+  const values = new Float32Array(sub[0] * sub[1] * sub[2]);
+  let o = 0;
+  for (let z = 0; z < sub[2]; z++)
+    for (let y = 0; y < sub[1]; y++)
+      for (let x = 0; x < sub[0]; x++) {
+        const value = (v.data[x * stride + nx * (y * stride + ny * z * stride)] - lo) * scale;
+        values[o++] = Number.isFinite(value) ? Math.min(1, Math.max(0, value)) : 0;
+      }
+  const cells = gridCells(sub, Math.max(1, Math.round(cellSize / stride)));
+  const grid = buildMajorantGrid(
+    computeCellValueRanges(values, sub, cells),
+    rasterizeTransferFunction(scene.transferFunction, TF_RESOLUTION),
+    scene.densityScale,
+  );
+  let sumMaj = 0,
+    sumMin = 0;
+  const n = grid.data.length / 4;
+  for (let c = 0; c < n; c++) {
+    sumMaj += grid.data[4 * c];
+    sumMin += grid.data[4 * c + 1];
+  }
+  return {
+    globalMajorant: grid.globalMajorant,
+    globalMinorant: grid.globalMinorant,
+    meanMajorant: sumMaj / n,
+    minorantFraction: sumMaj > 0 ? sumMin / sumMaj : 0,
+  };
+}
+
+/** The three choices, each with the reason it was made ('set' when a parameter fixed it). */
+export interface EstimatorChoice {
+  tracking: TrackingMode;
+  environmentSampling: EnvironmentSampling;
+  majorantGrid: boolean;
+  reasons: { tracking: string; environmentSampling: string; majorantGrid: string };
+}
+
+/** What the caller fixed (a value) or left to the rules (undefined), and the scattering order. */
+export interface EstimatorRequest {
+  tracking?: TrackingMode;
+  environmentSampling?: EnvironmentSampling;
+  majorantGrid?: boolean;
+  /** Single scattering (every path ends with a shadow ray). */
+  singleScattering?: boolean;
+}
+
+/**
+ * Apply the rules to what the request leaves open. `stats` is called only when a rule needs
+ * the grid statistics.
+ */
+export function chooseEstimator(scene: Scene, request: EstimatorRequest, stats: () => GridStatistics): EstimatorChoice {
+  const reasons = { tracking: 'set', environmentSampling: 'set', majorantGrid: 'set' };
+  let environmentSampling = request.environmentSampling;
+  if (environmentSampling === undefined) {
+    const ratio = environmentPeakRatio(scene.environment);
+    environmentSampling = ratio > ENV_PEAK_RATIO_FOR_MIS ? 'mis' : 'phase';
+    reasons.environmentSampling =
+      scene.environment.type === 'constant'
+        ? 'constant environment'
+        : `map peak/mean ${ratio.toFixed(1)} ${ratio > ENV_PEAK_RATIO_FOR_MIS ? '>' : '≤'} ${ENV_PEAK_RATIO_FOR_MIS}`;
+  }
+  let majorantGrid = request.majorantGrid;
+  let tracking = request.tracking;
+  if (majorantGrid === undefined || tracking === undefined) {
+    const s = stats();
+    if (majorantGrid === undefined) {
+      const gain = s.meanMajorant > 0 ? s.globalMajorant / s.meanMajorant : 1;
+      majorantGrid = gain >= GRID_GAIN_FOR_WALK;
+      reasons.majorantGrid = `global/mean cell majorant ${gain.toFixed(2)} ${majorantGrid ? '≥' : '<'} ${GRID_GAIN_FOR_WALK}`;
+    }
+    if (tracking === undefined && (request.singleScattering || environmentSampling !== 'phase')) {
+      tracking = 'residual';
+      reasons.tracking = request.singleScattering
+        ? 'single scattering: the shadow rays carry all the light'
+        : 'the environment is light-sampled: a shadow ray at every event';
+    } else if (tracking === undefined) {
+      // Without the grid the one control is the global minorant (0 in most real volumes, the majorant in a homogeneous one).
+      const fraction = majorantGrid
+        ? s.minorantFraction
+        : s.globalMajorant > 0
+          ? s.globalMinorant / s.globalMajorant
+          : 0;
+      tracking = fraction >= RESIDUAL_MINORANT_FRACTION ? 'residual' : 'delta';
+      reasons.tracking = `cell minorants ${(100 * fraction).toFixed(0)}% of majorants`;
+    }
+  }
+  return { tracking, environmentSampling, majorantGrid, reasons };
+}
+
+/** Memo of gridStatistics by volume object, TF, density and cell size (a camera move recomputes nothing). */
+export class GridStatisticsMemo {
+  private key = '';
+  private volume: Volume | null = null;
+  private value: GridStatistics | null = null;
+  get(scene: Scene, cellSize: number): GridStatistics {
+    const key = `${cellSize}|${scene.densityScale}|${JSON.stringify(scene.transferFunction)}`;
+    if (!this.value || this.volume !== scene.volume || this.key !== key) {
+      this.value = gridStatistics(scene, cellSize);
+      this.volume = scene.volume;
+      this.key = key;
+    }
+    return this.value;
+  }
+}

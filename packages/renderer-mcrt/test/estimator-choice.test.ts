@@ -1,0 +1,191 @@
+import { describe, expect, it } from 'vitest';
+import { testScene } from '../../../tests/helpers/test-scene.js';
+import {
+  createProceduralVolume,
+  createVolume,
+  rasterizeTransferFunction,
+  TF_RESOLUTION,
+  type Environment,
+  type Scene,
+} from '@vpt/core';
+import {
+  buildMajorantGrid,
+  chooseEstimator,
+  computeFeatures,
+  environmentPeakRatio,
+  ENV_PEAK_RATIO_FOR_MIS,
+  gridCells,
+  gridStatistics,
+  McrtRenderer,
+  volumeCellRanges,
+} from '../src/index.js';
+
+/** A lat-long sky of W × H texels: `base` everywhere, `sun` in one texel near the zenith. */
+function skyMap(base: number, sun: number, W = 32, H = 16): Environment {
+  const data = new Float32Array(W * H * 3).fill(base);
+  data.fill(sun, 3 * (W * 2 + 5), 3 * (W * 2 + 6));
+  return { type: 'latlong', width: W, height: H, data };
+}
+
+/** A sparse blob (most cells empty, minorants 0). */
+const sparse = (over: Partial<Scene> = {}) =>
+  testScene({ volume: createProceduralVolume('blob', 32), densityScale: 20, ...over });
+
+/** A homogeneous cube: every cell's bounds equal. */
+const homogeneous = (over: Partial<Scene> = {}) =>
+  testScene({
+    volume: createProceduralVolume('cube', 16),
+    transferFunction: { dimensions: '1d', points: [{ value: 0, color: [0.8, 0.8, 0.8], opacity: 1 }] },
+    densityScale: 5,
+    ...over,
+  });
+
+/** A dense medium that varies slowly (value 0.6–1 as a linear ramp along x) under a TF whose opacity never drops below 0.6. */
+function denseRamp(over: Partial<Scene> = {}): Scene {
+  const n = 32;
+  const data = new Float32Array(n * n * n);
+  for (let z = 0; z < n; z++)
+    for (let y = 0; y < n; y++) for (let x = 0; x < n; x++) data[x + n * (y + n * z)] = 0.6 + (0.4 * x) / (n - 1);
+  const volume = createVolume([n, n, n], 'float32', data);
+  volume.valueRange = [0, 1];
+  return testScene({
+    volume,
+    transferFunction: {
+      dimensions: '1d',
+      points: [
+        { value: 0, color: [0.9, 0.9, 0.9], opacity: 0 },
+        { value: 1, color: [0.9, 0.9, 0.9], opacity: 1 },
+      ],
+    },
+    densityScale: 30,
+    ...over,
+  });
+}
+
+const open = () => gridStatistics(sparse(), 8);
+
+describe("MCRT estimator: 'auto' rules", () => {
+  it('a constant environment is sampled by the phase function alone, with or without lights', () => {
+    for (const lights of [
+      [],
+      [
+        {
+          type: 'directional' as const,
+          direction: [0, 1, 0] as [number, number, number],
+          irradiance: [3, 3, 3] as [number, number, number],
+        },
+      ],
+    ]) {
+      const c = chooseEstimator(sparse({ lights }), {}, open);
+      expect(c.environmentSampling).toBe('phase');
+      expect(c.reasons.environmentSampling).toBe('constant environment');
+    }
+  });
+
+  it('a map gets MIS, even a smooth one; a map of one value is a constant sky', () => {
+    const sun = skyMap(0.2, 2000);
+    expect(environmentPeakRatio(sun)).toBeGreaterThan(ENV_PEAK_RATIO_FOR_MIS);
+    const withSun = chooseEstimator(sparse({ environment: sun }), {}, open);
+    expect([withSun.environmentSampling, withSun.tracking]).toEqual(['mis', 'residual']); // shadow rays at every event
+    // The anchor sky of the VPT comparison: 0.05 at the nadir to 1 at the zenith, peak/mean ≈ 2.7.
+    const H = 64,
+      W = 4;
+    const data = new Float32Array(W * H * 3);
+    for (let j = 0; j < H; j++)
+      data.fill(0.05 + 0.95 * ((1 + Math.cos((Math.PI * (j + 0.5)) / H)) / 2) ** 2, 3 * W * j, 3 * W * (j + 1));
+    const smooth: Environment = { type: 'latlong', width: W, height: H, data };
+    expect(environmentPeakRatio(smooth)).toBeCloseTo(1 / (0.05 + 0.95 / 3), 1);
+    expect(chooseEstimator(sparse({ environment: smooth }), {}, open).environmentSampling).toBe('mis');
+    const flat = skyMap(0.7, 0.7);
+    expect(environmentPeakRatio(flat)).toBeCloseTo(1, 6);
+    expect(chooseEstimator(sparse({ environment: flat }), {}, open).environmentSampling).toBe('phase');
+    expect(environmentPeakRatio({ type: 'constant', radiance: [0.3, 0.3, 0.3] })).toBe(1);
+  });
+
+  it('a sparse volume walks the grid with delta tracking (its minorants are 0)', () => {
+    const scene = sparse();
+    const s = gridStatistics(scene, 8);
+    expect(s.minorantFraction).toBeLessThan(0.05);
+    expect(s.globalMajorant / s.meanMajorant).toBeGreaterThan(2);
+    const c = chooseEstimator(scene, {}, () => s);
+    expect([c.tracking, c.majorantGrid]).toEqual(['delta', true]);
+  });
+
+  it('single scattering takes residual (ratio) tracking for its shadow rays, whatever the minorants', () => {
+    const c = chooseEstimator(sparse(), { singleScattering: true }, open);
+    expect(c.tracking).toBe('residual');
+    expect(c.reasons.tracking).toMatch(/single scattering/);
+    expect(new McrtRenderer({ scattering: 'single' }).features(sparse()).TRACKING).toBe(2);
+  });
+
+  it('a homogeneous volume takes the global majorant and residual tracking (the control is the whole extinction)', () => {
+    const c = chooseEstimator(homogeneous(), {}, () => gridStatistics(homogeneous(), 8));
+    expect([c.tracking, c.majorantGrid]).toEqual(['residual', false]);
+  });
+
+  it('a dense, slowly varying volume keeps the grid and takes residual tracking', () => {
+    const scene = denseRamp();
+    const s = gridStatistics(scene, 8);
+    expect(s.minorantFraction).toBeGreaterThan(0.7);
+    const c = chooseEstimator(scene, {}, () => s);
+    expect(c.tracking).toBe('residual');
+  });
+
+  it('what a parameter sets is kept, and the statistics are not computed when nothing is left to choose', () => {
+    let computed = 0;
+    const c = chooseEstimator(
+      sparse(),
+      { tracking: 'ratio', environmentSampling: 'light', majorantGrid: false },
+      () => (computed++, open()),
+    );
+    expect([c.tracking, c.environmentSampling, c.majorantGrid, computed]).toEqual(['ratio', 'light', false, 0]);
+    expect(c.reasons).toEqual({ tracking: 'set', environmentSampling: 'set', majorantGrid: 'set' });
+  });
+
+  it('the subsampled statistics of a small volume are those of the full CPU grid', () => {
+    const scene = sparse();
+    const full = buildMajorantGrid(
+      volumeCellRanges(scene.volume, 8),
+      rasterizeTransferFunction(scene.transferFunction, TF_RESOLUTION),
+      scene.densityScale,
+    );
+    const s = gridStatistics(scene, 8);
+    expect(gridCells(scene.volume.dims, 8)).toEqual(full.cells);
+    expect(s.globalMajorant).toBe(full.globalMajorant);
+    let sum = 0;
+    for (let c = 0; c < full.data.length; c += 4) sum += full.data[c];
+    expect(s.meanMajorant).toBeCloseTo(sum / (full.data.length / 4), 5);
+  });
+});
+
+describe('McrtRenderer with the auto estimator', () => {
+  it('compiles the chosen variant and reports it (and why) in stats()', () => {
+    const r = new McrtRenderer();
+    const f = r.features(sparse());
+    expect([f.TRACKING, f.ENV_SAMPLING, f.MAJORANT_GRID]).toEqual([0, 0, true]);
+    const s = r.stats();
+    expect(s).toMatchObject({
+      estimator: 'auto',
+      tracking: 'delta',
+      environmentSampling: 'phase',
+      majorantGrid: 'grid',
+    });
+    expect(s.trackingReason).toMatch(/minorants \d+% of majorants/);
+  });
+
+  it("'fixed' keeps the fixed defaults (residual, MIS, grid); 'auto' as a value equals unset", () => {
+    const fixed = new McrtRenderer({ estimator: 'fixed' });
+    const f = fixed.features(sparse());
+    expect([f.TRACKING, f.ENV_SAMPLING, f.MAJORANT_GRID]).toEqual([2, 2, true]);
+    expect(fixed.stats().trackingReason).toBeUndefined();
+    const auto = new McrtRenderer({ tracking: 'auto', environmentSampling: 'auto' });
+    expect(computeFeatures(sparse(), auto.paramsFor(sparse()))).toEqual(new McrtRenderer().features(sparse()));
+  });
+
+  it('an override of one choice leaves the others to the rules', () => {
+    const r = new McrtRenderer({ tracking: 'ratio' });
+    const f = r.features(sparse());
+    expect([f.TRACKING, f.ENV_SAMPLING]).toEqual([1, 0]);
+    expect(r.stats().trackingReason).toBe('set');
+  });
+});

@@ -1,0 +1,158 @@
+import { beforeAll, describe, expect, it } from 'vitest';
+import { installMcrtHelpers } from './helpers/mcrt-in-page.js';
+import { zSummary } from './helpers/mcrt-stats.js';
+import { usePage } from './helpers/session.js';
+
+/**
+ * `estimator: 'auto'` (the default): on one scene of each class the rules tell apart, the
+ * choice reported in RenderContext.stats.renderer is the one the rule gives (a broken rule
+ * fails here), and the image agrees in expectation with fixed estimators that differ from it
+ * in every choice: z = Δmean / √(se₁² + se₂²) per pixel and channel, se measured from the
+ * frames. Pass as in mcrt-unbiased.test.ts: per channel |Σz|/√n < 4 and max |z| < 5.5.
+ */
+const page = usePage();
+beforeAll(async () => {
+  await installMcrtHelpers(page().page);
+});
+
+const W = 16,
+  H = 16,
+  N = 64;
+
+type SceneClass = 'constant sky and sun' | 'map with a small sun' | 'homogeneous';
+type Run = { mean: number[]; se: number[]; nonFinite: boolean; renderer: Record<string, string> };
+
+function compareRuns(a: Run, b: Run) {
+  const z: number[] = [];
+  for (let i = 0; i < a.mean.length; i += 4) {
+    if (a.se[i] === 0 && b.se[i] === 0 && a.mean[i] === b.mean[i]) continue; // environment only: exact in both
+    for (let c = 0; c < 3; c++) z.push((a.mean[i + c] - b.mean[i + c]) / Math.hypot(a.se[i + c], b.se[i + c]));
+  }
+  return zSummary(z, 3);
+}
+
+async function render(params: Record<string, unknown>, sceneClass: SceneClass, seed: number): Promise<Run> {
+  return page().page.evaluate(
+    async (W, H, N, params, sceneClass, seed) => {
+      const mt = (window as any).mt;
+      const { core } = (window as any).vpt;
+      const blobTf = {
+        dimensions: '1d',
+        points: [
+          { value: 0.05, color: [0.9, 0.9, 0.9], opacity: 0 },
+          { value: 0.4, color: [0.95, 0.7, 0.4], opacity: 0.7 },
+          { value: 1, color: [0.99, 0.99, 0.99], opacity: 1 },
+        ],
+      };
+      // 8 × 4 texels: a dim sky and one texel 40× brighter (the sun; peak/mean ≈ 17 > 8). Brighter, phase sampling alone would need far more than N samples for its mean to settle.
+      const sunMap = {
+        type: 'latlong',
+        width: 8,
+        height: 4,
+        data: new Float32Array(8 * 4 * 3).map((_, i) => (Math.floor(i / 3) === 10 ? 20 : 0.5)),
+      };
+      const scene =
+        sceneClass === 'homogeneous'
+          ? {
+              volume: core.createProceduralVolume('cube', 8),
+              transferFunction: { dimensions: '1d', points: [{ value: 0, color: [0.8, 0.6, 0.4], opacity: 1 }] },
+              camera: { position: [0.4, 0.5, 2], target: [0, 0, 0], up: [0, 1, 0], fovy: 0.7 },
+              lights: [{ type: 'directional', direction: [-0.4, 1, 0.3], irradiance: [2, 2, 2] }],
+              environment: { type: 'constant', radiance: [0.4, 0.5, 0.7] },
+              densityScale: 3,
+              seed,
+            }
+          : {
+              volume: core.createProceduralVolume('blob', 20),
+              transferFunction: blobTf,
+              camera: { position: [0.3, 0.9, 1.8], target: [0, 0, 0], up: [0, 1, 0], fovy: 0.6 },
+              lights:
+                sceneClass === 'constant sky and sun'
+                  ? [{ type: 'directional', direction: [-0.4, 1, 0.3], irradiance: [2, 1.8, 1.5] }]
+                  : [],
+              environment:
+                sceneClass === 'constant sky and sun' ? { type: 'constant', radiance: [0.4, 0.5, 0.7] } : sunMap,
+              densityScale: 25,
+              seed,
+            };
+      return mt.run({
+        backend: 'webgl2',
+        width: W,
+        height: H,
+        iterations: N,
+        params: { anisotropy: 0.3, majorantCellSize: 4, ...params },
+        scene,
+      });
+    },
+    W,
+    H,
+    N,
+    params,
+    sceneClass,
+    seed,
+  );
+}
+
+/** What the rules must choose per class (estimator-choice.ts), and fixed estimators unlike it in every choice. */
+const CASES: {
+  sceneClass: SceneClass;
+  /** Parameters besides the estimator (the scattering order). */
+  base: Record<string, unknown>;
+  chosen: Record<string, string>;
+  others: Record<string, unknown>[];
+}[] = [
+  {
+    sceneClass: 'constant sky and sun',
+    base: { scattering: 'multiple' },
+    chosen: { tracking: 'delta', environmentSampling: 'phase', majorantGrid: 'grid' },
+    others: [
+      { estimator: 'fixed' }, // residual, MIS, grid
+      { tracking: 'ratio', environmentSampling: 'light', majorantGrid: false },
+    ],
+  },
+  {
+    sceneClass: 'map with a small sun',
+    base: { scattering: 'multiple' },
+    chosen: { tracking: 'residual', environmentSampling: 'mis', majorantGrid: 'grid' },
+    others: [
+      // Not phase sampling alone: with so few samples its per-pixel means are skewed by the rare
+      // sun hits and the z-test would flag the skew (mcrt-unbiased.test.ts covers phase vs MIS).
+      { tracking: 'delta', environmentSampling: 'light', majorantGrid: false },
+      { tracking: 'ratio', environmentSampling: 'mis', misHeuristic: 'balance' },
+    ],
+  },
+  {
+    sceneClass: 'constant sky and sun',
+    base: { scattering: 'single' },
+    chosen: { tracking: 'residual', environmentSampling: 'phase', majorantGrid: 'grid' },
+    others: [{ tracking: 'delta', environmentSampling: 'mis', majorantGrid: false }],
+  },
+  {
+    sceneClass: 'homogeneous',
+    base: { scattering: 'multiple' },
+    chosen: { tracking: 'residual', environmentSampling: 'phase', majorantGrid: 'global' },
+    others: [{ tracking: 'delta', environmentSampling: 'mis', majorantGrid: true }],
+  },
+];
+
+describe("MCRT estimator 'auto' (webgl2)", () => {
+  it.each(CASES)(
+    '$sceneClass $base: the rule’s choice, unbiased against fixed estimators',
+    async ({ sceneClass, base, chosen, others }) => {
+      const auto = await render({ ...base }, sceneClass, 1);
+      expect(auto.nonFinite).toBe(false);
+      expect(auto.renderer).toMatchObject({ estimator: 'auto', ...chosen });
+      expect(Math.max(...auto.mean)).toBeGreaterThan(0.1); // something to compare
+      const lines: string[] = [];
+      let seed = 2; // independent runs: a shared seed would correlate them and hide a bias
+      for (const params of others) {
+        const fixed = await render({ ...base, ...params }, sceneClass, seed++);
+        expect(fixed.nonFinite).toBe(false);
+        const s = compareRuns(auto, fixed);
+        lines.push(`${JSON.stringify(params)} (${JSON.stringify(fixed.renderer)}): ${JSON.stringify(s)}`);
+        expect(Math.abs(s.meanScaled), lines.join('\n')).toBeLessThan(4);
+        expect(s.maxAbs, lines.join('\n')).toBeLessThan(5.5);
+      }
+    },
+  );
+});
