@@ -12,6 +12,11 @@ void main() {
   vec2 t = intersectBox(u.cameraPosition, dir, u.boxMin, u.boxMax);
   vec3 color = vec3(0.0);
   float transmittance = 1.0;
+#if VPT_GUIDES
+  // Denoiser guides at the mean termination depth: segments weighted by T·alpha, their share of the pixel.
+  float guideWeight = 0.0;
+  float guideDepth = 0.0;
+#endif
   if (t.x < t.y) {
     float offset = rngNext(rng);
     float len = t.y - t.x;
@@ -22,10 +27,24 @@ void main() {
       vec4 tf = transferAt(u.cameraPosition + dir * s);
       float alpha = 1.0 - exp(-(u.densityScale * tf.a) * seg);
       color += (transmittance * alpha) * tf.rgb;
+#if VPT_GUIDES
+      guideWeight += transmittance * alpha;
+      guideDepth += (transmittance * alpha) * s;
+#endif
       transmittance *= 1.0 - alpha;
       if (transmittance < u.cutoff) { transmittance = 0.0; break; }
     }
   }
   vpt_out0 = vec4(color + transmittance * u.background.rgb, 1.0 - transmittance);
+#if VPT_GUIDES
+  vpt_out1 = vec4(0.0);
+  vpt_out2 = vec4(0.0);
+  if (guideWeight > 0.0) {
+    float tg = guideDepth / guideWeight;
+    vec3 pg = u.cameraPosition + dir * tg;
+    vpt_out1 = guideNormalDepth(pg, tg);
+    vpt_out2 = guideAlbedo(transferAt(pg).rgb);
+  }
+#endif
 }
 `;

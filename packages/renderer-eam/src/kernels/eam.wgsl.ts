@@ -11,6 +11,11 @@ export const generate = /* wgsl */ `
   let t = intersectBox(u.cameraPosition, dir, u.boxMin, u.boxMax);
   var color = vec3f(0.0);
   var transmittance = 1.0;
+#if VPT_GUIDES
+  // Denoiser guides at the mean termination depth: segments weighted by T·alpha, their share of the pixel.
+  var guideWeight = 0.0;
+  var guideDepth = 0.0;
+#endif
   if (t.x < t.y) {
     let offset = rngNext(&rng);
     let len = t.y - t.x;
@@ -21,12 +26,24 @@ export const generate = /* wgsl */ `
       let tf = transferAt(u.cameraPosition + dir * s);
       let alpha = 1.0 - exp(-(u.densityScale * tf.a) * seg);
       color += (transmittance * alpha) * tf.rgb;
+#if VPT_GUIDES
+      guideWeight += transmittance * alpha;
+      guideDepth += (transmittance * alpha) * s;
+#endif
       transmittance *= 1.0 - alpha;
       if (transmittance < u.cutoff) { transmittance = 0.0; break; }
     }
   }
   var o: VptOut;
   o.out0 = vec4f(color + transmittance * u.background.rgb, 1.0 - transmittance);
+#if VPT_GUIDES
+  if (guideWeight > 0.0) {
+    let tg = guideDepth / guideWeight;
+    let pg = u.cameraPosition + dir * tg;
+    o.out1 = guideNormalDepth(pg, tg);
+    o.out2 = guideAlbedo(transferAt(pg).rgb);
+  }
+#endif
   return o;
 }
 `;
