@@ -198,6 +198,33 @@ function rmse(a: number[], b: number[]): number {
   return Math.sqrt(s / n);
 }
 
+describe('vpt-render and the HDR image', () => {
+  it('the HDR image of a scene whose chain starts with denoise is the denoised one, and says so', async () => {
+    const desc = {
+      renderer: 'mcrt' as const,
+      width: 16,
+      height: 16,
+      iterations: 2,
+      backend: 'webgl2' as const,
+      volume: { procedural: 'blob' as const, size: 16 },
+      lights: [
+        {
+          type: 'directional' as const,
+          direction: [1, 1, 0] as [number, number, number],
+          irradiance: [2, 2, 2] as [number, number, number],
+        },
+      ],
+    };
+    const chain = [{ type: 'tonemap', operator: 'aces' }, { type: 'srgb' }];
+    const plain = await page().render({ ...desc, post: chain });
+    const denoised = await page().render({ ...desc, post: [{ type: 'denoise' }, ...chain] });
+    expect(plain.hdrPostSteps).toEqual([]);
+    expect(denoised.hdrPostSteps).toEqual(['denoise']);
+    expect(Array.from(denoised.hdr).every(Number.isFinite)).toBe(true);
+    expect(rmse(Array.from(denoised.hdr), Array.from(plain.hdr))).toBeGreaterThan(0);
+  });
+});
+
 describe('denoising rendered images', () => {
   it('a chain with the denoiser leaves the HDR estimate bit for bit as it is without (MCRT, EAM, ISO)', async () => {
     const r = await page().page.evaluate(async () => {
