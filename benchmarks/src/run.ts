@@ -17,6 +17,7 @@ import { frameTime } from './suites/frame-time.js';
 import { scaling } from './suites/scaling.js';
 import { specialization } from './suites/specialization.js';
 import { compact } from './suites/compact.js';
+import { denoise } from './suites/denoise.js';
 import type { SuiteContext } from './suites/types.js';
 
 function arg(name: string, fallback: string): string {
@@ -106,6 +107,8 @@ try {
   if (suites.includes('specialization') && available.includes('mcrt'))
     results.specialization = await specialization(ctx);
   if (suites.includes('compact')) results.compact = await compact(ctx);
+  // Not in the default list: `--suites denoise` (issue 14's denoiser figures).
+  if (suites.includes('denoise') && available.includes('mcrt')) results.denoise = await denoise(ctx);
 
   const dir = path.join(
     fileURLToPath(new URL('..', import.meta.url)),
