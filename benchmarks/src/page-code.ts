@@ -345,7 +345,9 @@ export function installBenchPage(): void {
     /**
      * The bias the denoiser leaves at convergence: the reference's own samples (same seed and
      * iterations as `reference`) through the denoiser, against the plain reference: PSNR (HDR,
-     * peak = the reference's max) and the relative RMSE.
+     * peak = the reference's max) and the relative RMSE. That difference is the bias plus the
+     * noise the filter removed, so it bounds the bias from above; `noiseRmse` (relative, from the
+     * half accumulations) is the plain image's own noise, for comparison.
      */
     async denoiseBias(refKey: string, config: PageConfig, sceneSpec: SceneSpec, width: number, height: number) {
       const ref = refs.get(refKey)!;
@@ -368,9 +370,15 @@ export function installBenchPage(): void {
           sum += plain[i + c];
           n++;
         }
+      const est = await ctx.estimateError();
       ctx.dispose();
       const rmse = Math.sqrt(se / n);
-      return { iterations, psnr: 20 * Math.log10(ref.peak / Math.max(rmse, 1e-12)), relativeRmse: rmse / (sum / n) };
+      return {
+        iterations,
+        psnr: 20 * Math.log10(ref.peak / Math.max(rmse, 1e-12)),
+        relativeRmse: rmse / (sum / n),
+        noiseRmse: est ? est.relativeRmse : null,
+      };
     },
 
     /** Error against wall-clock time and iterations, at doubling iteration checkpoints. */

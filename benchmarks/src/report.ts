@@ -150,10 +150,10 @@ export function htmlReport(r: Results): string {
     const rows = r.denoise
       .map(
         (x) =>
-          `<tr><td>${esc(x.scene)}</td><td>${x.backend}</td><td>${x.size}²</td>${t(x.timeToDb.plain)}${t(x.timeToDb.denoised)}<td>${x.bias.psnr.toFixed(1)} dB (${(100 * x.bias.relativeRmse).toFixed(2)} %) at ${x.bias.iterations} it</td><td>${x.loadAverage.before.map((v) => v.toFixed(2)).join(' ')}</td></tr>`,
+          `<tr><td>${esc(x.scene)}</td><td>${x.backend}</td><td>${x.size}²</td>${t(x.timeToDb.plain)}${t(x.timeToDb.denoised)}<td>${x.bias.psnr.toFixed(1)} dB (${(100 * x.bias.relativeRmse).toFixed(2)} %; noise ${x.bias.noiseRmse === null ? '—' : (100 * x.bias.noiseRmse).toFixed(2) + ' %'}) at ${x.bias.iterations} it</td><td>${x.loadAverage.before.map((v) => v.toFixed(2)).join(' ')}</td></tr>`,
       )
       .join('');
-    sections.push(`<h2>Denoiser</h2><p>MCRT (multiple scattering) with and without the denoise step, measured A/B/B/A; the clock counts the iterations and rendering the image at each checkpoint. Bias: the reference's own samples denoised against the plain reference.</p>
+    sections.push(`<h2>Denoiser</h2><p>MCRT (multiple scattering) with and without the denoise step, measured A/B/B/A; the clock counts the iterations and rendering the image at each checkpoint. Bias: the reference's own samples denoised against the plain reference (an upper bound: it includes the noise removed, given beside it as the plain image's own relative noise).</p>
 <table><tr><th>scene</th><th>backend</th><th>size</th><th>plain 25 dB</th><th>30 dB</th><th>35 dB</th><th>denoised 25 dB</th><th>30 dB</th><th>35 dB</th><th>bias at convergence (PSNR, rel. RMSE)</th><th>load avg</th></tr>${rows}</table>`);
   }
 

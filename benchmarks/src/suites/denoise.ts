@@ -14,8 +14,12 @@ export interface DenoiseRow {
   plain: CurvePoint[];
   denoised: CurvePoint[];
   timeToDb: { plain: Record<string, number | null>; denoised: Record<string, number | null> };
-  /** The reference's samples through the denoiser against the plain reference: what the filter leaves at convergence. */
-  bias: { iterations: number; psnr: number; relativeRmse: number };
+  /**
+   * The reference's samples through the denoiser against the plain reference: an upper bound on
+   * what the filter leaves at convergence (it includes the noise removed; noiseRmse is the plain
+   * image's own relative noise).
+   */
+  bias: { iterations: number; psnr: number; relativeRmse: number; noiseRmse: number | null };
   /** os.loadavg() before and after this row (1, 5, 15 min). */
   loadAverage: { before: number[]; after: number[] };
 }

@@ -11,10 +11,12 @@ float momentVariance(ivec2 q) {
   return max(m.y - m.x * m.x, 0.0) / max(m.z - 1.0, 1.0);
 }
 
-// The depth guide: mean depth over the samples that hit (0 where none did).
+// The depth guide: mean depth over the samples that hit (0 where none did), from the two guide texels.
+float depthOf(vec4 normalDepth, vec4 albedoHit) {
+  return albedoHit.a > 0.0 ? normalDepth.w / albedoHit.a : 0.0;
+}
 float guideDepth(ivec2 q) {
-  float hit = texelFetch(guideAlbedo, q, 0).a;
-  return hit > 0.0 ? texelFetch(guideNormalDepth, q, 0).w / hit : 0.0;
+  return depthOf(texelFetch(guideNormalDepth, q, 0), texelFetch(guideAlbedo, q, 0));
 }
 
 void main() {
@@ -46,7 +48,7 @@ void main() {
   vec4 ndp = texelFetch(guideNormalDepth, p, 0);
   vec4 ap = texelFetch(guideAlbedo, p, 0);
   float np = length(ndp.xyz);
-  float zp = guideDepth(p);
+  float zp = depthOf(ndp, ap);
   // Screen-space depth gradient (central differences) for w_z's |∇z·(p − q)|.
   vec2 dz = vec2(
     guideDepth(clamp(p + ivec2(1, 0), ivec2(0), size - 1)) - guideDepth(clamp(p - ivec2(1, 0), ivec2(0), size - 1)),
@@ -60,16 +62,17 @@ void main() {
       float h = b3Tap(abs(kx)) * b3Tap(abs(ky));
       vec4 cq = texelFetch(inputImage, q, 0);
       float wl = exp(-abs(denoiseLuminance(cq.rgb) - lp) / sigmaL);
-      float zq = guideDepth(q);
-      float wz = exp(-abs(zq - zp) / (u.depthSigma * abs(dot(dz, vec2(q - p))) + u.depthEpsilon));
       vec4 ndq = texelFetch(guideNormalDepth, q, 0);
+      vec4 aq = texelFetch(guideAlbedo, q, 0);
+      float zq = depthOf(ndq, aq);
+      float wz = exp(-abs(zq - zp) / (u.depthSigma * abs(dot(dz, vec2(q - p))) + u.depthEpsilon));
       float nq = length(ndq.xyz);
       float wn = 1.0;
       if (np > 1e-3 && nq > 1e-3) {
         float d = dot(ndp.xyz, ndq.xyz) / (np * nq);
         wn = d > 0.0 ? pow(min(d, 1.0), u.normalSigma) : 0.0;
       }
-      vec4 da = texelFetch(guideAlbedo, q, 0) - ap;
+      vec4 da = aq - ap;
       float wa = exp(-dot(da, da) / (u.albedoSigma * u.albedoSigma));
       float w = h * wl * wz * wn * wa;
       sum += w * cq;

@@ -11,11 +11,13 @@ fn momentVariance(q: vec2i) -> f32 {
   return max(m.y - m.x * m.x, 0.0) / max(m.z - 1.0, 1.0);
 }
 
-// The depth guide: mean depth over the samples that hit (0 where none did).
-fn guideDepth(q: vec2i) -> f32 {
-  let hit = textureLoad(guideAlbedo, q, 0).a;
-  if (hit > 0.0) { return textureLoad(guideNormalDepth, q, 0).w / hit; }
+// The depth guide: mean depth over the samples that hit (0 where none did), from the two guide texels.
+fn depthOf(normalDepth: vec4f, albedoHit: vec4f) -> f32 {
+  if (albedoHit.a > 0.0) { return normalDepth.w / albedoHit.a; }
   return 0.0;
+}
+fn guideDepth(q: vec2i) -> f32 {
+  return depthOf(textureLoad(guideNormalDepth, q, 0), textureLoad(guideAlbedo, q, 0));
 }
 
 @fragment fn fs_main(@builtin(position) fragCoord: vec4f) -> VptOut {
@@ -48,7 +50,7 @@ fn guideDepth(q: vec2i) -> f32 {
   let ndp = textureLoad(guideNormalDepth, p, 0);
   let ap = textureLoad(guideAlbedo, p, 0);
   let np = length(ndp.xyz);
-  let zp = guideDepth(p);
+  let zp = depthOf(ndp, ap);
   // Screen-space depth gradient (central differences) for w_z's |∇z·(p − q)|.
   let dz = vec2f(
     guideDepth(clamp(p + vec2i(1, 0), vec2i(0), size - 1)) - guideDepth(clamp(p - vec2i(1, 0), vec2i(0), size - 1)),
@@ -62,16 +64,17 @@ fn guideDepth(q: vec2i) -> f32 {
       let h = b3Tap(abs(kx)) * b3Tap(abs(ky));
       let cq = textureLoad(inputImage, q, 0);
       let wl = exp(-abs(denoiseLuminance(cq.rgb) - lp) / sigmaL);
-      let zq = guideDepth(q);
-      let wz = exp(-abs(zq - zp) / (u.depthSigma * abs(dot(dz, vec2f(q - p))) + u.depthEpsilon));
       let ndq = textureLoad(guideNormalDepth, q, 0);
+      let aq = textureLoad(guideAlbedo, q, 0);
+      let zq = depthOf(ndq, aq);
+      let wz = exp(-abs(zq - zp) / (u.depthSigma * abs(dot(dz, vec2f(q - p))) + u.depthEpsilon));
       let nq = length(ndq.xyz);
       var wn = 1.0;
       if (np > 1e-3 && nq > 1e-3) {
         let d = dot(ndp.xyz, ndq.xyz) / (np * nq);
         if (d > 0.0) { wn = pow(min(d, 1.0), u.normalSigma); } else { wn = 0.0; }
       }
-      let da = textureLoad(guideAlbedo, q, 0) - ap;
+      let da = aq - ap;
       let wa = exp(-dot(da, da) / (u.albedoSigma * u.albedoSigma));
       let w = h * wl * wz * wn * wa;
       sum += w * cq;
