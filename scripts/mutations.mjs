@@ -203,6 +203,27 @@ export const MUTATIONS = [
     replace: 'const inv = 1 / Math.max(Math.abs(d[a]), 1e-20);',
     tests: ['packages/core/test/cpu-reference.test.ts'],
   },
+  // Denoiser
+  {
+    name: 'denoise-no-luminance-weight-glsl',
+    why: 'the à-trous weight loses its luminance edge-stopping term (a plain guided blur)',
+    file: 'packages/post/src/denoise.glsl.ts',
+    find: 'float w = h * wl * wz * wn * wa;',
+    replace: 'float w = h * wz * wn * wa;',
+    build: '@vpt/post',
+    tests: ['tests/denoise.test.ts'],
+    only: 'CPU twin',
+  },
+  {
+    name: 'guide-moments-count-stuck-glsl',
+    why: 'the guide integrate pass records n = 1 forever, so the denoiser never sees the variance of the mean fall',
+    file: 'packages/core/src/shaders/guides.glsl.ts',
+    find: 'vpt_out2 = vec4(a2.xy + (f2.xy - a2.xy) * w, f2.z, 0.0);',
+    replace: 'vpt_out2 = vec4(a2.xy + (f2.xy - a2.xy) * w, 1.0, 0.0);',
+    build: '@vpt/core',
+    tests: ['tests/denoise.test.ts'],
+    only: 'converged EAM',
+  },
 ];
 
 const args = process.argv.slice(2);

@@ -5,7 +5,7 @@ import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 
 // The benchmark suites are not part of the test run; this only keeps their harness honest:
-// all five suites at the smoke preset's tiny sizes. It checks what the runner records
+// all five suites at the smoke preset's tiny sizes, and the denoise suite. It checks what the runner records
 // (shapes, finiteness, ordering), never how fast anything is: timings belong in benchmarks/.
 describe('smoke: benchmark harness (smoke preset)', () => {
   it('records monotone error and convergence curves, frame times, scaling rows and the specialization comparison, and a self-contained report', () => {
@@ -88,6 +88,40 @@ describe('smoke: benchmark harness (smoke preset)', () => {
     expect(html).toContain('Scaling: cost per path');
     expect(html).toContain('uPlot');
     expect(html).not.toMatch(/<script[^>]+src=/); // self-contained
+  }, 480_000);
+
+  it('records the denoise suite: both curves on the same checkpoints, finite errors, the bias and the load average', () => {
+    const root = fileURLToPath(new URL('..', import.meta.url));
+    const resultsDir = path.join(root, 'benchmarks', 'results');
+    const before = new Set(safeList(resultsDir));
+    execFileSync(
+      'node',
+      [path.join(root, 'benchmarks/dist/run.js'), '--preset', 'smoke', '--suites', 'denoise', '--backends', 'webgl2'],
+      { cwd: root, stdio: 'pipe', timeout: 420_000 },
+    );
+    const fresh = safeList(resultsDir).filter((d) => !before.has(d));
+    expect(fresh.length).toBe(1);
+    const dir = path.join(resultsDir, fresh[0]);
+    const results = JSON.parse(readFileSync(path.join(dir, 'results.json'), 'utf8'));
+    type Point = { iterations: number; ms: number; psnr: number; nonFinite: number };
+    const rows = results.denoise as {
+      scene: string;
+      plain: Point[];
+      denoised: Point[];
+      bias: { psnr: number; relativeRmse: number };
+      loadAverage: { before: number[] };
+    }[];
+    expect(rows.map((r) => r.scene)).toEqual(expect.arrayContaining(['cloud', 'head']));
+    for (const r of rows) {
+      expect(r.denoised.map((p) => p.iterations)).toEqual(r.plain.map((p) => p.iterations));
+      for (const p of [...r.plain, ...r.denoised]) {
+        expect(p.nonFinite).toBe(0);
+        expect(Number.isFinite(p.psnr) && p.ms > 0).toBe(true);
+      }
+      expect(Number.isFinite(r.bias.psnr) && r.bias.relativeRmse >= 0).toBe(true);
+      expect(r.loadAverage.before).toHaveLength(3);
+    }
+    expect(readFileSync(path.join(dir, 'report.html'), 'utf8')).toContain('<h2>Denoiser</h2>');
   }, 480_000);
 });
 

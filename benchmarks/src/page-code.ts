@@ -235,13 +235,15 @@ export function installBenchPage(): void {
     return vpt.createRenderer(config.renderer, config.params || {});
   }
 
-  async function context(config: PageConfig, width: number, height: number): Promise<RenderContext> {
+  async function context(config: PageConfig, width: number, height: number, denoise = false): Promise<RenderContext> {
+    const chain = [{ type: 'tonemap', operator: 'aces' }, { type: 'srgb' }];
     return vpt.core.RenderContext.create({
       backend: config.backend,
       width,
       height,
       renderer: renderer(config),
-      post: vpt.post.postChainFromJSON([{ type: 'tonemap', operator: 'aces' }, { type: 'srgb' }]),
+      // With `denoise`, the denoise step first (the denoise suite reads the HDR image after it).
+      post: vpt.post.postChainFromJSON(denoise ? [{ type: 'denoise' }, ...chain] : chain),
       sampling: config.sampling,
       maxGpuBytes: config.maxGpuBytes,
     });
@@ -451,6 +453,82 @@ export function installBenchPage(): void {
         }
       for (const ctx of ctxs) ctx.dispose();
       return samples;
+    },
+
+    /**
+     * Error against wall-clock time with or without the denoise step (denoise suite): like
+     * errorCurve, but the clock also counts rendering the image (render pass and post chain,
+     * the denoiser included), and the error is that of the HDR image after the denoiser.
+     */
+    async denoiseCurve(
+      config: PageConfig,
+      sceneSpec: SceneSpec,
+      width: number,
+      height: number,
+      refKey: string,
+      checkpoints: number[],
+      denoise: boolean,
+    ) {
+      const ref = refs.get(refKey)!;
+      const ctx = await context(config, width, height, denoise);
+      ctx.setScene(await scene(sceneSpec));
+      await ctx.renderIterations(1); // compile every kernel variant outside the clock
+      ctx.reset();
+      const points: Record<string, number | null>[] = [];
+      let clock = 0,
+        done = 0;
+      for (const next of checkpoints) {
+        const t0 = performance.now();
+        ctx.iterate(next - done);
+        ctx.renderImage();
+        await ctx.backend.finish();
+        clock += performance.now() - t0;
+        done = next;
+        const hdr = await ctx.readHDR({ afterPost: denoise }),
+          ldr = await ctx.readLDR();
+        points.push({ iterations: done, ms: clock, ...errors(hdr, ldr, ref) });
+      }
+      ctx.dispose();
+      return points;
+    },
+
+    /**
+     * The bias the denoiser leaves at convergence: the reference's own samples (same seed and
+     * iterations as `reference`) through the denoiser, against the plain reference: PSNR (HDR,
+     * peak = the reference's max) and the relative RMSE. That difference is the bias plus the
+     * noise the filter removed, so it bounds the bias from above; `noiseRmse` (relative, from the
+     * half accumulations) is the plain image's own noise, for comparison.
+     */
+    async denoiseBias(refKey: string, config: PageConfig, sceneSpec: SceneSpec, width: number, height: number) {
+      const ref = refs.get(refKey)!;
+      const iterations = ref.info.iterations as number;
+      const ctx = await context(config, width, height, true);
+      ctx.setScene(await scene({ ...sceneSpec, seed: 987654 }));
+      ctx.reset();
+      for (let done = 0; done < iterations; done += 32) {
+        ctx.iterate(Math.min(32, iterations - done));
+        await ctx.backend.finish();
+      }
+      const plain = await ctx.readHDR(),
+        denoised = await ctx.readHDR({ afterPost: true });
+      let se = 0,
+        sum = 0,
+        n = 0;
+      for (let i = 0; i < plain.length; i += 4)
+        for (let c = 0; c < 3; c++) {
+          se += (denoised[i + c] - plain[i + c]) ** 2;
+          sum += plain[i + c];
+          n++;
+        }
+      const est = await ctx.estimateError();
+      ctx.dispose();
+      const rmse = Math.sqrt(se / n);
+      return {
+        iterations,
+        psnr: 20 * Math.log10(ref.peak / Math.max(rmse, 1e-12)),
+        relativeRmse: rmse / (sum / n),
+        noiseRmse: est ? est.relativeRmse : null,
+      };
     },
 
     /** Error against wall-clock time and iterations, at doubling iteration checkpoints. */

@@ -10,6 +10,7 @@ import type { ScalingRow } from './suites/scaling.js';
 import type { SpecializationRow } from './suites/specialization.js';
 import type { CompactResults } from './suites/compact.js';
 import type { SkippingResults } from './suites/skipping.js';
+import type { DenoiseRow } from './suites/denoise.js';
 
 export interface Results {
   machine: Record<string, unknown>;
@@ -22,6 +23,7 @@ export interface Results {
   specialization?: SpecializationRow[];
   compact?: CompactResults;
   skipping?: SkippingResults;
+  denoise?: DenoiseRow[];
   skipped: string[];
 }
 
@@ -169,6 +171,18 @@ export function reportContent(r: Results): ReportContent {
       .join('');
     sections.push(`<h2>MCRT kernel specialization</h2><p>Median ms per iteration of the kernel compiled for the scene against the generic kernel (<code>specialize: false</code>: environment map, light loop, scattering order and majorant grid as runtime data), measured alternately in the same run. Ratio &gt; 1: specialization saves that factor. Last column: first iteration after a scene change (kernel compilation + one iteration), specialised / generic.</p>
 <table><tr><th>scene</th><th>scattering</th><th>backend</th><th>size</th><th>specialised ms/it</th><th>generic ms/it</th><th>generic / specialised</th><th>first iteration</th></tr>${rows}</table>`);
+  }
+
+  if (r.denoise?.length) {
+    const t = (x: Record<string, number | null>) => [25, 30, 35].map((d) => `<td>${fmt(x[d])}</td>`).join('');
+    const rows = r.denoise
+      .map(
+        (x) =>
+          `<tr><td>${esc(x.scene)}</td><td>${x.backend}</td><td>${x.size}²</td>${t(x.timeToDb.plain)}${t(x.timeToDb.denoised)}<td>${x.bias.psnr.toFixed(1)} dB (${(100 * x.bias.relativeRmse).toFixed(2)} %; noise ${x.bias.noiseRmse === null ? '—' : (100 * x.bias.noiseRmse).toFixed(2) + ' %'}) at ${x.bias.iterations} it</td><td>${x.loadAverage.before.map((v) => v.toFixed(2)).join(' ')}</td></tr>`,
+      )
+      .join('');
+    sections.push(`<h2>Denoiser</h2><p>MCRT (multiple scattering) with and without the denoise step, measured A/B/B/A; the clock counts the iterations and rendering the image at each checkpoint. Bias: the reference's own samples denoised against the plain reference (an upper bound: it includes the noise removed, given beside it as the plain image's own relative noise).</p>
+<table><tr><th>scene</th><th>backend</th><th>size</th><th>plain 25 dB</th><th>30 dB</th><th>35 dB</th><th>denoised 25 dB</th><th>30 dB</th><th>35 dB</th><th>bias at convergence (PSNR, rel. RMSE)</th><th>load avg</th></tr>${rows}</table>`);
   }
 
   if (r.compact) {

@@ -27,6 +27,7 @@ import { scaling } from './suites/scaling.js';
 import { specialization } from './suites/specialization.js';
 import { compact } from './suites/compact.js';
 import { skipping } from './suites/skipping.js';
+import { denoise } from './suites/denoise.js';
 import type { SuiteContext } from './suites/types.js';
 import { runSide } from './vpt-side/run-side.js';
 
@@ -123,6 +124,8 @@ try {
     results.specialization = await specialization(ctx);
   if (suites.includes('compact')) results.compact = await compact(ctx);
   if (suites.includes('skipping')) results.skipping = await skipping(ctx);
+  // Not in the default list: `--suites denoise` (issue 14's denoiser figures).
+  if (suites.includes('denoise') && available.includes('mcrt')) results.denoise = await denoise(ctx);
 
   const dir = path.join(
     fileURLToPath(new URL('..', import.meta.url)),

@@ -66,6 +66,14 @@ export interface Renderer {
    */
   readonly needsGradient?: boolean;
   /**
+   * Set when the generate kernel writes the denoiser guides (docs/architecture.md, "Denoising"):
+   * while a post step uses them the context defines VPT_GUIDES, includes the helpers
+   * `guideNormalDepth(p, t)` / `guideAlbedo(rgb)` and appends two rgba32float outputs after
+   * `frameFormats`, which the kernel fills with those helpers' values at its pixel's
+   * representative point (zeros where the ray hits nothing).
+   */
+  readonly writesGuides?: boolean;
+  /**
    * The renderer's parameters and their ranges (core's validateParams): unknown keys and
    * out-of-range values are refused by the constructor and setParams; 'step' parameters are
    * checked against the scene's voxel size by RenderContext.setScene.

@@ -18,6 +18,28 @@ describe('preprocess', () => {
     expect(() => preprocess('#if A\n', { A: true })).toThrow(/unterminated/);
     expect(() => preprocess('#endif', {})).toThrow(/without #if/);
   });
+  it('keeps deferred #if blocks (with their #else) for a later run, inside resolved ones', () => {
+    const src = [
+      '#if A',
+      'a',
+      '#if G',
+      'g',
+      '#else',
+      'ng',
+      '#endif',
+      '#else',
+      'na',
+      '#if G',
+      'g2',
+      '#endif',
+      '#endif',
+    ].join('\n');
+    const first = preprocess(src, { A: true }, { defer: ['G'] });
+    expect(first.split('\n')).toEqual(['a', '#if G', 'g', '#else', 'ng', '#endif']);
+    expect(preprocess(first, { G: true })).toBe('a\ng');
+    expect(preprocess(first, { G: false })).toBe('a\nng');
+    expect(() => preprocess('#if G\n#elif A\n#endif', { A: true }, { defer: ['G'] })).toThrow(/deferred/);
+  });
   it('picks the exact or hardware volume filter in the common chunks (one sampleVolumeTexel each)', () => {
     const exact = commonChunks({}),
       filtered = commonChunks({ hardwareFilter: true });

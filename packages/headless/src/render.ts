@@ -31,8 +31,10 @@ export interface VptPageOptions {
 export interface RenderResult {
   width: number;
   height: number;
-  /** Linear HDR RGBA float, top row first. */
+  /** Linear HDR RGBA float, top row first, after the post steps named in hdrPostSteps (before exposure and tone mapping). */
   hdr: Float32Array;
+  /** The post steps applied to `hdr`: the chain's leading steps that keep radiance, e.g. ['denoise']; [] for the plain estimate. */
+  hdrPostSteps: string[];
   /** LDR RGBA8 after the post chain, top row first; null when the post chain is empty. */
   ldr: Uint8Array | null;
   timings: RenderTimings;
@@ -177,6 +179,7 @@ function decodeResult(r: PageRenderResult): RenderResult {
     width: r.width,
     height: r.height,
     hdr: new Float32Array(bytesOf(r.hdr).buffer),
+    hdrPostSteps: r.hdrPostSteps,
     ldr: r.ldr === null ? null : bytesOf(r.ldr),
     timings: r.timings,
     backend: r.backend,

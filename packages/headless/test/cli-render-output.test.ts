@@ -16,6 +16,7 @@ vi.mock('../src/render.js', () => ({
       width: 2,
       height: 1,
       hdr: new Float32Array([1.5, 0, 0, 1, 0, 0, 2.5, 0.5]),
+      hdrPostSteps: ['denoise'],
       ldr,
       timings: { totalMs: 12.5, iterations: options.iterations ?? 64, msPerIteration: 0.19, setupMs: 40 },
       backend: { kind: 'webgl2', renderer: 'SwiftShader' },
@@ -82,6 +83,7 @@ describe('vpt-render output', () => {
       device: 'SwiftShader',
       gpuBytes: { volume: 1000, gradient: 0, auxiliary: 16, targets: 64, total: 1080 },
       volumeDims: [10, 10, 10],
+      hdrPostSteps: ['denoise'],
     });
     const png = decodePNG(fs.readFileSync(path.join(dir, 'out', 'a.png')));
     expect(Array.from(png.rgba)).toEqual([255, 0, 0, 255, 0, 0, 255, 255]); // opaque by default

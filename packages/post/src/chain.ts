@@ -1,11 +1,15 @@
 import { VptError, type PostStep } from '@vpt/core';
+import { DenoiseStep, DENOISE_PARAM_NAMES, checkDenoiseParams, type DenoiseParams } from './denoise.js';
 import { ExposureStep, checkExposure } from './exposure.js';
 import { SrgbEncodeStep } from './srgb.js';
 import { ToneMapStep, checkToneMapOperator, type ToneMapOperator } from './tone-mapping.js';
 
 /** A post step in a scene description. Omitted parameters take the step's defaults. */
 export type PostStepJSON =
-  { type: 'exposure'; exposure?: number } | { type: 'tonemap'; operator?: ToneMapOperator } | { type: 'srgb' };
+  | { type: 'exposure'; exposure?: number }
+  | { type: 'tonemap'; operator?: ToneMapOperator }
+  | { type: 'srgb' }
+  | ({ type: 'denoise' } & DenoiseParams);
 
 export interface DefaultPostChainOptions {
   /** Stops; default 0. */
@@ -24,6 +28,7 @@ const KEYS: Readonly<Record<PostStepJSON['type'], readonly string[]>> = {
   exposure: ['type', 'exposure'],
   tonemap: ['type', 'operator'],
   srgb: ['type'],
+  denoise: ['type', ...DENOISE_PARAM_NAMES],
 };
 
 /** Build a step from its scene-description JSON; throws VptError('invalid-scene') for anything malformed. */
@@ -63,6 +68,10 @@ export function postStepFromJSON(json: unknown, where = 'post step'): PostStep {
       );
     case 'srgb':
       return new SrgbEncodeStep();
+    case 'denoise': {
+      const { type: _type, ...params } = obj;
+      return new DenoiseStep(checkDenoiseParams(params, where));
+    }
   }
 }
 
@@ -82,6 +91,7 @@ export function postStepToJSON(step: PostStep): PostStepJSON {
   if (step instanceof ExposureStep) return { type: 'exposure', exposure: step.exposure };
   if (step instanceof ToneMapStep) return { type: 'tonemap', operator: step.operator };
   if (step instanceof SrgbEncodeStep) return { type: 'srgb' };
+  if (step instanceof DenoiseStep) return { type: 'denoise', ...step.getParams() };
   throw new VptError('invalid-scene', `post step "${step.name}" is not one of @vpt/post's steps and has no JSON form`);
 }
 

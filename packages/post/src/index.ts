@@ -2,6 +2,13 @@ export { ExposureStep, MAX_EXPOSURE_STOPS } from './exposure.js';
 export { ToneMapStep, TONE_MAP_OPERATORS, isToneMapOperator, type ToneMapOperator } from './tone-mapping.js';
 export { SrgbEncodeStep } from './srgb.js';
 export {
+  DenoiseStep,
+  DENOISE_DEFAULTS,
+  DENOISE_PARAM_NAMES,
+  checkDenoiseParams,
+  type DenoiseParams,
+} from './denoise.js';
+export {
   defaultPostChain,
   postStepFromJSON,
   postChainFromJSON,
@@ -22,3 +29,4 @@ export {
   postChainRef,
   type Rgb,
 } from './reference.js';
+export { denoiseRef, type DenoiseInputs } from './denoise-reference.js';

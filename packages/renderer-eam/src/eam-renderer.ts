@@ -57,6 +57,7 @@ export class EamRenderer extends BaseRenderer<EamParams> {
   readonly name = 'eam';
   readonly frameFormats = ['rgba32float'] as const;
   readonly accumulationFormats = ['rgba32float'] as const;
+  readonly writesGuides = true;
   readonly kernels = {
     generate: { glsl: glsl.generate, wgsl: wgsl.generate },
     integrate: RUNNING_MEAN_INTEGRATE,

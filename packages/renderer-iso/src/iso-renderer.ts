@@ -59,6 +59,7 @@ const OUTPUT_CODE = { shaded: 0, depth: 1, normal: 2 } as const;
 export class IsoRenderer extends BaseRenderer<IsoParams> {
   readonly name = 'iso';
   readonly frameFormats = ['rgba32float', 'rgba32float'] as const;
+  readonly writesGuides = true;
   readonly accumulationFormats = ['rgba32float', 'rgba32float'] as const;
   readonly kernels = {
     generate: { glsl: glsl.generate, wgsl: wgsl.generate },

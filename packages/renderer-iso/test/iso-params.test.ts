@@ -113,6 +113,7 @@ describe('IsoRenderer parameters', () => {
         ...r.features(scene()),
         VPT_TF_2D: false,
         VPT_GRADIENT: false,
+        VPT_GUIDES: false,
       });
       expect(constantVariant).not.toMatch(/envMap|envMarginal|envConditional/);
       expect(constantVariant).toMatch(/u\.background/);

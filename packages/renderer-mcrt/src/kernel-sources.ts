@@ -23,7 +23,9 @@ export function generateKernel(f: McrtFeatures): KernelSource {
   const flags = f as unknown as Flags;
   const glsl = GLSL_SAMPLING + (f.ENV_MAP ? GLSL_ENVIRONMENT_MAP : '') + glslTracking.tracking + glslPath.path;
   const wgsl = WGSL_SAMPLING + (f.ENV_MAP ? WGSL_ENVIRONMENT_MAP : '') + wgslTracking.tracking + wgslPath.path;
-  return { glsl: preprocess(glsl, flags), wgsl: preprocess(wgsl, flags) };
+  // VPT_GUIDES is the context's flag (RenderContext defines it while a post step uses guides).
+  const defer = { defer: ['VPT_GUIDES'] };
+  return { glsl: preprocess(glsl, flags, defer), wgsl: preprocess(wgsl, flags, defer) };
 }
 
 /** Running means of all, even and odd iterations (core's, three rgba32float accumulation targets). */

@@ -58,6 +58,7 @@ export class McrtRenderer extends BaseRenderer<McrtParams> {
   readonly frameFormats = ['rgba32float'] as const;
   readonly accumulationFormats = ['rgba32float', 'rgba32float', 'rgba32float'] as const;
   readonly halfAccumulations = [1, 2] as const;
+  readonly writesGuides = true;
   readonly paramFields = MCRT_PARAM_FIELDS;
   private resolved: ResolvedMcrtParams;
   private current: McrtFeatures | null = null;

@@ -1,6 +1,6 @@
 import { describe, expect, it } from 'vitest';
 import { testScene } from '../../../tests/helpers/test-scene.js';
-import { createProceduralVolume, isVptError, rampTransferFunction, type Scene } from '@vpt/core';
+import { createProceduralVolume, isVptError, preprocess, rampTransferFunction, type Scene } from '@vpt/core';
 import { computeFeatures, generateKernel, McrtRenderer, resolveParams, type McrtFeatures } from '../src/index.js';
 
 const scene = (over: Partial<Scene> = {}): Scene =>
@@ -71,9 +71,10 @@ describe('MCRT feature variants', () => {
     DEBUG_OUTPUT: 0,
     GENERIC: false,
   };
+  // The context's own flag (VPT_GUIDES, deferred by generateKernel) resolved as RenderContext does without a denoiser.
   const both = (f: McrtFeatures) => {
     const k = generateKernel(f);
-    return [k.glsl, k.wgsl];
+    return [k.glsl, k.wgsl].map((src) => preprocess(src, { VPT_GUIDES: false }));
   };
 
   it('compiles only the code a variant needs, in both languages', () => {

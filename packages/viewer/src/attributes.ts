@@ -177,6 +177,16 @@ export function parseToneMapper(v: unknown): ToneMapOperator {
   return v as ToneMapOperator;
 }
 
+/** The denoise attribute: 'auto' denoises while refining (not MIP) and shows the plain estimate once converged. */
+export const DENOISE_MODES = ['auto', 'on', 'off'] as const;
+export type DenoiseMode = (typeof DENOISE_MODES)[number];
+
+export function parseDenoiseMode(v: unknown): DenoiseMode {
+  if (!DENOISE_MODES.includes(v as DenoiseMode))
+    bad('denoise', `must be one of ${DENOISE_MODES.join(', ')}, got ${JSON.stringify(v)}`);
+  return v as DenoiseMode;
+}
+
 export function parseNumber(
   attribute: string,
   v: unknown,
@@ -249,6 +259,7 @@ export type CheckedProperty =
   | 'rendererParams'
   | 'backend'
   | 'toneMapper'
+  | 'denoise'
   | 'exposure'
   | 'maxSamples'
   | 'targetError'
@@ -266,6 +277,7 @@ function propertyParsers(volume: Volume | undefined): Record<CheckedProperty, (v
     rendererParams: parseRendererParams,
     backend: parseBackend,
     toneMapper: parseToneMapper,
+    denoise: parseDenoiseMode,
     exposure: (v) => parseNumber('exposure', v, { min: -64, max: 64 }),
     maxSamples: (v) => parseNumber('max-samples', v, { min: 1, integer: true }),
     targetError: (v) => parseNumber('target-error', v, { min: 0 }),

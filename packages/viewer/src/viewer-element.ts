@@ -25,7 +25,7 @@ import {
   type TransferFunction,
   type Volume,
 } from '@vpt/core';
-import { defaultPostChain, type ToneMapOperator } from '@vpt/post';
+import { DenoiseStep, defaultPostChain, type ToneMapOperator } from '@vpt/post';
 import { AdaptiveResolution } from './adaptive-resolution.js';
 import {
   AttributeValidator,
@@ -40,6 +40,7 @@ import {
   sameValue,
   type BackendName,
   type CheckedProperty,
+  type DenoiseMode,
   type EnvironmentValue,
 } from './attributes.js';
 import { fitCamera } from './camera-fit.js';
@@ -103,6 +104,7 @@ const SYNC_FIELDS = [
   'seed',
   'exposure',
   'toneMapper',
+  'denoise',
   'maxSamples',
   'targetError',
   'resolutionScale',
@@ -126,6 +128,7 @@ export class VptViewer extends LitElement {
     environment: { reflect: true, converter: jsonConverter(parseEnvironment), hasChanged },
     exposure: { type: Number, reflect: true },
     toneMapper: { attribute: 'tone-mapper', type: String, reflect: true },
+    denoise: { type: String, reflect: true },
     maxSamples: { attribute: 'max-samples', type: Number, reflect: true },
     targetError: { attribute: 'target-error', type: Number, reflect: true },
     densityScale: { attribute: 'density-scale', type: Number, reflect: true },
@@ -168,6 +171,8 @@ export class VptViewer extends LitElement {
   /** Exposure in stops (applied before tone mapping). */
   declare exposure: number;
   declare toneMapper: ToneMapOperator;
+  /** 'auto' (default): denoise while refining, show the plain estimate once converged; 'on'; 'off'. */
+  declare denoise: DenoiseMode;
   /** Refinement stops at this many samples per pixel. */
   declare maxSamples: number;
   /** Refinement stops when the estimated relative RMSE falls below this (0: off; needs a renderer with half accumulations). */
@@ -228,6 +233,8 @@ export class VptViewer extends LitElement {
   private tokens = { session: 0, renderer: 0, src: 0, environment: 0 };
   private srcAbort: AbortController | null = null;
   private postKey = '';
+  // The chain's denoise step, when the denoise mode and the renderer want one (makePost).
+  private denoiseStep: DenoiseStep | null = null;
   private connected = false;
 
   constructor() {
@@ -241,6 +248,7 @@ export class VptViewer extends LitElement {
     this.environment = null;
     this.exposure = 0;
     this.toneMapper = 'aces';
+    this.denoise = 'auto';
     this.maxSamples = 1024;
     this.targetError = 0;
     this.densityScale = null;
@@ -328,10 +336,18 @@ export class VptViewer extends LitElement {
     return encodePngBlob(ldr, width, height);
   }
 
-  /** The linear HDR render (before exposure and tone mapping) as PFM or 32-bit float OpenEXR bytes. */
+  /** Whether the image on display (and so exportHDR's) is denoised: the denoise step is in the chain and enabled now. */
+  get denoised(): boolean {
+    return this.denoiseStep?.enabled === true && this.session !== null;
+  }
+
+  /**
+   * The linear HDR render (before exposure and tone mapping) as PFM or 32-bit float OpenEXR
+   * bytes: denoised exactly when the displayed image is (`denoised`; downloadHDR names the file so).
+   */
   async exportHDR(format: 'pfm' | 'exr' = 'exr'): Promise<Uint8Array> {
     const ctx = this.requireContext();
-    const hdr = await ctx.readHDR();
+    const hdr = await ctx.readHDR({ afterPost: this.denoised });
     const { width, height } = ctx.size;
     return format === 'pfm' ? encodePfm(hdr, width, height) : encodeExr(hdr, width, height);
   }
@@ -631,11 +647,9 @@ export class VptViewer extends LitElement {
   /** @internal */
   async downloadHDR(format: 'pfm' | 'exr'): Promise<void> {
     try {
-      download(
-        await this.exportHDR(format),
-        `vpt.${format}`,
-        format === 'exr' ? 'image/x-exr' : 'image/x-portable-floatmap',
-      );
+      // The name says whether the radiance was denoised (the formats carry no such field here).
+      const name = this.denoised ? `vpt-denoised.${format}` : `vpt.${format}`;
+      download(await this.exportHDR(format), name, format === 'exr' ? 'image/x-exr' : 'image/x-portable-floatmap');
     } catch (e) {
       this.fail(e, 'export');
     }
@@ -753,7 +767,10 @@ export class VptViewer extends LitElement {
         { canvas, backend: this.backend, renderer, post: this.makePost(), width, height },
         {
           progress: (s) => this.onProgress(s),
-          converged: (s) => this.dispatchEvent(new CustomEvent<ViewerConvergedDetail>('vpt-converged', { detail: s })),
+          converged: (s) => {
+            this.updateDenoiser();
+            this.dispatchEvent(new CustomEvent<ViewerConvergedDetail>('vpt-converged', { detail: s }));
+          },
           lost: () => {
             this._lost = true;
             this.startLostTimer();
@@ -975,11 +992,21 @@ export class VptViewer extends LitElement {
   }
 
   private makePost() {
-    return defaultPostChain({ exposure: this.exposure, toneMapper: this.toneMapper });
+    const chain = defaultPostChain({ exposure: this.exposure, toneMapper: this.toneMapper });
+    // MIP's estimate is a running maximum, whose per-sample variance does not describe its error: auto leaves it alone.
+    const wanted = this.denoise === 'on' || (this.denoise === 'auto' && this.renderer !== 'mip');
+    this.denoiseStep = wanted ? new DenoiseStep() : null;
+    this.updateDenoiser();
+    return this.denoiseStep ? [this.denoiseStep, ...chain] : chain;
+  }
+
+  /** 'auto' filters while refining and shows the plain estimate once converged (the step stays, a pass-through). */
+  private updateDenoiser(): void {
+    if (this.denoiseStep) this.denoiseStep.enabled = this.denoise === 'on' || !this.converged;
   }
 
   private postKeyNow(): string {
-    return `${this.exposure}|${this.toneMapper}`;
+    return `${this.exposure}|${this.toneMapper}|${this.denoise}|${this.renderer}`;
   }
 
   /** The scene from the current attributes, or null before a volume is loaded. */
@@ -1041,6 +1068,7 @@ export class VptViewer extends LitElement {
   private onProgress(s: RefinementStats): void {
     this.resolution.recordIteration(s.msPerIteration);
     this._stats = s;
+    this.updateDenoiser();
     this.dispatchEvent(new CustomEvent<ViewerProgressDetail>('vpt-progress', { detail: { phase: 'refining', ...s } }));
   }
 

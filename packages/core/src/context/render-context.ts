@@ -16,6 +16,8 @@ import { validateSceneForDevice } from '../validation/device.js';
 import { SCENE_UNIFORM_FIELDS, sceneUniformValues } from '../shaders/scene-uniforms.js';
 import { sliceAtlasLayout } from '../shaders/slice-atlas.js';
 import { UniformLayout } from '../uniforms/layout.js';
+import { GUIDES } from '../shaders/guides.js';
+import { GUIDE_FRAME_FORMATS, GUIDE_TEXTURE_NAMES, GuideBuffers } from './guide-buffers.js';
 import { PRESENT_PASS } from './present-pass.js';
 import { ProgressiveLoop } from './progressive-loop.js';
 import { SceneResources, sameVoxels, type BrickPlan } from './scene-resources.js';
@@ -152,6 +154,14 @@ export class RenderContext {
   private accum: [RenderTarget, RenderTarget] | null = null;
   private hdr: RenderTarget | null = null;
   private postTargets: RenderTarget[] = [];
+  // Ping-pong targets for the draws of a repeated post step before its last one.
+  private postScratch: RenderTarget[] = [];
+  // Accumulated denoiser guides, while a post step uses them; the frame target then holds the guide frames too.
+  private guides: GuideBuffers | null = null;
+  private frameHasGuides = false;
+  // Whether this estimate accumulates guides: decided at each reset (guides are means over every
+  // iteration since it), so removing the denoiser keeps the samples and adding it starts over.
+  private guidesActive = false;
 
   private iteration = 0;
   private rendererVersion = -1;
@@ -261,7 +271,7 @@ export class RenderContext {
     for (const a of res.auxTextures.values()) auxiliary += tex(a.texture);
     let targets =
       target(this.frame) + target(this.hdr) + (this.accum ? target(this.accum[0]) + target(this.accum[1]) : 0);
-    for (const t of this.postTargets) targets += target(t);
+    for (const t of [...this.postTargets, ...this.postScratch, ...(this.guides?.targets ?? [])]) targets += target(t);
     return { volume, gradient, auxiliary, targets, total: volume + gradient + auxiliary + targets };
   }
 
@@ -472,6 +482,8 @@ export class RenderContext {
     this._post = steps;
     this.postPasses = [];
     this.hdrIteration = -1;
+    // Guides are means over every iteration since the reset: a chain that starts using them starts over.
+    if (!this.guidesActive && this.guidesWanted()) this.reset();
   }
 
   setSize(width: number, height: number): void {
@@ -489,6 +501,7 @@ export class RenderContext {
   reset(): void {
     this.iteration = 0;
     this.hdrIteration = -1;
+    this.guidesActive = this.guidesWanted();
   }
 
   /** Run n iterations (generate + integrate each). Does not wait for the GPU. */
@@ -527,6 +540,11 @@ export class RenderContext {
       });
       this.backend.draw(passes.integrate, { uniforms, textures: integrateTextures, target: next });
       this.accum = [next, prev];
+      if (this.guides) {
+        const f = this.frame!.textures;
+        const n = this._renderer.frameFormats.length;
+        this.guides.integrate(this.iteration, f[0], this.frameHasGuides ? [f[n], f[n + 1]] : null);
+      }
       this.iteration++;
     }
   }
@@ -567,12 +585,18 @@ export class RenderContext {
     let input = this.hdr!.textures[0];
     this._post.forEach((step, i) => {
       const pass = this.postPasses[i];
-      this.backend.draw(pass, {
-        uniforms: step.uniforms.pack(step.uniformValues()),
-        textures: { inputImage: input },
-        target: this.postTargets[i],
-      });
-      input = this.postTargets[i].textures[0];
+      const guides = step.usesGuides && this.guides ? this.guides.textures() : {};
+      const draws = postDraws(step);
+      for (let d = 0; d < draws; d++) {
+        // Draws before the last alternate between the two scratch targets; the last writes the step's own.
+        const target = d === draws - 1 ? this.postTargets[i] : this.scratchTarget(d % 2);
+        this.backend.draw(pass, {
+          uniforms: step.uniforms.pack(step.uniformValues(d)),
+          textures: { ...guides, inputImage: input },
+          target,
+        });
+        input = target.textures[0];
+      }
     });
     this.hdrIteration = this.iteration;
     this.imageVersion++;
@@ -624,11 +648,24 @@ export class RenderContext {
    * The HDR render output (linear RGB, a = coverage), RGBA float, top row first. Right
    * after setScene()/updateScene() it waits for the first sample (see whenSamples).
    */
-  async readHDR(): Promise<Float32Array> {
+  async readHDR(options: { afterPost?: boolean } = {}): Promise<Float32Array> {
     if (this.scene && this.iteration === 0) await this.whenSamples(1);
     this.renderImage();
     if (!this.hdr) throw new VptError('invalid-scene', 'Nothing rendered yet: call setScene() and iterate first');
-    return (await this.backend.readTexture(this.hdr.textures[0])) as Float32Array;
+    const steps = options.afterPost ? this.radianceStepCount() : 0;
+    const image = steps > 0 ? this.postTargets[steps - 1] : this.hdr;
+    return (await this.backend.readTexture(image.textures[0])) as Float32Array;
+  }
+
+  /**
+   * How many leading post steps keep linear radiance (PostStep.keepsRadiance, e.g. the
+   * denoiser): readHDR({ afterPost: true }) returns the image after them, and an HDR export
+   * made that way was processed by them. The last step writes the LDR image and never counts.
+   */
+  radianceStepCount(): number {
+    let n = 0;
+    while (n < this._post.length - 1 && this._post[n].keepsRadiance) n++;
+    return n;
   }
 
   /** The LDR image after the post chain, RGBA8, top row first (waits for the first sample like readHDR). */
@@ -792,7 +829,15 @@ export class RenderContext {
     const r = this._renderer;
     const chunks = this.chunkOptions(this.scene!);
     // VPT_TF_2D / VPT_GRADIENT let a kernel branch at compile time on what the scene binds.
-    const features = { ...r.features(this.scene!), VPT_TF_2D: chunks.tf2d, VPT_GRADIENT: chunks.gradient };
+    const writeGuides = this.guidesActive && r.writesGuides === true;
+    const features = {
+      ...r.features(this.scene!),
+      VPT_TF_2D: chunks.tf2d,
+      VPT_GRADIENT: chunks.gradient,
+      VPT_GUIDES: writeGuides,
+    };
+    const frameFormats = writeGuides ? [...r.frameFormats, ...GUIDE_FRAME_FORMATS] : r.frameFormats;
+    if (this.frame && this.frameHasGuides !== writeGuides) this.destroyRendererTargets();
     if (r.version !== this.rendererVersion) {
       this.rendererVersion = r.version;
       this.reset();
@@ -813,7 +858,10 @@ export class RenderContext {
       this.layout = new UniformLayout('Params', [...SCENE_UNIFORM_FIELDS, ...r.paramFields]);
       // The volume/TF chunks read the `volume` and `transferFunction` (and gradient) textures,
       // which only the generate pass binds; integrate and render get the texture-free chunks.
-      const generateChunks = commonChunks(chunks);
+      const common = commonChunks(chunks);
+      const generateChunks = writeGuides
+        ? { glsl: common.glsl + GUIDES.glsl, wgsl: common.wgsl + GUIDES.wgsl }
+        : common;
       const mk = (
         stage: 'generate' | 'integrate' | 'render',
         textures: { name: string; dimension: '2d' | '3d' }[],
@@ -848,7 +896,7 @@ export class RenderContext {
             ...gradientBindings,
             ...auxBindings,
           ],
-          r.frameFormats,
+          frameFormats,
         ),
         integrate: mk('integrate', [...frameTex, ...accTex], r.accumulationFormats),
         render: mk('render', accTex, ['rgba32float']),
@@ -856,13 +904,39 @@ export class RenderContext {
       this.variantKey = key;
     }
     if (!this.frame) {
-      this.frame = this.backend.createRenderTarget(this.width, this.height, r.frameFormats, `${r.name} frame`);
+      this.frame = this.backend.createRenderTarget(this.width, this.height, frameFormats, `${r.name} frame`);
+      this.frameHasGuides = writeGuides;
       this.accum = [
         this.backend.createRenderTarget(this.width, this.height, r.accumulationFormats, `${r.name} accumulation A`),
         this.backend.createRenderTarget(this.width, this.height, r.accumulationFormats, `${r.name} accumulation B`),
       ];
       this.hdr = this.backend.createRenderTarget(this.width, this.height, ['rgba32float'], 'HDR render');
     }
+    if (this.guidesActive && !this.guides) {
+      this.guides = new GuideBuffers(this.backend, this.width, this.height);
+    } else if (!this.guidesActive && this.guides) {
+      this.guides.destroy();
+      this.guides = null;
+    }
+  }
+
+  /** Some post step reads the denoiser guides. */
+  private guidesWanted(): boolean {
+    return this._post.some((s) => s.usesGuides === true);
+  }
+
+  /** Scratch target k (0 or 1) for the non-final draws of repeated post steps, made on first use. */
+  private scratchTarget(k: number): RenderTarget {
+    while (this.postScratch.length <= k)
+      this.postScratch.push(
+        this.backend.createRenderTarget(
+          this.width,
+          this.height,
+          ['rgba32float'],
+          `post scratch ${this.postScratch.length}`,
+        ),
+      );
+    return this.postScratch[k];
   }
 
   private preparePost(): void {
@@ -874,7 +948,10 @@ export class RenderContext {
           glsl: step.glsl,
           wgsl: step.wgsl,
           uniforms: step.uniforms,
-          textures: [{ name: 'inputImage', dimension: '2d' }],
+          textures: [
+            { name: 'inputImage', dimension: '2d' },
+            ...(step.usesGuides ? GUIDE_TEXTURE_NAMES.map((name) => ({ name, dimension: '2d' as const })) : []),
+          ],
           outputs: [i === this._post.length - 1 ? 'rgba8unorm' : 'rgba32float'],
           defines: step.defines?.() ?? {},
         }),
@@ -904,14 +981,17 @@ export class RenderContext {
     if (this.frame) this.backend.destroyRenderTarget(this.frame);
     this.accum?.forEach((t) => this.backend.destroyRenderTarget(t));
     if (this.hdr) this.backend.destroyRenderTarget(this.hdr);
+    this.guides?.destroy();
     this.frame = null;
     this.accum = null;
     this.hdr = null;
+    this.guides = null;
   }
 
   private destroyPostTargets(): void {
-    this.postTargets.forEach((t) => this.backend.destroyRenderTarget(t));
+    [...this.postTargets, ...this.postScratch].forEach((t) => this.backend.destroyRenderTarget(t));
     this.postTargets = [];
+    this.postScratch = [];
     this.postPasses = [];
   }
 
@@ -928,7 +1008,9 @@ export class RenderContext {
     this.frame = null;
     this.accum = null;
     this.hdr = null;
+    this.guides = null;
     this.postTargets = [];
+    this.postScratch = [];
     this.postPasses = [];
     this.presentPass = null;
     this.resources.forget();
@@ -940,6 +1022,14 @@ export class RenderContext {
     this.reset();
     this.loop.resume();
   }
+}
+
+/** Draws of a post step: its `repeat` (a positive integer), else 1. */
+function postDraws(step: PostStep): number {
+  const r = step.repeat ?? 1;
+  if (!Number.isInteger(r) || r < 1)
+    throw new VptError('invalid-scene', `post step "${step.name}": repeat must be a positive integer, got ${r}`);
+  return r;
 }
 
 /** maxGpuBytes when the caller gives none: WebGPU's maxBufferSize (one allocation the device admits) within [1 GiB, 4 GiB]; 1 GiB on WebGL 2, which reports no memory figure. */

@@ -7,7 +7,9 @@ Renders a scene description in headless Chromium and prints the timings as one J
 Only the files the scene names are served to the page. --root DIR refuses any scene path
 outside DIR (and URLs): use it when rendering scene files you do not trust.
 The PNG is opaque (its RGB already shows the background) unless --keep-alpha writes the
-coverage as alpha; the PFM holds the linear HDR RGB.`;
+coverage as alpha; the PFM holds the linear HDR RGB after the post chain's leading HDR steps
+(a "denoise" step first in the chain gives a denoised PFM; the JSON line's hdrPostSteps says so),
+before exposure and tone mapping.`;
 
 export interface RenderArgs {
   scene: string;

@@ -14,6 +14,8 @@ import type { SceneDescription, VolumeDescription } from '../scene-description.j
 /** The part of @vpt/post the page relies on. */
 export interface PostModule {
   postChainFromJSON(json: unknown): PostStep[];
+  /** The denoise step (typed for tests that run its pass alone). */
+  DenoiseStep: new (params?: Record<string, number>) => PostStep;
   [name: string]: unknown;
 }
 
@@ -37,8 +39,10 @@ export interface BackendSummary {
 export interface PageRenderResult {
   width: number;
   height: number;
-  /** Float32 RGBA, top row first. */
+  /** Float32 RGBA, top row first, after the post steps named in hdrPostSteps. */
   hdr: string;
+  /** The leading post steps that keep linear radiance (e.g. 'denoise') and were applied to `hdr`. */
+  hdrPostSteps: string[];
   /** RGBA8, top row first; null when the post chain is empty. */
   ldr: string | null;
   timings: RenderTimings;

@@ -171,7 +171,9 @@ async function renderDescription(
     const t1 = performance.now();
     await ctx.renderIterations(iterations);
     const totalMs = performance.now() - t1;
-    const hdr = await ctx.readHDR();
+    // The HDR image after the post steps that keep radiance (a denoiser), before exposure and tone mapping.
+    const hdr = await ctx.readHDR({ afterPost: true });
+    const hdrPostSteps = ctx.post.slice(0, ctx.radianceStepCount()).map((s) => s.name);
     // Without post steps there is no LDR image (core refuses to invent one).
     const ldr = steps.length > 0 ? await ctx.readLDR() : null;
     const stats = ctx.stats;
@@ -179,6 +181,7 @@ async function renderDescription(
       width,
       height,
       hdr: toBase64(hdr),
+      hdrPostSteps,
       ldr: ldr ? toBase64(ldr) : null,
       timings: { totalMs, iterations: stats.iterations, msPerIteration: stats.msPerIteration, setupMs: t1 - t0 },
       backend: { kind: ctx.backend.kind, renderer: ctx.backend.info.renderer },

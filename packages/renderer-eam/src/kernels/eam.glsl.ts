@@ -12,10 +12,14 @@ export const generate = /* glsl */ `
 ${GLSL_CELL_WALK}
 #endif
 // One sample of the march at distance s; false once the transmittance fell below the cutoff.
-bool eamSample(vec3 dir, float s, float seg, inout vec3 color, inout float transmittance) {
+// guide: the denoiser's (sum of T·alpha, sum of T·alpha·s), only accumulated under VPT_GUIDES.
+bool eamSample(vec3 dir, float s, float seg, inout vec3 color, inout float transmittance, inout vec2 guide) {
   vec4 tf = transferAt(u.cameraPosition + dir * s);
   float alpha = 1.0 - exp(-(u.densityScale * tf.a) * seg);
   color += (transmittance * alpha) * tf.rgb;
+#if VPT_GUIDES
+  guide += (transmittance * alpha) * vec2(1.0, s);
+#endif
   transmittance *= 1.0 - alpha;
   if (transmittance < u.cutoff) { transmittance = 0.0; return false; }
   return true;
@@ -27,6 +31,8 @@ void main() {
   vec2 t = intersectBox(u.cameraPosition, dir, u.boxMin, u.boxMax);
   vec3 color = vec3(0.0);
   float transmittance = 1.0;
+  // Denoiser guides at the mean termination depth: segments weighted by T·alpha, their share of the pixel.
+  vec2 guide = vec2(0.0);
   if (t.x < t.y) {
     float offset = rngNext(rng);
     float len = t.y - t.x;
@@ -45,12 +51,22 @@ void main() {
       for (; k < n && going; k++) {
         float s = t.x + (float(k) + offset) * seg;
         if (s >= tEnd) break;
-        going = eamSample(dir, s, seg, color, transmittance);
+        going = eamSample(dir, s, seg, color, transmittance, guide);
       }
     }
 #endif
-    for (; k < n && going; k++) going = eamSample(dir, t.x + (float(k) + offset) * seg, seg, color, transmittance);
+    for (; k < n && going; k++) going = eamSample(dir, t.x + (float(k) + offset) * seg, seg, color, transmittance, guide);
   }
   vpt_out0 = vec4(color + transmittance * u.background.rgb, 1.0 - transmittance);
+#if VPT_GUIDES
+  vpt_out1 = vec4(0.0);
+  vpt_out2 = vec4(0.0);
+  if (guide.x > 0.0) {
+    float tg = guide.y / guide.x;
+    vec3 pg = u.cameraPosition + dir * tg;
+    vpt_out1 = guideNormalDepth(pg, tg);
+    vpt_out2 = guideAlbedo(transferAt(pg).rgb);
+  }
+#endif
 }
 `;

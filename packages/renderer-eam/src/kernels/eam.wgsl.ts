@@ -8,10 +8,15 @@ export const generate = /* wgsl */ `
 #if SKIP_EMPTY
 ${WGSL_CELL_WALK}
 #endif
-fn eamSample(dir: vec3f, s: f32, seg: f32, color: ptr<function, vec3f>, transmittance: ptr<function, f32>) -> bool {
+fn eamSample(
+  dir: vec3f, s: f32, seg: f32, color: ptr<function, vec3f>, transmittance: ptr<function, f32>, guide: ptr<function, vec2f>,
+) -> bool {
   let tf = transferAt(u.cameraPosition + dir * s);
   let alpha = 1.0 - exp(-(u.densityScale * tf.a) * seg);
   *color += (*transmittance * alpha) * tf.rgb;
+#if VPT_GUIDES
+  *guide += (*transmittance * alpha) * vec2f(1.0, s);
+#endif
   *transmittance *= 1.0 - alpha;
   if (*transmittance < u.cutoff) { *transmittance = 0.0; return false; }
   return true;
@@ -23,6 +28,8 @@ fn eamSample(dir: vec3f, s: f32, seg: f32, color: ptr<function, vec3f>, transmit
   let t = intersectBox(u.cameraPosition, dir, u.boxMin, u.boxMax);
   var color = vec3f(0.0);
   var transmittance = 1.0;
+  // Denoiser guides at the mean termination depth: segments weighted by T·alpha, their share of the pixel.
+  var guide = vec2f(0.0);
   if (t.x < t.y) {
     let offset = rngNext(&rng);
     let len = t.y - t.x;
@@ -41,14 +48,22 @@ fn eamSample(dir: vec3f, s: f32, seg: f32, color: ptr<function, vec3f>, transmit
       for (; k < n && going; k++) {
         let s = t.x + (f32(k) + offset) * seg;
         if (s >= tEnd) { break; }
-        going = eamSample(dir, s, seg, &color, &transmittance);
+        going = eamSample(dir, s, seg, &color, &transmittance, &guide);
       }
     }
 #endif
-    for (; k < n && going; k++) { going = eamSample(dir, t.x + (f32(k) + offset) * seg, seg, &color, &transmittance); }
+    for (; k < n && going; k++) { going = eamSample(dir, t.x + (f32(k) + offset) * seg, seg, &color, &transmittance, &guide); }
   }
   var o: VptOut;
   o.out0 = vec4f(color + transmittance * u.background.rgb, 1.0 - transmittance);
+#if VPT_GUIDES
+  if (guide.x > 0.0) {
+    let tg = guide.y / guide.x;
+    let pg = u.cameraPosition + dir * tg;
+    o.out1 = guideNormalDepth(pg, tg);
+    o.out2 = guideAlbedo(transferAt(pg).rgb);
+  }
+#endif
   return o;
 }
 `;

@@ -261,10 +261,18 @@ void main() {
       int k = int(hit.y);
       vec3 n = hit.x == hit.z ? nz : isoNormal(o + dir * hit.x, dir);
       color = vec4(isoShade(o + dir * hit.x, n, -dir, u.isoSurface[k].rgb, rng), 1.0);
+#if VPT_GUIDES
+      // Denoiser guides at the shaded surface: its normal, depth and diffuse colour.
+      vpt_out2 = vec4(n, hit.x);
+      vpt_out3 = guideAlbedo(u.isoSurface[k].rgb);
+#endif
     }
   }
   vpt_out0 = color;
   vpt_out1 = nearest;
+#if VPT_GUIDES
+  if (hit.x < 0.0) { vpt_out2 = vec4(0.0); vpt_out3 = vec4(0.0); }
+#endif
 }
 `;
 

@@ -238,6 +238,15 @@ export const generate =
     }
   }
   var res: VptOut;
+#if VPT_GUIDES
+  // Denoiser guides at the shaded surface: its normal, depth and diffuse colour.
+  if (hit.x >= 0.0) {
+    var ng = nearest.yzw;
+    if (hit.x != hit.z) { ng = isoNormal(o + dir * hit.x, dir); }
+    res.out2 = vec4f(ng, hit.x);
+    res.out3 = guideAlbedo(u.isoSurface[i32(hit.y)].rgb);
+  }
+#endif
   res.out0 = color;
   res.out1 = nearest;
   return res;

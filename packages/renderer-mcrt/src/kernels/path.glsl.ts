@@ -90,6 +90,11 @@ void main() {
   vec3 dir = jitteredCameraRay(pixel, vptTargetSize(), rng);
   vec3 pos = u.cameraPosition;
   vec2 tb = intersectBox(pos, dir, u.boxMin, u.boxMax);
+#if VPT_GUIDES
+  // Denoiser guides at the first real collision (zeros where the camera ray has none).
+  vec4 guide0 = vec4(0.0);
+  vec4 guide1 = vec4(0.0);
+#endif
 #if DEBUG_OUTPUT == 1
   float Tcam = tb.x < tb.y ? transmittance(pos, dir, tb.x, tb.y, rng) : 1.0;
   vpt_out0 = vec4(Tcam, Tcam, Tcam, 1.0);
@@ -108,6 +113,9 @@ void main() {
     }
     if (depth == 0) alpha = 1.0;
     pos = pos + dir * c.t;
+#if VPT_GUIDES
+    if (depth == 0) { guide0 = guideNormalDepth(pos, c.t); guide1 = guideAlbedo(c.albedo); }
+#endif
     beta *= c.albedo;
     depth++;
     if (maxComponent(beta) <= 0.0) break;
@@ -145,6 +153,10 @@ void main() {
 #else
   vpt_out0 = vec4(finiteOrZero(L), alpha);
 #endif
+#endif
+#if VPT_GUIDES
+  vpt_out1 = guide0;
+  vpt_out2 = guide1;
 #endif
 }
 `;

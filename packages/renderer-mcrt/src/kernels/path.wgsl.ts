@@ -83,6 +83,11 @@ fn directLight(x: vec3f, w: vec3f, rng: ptr<function, u32>) -> vec3f {
   var pos = u.cameraPosition;
   var tb = intersectBox(pos, dir, u.boxMin, u.boxMax);
   var o: VptOut;
+#if VPT_GUIDES
+  // Denoiser guides at the first real collision (zeros where the camera ray has none).
+  var guide0 = vec4f(0.0);
+  var guide1 = vec4f(0.0);
+#endif
 #if DEBUG_OUTPUT == 1
   var Tcam = 1.0;
   if (tb.x < tb.y) { Tcam = transmittance(pos, dir, tb.x, tb.y, &rng); }
@@ -102,6 +107,9 @@ fn directLight(x: vec3f, w: vec3f, rng: ptr<function, u32>) -> vec3f {
     }
     if (depth == 0) { alpha = 1.0; }
     pos = pos + dir * c.t;
+#if VPT_GUIDES
+    if (depth == 0) { guide0 = guideNormalDepth(pos, c.t); guide1 = guideAlbedo(c.albedo); }
+#endif
     beta *= c.albedo;
     depth++;
     if (maxComponent(beta) <= 0.0) { break; }
@@ -139,6 +147,10 @@ fn directLight(x: vec3f, w: vec3f, rng: ptr<function, u32>) -> vec3f {
 #else
   o.out0 = vec4f(finiteOrZero(L), alpha);
 #endif
+#endif
+#if VPT_GUIDES
+  o.out1 = guide0;
+  o.out2 = guide1;
 #endif
   return o;
 }
