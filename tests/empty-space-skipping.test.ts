@@ -197,3 +197,45 @@ describe.each(BACKENDS)('empty-space skipping on %s', (backend) => {
     expect(shown).toBeGreaterThan(c.volume.kind === 'thin' ? 10 : 60);
   });
 });
+
+describe.each(BACKENDS)('empty-space skipping across renderer switches on %s', (backend) => {
+  // EAM builds the grid's value ranges as an input only; MIP and ISO bind the same texture
+  // (same key): a context that switches renderers must bind it for them, and render what a
+  // fresh context renders.
+  it('one context switching EAM → MIP → ISO → EAM renders what fresh contexts render, bit for bit', async () => {
+    const r = await page().page.evaluate(async (backend) => {
+      const { core } = window.vpt;
+      const t = window.t;
+      const volume = core.createProceduralVolume('sphere', 32);
+      const spec = {
+        volume,
+        environment: { type: 'constant' as const, radiance: [0.1, 0.1, 0.1] as [number, number, number] },
+        densityScale: 20,
+        seed: 3,
+      };
+      const order: [string, Record<string, unknown>][] = [
+        ['eam', {}],
+        ['mip', {}],
+        ['iso', { surfaces: [{ value: 0.5, color: [0.8, 0.8, 0.8], opacity: 1 }] }],
+        ['eam', {}],
+      ];
+      const b = backend as 'webgl2' | 'webgpu';
+      const shared = await t.context({ backend: b, renderer: 'eam', width: 16, height: 16 });
+      shared.setScene(t.scene(spec));
+      const differing: number[] = [];
+      for (const [name, params] of order) {
+        shared.setRenderer(window.vpt.createRenderer(name, params));
+        await shared.renderIterations(2);
+        const a = (await shared.readHDR()) as Float32Array;
+        const fresh = await t.context({ backend: b, renderer: name, width: 16, height: 16, params });
+        fresh.setScene(t.scene(spec));
+        await fresh.renderIterations(2);
+        differing.push(t.sameBits(a, (await fresh.readHDR()) as Float32Array));
+        fresh.dispose();
+      }
+      shared.dispose();
+      return differing;
+    }, backend);
+    expect(r).toEqual([0, 0, 0, 0]);
+  });
+});

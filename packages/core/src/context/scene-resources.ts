@@ -318,7 +318,12 @@ export class SceneResources {
     }
     for (const spec of specs) {
       const have = this.auxTextures.get(spec.name);
-      if (have && have.key === spec.key) continue;
+      if (have && have.key === spec.key) {
+        // Same content; whether it is bound is the current renderer's choice (EAM builds
+        // majorantRanges as an input only, MIP binds the same texture).
+        have.bind = spec.bind !== false;
+        continue;
+      }
       if (have) {
         this.releaseAux(have);
         this.auxTextures.delete(spec.name);
