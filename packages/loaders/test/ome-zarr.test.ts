@@ -400,6 +400,15 @@ describe('OME-Zarr over HTTP', () => {
     await new Promise<void>((r) => plain.close(() => r()));
   });
 
+  it('a query string (a signed URL) is kept on every request, the fragment never sent', async () => {
+    server.faults.clear();
+    server.queries.length = 0;
+    const v = await loadVolume(`${url()}?token=abc#level=1`);
+    expect(v.dims).toEqual([64, 64, 42]);
+    expect(server.queries.length).toBeGreaterThan(3);
+    expect(server.queries.every((q) => q === '?token=abc')).toBe(true);
+  });
+
   it('a stalled chunk times out (no hang), and an abort stops the load', async () => {
     server.faults.clear();
     server.faults.set('/0/c/0/1/1', 'stall');

@@ -91,6 +91,8 @@ export interface FaultServer {
   faults: Map<string, Fault>;
   /** Every request path served (to check what was fetched). */
   log: string[];
+  /** The query string of every request (with its '?', '' when none). */
+  queries: string[];
   /** Bytes of body sent. */
   bytesSent: number;
   close(): Promise<void>;
@@ -105,11 +107,13 @@ export interface FaultServer {
 export async function startFaultServer(root: string): Promise<FaultServer> {
   const faults = new Map<string, Fault>();
   const log: string[] = [];
+  const queries: string[] = [];
   const stalled = new Set<http.ServerResponse>();
   const state = { bytesSent: 0 };
   const server = http.createServer((req, res) => {
     const urlPath = decodeURIComponent(new URL(req.url ?? '/', 'http://x').pathname);
     log.push(urlPath);
+    queries.push(new URL(req.url ?? '/', 'http://x').search);
     res.setHeader('access-control-allow-origin', '*');
     res.setHeader('access-control-allow-headers', 'range');
     res.setHeader('access-control-expose-headers', 'content-length, content-range');
@@ -161,6 +165,7 @@ export async function startFaultServer(root: string): Promise<FaultServer> {
     url: `http://127.0.0.1:${port}/`,
     faults,
     log,
+    queries,
     get bytesSent() {
       return state.bytesSent;
     },

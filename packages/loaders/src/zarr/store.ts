@@ -88,12 +88,16 @@ interface Reader {
 }
 
 function httpReader(location: string, options: ZarrStoreOptions): Reader {
-  const root = location.replace(/[?#].*$/, '').replace(/\/*$/, '/');
+  // Every key resolves under the store's folder and keeps its query (a signed URL's token).
+  const base = new URL(location.replace(/#.*$/, ''));
+  if (!base.pathname.endsWith('/')) base.pathname += '/';
   const timeoutMs = options.requestTimeoutMs ?? 30_000;
   const retries = options.retries ?? 2;
   return {
     async read(key, range, signal) {
-      const url = root + key.replace(/^\/+/, '');
+      const target = new URL(key.replace(/^\/+/, ''), base);
+      target.search = base.search;
+      const url = target.href;
       const headers: Record<string, string> = {};
       if (range) {
         headers.Range =
