@@ -16,13 +16,7 @@ describe('MCRT live error estimate (webgl2)', () => {
         H = 12;
       const scene = (seed: number) => ({
         volume: core.createProceduralVolume('blob', 16),
-        transferFunction: {
-          dimensions: '1d',
-          points: [
-            { value: 0.05, color: [0.9, 0.8, 0.7], opacity: 0 },
-            { value: 1, color: [0.95, 0.95, 0.95], opacity: 1 },
-          ],
-        },
+        transferFunction: t.tf1d([0.05, [0.9, 0.8, 0.7], 0], [1, [0.95, 0.95, 0.95], 1]),
         camera: { position: [0.2, 0.5, 1.9], target: [0, 0, 0], up: [0, 1, 0], fovy: 0.7 },
         lights: [{ type: 'directional', direction: [1, 1, 0], irradiance: [2, 2, 2] }],
         environment: { type: 'constant', radiance: [0.3, 0.4, 0.6] },
