@@ -1,29 +1,16 @@
-import { execFileSync } from 'node:child_process';
 import fs from 'node:fs';
 import { fileURLToPath } from 'node:url';
-import { afterAll, beforeAll, describe, expect, it } from 'vitest';
-import type { Browser, Page } from 'puppeteer-core';
-import { launchChromium, startStaticServer, type StaticServer } from '../packages/headless/src/index.js';
+import { describe, expect, it } from 'vitest';
+import type { Page } from 'puppeteer-core';
+import { useGalleryServer } from './helpers/gallery-server.js';
 
 // The gallery (apps/gallery): README's first command builds and serves it. It must build,
 // every page must load and render without console errors, and a link must restore the view.
-const ROOT = fileURLToPath(new URL('..', import.meta.url));
 const DIST = fileURLToPath(new URL('../apps/gallery/dist/', import.meta.url));
 // Tiny renders (a tenth of the element's pixels) and few samples: SwiftShader is slow.
 const FAST = 'scale=0.1&max=2';
 
-let server: StaticServer;
-let browser: Browser;
-
-beforeAll(async () => {
-  execFileSync(process.execPath, ['apps/gallery/build.mjs'], { cwd: ROOT, stdio: 'pipe' });
-  server = await startStaticServer(ROOT);
-  browser = await launchChromium();
-});
-afterAll(async () => {
-  await browser?.close();
-  await server?.close();
-});
+const gallery = useGalleryServer();
 
 type GalleryPage = 'gallery' | 'compare';
 
@@ -35,6 +22,7 @@ function pageReady(which: GalleryPage, samples: number): boolean {
 }
 
 async function open(path: string, which: GalleryPage, samples = 0): Promise<{ page: Page; errors: string[] }> {
+  const { server, browser } = gallery();
   const page = await browser.newPage();
   const errors: string[] = [];
   page.on('console', (m) => {

@@ -5,6 +5,7 @@
  */
 import { fileURLToPath } from 'node:url';
 import type { Browser, Page } from 'puppeteer-core';
+import { afterAll, beforeAll } from 'vitest';
 import { launchChromium, startStaticServer, type StaticServer } from '../../packages/headless/src/index.js';
 
 export const ROOT = fileURLToPath(new URL('../..', import.meta.url));
@@ -182,5 +183,25 @@ export async function openViewerPage(browser?: Browser): Promise<ViewerPage> {
       if (!browser) await b.close().catch(() => {});
       await server.close();
     },
+  };
+}
+
+/**
+ * One viewer page for a test file, opened in beforeAll (in front: requestAnimationFrame, which
+ * drives refinement, stops in a background tab) and closed in afterAll; call the returned
+ * function inside a test.
+ */
+export function useViewerPage(): () => ViewerPage {
+  let vp: ViewerPage | undefined;
+  beforeAll(async () => {
+    vp = await openViewerPage();
+    await vp.page.bringToFront();
+  });
+  afterAll(async () => {
+    await vp?.close();
+  });
+  return () => {
+    if (!vp) throw new Error('the viewer page is not open');
+    return vp;
   };
 }
