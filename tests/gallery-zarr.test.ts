@@ -2,6 +2,7 @@ import fs from 'node:fs';
 import { fileURLToPath } from 'node:url';
 import { describe, expect, it } from 'vitest';
 import { useGalleryServer } from './helpers/gallery-server.js';
+import { recordPageErrors } from './helpers/page-errors.js';
 
 // The gallery's OME-Zarr example (the cells3d copy `pnpm data:fetch` writes): listed, loaded
 // coarsest level first and refined to level 0, with the level on the stats line. Skipped
@@ -15,11 +16,7 @@ describe.skipIf(!fetched)(`gallery: the OME-Zarr dataset${fetched ? '' : ' (skip
   it('is listed and refined level by level up to level 0', async () => {
     const { server, browser } = gallery();
     const page = await browser.newPage();
-    const errors: string[] = [];
-    page.on('console', (m) => {
-      if (m.type() === 'error') errors.push(m.text());
-    });
-    page.on('pageerror', (e) => errors.push((e as Error).message));
+    const errors = recordPageErrors(page);
     await page.evaluateOnNewDocument(() => {
       const w = window as unknown as { __levels: unknown[] };
       w.__levels = [];

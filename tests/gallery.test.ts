@@ -3,6 +3,7 @@ import { fileURLToPath } from 'node:url';
 import { describe, expect, it } from 'vitest';
 import type { Page } from 'puppeteer-core';
 import { useGalleryServer } from './helpers/gallery-server.js';
+import { recordPageErrors } from './helpers/page-errors.js';
 
 // The gallery (apps/gallery): README's first command builds and serves it. It must build,
 // every page must load and render without console errors, and a link must restore the view.
@@ -24,11 +25,7 @@ function pageReady(which: GalleryPage, samples: number): boolean {
 async function open(path: string, which: GalleryPage, samples = 0): Promise<{ page: Page; errors: string[] }> {
   const { server, browser } = gallery();
   const page = await browser.newPage();
-  const errors: string[] = [];
-  page.on('console', (m) => {
-    if (m.type() === 'error') errors.push(m.text());
-  });
-  page.on('pageerror', (e) => errors.push((e as Error).message));
+  const errors = recordPageErrors(page);
   page.on('response', (r) => {
     if (r.status() >= 400) errors.push(`HTTP ${r.status()} ${r.url()}`);
   });

@@ -12,13 +12,7 @@ describe('<vpt-viewer denoise>', () => {
   it('auto denoises while refining and not once converged; on keeps it; off removes it; bad values are refused', async () => {
     const r = await viewer().page.evaluate(async () => {
       const vt = window.vt;
-      const el = vt.create({
-        src: 'procedural:blob?size=16',
-        renderer: 'mcrt',
-        backend: 'webgl2',
-        panels: 'none',
-        'max-samples': '100000',
-      });
+      const el = vt.blob('mcrt', 100000);
       await el.whenSettled();
       await vt.next(el, 'progress');
       await vt.frames(2);

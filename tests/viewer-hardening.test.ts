@@ -62,13 +62,7 @@ describe('<vpt-viewer> attribute removal', () => {
 describe('<vpt-viewer> renderer-params', () => {
   it('an EAM stepSize of 1e-9, 0 or -1 fires a typed error naming the parameter and the element keeps rendering', async () => {
     const r = await viewer().run(async (vt) => {
-      const el = vt.create({
-        src: 'procedural:blob?size=16',
-        renderer: 'eam',
-        backend: 'webgl2',
-        panels: 'none',
-        'max-samples': '2',
-      });
+      const el = vt.blob('eam', 2);
       await vt.converged(el);
       const out: any[] = [];
       for (const step of ['1e-9', '0', '-1']) {
@@ -99,13 +93,7 @@ describe('<vpt-viewer> renderer-params', () => {
 describe('<vpt-viewer> context loss that is never restored', () => {
   it('fires error with code context-lost after the timeout, shows Retry, and Retry renders again', async () => {
     const r = await viewer().run(async (vt) => {
-      const el = vt.create({
-        src: 'procedural:blob?size=16',
-        renderer: 'eam',
-        backend: 'webgl2',
-        panels: 'none',
-        'max-samples': '2',
-      });
+      const el = vt.blob('eam', 2);
       el.contextRestoreTimeoutMs = 300;
       await vt.converged(el);
       const error = vt.next(el, 'error', 20000);
