@@ -16,11 +16,8 @@
 import fs from 'node:fs';
 import os from 'node:os';
 import { openVptPage } from '../packages/headless/dist/index.js';
+import { cliArg as arg } from './cli-arg.mjs';
 
-const arg = (name, dflt) => {
-  const i = process.argv.indexOf(`--${name}`);
-  return i > 0 ? process.argv[i + 1] : dflt;
-};
 const size = Number(arg('size', 64));
 const iterations = Number(arg('iterations', 8));
 const rounds = Number(arg('rounds', 3));

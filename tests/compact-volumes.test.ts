@@ -1,9 +1,9 @@
 import { describe, expect, it } from 'vitest';
+import { tf1d } from './helpers/test-scene.js';
 import {
   createProceduralVolume,
   createVolume,
   type Scene,
-  type TransferFunction,
   type Vec3,
   type Volume,
 } from '../packages/core/src/index.js';
@@ -28,16 +28,13 @@ function blobAs(type: Volume['type'], inverted: boolean): Volume {
   return testVolumes({ createProceduralVolume, createVolume }).blobAs(type, inverted);
 }
 
-const TF: TransferFunction = {
-  dimensions: '1d',
-  points: [
-    { value: 0, color: [1, 1, 1], opacity: 0 },
-    { value: 0.3, color: [1, 0.6, 0.3], opacity: 0.2 },
-    { value: 0.55, color: [0.4, 0.8, 1], opacity: 1 },
-    { value: 0.7, color: [1, 1, 1], opacity: 0.1 },
-    { value: 1, color: [0.9, 0.9, 0.5], opacity: 0.6 },
-  ],
-};
+const TF = tf1d(
+  [0, [1, 1, 1], 0],
+  [0.3, [1, 0.6, 0.3], 0.2],
+  [0.55, [0.4, 0.8, 1], 1],
+  [0.7, [1, 1, 1], 0.1],
+  [1, [0.9, 0.9, 0.5], 0.6],
+);
 const camera = { position: [0.6, 0.4, 2.2] as Vec3, target: [0, 0, 0] as Vec3, up: [0, 1, 0] as Vec3, fovy: 0.55 };
 const TYPES = ['uint8', 'uint16', 'int16', 'float32'] as const;
 

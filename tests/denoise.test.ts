@@ -1,5 +1,6 @@
 import { describe, expect, it } from 'vitest';
 import { denoiseRef } from '../packages/post/src/index.js';
+import { rgbRmse as rmse } from './helpers/mcrt-stats.js';
 import { BACKENDS, usePage } from './helpers/session.js';
 
 /**
@@ -185,17 +186,6 @@ async function renderPair(opts: {
     ctx.dispose();
     return out;
   }, opts);
-}
-
-function rmse(a: number[], b: number[]): number {
-  let s = 0,
-    n = 0;
-  for (let i = 0; i < a.length; i += 4)
-    for (let c = 0; c < 3; c++) {
-      s += (a[i + c] - b[i + c]) ** 2;
-      n++;
-    }
-  return Math.sqrt(s / n);
 }
 
 describe('vpt-render and the HDR image', () => {

@@ -1,10 +1,10 @@
 import { describe, expect, it } from 'vitest';
+import { tf1d } from './helpers/test-scene.js';
 import {
   rasterizeTransferFunction,
   reference,
   TF_RESOLUTION,
   type Scene,
-  type TransferFunction,
   type Vec3,
   createProceduralVolume,
 } from '../packages/core/src/index.js';
@@ -187,15 +187,7 @@ function cpuEam(scene: Scene, w: number, h: number, iterations: number, stepSize
 describe.each(BACKENDS)('EAM on %s against a CPU twin', (backend) => {
   it('equals a CPU emission–absorption march of a heterogeneous volume, sample for sample', async () => {
     const camera = { position: [0.9, 0.5, 1.7] as Vec3, target: [0, 0, 0] as Vec3, up: [0, 1, 0] as Vec3, fovy: 0.45 };
-    const tf: TransferFunction = {
-      dimensions: '1d',
-      points: [
-        { value: 0.1, color: [0.2, 0.4, 1], opacity: 0 },
-        { value: 0.4, color: [1, 0.6, 0.2], opacity: 0.8 },
-        { value: 0.6, color: [0.3, 1, 0.4], opacity: 0.1 },
-        { value: 1, color: [1, 1, 1], opacity: 1 },
-      ],
-    };
+    const tf = tf1d([0.1, [0.2, 0.4, 1], 0], [0.4, [1, 0.6, 0.2], 0.8], [0.6, [0.3, 1, 0.4], 0.1], [1, [1, 1, 1], 1]);
     const bg: Vec3 = [0.1, 0.15, 0.2];
     const W = 20,
       H = 16,

@@ -1,38 +1,22 @@
-import { execFileSync } from 'node:child_process';
 import fs from 'node:fs';
 import { fileURLToPath } from 'node:url';
-import { afterAll, beforeAll, describe, expect, it } from 'vitest';
-import type { Browser } from 'puppeteer-core';
-import { launchChromium, startStaticServer, type StaticServer } from '../packages/headless/src/index.js';
+import { describe, expect, it } from 'vitest';
+import { useGalleryServer } from './helpers/gallery-server.js';
+import { recordPageErrors } from './helpers/page-errors.js';
 
 // The gallery's OME-Zarr example (the cells3d copy `pnpm data:fetch` writes): listed, loaded
 // coarsest level first and refined to level 0, with the level on the stats line. Skipped
 // (and the title says so) where the data has not been fetched.
-const ROOT = fileURLToPath(new URL('..', import.meta.url));
 const STORE = fileURLToPath(new URL('../data/fetched/micro_cells3d_nuclei.ome.zarr/.zattrs', import.meta.url));
 const fetched = fs.existsSync(STORE);
 
-let server: StaticServer;
-let browser: Browser;
-beforeAll(async () => {
-  if (!fetched) return;
-  execFileSync(process.execPath, ['apps/gallery/build.mjs'], { cwd: ROOT, stdio: 'pipe' });
-  server = await startStaticServer(ROOT);
-  browser = await launchChromium();
-});
-afterAll(async () => {
-  await browser?.close();
-  await server?.close();
-});
+const gallery = useGalleryServer(fetched);
 
 describe.skipIf(!fetched)(`gallery: the OME-Zarr dataset${fetched ? '' : ' (skipped: run pnpm data:fetch)'}`, () => {
   it('is listed and refined level by level up to level 0', async () => {
+    const { server, browser } = gallery();
     const page = await browser.newPage();
-    const errors: string[] = [];
-    page.on('console', (m) => {
-      if (m.type() === 'error') errors.push(m.text());
-    });
-    page.on('pageerror', (e) => errors.push((e as Error).message));
+    const errors = recordPageErrors(page);
     await page.evaluateOnNewDocument(() => {
       const w = window as unknown as { __levels: unknown[] };
       w.__levels = [];

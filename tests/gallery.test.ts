@@ -1,29 +1,17 @@
-import { execFileSync } from 'node:child_process';
 import fs from 'node:fs';
 import { fileURLToPath } from 'node:url';
-import { afterAll, beforeAll, describe, expect, it } from 'vitest';
-import type { Browser, Page } from 'puppeteer-core';
-import { launchChromium, startStaticServer, type StaticServer } from '../packages/headless/src/index.js';
+import { describe, expect, it } from 'vitest';
+import type { Page } from 'puppeteer-core';
+import { useGalleryServer } from './helpers/gallery-server.js';
+import { recordPageErrors } from './helpers/page-errors.js';
 
 // The gallery (apps/gallery): README's first command builds and serves it. It must build,
 // every page must load and render without console errors, and a link must restore the view.
-const ROOT = fileURLToPath(new URL('..', import.meta.url));
 const DIST = fileURLToPath(new URL('../apps/gallery/dist/', import.meta.url));
 // Tiny renders (a tenth of the element's pixels) and few samples: SwiftShader is slow.
 const FAST = 'scale=0.1&max=2';
 
-let server: StaticServer;
-let browser: Browser;
-
-beforeAll(async () => {
-  execFileSync(process.execPath, ['apps/gallery/build.mjs'], { cwd: ROOT, stdio: 'pipe' });
-  server = await startStaticServer(ROOT);
-  browser = await launchChromium();
-});
-afterAll(async () => {
-  await browser?.close();
-  await server?.close();
-});
+const gallery = useGalleryServer();
 
 type GalleryPage = 'gallery' | 'compare';
 
@@ -35,12 +23,9 @@ function pageReady(which: GalleryPage, samples: number): boolean {
 }
 
 async function open(path: string, which: GalleryPage, samples = 0): Promise<{ page: Page; errors: string[] }> {
+  const { server, browser } = gallery();
   const page = await browser.newPage();
-  const errors: string[] = [];
-  page.on('console', (m) => {
-    if (m.type() === 'error') errors.push(m.text());
-  });
-  page.on('pageerror', (e) => errors.push((e as Error).message));
+  const errors = recordPageErrors(page);
   page.on('response', (r) => {
     if (r.status() >= 400) errors.push(`HTTP ${r.status()} ${r.url()}`);
   });

@@ -35,15 +35,9 @@ async function render(params: Record<string, unknown>, sceneClass: SceneClass, s
   return page().page.evaluate(
     async (W, H, N, params, sceneClass, seed) => {
       const mt = (window as any).mt;
+      const t = window.t;
       const { core } = (window as any).vpt;
-      const blobTf = {
-        dimensions: '1d',
-        points: [
-          { value: 0.05, color: [0.9, 0.9, 0.9], opacity: 0 },
-          { value: 0.4, color: [0.95, 0.7, 0.4], opacity: 0.7 },
-          { value: 1, color: [0.99, 0.99, 0.99], opacity: 1 },
-        ],
-      };
+      const blobTf = t.tf1d([0.05, [0.9, 0.9, 0.9], 0], [0.4, [0.95, 0.7, 0.4], 0.7], [1, [0.99, 0.99, 0.99], 1]);
       // 8 × 4 texels: a dim sky and one texel 40× brighter (the sun; peak/mean ≈ 17 > 8). Brighter, phase sampling alone would need far more than N samples for its mean to settle.
       const sunMap = {
         type: 'latlong',

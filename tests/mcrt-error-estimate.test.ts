@@ -1,4 +1,5 @@
 import { describe, expect, it } from 'vitest';
+import { rgbRmse } from './helpers/mcrt-stats.js';
 import { usePage } from './helpers/session.js';
 
 /**
@@ -11,18 +12,12 @@ const page = usePage();
 
 describe('MCRT live error estimate (webgl2)', () => {
   it('tracks the true RMSE against a long-run reference', async () => {
-    const r = await page.run(async ({ core, t }) => {
+    const { ref, runs } = await page.run(async ({ core, t }) => {
       const W = 12,
         H = 12;
       const scene = (seed: number) => ({
         volume: core.createProceduralVolume('blob', 16),
-        transferFunction: {
-          dimensions: '1d',
-          points: [
-            { value: 0.05, color: [0.9, 0.8, 0.7], opacity: 0 },
-            { value: 1, color: [0.95, 0.95, 0.95], opacity: 1 },
-          ],
-        },
+        transferFunction: t.tf1d([0.05, [0.9, 0.8, 0.7], 0], [1, [0.95, 0.95, 0.95], 1]),
         camera: { position: [0.2, 0.5, 1.9], target: [0, 0, 0], up: [0, 1, 0], fovy: 0.7 },
         lights: [{ type: 'directional', direction: [1, 1, 0], irradiance: [2, 2, 2] }],
         environment: { type: 'constant', radiance: [0.3, 0.4, 0.6] },
@@ -39,23 +34,17 @@ describe('MCRT live error estimate (webgl2)', () => {
       ctx.setScene(scene(100));
       await ctx.renderIterations(1024);
       const ref: Float32Array = await ctx.readHDR();
-      const out = [];
+      const runs = [];
       for (const n of [16, 64]) {
         ctx.setScene(scene(5 + n));
         await ctx.renderIterations(n);
-        const img: Float32Array = await ctx.readHDR();
-        let sq = 0,
-          cnt = 0;
-        for (let i = 0; i < img.length; i += 4)
-          for (let c = 0; c < 3; c++) {
-            sq += (img[i + c] - ref[i + c]) ** 2;
-            cnt++;
-          }
-        out.push({ n, trueRmse: Math.sqrt(sq / cnt), estimate: (await ctx.estimateError()).rmse });
+        const hdr: Float32Array = await ctx.readHDR();
+        runs.push({ n, hdr: Array.from(hdr), estimate: (await ctx.estimateError()).rmse });
       }
       ctx.dispose();
-      return out;
+      return { ref: Array.from(ref), runs };
     });
+    const r = runs.map(({ n, hdr, estimate }) => ({ n, trueRmse: rgbRmse(hdr, ref), estimate }));
     for (const { n, trueRmse, estimate } of r) {
       const msg = `${n} iterations: true ${trueRmse}, estimate ${estimate}`;
       expect(trueRmse, msg).toBeGreaterThan(1e-3);

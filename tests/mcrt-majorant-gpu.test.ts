@@ -1,11 +1,6 @@
 import { describe, expect, it } from 'vitest';
-import {
-  createVolume,
-  sliceAtlasLayout,
-  reference,
-  type TransferFunction,
-  type Vec3,
-} from '../packages/core/src/index.js';
+import { tf1d } from './helpers/test-scene.js';
+import { createVolume, sliceAtlasLayout, reference, type Vec3 } from '../packages/core/src/index.js';
 import { gridCells } from '../packages/renderer-mcrt/src/index.js';
 import { opacityLookup } from './helpers/mcrt-reference.js';
 import { usePage } from './helpers/session.js';
@@ -36,15 +31,12 @@ describe('MCRT majorant grid built on the GPU', () => {
         });
         const base = {
           volume: core.createProceduralVolume('blob', 22),
-          transferFunction: {
-            dimensions: '1d',
-            points: [
-              { value: 0.1, color: [1, 1, 1], opacity: 0 },
-              { value: 0.35, color: [1, 1, 1], opacity: 0.9 },
-              { value: 0.5, color: [1, 1, 1], opacity: 0.05 },
-              { value: 1, color: [1, 1, 1], opacity: 0.6 },
-            ],
-          },
+          transferFunction: t.tf1d(
+            [0.1, [1, 1, 1], 0],
+            [0.35, [1, 1, 1], 0.9],
+            [0.5, [1, 1, 1], 0.05],
+            [1, [1, 1, 1], 0.6],
+          ),
           camera: { position: [0, 0, 2], target: [0, 0, 0], up: [0, 1, 0], fovy: 0.8 },
           lights: [],
           environment: { type: 'constant', radiance: [1, 1, 1] },
@@ -117,13 +109,7 @@ describe('MCRT majorant grid built on the GPU', () => {
       z = Math.floor(n / (dims[0] * dims[1]));
     return 0.05 + (0.9 * (x / dims[0] + y / dims[1] + z / dims[2])) / 3 + 0.04 * Math.sin(0.7 * x + 0.3 * y);
   });
-  const linearTf: TransferFunction = {
-    dimensions: '1d',
-    points: [
-      { value: 0, color: [1, 1, 1], opacity: 0 },
-      { value: 1, color: [1, 1, 1], opacity: 1 },
-    ],
-  };
+  const linearTf = tf1d([0, [1, 1, 1], 0], [1, [1, 1, 1], 1]);
   const DENSITY = 20,
     CELL = 2;
 

@@ -38,14 +38,7 @@ describe('MCRT WebGL 2 / WebGPU parity', () => {
               densityScale: 30,
               seed: 7,
               camera: { position: [0.7, -0.4, 1.5], target: [0, 0.05, 0], up: [0, 1, 0], fovy: 0.8 },
-              transferFunction: {
-                dimensions: '1d',
-                points: [
-                  { value: 0.1, color: [0.2, 0.4, 1], opacity: 0 },
-                  { value: 0.6, color: [1, 0.8, 0.3], opacity: 0.8 },
-                  { value: 1, color: [0.9, 0.9, 0.9], opacity: 1 },
-                ],
-              },
+              transferFunction: t.tf1d([0.1, [0.2, 0.4, 1], 0], [0.6, [1, 0.8, 0.3], 0.8], [1, [0.9, 0.9, 0.9], 1]),
               environment: env,
             }),
             lights: [

@@ -27,21 +27,14 @@ async function render(
   frames: boolean,
 ): Promise<Run> {
   return page.run(
-    async ({ core, mt }, backend, W, H, params, lightCount, seed, iterations, frames) => {
+    async ({ core, mt, t }, backend, W, H, params, lightCount, seed, iterations, frames) => {
       const lights = [
         { type: 'directional', direction: [-0.4, 1, 0.3], irradiance: [2, 1.8, 1.5] },
         { type: 'directional', direction: [1, 0.2, -0.5], irradiance: [0.5, 0.7, 1.2] },
       ].slice(0, lightCount);
       const scene = {
         volume: core.createProceduralVolume('blob', 20),
-        transferFunction: {
-          dimensions: '1d',
-          points: [
-            { value: 0.05, color: [0.9, 0.9, 0.9], opacity: 0 },
-            { value: 0.4, color: [0.95, 0.7, 0.4], opacity: 0.7 },
-            { value: 1, color: [0.99, 0.99, 0.99], opacity: 1 },
-          ],
-        },
+        transferFunction: t.tf1d([0.05, [0.9, 0.9, 0.9], 0], [0.4, [0.95, 0.7, 0.4], 0.7], [1, [0.99, 0.99, 0.99], 1]),
         camera: { position: [0.3, 0.9, 1.8], target: [0, 0, 0], up: [0, 1, 0], fovy: 0.6 },
         lights,
         environment: { type: 'constant', radiance: [0.4, 0.5, 0.7] },

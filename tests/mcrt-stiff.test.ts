@@ -1,11 +1,11 @@
 import { describe, expect, it } from 'vitest';
+import { tf1d } from './helpers/test-scene.js';
 import {
   buildEnvironmentSampling,
   createProceduralVolume,
   environmentLookupCpu,
   reference,
   type Scene,
-  type TransferFunction,
   type Vec3,
 } from '../packages/core/src/index.js';
 import { opticalDepth, pixelExpectations } from './helpers/mcrt-reference.js';
@@ -127,14 +127,7 @@ describe.each(BACKENDS)('MCRT stiff media on %s', (backend) => {
       ITER = 32;
     const data = new Float32Array(EW * EH * 3);
     for (let i = 0; i < data.length; i++) data[i] = Math.pow(10, (((i * 7919) % 101) / 100) * 8 - 4);
-    const tf: TransferFunction = {
-      dimensions: '1d',
-      points: [
-        { value: 0, color: [0, 0, 0], opacity: 0 },
-        { value: 0.5, color: [0, 0, 0], opacity: 0.5 },
-        { value: 1, color: [0, 0, 0], opacity: 1 },
-      ],
-    };
+    const tf = tf1d([0, [0, 0, 0], 0], [0.5, [0, 0, 0], 0.5], [1, [0, 0, 0], 1]);
     const camera = { position: [0.3, 0.2, 1.6] as Vec3, target: [0, 0, 0] as Vec3, up: [0, 1, 0] as Vec3, fovy: 1.2 };
     const scene: Scene = {
       volume: createProceduralVolume('blob', 16),
@@ -226,7 +219,7 @@ describe.each(BACKENDS)('MCRT stiff media on %s', (backend) => {
   it('an HDR environment from 1e-4 to 1e4 with a 1e4 sun and light, scattering medium: finite under every sampling strategy', async () => {
     for (const environmentSampling of ['mis', 'light', 'phase']) {
       const r = await page.run(
-        ({ core, mt }, backend, environmentSampling) => {
+        ({ core, mt, t }, backend, environmentSampling) => {
           const W = 32,
             H = 16;
           const data = new Float32Array(W * H * 3);
@@ -234,14 +227,7 @@ describe.each(BACKENDS)('MCRT stiff media on %s', (backend) => {
           data.set([1e4, 1e4, 1e4], 3 * (3 * W + 5)); // a tiny "sun"
           const scene = {
             volume: core.createProceduralVolume('blob', 16),
-            transferFunction: {
-              dimensions: '1d',
-              points: [
-                { value: 0, color: [1, 1, 1], opacity: 0 },
-                { value: 0.5, color: [0.5, 0.8, 1], opacity: 0.5 },
-                { value: 1, color: [1, 1, 1], opacity: 1 },
-              ],
-            },
+            transferFunction: t.tf1d([0, [1, 1, 1], 0], [0.5, [0.5, 0.8, 1], 0.5], [1, [1, 1, 1], 1]),
             camera: { position: [0, 0, 2], target: [0, 0, 0], up: [0, 1, 0], fovy: 0.9 },
             lights: [{ type: 'directional', direction: [0, 1, 0], irradiance: [1e4, 1e4, 1e4] }],
             environment: { type: 'latlong', width: W, height: H, data },

@@ -1,5 +1,6 @@
 import { describe, expect, it } from 'vitest';
-import { createProceduralVolume, type Scene, type TransferFunction, type Vec3 } from '../packages/core/src/index.js';
+import { tf1d } from './helpers/test-scene.js';
+import { createProceduralVolume, type Scene, type Vec3 } from '../packages/core/src/index.js';
 import { binomialZ, zSummary } from './helpers/mcrt-stats.js';
 import { opticalDepth, pixelExpectations } from './helpers/mcrt-reference.js';
 import { BACKENDS, usePage } from './helpers/session.js';
@@ -99,16 +100,13 @@ describe.each(BACKENDS)('MCRT homogeneous slab transmittance on %s', (backend) =
 describe('MCRT shadow-ray estimators on a heterogeneous medium (webgl2)', () => {
   // A blob with a transfer function that peaks inside the value range (the majorant grid
   // must bound the peak, not just the cell's end values).
-  const tf: TransferFunction = {
-    dimensions: '1d',
-    points: [
-      { value: 0, color: [1, 1, 1], opacity: 0 },
-      { value: 0.3, color: [1, 1, 1], opacity: 0.2 },
-      { value: 0.55, color: [1, 1, 1], opacity: 1 },
-      { value: 0.7, color: [1, 1, 1], opacity: 0.1 },
-      { value: 1, color: [1, 1, 1], opacity: 0.6 },
-    ],
-  };
+  const tf = tf1d(
+    [0, [1, 1, 1], 0],
+    [0.3, [1, 1, 1], 0.2],
+    [0.55, [1, 1, 1], 1],
+    [0.7, [1, 1, 1], 0.1],
+    [1, [1, 1, 1], 0.6],
+  );
   const hetCamera = { position: [0.6, 0.4, 2.2] as Vec3, target: [0, 0, 0] as Vec3, up: [0, 1, 0] as Vec3, fovy: 0.55 };
   const scene: Scene = {
     volume: createProceduralVolume('blob', 16),
@@ -165,15 +163,7 @@ describe.each(BACKENDS)('MCRT ratio tracking in a dense medium (Russian roulette
   // survivors must be rescaled to 0.1 (unbiased: E = P(survive)·0.1 = T). A pixel's estimate
   // is then a sum of draws of 0 or about 0.1, so its sample variance can be 0 when 64 draws
   // agree: the per-pixel σ has a floor of √(E·(0.1 − E)/N), the spread of a 0/0.1 draw with mean E.
-  const tf: TransferFunction = {
-    dimensions: '1d',
-    points: [
-      { value: 0, color: [1, 1, 1], opacity: 0 },
-      { value: 0.3, color: [1, 1, 1], opacity: 0.2 },
-      { value: 0.55, color: [1, 1, 1], opacity: 1 },
-      { value: 1, color: [1, 1, 1], opacity: 0.6 },
-    ],
-  };
+  const tf = tf1d([0, [1, 1, 1], 0], [0.3, [1, 1, 1], 0.2], [0.55, [1, 1, 1], 1], [1, [1, 1, 1], 0.6]);
   const DENSE_N = 128; // cheap at 16×16, and it sharpens the aggregate
   const denseCamera = {
     position: [0.6, 0.4, 2.2] as Vec3,

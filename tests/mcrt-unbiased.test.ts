@@ -40,7 +40,7 @@ async function render(
   seed: number,
 ): Promise<Run> {
   return page.run(
-    async ({ core, mt }, W, H, N, params, sceneKind, seed) => {
+    async ({ core, mt, t }, W, H, N, params, sceneKind, seed) => {
       const environment =
         sceneKind === 'environment'
           ? {
@@ -54,15 +54,12 @@ async function render(
           : { type: 'constant', radiance: [0.4, 0.5, 0.7] };
       const scene = {
         volume: core.createProceduralVolume('blob', 20),
-        transferFunction: {
-          dimensions: '1d',
-          points: [
-            { value: 0.05, color: [0.9, 0.9, 0.9], opacity: 0 },
-            { value: 0.4, color: [0.95, 0.7, 0.4], opacity: 0.7 },
-            { value: 0.6, color: [0.7, 0.9, 0.95], opacity: 0.15 },
-            { value: 1, color: [0.99, 0.99, 0.99], opacity: 1 },
-          ],
-        },
+        transferFunction: t.tf1d(
+          [0.05, [0.9, 0.9, 0.9], 0],
+          [0.4, [0.95, 0.7, 0.4], 0.7],
+          [0.6, [0.7, 0.9, 0.95], 0.15],
+          [1, [0.99, 0.99, 0.99], 1],
+        ),
         camera: { position: [0.3, 0.9, 1.8], target: [0, 0, 0], up: [0, 1, 0], fovy: 0.6 },
         lights:
           sceneKind === 'tracking'

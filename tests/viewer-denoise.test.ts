@@ -1,32 +1,18 @@
-import { afterAll, beforeAll, describe, expect, it } from 'vitest';
-import { openViewerPage, type ViewerPage } from './helpers/viewer-page.js';
+import { describe, expect, it } from 'vitest';
+import { useViewerPage } from './helpers/viewer-page.js';
 
 /**
  * The viewer's `denoise` attribute (docs/architecture.md, "Denoising"): 'auto' filters while
  * refining and shows the plain estimate once converged, 'on' keeps filtering, 'off' has no
  * denoise step; the HDR export says whether it was denoised; a bad value is a typed error.
  */
-let vp: ViewerPage;
-
-beforeAll(async () => {
-  vp = await openViewerPage();
-  await vp.page.bringToFront(); // requestAnimationFrame drives refinement; it stops in a background tab
-});
-afterAll(async () => {
-  await vp?.close();
-});
+const viewer = useViewerPage();
 
 describe('<vpt-viewer denoise>', () => {
   it('auto denoises while refining and not once converged; on keeps it; off removes it; bad values are refused', async () => {
-    const r = await vp.page.evaluate(async () => {
+    const r = await viewer().page.evaluate(async () => {
       const vt = window.vt;
-      const el = vt.create({
-        src: 'procedural:blob?size=16',
-        renderer: 'mcrt',
-        backend: 'webgl2',
-        panels: 'none',
-        'max-samples': '100000',
-      });
+      const el = vt.blob('mcrt', 100000);
       await el.whenSettled();
       await vt.next(el, 'progress');
       await vt.frames(2);

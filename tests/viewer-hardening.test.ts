@@ -1,5 +1,5 @@
-import { afterAll, beforeAll, describe, expect, it } from 'vitest';
-import { openViewerPage, type ViewerPage } from './helpers/viewer-page.js';
+import { describe, expect, it } from 'vitest';
+import { useViewerPage } from './helpers/viewer-page.js';
 import { mutateScene, seededRandom, EXTREME_NUMBERS, type Json } from './helpers/scene-fuzz.js';
 
 /**
@@ -10,21 +10,13 @@ import { mutateScene, seededRandom, EXTREME_NUMBERS, type Json } from './helpers
  */
 const CASES = Number(process.env.VPT_FUZZ_ATTRIBUTE_CASES ?? 300);
 const SEED = Number(process.env.VPT_FUZZ_SEED ?? 15);
-let vp: ViewerPage;
-
-beforeAll(async () => {
-  vp = await openViewerPage();
-  await vp.page.bringToFront(); // requestAnimationFrame drives refinement; it stops in a background tab
-});
-afterAll(async () => {
-  await vp?.close();
-});
+const viewer = useViewerPage();
 
 describe('<vpt-viewer> attribute removal', () => {
   it(
     'removing exposure, density-scale, seed, renderer, tone-mapper, max-samples returns each to its default, with no error and no exception',
     async () => {
-      const r = await vp.run(async (vt) => {
+      const r = await viewer().run(async (vt) => {
         const el = vt.create({
           src: 'procedural:blob?size=16',
           renderer: 'mip',
@@ -61,7 +53,7 @@ describe('<vpt-viewer> attribute removal', () => {
       expect(r.values).toEqual({ exposure: 0, densityScale: null, seed: 1, renderer: 'eam', toneMapper: 'aces' }); // density-scale's default: the renderer's own
       expect(r.newErrors).toEqual([]);
       expect(r.samples).toBeGreaterThanOrEqual(2); // it rendered on after the removals
-      expect(vp.errors).toEqual([]);
+      expect(viewer().errors).toEqual([]);
     },
     Math.max(240_000, CASES * 150),
   );
@@ -69,14 +61,8 @@ describe('<vpt-viewer> attribute removal', () => {
 
 describe('<vpt-viewer> renderer-params', () => {
   it('an EAM stepSize of 1e-9, 0 or -1 fires a typed error naming the parameter and the element keeps rendering', async () => {
-    const r = await vp.run(async (vt) => {
-      const el = vt.create({
-        src: 'procedural:blob?size=16',
-        renderer: 'eam',
-        backend: 'webgl2',
-        panels: 'none',
-        'max-samples': '2',
-      });
+    const r = await viewer().run(async (vt) => {
+      const el = vt.blob('eam', 2);
       await vt.converged(el);
       const out: any[] = [];
       for (const step of ['1e-9', '0', '-1']) {
@@ -106,14 +92,8 @@ describe('<vpt-viewer> renderer-params', () => {
 
 describe('<vpt-viewer> context loss that is never restored', () => {
   it('fires error with code context-lost after the timeout, shows Retry, and Retry renders again', async () => {
-    const r = await vp.run(async (vt) => {
-      const el = vt.create({
-        src: 'procedural:blob?size=16',
-        renderer: 'eam',
-        backend: 'webgl2',
-        panels: 'none',
-        'max-samples': '2',
-      });
+    const r = await viewer().run(async (vt) => {
+      const el = vt.blob('eam', 2);
       el.contextRestoreTimeoutMs = 300;
       await vt.converged(el);
       const error = vt.next(el, 'error', 20000);
@@ -223,7 +203,7 @@ describe('<vpt-viewer> attribute fuzz', () => {
         steps.push({ name, value: attributeValue(name, rnd) });
       }
       // In chunks: one page.evaluate must stay well below the protocol timeout.
-      await vp.page.evaluate(async () => {
+      await viewer().page.evaluate(async () => {
         const w = window as any;
         const vt = w.vt;
         w.__fuzz = {
@@ -268,7 +248,7 @@ describe('<vpt-viewer> attribute fuzz', () => {
         };
       });
       for (let at = 0; at < steps.length; at += 200) {
-        await vp.page.evaluate(
+        await viewer().page.evaluate(
           async (chunk, offset) => {
             const w = window as any;
             const { el, problems, withTimeout, usable } = w.__fuzz;
@@ -291,7 +271,7 @@ describe('<vpt-viewer> attribute fuzz', () => {
           at,
         );
       }
-      const r = await vp.page.evaluate(async () => {
+      const r = await viewer().page.evaluate(async () => {
         const { el, problems, usable } = (window as any).__fuzz;
         await usable('the end');
         const errors = el.__events.filter((e: any) => e.type === 'error');
@@ -313,7 +293,7 @@ describe('<vpt-viewer> attribute fuzz', () => {
       expect(r.problems).toEqual([]);
       expect(r.untyped).toEqual([]);
       expect(r.errorCount).toBeGreaterThan(CASES / 10); // the fuzz does reach the error paths
-      expect(vp.errors).toEqual([]);
+      expect(viewer().errors).toEqual([]);
     },
     Math.max(240_000, CASES * 150),
   );

@@ -50,6 +50,8 @@ export interface TestSceneSpec {
 export interface InPageHelpers {
   context(opts: TestContextOptions): Promise<RenderContext>;
   scene(spec: TestSceneSpec): Scene;
+  /** A 1D transfer function from [value, color, opacity] stops (Node-side twin: `tf1d` in test-scene.ts). */
+  tf1d(...stops: [value: number, color: [number, number, number], opacity: number][]): TransferFunction;
   loadRaw(url: string, dims: [number, number, number], type: VoxelType): Promise<Volume>;
   /** Render `iterations` more, read the HDR image back (as numbers, for the trip to Node) and dispose of the context. */
   finalHDR(ctx: RenderContext, iterations: number): Promise<number[]>;
@@ -97,6 +99,9 @@ export function installInPageHelpers(): void {
         seed: spec.seed ?? 1,
         ...(spec.sampling ? { sampling: spec.sampling } : {}),
       };
+    },
+    tf1d(...stops) {
+      return { dimensions: '1d', points: stops.map(([value, color, opacity]) => ({ value, color, opacity })) };
     },
     // The headless page's own raw reader (one place reads raw files in the page).
     loadRaw(url, dims, type) {

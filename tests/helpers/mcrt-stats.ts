@@ -1,8 +1,20 @@
 /**
  * Small statistics helpers for the MCRT tests: z-score summaries, and the exact binomial
  * test for estimators whose samples are 0 or 1 (delta tracking), where the normal
- * approximation fails near p = 0 or 1.
+ * approximation fails near p = 0 or 1; the RMSE of two images.
  */
+
+/** Root-mean-square difference over the RGB channels of two RGBA images (alpha ignored). */
+export function rgbRmse(a: ArrayLike<number>, b: ArrayLike<number>): number {
+  let s = 0,
+    n = 0;
+  for (let i = 0; i < a.length; i += 4)
+    for (let c = 0; c < 3; c++) {
+      s += (a[i + c] - b[i + c]) ** 2;
+      n++;
+    }
+  return Math.sqrt(s / n);
+}
 
 /**
  * z-score summary: max |z|, n, how many exceed 3, and the aggregate Σz/√n (≈ N(0, 1) without

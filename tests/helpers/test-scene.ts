@@ -9,8 +9,18 @@ import {
   isVptError,
   rampTransferFunction,
   type Scene,
+  type TransferFunction,
+  type Vec3,
   type VptErrorCode,
 } from '@vpt/core';
+
+/** One stop of a test's 1D transfer function: [value, color, opacity]. */
+export type TfStop = [value: number, color: Vec3, opacity: number];
+
+/** A 1D transfer function from compact stops, so tests state their TF in a line or two. (In-page twin: `window.t.tf1d()`.) */
+export function tf1d(...stops: TfStop[]): TransferFunction {
+  return { dimensions: '1d', points: stops.map(([value, color, opacity]) => ({ value, color, opacity })) };
+}
 
 export function testScene(overrides: Partial<Scene> = {}): Scene {
   return {

@@ -5,7 +5,9 @@
  */
 import { fileURLToPath } from 'node:url';
 import type { Browser, Page } from 'puppeteer-core';
+import { afterAll, beforeAll } from 'vitest';
 import { launchChromium, startStaticServer, type StaticServer } from '../../packages/headless/src/index.js';
+import { recordPageErrors } from './page-errors.js';
 
 export const ROOT = fileURLToPath(new URL('../..', import.meta.url));
 export const HEAD_SIDECAR = '/data/mri_head_volpack_brainsmall_128x128x84_uint8.json';
@@ -26,6 +28,8 @@ export interface RecordedViewerEvent {
 export interface ViewerHelpers {
   /** A <vpt-viewer> with these attributes and a record of its events (el.__events). */
   create(attrs: Record<string, string>, style?: string): any;
+  /** create() of the tests' small viewer: a 16³ procedural blob on WebGL 2, no panels, this renderer and sample cap. */
+  blob(renderer: string, maxSamples: number): any;
   /** The next event of this type ('load' for vpt-load…) after now (rejects after timeoutMs). */
   next(el: HTMLElement, type: string, timeoutMs?: number): Promise<any>;
   /** Resolves when the element has converged (now or later). */
@@ -66,6 +70,15 @@ export function installViewerHelpers(): void {
       el.setAttribute('style', style);
       document.body.append(el);
       return el;
+    },
+    blob(renderer, maxSamples) {
+      return window.vt.create({
+        src: 'procedural:blob?size=16',
+        renderer,
+        backend: 'webgl2',
+        panels: 'none',
+        'max-samples': String(maxSamples),
+      });
     },
     next(el, type, timeoutMs = 90000) {
       return new Promise((resolve, reject) => {
@@ -155,11 +168,7 @@ export async function openViewerPage(browser?: Browser): Promise<ViewerPage> {
   const server = await startStaticServer(ROOT);
   const b = browser ?? (await launchChromium());
   const page = await b.newPage();
-  const errors: string[] = [];
-  page.on('console', (m) => {
-    if (m.type() === 'error') errors.push(m.text());
-  });
-  page.on('pageerror', (e) => errors.push((e as Error).message));
+  const errors = recordPageErrors(page);
   await page.setViewport({ width: 400, height: 300, deviceScaleFactor: 1 });
   await page.goto(new URL('tests/pages/viewer.html', server.url).href);
   await page.waitForFunction(() => (window as any).__ready === true, { timeout: 60_000 });
@@ -182,5 +191,25 @@ export async function openViewerPage(browser?: Browser): Promise<ViewerPage> {
       if (!browser) await b.close().catch(() => {});
       await server.close();
     },
+  };
+}
+
+/**
+ * One viewer page for a test file, opened in beforeAll (in front: requestAnimationFrame, which
+ * drives refinement, stops in a background tab) and closed in afterAll; call the returned
+ * function inside a test.
+ */
+export function useViewerPage(): () => ViewerPage {
+  let vp: ViewerPage | undefined;
+  beforeAll(async () => {
+    vp = await openViewerPage();
+    await vp.page.bringToFront();
+  });
+  afterAll(async () => {
+    await vp?.close();
+  });
+  return () => {
+    if (!vp) throw new Error('the viewer page is not open');
+    return vp;
   };
 }

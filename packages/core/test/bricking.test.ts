@@ -83,6 +83,11 @@ function sampleBricked(
     const c = i.map((v, a) => Math.min(first[a] + B + 1, Math.max(first[a], Math.min(g.dims[a] - 1, Math.max(0, v)))));
     return values[c[0] - first[0] + S * (c[1] - first[1] + S * (c[2] - first[2]))];
   };
+  return trilinear(at, i0, f);
+}
+
+/** The trilinear blend, with fractions f, of the 8 voxels `at(i0 + {0,1}³)`. */
+function trilinear(at: (i: number[]) => number, i0: number[], f: number[]): number {
   const lerp = (a: number, b: number, t: number) => a + (b - a) * t;
   const c = (dx: number, dy: number, dz: number) => at([i0[0] + dx, i0[1] + dy, i0[2] + dz]);
   return lerp(
@@ -101,13 +106,7 @@ function samplePlain(v: Volume, x0: number[]): number {
     const c = i.map((t, a) => Math.min(v.dims[a] - 1, Math.max(0, t)));
     return v.data[c[0] + v.dims[0] * (c[1] + v.dims[1] * c[2])];
   };
-  const lerp = (a: number, b: number, t: number) => a + (b - a) * t;
-  const c = (dx: number, dy: number, dz: number) => at([i0[0] + dx, i0[1] + dy, i0[2] + dz]);
-  return lerp(
-    lerp(lerp(c(0, 0, 0), c(1, 0, 0), f[0]), lerp(c(0, 1, 0), c(1, 1, 0), f[0]), f[1]),
-    lerp(lerp(c(0, 0, 1), c(1, 0, 1), f[0]), lerp(c(0, 1, 1), c(1, 1, 1), f[0]), f[1]),
-    f[2],
-  );
+  return trilinear(at, i0, f);
 }
 
 const DIMS: [number, number, number] = [72, 40, 24]; // partial bricks on every axis at B = 16, whole 8-voxel cells

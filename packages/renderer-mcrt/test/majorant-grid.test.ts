@@ -1,4 +1,5 @@
 import { describe, expect, it } from 'vitest';
+import { tf1d } from '../../../tests/helpers/test-scene.js';
 import {
   createVolume,
   rasterizeTransferFunction,
@@ -89,16 +90,13 @@ function checkBounds(
 }
 
 /** TF whose opacity has a narrow peak at 0.5 and is ~0 at both ends: range max must find the peak. */
-const PEAK_TF: TransferFunction = {
-  dimensions: '1d',
-  points: [
-    { value: 0, color: [1, 1, 1], opacity: 0.02 },
-    { value: 0.48, color: [1, 1, 1], opacity: 0.02 },
-    { value: 0.5, color: [1, 0.5, 0.2], opacity: 1 },
-    { value: 0.52, color: [1, 1, 1], opacity: 0.02 },
-    { value: 1, color: [1, 1, 1], opacity: 0.05 },
-  ],
-};
+const PEAK_TF = tf1d(
+  [0, [1, 1, 1], 0.02],
+  [0.48, [1, 1, 1], 0.02],
+  [0.5, [1, 0.5, 0.2], 1],
+  [0.52, [1, 1, 1], 0.02],
+  [1, [1, 1, 1], 0.05],
+);
 
 describe('majorant grid', () => {
   it('cell voxel ranges cover the trilinear footprint with a one-voxel border', () => {
@@ -130,13 +128,7 @@ describe('majorant grid', () => {
     // which blend in the neighbour cell's voxels, exceed it: a dropped upper or lower border
     // shows at once. Ramps rising and falling along each axis, plus a gentle wave.
     const dims: [number, number, number] = [19, 14, 17];
-    const tf: TransferFunction = {
-      dimensions: '1d',
-      points: [
-        { value: 0, color: [1, 1, 1], opacity: 0 },
-        { value: 1, color: [1, 1, 1], opacity: 1 },
-      ],
-    };
+    const tf = tf1d([0, [1, 1, 1], 0], [1, [1, 1, 1], 1]);
     for (const sign of [1, -1]) {
       const data = new Float32Array(dims[0] * dims[1] * dims[2]);
       for (let z = 0; z < dims[2]; z++)
@@ -172,13 +164,7 @@ describe('majorant grid', () => {
       data[at + 16 * (at + 16 * at)] = 1;
       const volume = createVolume(dims, 'float32', data);
       volume.valueRange = [0, 1];
-      const tf: TransferFunction = {
-        dimensions: '1d',
-        points: [
-          { value: 0, color: [1, 1, 1], opacity: 0 },
-          { value: 1, color: [1, 1, 1], opacity: 1 },
-        ],
-      };
+      const tf = tf1d([0, [1, 1, 1], 0], [1, [1, 1, 1], 1]);
       const r = checkBounds(volume, tf, 10, 8, 2000, 5);
       expect(r.violations).toBe(0);
       expect(r.naiveViolations).toBeGreaterThan(0);

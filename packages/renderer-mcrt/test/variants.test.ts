@@ -12,6 +12,20 @@ const scene = (over: Partial<Scene> = {}): Scene =>
   });
 
 describe('MCRT feature variants', () => {
+  // The flags of a plain scene under the default parameters: a constant sky, no lights.
+  const base: McrtFeatures = {
+    ENV_MAP: false,
+    ENV_LIGHT: true,
+    LIGHT_COUNT: 0,
+    SINGLE_SCATTERING: false,
+    MAJORANT_GRID: true,
+    TRACKING: 2,
+    ENV_SAMPLING: 2,
+    MIS_POWER: true,
+    DEBUG_OUTPUT: 0,
+    GENERIC: false,
+  };
+
   it('derives the flags from the scene and the parameters', () => {
     const f = computeFeatures(
       scene({
@@ -22,18 +36,7 @@ describe('MCRT feature variants', () => {
       }),
       resolveParams({}),
     );
-    expect(f).toEqual({
-      ENV_MAP: false,
-      ENV_LIGHT: true,
-      LIGHT_COUNT: 1,
-      SINGLE_SCATTERING: false,
-      MAJORANT_GRID: true,
-      TRACKING: 2,
-      ENV_SAMPLING: 2,
-      MIS_POWER: true,
-      DEBUG_OUTPUT: 0,
-      GENERIC: false,
-    });
+    expect(f).toEqual({ ...base, LIGHT_COUNT: 1 });
     const black = computeFeatures(
       scene({ environment: { type: 'constant', radiance: [0, 0, 0] } }),
       resolveParams({ environmentSampling: 'light', misHeuristic: 'balance' }),
@@ -59,18 +62,6 @@ describe('MCRT feature variants', () => {
     expect(darkMap.ENV_MAP).toBe(false);
   });
 
-  const base: McrtFeatures = {
-    ENV_MAP: false,
-    ENV_LIGHT: true,
-    LIGHT_COUNT: 0,
-    SINGLE_SCATTERING: false,
-    MAJORANT_GRID: true,
-    TRACKING: 2,
-    ENV_SAMPLING: 2,
-    MIS_POWER: true,
-    DEBUG_OUTPUT: 0,
-    GENERIC: false,
-  };
   // The context's own flag (VPT_GUIDES, deferred by generateKernel) resolved as RenderContext does without a denoiser.
   const both = (f: McrtFeatures) => {
     const k = generateKernel(f);
