@@ -4,6 +4,7 @@
 // Media", SIGGRAPH Asia 2014; control = per-cell minorant), over a coarse grid of per-cell extinction bounds
 // walked by a 3D DDA (Amanatides & Woo 1987, "A Fast Voxel Traversal Algorithm for Ray Tracing"), as pbrt-v4's GridMedium. Exponential distances
 // are drawn once and their optical depth is carried across cells (memorylessness).
+// The shadow-ray estimators estimate the beam transmittance exp(-∫σt dt), PBR 4th ed. Eq. (11.5).
 // Preprocessed (core's shaders/preprocess.ts) with MAJORANT_GRID, TRACKING, DEBUG_OUTPUT.
 
 export const tracking = /* glsl */ `

@@ -1,5 +1,6 @@
 // Free-flight sampling and transmittance estimation (delta tracking, Woodcock et al. 1965; ratio and residual ratio tracking,
 // Novák, Selle, Jarosz 2014) over a majorant grid walked by a 3D DDA (Amanatides & Woo 1987).
+// The shadow-ray estimators estimate the beam transmittance exp(-∫σt dt), PBR 4th ed. Eq. (11.5).
 // Twin of tracking.glsl.ts: same arithmetic in the same order.
 
 export const tracking = /* wgsl */ `
