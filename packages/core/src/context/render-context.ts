@@ -213,6 +213,10 @@ export class RenderContext {
       step: (n) => this.iterate(n),
       finishFrame: () => this.present(),
       sync: () => this.backend.finish(),
+      // Bricks that arrive after convergence still upload; the reset makes the loop iterate again.
+      idle: () => {
+        if (this.updateBricks()) this.reset();
+      },
       onStats: (ms) => {
         this.msPerIteration = ms;
         this.emit();
