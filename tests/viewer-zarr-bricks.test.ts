@@ -153,8 +153,15 @@ describe('<vpt-viewer> streams an OME-Zarr level 0 beyond the budget as bricks',
     server.faults.clear();
     const url = `${server.url}ball.ome.zarr`;
     const sent0 = server.bytesSent;
+    const requests0 = server.log.length;
     const bricked = await run(url, MAX_GPU_BYTES);
     const sent = server.bytesSent - sent0;
+    const level0Requests = server.log.slice(requests0).filter((p) => p.includes('/ball.ome.zarr/0/c/')).length;
+    const storeBytes = (level: number) =>
+      (fs.readdirSync(path.join(root, 'ball.ome.zarr', String(level)), { recursive: true }) as string[])
+        .map((f) => path.join(root, 'ball.ome.zarr', String(level), f))
+        .filter((f) => fs.statSync(f).isFile())
+        .reduce((n, f) => n + fs.statSync(f).size, 0);
     expect(bricked.errors).toEqual([]);
     expect(bricked.loads.map((l) => [l.level?.index, l.level?.final, l.level?.bricked ?? false])).toEqual([
       [2, false, false],
@@ -174,7 +181,8 @@ describe('<vpt-viewer> streams an OME-Zarr level 0 beyond the budget as bricks',
     expect(bricked.lit).toBeGreaterThan(20);
     console.log(
       `bricked OME-Zarr (128³ uint8 ball, budget ${MAX_GPU_BYTES} B): ${b.uploaded} bricks uploaded until complete, ` +
-        `${b.resident} resident, ${b.constant} constant, atlas+tables ${b.gpuBytes} B, ${sent} bytes served`,
+        `${b.resident} resident, ${b.constant} constant, atlas+tables ${b.gpuBytes} B, ${sent} bytes served in all, ` +
+        `${level0Requests} level-0 chunk requests; stored: level 0 ${storeBytes(0)} B, 1 ${storeBytes(1)} B, 2 ${storeBytes(2)} B`,
     );
 
     const direct = await run(`${url}#level=0`, undefined);
