@@ -179,6 +179,8 @@ describe('<vpt-viewer> streams an OME-Zarr level 0 beyond the budget as bricks',
     expect(b.gpuBytes).toBeLessThan(MAX_GPU_BYTES);
     expect(bricked.stats).toMatch(/level bricked 0 \(\d+\/64 bricks\) of 3/);
     expect(bricked.lit).toBeGreaterThan(20);
+    // A brick's read with its apron spans up to 27 chunks; the store's chunk cache fetches each of the 4³ once.
+    expect(level0Requests).toBe(64);
     console.log(
       `bricked OME-Zarr (128³ uint8 ball, budget ${MAX_GPU_BYTES} B): ${b.uploaded} bricks uploaded until complete, ` +
         `${b.resident} resident, ${b.constant} constant, atlas+tables ${b.gpuBytes} B, ${sent} bytes served in all, ` +
