@@ -77,7 +77,8 @@ describe.each(BACKENDS)('bricked volumes (%s)', (backend) => {
 
   it('a volume streamed from a multiscale source renders like the bricked volume; a failed brick read warns and leaves a coarser level in its place', async () => {
     // EAM's default step derives from the scene's volume, here the coarsest level [9, 8, 7]
-    // (docs/architecture.md, "Bricked volumes"): the direct render is given that step.
+    // (docs/architecture.md, "Bricked volumes"): the direct render is given that step,
+    // DEFAULT_EAM_STEP_VOXELS (1 voxel) of the stand-in's largest side.
     const o = {
       backend,
       renderer: 'eam',
@@ -87,7 +88,7 @@ describe.each(BACKENDS)('bricked volumes (%s)', (backend) => {
       ...LUMPY,
       bricking: 'off' as const,
     };
-    const direct = await render({ ...o, bricking: 'force', params: { stepSize: 0.5 / 9 } });
+    const direct = await render({ ...o, bricking: 'force', params: { stepSize: 1 / 9 } });
     const streamed = await page().page.evaluate((o) => window.bt.streamed(o, null), o);
     expect(streamed.bricking!.complete).toBe(true);
     expect(streamed.bricking!.finest).toBe(5 * 4 * 4);
