@@ -42,6 +42,8 @@ export interface RenderResult {
   gpuBytes: PageRenderResult['gpuBytes'];
   volumeDims: [number, number, number];
   warnings: string[];
+  /** A bricked volume's residency before the iterations (an OME-Zarr level 0 beyond maxGpuBytes streams as bricks); null: not bricked. */
+  bricking?: PageRenderResult['bricking'];
 }
 
 export interface PageRenderOptions {
@@ -186,6 +188,7 @@ function decodeResult(r: PageRenderResult): RenderResult {
     gpuBytes: r.gpuBytes,
     volumeDims: r.volumeDims,
     warnings: r.warnings,
+    bricking: r.bricking,
   };
 }
 

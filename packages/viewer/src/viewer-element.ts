@@ -22,6 +22,8 @@ import {
   type Light,
   type Renderer,
   type Scene,
+  type MultiscaleSource,
+  type RenderWarning,
   type TransferFunction,
   type Volume,
 } from '@vpt/core';
@@ -49,7 +51,7 @@ import { download, encodeExr, encodePfm, encodePngBlob } from './export.js';
 import { gradientSamples, valueHistogram, type GradientSamples, type Histogram1D } from './histogram.js';
 import { loadEnvironment } from './loading/environment-loader.js';
 import type { LoadedVolumeLike, VolumeSource } from './loading/types.js';
-import { loadVolumeSource } from './loading/volume-source.js';
+import { loadVolumeSource, openMultiscaleSource } from './loading/volume-source.js';
 import {
   finestFittingLevel,
   isProgressiveSource,
@@ -86,7 +88,14 @@ export interface ViewerLoadDetail {
    * For a multiscale store (OME-Zarr) loaded level by level: the level now shown (0 =
    * finest), how many the store has, its dims, and whether it is the last one coming.
    */
-  level?: { index: number; count: number; dims: [number, number, number]; final: boolean };
+  level?: {
+    index: number;
+    count: number;
+    dims: [number, number, number];
+    final: boolean;
+    /** Level 0 streamed as bricks (it does not fit the budget): `volume` is the stand-in level the cache starts from. */
+    bricked?: boolean;
+  };
 }
 export interface ViewerChangeDetail {
   property: string;
@@ -204,12 +213,26 @@ export class VptViewer extends LitElement {
   declare private _lostGaveUp: boolean;
   /** How long a lost GPU context may take to be restored before `error` (code `context-lost`) fires. */
   contextRestoreTimeoutMs = 10_000;
+  /**
+   * The GPU memory budget in bytes (RenderContextOptions.maxGpuBytes), read when the context
+   * opens; undefined: the context's default. It decides which levels of a multiscale store fit.
+   */
+  maxGpuBytes: number | undefined = undefined;
   private lostTimer: ReturnType<typeof setTimeout> | undefined;
   declare private _stats: RefinementStats | null;
   declare private _histogram: Histogram1D | null;
   declare private _dragOver: boolean;
   /** A multiscale volume's levels: shown, how many, the one that fits the budget, the one loading (null: none). */
-  declare private _dataLevel: { shown: number; count: number; target: number; loading: number | null } | null;
+  declare private _dataLevel: {
+    shown: number;
+    count: number;
+    target: number;
+    loading: number | null;
+    bricked?: boolean;
+  } | null;
+  /** A level 0 streamed as bricks: the stand-in volume the scene holds and its source (registered on every new context). */
+  private streamed: { standIn: LoadedVolumeLike; source: MultiscaleSource } | null = null;
+  private brickFailureWarned = false;
 
   private session: RenderSession | null = null;
   private canvas: HTMLCanvasElement | null = null;
@@ -537,7 +560,13 @@ export class VptViewer extends LitElement {
       `${s.msPerIteration < 10 ? s.msPerIteration.toFixed(1) : Math.round(s.msPerIteration)} ms/it`,
     ];
     const level = this._dataLevel;
-    if (level)
+    const bricking = level?.bricked && this.streamed ? (this.session?.ctx.stats.bricking ?? null) : null;
+    if (bricking) {
+      // Level-0 bricks served by their own data, of all of them.
+      const total = this.streamed!.source.levels[0].dims.reduce((n, d) => n * Math.ceil(d / bricking.brickSize), 1);
+      const failed = bricking.failed ? `, ${bricking.failed} failed` : '';
+      parts.push(`level bricked 0 (${bricking.finest}/${total} bricks${failed}) of ${level!.count}`);
+    } else if (level)
       parts.push(`level ${level.shown}${level.loading !== null ? ` → ${level.loading}…` : ''} of ${level.count}`);
     if (s.error !== null)
       parts.push(
@@ -764,7 +793,15 @@ export class VptViewer extends LitElement {
     let session: RenderSession;
     try {
       session = await RenderSession.create(
-        { canvas, backend: this.backend, renderer, post: this.makePost(), width, height },
+        {
+          canvas,
+          backend: this.backend,
+          renderer,
+          post: this.makePost(),
+          width,
+          height,
+          ...(this.maxGpuBytes !== undefined ? { maxGpuBytes: this.maxGpuBytes } : {}),
+        },
         {
           progress: (s) => this.onProgress(s),
           converged: (s) => {
@@ -794,6 +831,8 @@ export class VptViewer extends LitElement {
     this.canvas = canvas;
     view.prepend(canvas);
     this.session = session;
+    if (this.streamed) session.ctx.setVolumeSource(this.streamed.standIn, this.streamed.source);
+    session.ctx.onWarning((w) => this.onContextWarning(w));
     this.postKey = this.postKeyNow();
     this.orbit.attach(canvas);
     if (this.camera) this.orbit.set(this.camera as Camera);
@@ -810,6 +849,7 @@ export class VptViewer extends LitElement {
     const token = ++this.tokens.src;
     this.srcAbort?.abort();
     this._dataLevel = null;
+    this.streamed = null;
     if (source === null || source === '') return;
     const abort = new AbortController();
     this.srcAbort = abort;
@@ -865,18 +905,24 @@ export class VptViewer extends LitElement {
       const zarr = first.meta?.zarr as { level: number; levels: { dims: Dims }[] } | undefined;
       const levels = zarr?.levels.map((l) => l.dims) ?? [first.dims];
       const ms = Math.max(1, performance.now() - t0);
+      // The budget and the texture limit are the context's: wait for one that is opening.
+      if (this.opening) await this.opening;
+      if (token !== this.tokens.src) return;
       const target = finestFittingLevel(levels, BYTES_PER_VOXEL[first.type], this.volumeBudget(), this.max3D());
       const plan = refinementPlan(levels, target, (first.dims[0] * first.dims[1] * first.dims[2]) / ms);
+      // Level 0 beyond the budget streams as bricks after the last level that fits.
+      const bricks = target > 0;
       this._dataLevel = { shown: levels.length - 1, count: levels.length, target, loading: plan[0] ?? null };
-      this.applyVolume(first, source, this.levelDetail(levels.length - 1, levels, plan.length === 0));
+      this.applyVolume(first, source, this.levelDetail(levels.length - 1, levels, plan.length === 0 && !bricks));
       shown = true;
       for (const [i, level] of plan.entries()) {
         this._dataLevel = { ...this._dataLevel, loading: level };
         const volume = await this.loadOnce(sourceAtLevel(source, level), token, signal);
         if (token !== this.tokens.src) return;
         this._dataLevel = { ...this._dataLevel, shown: level, loading: plan[i + 1] ?? null };
-        this.applyVolume(volume, source, this.levelDetail(level, levels, i === plan.length - 1));
+        this.applyVolume(volume, source, this.levelDetail(level, levels, i === plan.length - 1 && !bricks));
       }
+      if (bricks) await this.streamLevel0(source, token, levels);
     } catch (e) {
       if (token !== this.tokens.src) return;
       this._status = '';
@@ -884,6 +930,50 @@ export class VptViewer extends LitElement {
       if (shown && this._dataLevel) this._dataLevel = { ...this._dataLevel, loading: null };
       this.fail(e, 'src');
     }
+  }
+
+  /**
+   * Level 0 of a store that does not fit the budget: the brick cache streams it from the
+   * store's chunks (RenderContext.setVolumeSource), starting from the level on screen, which
+   * becomes the stand-in (histogram, transfer function, renderer defaults). Bricks the view
+   * needs load at level 0, nearest first; a chunk that fails warns once and its region keeps
+   * the coarser level. Reads are not aborted by a new src: the cache drops them with the volume.
+   */
+  private async streamLevel0(source: string, token: number, levels: readonly Dims[]): Promise<void> {
+    const shown = this.volume;
+    if (!shown || !this._dataLevel) return;
+    this._dataLevel = { ...this._dataLevel, loading: 0 };
+    const multiscale = await openMultiscaleSource(source);
+    if (token !== this.tokens.src || this.volume !== shown) return;
+    if (!multiscale) {
+      this._dataLevel = { ...this._dataLevel, loading: null };
+      return;
+    }
+    // A new object: the context fits it afresh, as bricks, instead of reusing the upload of `shown`.
+    const standIn: LoadedVolumeLike = { ...shown };
+    this.streamed = { standIn, source: multiscale };
+    this.brickFailureWarned = false;
+    this.session?.ctx.setVolumeSource(standIn, multiscale);
+    this._dataLevel = { ...this._dataLevel, shown: 0, loading: null, bricked: true };
+    this.applyVolume(standIn, source, { ...this.levelDetail(0, levels, true)!, bricked: true });
+  }
+
+  /**
+   * The context's warnings go to the console as before, except that a streamed volume's
+   * failed bricks warn once: one bad chunk fails every brick whose apron reaches it, and the
+   * stats line counts them.
+   */
+  private onContextWarning(warning: RenderWarning): void {
+    if (warning.code === 'brick-load-failed') {
+      this.requestUpdate(); // the stats line's count of failed bricks
+      if (this.brickFailureWarned) return;
+      this.brickFailureWarned = true;
+      console.warn(
+        `vpt: ${warning.message} (its region keeps a coarser level; the stats line counts further failed bricks)`,
+      );
+      return;
+    }
+    console.warn(`vpt: ${warning.message}`);
   }
 
   private levelDetail(index: number, levels: readonly Dims[], final: boolean): ViewerLoadDetail['level'] {

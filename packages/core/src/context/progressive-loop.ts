@@ -8,6 +8,8 @@ export interface ProgressiveLoopHooks {
   finishFrame(): void;
   sync(): Promise<void>;
   onStats(msPerIteration: number): void;
+  /** Work for a converged frame (a bricked volume's arrived bricks); a reset it causes resumes the iterations. */
+  idle?(): void;
 }
 
 export interface LoopOptions {
@@ -70,6 +72,7 @@ export class ProgressiveLoop {
     if (remaining <= 0) {
       // Converged: keep presenting (cheap, skipped when nothing changed) so that a reset
       // or a post-chain change after convergence is picked up on the next frame.
+      this.hooks.idle?.();
       this.hooks.finishFrame();
       this.schedule();
       return;

@@ -213,6 +213,10 @@ export class RenderContext {
       step: (n) => this.iterate(n),
       finishFrame: () => this.present(),
       sync: () => this.backend.finish(),
+      // Bricks that arrive after convergence still upload; the reset makes the loop iterate again.
+      idle: () => {
+        if (this.updateBricks()) this.reset();
+      },
       onStats: (ms) => {
         this.msPerIteration = ms;
         this.emit();
@@ -377,6 +381,20 @@ export class RenderContext {
   }
 
   /**
+   * Bytes a volume (with its gradient) or a brick atlas may take at this size, renderer and
+   * post chain: maxGpuBytes less the render targets and the transfer function. A caller
+   * choosing a level of a multiscale source (or whether to stream it) uses this rule.
+   */
+  get volumeBudgetBytes(): number {
+    const pixels = this.width * this.height;
+    const targetBytes =
+      pixels *
+      16 *
+      (this._renderer.frameFormats.length + 2 * this._renderer.accumulationFormats.length + 1 + this._post.length);
+    return this.maxGpuBytes - targetBytes - TF_RESOLUTION * 16 * 256;
+  }
+
+  /**
    * The scene with a volume that fits the device: each side within the 3D texture limit and
    * the whole within maxGpuBytes (volume + gradient at this scene's sampling, plus the render
    * targets and the TF); otherwise downsampled by integer box averages (scene/downsample.ts)
@@ -403,12 +421,7 @@ export class RenderContext {
     }
     const upload = this.resources.planUpload(scene.volume, sampling);
     const perVoxel = upload.bytesPerVoxel + (gradient ? (sampling === 'exact' ? 4 : 2) : 0);
-    const pixels = this.width * this.height;
-    const targetBytes =
-      pixels *
-      16 *
-      (this._renderer.frameFormats.length + 2 * this._renderer.accumulationFormats.length + 1 + this._post.length);
-    const budget = this.maxGpuBytes - targetBytes - TF_RESOLUTION * 16 * 256;
+    const budget = this.volumeBudgetBytes;
     const max3D = this.backend.limits.maxTextureDimension3D;
     const from = [...scene.volume.dims] as [number, number, number];
     const factors = fitFactors(from, perVoxel, budget, max3D);

@@ -52,6 +52,7 @@ export async function runRender(argv: string[], io: CliIO = processIO): Promise<
         device: result.backend.renderer,
         gpuBytes: result.gpuBytes,
         volumeDims: result.volumeDims,
+        ...(result.bricking ? { bricking: result.bricking } : {}),
         // What the PFM holds: the estimate after these post steps (['denoise'] when it was denoised).
         ...(args.pfm !== undefined ? { hdrPostSteps: result.hdrPostSteps } : {}),
         ...(result.warnings.length > 0 ? { warnings: result.warnings } : {}),

@@ -8,7 +8,7 @@ import type * as MipModule from '@vpt/renderer-mip';
 import type * as EamModule from '@vpt/renderer-eam';
 import type * as IsoModule from '@vpt/renderer-iso';
 import type * as McrtModule from '@vpt/renderer-mcrt';
-import type { PostStep, Scene, Volume } from '@vpt/core';
+import type { BrickingStats, PostStep, Scene, Volume } from '@vpt/core';
 import type { SceneDescription, VolumeDescription } from '../scene-description.js';
 
 /** The part of @vpt/post the page relies on. */
@@ -51,8 +51,13 @@ export interface PageRenderResult {
   gpuBytes: { volume: number; gradient: number; auxiliary: number; targets: number; total: number };
   /** The dims of the volume as uploaded (smaller than the scene's when it was downsampled to fit). */
   volumeDims: [number, number, number];
-  /** The context's warnings (a downsampled volume). */
+  /** The context's warnings (a downsampled volume, a brick that failed to load). */
   warnings: string[];
+  /**
+   * A bricked volume's residency once settled, before the iterations (RenderContext.stats.bricking):
+   * an OME-Zarr volume whose level 0 exceeds the budget streams as bricks. Null: not bricked.
+   */
+  bricking: BrickingStats | null;
 }
 
 export interface VptPageApi {

@@ -5,7 +5,7 @@
  * renderers, <renderer name>: <its module>…, renderDescription, buildScene, loadVolume }` and
  * sets `window.__vptReady`, or `window.__vptError` when a package cannot be loaded.
  */
-import type { Environment, Renderer, Scene, Volume } from '@vpt/core';
+import type { Environment, MultiscaleSource, RenderContext, Renderer, Scene, Volume } from '@vpt/core';
 import {
   SCENE_DEFAULTS,
   checkSceneDescription,
@@ -22,6 +22,7 @@ interface LoadersModule {
     url: string,
     options: { format: 'ome-zarr'; zarr: Record<string, unknown> },
   ): Promise<Volume & { meta?: Record<string, unknown> }>;
+  openOmeZarr(url: string, options: Record<string, unknown>): Promise<MultiscaleSource>;
 }
 
 let core!: CoreModule;
@@ -88,6 +89,51 @@ async function loadZarr(desc: ZarrVolumeDescription, baseUrl: string): Promise<V
   return volume;
 }
 
+const BYTES_PER_VOXEL = { uint8: 1, uint16: 2, int16: 2, float32: 4 } as const;
+
+/**
+ * An OME-Zarr volume without a `level` whose level 0 does not fit the context's budget
+ * (volumeBudgetBytes) or 3D texture limit as it is: the source, opened in this thread for
+ * the brick cache, and the finest level that fits, which stands in for it (the coarsest
+ * when none does). Null when level 0 fits: it loads whole, as before.
+ */
+async function zarrToStream(
+  d: SceneDescription,
+  ctx: RenderContext,
+  baseUrl: string,
+): Promise<{ source: MultiscaleSource; level: number } | null> {
+  const v = d.volume;
+  if (!v || !('zarr' in v) || v.level !== undefined) return null;
+  const url = new URL(v.zarr, baseUrl).href;
+  const loaders = await load<LoadersModule>('@vpt/loaders');
+  let source: MultiscaleSource;
+  try {
+    source = await loaders.openOmeZarr(url, {
+      ...(v.channel !== undefined ? { channel: v.channel } : {}),
+      ...(v.time !== undefined ? { time: v.time } : {}),
+      ...(v.missingChunks ? { missingChunks: v.missingChunks } : {}),
+    });
+  } catch (e) {
+    throw new core.VptError('load-failed', `Could not load OME-Zarr ${url}: ${(e as Error).message}`, { cause: e });
+  }
+  const perVoxel = (d.sampling ?? 'fast') === 'exact' ? 4 : BYTES_PER_VOXEL[source.type];
+  const budget = ctx.volumeBudgetBytes;
+  const max3D = ctx.backend.limits.maxTextureDimension3D;
+  const fits = (k: number) => core.fitFactors(source.levels[k].dims, perVoxel, budget, max3D)?.every((f) => f === 1);
+  if (fits(0)) return null;
+  const level = source.levels.findIndex((_, k) => fits(k));
+  // The description's valueRange wins over the omero window, as for a loaded level.
+  const range = v.valueRange ?? source.valueRange;
+  const streamed: MultiscaleSource = {
+    type: source.type,
+    levels: source.levels,
+    ...(range ? { valueRange: [range[0], range[1]] as [number, number] } : {}),
+    readRegion: (l, min, max, signal) => source.readRegion(l, min, max, signal),
+    readLevel: (l, signal) => source.readLevel(l, signal),
+  };
+  return { source: streamed, level: level < 0 ? source.levels.length - 1 : level };
+}
+
 function environmentOf(d: SceneDescription): Environment {
   const env = d.environment ?? SCENE_DEFAULTS.environment;
   if (env.type === 'latlong') return { ...env, data: Float32Array.from(env.data) };
@@ -149,7 +195,6 @@ async function renderDescription(
   const width = desc.width ?? SCENE_DEFAULTS.width;
   const height = desc.height ?? SCENE_DEFAULTS.height;
   const iterations = desc.iterations ?? SCENE_DEFAULTS.iterations;
-  const scene = await buildScene(desc, options.baseUrl);
   const steps = post.postChainFromJSON(desc.post ?? SCENE_DEFAULTS.post);
   const canvas = document.createElement('canvas');
   canvas.width = width;
@@ -166,7 +211,14 @@ async function renderDescription(
   const warnings: string[] = [];
   ctx.onWarning((w) => warnings.push(w.message));
   try {
+    // An OME-Zarr level 0 beyond the budget streams through the brick cache, from the finest level that fits.
+    const streamed = await zarrToStream(desc, ctx, options.baseUrl ?? document.baseURI);
+    const volume = streamed && { ...(desc.volume as ZarrVolumeDescription), level: streamed.level };
+    const scene = await buildScene(volume ? { ...desc, volume } : desc, options.baseUrl);
+    if (streamed) ctx.setVolumeSource(scene.volume, streamed.source);
     ctx.setScene(scene);
+    // Every brick the view needs (or as many as the atlas holds) before the timed iterations.
+    const bricking = streamed ? await ctx.whenBricksSettled() : null;
     if (options.warmup !== false) await ctx.renderIterations(1);
     const t1 = performance.now();
     await ctx.renderIterations(iterations);
@@ -188,6 +240,7 @@ async function renderDescription(
       gpuBytes: stats.gpuBytes,
       volumeDims: [...ctx.getScene()!.volume.dims] as [number, number, number],
       warnings,
+      bricking,
     };
   } finally {
     ctx.dispose();

@@ -30,6 +30,12 @@ export interface ZarrStoreOptions {
   missingChunks?: 'error' | 'fill';
   /** Called with the byte count of every answer (for progress and benchmarks). */
   onBytes?: (bytes: number) => void;
+  /**
+   * Bytes of chunks (as stored, compressed) kept for reads that overlap: a brick is read
+   * with a one-voxel apron, so each chunk serves up to 27 bricks' reads. Least recently
+   * used out; requests for a chunk already on its way share it. Default 32 MiB; 0: none.
+   */
+  chunkCacheBytes?: number;
 }
 
 export interface CountingStore extends ZarrReadStore {
@@ -46,15 +52,78 @@ export function isHttpLocation(location: string): boolean {
   return /^[a-z][a-z0-9+.-]*:/i.test(location) && !/^file:/i.test(location);
 }
 
+/** Promises of chunk bytes by key, least recently used dropped past `limit` bytes; a failed read is forgotten. */
+function chunkCache(limit: number) {
+  if (!(limit > 0)) return null;
+  const entries = new Map<string, { promise: Promise<Uint8Array | undefined>; bytes: number }>();
+  let total = 0;
+  return {
+    get(key: string, read: () => Promise<Uint8Array | undefined>): Promise<Uint8Array | undefined> {
+      const hit = entries.get(key);
+      if (hit) {
+        entries.delete(key);
+        entries.set(key, hit);
+        return hit.promise;
+      }
+      const entry = { promise: read(), bytes: 0 };
+      entries.set(key, entry);
+      entry.promise.then(
+        (b) => {
+          if (entries.get(key) !== entry) return;
+          entry.bytes = b?.length ?? 0;
+          total += entry.bytes;
+          for (const [k, e] of entries) {
+            if (total <= limit) break;
+            if (e.bytes === 0) continue; // still on its way
+            entries.delete(k);
+            total -= e.bytes;
+          }
+        },
+        () => {
+          if (entries.get(key) === entry) entries.delete(key);
+        },
+      );
+      return entry.promise;
+    },
+  };
+}
+
+/** `promise`, or an abort error as soon as `signal` aborts. */
+function abortable<T>(promise: Promise<T>, signal: AbortSignal | undefined): Promise<T> {
+  if (!signal) return promise;
+  if (signal.aborted) return Promise.reject(signal.reason);
+  return new Promise<T>((resolve, reject) => {
+    const onAbort = () => reject(signal.reason);
+    signal.addEventListener('abort', onAbort, { once: true });
+    promise.then(
+      (v) => {
+        signal.removeEventListener('abort', onAbort);
+        resolve(v);
+      },
+      (e) => {
+        signal.removeEventListener('abort', onAbort);
+        reject(e);
+      },
+    );
+  });
+}
+
 export async function openZarrStore(location: string, options: ZarrStoreOptions = {}): Promise<CountingStore> {
   const base = isHttpLocation(location) ? httpReader(location, options) : await fileReader(location);
   const missing = options.missingChunks ?? 'error';
+  const cache = chunkCache(options.chunkCacheBytes ?? 32 << 20);
   const store: CountingStore = {
     location,
     bytesRead: 0,
     async get(key, opts) {
-      const bytes = await base.read(key, undefined, opts?.signal ?? options.signal);
-      return counted(key, bytes);
+      if (METADATA_KEY.test(key) || !cache)
+        return counted(key, await base.read(key, undefined, opts?.signal ?? options.signal));
+      // Shared by every read of this chunk, so it runs under the store's signal; a caller's own abort still ends its wait.
+      const bytes = await abortable(
+        cache.get(key, async () => counted(key, await base.read(key, undefined, options.signal))),
+        opts?.signal,
+      );
+      return bytes?.slice(); // a copy: decoders may work in place
     },
     async getRange(key, range, opts) {
       const bytes = await base.read(key, range, opts?.signal ?? options.signal);

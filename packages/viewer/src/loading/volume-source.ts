@@ -3,7 +3,7 @@
  * in code, everything else through @vpt/loaders when it is installed, else through the
  * small sidecar loader beside this file.
  */
-import { VptError, createProceduralVolume, type ProceduralKind } from '@vpt/core';
+import { VptError, createProceduralVolume, type MultiscaleSource, type ProceduralKind } from '@vpt/core';
 import { fallbackLoadVolume } from './fallback-loader.js';
 import type { LoadOptions, LoadVolumeFn, LoadedVolumeLike, VolumeSource } from './types.js';
 
@@ -59,4 +59,26 @@ export async function loadVolumeSource(source: VolumeSource, options: LoadOption
     volume.valueRange = [range[0], range[1]];
   }
   return volume;
+}
+
+/**
+ * An OME-Zarr `src` opened for region reads in this thread (@vpt/loaders' openOmeZarr, with
+ * the channel and time of its fragment), for the brick cache (RenderContext.setVolumeSource);
+ * null when @vpt/loaders is not installed (the fallback loader cannot read Zarr).
+ */
+export async function openMultiscaleSource(source: string): Promise<MultiscaleSource | null> {
+  const { name } = await volumeLoader();
+  if (name !== '@vpt/loaders') return null;
+  // @ts-ignore -- optional package, may be absent when this is type-checked
+  const m = (await import('@vpt/loaders')) as {
+    openOmeZarr: (location: string, o: { channel?: number; time?: number }) => Promise<MultiscaleSource>;
+    splitZarrLocation: (location: string) => { store: string; selection: { channel?: number; time?: number } };
+  };
+  const { store, selection } = m.splitZarrLocation(source);
+  // The worker resolves a relative src against the page; so does this thread.
+  const location = typeof document !== 'undefined' ? new URL(store, document.baseURI).href : store;
+  return m.openOmeZarr(location, {
+    ...(selection.channel !== undefined ? { channel: selection.channel } : {}),
+    ...(selection.time !== undefined ? { time: selection.time } : {}),
+  });
 }
