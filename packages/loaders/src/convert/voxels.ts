@@ -4,7 +4,8 @@ import { SOURCE_BYTES, type SourceType } from './size.js';
 export type SourceArray =
   Uint8Array | Int8Array | Uint16Array | Int16Array | Uint32Array | Int32Array | Float32Array | Float64Array;
 
-const SOURCE_ARRAY: Record<
+/** The typed array of each source voxel type (reading binary data, or building it from parsed numbers). */
+export const SOURCE_ARRAY: Record<
   SourceType,
   { new (b: ArrayBuffer, o?: number, n?: number): SourceArray; new (n: number): SourceArray }
 > = {

@@ -10,6 +10,7 @@ import {
   toVoxelArray,
   IDENTITY,
   OUTPUT_BYTES,
+  SOURCE_ARRAY,
   type SourceArray,
 } from '../convert/voxels.js';
 import { gunzip } from '../io/gzip.js';
@@ -384,16 +385,7 @@ function parseAscii(data: Uint8Array, count: number, source: SourceType, ctx: Lo
     out[i] = x;
   }
   // Through the declared type, so integer data wraps and rounds as a binary file would.
-  const typed = new {
-    uint8: Uint8Array,
-    int8: Int8Array,
-    uint16: Uint16Array,
-    int16: Int16Array,
-    uint32: Uint32Array,
-    int32: Int32Array,
-    float32: Float32Array,
-    float64: Float64Array,
-  }[source](count);
+  const typed = new SOURCE_ARRAY[source](count);
   typed.set(out);
   return typed;
 }
