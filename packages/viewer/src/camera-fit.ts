@@ -1,4 +1,4 @@
-import { volumeBox, type Camera, type Volume } from '@vpt/core';
+import { orientationFromAxisCodes, volumeBox, type Camera, type Volume } from '@vpt/core';
 import { DEFAULT_FOVY } from './attributes.js';
 
 type Vec3 = [number, number, number];
@@ -18,29 +18,6 @@ export interface AnatomicalFrame {
   superior: Vec3;
   anterior: Vec3;
   right: Vec3;
-}
-
-const LETTER_AXIS: Record<string, [number, number]> = {
-  R: [0, 1],
-  L: [0, -1],
-  A: [1, 1],
-  P: [1, -1],
-  S: [2, 1],
-  I: [2, -1],
-};
-
-/** The orientation matrix (RAS+ world) of axis codes like 'PIR', or null. */
-function orientationFromCodes(codes: string): number[] | null {
-  if (codes.length !== 3) return null;
-  const o = new Array<number>(9).fill(0);
-  const used = new Set<number>();
-  for (let c = 0; c < 3; c++) {
-    const d = LETTER_AXIS[codes[c].toUpperCase()];
-    if (!d || used.has(d[0])) return null;
-    used.add(d[0]);
-    o[3 * d[0] + c] = d[1];
-  }
-  return o;
 }
 
 /** The index axis (with sign) a direction runs closest to. */
@@ -63,7 +40,7 @@ export function anatomicalFrame(volume: OrientedVolume): AnatomicalFrame | null 
   let o: readonly number[] | null = volume.orientation && volume.orientation.length === 9 ? volume.orientation : null;
   let space = meta.space === 'LPS' ? 'LPS' : 'RAS';
   if (!o && typeof meta.axisCodes === 'string') {
-    o = orientationFromCodes(meta.axisCodes);
+    o = orientationFromAxisCodes(meta.axisCodes);
     space = 'RAS';
   }
   if (!o || !o.every(Number.isFinite)) return null;
