@@ -12,8 +12,8 @@ import { readFileSync } from 'node:fs';
 import { BACKENDS, usePage } from './helpers/session.js';
 
 /**
- * CPU MIP of the same volume and camera: the straightforward jittered ray march the
- * kernel documents, with the same random numbers (the RNG twin), in float64.
+ * CPU MIP of the same volume and camera: the straightforward march of the pixel-centre ray
+ * with a random offset the kernel documents, with the same random numbers (the RNG twin), in float64.
  */
 function cpuMip(scene: Scene, w: number, h: number, iterations: number, stepSize: number): Float64Array {
   const sampler = new reference.CpuVolumeSampler(scene);
@@ -23,7 +23,7 @@ function cpuMip(scene: Scene, w: number, h: number, iterations: number, stepSize
       let best = 0;
       for (let it = 0; it < iterations; it++) {
         const rng = new reference.CpuRng(x, y, it, scene.seed);
-        const { origin, dir } = reference.jitteredCameraRay(scene, w, h, x, y, rng);
+        const { origin, dir } = reference.cameraRay(scene, w, h, (x + 0.5) / w, (y + 0.5) / h);
         const [t0, t1] = reference.intersectBox(origin, dir, sampler.box.min, sampler.box.max);
         if (!(t0 < t1)) continue;
         const offset = rng.next();

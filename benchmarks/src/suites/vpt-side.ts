@@ -122,8 +122,8 @@ export interface SideOptions {
   budgetMs: number;
   /** Only the pairs with these ids (multiple, single, eam, mip); all when absent. */
   pairs?: string[];
-  /** Parameters merged into every vpt MCRT configuration (e.g. an estimator to compare). */
-  mcrtParams?: Record<string, unknown>;
+  /** Per vpt renderer name (mcrt, eam, mip), parameters merged into its configuration (an estimator or a step to compare). */
+  rendererParams?: Record<string, Record<string, unknown>>;
   log: (line: string) => void;
   /** Keeps a reference image (base64 sRGB RGBA8, top row first) to look at. */
   saveImage?: (name: string, rgba8Base64: string, size: number) => void;
@@ -177,8 +177,9 @@ export async function vptSide(page: Page, o: SideOptions): Promise<SideResults> 
   const pairs: SidePairResult[] = [];
   for (const pair of sidePairs(o.scale)) {
     if (o.pairs && !o.pairs.includes(pair.id)) continue;
-    if (o.mcrtParams && pair.vpt.config.engine === 'vpt' && pair.vpt.config.renderer === 'mcrt')
-      pair.vpt.config = { ...pair.vpt.config, params: { ...pair.vpt.config.params, ...o.mcrtParams } };
+    const extra = pair.vpt.config.engine === 'vpt' ? o.rendererParams?.[pair.vpt.config.renderer] : undefined;
+    if (extra && pair.vpt.config.engine === 'vpt')
+      pair.vpt.config = { ...pair.vpt.config, params: { ...pair.vpt.config.params, ...extra } };
     const engines = { vptRef: pair.vptRef, vpt: pair.vpt };
     const result: SidePairResult = {
       name: pair.name,

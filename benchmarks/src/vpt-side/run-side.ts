@@ -1,6 +1,6 @@
 /**
  * `pnpm bench --vpt DIR [--quick] [--size N] [--rounds R] [--volume N] [--pairs single,multiple,eam,mip]
- * [--mcrt-params JSON]`: the side-by-side
+ * [--mcrt-params JSON] [--eam-params JSON] [--mip-params JSON]`: the side-by-side
  * suite against a build of the original VPT (DIR = a clone holding build/, or the build
  * folder itself; never stored in this repository). Serves that build read-only under /vpt/
  * from the same static server as vpt's page, so both run in one page of one Chromium.
@@ -73,7 +73,11 @@ export async function runSide(argv: readonly string[]): Promise<void> {
       scale,
       budgetMs: quick ? 5_000 : 300_000,
       pairs: arg('pairs', '') ? arg('pairs', '').split(',') : undefined,
-      mcrtParams: arg('mcrt-params', '') ? JSON.parse(arg('mcrt-params', '')) : undefined,
+      rendererParams: Object.fromEntries(
+        ['mcrt', 'eam', 'mip'].flatMap((r) =>
+          arg(`${r}-params`, '') ? [[r, JSON.parse(arg(`${r}-params`, ''))]] : [],
+        ),
+      ),
       log,
       saveImage: (name, rgba, side) =>
         writeFileSync(

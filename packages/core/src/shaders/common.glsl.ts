@@ -55,6 +55,10 @@ vec3 jitteredCameraRay(ivec2 pixel, ivec2 size, inout uint rng) {
   vec2 film = vec2((float(pixel.x) + jx) / float(size.x), (float(pixel.y) + jy) / float(size.y));
   return cameraRayDirection(film);
 }
+// The ray through the pixel's centre (MIP: a maximum is not a mean, so it is not box-filtered).
+vec3 centreCameraRay(ivec2 pixel, ivec2 size) {
+  return cameraRayDirection((vec2(pixel) + 0.5) / vec2(size));
+}
 `;
 
 /**

@@ -49,6 +49,9 @@ fn jitteredCameraRay(pixel: vec2i, size: vec2i, rng: ptr<function, u32>) -> vec3
   let film = vec2f((f32(pixel.x) + jx) / f32(size.x), (f32(pixel.y) + jy) / f32(size.y));
   return cameraRayDirection(film);
 }
+fn centreCameraRay(pixel: vec2i, size: vec2i) -> vec3f {
+  return cameraRayDirection((vec2f(pixel) + 0.5) / vec2f(size));
+}
 `;
 
 /** Volume sampling: twins of common.glsl.ts (see there): value mapping, exact and hardware filters. */

@@ -1,7 +1,9 @@
 import { GLSL_CELL_WALK, MAX_MARCH_STEPS } from '@vpt/core';
 
 // Monte Carlo maximum intensity projection (Lesar, Bohak, Marolt 2018, "Real-Time Interactive Platform-Agnostic Volumetric Path Tracing in WebGL 2.0", its MIP renderer): each
-// iteration marches a jittered ray with a random offset; the accumulation keeps the max.
+// iteration marches the pixel-centre ray with a random sample offset; the accumulation keeps the
+// max, which converges to the maximum along that ray. (A maximum over jittered rays would be the
+// maximum over the pixel's footprint, a dilated image that converges slowly at every edge.)
 // SKIP_EMPTY (empty-space skipping through the majorant grid's value ranges, core's cell walk):
 // a cell whose largest value cannot exceed the running maximum is jumped over, and the march
 // ends once the maximum is 1 (the largest normalized value); the maximum keeps its bits.
@@ -20,7 +22,7 @@ float cellMaxValue(CellWalk walk) {
 void main() {
   ivec2 pixel = vptPixel();
   uint rng = rngInit(pixel, u.iteration, u.seed);
-  vec3 dir = jitteredCameraRay(pixel, vptTargetSize(), rng);
+  vec3 dir = centreCameraRay(pixel, vptTargetSize());
   vec2 t = intersectBox(u.cameraPosition, dir, u.boxMin, u.boxMax);
   float maxValue = 0.0;
   float coverage = 0.0;

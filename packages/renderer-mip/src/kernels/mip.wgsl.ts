@@ -1,7 +1,7 @@
 import { MAX_MARCH_STEPS, WGSL_CELL_WALK } from '@vpt/core';
 
 // Monte Carlo maximum intensity projection (Lesar, Bohak, Marolt 2018, Web3D, its MIP renderer): each
-// iteration marches a jittered ray with a random offset; the accumulation keeps the max.
+// iteration marches the pixel-centre ray with a random sample offset; the accumulation keeps the max.
 // Twin of mip.glsl.ts (SKIP_EMPTY: cells whose largest value cannot raise the maximum are jumped over).
 
 export const generate = /* wgsl */ `
@@ -16,7 +16,7 @@ fn cellMaxValue(walk: CellWalk) -> f32 {
 @fragment fn fs_main(@builtin(position) fragCoord: vec4f) -> VptOut {
   let pixel = vptPixel(fragCoord);
   var rng = rngInit(pixel, u.iteration, u.seed);
-  let dir = jitteredCameraRay(pixel, vptTargetSize(), &rng);
+  let dir = centreCameraRay(pixel, vptTargetSize());
   let t = intersectBox(u.cameraPosition, dir, u.boxMin, u.boxMax);
   var maxValue = 0.0;
   var coverage = 0.0;
