@@ -1,5 +1,6 @@
 import { describe, expect, it } from 'vitest';
 import { tf1d } from './helpers/test-scene.js';
+import { DEFAULT_EAM_CUTOFF } from '@vpt/renderer-eam';
 import {
   rasterizeTransferFunction,
   reference,
@@ -247,5 +248,35 @@ describe.each(BACKENDS)('EAM on %s against a CPU twin', (backend) => {
     expect(spread).toBeGreaterThan(0.1); // colours vary (the TF's colour is looked up, not constant)
     // Float32 against float64 over ~30 steps (measured ~1e-6): far below the effect of moving the samples.
     expect(maxErr).toBeLessThan(5e-5);
+  });
+
+  it('stops early at the default cutoff, leaving behind at most cutoff × the brightest colour', async () => {
+    // A dense blob in front of a white background: rays through it fall below the cutoff
+    // early, and the light they leave behind is what ending the march may drop.
+    const { withCutoff, without } = await page.run(async ({ core, t }, backend) => {
+      const render = async (params: Record<string, number>) => {
+        const ctx = await t.context({ backend, renderer: 'eam', width: 16, height: 16, params, sampling: 'exact' });
+        ctx.setScene(
+          t.scene({
+            volume: core.createProceduralVolume('blob', 16),
+            densityScale: 400,
+            seed: 4,
+            environment: { type: 'constant', radiance: [1, 1, 1] },
+          }),
+        );
+        const image = await t.finalHDR(ctx, 1);
+        ctx.dispose();
+        return image;
+      };
+      return { withCutoff: await render({}), without: await render({ cutoff: 0 }) };
+    }, backend);
+    let maxDiff = 0,
+      opaque = 0;
+    for (let i = 0; i < withCutoff.length; i += 4) {
+      for (let c = 0; c < 3; c++) maxDiff = Math.max(maxDiff, Math.abs(withCutoff[i + c] - without[i + c]));
+      if (without[i + 3] > 1 - DEFAULT_EAM_CUTOFF) opaque++;
+    }
+    expect(opaque).toBeGreaterThan(10); // the cutoff is reached on these rays
+    expect(maxDiff).toBeLessThanOrEqual(DEFAULT_EAM_CUTOFF * 1.0001); // TF colours and background ≤ 1
   });
 });

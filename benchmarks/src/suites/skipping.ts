@@ -5,7 +5,7 @@ import { referenceKey } from './error-vs-time.js';
 import { bench, type SuiteContext } from './types.js';
 
 /** Ray-march steps swept, in voxels of the volume's longest side (vpt's default before issue 14: 0.5). */
-export const STEPS_VOXELS = [0.25, 0.5, 1, 2];
+export const STEPS_VOXELS = [0.25, 0.5, 1, 1.5, 2];
 /** The step whose converged image stands for the exact integral: the finest of the sweep. */
 const FINE_STEP = Math.min(...STEPS_VOXELS);
 const TARGETS_DB = [30, 35, 40];

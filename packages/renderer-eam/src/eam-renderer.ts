@@ -19,12 +19,13 @@ import * as wgsl from './kernels/eam.wgsl.js';
 export interface EamParams {
   /**
    * Ray-march segment length in world units (box longest side = 1). Default: DEFAULT_EAM_STEP_VOXELS
-   * (1) voxel of the longest side, chosen by time to 35 dB (docs/benchmarks.md, "Ray-march step").
+   * (1.5) voxels of the longest side, chosen by time to 35 dB (docs/benchmarks.md, "Step sweep").
    */
   stepSize?: number;
   /**
-   * Transmittance below which the march stops (early ray termination). Default 1e-6;
-   * 0 disables it. The remaining light is dropped, a bias of at most `cutoff`.
+   * Transmittance below which the march stops (early ray termination). Default 1e-3 (VPT's
+   * EAM stops at 1e-2); 0 disables it. The remaining light is dropped: a bias of at most
+   * `cutoff` times the brightest TF colour or background (60 dB below a peak of 1).
    */
   cutoff?: number;
   /**
@@ -36,14 +37,18 @@ export interface EamParams {
 }
 
 /**
- * The default step in voxels (was 0.5). Measured (docs/benchmarks.md, "Ray-march step"): on the
- * VPT anchor scene and the head, EAM is within 35 dB of the finest step's converged image after
- * one iteration at every step from 0.25 to 2 voxels (the pixel jitter dominates its error), so
- * the cheaper step wins; 1 voxel costs 0.55–0.75× the old default per iteration. 2 voxels is
- * cheaper still on those scenes but converges too slowly on thin high-gradient shells (the 2D-TF
- * block of tests/tf2d-eam.test.ts: 0.036 from the CPU model after 32 iterations, limit 0.03).
+ * The default step in voxels (was 0.5, then 1). Measured (docs/benchmarks.md, "Step sweep"): on
+ * the VPT anchor scene and the head, EAM is within 35 dB of the finest step's converged image
+ * after one iteration at every step from 0.25 to 2 voxels (the pixel jitter dominates its
+ * error), so the cheapest step wins: 1.5 voxels cost 0.6–0.9× 1 voxel per iteration with
+ * skipping. 2 voxels is no cheaper on the anchor (a cell then holds 4 samples and the cell walk
+ * costs what it saves) and converges too slowly on thin high-gradient shells (the 2D-TF block of
+ * tests/tf2d-eam.test.ts: 0.036 from the CPU model after 32 iterations, limit 0.03; 1.5 passes).
  */
-export const DEFAULT_EAM_STEP_VOXELS = 1;
+export const DEFAULT_EAM_STEP_VOXELS = 1.5;
+
+/** The default early-termination transmittance (EamParams.cutoff). */
+export const DEFAULT_EAM_CUTOFF = 1e-3;
 
 /** EAM's parameters and their ranges (core's validateParams; steps also ≥ MIN_STEP_VOXELS voxels per scene). */
 export const EAM_PARAM_SPECS: ParamSpecs = {
@@ -81,7 +86,7 @@ export class EamRenderer extends BaseRenderer<EamParams> {
     const p = this.getParams();
     return {
       stepSize: p.stepSize ?? DEFAULT_EAM_STEP_VOXELS / Math.max(...scene.volume.dims),
-      cutoff: p.cutoff ?? 1e-6,
+      cutoff: p.cutoff ?? DEFAULT_EAM_CUTOFF,
       gridCells: gridGeometry(scene.volume.dims, DEFAULT_SKIP_CELL_SIZE),
     };
   }
