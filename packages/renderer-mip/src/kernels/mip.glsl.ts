@@ -58,7 +58,7 @@ void main() {
 }
 `;
 
-// Keep the running maximum of the value; coverage (pixel footprint inside the box) is a running mean.
+// Keep the running maximum of the value; coverage (whether the pixel-centre ray meets the box) is a running mean.
 export const integrate = /* glsl */ `
 void main() {
   ivec2 p = vptPixel();
