@@ -121,7 +121,8 @@ void main() {
     if (maxComponent(beta) <= 0.0) break;
 #if LIGHT_SAMPLES > 1
     // Single scattering: the mean of LIGHT_SAMPLES in-scattering estimates at the one event (the
-    // first LIGHT_SAMPLES − 1 here, the last below); the camera ray's walk is shared by them.
+    // first LIGHT_SAMPLES − 1 here, the last below), as pbrt's light sample counts (PBR 3rd ed.,
+    // §14.3.1); the camera ray's walk is shared by them.
 #if SINGLE_SCATTERING
     bool severalSamples = true;
 #else

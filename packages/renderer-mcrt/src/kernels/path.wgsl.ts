@@ -115,7 +115,8 @@ fn directLight(x: vec3f, w: vec3f, rng: ptr<function, u32>) -> vec3f {
     if (maxComponent(beta) <= 0.0) { break; }
 #if LIGHT_SAMPLES > 1
     // Single scattering: the mean of LIGHT_SAMPLES in-scattering estimates at the one event (the
-    // first LIGHT_SAMPLES − 1 here, the last below); the camera ray's walk is shared by them.
+    // first LIGHT_SAMPLES − 1 here, the last below), as pbrt's light sample counts (PBR 3rd ed.,
+    // §14.3.1); the camera ray's walk is shared by them.
 #if SINGLE_SCATTERING
     let severalSamples = true;
 #else
