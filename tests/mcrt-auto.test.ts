@@ -118,8 +118,8 @@ const CASES: {
   {
     sceneClass: 'constant sky and sun',
     base: { scattering: 'single' },
-    chosen: { tracking: 'residual', environmentSampling: 'phase', majorantGrid: 'grid', lightSamples: '3' },
-    others: [{ tracking: 'delta', environmentSampling: 'mis', majorantGrid: false, lightSamples: 1 }],
+    chosen: { tracking: 'residual', environmentSampling: 'phase', majorantGrid: 'grid', lightSamples: '1' },
+    others: [{ tracking: 'delta', environmentSampling: 'mis', majorantGrid: false, lightSamples: 3 }],
   },
   {
     // Single scattering under a map, isotropic phase function: light sampling alone, 3 light samples per event.

@@ -15,11 +15,12 @@
  *    |g| ≤ 0.2) takes light sampling alone: there its weight Le·T·p/pdf stays within that peak
  *    of the mean, phase sampling cannot do much better, and the VPT anchor needed 6.4 iterations
  *    to 35 dB with two light samples against 7.7 with one light + one phase sample (same cost).
- *  - Light samples (single scattering): SINGLE_SCATTERING_LIGHT_SAMPLES in-scattering estimates
- *    per scattering event. On the VPT anchor the in-scattering estimate carries most of the
- *    variance: iterations to 35 dB ≈ 3.0 + 6.8/N with N light samples, each costing about a
- *    quarter of the rest of an iteration, so N = 3 was the fastest to 35 dB (0.83× the time of
- *    MIS with one sample of each strategy; N = 2: 0.87×, N = 4: 0.87×).
+ *  - Light samples (single scattering with light sampling alone): SINGLE_SCATTERING_LIGHT_SAMPLES
+ *    in-scattering estimates per scattering event. On the VPT anchor the in-scattering estimate
+ *    carries most of the variance: iterations to 35 dB ≈ 3.0 + 6.8/N with N light samples,
+ *    each costing about a fifth of the rest of an iteration, so N = 3–4 were the fastest to
+ *    35 dB (0.77–0.86× the time of MIS with one sample of each strategy; N = 2: 0.79–0.87×).
+ *    With phase or MIS sampling one (see chooseLightSamples).
  *  - Majorant grid: walked unless it barely lowers the bound (global majorant below
  *    GRID_GAIN_FOR_WALK times the mean cell majorant: a near-homogeneous volume), where the
  *    DDA's cell steps cost more than the null collisions they save.
@@ -209,7 +210,7 @@ export function chooseEstimator(scene: Scene, request: EstimatorRequest, stats: 
       reasons.tracking = `cell minorants ${(100 * fraction).toFixed(0)}% of majorants`;
     }
   }
-  const samples = chooseLightSamples(request);
+  const samples = chooseLightSamples(request, environmentSampling);
   const lightSamples = samples.lightSamples;
   return {
     tracking,
@@ -221,16 +222,24 @@ export function chooseEstimator(scene: Scene, request: EstimatorRequest, stats: 
 }
 
 /**
- * Light samples per scattering event: SINGLE_SCATTERING_LIGHT_SAMPLES for single scattering,
- * where the in-scattering estimate (its directions and shadow rays) carries most of a pixel's
- * variance and the camera ray's walk is shared by all of them; one for multiple scattering.
+ * Light samples per scattering event: SINGLE_SCATTERING_LIGHT_SAMPLES for single scattering
+ * with the environment sampled by light alone, where one sample is one shadow ray per light
+ * and the in-scattering estimate carries most of a pixel's variance (the camera ray's walk is
+ * shared by all of them); one otherwise (with phase or MIS sampling a sample adds a second,
+ * phase-sampled shadow ray, and more samples did not pay: MIS ×2–4 1.11–1.25× the time to
+ * 35 dB on the VPT anchor, phase ×2–3 1.04–1.11× on a blob under sun and sky).
  */
-export function chooseLightSamples(request: EstimatorRequest): { lightSamples: number; reason: string } {
+export function chooseLightSamples(
+  request: EstimatorRequest,
+  environmentSampling: EnvironmentSampling,
+): { lightSamples: number; reason: string } {
   if (request.lightSamples !== undefined) return { lightSamples: request.lightSamples, reason: 'set' };
   if (!request.singleScattering) return { lightSamples: 1, reason: 'multiple scattering: one per event' };
+  if (environmentSampling !== 'light')
+    return { lightSamples: 1, reason: `single scattering, ${environmentSampling} sampling: one per event` };
   return {
     lightSamples: SINGLE_SCATTERING_LIGHT_SAMPLES,
-    reason: 'single scattering: the shadow rays carry most of the variance, the camera ray is shared',
+    reason: 'single scattering, light sampling: the shadow rays carry most of the variance, the camera ray is shared',
   };
 }
 

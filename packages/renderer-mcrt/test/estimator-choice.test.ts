@@ -206,14 +206,23 @@ describe('McrtRenderer with the auto estimator', () => {
 });
 
 describe("MCRT estimator 'auto': light samples per scattering event", () => {
-  it('single scattering takes SINGLE_SCATTERING_LIGHT_SAMPLES (> 1), multiple scattering one, a set value is kept', () => {
+  it('single scattering with light sampling alone takes SINGLE_SCATTERING_LIGHT_SAMPLES (> 1); phase or MIS sampling and multiple scattering one; a set value is kept', () => {
     expect(SINGLE_SCATTERING_LIGHT_SAMPLES).toBeGreaterThan(1);
-    const single = chooseEstimator(sparse(), { singleScattering: true }, open);
-    expect(single.lightSamples).toBe(SINGLE_SCATTERING_LIGHT_SAMPLES);
-    expect(single.reasons.lightSamples).toMatch(/^single scattering/);
-    const multiple = chooseEstimator(sparse(), {}, open);
+    const map = sparse({ environment: skyMap(0.5, 20) });
+    const single = chooseEstimator(map, { singleScattering: true }, open);
+    expect([single.environmentSampling, single.lightSamples]).toEqual(['light', SINGLE_SCATTERING_LIGHT_SAMPLES]);
+    expect(single.reasons.lightSamples).toMatch(/^single scattering, light sampling/);
+    const phase = chooseEstimator(sparse(), { singleScattering: true }, open); // constant sky: phase sampling
+    expect([phase.environmentSampling, phase.lightSamples]).toEqual(['phase', 1]);
+    expect(phase.reasons.lightSamples).toBe('single scattering, phase sampling: one per event');
+    const mis = chooseEstimator(map, { singleScattering: true, anisotropy: 0.6 }, open);
+    expect([mis.environmentSampling, mis.lightSamples]).toEqual(['mis', 1]);
+    const multiple = chooseEstimator(map, { anisotropy: 0 }, open);
     expect([multiple.lightSamples, multiple.reasons.lightSamples]).toEqual([1, 'multiple scattering: one per event']);
-    expect(chooseLightSamples({ singleScattering: true, lightSamples: 1 })).toEqual({ lightSamples: 1, reason: 'set' });
+    expect(chooseLightSamples({ singleScattering: true, lightSamples: 1 }, 'light')).toEqual({
+      lightSamples: 1,
+      reason: 'set',
+    });
   });
 
   it('single scattering under a map samples the environment by light alone while the phase function is near isotropic', () => {
@@ -234,18 +243,22 @@ describe("MCRT estimator 'auto': light samples per scattering event", () => {
   });
 
   it('the renderer compiles the chosen count into the single-scattering kernel and reports it; fixed and multiple take one', () => {
+    const mapped = sparse({ environment: skyMap(0.5, 20) });
     const auto = new McrtRenderer({ scattering: 'single' });
-    expect(auto.features(sparse()).LIGHT_SAMPLES).toBe(SINGLE_SCATTERING_LIGHT_SAMPLES);
-    expect(auto.stats()).toMatchObject({ lightSamples: String(SINGLE_SCATTERING_LIGHT_SAMPLES) });
-    expect(auto.stats().lightSamplesReason).toMatch(/^single scattering/);
+    const f = auto.features(mapped);
+    expect([f.ENV_SAMPLING, f.LIGHT_SAMPLES]).toEqual([1, SINGLE_SCATTERING_LIGHT_SAMPLES]); // light alone, several samples
+    expect(auto.stats()).toMatchObject({
+      environmentSampling: 'light',
+      lightSamples: String(SINGLE_SCATTERING_LIGHT_SAMPLES),
+    });
+    expect(auto.stats().lightSamplesReason).toMatch(/^single scattering, light sampling/);
+    const anisotropic = new McrtRenderer({ scattering: 'single', anisotropy: 0.5 }).features(mapped);
+    expect([anisotropic.ENV_SAMPLING, anisotropic.LIGHT_SAMPLES]).toEqual([2, 1]); // MIS, one sample
     const fixed = new McrtRenderer({ scattering: 'single', estimator: 'fixed' });
-    expect([fixed.features(sparse()).LIGHT_SAMPLES, fixed.stats().lightSamples]).toEqual([1, '1']);
+    expect([fixed.features(mapped).LIGHT_SAMPLES, fixed.stats().lightSamples]).toEqual([1, '1']);
     const set = new McrtRenderer({ scattering: 'single', lightSamples: 3 });
     expect([set.features(sparse()).LIGHT_SAMPLES, set.stats().lightSamplesReason]).toEqual([3, 'set']);
-    expect(new McrtRenderer().features(sparse()).LIGHT_SAMPLES).toBe(1);
-    const mapped = sparse({ environment: skyMap(0.5, 20) });
-    expect(new McrtRenderer({ scattering: 'single' }).features(mapped).ENV_SAMPLING).toBe(1); // light alone
-    expect(new McrtRenderer({ scattering: 'single', anisotropy: 0.5 }).features(mapped).ENV_SAMPLING).toBe(2); // MIS
+    expect(new McrtRenderer().features(mapped).LIGHT_SAMPLES).toBe(1);
     expect(() => new McrtRenderer({ lightSamples: 0 })).toThrow(/lightSamples/);
     expect(() => new McrtRenderer({ lightSamples: 1.5 })).toThrow(/lightSamples/);
   });

@@ -208,6 +208,10 @@ describe('MCRT feature variants', () => {
         expect(keys.size, `${scattering} grid=${majorantGrid}`).toBe(1);
       }
     }
+    // Light samples of a single-scattering generic kernel are compiled in (applied where the runtime maxDepth is 1).
+    expect(
+      new McrtRenderer({ specialize: false, scattering: 'single', lightSamples: 3 }).features(scenes[0]).LIGHT_SAMPLES,
+    ).toBe(3);
     const r = new McrtRenderer({ specialize: false, scattering: 'single', majorantGrid: false });
     const f = r.features(scenes[1]);
     expect(f).toMatchObject({
@@ -216,7 +220,7 @@ describe('MCRT feature variants', () => {
       SINGLE_SCATTERING: false,
       MAJORANT_GRID: true,
       LIGHT_COUNT: 8,
-      LIGHT_SAMPLES: 3, // auto's light samples for single scattering, applied where the runtime maxDepth is 1
+      LIGHT_SAMPLES: 1, // auto: phase sampling of the constant sky, one sample
     });
     for (const src of both(f as unknown as McrtFeatures)) expect(src).toContain('u.lightCount');
     for (const src of both({ ...base, LIGHT_COUNT: 2 })) expect(src).not.toContain('u.lightCount');
