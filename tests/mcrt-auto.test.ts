@@ -118,8 +118,18 @@ const CASES: {
   {
     sceneClass: 'constant sky and sun',
     base: { scattering: 'single' },
-    chosen: { tracking: 'residual', environmentSampling: 'phase', majorantGrid: 'grid' },
-    others: [{ tracking: 'delta', environmentSampling: 'mis', majorantGrid: false }],
+    chosen: { tracking: 'residual', environmentSampling: 'phase', majorantGrid: 'grid', lightSamples: '1' },
+    others: [{ tracking: 'delta', environmentSampling: 'mis', majorantGrid: false, lightSamples: 3 }],
+  },
+  {
+    // Single scattering under a map, isotropic phase function: light sampling alone, 3 light samples per event.
+    sceneClass: 'map with a small sun',
+    base: { scattering: 'single', anisotropy: 0 },
+    chosen: { tracking: 'residual', environmentSampling: 'light', majorantGrid: 'grid', lightSamples: '3' },
+    others: [
+      { estimator: 'fixed' }, // residual, MIS, grid, 1 light sample
+      { tracking: 'delta', environmentSampling: 'mis', misHeuristic: 'balance', lightSamples: 2 },
+    ],
   },
   {
     sceneClass: 'homogeneous',

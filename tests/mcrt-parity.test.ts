@@ -9,7 +9,9 @@ const page = usePage();
 const VARIANTS: Record<string, unknown>[] = [
   {},
   { tracking: 'ratio', majorantGrid: false },
-  { tracking: 'delta', scattering: 'single', anisotropy: 0.7 },
+  { tracking: 'delta', scattering: 'single', anisotropy: 0.7, lightSamples: 3 }, // MIS, 1/3 weights
+  { scattering: 'single', anisotropy: 0.1 }, // auto: 3 light samples of the map alone
+  { scattering: 'single', environmentSampling: 'phase', lightSamples: 2 },
   { environmentSampling: 'light', misHeuristic: 'balance', anisotropy: -0.999, maxDepth: 3 },
   { environmentSampling: 'phase', anisotropy: 0.999, rouletteDepth: 1 },
   { debugOutput: 'transmittance' },

@@ -24,20 +24,21 @@ const camera = { position: [0.5, 0.3, 2.4] as Vec3, target: [0, 0, 0] as Vec3, u
 
 describe('MCRT single scattering vs CPU quadrature (webgl2)', () => {
   const cases = [
-    [0.6, 'residual'],
-    [-0.6, 'residual'],
-    [-0.6, 'ratio'],
-    [-0.6, 'delta'],
+    [0.6, 'residual', 1],
+    [-0.6, 'residual', 1],
+    [-0.6, 'ratio', 1],
+    [-0.6, 'delta', 1],
+    [-0.6, 'residual', 3],
   ] as const;
-  it.each(cases)('g = %s, %s tracking', async (g, tracking) => {
+  it.each(cases)('g = %s, %s tracking, %s light samples', async (g, tracking, lightSamples) => {
     const gpu = await page.run(
-      ({ mt }, W, H, N, sigma, albedo, light, camera, g, tracking) => {
+      ({ mt }, W, H, N, sigma, albedo, light, camera, g, tracking, lightSamples) => {
         return mt.run({
           backend: 'webgl2',
           width: W,
           height: H,
           iterations: N,
-          params: { scattering: 'single', anisotropy: g, tracking },
+          params: { scattering: 'single', anisotropy: g, tracking, lightSamples },
           scene: mt.cubeScene({
             albedo,
             density: sigma,
@@ -56,6 +57,7 @@ describe('MCRT single scattering vs CPU quadrature (webgl2)', () => {
       camera,
       g,
       tracking,
+      lightSamples,
     );
     expect(gpu.nonFinite).toBe(false);
     const scene = { volume: createProceduralVolume('cube', 8), camera } as Scene;

@@ -17,6 +17,8 @@ export interface McrtFeatures {
   /** Directional lights with non-zero irradiance. */
   LIGHT_COUNT: number;
   SINGLE_SCATTERING: boolean;
+  /** In-scattering estimates per scattering event (single scattering; 1 otherwise). */
+  LIGHT_SAMPLES: number;
   /** Majorant grid + DDA (texture majorantGrid) instead of one global majorant. */
   MAJORANT_GRID: boolean;
   /** Shadow-ray estimator: 0 delta, 1 ratio, 2 residual ratio tracking. */
@@ -58,6 +60,7 @@ export function computeFeatures(scene: Scene, p: ResolvedMcrtParams): McrtFeatur
     ENV_LIGHT: envLight,
     LIGHT_COUNT: activeLights(scene).length,
     SINGLE_SCATTERING: p.scattering === 'single',
+    LIGHT_SAMPLES: p.scattering === 'single' ? p.lightSamples : 1,
     MAJORANT_GRID: p.majorantGrid,
     TRACKING: p.tracking === 'delta' ? 0 : p.tracking === 'ratio' ? 1 : 2,
     ENV_SAMPLING: envSampling,
@@ -71,7 +74,8 @@ export function computeFeatures(scene: Scene, p: ResolvedMcrtParams): McrtFeatur
  * The one feature set of `specialize: false`, whatever the scene: every scene feature on
  * (environment map and light, MAX_LIGHTS lights cut short by a runtime count, multiple
  * scattering, majorant grid). The estimator choices (tracking, environment sampling, MIS
- * heuristic, debug output) stay compiled in, as they are in the specialised kernels.
+ * heuristic, light samples, debug output) stay compiled in, as they are in the specialised
+ * kernels; the light samples apply where the runtime maxDepth is 1 (single scattering).
  */
 function genericFeatures(p: ResolvedMcrtParams): McrtFeatures {
   const envSampling = p.environmentSampling === 'phase' ? 0 : p.environmentSampling === 'light' ? 1 : 2;
@@ -80,6 +84,7 @@ function genericFeatures(p: ResolvedMcrtParams): McrtFeatures {
     ENV_LIGHT: true,
     LIGHT_COUNT: MAX_LIGHTS,
     SINGLE_SCATTERING: false,
+    LIGHT_SAMPLES: p.scattering === 'single' ? p.lightSamples : 1,
     MAJORANT_GRID: true,
     TRACKING: p.tracking === 'delta' ? 0 : p.tracking === 'ratio' ? 1 : 2,
     ENV_SAMPLING: envSampling,

@@ -3,6 +3,7 @@ export {
   MCRT_DEFAULTS,
   MCRT_PARAM_SPECS,
   MAX_ANISOTROPY,
+  MAX_LIGHT_SAMPLES,
   resolveParams,
   type McrtParams,
   type ResolvedMcrtParams,
@@ -24,11 +25,15 @@ export {
 export { generateKernel } from './kernel-sources.js';
 export {
   chooseEstimator,
+  chooseLightSamples,
   environmentPeakRatio,
   gridStatistics,
   ENV_PEAK_RATIO_FOR_MIS,
   GRID_GAIN_FOR_WALK,
   RESIDUAL_MINORANT_FRACTION,
+  SINGLE_SCATTERING_LIGHT_SAMPLES,
+  PHASE_PEAK_FOR_LIGHT_ONLY,
+  phasePeakRatio,
   type EstimatorChoice,
   type EstimatorRequest,
   type GridStatistics,

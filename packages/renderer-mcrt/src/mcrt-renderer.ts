@@ -180,8 +180,8 @@ export class McrtRenderer extends BaseRenderer<McrtParams> {
   }
 
   /**
-   * The parameters for a scene: with `estimator: 'auto'` the environment sampling, tracking
-   * and majorant grid the caller left unset are chosen for it (estimator-choice.ts).
+   * The parameters for a scene: with `estimator: 'auto'` the environment sampling, tracking,
+   * majorant grid and light samples the caller left unset are chosen for it (estimator-choice.ts).
    */
   paramsFor(scene: Scene): ResolvedMcrtParams {
     const m = this.choiceMemo;
@@ -196,6 +196,8 @@ export class McrtRenderer extends BaseRenderer<McrtParams> {
           tracking: given(set.tracking),
           environmentSampling: given(set.environmentSampling),
           majorantGrid: set.majorantGrid,
+          lightSamples: set.lightSamples,
+          anisotropy: this.resolved.anisotropy,
           singleScattering: this.resolved.scattering === 'single',
         },
         () => this.gridStats.get(scene, this.resolved.majorantCellSize),
@@ -207,13 +209,13 @@ export class McrtRenderer extends BaseRenderer<McrtParams> {
 
   private applyChoice(choice: EstimatorChoice | null): ResolvedMcrtParams {
     if (!choice) return this.resolved;
-    const { tracking, environmentSampling, majorantGrid } = choice;
-    return { ...this.resolved, tracking, environmentSampling, majorantGrid };
+    const { tracking, environmentSampling, majorantGrid, lightSamples } = choice;
+    return { ...this.resolved, tracking, environmentSampling, majorantGrid, lightSamples };
   }
 
   /**
    * What the renderer chose for the last scene it was given (RenderContext.stats.renderer):
-   * `estimator` ('auto' or 'fixed'), the tracking, environment sampling and grid in use,
+   * `estimator` ('auto' or 'fixed'), the tracking, environment sampling, grid and light samples in use,
    * and with 'auto' the reason for each.
    */
   stats(): Record<string, string> {
@@ -225,6 +227,7 @@ export class McrtRenderer extends BaseRenderer<McrtParams> {
       tracking: p.tracking,
       environmentSampling: p.environmentSampling,
       majorantGrid: p.majorantGrid ? 'grid' : 'global',
+      lightSamples: String(p.lightSamples),
     };
     if (m.choice) for (const [k, reason] of Object.entries(m.choice.reasons)) out[`${k}Reason`] = reason;
     return out;
@@ -261,6 +264,7 @@ const DEFAULT_FEATURES: McrtFeatures = {
   ENV_LIGHT: true,
   LIGHT_COUNT: 0,
   SINGLE_SCATTERING: false,
+  LIGHT_SAMPLES: 1,
   MAJORANT_GRID: true,
   TRACKING: 2,
   ENV_SAMPLING: 2,

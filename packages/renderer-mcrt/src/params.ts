@@ -7,10 +7,11 @@ export type EnvironmentSampling = 'mis' | 'light' | 'phase';
 
 export interface McrtParams {
   /**
-   * 'auto' (default): MCRT chooses the environment sampling, the shadow-ray tracking and
-   * whether the majorant grid is walked per scene (estimator-choice.ts); any of those three
-   * set here overrides its choice. 'fixed': the unset ones take the fixed defaults
-   * (residual ratio tracking, majorant grid, MIS).
+   * 'auto' (default): MCRT chooses the environment sampling, the shadow-ray tracking,
+   * whether the majorant grid is walked and (single scattering) the light samples per event
+   * per scene (estimator-choice.ts); any of those set here overrides its choice. 'fixed': the
+   * unset ones take the fixed defaults (residual ratio tracking, majorant grid, MIS, 1 light
+   * sample).
    */
   estimator?: 'auto' | 'fixed';
   /** 'single': one real scattering event per path (as in the seed paper); 'multiple' (default): up to `maxDepth`. */
@@ -33,6 +34,14 @@ export interface McrtParams {
    * Chosen per scene with `estimator: 'auto'`; else default 'mis'.
    */
   environmentSampling?: EnvironmentSampling | 'auto';
+  /**
+   * Single scattering: in-scattering estimates at the scattering event, averaged (1 to
+   * MAX_LIGHT_SAMPLES). Each is a light sample of every directional light and (light or MIS
+   * sampling) of the environment, plus (phase or MIS sampling) a phase-sampled direction
+   * toward the environment, each with its shadow ray; the camera ray's walk is shared. Chosen
+   * per scene with `estimator: 'auto'`; else default 1. Multiple scattering takes one.
+   */
+  lightSamples?: number;
   /** MIS heuristic: 'power' (β = 2, default) or 'balance'. */
   misHeuristic?: 'power' | 'balance';
   /**
@@ -59,7 +68,7 @@ export type ResolvedMcrtParams = Omit<Required<McrtParams>, 'tracking' | 'enviro
   environmentSampling: EnvironmentSampling;
 };
 
-/** The defaults; tracking, majorantGrid and environmentSampling are those of `estimator: 'fixed'`. */
+/** The defaults; tracking, majorantGrid, environmentSampling and lightSamples are those of `estimator: 'fixed'`. */
 export const MCRT_DEFAULTS: ResolvedMcrtParams = {
   estimator: 'auto',
   scattering: 'multiple',
@@ -70,10 +79,14 @@ export const MCRT_DEFAULTS: ResolvedMcrtParams = {
   majorantGrid: true,
   majorantCellSize: 8,
   environmentSampling: 'mis',
+  lightSamples: 1,
   misHeuristic: 'power',
   debugOutput: 'none',
   specialize: true,
 };
+
+/** The most light samples per scattering event (each count is its own kernel variant). */
+export const MAX_LIGHT_SAMPLES = 16;
 
 /** The largest |g| accepted: HG's peak (1+g)/(4π(1−g)²) stays far from float32 overflow. */
 export const MAX_ANISOTROPY = 0.9999;
@@ -89,6 +102,7 @@ export const MCRT_PARAM_SPECS: ParamSpecs = {
   majorantGrid: { kind: 'boolean' },
   majorantCellSize: { kind: 'number', integer: true, min: 1, max: 4096, unit: 'voxels' },
   environmentSampling: { kind: 'enum', values: ['auto', 'mis', 'light', 'phase'] },
+  lightSamples: { kind: 'number', integer: true, min: 1, max: MAX_LIGHT_SAMPLES },
   misHeuristic: { kind: 'enum', values: ['power', 'balance'] },
   debugOutput: { kind: 'enum', values: ['none', 'transmittance', 'fetches'] },
   specialize: { kind: 'boolean' },
@@ -117,6 +131,11 @@ export function resolveParams(p: McrtParams): ResolvedMcrtParams {
     throw new VptError(
       'invalid-scene',
       `MCRT: maxDepth must be -1 (unlimited) or a positive integer, got ${r.maxDepth}`,
+    );
+  if (!Number.isInteger(r.lightSamples) || r.lightSamples < 1 || r.lightSamples > MAX_LIGHT_SAMPLES)
+    throw new VptError(
+      'invalid-scene',
+      `MCRT: lightSamples must be an integer from 1 to ${MAX_LIGHT_SAMPLES}, got ${r.lightSamples}`,
     );
   if (!Number.isInteger(r.rouletteDepth) || r.rouletteDepth < 1)
     throw new VptError('invalid-scene', `MCRT: rouletteDepth must be a positive integer, got ${r.rouletteDepth}`);

@@ -11,12 +11,16 @@ import {
 import {
   buildMajorantGrid,
   chooseEstimator,
+  chooseLightSamples,
   computeFeatures,
   environmentPeakRatio,
   ENV_PEAK_RATIO_FOR_MIS,
   gridCells,
   gridStatistics,
   McrtRenderer,
+  PHASE_PEAK_FOR_LIGHT_ONLY,
+  phasePeakRatio,
+  SINGLE_SCATTERING_LIGHT_SAMPLES,
   volumeCellRanges,
 } from '../src/index.js';
 
@@ -135,11 +139,22 @@ describe("MCRT estimator: 'auto' rules", () => {
     let computed = 0;
     const c = chooseEstimator(
       sparse(),
-      { tracking: 'ratio', environmentSampling: 'light', majorantGrid: false },
+      { tracking: 'ratio', environmentSampling: 'light', majorantGrid: false, lightSamples: 3, singleScattering: true },
       () => (computed++, open()),
     );
-    expect([c.tracking, c.environmentSampling, c.majorantGrid, computed]).toEqual(['ratio', 'light', false, 0]);
-    expect(c.reasons).toEqual({ tracking: 'set', environmentSampling: 'set', majorantGrid: 'set' });
+    expect([c.tracking, c.environmentSampling, c.majorantGrid, c.lightSamples, computed]).toEqual([
+      'ratio',
+      'light',
+      false,
+      3,
+      0,
+    ]);
+    expect(c.reasons).toEqual({
+      tracking: 'set',
+      environmentSampling: 'set',
+      majorantGrid: 'set',
+      lightSamples: 'set',
+    });
   });
 
   it('the subsampled statistics of a small volume are those of the full CPU grid', () => {
@@ -187,5 +202,64 @@ describe('McrtRenderer with the auto estimator', () => {
     const f = r.features(sparse());
     expect([f.TRACKING, f.ENV_SAMPLING]).toEqual([1, 0]);
     expect(r.stats().trackingReason).toBe('set');
+  });
+});
+
+describe("MCRT estimator 'auto': light samples per scattering event", () => {
+  it('single scattering with light sampling alone takes SINGLE_SCATTERING_LIGHT_SAMPLES (> 1); phase or MIS sampling and multiple scattering one; a set value is kept', () => {
+    expect(SINGLE_SCATTERING_LIGHT_SAMPLES).toBeGreaterThan(1);
+    const map = sparse({ environment: skyMap(0.5, 20) });
+    const single = chooseEstimator(map, { singleScattering: true }, open);
+    expect([single.environmentSampling, single.lightSamples]).toEqual(['light', SINGLE_SCATTERING_LIGHT_SAMPLES]);
+    expect(single.reasons.lightSamples).toMatch(/^single scattering, light sampling/);
+    const phase = chooseEstimator(sparse(), { singleScattering: true }, open); // constant sky: phase sampling
+    expect([phase.environmentSampling, phase.lightSamples]).toEqual(['phase', 1]);
+    expect(phase.reasons.lightSamples).toBe('single scattering, phase sampling: one per event');
+    const mis = chooseEstimator(map, { singleScattering: true, anisotropy: 0.6 }, open);
+    expect([mis.environmentSampling, mis.lightSamples]).toEqual(['mis', 1]);
+    const multiple = chooseEstimator(map, { anisotropy: 0 }, open);
+    expect([multiple.lightSamples, multiple.reasons.lightSamples]).toEqual([1, 'multiple scattering: one per event']);
+    expect(chooseLightSamples({ singleScattering: true, lightSamples: 1 }, 'light')).toEqual({
+      lightSamples: 1,
+      reason: 'set',
+    });
+  });
+
+  it('single scattering under a map samples the environment by light alone while the phase function is near isotropic', () => {
+    const map = skyMap(0.5, 20); // peak/mean far above ENV_PEAK_RATIO_FOR_MIS
+    expect(phasePeakRatio(0)).toBe(1);
+    expect(phasePeakRatio(0.2)).toBeLessThanOrEqual(PHASE_PEAK_FOR_LIGHT_ONLY);
+    expect(phasePeakRatio(-0.3)).toBeGreaterThan(PHASE_PEAK_FOR_LIGHT_ONLY);
+    const pick = (request: Parameters<typeof chooseEstimator>[1]) =>
+      chooseEstimator(sparse({ environment: map }), request, open).environmentSampling;
+    expect(pick({ singleScattering: true })).toBe('light');
+    expect(pick({ singleScattering: true, anisotropy: 0.2 })).toBe('light');
+    expect(pick({ singleScattering: true, anisotropy: -0.3 })).toBe('mis');
+    expect(pick({ anisotropy: 0 })).toBe('mis'); // multiple scattering: unchanged
+    expect(pick({ singleScattering: true, environmentSampling: 'mis' })).toBe('mis');
+    expect(chooseEstimator(sparse(), { singleScattering: true }, open).environmentSampling).toBe('phase');
+    const c = chooseEstimator(sparse({ environment: map }), { singleScattering: true }, open);
+    expect(c.reasons.environmentSampling).toMatch(/single scattering, phase peak 1\.00× isotropic/);
+  });
+
+  it('the renderer compiles the chosen count into the single-scattering kernel and reports it; fixed and multiple take one', () => {
+    const mapped = sparse({ environment: skyMap(0.5, 20) });
+    const auto = new McrtRenderer({ scattering: 'single' });
+    const f = auto.features(mapped);
+    expect([f.ENV_SAMPLING, f.LIGHT_SAMPLES]).toEqual([1, SINGLE_SCATTERING_LIGHT_SAMPLES]); // light alone, several samples
+    expect(auto.stats()).toMatchObject({
+      environmentSampling: 'light',
+      lightSamples: String(SINGLE_SCATTERING_LIGHT_SAMPLES),
+    });
+    expect(auto.stats().lightSamplesReason).toMatch(/^single scattering, light sampling/);
+    const anisotropic = new McrtRenderer({ scattering: 'single', anisotropy: 0.5 }).features(mapped);
+    expect([anisotropic.ENV_SAMPLING, anisotropic.LIGHT_SAMPLES]).toEqual([2, 1]); // MIS, one sample
+    const fixed = new McrtRenderer({ scattering: 'single', estimator: 'fixed' });
+    expect([fixed.features(mapped).LIGHT_SAMPLES, fixed.stats().lightSamples]).toEqual([1, '1']);
+    const set = new McrtRenderer({ scattering: 'single', lightSamples: 3 });
+    expect([set.features(sparse()).LIGHT_SAMPLES, set.stats().lightSamplesReason]).toEqual([3, 'set']);
+    expect(new McrtRenderer().features(mapped).LIGHT_SAMPLES).toBe(1);
+    expect(() => new McrtRenderer({ lightSamples: 0 })).toThrow(/lightSamples/);
+    expect(() => new McrtRenderer({ lightSamples: 1.5 })).toThrow(/lightSamples/);
   });
 });

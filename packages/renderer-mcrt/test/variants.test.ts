@@ -18,6 +18,7 @@ describe('MCRT feature variants', () => {
     ENV_LIGHT: true,
     LIGHT_COUNT: 0,
     SINGLE_SCATTERING: false,
+    LIGHT_SAMPLES: 1,
     MAJORANT_GRID: true,
     TRACKING: 2,
     ENV_SAMPLING: 2,
@@ -55,6 +56,9 @@ describe('MCRT feature variants', () => {
       TRACKING: 1,
       MAJORANT_GRID: false,
     });
+    // Light samples are compiled in for single scattering only: multiple scattering keeps one variant.
+    expect(computeFeatures(scene(), resolveParams({ scattering: 'single', lightSamples: 3 })).LIGHT_SAMPLES).toBe(3);
+    expect(computeFeatures(scene(), resolveParams({ lightSamples: 3 })).LIGHT_SAMPLES).toBe(1);
     const darkMap = computeFeatures(
       scene({ environment: { type: 'latlong', width: 1, height: 1, data: new Float32Array(3) } }),
       resolveParams({}),
@@ -86,7 +90,12 @@ describe('MCRT feature variants', () => {
       expect(src).not.toContain('ddaNext');
       expect(src).toContain('u.globalMajorant');
     }
-    for (const src of both({ ...base, SINGLE_SCATTERING: true })) expect(src).not.toContain('u.rouletteDepth');
+    for (const src of both({ ...base, SINGLE_SCATTERING: true })) {
+      expect(src).not.toContain('u.rouletteDepth');
+      expect(src).not.toContain('LIGHT_SAMPLES');
+    }
+    for (const src of both({ ...base, SINGLE_SCATTERING: true, LIGHT_SAMPLES: 2 }))
+      expect(src).toContain('k < LIGHT_SAMPLES && severalSamples;');
     for (const src of both({ ...base, TRACKING: 0 })) expect(src).not.toMatch(/exp\(-ctl/);
     for (const src of both({ ...base, ENV_SAMPLING: 1, MIS_POWER: false })) {
       expect(src).not.toContain('misWeight');
@@ -199,6 +208,10 @@ describe('MCRT feature variants', () => {
         expect(keys.size, `${scattering} grid=${majorantGrid}`).toBe(1);
       }
     }
+    // Light samples of a single-scattering generic kernel are compiled in (applied where the runtime maxDepth is 1).
+    expect(
+      new McrtRenderer({ specialize: false, scattering: 'single', lightSamples: 3 }).features(scenes[0]).LIGHT_SAMPLES,
+    ).toBe(3);
     const r = new McrtRenderer({ specialize: false, scattering: 'single', majorantGrid: false });
     const f = r.features(scenes[1]);
     expect(f).toMatchObject({
@@ -207,6 +220,7 @@ describe('MCRT feature variants', () => {
       SINGLE_SCATTERING: false,
       MAJORANT_GRID: true,
       LIGHT_COUNT: 8,
+      LIGHT_SAMPLES: 1, // auto: phase sampling of the constant sky, one sample
     });
     for (const src of both(f as unknown as McrtFeatures)) expect(src).toContain('u.lightCount');
     for (const src of both({ ...base, LIGHT_COUNT: 2 })) expect(src).not.toContain('u.lightCount');

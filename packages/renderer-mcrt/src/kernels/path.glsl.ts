@@ -119,6 +119,28 @@ void main() {
     beta *= c.albedo;
     depth++;
     if (maxComponent(beta) <= 0.0) break;
+#if LIGHT_SAMPLES > 1
+    // Single scattering: the mean of LIGHT_SAMPLES in-scattering estimates at the one event (the
+    // first LIGHT_SAMPLES − 1 here, the last below), as pbrt's light sample counts (PBR 3rd ed.,
+    // §14.3.1); the camera ray's walk is shared by them.
+#if SINGLE_SCATTERING
+    bool severalSamples = true;
+#else
+    bool severalSamples = u.maxDepth == 1; // the generic kernel: single scattering is maxDepth 1
+#endif
+    if (severalSamples) beta *= 1.0 / float(LIGHT_SAMPLES);
+    for (int k = 1; k < LIGHT_SAMPLES && severalSamples; k++) {
+      L += beta * directLight(pos, dir, rng);
+#if ENV_LIGHT && ENV_SAMPLING != 1
+      float xk1 = rngNext(rng);
+      float xk2 = rngNext(rng);
+      vec4 pk = sampleHG(dir, u.phaseG, xk1, xk2);
+      vec2 tk = intersectBox(pos, pk.xyz, u.boxMin, u.boxMax);
+      float Tk = tk.x < tk.y ? transmittance(pos, pk.xyz, tk.x, tk.y, rng) : 1.0;
+      L += beta * escapedRadiance(pk.xyz, depth, pk.w) * Tk;
+#endif
+    }
+#endif
     L += beta * directLight(pos, dir, rng);
     float xi1 = rngNext(rng);
     float xi2 = rngNext(rng);

@@ -113,6 +113,29 @@ fn directLight(x: vec3f, w: vec3f, rng: ptr<function, u32>) -> vec3f {
     beta *= c.albedo;
     depth++;
     if (maxComponent(beta) <= 0.0) { break; }
+#if LIGHT_SAMPLES > 1
+    // Single scattering: the mean of LIGHT_SAMPLES in-scattering estimates at the one event (the
+    // first LIGHT_SAMPLES − 1 here, the last below), as pbrt's light sample counts (PBR 3rd ed.,
+    // §14.3.1); the camera ray's walk is shared by them.
+#if SINGLE_SCATTERING
+    let severalSamples = true;
+#else
+    let severalSamples = u.maxDepth == 1; // the generic kernel: single scattering is maxDepth 1
+#endif
+    if (severalSamples) { beta *= 1.0 / f32(LIGHT_SAMPLES); }
+    for (var k = 1; k < LIGHT_SAMPLES && severalSamples; k++) {
+      L += beta * directLight(pos, dir, &rng);
+#if ENV_LIGHT && ENV_SAMPLING != 1
+      let xk1 = rngNext(&rng);
+      let xk2 = rngNext(&rng);
+      let pk = sampleHG(dir, u.phaseG, xk1, xk2);
+      let tk = intersectBox(pos, pk.xyz, u.boxMin, u.boxMax);
+      var Tk = 1.0;
+      if (tk.x < tk.y) { Tk = transmittance(pos, pk.xyz, tk.x, tk.y, &rng); }
+      L += beta * escapedRadiance(pk.xyz, depth, pk.w) * Tk;
+#endif
+    }
+#endif
     L += beta * directLight(pos, dir, &rng);
     let xi1 = rngNext(&rng);
     let xi2 = rngNext(&rng);
