@@ -207,6 +207,14 @@ export interface Preset {
   estimatorStudy?: boolean;
   /** Only these renderer configurations (by label) besides the variants. */
   rendererLabels?: string[];
+  /**
+   * Estimator study's cost side: rounds of the round-robin (order reversed every other
+   * round: A B C, C B A, …) and iterations per synchronised batch (defaults 5 and 2).
+   */
+  costRounds?: number;
+  costBatch?: number;
+  /** Seed of the error curves (default: the scene's, 1); the references keep their own. Another seed = an independent run. */
+  curveSeed?: number;
   errorSize: number;
   referenceIterations: Record<string, number>;
   curveIterations: number;
@@ -303,6 +311,8 @@ export const PRESETS: Record<string, Preset> = {
     name: 'estimators',
     estimatorStudy: true,
     rendererLabels: ['mcrt multiple'],
+    costRounds: 16,
+    costBatch: 2,
     errorScenes: ['cloud-sky', 'cloud', 'cloud-sun-map', 'head', 'ct-chest'],
     specializationSize: 64,
     errorSize: 64,
