@@ -127,7 +127,7 @@ export function estimatorTable(runs: readonly (readonly ErrorCurveResult[])[]): 
     const fixed = all.filter((v) => v !== auto);
     const ch = auto?.curves[0].rendererStats;
     lines.push(
-      `**${scene}** — ${runs.length} run(s); auto chose ${ch?.tracking ? `${ch.tracking}, ${ch.environmentSampling}, ${ch.majorantGrid} (${ch.trackingReason}; ${ch.environmentSamplingReason}; ${ch.majorantGridReason})` : '?'}`,
+      `**${scene}** — ${runs.filter((r) => r.some((c) => c.scene === scene)).length} run(s); auto chose ${ch?.tracking ? `${ch.tracking}, ${ch.environmentSampling}, ${ch.majorantGrid} (${ch.trackingReason}; ${ch.environmentSamplingReason}; ${ch.majorantGridReason})` : '?'}`,
       '',
       ...(notes.length ? [notes.join('; '), ''] : []),
       '| estimator | ms / it, median (quartiles; samples) | GPU process CPU ms / it, mean | iterations to 30 / 35 dB: crossing | from the last point (n there) | from the halves’ estimate |',

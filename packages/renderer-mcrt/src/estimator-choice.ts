@@ -14,17 +14,20 @@
  *  - Majorant grid: walked unless it barely lowers the bound (global majorant below
  *    GRID_GAIN_FOR_WALK times the mean cell majorant: a near-homogeneous volume), where the
  *    DDA's cell steps cost more than the null collisions they save.
- *  - Shadow rays: residual ratio tracking (ratio tracking where the minorants are 0) wherever
- *    shadow rays carry the light: single scattering, and an environment sampled by MIS (a
- *    shadow ray at every event). There a continuous transmittance estimate instead of delta
- *    tracking's 0/1 one saved 21–27% of the iterations to 30/35 dB (the cloud under a sun map,
- *    the VPT anchor's single scattering) at a cost within the measurement's noise. Otherwise
- *    (multiple scattering under a phase-sampled environment: shadow rays only toward
- *    directional lights) residual tracking only where the cells' minorants are a substantial
- *    fraction of their majorants (RESIDUAL_MINORANT_FRACTION; Novák et al. 2014: the control
- *    then carries most of the optical depth in closed form), else delta tracking, which stops
- *    at the first real collision: there ratio tracking saved 12–13% of the iterations and cost
- *    about as much more per iteration (cloud, head, CT).
+ *  - Shadow rays: residual ratio tracking for single scattering (every path ends in a shadow
+ *    ray: the VPT anchor's single scattering needed 27% fewer iterations than with delta
+ *    tracking). For multiple scattering, under any environment, ratio tracking, or residual
+ *    where the cells' minorants are at least RESIDUAL_MINORANT_FRACTION of their majorants
+ *    (Novák et al. 2014: the control then carries most of the optical depth in closed form; a
+ *    homogeneous medium needs no tentative collision at all). Measured 2026-12-01 (docs/
+ *    benchmarks.md; iterations to 35 dB averaged over 4 runs, cost per iteration as the GPU
+ *    process's CPU time, interleaved): against delta tracking, ratio tracking needs 11–15%
+ *    fewer iterations on the cloud, head and CT under sun + sky and costs 1% (head), 7% (CT)
+ *    and 18% (cloud: dense, where delta tracking stops most shadow rays at their first
+ *    collision) more per iteration, so its time is 0.90, 0.90 and 1.00–1.03 of delta's; under
+ *    the sun map (MIS) it leads delta by 5–15%. Residual tracking needs as many iterations as
+ *    ratio but, where the minorants are partial (the cloud: 34% of the majorants), costs 8–10%
+ *    more: its per-step weights fall more slowly, so Russian roulette ends its walks later.
  *
  * The grid statistics are computed on the CPU from a strided subsample of the volume (at most
  * about 2²¹ voxels, so a large volume costs milliseconds): they steer a choice between unbiased
@@ -165,19 +168,18 @@ export function chooseEstimator(scene: Scene, request: EstimatorRequest, stats: 
       majorantGrid = gain >= GRID_GAIN_FOR_WALK;
       reasons.majorantGrid = `global/mean cell majorant ${gain.toFixed(2)} ${majorantGrid ? '≥' : '<'} ${GRID_GAIN_FOR_WALK}`;
     }
-    if (tracking === undefined && (request.singleScattering || environmentSampling !== 'phase')) {
+    if (tracking === undefined && request.singleScattering) {
       tracking = 'residual';
-      reasons.tracking = request.singleScattering
-        ? 'single scattering: the shadow rays carry all the light'
-        : 'the environment is light-sampled: a shadow ray at every event';
+      reasons.tracking = 'single scattering: the shadow rays carry all the light';
     } else if (tracking === undefined) {
-      // Without the grid the one control is the global minorant (0 in most real volumes, the majorant in a homogeneous one).
+      // Multiple scattering, under any environment. Without the grid the one control is the
+      // global minorant (0 in most real volumes, the majorant in a homogeneous one).
       const fraction = majorantGrid
         ? s.minorantFraction
         : s.globalMajorant > 0
           ? s.globalMinorant / s.globalMajorant
           : 0;
-      tracking = fraction >= RESIDUAL_MINORANT_FRACTION ? 'residual' : 'delta';
+      tracking = fraction >= RESIDUAL_MINORANT_FRACTION ? 'residual' : 'ratio';
       reasons.tracking = `cell minorants ${(100 * fraction).toFixed(0)}% of majorants`;
     }
   }

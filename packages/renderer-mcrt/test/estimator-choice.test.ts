@@ -11,6 +11,7 @@ import {
 import {
   buildMajorantGrid,
   chooseEstimator,
+  RESIDUAL_MINORANT_FRACTION,
   computeFeatures,
   environmentPeakRatio,
   ENV_PEAK_RATIO_FOR_MIS,
@@ -62,6 +63,31 @@ function denseRamp(over: Partial<Scene> = {}): Scene {
   });
 }
 
+/** A dense, heterogeneous medium (as the benchmark cloud): per-voxel noise in [0.2, 1], opacity = value; a flat grid (global/mean majorant ≈ 1). */
+function denseNoise(over: Partial<Scene> = {}): Scene {
+  const n = 32;
+  const data = new Float32Array(n * n * n);
+  let h = 12345;
+  for (let i = 0; i < data.length; i++) {
+    h = (Math.imul(h, 1664525) + 1013904223) >>> 0;
+    data[i] = 0.2 + 0.8 * (h / 4294967296);
+  }
+  const volume = createVolume([n, n, n], 'float32', data);
+  volume.valueRange = [0, 1];
+  return testScene({
+    volume,
+    transferFunction: {
+      dimensions: '1d',
+      points: [
+        { value: 0, color: [0.9, 0.9, 0.9], opacity: 0 },
+        { value: 1, color: [0.9, 0.9, 0.9], opacity: 1 },
+      ],
+    },
+    densityScale: 30,
+    ...over,
+  });
+}
+
 const open = () => gridStatistics(sparse(), 8);
 
 describe("MCRT estimator: 'auto' rules", () => {
@@ -86,7 +112,11 @@ describe("MCRT estimator: 'auto' rules", () => {
     const sun = skyMap(0.2, 2000);
     expect(environmentPeakRatio(sun)).toBeGreaterThan(ENV_PEAK_RATIO_FOR_MIS);
     const withSun = chooseEstimator(sparse({ environment: sun }), {}, open);
-    expect([withSun.environmentSampling, withSun.tracking]).toEqual(['mis', 'residual']); // shadow rays at every event
+    // Shadow rays at every event, tracked by the multiple-scattering rule: ratio (minorants 0), residual where they are ≥ half.
+    expect([withSun.environmentSampling, withSun.tracking]).toEqual(['mis', 'ratio']);
+    expect(chooseEstimator(denseRamp({ environment: sun }), {}, () => gridStatistics(denseRamp(), 8)).tracking).toBe(
+      'residual',
+    );
     // The anchor sky of the VPT comparison: 0.05 at the nadir to 1 at the zenith, peak/mean ≈ 2.7.
     const H = 64,
       W = 4;
@@ -102,13 +132,45 @@ describe("MCRT estimator: 'auto' rules", () => {
     expect(environmentPeakRatio({ type: 'constant', radiance: [0.3, 0.3, 0.3] })).toBe(1);
   });
 
-  it('a sparse volume walks the grid with delta tracking (its minorants are 0)', () => {
+  it('a sparse volume walks the grid, and its shadow rays take ratio tracking (its minorants are 0)', () => {
     const scene = sparse();
     const s = gridStatistics(scene, 8);
     expect(s.minorantFraction).toBeLessThan(0.05);
     expect(s.globalMajorant / s.meanMajorant).toBeGreaterThan(2);
     const c = chooseEstimator(scene, {}, () => s);
-    expect([c.tracking, c.majorantGrid]).toEqual(['delta', true]);
+    expect([c.tracking, c.majorantGrid]).toEqual(['ratio', true]);
+  });
+
+  it('multiple scattering under a constant sky: ratio tracking, residual where the minorants are ≥ half the majorants', () => {
+    const sun = {
+      type: 'directional' as const,
+      direction: [0, 1, 0] as [number, number, number],
+      irradiance: [3, 3, 3] as [number, number, number],
+    };
+    const choose = (scene: Scene, request = {}) => {
+      const s = gridStatistics(scene, 8);
+      const c = chooseEstimator(scene, request, () => s);
+      expect(c.environmentSampling).toBe('phase');
+      expect(c.reasons.tracking).toMatch(/^cell minorants \d+% of majorants$/);
+      return { tracking: c.tracking, fraction: s.minorantFraction };
+    };
+    // Minorants ≈ 0 (empty and thin cells, as in the head and CT scans): never delta tracking.
+    const thin = choose(sparse({ lights: [sun] }));
+    expect(thin.fraction).toBeLessThan(0.05);
+    expect(thin.tracking).toBe('ratio');
+    // Dense and heterogeneous (minorants a fifth of the majorants, as in the cloud): ratio as well.
+    const dense = choose(denseNoise({ lights: [sun] }));
+    expect(dense.fraction).toBeGreaterThan(0.1);
+    expect(dense.fraction).toBeLessThan(RESIDUAL_MINORANT_FRACTION);
+    expect(dense.tracking).toBe('ratio');
+    // Slowly varying (minorants ≥ half the majorants): residual, the control takes most in closed form.
+    const ramp = choose(denseRamp({ lights: [sun] }));
+    expect(ramp.fraction).toBeGreaterThanOrEqual(RESIDUAL_MINORANT_FRACTION);
+    expect(ramp.tracking).toBe('residual');
+    // Without the grid the control is the global minorant: 0 in the sparse blob (ratio), 20% in the noise (ratio).
+    expect(chooseEstimator(sparse({ lights: [sun] }), { majorantGrid: false }, open).tracking).toBe('ratio');
+    const noise = denseNoise({ lights: [sun] });
+    expect(chooseEstimator(noise, { majorantGrid: false }, () => gridStatistics(noise, 8)).tracking).toBe('ratio');
   });
 
   it('single scattering takes residual (ratio) tracking for its shadow rays, whatever the minorants', () => {
@@ -162,11 +224,11 @@ describe('McrtRenderer with the auto estimator', () => {
   it('compiles the chosen variant and reports it (and why) in stats()', () => {
     const r = new McrtRenderer();
     const f = r.features(sparse());
-    expect([f.TRACKING, f.ENV_SAMPLING, f.MAJORANT_GRID]).toEqual([0, 0, true]);
+    expect([f.TRACKING, f.ENV_SAMPLING, f.MAJORANT_GRID]).toEqual([1, 0, true]);
     const s = r.stats();
     expect(s).toMatchObject({
       estimator: 'auto',
-      tracking: 'delta',
+      tracking: 'ratio',
       environmentSampling: 'phase',
       majorantGrid: 'grid',
     });
@@ -183,9 +245,9 @@ describe('McrtRenderer with the auto estimator', () => {
   });
 
   it('an override of one choice leaves the others to the rules', () => {
-    const r = new McrtRenderer({ tracking: 'ratio' });
+    const r = new McrtRenderer({ tracking: 'delta' });
     const f = r.features(sparse());
-    expect([f.TRACKING, f.ENV_SAMPLING]).toEqual([1, 0]);
+    expect([f.TRACKING, f.ENV_SAMPLING]).toEqual([0, 0]);
     expect(r.stats().trackingReason).toBe('set');
   });
 });
