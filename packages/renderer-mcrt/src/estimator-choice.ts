@@ -24,10 +24,11 @@
  *    process's CPU time, interleaved): against delta tracking, ratio tracking needs 11–15%
  *    fewer iterations on the cloud, head and CT under sun + sky and costs 1% (head), 7% (CT)
  *    and 18% (cloud: dense, where delta tracking stops most shadow rays at their first
- *    collision) more per iteration, so its time is 0.90, 0.90 and 1.00–1.03 of delta's; under
- *    the sun map (MIS) it leads delta by 5–15%. Residual tracking needs as many iterations as
- *    ratio but, where the minorants are partial (the cloud: 34% of the majorants), costs 8–10%
- *    more: its per-step weights fall more slowly, so Russian roulette ends its walks later.
+ *    collision) more per iteration, so its time is 0.90, 0.90 and 1.00–1.04 of delta's; under
+ *    the sun map (MIS) delta takes 1.04–1.10× ratio's time. Residual tracking needs as many
+ *    iterations as ratio but, where the minorants are partial (the cloud: 34% of the
+ *    majorants), costs 7–10% more: its per-step weights fall more slowly, so Russian roulette
+ *    ends its walks later.
  *
  * The grid statistics are computed on the CPU from a strided subsample of the volume (at most
  * about 2²¹ voxels, so a large volume costs milliseconds): they steer a choice between unbiased
