@@ -177,7 +177,7 @@ export const MCRT_VARIANTS: RendererConfig[] = [
 /**
  * Fixed MCRT estimators the default `estimator: 'auto'` is measured against (preset
  * 'estimators'): every shadow tracking with both environment strategies over the majorant
- * grid, and delta tracking with one global majorant. Multiple scattering, as the default.
+ * grid, and delta and ratio tracking with one global majorant. Multiple scattering, as the default.
  */
 export const ESTIMATOR_VARIANTS: RendererConfig[] = [
   ...(['delta', 'ratio', 'residual'] as const).flatMap((tracking) =>
@@ -189,13 +189,15 @@ export const ESTIMATOR_VARIANTS: RendererConfig[] = [
       referenceGroup: 'mcrt multiple',
     })),
   ),
-  ...(['phase', 'mis'] as const).map((environmentSampling) => ({
-    label: `mcrt fixed: delta, ${environmentSampling}, global majorant`,
-    renderer: 'mcrt',
-    params: { scattering: 'multiple', estimator: 'fixed', tracking: 'delta', environmentSampling, majorantGrid: false },
-    halves: true,
-    referenceGroup: 'mcrt multiple',
-  })),
+  ...(['delta', 'ratio'] as const).flatMap((tracking) =>
+    (['phase', 'mis'] as const).map((environmentSampling) => ({
+      label: `mcrt fixed: ${tracking}, ${environmentSampling}, global majorant`,
+      renderer: 'mcrt',
+      params: { scattering: 'multiple', estimator: 'fixed', tracking, environmentSampling, majorantGrid: false },
+      halves: true,
+      referenceGroup: 'mcrt multiple',
+    })),
+  ),
 ];
 
 export interface Preset {
