@@ -16,17 +16,20 @@
  *    DDA's cell steps cost more than the null collisions they save.
  *  - Shadow rays: residual ratio tracking for single scattering (every path ends in a shadow
  *    ray: the VPT anchor's single scattering needed 27% fewer iterations than with delta
- *    tracking). For multiple scattering, under any environment, ratio tracking, or residual
- *    where the cells' minorants are at least RESIDUAL_MINORANT_FRACTION of their majorants
- *    (Novák et al. 2014: the control then carries most of the optical depth in closed form; a
- *    homogeneous medium needs no tentative collision at all). Measured 2026-12-01 (docs/
- *    benchmarks.md; iterations to 35 dB averaged over 4 runs, cost per iteration as the GPU
+ *    tracking). For multiple scattering: residual where the cells' minorants are at least
+ *    RESIDUAL_MINORANT_FRACTION of their majorants (Novák et al. 2014: the control then
+ *    carries most of the optical depth in closed form; a homogeneous medium needs no tentative
+ *    collision at all); else delta tracking where the environment is phase-sampled (shadow
+ *    rays only toward directional lights) and the medium is dense (mean cell minorant at least
+ *    DELTA_MINORANT_DEPTH per box length: most shadow rays are blocked, and delta tracking stops
+ *    them at their first collision); else ratio tracking. Measured 2026-12-01 (docs/
+ *    benchmarks.md; iterations to 35 dB averaged over 4–5 seeds, cost per iteration as the GPU
  *    process's CPU time, interleaved): against delta tracking, ratio tracking needs 11–15%
- *    fewer iterations on the cloud, head and CT under sun + sky and costs 1% (head), 7% (CT)
- *    and 18% (cloud: dense, where delta tracking stops most shadow rays at their first
- *    collision) more per iteration, so its time is 0.90, 0.90 and 1.00–1.04 of delta's; under
- *    the sun map (MIS) delta takes 1.04–1.10× ratio's time. Residual tracking needs as many
- *    iterations as ratio but, where the minorants are partial (the cloud: 34% of the
+ *    fewer iterations under sun + sky and costs 1% (head), 7% (CT) and 18–31% (the dense cloud,
+ *    mean minorant 10) more per iteration: 0.90× delta's time on the head and CT (minorants
+ *    0–0.08), 0.97–1.15× on the cloud. Under the cloud's sun map (MIS, shadow rays at every
+ *    event) it needs 16–24% fewer and leads delta by 4–10% even there. Residual tracking needs
+ *    as many iterations as ratio but, where the minorants are partial (the cloud: 34% of the
  *    majorants), costs 7–10% more: its per-step weights fall more slowly, so Russian roulette
  *    ends its walks later.
  *
@@ -50,6 +53,7 @@ import type { EnvironmentSampling, TrackingMode } from './params.js';
 export const ENV_PEAK_RATIO_FOR_MIS = 1.05;
 export const GRID_GAIN_FOR_WALK = 1.5;
 export const RESIDUAL_MINORANT_FRACTION = 0.5;
+export const DELTA_MINORANT_DEPTH = 1;
 const MAX_SAMPLED_VOXELS = 1 << 21;
 
 /** What the choice rules read from the volume and TF (all extinctions in the box's units). */
@@ -180,8 +184,13 @@ export function chooseEstimator(scene: Scene, request: EstimatorRequest, stats: 
         : s.globalMajorant > 0
           ? s.globalMinorant / s.globalMajorant
           : 0;
-      tracking = fraction >= RESIDUAL_MINORANT_FRACTION ? 'residual' : 'ratio';
-      reasons.tracking = `cell minorants ${(100 * fraction).toFixed(0)}% of majorants`;
+      // Σ min / Σ max × mean max = the mean cell minorant: an optical depth per box length the medium guarantees.
+      const minorantDepth = s.minorantFraction * s.meanMajorant;
+      const dense = environmentSampling === 'phase' && minorantDepth >= DELTA_MINORANT_DEPTH;
+      tracking = fraction >= RESIDUAL_MINORANT_FRACTION ? 'residual' : dense ? 'delta' : 'ratio';
+      reasons.tracking =
+        `cell minorants ${(100 * fraction).toFixed(0)}% of majorants, mean minorant ${minorantDepth.toFixed(2)} per box length` +
+        (environmentSampling === 'phase' ? ' (shadow rays only toward the lights)' : '');
     }
   }
   return { tracking, environmentSampling, majorantGrid, reasons };

@@ -29,6 +29,7 @@ export {
   ENV_PEAK_RATIO_FOR_MIS,
   GRID_GAIN_FOR_WALK,
   RESIDUAL_MINORANT_FRACTION,
+  DELTA_MINORANT_DEPTH,
   type EstimatorChoice,
   type EstimatorRequest,
   type GridStatistics,

@@ -11,6 +11,7 @@ import {
 import {
   buildMajorantGrid,
   chooseEstimator,
+  DELTA_MINORANT_DEPTH,
   RESIDUAL_MINORANT_FRACTION,
   computeFeatures,
   environmentPeakRatio,
@@ -141,36 +142,43 @@ describe("MCRT estimator: 'auto' rules", () => {
     expect([c.tracking, c.majorantGrid]).toEqual(['ratio', true]);
   });
 
-  it('multiple scattering under a constant sky: ratio tracking, residual where the minorants are ≥ half the majorants', () => {
+  it('multiple scattering: ratio tracking; residual where the minorants are ≥ half; delta in a dense medium under a phase-sampled sky', () => {
     const sun = {
       type: 'directional' as const,
       direction: [0, 1, 0] as [number, number, number],
       irradiance: [3, 3, 3] as [number, number, number],
     };
-    const choose = (scene: Scene, request = {}) => {
+    const choose = (scene: Scene) => {
       const s = gridStatistics(scene, 8);
-      const c = chooseEstimator(scene, request, () => s);
-      expect(c.environmentSampling).toBe('phase');
-      expect(c.reasons.tracking).toMatch(/^cell minorants \d+% of majorants$/);
-      return { tracking: c.tracking, fraction: s.minorantFraction };
+      const c = chooseEstimator(scene, {}, () => s);
+      expect(c.reasons.tracking).toMatch(/^cell minorants \d+% of majorants, mean minorant \d+\.\d\d per box length/);
+      return { c, fraction: s.minorantFraction, depth: s.minorantFraction * s.meanMajorant };
     };
-    // Minorants ≈ 0 (empty and thin cells, as in the head and CT scans): never delta tracking.
+    // Minorants ≈ 0 (empty and thin cells, as in the head and CT scans): ratio.
     const thin = choose(sparse({ lights: [sun] }));
-    expect(thin.fraction).toBeLessThan(0.05);
-    expect(thin.tracking).toBe('ratio');
-    // Dense and heterogeneous (minorants a fifth of the majorants, as in the cloud): ratio as well.
+    expect(thin.depth).toBeLessThan(DELTA_MINORANT_DEPTH / 10);
+    expect([thin.c.environmentSampling, thin.c.tracking]).toEqual(['phase', 'ratio']);
+    // Dense and heterogeneous (minorants a fifth of the majorants, mean minorant ≥ 5 per box length, as in the cloud): delta.
     const dense = choose(denseNoise({ lights: [sun] }));
     expect(dense.fraction).toBeGreaterThan(0.1);
     expect(dense.fraction).toBeLessThan(RESIDUAL_MINORANT_FRACTION);
-    expect(dense.tracking).toBe('ratio');
-    // Slowly varying (minorants ≥ half the majorants): residual, the control takes most in closed form.
+    expect(dense.depth).toBeGreaterThan(5 * DELTA_MINORANT_DEPTH);
+    expect([dense.c.environmentSampling, dense.c.tracking]).toEqual(['phase', 'delta']);
+    expect(dense.c.reasons.tracking).toMatch(/shadow rays only toward the lights/);
+    // The same medium 20× thinner: its minorants no longer block the shadow rays, so ratio.
+    const thinned = choose(denseNoise({ lights: [sun], densityScale: 1.5 }));
+    expect(thinned.depth).toBeLessThan(DELTA_MINORANT_DEPTH);
+    expect(thinned.c.tracking).toBe('ratio');
+    // The dense medium under a map (MIS: shadow rays at every event): ratio.
+    const underMap = choose(denseNoise({ environment: skyMap(0.2, 2000) }));
+    expect([underMap.c.environmentSampling, underMap.c.tracking]).toEqual(['mis', 'ratio']);
+    // Dense but slowly varying (minorants ≥ half the majorants): residual, the control takes most in closed form.
     const ramp = choose(denseRamp({ lights: [sun] }));
+    expect(ramp.depth).toBeGreaterThan(DELTA_MINORANT_DEPTH);
     expect(ramp.fraction).toBeGreaterThanOrEqual(RESIDUAL_MINORANT_FRACTION);
-    expect(ramp.tracking).toBe('residual');
-    // Without the grid the control is the global minorant: 0 in the sparse blob (ratio), 20% in the noise (ratio).
+    expect(ramp.c.tracking).toBe('residual');
+    // Without the grid the control is the global minorant: 0 in the sparse blob (ratio).
     expect(chooseEstimator(sparse({ lights: [sun] }), { majorantGrid: false }, open).tracking).toBe('ratio');
-    const noise = denseNoise({ lights: [sun] });
-    expect(chooseEstimator(noise, { majorantGrid: false }, () => gridStatistics(noise, 8)).tracking).toBe('ratio');
   });
 
   it('single scattering takes residual (ratio) tracking for its shadow rays, whatever the minorants', () => {
@@ -232,7 +240,7 @@ describe('McrtRenderer with the auto estimator', () => {
       environmentSampling: 'phase',
       majorantGrid: 'grid',
     });
-    expect(s.trackingReason).toMatch(/minorants \d+% of majorants/);
+    expect(s.trackingReason).toMatch(/minorants \d+% of majorants, mean minorant \d+\.\d\d per box length/);
   });
 
   it("'fixed' keeps the fixed defaults (residual, MIS, grid); 'auto' as a value equals unset", () => {
