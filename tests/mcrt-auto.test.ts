@@ -117,28 +117,28 @@ const CASES: {
   {
     sceneClass: 'constant sky and sun',
     base: { scattering: 'multiple' },
-    chosen: { tracking: 'ratio', environmentSampling: 'phase', majorantGrid: 'grid' },
+    chosen: { tracking: 'ratio', environmentSampling: 'phase', majorantGrid: 'global' },
     others: [
-      { tracking: 'delta', environmentSampling: 'mis', majorantGrid: false },
-      { tracking: 'residual', environmentSampling: 'light', majorantGrid: false },
+      { tracking: 'delta', environmentSampling: 'mis', majorantGrid: true },
+      { tracking: 'residual', environmentSampling: 'light', majorantGrid: true },
     ],
   },
   {
     sceneClass: 'map with a small sun',
     base: { scattering: 'multiple' },
-    chosen: { tracking: 'ratio', environmentSampling: 'mis', majorantGrid: 'grid' },
+    chosen: { tracking: 'ratio', environmentSampling: 'mis', majorantGrid: 'global' },
     others: [
       // Not phase sampling alone: with so few samples its per-pixel means are skewed by the rare
       // sun hits and the z-test would flag the skew (mcrt-unbiased.test.ts covers phase vs MIS).
-      { tracking: 'delta', environmentSampling: 'light', majorantGrid: false },
-      { tracking: 'residual', environmentSampling: 'mis', misHeuristic: 'balance' },
+      { tracking: 'delta', environmentSampling: 'light', majorantGrid: true },
+      { tracking: 'residual', environmentSampling: 'mis', misHeuristic: 'balance', majorantGrid: true },
     ],
   },
   {
     sceneClass: 'constant sky and sun',
     base: { scattering: 'single' },
-    chosen: { tracking: 'residual', environmentSampling: 'phase', majorantGrid: 'grid' },
-    others: [{ tracking: 'delta', environmentSampling: 'mis', majorantGrid: false }],
+    chosen: { tracking: 'residual', environmentSampling: 'phase', majorantGrid: 'global' },
+    others: [{ tracking: 'delta', environmentSampling: 'mis', majorantGrid: true }],
   },
   {
     sceneClass: 'dense heterogeneous',
