@@ -13,7 +13,7 @@
  *    Directional lights are sampled by next-event estimation either way.
  *  - Majorant grid: walked unless it lowers the bound too little (global majorant below
  *    GRID_GAIN_FOR_WALK times the mean cell majorant), where the DDA's cell steps cost more
- *    than the null collisions they save: the cloud (2.03) cost 4–13% more per iteration with
+ *    than the null collisions they save: the cloud (2.03) cost 3–16% more per iteration with
  *    the grid than with its global bound in every run, the CT (7.5) and the head (23)
  *    1.6–1.7× and 1.3–1.5× less (the VPT anchor: 4.0 at 64³, 7.0 at 128³, 8-voxel cells).
  *  - Shadow rays: residual ratio tracking for single scattering (every path ends in a shadow
@@ -25,12 +25,12 @@
  *    rays only toward directional lights) and the medium is dense (mean cell minorant at least
  *    DELTA_MINORANT_DEPTH per box length: most shadow rays are blocked, and delta tracking stops
  *    them at their first collision); else ratio tracking. Measured 2026-12-01 (docs/
- *    benchmarks.md; iterations to 35 dB averaged over 4–5 seeds, cost per iteration as the GPU
+ *    benchmarks.md; iterations to 35 dB over 4 seeds and 2 more runs, cost per iteration as the GPU
  *    process's CPU time, interleaved): against delta tracking, ratio tracking needs 11–15%
- *    fewer iterations under sun + sky and costs 1% (head), 7% (CT) and 18–31% (the dense cloud,
+ *    fewer iterations under sun + sky and costs 1% (head), 7% (CT) and 18–29% (the dense cloud,
  *    mean minorant 10) more per iteration: 0.90× delta's time on the head and CT (minorants
  *    0–0.08), 0.97–1.15× on the cloud. Under the cloud's sun map (MIS, shadow rays at every
- *    event) it needs 16–24% fewer and leads delta by 4–10% even there. Residual tracking needs
+ *    event) it needs 16–24% fewer and leads delta by 3–16% even there. Residual tracking needs
  *    as many iterations as ratio but, where the minorants are partial (the cloud: 34% of the
  *    majorants), costs 7–10% more: its per-step weights fall more slowly, so Russian roulette
  *    ends its walks later.
