@@ -177,7 +177,7 @@ export const MCRT_VARIANTS: RendererConfig[] = [
 /**
  * Fixed MCRT estimators the default `estimator: 'auto'` is measured against (preset
  * 'estimators'): every shadow tracking with both environment strategies over the majorant
- * grid, and delta tracking with one global majorant. Multiple scattering, as the default.
+ * grid, and delta and ratio tracking with one global majorant. Multiple scattering, as the default.
  */
 export const ESTIMATOR_VARIANTS: RendererConfig[] = [
   ...(['delta', 'ratio', 'residual'] as const).flatMap((tracking) =>
@@ -189,13 +189,15 @@ export const ESTIMATOR_VARIANTS: RendererConfig[] = [
       referenceGroup: 'mcrt multiple',
     })),
   ),
-  ...(['phase', 'mis'] as const).map((environmentSampling) => ({
-    label: `mcrt fixed: delta, ${environmentSampling}, global majorant`,
-    renderer: 'mcrt',
-    params: { scattering: 'multiple', estimator: 'fixed', tracking: 'delta', environmentSampling, majorantGrid: false },
-    halves: true,
-    referenceGroup: 'mcrt multiple',
-  })),
+  ...(['delta', 'ratio'] as const).flatMap((tracking) =>
+    (['phase', 'mis'] as const).map((environmentSampling) => ({
+      label: `mcrt fixed: ${tracking}, ${environmentSampling}, global majorant`,
+      renderer: 'mcrt',
+      params: { scattering: 'multiple', estimator: 'fixed', tracking, environmentSampling, majorantGrid: false },
+      halves: true,
+      referenceGroup: 'mcrt multiple',
+    })),
+  ),
 ];
 
 export interface Preset {
@@ -207,6 +209,14 @@ export interface Preset {
   estimatorStudy?: boolean;
   /** Only these renderer configurations (by label) besides the variants. */
   rendererLabels?: string[];
+  /**
+   * Estimator study's cost side: rounds of the round-robin (order reversed every other
+   * round: A B C, C B A, …) and iterations per synchronised batch (defaults 5 and 2).
+   */
+  costRounds?: number;
+  costBatch?: number;
+  /** Seed of the error curves (default: the scene's, 1); the references keep their own. Another seed = an independent run. */
+  curveSeed?: number;
   errorSize: number;
   referenceIterations: Record<string, number>;
   curveIterations: number;
@@ -303,6 +313,8 @@ export const PRESETS: Record<string, Preset> = {
     name: 'estimators',
     estimatorStudy: true,
     rendererLabels: ['mcrt multiple'],
+    costRounds: 16,
+    costBatch: 2,
     errorScenes: ['cloud-sky', 'cloud', 'cloud-sun-map', 'head', 'ct-chest'],
     specializationSize: 64,
     errorSize: 64,

@@ -1,12 +1,15 @@
 /**
- * `node benchmarks/dist/estimator-table.js benchmarks/results/<run>/results.json`: the
- * estimator study (preset 'estimators') as a markdown table per scene. For MCRT's default
+ * `node benchmarks/dist/estimator-table.js benchmarks/results/<run>/results.json [<run2>/results.json …]`:
+ * the estimator study (preset 'estimators') as a markdown table per scene. For MCRT's default
  * `estimator: 'auto'` and every fixed estimator: iterations to 30 and 35 dB (from the curve:
  * the variance side, independent of the machine's load), ms per iteration measured
  * round-robin across the configurations (the cost side), and their product, the time to
  * 30 / 35 dB; then the best fixed estimator and auto's time over it (issue 14's goal ≤ 1.10).
+ * Several runs (`pnpm bench … --seed N`, one seed each) are combined: iteration figures are
+ * averaged over the runs (they are proportional to the estimator's variance), cost samples pooled.
  */
 import { readFileSync } from 'node:fs';
+import { pathToFileURL } from 'node:url';
 import { median, timeToPsnr } from './metrics.js';
 import type { ErrorCurveResult } from './suites/error-vs-time.js';
 
@@ -20,13 +23,28 @@ export const iterationsTo = (c: ErrorCurveResult, db: number) =>
     db,
   );
 
-/** Iterations to `db` × the interleaved ms per iteration (the curve's own when there is none). */
-export function timeTo(c: ErrorCurveResult, db: number): number | null {
-  const n = iterationsTo(c, db);
-  if (n === null) return null;
+/**
+ * Iterations to `db` extrapolated from the curve's last point (the most samples) by the 1/n
+ * law of an unbiased estimator's MSE: n · 10^((db − psnr(n))/10). Less noisy than the
+ * crossing, which rests on the few iterations around it, and defined where the budget ended
+ * before the target (35 dB on slow scenes). The variance side of the comparison.
+ */
+export function iterationsFromLast(c: ErrorCurveResult, db: number): number | null {
   const last = c.points[c.points.length - 1];
-  const ms = c.interleavedMsPerIteration?.length ? median(c.interleavedMsPerIteration) : last.ms / last.iterations;
-  return n * ms;
+  if (!last || last.iterations < 8 || !Number.isFinite(last.psnr)) return null;
+  return last.iterations * 10 ** ((db - last.psnr) / 10);
+}
+
+/**
+ * The same extrapolation with the curve's own error estimate at its last point (from its even
+ * and odd half-accumulations) in place of the error against the reference: independent of the
+ * reference's noise and of the curve's realization against it.
+ */
+export function iterationsFromHalves(c: ErrorCurveResult, db: number): number | null {
+  const last = c.points[c.points.length - 1];
+  if (!last || last.iterations < 8 || !last.estimatedRmse || !(last.rmse > 0)) return null;
+  const psnr = last.psnr + 20 * Math.log10(last.rmse / last.estimatedRmse);
+  return last.iterations * 10 ** ((db - psnr) / 10);
 }
 
 /**
@@ -40,49 +58,129 @@ function twinOf(auto: ErrorCurveResult, fixed: readonly ErrorCurveResult[]): Err
   );
 }
 
-export function estimatorTable(curves: readonly ErrorCurveResult[]): string {
+/** One configuration on one scene over every run: its curves (one per run) and its pooled cost samples. */
+interface Variant {
+  name: string;
+  curves: ErrorCurveResult[];
+  /** Wall ms per iteration, one per batch. */
+  costs: number[];
+  /** The GPU process's CPU ms per iteration, one per batch (10 ms ticks: only their mean is meaningful). */
+  cpu: number[];
+}
+
+/** Mean over the runs of a per-curve figure (null if any run lacks it). */
+function meanOver(v: Variant, figure: (c: ErrorCurveResult) => number | null): number | null {
+  const xs = v.curves.map(figure);
+  return xs.some((x) => x === null) ? null : (xs as number[]).reduce((a, b) => a + b, 0) / xs.length;
+}
+
+const FIGURES = {
+  crossing: iterationsTo,
+  'last point': iterationsFromLast,
+  halves: iterationsFromHalves,
+} as const;
+
+/** `runs`: the errorVsTime arrays of one or more runs (seeds) of the estimator study. */
+export function estimatorTable(runs: readonly (readonly ErrorCurveResult[])[]): string {
   const lines: string[] = [];
-  const f = (x: number | null | undefined, d = 2) => (x == null ? '—' : x.toFixed(d));
+  const f = (x: number | null | undefined, d = 2) => (x == null || !Number.isFinite(x) ? '—' : x.toFixed(d));
   const name = (c: ErrorCurveResult) => (c.label === AUTO ? 'auto' : c.label.replace('mcrt fixed: ', ''));
-  for (const scene of [...new Set(curves.map((c) => c.scene))]) {
-    const rows = curves.filter((c) => c.scene === scene);
-    const auto = rows.find((c) => c.label === AUTO);
-    const fixed = rows.filter((c) => c.label !== AUTO);
-    const twin = auto && twinOf(auto, fixed);
-    let note = '';
-    if (auto && twin && auto.interleavedMsPerIteration && twin.interleavedMsPerIteration) {
-      const pooled = [...auto.interleavedMsPerIteration, ...twin.interleavedMsPerIteration];
-      note = `(auto = ${name(twin)}, the same computation: cost medians ${f(median(auto.interleavedMsPerIteration), 1)} and ${f(median(twin.interleavedMsPerIteration), 1)} ms pooled to ${f(median(pooled), 1)})`;
-      auto.interleavedMsPerIteration = twin.interleavedMsPerIteration = pooled;
+  const scenes = [...new Set(runs.flat().map((c) => c.scene))];
+  for (const scene of scenes) {
+    const variants = new Map<string, Variant>();
+    const notes: string[] = [];
+    for (const run of runs) {
+      const rows = run.filter((c) => c.scene === scene);
+      const auto = rows.find((c) => c.label === AUTO);
+      const twin =
+        auto &&
+        twinOf(
+          auto,
+          rows.filter((c) => c !== auto),
+        );
+      for (const c of rows) {
+        const v = variants.get(c.label) ?? { name: name(c), curves: [], costs: [], cpu: [] };
+        variants.set(c.label, v);
+        v.curves.push(c);
+        // Auto and its twin are one computation: both get the pooled samples.
+        const pooled =
+          twin && (c === auto || c === twin)
+            ? [...(auto.interleavedMsPerIteration ?? []), ...(twin.interleavedMsPerIteration ?? [])]
+            : (c.interleavedMsPerIteration ?? []);
+        v.costs.push(...pooled);
+        const pooledCpu =
+          twin && (c === auto || c === twin)
+            ? [
+                ...(auto.interleavedGpuProcessCpuMsPerIteration ?? []),
+                ...(twin.interleavedGpuProcessCpuMsPerIteration ?? []),
+              ]
+            : (c.interleavedGpuProcessCpuMsPerIteration ?? []);
+        v.cpu.push(...pooledCpu);
+      }
+      if (auto && twin?.interleavedMsPerIteration && auto.interleavedMsPerIteration)
+        notes.push(
+          `auto = ${name(twin)} (the same computation): cost medians ${f(median(auto.interleavedMsPerIteration), 1)} and ${f(median(twin.interleavedMsPerIteration), 1)} ms`,
+        );
     }
-    const ch = auto?.rendererStats;
+    const all = [...variants.values()];
+    const auto = variants.get(AUTO);
+    const fixed = all.filter((v) => v !== auto);
+    const ch = auto?.curves[0].rendererStats;
     lines.push(
-      `**${scene}** — auto chose ${ch?.tracking ? `${ch.tracking}, ${ch.environmentSampling}, ${ch.majorantGrid} (${ch.trackingReason}; ${ch.environmentSamplingReason}; ${ch.majorantGridReason})` : '?'}`,
+      `**${scene}** — ${runs.filter((r) => r.some((c) => c.scene === scene)).length} run(s); auto chose ${ch?.tracking ? `${ch.tracking}, ${ch.environmentSampling}, ${ch.majorantGrid} (${ch.trackingReason}; ${ch.environmentSamplingReason}; ${ch.majorantGridReason})` : '?'}`,
       '',
-      ...(note ? [note, ''] : []),
-      '| estimator | ms / it | iterations to 30 / 35 dB | time to 30 / 35 dB (s) |',
-      '|---|---|---|---|',
+      ...(notes.length ? [notes.join('; '), ''] : []),
+      '| estimator | ms / it, median (quartiles; samples) | GPU process CPU ms / it, mean | iterations to 30 / 35 dB: crossing | from the last point (n there) | from the halves’ estimate |',
+      '|---|---|---|---|---|---|',
     );
-    for (const c of [...(auto ? [auto] : []), ...fixed]) {
-      const ms = c.interleavedMsPerIteration?.length ? median(c.interleavedMsPerIteration) : null;
+    const ms = (v: Variant) => (v.costs.length ? median(v.costs) : null);
+    const cpuMs = (v: Variant) => (v.cpu.length ? v.cpu.reduce((a, b) => a + b, 0) / v.cpu.length : null);
+    for (const v of all) {
+      const sorted = [...v.costs].sort((a, b) => a - b);
+      const q = (p: number) => sorted[Math.floor(p * (sorted.length - 1))];
+      const lasts = v.curves.map((c) => c.points[c.points.length - 1]?.iterations ?? '—').join(', ');
+      const it = (fig: (c: ErrorCurveResult, db: number) => number | null) =>
+        TARGETS.map((db) =>
+          f(
+            meanOver(v, (c) => fig(c, db)),
+            1,
+          ),
+        ).join(' / ');
       lines.push(
-        `| ${name(c)} | ${f(ms, 1)} | ${TARGETS.map((db) => f(iterationsTo(c, db), 1)).join(' / ')} | ${TARGETS.map((db) => f((timeTo(c, db) ?? NaN) / 1000)).join(' / ')} |`,
+        `| ${v.name} | ${f(ms(v), 1)} (${f(q(0.25), 1)}–${f(q(0.75), 1)}; ${v.costs.length}) | ${f(cpuMs(v), 1)} | ${it(iterationsTo)} | ${it(iterationsFromLast)} (${lasts}) | ${it(iterationsFromHalves)} |`,
       );
     }
     lines.push('');
-    for (const db of TARGETS) {
-      const reached = fixed.filter((c) => timeTo(c, db) !== null);
-      const a = auto ? timeTo(auto, db) : null;
-      if (a === null || !reached.length) continue;
-      const best = reached.reduce((x, y) => (timeTo(x, db)! <= timeTo(y, db)! ? x : y));
-      lines.push(`- ${db} dB: best fixed ${name(best)}; auto / best = ${(a / timeTo(best, db)!).toFixed(2)}`);
-    }
+    const COSTS = { 'wall median': ms, 'GPU-process CPU mean': cpuMs };
+    for (const [basis, cost] of Object.entries(COSTS))
+      for (const [how, fig] of Object.entries(FIGURES))
+        for (const db of TARGETS) {
+          const time = (v: Variant) => {
+            const n = meanOver(v, (c) => fig(c, db));
+            const m = cost(v);
+            return n === null || m === null ? null : n * m;
+          };
+          const reached = fixed.filter((v) => time(v) !== null);
+          const a = auto ? time(auto) : null;
+          if (a === null || !reached.length) continue;
+          const best = reached.reduce((x, y) => (time(x)! <= time(y)! ? x : y));
+          const others = reached
+            .filter((v) => v !== best)
+            .map((v) => `${v.name} ${f(time(v)! / time(best)!)}`)
+            .join(', ');
+          lines.push(
+            `- ${db} dB, ${basis} cost, iterations by ${how}: best fixed ${best.name} (${f(time(best)! / 1000)} s); auto / best = ${f(a / time(best)!)}; others / best: ${others}`,
+          );
+        }
     lines.push('');
   }
   return lines.join('\n');
 }
 
-if (process.argv[2]) {
-  const results = JSON.parse(readFileSync(process.argv[2], 'utf8')) as { errorVsTime?: ErrorCurveResult[] };
-  console.log(estimatorTable(results.errorVsTime ?? []));
+// Run as a script (not when imported, e.g. by its test).
+if (process.argv[1] && import.meta.url === pathToFileURL(process.argv[1]).href) {
+  const runs = process.argv
+    .slice(2)
+    .map((p) => (JSON.parse(readFileSync(p, 'utf8')) as { errorVsTime?: ErrorCurveResult[] }).errorVsTime ?? []);
+  console.log(estimatorTable(runs));
 }

@@ -42,6 +42,7 @@ declare const window: Window & { vpt: VptPageApi };
 export function installBenchPage(): void {
   const vpt = window.vpt;
   const refs = new Map<string, Reference>();
+  const costContexts: RenderContext[] = [];
 
   // A deterministic 128³-style test cloud: Gaussian blobs at positions from a fixed-seed
   // LCG, modulated by hashed value noise, about half of the box empty.
@@ -422,37 +423,31 @@ export function installBenchPage(): void {
     },
 
     /**
-     * ms per iteration of several configurations on one scene, measured round-robin (one
-     * synchronised batch of each per round, `rounds` rounds) so a changing machine load
-     * falls on all of them alike; kernels compile before the first round.
+     * ms per iteration of several configurations on one scene, measured round-robin from
+     * Node (error-vs-time.ts's interleavedCosts): costOpen makes a context per configuration
+     * and compiles its kernels, costBatch runs one synchronised batch of one of them and
+     * returns its wall ms (Node reads the GPU process's CPU time around it), costClose
+     * disposes of them.
      */
-    async interleavedCost(
-      configs: PageConfig[],
-      sceneSpec: SceneSpec,
-      width: number,
-      height: number,
-      iterations: number,
-      rounds: number,
-    ) {
+    async costOpen(configs: PageConfig[], sceneSpec: SceneSpec, width: number, height: number) {
       const sc = await scene(sceneSpec);
-      const ctxs: RenderContext[] = [];
       for (const c of configs) {
         const ctx = await context(c, width, height);
         ctx.setScene(sc);
         await ctx.renderIterations(1);
-        ctxs.push(ctx);
+        costContexts.push(ctx);
       }
-      const samples: number[][] = configs.map(() => []);
-      for (let r = 0; r < rounds; r++)
-        for (let i = 0; i < ctxs.length; i++) {
-          await ctxs[i].backend.finish();
-          const t0 = performance.now();
-          ctxs[i].iterate(iterations);
-          await ctxs[i].backend.finish();
-          samples[i].push((performance.now() - t0) / iterations);
-        }
-      for (const ctx of ctxs) ctx.dispose();
-      return samples;
+    },
+    async costBatch(index: number, iterations: number) {
+      const ctx = costContexts[index];
+      await ctx.backend.finish();
+      const t0 = performance.now();
+      ctx.iterate(iterations);
+      await ctx.backend.finish();
+      return performance.now() - t0;
+    },
+    costClose() {
+      for (const ctx of costContexts.splice(0)) ctx.dispose();
     },
 
     /**

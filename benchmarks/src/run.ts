@@ -1,6 +1,9 @@
 /**
  * `pnpm bench --vpt DIR [--quick]`: only the side-by-side suite against the original VPT (vpt-side/run-side.ts).
  * `pnpm bench [--preset quick|full] [--suites error,frame,convergence,scaling,specialization,compact,skipping] [--backends webgl2,webgpu]`
+ *   [--scenes a,b] [--renderers prefix,…] and, for `--preset estimators`, [--variants "delta, phase, grid|…"]
+ *   [--cost-rounds N] [--cost-batch K] (the round-robin cost measurement's rounds and iterations per batch)
+ *   [--seed N] (the error curves' seed: runs with different seeds are independent; estimator-table.js combines them).
  * Runs the suites in headless Chromium and writes benchmarks/results/<stamp>/results.json
  * and report.html. Nothing here asserts a time: comparisons are ratios within one run.
  */
@@ -48,6 +51,16 @@ const backends = arg('backends', 'webgl2,webgpu').split(',') as Backend[];
 const only = arg('renderers', '');
 const sceneFilter = arg('scenes', '');
 if (sceneFilter) preset.errorScenes = sceneFilter.split(',');
+// Estimator study: only these fixed estimators, '|'-separated (their labels contain commas), e.g. "delta, phase, grid|residual, phase, grid".
+const variantFilter = arg('variants', '');
+const costRounds = arg('cost-rounds', '');
+if (costRounds) preset.costRounds = Number(costRounds);
+const costBatch = arg('cost-batch', '');
+if (costBatch) preset.costBatch = Number(costBatch);
+const curveSeed = arg('seed', '');
+if (curveSeed) preset.curveSeed = Number(curveSeed);
+const keepVariant = (r: { label: string }) =>
+  !variantFilter || variantFilter.split('|').some((v) => r.label === `mcrt fixed: ${v}`);
 
 /** FETCHED_SCENES whose raw file `pnpm data:fetch` has put in data/fetched/, with their sidecar's geometry. */
 function fetchedScenes(): { present: Record<string, SceneSpec>; absent: string[] } {
@@ -112,7 +125,7 @@ try {
     preset,
     backends,
     renderers: RENDERERS.filter(keep).filter((r) => !preset.rendererLabels || preset.rendererLabels.includes(r.label)),
-    mcrtVariants: (preset.estimatorStudy ? ESTIMATOR_VARIANTS : MCRT_VARIANTS).filter(keep),
+    mcrtVariants: (preset.estimatorStudy ? ESTIMATOR_VARIANTS.filter(keepVariant) : MCRT_VARIANTS).filter(keep),
     fetchedScenes: fetched.present,
     log,
   };

@@ -1,5 +1,6 @@
 import { estimatorScenes, scenes, type Backend, type RendererConfig, type SceneSpec } from '../configs.js';
 import { timeToPsnr, type CurvePoint } from '../metrics.js';
+import { gpuProcessPid, processCpuMs } from '../gpu-process-time.js';
 import { bench, type SuiteContext } from './types.js';
 
 export const TARGETS_DB = [25, 30, 35, 40];
@@ -19,6 +20,8 @@ export interface ErrorCurveResult {
   rendererStats?: Record<string, string>;
   /** Estimator study: ms per iteration measured round-robin with the scene's other configurations (one sample per round). */
   interleavedMsPerIteration?: number[];
+  /** The same batches' CPU ms per iteration in the browser's GPU process (Linux; 10 ms ticks per batch, so use sums or means). */
+  interleavedGpuProcessCpuMsPerIteration?: number[];
 }
 
 /**
@@ -31,8 +34,14 @@ export async function errorVsTime(s: SuiteContext): Promise<ErrorCurveResult[]> 
   const size = s.preset.errorSize;
   const all = [...s.renderers, ...s.mcrtVariants];
   const study = s.preset.estimatorStudy ? estimatorScenes(s.preset.cloudSize) : {};
-  for (const [sceneName, spec] of Object.entries({ ...scenes(s.preset.cloudSize), ...study, ...s.fetchedScenes })) {
+  for (const [sceneName, sceneSpec] of Object.entries({
+    ...scenes(s.preset.cloudSize),
+    ...study,
+    ...s.fetchedScenes,
+  })) {
     if (s.preset.errorScenes && !s.preset.errorScenes.includes(sceneName)) continue;
+    // The reference sets its own seed; the curves take the preset's when one is given.
+    const spec = s.preset.curveSeed === undefined ? sceneSpec : { ...sceneSpec, seed: s.preset.curveSeed };
     for (const backend of s.backends) {
       for (const config of all) {
         // Variants on the procedural scene only, except in the estimator study.
@@ -74,30 +83,49 @@ export async function errorVsTime(s: SuiteContext): Promise<ErrorCurveResult[]> 
 
 /**
  * The estimator study's cost side: per scene and backend, every configuration's ms per
- * iteration measured round-robin (5 rounds of 2-iteration batches) at the curves' size, so the
+ * iteration measured round-robin (preset.costRounds rounds of preset.costBatch-iteration
+ * batches, the order reversed every other round: A B C, C B A, …) at the curves' size, so the
  * comparison does not depend on how the machine's load moved while the curves ran one after
  * another. Time to a target is then iterations to it (from the curve: variance, independent of
- * the load) × this cost.
+ * the load) × this cost. Each batch is timed twice: the wall clock, and the CPU time the GPU
+ * process spent on it (SwiftShader runs the kernels there; gpu-process-time.ts), which the
+ * other processes of a loaded machine do not inflate.
  */
 async function interleavedCosts(s: SuiteContext, out: ErrorCurveResult[]): Promise<void> {
   const all = [...s.renderers, ...s.mcrtVariants];
   const specs = { ...scenes(s.preset.cloudSize), ...estimatorScenes(s.preset.cloudSize), ...s.fetchedScenes };
+  const gpuPid = gpuProcessPid(s.page.browser().process()?.pid);
+  const iterations = s.preset.costBatch ?? 2;
   for (const sceneName of [...new Set(out.map((r) => r.scene))])
     for (const backend of s.backends) {
       const rows = out.filter((r) => r.scene === sceneName && r.backend === backend);
       const configs = rows.map((r) => ({ ...all.find((c) => c.label === r.label)!, backend }));
-      s.log(`error-vs-time: ${sceneName} ${backend}: interleaved ms per iteration of ${configs.length} configurations`);
-      const samples = await bench<number[][]>(
+      s.log(
+        `error-vs-time: ${sceneName} ${backend}: interleaved ms per iteration of ${configs.length} configurations${gpuPid ? ` (and GPU process ${gpuPid}'s CPU time)` : ''}`,
+      );
+      await bench(
         s.page,
-        'interleavedCost',
+        'costOpen',
         configs,
         specs[sceneName as keyof typeof specs],
         s.preset.errorSize,
         s.preset.errorSize,
-        2,
-        5,
       );
-      rows.forEach((r, i) => (r.interleavedMsPerIteration = samples[i]));
+      const wall: number[][] = rows.map(() => []),
+        cpu: number[][] = rows.map(() => []);
+      for (let round = 0; round < (s.preset.costRounds ?? 5); round++)
+        for (let k = 0; k < rows.length; k++) {
+          const i = round % 2 ? rows.length - 1 - k : k;
+          const cpu0 = gpuPid ? processCpuMs(gpuPid) : 0;
+          const ms = await bench<number>(s.page, 'costBatch', i, iterations);
+          if (gpuPid) cpu[i].push((processCpuMs(gpuPid) - cpu0) / iterations);
+          wall[i].push(ms / iterations);
+        }
+      await bench(s.page, 'costClose');
+      rows.forEach((r, i) => {
+        r.interleavedMsPerIteration = wall[i];
+        if (gpuPid) r.interleavedGpuProcessCpuMsPerIteration = cpu[i];
+      });
     }
 }
 

@@ -21,20 +21,29 @@
  *    each costing about a fifth of the rest of an iteration, so N = 3–4 were the fastest to
  *    35 dB (0.77–0.86× the time of MIS with one sample of each strategy; N = 2: 0.79–0.87×).
  *    With phase or MIS sampling one (see chooseLightSamples).
- *  - Majorant grid: walked unless it barely lowers the bound (global majorant below
- *    GRID_GAIN_FOR_WALK times the mean cell majorant: a near-homogeneous volume), where the
- *    DDA's cell steps cost more than the null collisions they save.
- *  - Shadow rays: residual ratio tracking (ratio tracking where the minorants are 0) wherever
- *    shadow rays carry the light: single scattering, and an environment sampled by MIS (a
- *    shadow ray at every event). There a continuous transmittance estimate instead of delta
- *    tracking's 0/1 one saved 21–27% of the iterations to 30/35 dB (the cloud under a sun map,
- *    the VPT anchor's single scattering) at a cost within the measurement's noise. Otherwise
- *    (multiple scattering under a phase-sampled environment: shadow rays only toward
- *    directional lights) residual tracking only where the cells' minorants are a substantial
- *    fraction of their majorants (RESIDUAL_MINORANT_FRACTION; Novák et al. 2014: the control
- *    then carries most of the optical depth in closed form), else delta tracking, which stops
- *    at the first real collision: there ratio tracking saved 12–13% of the iterations and cost
- *    about as much more per iteration (cloud, head, CT).
+ *  - Majorant grid: walked unless it lowers the bound too little (global majorant below
+ *    GRID_GAIN_FOR_WALK times the mean cell majorant), where the DDA's cell steps cost more
+ *    than the null collisions they save: the cloud (2.03) cost 3–16% more per iteration with
+ *    the grid than with its global bound in every run, the CT (7.5) and the head (23)
+ *    1.6–1.7× and 1.3–1.5× less (the VPT anchor: 4.0 at 64³, 7.0 at 128³, 8-voxel cells).
+ *  - Shadow rays: residual ratio tracking for single scattering (every path ends in a shadow
+ *    ray: the VPT anchor's single scattering needed 27% fewer iterations than with delta
+ *    tracking). For multiple scattering: residual where the cells' minorants are at least
+ *    RESIDUAL_MINORANT_FRACTION of their majorants (Novák et al. 2014: the control then
+ *    carries most of the optical depth in closed form; a homogeneous medium needs no tentative
+ *    collision at all); else delta tracking where the environment is phase-sampled (shadow
+ *    rays only toward directional lights) and the medium is dense (mean cell minorant at least
+ *    DELTA_MINORANT_DEPTH per box length: most shadow rays are blocked, and delta tracking stops
+ *    them at their first collision); else ratio tracking. Measured 2026-12-01 (docs/
+ *    benchmarks.md; iterations to 35 dB over 4 seeds and 2 more runs, cost per iteration as the GPU
+ *    process's CPU time, interleaved): against delta tracking, ratio tracking needs 11–15%
+ *    fewer iterations under sun + sky and costs 1% (head), 7% (CT) and 18–29% (the dense cloud,
+ *    mean minorant 10) more per iteration: 0.90× delta's time on the head and CT (minorants
+ *    0–0.08), 0.97–1.15× on the cloud. Under the cloud's sun map (MIS, shadow rays at every
+ *    event) it needs 16–24% fewer and leads delta by 3–16% even there. Residual tracking needs
+ *    as many iterations as ratio but, where the minorants are partial (the cloud: 34% of the
+ *    majorants), costs 7–10% more: its per-step weights fall more slowly, so Russian roulette
+ *    ends its walks later.
  *
  * The grid statistics are computed on the CPU from a strided subsample of the volume (at most
  * about 2²¹ voxels, so a large volume costs milliseconds): they steer a choice between unbiased
@@ -54,10 +63,11 @@ import {
 import type { EnvironmentSampling, TrackingMode } from './params.js';
 
 export const ENV_PEAK_RATIO_FOR_MIS = 1.05;
-export const GRID_GAIN_FOR_WALK = 1.5;
+export const GRID_GAIN_FOR_WALK = 3;
 export const RESIDUAL_MINORANT_FRACTION = 0.5;
 export const SINGLE_SCATTERING_LIGHT_SAMPLES = 3;
 export const PHASE_PEAK_FOR_LIGHT_ONLY = 2;
+export const DELTA_MINORANT_DEPTH = 1;
 const MAX_SAMPLED_VOXELS = 1 << 21;
 
 /** What the choice rules read from the volume and TF (all extinctions in the box's units). */
@@ -194,20 +204,24 @@ export function chooseEstimator(scene: Scene, request: EstimatorRequest, stats: 
       majorantGrid = gain >= GRID_GAIN_FOR_WALK;
       reasons.majorantGrid = `global/mean cell majorant ${gain.toFixed(2)} ${majorantGrid ? '≥' : '<'} ${GRID_GAIN_FOR_WALK}`;
     }
-    if (tracking === undefined && (request.singleScattering || environmentSampling !== 'phase')) {
+    if (tracking === undefined && request.singleScattering) {
       tracking = 'residual';
-      reasons.tracking = request.singleScattering
-        ? 'single scattering: the shadow rays carry all the light'
-        : 'the environment is light-sampled: a shadow ray at every event';
+      reasons.tracking = 'single scattering: the shadow rays carry all the light';
     } else if (tracking === undefined) {
-      // Without the grid the one control is the global minorant (0 in most real volumes, the majorant in a homogeneous one).
+      // Multiple scattering, under any environment. Without the grid the one control is the
+      // global minorant (0 in most real volumes, the majorant in a homogeneous one).
       const fraction = majorantGrid
         ? s.minorantFraction
         : s.globalMajorant > 0
           ? s.globalMinorant / s.globalMajorant
           : 0;
-      tracking = fraction >= RESIDUAL_MINORANT_FRACTION ? 'residual' : 'delta';
-      reasons.tracking = `cell minorants ${(100 * fraction).toFixed(0)}% of majorants`;
+      // Σ min / Σ max × mean max = the mean cell minorant: an optical depth per box length the medium guarantees.
+      const minorantDepth = s.minorantFraction * s.meanMajorant;
+      const dense = environmentSampling === 'phase' && minorantDepth >= DELTA_MINORANT_DEPTH;
+      tracking = fraction >= RESIDUAL_MINORANT_FRACTION ? 'residual' : dense ? 'delta' : 'ratio';
+      reasons.tracking =
+        `cell minorants ${(100 * fraction).toFixed(0)}% of majorants, mean minorant ${minorantDepth.toFixed(2)} per box length` +
+        (environmentSampling === 'phase' ? ' (shadow rays only toward the lights)' : '');
     }
   }
   const samples = chooseLightSamples(request, environmentSampling);

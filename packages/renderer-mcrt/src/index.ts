@@ -34,6 +34,7 @@ export {
   SINGLE_SCATTERING_LIGHT_SAMPLES,
   PHASE_PEAK_FOR_LIGHT_ONLY,
   phasePeakRatio,
+  DELTA_MINORANT_DEPTH,
   type EstimatorChoice,
   type EstimatorRequest,
   type GridStatistics,

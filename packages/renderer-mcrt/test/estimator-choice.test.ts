@@ -12,9 +12,12 @@ import {
   buildMajorantGrid,
   chooseEstimator,
   chooseLightSamples,
+  DELTA_MINORANT_DEPTH,
+  RESIDUAL_MINORANT_FRACTION,
   computeFeatures,
   environmentPeakRatio,
   ENV_PEAK_RATIO_FOR_MIS,
+  GRID_GAIN_FOR_WALK,
   gridCells,
   gridStatistics,
   McrtRenderer,
@@ -31,9 +34,9 @@ function skyMap(base: number, sun: number, W = 32, H = 16): Environment {
   return { type: 'latlong', width: W, height: H, data };
 }
 
-/** A sparse blob (most cells empty, minorants 0). */
+/** A sparse blob (most cells empty, minorants a tenth of the majorants; global / mean cell majorant 4.3 with 8-voxel cells). */
 const sparse = (over: Partial<Scene> = {}) =>
-  testScene({ volume: createProceduralVolume('blob', 32), densityScale: 20, ...over });
+  testScene({ volume: createProceduralVolume('blob', 64), densityScale: 20, ...over });
 
 /** A homogeneous cube: every cell's bounds equal. */
 const homogeneous = (over: Partial<Scene> = {}) =>
@@ -50,6 +53,31 @@ function denseRamp(over: Partial<Scene> = {}): Scene {
   const data = new Float32Array(n * n * n);
   for (let z = 0; z < n; z++)
     for (let y = 0; y < n; y++) for (let x = 0; x < n; x++) data[x + n * (y + n * z)] = 0.6 + (0.4 * x) / (n - 1);
+  const volume = createVolume([n, n, n], 'float32', data);
+  volume.valueRange = [0, 1];
+  return testScene({
+    volume,
+    transferFunction: {
+      dimensions: '1d',
+      points: [
+        { value: 0, color: [0.9, 0.9, 0.9], opacity: 0 },
+        { value: 1, color: [0.9, 0.9, 0.9], opacity: 1 },
+      ],
+    },
+    densityScale: 30,
+    ...over,
+  });
+}
+
+/** A dense, heterogeneous medium (as the benchmark cloud): per-voxel noise in [0.2, 1], opacity = value; a flat grid (global/mean majorant ≈ 1). */
+function denseNoise(over: Partial<Scene> = {}): Scene {
+  const n = 32;
+  const data = new Float32Array(n * n * n);
+  let h = 12345;
+  for (let i = 0; i < data.length; i++) {
+    h = (Math.imul(h, 1664525) + 1013904223) >>> 0;
+    data[i] = 0.2 + 0.8 * (h / 4294967296);
+  }
   const volume = createVolume([n, n, n], 'float32', data);
   volume.valueRange = [0, 1];
   return testScene({
@@ -90,7 +118,11 @@ describe("MCRT estimator: 'auto' rules", () => {
     const sun = skyMap(0.2, 2000);
     expect(environmentPeakRatio(sun)).toBeGreaterThan(ENV_PEAK_RATIO_FOR_MIS);
     const withSun = chooseEstimator(sparse({ environment: sun }), {}, open);
-    expect([withSun.environmentSampling, withSun.tracking]).toEqual(['mis', 'residual']); // shadow rays at every event
+    // Shadow rays at every event, tracked by the multiple-scattering rule: ratio (minorants 0), residual where they are ≥ half.
+    expect([withSun.environmentSampling, withSun.tracking]).toEqual(['mis', 'ratio']);
+    expect(chooseEstimator(denseRamp({ environment: sun }), {}, () => gridStatistics(denseRamp(), 8)).tracking).toBe(
+      'residual',
+    );
     // The anchor sky of the VPT comparison: 0.05 at the nadir to 1 at the zenith, peak/mean ≈ 2.7.
     const H = 64,
       W = 4;
@@ -106,13 +138,52 @@ describe("MCRT estimator: 'auto' rules", () => {
     expect(environmentPeakRatio({ type: 'constant', radiance: [0.3, 0.3, 0.3] })).toBe(1);
   });
 
-  it('a sparse volume walks the grid with delta tracking (its minorants are 0)', () => {
+  it('a sparse volume walks the grid, and its shadow rays take ratio tracking (its minorants are small)', () => {
     const scene = sparse();
     const s = gridStatistics(scene, 8);
-    expect(s.minorantFraction).toBeLessThan(0.05);
-    expect(s.globalMajorant / s.meanMajorant).toBeGreaterThan(2);
+    expect(s.minorantFraction).toBeLessThan(0.15);
+    expect(s.globalMajorant / s.meanMajorant).toBeGreaterThan(GRID_GAIN_FOR_WALK);
     const c = chooseEstimator(scene, {}, () => s);
-    expect([c.tracking, c.majorantGrid]).toEqual(['delta', true]);
+    expect([c.tracking, c.majorantGrid]).toEqual(['ratio', true]);
+  });
+
+  it('multiple scattering: ratio tracking; residual where the minorants are ≥ half; delta in a dense medium under a phase-sampled sky', () => {
+    const sun = {
+      type: 'directional' as const,
+      direction: [0, 1, 0] as [number, number, number],
+      irradiance: [3, 3, 3] as [number, number, number],
+    };
+    const choose = (scene: Scene) => {
+      const s = gridStatistics(scene, 8);
+      const c = chooseEstimator(scene, {}, () => s);
+      expect(c.reasons.tracking).toMatch(/^cell minorants \d+% of majorants, mean minorant \d+\.\d\d per box length/);
+      return { c, fraction: s.minorantFraction, depth: s.minorantFraction * s.meanMajorant };
+    };
+    // Small minorants (empty and thin cells, as in the head and CT scans): ratio.
+    const thin = choose(sparse({ lights: [sun] }));
+    expect(thin.depth).toBeLessThan(DELTA_MINORANT_DEPTH / 2);
+    expect([thin.c.environmentSampling, thin.c.tracking]).toEqual(['phase', 'ratio']);
+    // Dense and heterogeneous (minorants a fifth of the majorants, mean minorant ≥ 5 per box length, as in the cloud): delta.
+    const dense = choose(denseNoise({ lights: [sun] }));
+    expect(dense.fraction).toBeGreaterThan(0.1);
+    expect(dense.fraction).toBeLessThan(RESIDUAL_MINORANT_FRACTION);
+    expect(dense.depth).toBeGreaterThan(5 * DELTA_MINORANT_DEPTH);
+    expect([dense.c.environmentSampling, dense.c.tracking]).toEqual(['phase', 'delta']);
+    expect(dense.c.reasons.tracking).toMatch(/shadow rays only toward the lights/);
+    // The same medium 20× thinner: its minorants no longer block the shadow rays, so ratio.
+    const thinned = choose(denseNoise({ lights: [sun], densityScale: 1.5 }));
+    expect(thinned.depth).toBeLessThan(DELTA_MINORANT_DEPTH);
+    expect(thinned.c.tracking).toBe('ratio');
+    // The dense medium under a map (MIS: shadow rays at every event): ratio.
+    const underMap = choose(denseNoise({ environment: skyMap(0.2, 2000) }));
+    expect([underMap.c.environmentSampling, underMap.c.tracking]).toEqual(['mis', 'ratio']);
+    // Dense but slowly varying (minorants ≥ half the majorants): residual, the control takes most in closed form.
+    const ramp = choose(denseRamp({ lights: [sun] }));
+    expect(ramp.depth).toBeGreaterThan(DELTA_MINORANT_DEPTH);
+    expect(ramp.fraction).toBeGreaterThanOrEqual(RESIDUAL_MINORANT_FRACTION);
+    expect(ramp.c.tracking).toBe('residual');
+    // Without the grid the control is the global minorant: 0 in the sparse blob (ratio).
+    expect(chooseEstimator(sparse({ lights: [sun] }), { majorantGrid: false }, open).tracking).toBe('ratio');
   });
 
   it('single scattering takes residual (ratio) tracking for its shadow rays, whatever the minorants', () => {
@@ -120,6 +191,16 @@ describe("MCRT estimator: 'auto' rules", () => {
     expect(c.tracking).toBe('residual');
     expect(c.reasons.tracking).toMatch(/single scattering/);
     expect(new McrtRenderer({ scattering: 'single' }).features(sparse()).TRACKING).toBe(2);
+  });
+
+  it('a volume whose grid lowers the bound less than GRID_GAIN_FOR_WALK× takes the global majorant (the same blob, 32³)', () => {
+    const filled = testScene({ volume: createProceduralVolume('blob', 32), densityScale: 20 });
+    const s = gridStatistics(filled, 8);
+    expect(s.globalMajorant / s.meanMajorant).toBeGreaterThan(1.5); // the previous threshold walked it
+    expect(s.globalMajorant / s.meanMajorant).toBeLessThan(GRID_GAIN_FOR_WALK);
+    const c = chooseEstimator(filled, {}, () => s);
+    expect(c.majorantGrid).toBe(false);
+    expect(c.reasons.majorantGrid).toMatch(/global\/mean cell majorant \d\.\d\d < 3/);
   });
 
   it('a homogeneous volume takes the global majorant and residual tracking (the control is the whole extinction)', () => {
@@ -177,15 +258,15 @@ describe('McrtRenderer with the auto estimator', () => {
   it('compiles the chosen variant and reports it (and why) in stats()', () => {
     const r = new McrtRenderer();
     const f = r.features(sparse());
-    expect([f.TRACKING, f.ENV_SAMPLING, f.MAJORANT_GRID]).toEqual([0, 0, true]);
+    expect([f.TRACKING, f.ENV_SAMPLING, f.MAJORANT_GRID]).toEqual([1, 0, true]);
     const s = r.stats();
     expect(s).toMatchObject({
       estimator: 'auto',
-      tracking: 'delta',
+      tracking: 'ratio',
       environmentSampling: 'phase',
       majorantGrid: 'grid',
     });
-    expect(s.trackingReason).toMatch(/minorants \d+% of majorants/);
+    expect(s.trackingReason).toMatch(/minorants \d+% of majorants, mean minorant \d+\.\d\d per box length/);
   });
 
   it("'fixed' keeps the fixed defaults (residual, MIS, grid); 'auto' as a value equals unset", () => {
@@ -198,9 +279,9 @@ describe('McrtRenderer with the auto estimator', () => {
   });
 
   it('an override of one choice leaves the others to the rules', () => {
-    const r = new McrtRenderer({ tracking: 'ratio' });
+    const r = new McrtRenderer({ tracking: 'delta' });
     const f = r.features(sparse());
-    expect([f.TRACKING, f.ENV_SAMPLING]).toEqual([1, 0]);
+    expect([f.TRACKING, f.ENV_SAMPLING]).toEqual([0, 0]);
     expect(r.stats().trackingReason).toBe('set');
   });
 });
