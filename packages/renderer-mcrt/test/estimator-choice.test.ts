@@ -47,12 +47,8 @@ const homogeneous = (over: Partial<Scene> = {}) =>
     ...over,
   });
 
-/** A dense medium that varies slowly (value 0.6–1 as a linear ramp along x) under a TF whose opacity never drops below 0.6. */
-function denseRamp(over: Partial<Scene> = {}): Scene {
-  const n = 32;
-  const data = new Float32Array(n * n * n);
-  for (let z = 0; z < n; z++)
-    for (let y = 0; y < n; y++) for (let x = 0; x < n; x++) data[x + n * (y + n * z)] = 0.6 + (0.4 * x) / (n - 1);
+/** An n³ float32 volume of values in [0, 1] under a grey TF whose opacity is the value, density 30. */
+function opacityIsValueScene(n: number, data: Float32Array, over: Partial<Scene>): Scene {
   const volume = createVolume([n, n, n], 'float32', data);
   volume.valueRange = [0, 1];
   return testScene({
@@ -69,6 +65,15 @@ function denseRamp(over: Partial<Scene> = {}): Scene {
   });
 }
 
+/** A dense medium that varies slowly (value 0.6–1 as a linear ramp along x) under a TF whose opacity never drops below 0.6. */
+function denseRamp(over: Partial<Scene> = {}): Scene {
+  const n = 32;
+  const data = new Float32Array(n * n * n);
+  for (let z = 0; z < n; z++)
+    for (let y = 0; y < n; y++) for (let x = 0; x < n; x++) data[x + n * (y + n * z)] = 0.6 + (0.4 * x) / (n - 1);
+  return opacityIsValueScene(n, data, over);
+}
+
 /** A dense, heterogeneous medium (as the benchmark cloud): per-voxel noise in [0.2, 1], opacity = value; a flat grid (global/mean majorant ≈ 1). */
 function denseNoise(over: Partial<Scene> = {}): Scene {
   const n = 32;
@@ -78,20 +83,7 @@ function denseNoise(over: Partial<Scene> = {}): Scene {
     h = (Math.imul(h, 1664525) + 1013904223) >>> 0;
     data[i] = 0.2 + 0.8 * (h / 4294967296);
   }
-  const volume = createVolume([n, n, n], 'float32', data);
-  volume.valueRange = [0, 1];
-  return testScene({
-    volume,
-    transferFunction: {
-      dimensions: '1d',
-      points: [
-        { value: 0, color: [0.9, 0.9, 0.9], opacity: 0 },
-        { value: 1, color: [0.9, 0.9, 0.9], opacity: 1 },
-      ],
-    },
-    densityScale: 30,
-    ...over,
-  });
+  return opacityIsValueScene(n, data, over);
 }
 
 const open = () => gridStatistics(sparse(), 8);
