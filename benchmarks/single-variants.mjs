@@ -27,6 +27,7 @@ import {
   VPT_SKY_ROWS,
 } from './dist/vpt-side/anchor-scene.js';
 import { sideIterationsTo } from './dist/vpt-side/side-metrics.js';
+import { processTreeCpuMs } from './dist/process-cpu-time.js';
 
 const variants = JSON.parse(process.argv[2]);
 const rounds = Number(process.argv[3] ?? 5);
@@ -43,28 +44,8 @@ const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'sv-'));
 fs.writeFileSync(path.join(dir, 'a.raw'), anchorVolume(n));
 const session = await openVptPage();
 const root = session.browser.process()?.pid;
-const tick = 100; // USER_HZ: /proc's clock ticks per second on Linux
-function cpuMs() {
-  // CPU time (user + system) of the browser and all its descendants: the work, whatever the load.
-  const stats = new Map();
-  for (const d of fs.readdirSync('/proc')) {
-    if (!/^[0-9]+$/.test(d)) continue;
-    try {
-      const t = fs.readFileSync(`/proc/${d}/stat`, 'utf8');
-      const f = t.slice(t.lastIndexOf(')') + 2).split(' ');
-      stats.set(Number(d), { ppid: Number(f[1]), cpu: Number(f[11]) + Number(f[12]) });
-    } catch {
-      // the process ended meanwhile
-    }
-  }
-  let sum = 0;
-  for (const [pid, st] of stats) {
-    let p = pid;
-    while (p && p !== root) p = stats.get(p)?.ppid;
-    if (p === root) sum += st.cpu;
-  }
-  return (sum * 1000) / tick;
-}
+// CPU time (user + system) of the browser and all its descendants: the work, whatever the load.
+const cpuMs = () => processTreeCpuMs(root);
 const side = (fn, ...args) => session.page.evaluate((fn, args) => window.side[fn](...args), fn, args);
 try {
   const vptBase = session.mount(vptBuild, '/vpt/');

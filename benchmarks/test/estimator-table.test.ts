@@ -1,6 +1,6 @@
 import { describe, expect, it } from 'vitest';
 import { estimatorTable, iterationsFromHalves, iterationsFromLast, iterationsTo } from '../src/estimator-table.js';
-import { processCpuMs } from '../src/gpu-process-time.js';
+import { processCpuMs, processTreeCpuMs } from '../src/process-cpu-time.js';
 import type { ErrorCurveResult } from '../src/suites/error-vs-time.js';
 
 /** A curve of an unbiased estimator whose MSE is `variance / n` (PSNR = p1 + 10·log10 n), peak 1. */
@@ -75,5 +75,13 @@ describe('estimator table (the estimator study)', () => {
     for (let i = 0; i < 3e8; i++) x += i & 1;
     expect(x).toBeGreaterThan(0);
     expect(processCpuMs(process.pid)).toBeGreaterThan(before);
+  });
+
+  it("counts a process tree's CPU time, its root's included", () => {
+    const own = processCpuMs(process.pid);
+    // The root's own CPU time only grows between the two reads, so the tree's must reach it.
+    expect(processTreeCpuMs(process.pid)).toBeGreaterThanOrEqual(own);
+    // The machine's first process heads the tree of every other, this one too.
+    expect(processTreeCpuMs(1)).toBeGreaterThanOrEqual(own);
   });
 });

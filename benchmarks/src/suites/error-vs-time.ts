@@ -1,6 +1,6 @@
 import { estimatorScenes, scenes, type Backend, type RendererConfig, type SceneSpec } from '../configs.js';
 import { timeToPsnr, type CurvePoint } from '../metrics.js';
-import { gpuProcessPid, processCpuMs } from '../gpu-process-time.js';
+import { gpuProcessPid, processCpuMs } from '../process-cpu-time.js';
 import { bench, type SuiteContext } from './types.js';
 
 export const TARGETS_DB = [25, 30, 35, 40];
@@ -88,7 +88,7 @@ export async function errorVsTime(s: SuiteContext): Promise<ErrorCurveResult[]> 
  * comparison does not depend on how the machine's load moved while the curves ran one after
  * another. Time to a target is then iterations to it (from the curve: variance, independent of
  * the load) × this cost. Each batch is timed twice: the wall clock, and the CPU time the GPU
- * process spent on it (SwiftShader runs the kernels there; gpu-process-time.ts), which the
+ * process spent on it (SwiftShader runs the kernels there; process-cpu-time.ts), which the
  * other processes of a loaded machine do not inflate.
  */
 async function interleavedCosts(s: SuiteContext, out: ErrorCurveResult[]): Promise<void> {

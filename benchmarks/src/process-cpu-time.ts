@@ -1,5 +1,6 @@
 /**
- * CPU time of the browser's GPU process (Linux /proc). With SwiftShader the kernels run on the
+ * CPU time of the browser's processes (Linux /proc): of its GPU process, or of the whole
+ * process tree (benchmarks/single-variants.mjs). With SwiftShader the kernels run on the
  * CPU inside that process, so the CPU time a batch of iterations adds to it measures the
  * batch's work without the waits that other processes on a loaded machine add to the wall
  * clock (the estimator study's cost side, error-vs-time.ts). The process's utime + stime
@@ -50,4 +51,26 @@ export function processCpuMs(pid: number): number {
   const f = statFields(pid);
   // utime and stime are fields 14 and 15 of stat(5); f starts at field 3.
   return (Number(f[11]) + Number(f[12])) * TICK_MS;
+}
+
+/** CPU ms (user + system, all threads) that `rootPid` and all its descendants (Chromium's browser, GPU and renderer processes) have used so far. */
+export function processTreeCpuMs(rootPid: number): number {
+  const stats = new Map<number, { ppid: number; ticks: number }>();
+  for (const entry of readdirSync('/proc')) {
+    const pid = Number(entry);
+    if (!Number.isInteger(pid)) continue;
+    try {
+      const f = statFields(pid);
+      stats.set(pid, { ppid: Number(f[1]), ticks: Number(f[11]) + Number(f[12]) });
+    } catch {
+      // The process ended while we looked.
+    }
+  }
+  let ticks = 0;
+  for (const [pid, st] of stats) {
+    let p: number | undefined = pid;
+    while (p && p !== rootPid) p = stats.get(p)?.ppid;
+    if (p === rootPid) ticks += st.ticks;
+  }
+  return ticks * TICK_MS;
 }
