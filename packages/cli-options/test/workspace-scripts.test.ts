@@ -27,6 +27,8 @@ const SCRIPTS: Record<string, { notANumber?: { argv: string[]; names: string } }
   'benchmarks/zarr-streaming.mjs': { notANumber: { argv: ['--mbit', 'fast'], names: '--mbit' } },
   'apps/gallery/build.mjs': {},
 };
+/** Shell scripts: no options, but --help and a refusal all the same. */
+const SHELL_SCRIPTS = ['scripts/setup.sh'];
 /** Scripts with their own test (see above), and modules that are not commands. */
 const ELSEWHERE = ['benchmarks/bench.mjs', 'tools/tool-browser.mjs'];
 
@@ -45,11 +47,11 @@ describe('the repository scripts', () => {
       .flatMap((dir) =>
         fs
           .readdirSync(path.join(ROOT, dir))
-          .filter((f) => f.endsWith('.mjs'))
+          .filter((f) => f.endsWith('.mjs') || f.endsWith('.sh'))
           .map((f) => `${dir}/${f}`),
       )
       .sort();
-    expect(found).toEqual([...Object.keys(SCRIPTS), ...ELSEWHERE].sort());
+    expect(found).toEqual([...Object.keys(SCRIPTS), ...SHELL_SCRIPTS, ...ELSEWHERE].sort());
   });
 
   for (const [script, { notANumber }] of Object.entries(SCRIPTS)) {
@@ -77,6 +79,20 @@ describe('the repository scripts', () => {
         });
     });
   }
+});
+
+describe.each(SHELL_SCRIPTS)('%s', (script) => {
+  const sh = (...argv: string[]) =>
+    spawnSync('bash', [path.join(ROOT, script), ...argv], { encoding: 'utf8', timeout: 30_000 });
+
+  it('--help says what it does and exits 0; an argument is refused with exit 2, naming it', () => {
+    const help = sh('--help');
+    expect(help.status).toBe(0);
+    expect(help.stdout).toMatch(/^Usage: /);
+    const bad = sh('--no-such-flag');
+    expect(bad.status).toBe(2);
+    expect(bad.stderr).toContain("'--no-such-flag'");
+  });
 });
 
 describe('the TypeScript scripts of benchmarks/ (run from dist/, tested here from source)', () => {
