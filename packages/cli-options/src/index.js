@@ -86,11 +86,14 @@ function asksForHelp(spec, args) {
   return tokens.some((t) => t.kind === 'option' && t.name === 'help');
 }
 
-const PARSE_ERRORS = {
-  ERR_PARSE_ARGS_UNKNOWN_OPTION: 'unknown-option',
-  ERR_PARSE_ARGS_INVALID_OPTION_VALUE: 'missing-value',
-  ERR_PARSE_ARGS_UNEXPECTED_POSITIONAL: 'unexpected-argument',
-};
+/** node:util's parse errors as CliArgsError codes (an invalid value is a missing one or one a flag does not take). */
+function parseErrorCode(e) {
+  if (e?.code === 'ERR_PARSE_ARGS_UNKNOWN_OPTION') return 'unknown-option';
+  if (e?.code === 'ERR_PARSE_ARGS_UNEXPECTED_POSITIONAL') return 'unexpected-argument';
+  if (e?.code === 'ERR_PARSE_ARGS_INVALID_OPTION_VALUE')
+    return /argument missing|ambiguous/.test(String(e.message)) ? 'missing-value' : 'bad-value';
+  return undefined;
+}
 
 /**
  * Parse `argv` (without node and the script) against `spec`. Bare `--` tokens are dropped:
@@ -111,7 +114,7 @@ export function parseCli(spec, argv) {
       allowPositionals: positionalSpecs.length > 0,
     });
   } catch (e) {
-    const code = PARSE_ERRORS[e?.code];
+    const code = parseErrorCode(e);
     if (!code) throw e;
     // Node's message names the flag; its advice about `--` does not apply here (see above).
     throw new CliArgsError(code, String(e.message).replace(/\. To specify a positional argument.*$/s, ''));

@@ -99,6 +99,11 @@ describe('parseCli', () => {
 
   it('refuses a missing value, a missing positional and extra positionals', () => {
     expect(error(['in.json', '--size']).code).toBe('missing-value');
+    expect(error(['in.json', '--size']).message).toContain('--size');
+    expect(error(['in.json', '--output', '--size', '3']).code).toBe('missing-value');
+    const flagWithValue = error(['in.json', '--verbose=yes']);
+    expect(flagWithValue.code).toBe('bad-value');
+    expect(flagWithValue.message).toContain('--verbose');
     expect(error([]).code).toBe('missing-argument');
     expect(error([]).message).toContain('IN');
     const extra = error(['a', '1', 'b']);
