@@ -12,12 +12,20 @@
  * compare ratios from the same run.
  */
 import fs from 'node:fs';
-import { openVptPage } from '../packages/headless/dist/index.js';
-import { cliArg as arg } from './cli-arg.mjs';
+import { parseCliOrExit } from '@vpt/cli-options';
 
-const size = Number(arg('size', 64));
-const iterations = Number(arg('iterations', 8));
-const backend = arg('backend', 'webgl2');
+const { size, iterations, backend } = parseCliOrExit({
+  name: 'node benchmarks/mcrt-fetches.mjs',
+  synopsis: '[--size N] [--iterations N] [--backend webgl2|webgpu]',
+  summary: 'MCRT medium lookups and majorant-grid cells per path, with and without the grid (needs pnpm run build).',
+  options: {
+    size: { type: 'integer', min: 1, default: 64, description: 'image side in pixels' },
+    iterations: { type: 'integer', min: 1, default: 8, description: 'iterations per configuration' },
+    backend: { type: 'string', choices: ['webgl2', 'webgpu'], default: 'webgl2', description: 'the GPU backend' },
+  },
+});
+// After the arguments, so that --help works before a build.
+const { openVptPage } = await import('../packages/headless/dist/index.js');
 
 const head = JSON.parse(fs.readFileSync(new URL('../apps/gallery/scenes/head-mcrt.json', import.meta.url), 'utf8'));
 const blob = {

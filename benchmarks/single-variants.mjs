@@ -16,29 +16,47 @@
 import os from 'node:os';
 import fs from 'node:fs';
 import path from 'node:path';
-import { openVptPage } from '../packages/headless/dist/index.js';
-import { installSidePage } from './dist/vpt-side/side-page.js';
-import {
-  anchorVolume,
-  ANCHOR_ALBEDO,
-  ANCHOR_CAMERA_Z,
-  ANCHOR_EXTINCTION,
-  ANCHOR_FOVY,
-  VPT_SKY_ROWS,
-} from './dist/vpt-side/anchor-scene.js';
-import { sideIterationsTo } from './dist/vpt-side/side-metrics.js';
-import { processTreeCpuMs } from './dist/process-cpu-time.js';
+import { parseCliOrExit } from '@vpt/cli-options';
 
-const variants = JSON.parse(process.argv[2]);
-const rounds = Number(process.argv[3] ?? 5);
-const curveIts = Number(process.argv[4] ?? 0);
-const batch = Number(process.argv[5] ?? 8);
-const vptBuild = process.argv[6] ? path.join(process.argv[6], 'build') : null;
+const args = parseCliOrExit({
+  name: 'node benchmarks/single-variants.mjs',
+  synopsis: 'VARIANTS [ROUNDS] [CURVES] [BATCH] [VPT_DIR]',
+  summary: "MCRT single-scattering variants against VPT's MCS on the side-by-side anchor scene (needs pnpm run build).",
+  positionals: [
+    {
+      key: 'variants',
+      name: 'VARIANTS',
+      type: 'json',
+      required: true,
+      description: 'JSON: name → MCRT params over { scattering: "single" }, or "VPT" for VPT\'s MCS',
+    },
+    { key: 'rounds', name: 'ROUNDS', type: 'integer', min: 1, default: 5, description: 'interleaved cost rounds' },
+    {
+      key: 'curves',
+      name: 'CURVES',
+      type: 'integer',
+      min: 0,
+      default: 0,
+      description: 'error curves (seeds) per variant',
+    },
+    { key: 'batch', name: 'BATCH', type: 'integer', min: 1, default: 8, description: 'iterations per timed batch' },
+    { key: 'vptDir', name: 'VPT_DIR', type: 'string', description: 'a clone of terier/vpt with its build/' },
+  ],
+});
+const { variants, rounds, curves: curveIts, batch } = args;
+const vptBuild = args.vptDir ? path.join(args.vptDir, 'build') : null;
 if (!vptBuild) {
   // The side page loads VPT's modules even when no "VPT" variant runs.
   console.log('single-variants: skipped: no VPT_DIR (a clone of terier/vpt with its build/)');
   process.exit(0);
 }
+// After the arguments, so that --help works before a build.
+const { openVptPage } = await import('../packages/headless/dist/index.js');
+const { installSidePage } = await import('./dist/vpt-side/side-page.js');
+const { anchorVolume, ANCHOR_ALBEDO, ANCHOR_CAMERA_Z, ANCHOR_EXTINCTION, ANCHOR_FOVY, VPT_SKY_ROWS } =
+  await import('./dist/vpt-side/anchor-scene.js');
+const { sideIterationsTo } = await import('./dist/vpt-side/side-metrics.js');
+const { processTreeCpuMs } = await import('./dist/process-cpu-time.js');
 const n = 128;
 const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'sv-'));
 fs.writeFileSync(path.join(dir, 'a.raw'), anchorVolume(n));

@@ -19,26 +19,33 @@ import http from 'node:http';
 import os from 'node:os';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
+import { parseCliOrExit } from '@vpt/cli-options';
 import { convertRawToOmeZarr } from '../scripts/raw-to-ome-zarr.mjs';
 
 const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..');
+const args = parseCliOrExit({
+  name: 'node benchmarks/zarr-streaming.mjs',
+  synopsis: '[--sidecar data/….json] [--runs N] [--mbit X] [--latency MS]',
+  summary: 'OME-Zarr streaming against one raw file over a throttled connection (needs pnpm run build).',
+  options: {
+    sidecar: {
+      type: 'string',
+      valueName: 'FILE',
+      description: "the raw volume's JSON sidecar (default: the fetched cells3d nuclei, else the bundled head)",
+    },
+    runs: { type: 'integer', min: 1, default: 5, description: 'runs of each (raw / zarr alternate)' },
+    mbit: { type: 'number', min: 0.01, default: 20, description: 'throttled bandwidth, Mbit/s down and up' },
+    latency: { type: 'number', min: 0, default: 20, description: 'added latency in ms' },
+  },
+});
 const { launchChromium } = await import(path.join(root, 'packages/headless/dist/index.js'));
 
-const args = process.argv.slice(2).filter((a) => a !== '--');
-const opt = (name, fallback) => {
-  const i = args.indexOf(name);
-  return i >= 0 ? args[i + 1] : fallback;
-};
 const cells = path.join(root, 'data/fetched/micro_cells3d_nuclei_256x256x60_uint16.json');
 const sidecarPath = path.resolve(
-  opt(
-    '--sidecar',
-    fs.existsSync(cells) ? cells : path.join(root, 'data/mri_head_volpack_brainsmall_128x128x84_uint8.json'),
-  ),
+  args.sidecar ??
+    (fs.existsSync(cells) ? cells : path.join(root, 'data/mri_head_volpack_brainsmall_128x128x84_uint8.json')),
 );
-const runs = Number(opt('--runs', 5));
-const mbit = Number(opt('--mbit', 20));
-const latency = Number(opt('--latency', 20));
+const { runs, mbit, latency } = args;
 
 // ——— the data: the raw file with its sidecar, and a multiscale OME-Zarr copy ———
 const work = fs.mkdtempSync(path.join(os.tmpdir(), 'vpt-zarr-bench-'));

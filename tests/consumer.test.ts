@@ -30,9 +30,11 @@ const PACKAGES = [
   'loaders',
   'viewer',
   'headless',
+  'cli-options',
 ];
 /** What a browser app installs (headless is a Node tool with Chromium drivers: packed and checked, not installed). */
-const BROWSER_PACKAGES = PACKAGES.filter((p) => p !== 'headless');
+// headless and its argument parser are Node-only.
+const BROWSER_PACKAGES = PACKAGES.filter((p) => p !== 'headless' && p !== 'cli-options');
 const HEAD = 'mri_head_volpack_brainsmall_128x128x84_uint8';
 const NO_FAVICON = '<link rel="icon" href="data:,">';
 

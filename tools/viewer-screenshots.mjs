@@ -1,7 +1,7 @@
 // Screenshots of <vpt-viewer> and the gallery for docs/images/ (run after `pnpm run build`
 // and `pnpm --filter @vpt/gallery run build`). Renders on SwiftShader, so it takes minutes.
 // Usage: node tools/viewer-screenshots.mjs [name…]   (no names: all of them)
-import { launchChromium, pageWithErrors, REPO_ROOT, startStaticServer } from './tool-browser.mjs';
+import { parseCliOrExit } from '@vpt/cli-options';
 
 const HEAD = 'mri_head_volpack_brainsmall_128x128x84_uint8';
 
@@ -53,7 +53,26 @@ const SHOTS = {
   }),
 };
 
-const names = process.argv.slice(2).length ? process.argv.slice(2) : Object.keys(SHOTS);
+const { names: given } = parseCliOrExit({
+  name: 'node tools/viewer-screenshots.mjs',
+  synopsis: '[NAME…]',
+  summary:
+    'Screenshots of <vpt-viewer> and the gallery for docs/images/ (after pnpm run build and\n' +
+    'pnpm --filter @vpt/gallery run build; minutes on SwiftShader).',
+  positionals: [
+    {
+      key: 'names',
+      name: 'NAME',
+      type: 'string',
+      variadic: true,
+      choices: Object.keys(SHOTS),
+      description: `the screenshots to take (default: all): ${Object.keys(SHOTS).join(', ')}`,
+    },
+  ],
+});
+const names = given.length ? given : Object.keys(SHOTS);
+// After the arguments, so that --help works before a build.
+const { launchChromium, pageWithErrors, REPO_ROOT, startStaticServer } = await import('./tool-browser.mjs');
 const server = await startStaticServer(REPO_ROOT);
 const browser = await launchChromium({ webgpu: true });
 try {

@@ -11,7 +11,14 @@
 import fs from 'node:fs';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
+import { parseCliOrExit } from '@vpt/cli-options';
 
+const { production } = parseCliOrExit({
+  name: 'node build.mjs',
+  synopsis: '[--production]',
+  summary: 'Build the gallery, a static site, into apps/gallery/dist/.',
+  options: { production: { type: 'boolean', description: 'leave out developer hints such as `pnpm data:fetch`' } },
+});
 const here = path.dirname(fileURLToPath(import.meta.url));
 const root = path.resolve(here, '../..');
 const dist = path.join(here, 'dist');
@@ -147,7 +154,7 @@ const fetched = scan(fetchedDir, 'data/fetched/', false).filter((d) => !bundled.
 if (fetched.length)
   fs.symlinkSync(path.relative(path.join(dist, 'data'), fetchedDir), path.join(dist, 'data', 'fetched'), 'dir');
 
-const development = !process.argv.includes('--production');
+const development = !production;
 const manifest = { generated: new Date().toISOString(), development, datasets: [...bundled, ...fetched] };
 fs.writeFileSync(path.join(dist, 'data', 'manifest.json'), JSON.stringify(manifest, null, 1));
 console.log(

@@ -10,6 +10,7 @@
  */
 import { readFileSync } from 'node:fs';
 import { pathToFileURL } from 'node:url';
+import { parseCliOrExit } from '@vpt/cli-options';
 import { median, timeToPsnr } from './metrics.js';
 import type { ErrorCurveResult } from './suites/error-vs-time.js';
 
@@ -179,8 +180,23 @@ export function estimatorTable(runs: readonly (readonly ErrorCurveResult[])[]): 
 
 // Run as a script (not when imported, e.g. by its test).
 if (process.argv[1] && import.meta.url === pathToFileURL(process.argv[1]).href) {
-  const runs = process.argv
-    .slice(2)
-    .map((p) => (JSON.parse(readFileSync(p, 'utf8')) as { errorVsTime?: ErrorCurveResult[] }).errorVsTime ?? []);
+  const { files } = parseCliOrExit({
+    name: 'node benchmarks/dist/estimator-table.js',
+    synopsis: 'RESULTS.json [RESULTS.json …]',
+    summary: 'The estimator study (pnpm bench --preset estimators) as a markdown table per scene; runs combined.',
+    positionals: [
+      {
+        key: 'files',
+        name: 'RESULTS.json',
+        type: 'string',
+        variadic: true,
+        required: true,
+        description: "runs' results.json (one seed each)",
+      },
+    ],
+  });
+  const runs = files.map(
+    (p) => (JSON.parse(readFileSync(p, 'utf8')) as { errorVsTime?: ErrorCurveResult[] }).errorVsTime ?? [],
+  );
   console.log(estimatorTable(runs));
 }

@@ -6,13 +6,18 @@
  */
 import { readFileSync, writeFileSync } from 'node:fs';
 import path from 'node:path';
+import { parseCliOrExit } from '@vpt/cli-options';
 import { reportContent, reportPage, writeReportAssets, type Results } from './report.js';
 
-const [resultsFile, outFile] = process.argv.slice(2);
-if (!resultsFile || !outFile) {
-  console.error('usage: publish-report <results.json> <out.html>');
-  process.exit(2);
-}
+const { resultsFile, outFile } = parseCliOrExit({
+  name: 'node benchmarks/dist/publish-report.js',
+  synopsis: 'RESULTS.json OUT.html',
+  summary: "Write a run's report for the docs, with uPlot, the style and the charts in report-assets/ beside it.",
+  positionals: [
+    { key: 'resultsFile', name: 'RESULTS.json', type: 'string', required: true, description: "a run's results.json" },
+    { key: 'outFile', name: 'OUT.html', type: 'string', required: true, description: 'the page to write' },
+  ],
+});
 const results = JSON.parse(readFileSync(resultsFile, 'utf8')) as Results;
 writeFileSync(outFile, reportPage(reportContent(results), 'linked'));
 await writeReportAssets(path.dirname(outFile));

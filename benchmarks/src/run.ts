@@ -1,9 +1,8 @@
 /**
- * `pnpm bench --vpt DIR [--quick]`: only the side-by-side suite against the original VPT (vpt-side/run-side.ts).
- * `pnpm bench [--preset quick|full] [--suites error,frame,convergence,scaling,specialization,compact,skipping] [--backends webgl2,webgpu]`
- *   [--scenes a,b] [--renderers prefix,…] and, for `--preset estimators`, [--variants "delta, phase, grid|…"]
- *   [--cost-rounds N] [--cost-batch K] (the round-robin cost measurement's rounds and iterations per batch)
- *   [--seed N] (the error curves' seed: runs with different seeds are independent; estimator-table.js combines them).
+ * `pnpm bench [--preset NAME] [--suites A,B] [--backends …] [--scenes …] [--renderers …] [--variants …]
+ * [--cost-rounds N] [--cost-batch K] [--seed N]`, or `pnpm bench --vpt DIR …` for only the side-by-side
+ * suite against the original VPT (vpt-side/run-side.ts). The options are bench-cli.mjs's tables
+ * (`pnpm bench --help`); bench.mjs checks them before building, this checks them again when run directly.
  * Runs the suites in headless Chromium and writes benchmarks/results/<stamp>/results.json
  * and report.html. Nothing here asserts a time: comparisons are ratios within one run.
  */
@@ -11,15 +10,10 @@ import { existsSync, mkdirSync, readFileSync, writeFileSync } from 'node:fs';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { openVptPage, CHROMIUM_FLAGS, WEBGPU_FLAGS } from '@vpt/headless';
-import {
-  ESTIMATOR_VARIANTS,
-  FETCHED_SCENES,
-  MCRT_VARIANTS,
-  PRESETS,
-  RENDERERS,
-  type Backend,
-  type SceneSpec,
-} from './configs.js';
+import { CliArgsError, cliUsage } from '@vpt/cli-options';
+import { benchSettings, wantsSideBySide, type BenchSettings } from './bench-args.js';
+import { BENCH_CLI } from './bench-cli.mjs';
+import { ESTIMATOR_VARIANTS, FETCHED_SCENES, MCRT_VARIANTS, PRESETS, RENDERERS, type SceneSpec } from './configs.js';
 import { machineRecord } from './environment.js';
 import { installBenchPage } from './page-code.js';
 import { htmlReport, type Results } from './report.js';
@@ -34,33 +28,31 @@ import { denoise } from './suites/denoise.js';
 import type { SuiteContext } from './suites/types.js';
 import { runSide } from './vpt-side/run-side.js';
 
-if (process.argv.includes('--vpt')) {
-  await runSide(process.argv);
+const argv = process.argv.slice(2);
+if (wantsSideBySide(argv)) {
+  await runSide(argv);
   process.exit(0);
 }
-
-function arg(name: string, fallback: string): string {
-  const i = process.argv.indexOf(`--${name}`);
-  return i > 0 && process.argv[i + 1] ? process.argv[i + 1] : fallback;
+/** The parsed command line; prints the usage or the error and exits on --help or bad input. */
+function settingsOrExit(): BenchSettings {
+  let parsed: BenchSettings | null;
+  try {
+    parsed = benchSettings(argv, PRESETS);
+  } catch (e) {
+    if (!(e instanceof CliArgsError)) throw e;
+    console.error(`pnpm bench: ${e.message} (--help lists the options)`);
+    process.exit(2);
+  }
+  if (!parsed) {
+    console.log(cliUsage(BENCH_CLI));
+    process.exit(0);
+  }
+  return parsed;
 }
-
-const preset = PRESETS[arg('preset', 'quick')];
-if (!preset) throw new Error(`unknown preset (use ${Object.keys(PRESETS).join(', ')})`);
-const suites = arg('suites', 'error,frame,convergence,scaling,specialization,compact').split(',');
-const backends = arg('backends', 'webgl2,webgpu').split(',') as Backend[];
-const only = arg('renderers', '');
-const sceneFilter = arg('scenes', '');
-if (sceneFilter) preset.errorScenes = sceneFilter.split(',');
-// Estimator study: only these fixed estimators, '|'-separated (their labels contain commas), e.g. "delta, phase, grid|residual, phase, grid".
-const variantFilter = arg('variants', '');
-const costRounds = arg('cost-rounds', '');
-if (costRounds) preset.costRounds = Number(costRounds);
-const costBatch = arg('cost-batch', '');
-if (costBatch) preset.costBatch = Number(costBatch);
-const curveSeed = arg('seed', '');
-if (curveSeed) preset.curveSeed = Number(curveSeed);
+const settings = settingsOrExit();
+const { preset, suites, backends } = settings;
 const keepVariant = (r: { label: string }) =>
-  !variantFilter || variantFilter.split('|').some((v) => r.label === `mcrt fixed: ${v}`);
+  settings.variants.length === 0 || settings.variants.some((v) => r.label === `mcrt fixed: ${v}`);
 
 /** FETCHED_SCENES whose raw file `pnpm data:fetch` has put in data/fetched/, with their sidecar's geometry. */
 function fetchedScenes(): { present: Record<string, SceneSpec>; absent: string[] } {
@@ -98,7 +90,8 @@ try {
     (window as unknown as { bench: { available(): string[] } }).bench.available(),
   );
   const keep = (r: { renderer: string; label: string }) =>
-    available.includes(r.renderer) && (!only || only.split(',').some((o) => r.label.startsWith(o)));
+    available.includes(r.renderer) &&
+    (settings.renderers.length === 0 || settings.renderers.some((o) => r.label.startsWith(o)));
   const skipped = [...RENDERERS, ...MCRT_VARIANTS]
     .filter((r) => !available.includes(r.renderer))
     .map((r) => `${r.label} (package not in this build)`);

@@ -1,6 +1,6 @@
 /**
- * `pnpm bench --vpt DIR [--quick] [--size N] [--rounds R] [--volume N] [--pairs single,multiple,eam,mip]
- * [--mcrt-params JSON] [--eam-params JSON] [--mip-params JSON]`: the side-by-side
+ * `pnpm bench --vpt DIR [--quick] [--size N] [--rounds R] [--volume N] [--scale X] [--pairs single,multiple,eam,mip]
+ * [--mcrt-params JSON] [--eam-params JSON] [--mip-params JSON]` (the table: SIDE_CLI in bench-cli.mjs): the side-by-side
  * suite against a build of the original VPT (DIR = a clone holding build/, or the build
  * folder itself; never stored in this repository). Serves that build read-only under /vpt/
  * from the same static server as vpt's page, so both run in one page of one Chromium.
@@ -11,6 +11,8 @@ import os from 'node:os';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { openVptPage, encodePNG, CHROMIUM_FLAGS } from '@vpt/headless';
+import { CliArgsError, cliUsage, parseCli, type CliValues } from '@vpt/cli-options';
+import { SIDE_CLI } from '../bench-cli.mjs';
 import { machineRecord } from '../environment.js';
 import { sideMarkdown, vptSide } from '../suites/vpt-side.js';
 import { anchorVolume } from './anchor-scene.js';
@@ -27,13 +29,25 @@ export function vptBuildDir(dir: string): string | null {
   return null;
 }
 
+/** Parse the side-by-side suite's arguments (SIDE_CLI); prints the usage or the error and exits on --help or bad input. */
+function sideArgsOrExit(argv: readonly string[]): CliValues<typeof SIDE_CLI> {
+  try {
+    const parsed = parseCli(SIDE_CLI, argv);
+    if (!parsed.help) return parsed.values;
+  } catch (e) {
+    if (!(e instanceof CliArgsError)) throw e;
+    console.error(`${SIDE_CLI.name}: ${e.message} (--help lists the options)`);
+    process.exit(2);
+  }
+  console.log(cliUsage(SIDE_CLI));
+  process.exit(0);
+}
+
+/** `argv`: the arguments after the script (process.argv.slice(2)). */
 export async function runSide(argv: readonly string[]): Promise<void> {
-  const arg = (name: string, fallback: string) => {
-    const i = argv.indexOf(`--${name}`);
-    return i >= 0 && argv[i + 1] && !argv[i + 1].startsWith('--') ? argv[i + 1] : fallback;
-  };
+  const args = sideArgsOrExit(argv);
   // Relative to where `pnpm bench` was typed (pnpm runs the script in benchmarks/ and keeps that folder in INIT_CWD).
-  const given = arg('vpt', '');
+  const given = args.vpt ?? '';
   const dir = given && path.resolve(process.env.INIT_CWD ?? process.cwd(), given);
   const build = dir ? vptBuildDir(dir) : null;
   if (!build) {
@@ -43,11 +57,11 @@ export async function runSide(argv: readonly string[]): Promise<void> {
     );
     return;
   }
-  const quick = argv.includes('--quick');
-  const size = Number(arg('size', quick ? '32' : '128'));
-  const volumeSide = Number(arg('volume', quick ? '32' : '128'));
-  const rounds = Number(arg('rounds', quick ? '1' : '3'));
-  const scale = quick ? 1 / 64 : Number(arg('scale', '1'));
+  const quick = args.quick;
+  const size = args.size ?? (quick ? 32 : 128);
+  const volumeSide = args.volume ?? (quick ? 32 : 128);
+  const rounds = args.rounds ?? (quick ? 1 : 3);
+  const scale = quick ? 1 / 64 : (args.scale ?? 1);
   const started = Date.now();
   const log = (line: string) => console.log(`[${((Date.now() - started) / 1000).toFixed(0).padStart(5)} s] ${line}`);
 
@@ -72,11 +86,12 @@ export async function runSide(argv: readonly string[]): Promise<void> {
       rounds,
       scale,
       budgetMs: quick ? 5_000 : 300_000,
-      pairs: arg('pairs', '') ? arg('pairs', '').split(',') : undefined,
+      pairs: args.pairs,
       rendererParams: Object.fromEntries(
-        ['mcrt', 'eam', 'mip'].flatMap((r) =>
-          arg(`${r}-params`, '') ? [[r, JSON.parse(arg(`${r}-params`, ''))]] : [],
-        ),
+        (['mcrt', 'eam', 'mip'] as const).flatMap((r) => {
+          const params = args[`${r}-params`];
+          return params === undefined ? [] : [[r, params as Record<string, unknown>]];
+        }),
       ),
       log,
       saveImage: (name, rgba, side) =>

@@ -1,15 +1,70 @@
-import { parseArgs } from 'node:util';
+import { CliArgsError, cliUsage, parseCli, type CliSpec } from '@vpt/cli-options';
 import { BACKEND_NAMES, type BackendName } from '../scene-description.js';
 
-export const RENDER_USAGE = `Usage: vpt-render scene.json -o out.png [--pfm out.pfm] [--backend auto|webgl2|webgpu]
-                  [--iterations N] [--width W --height H] [--seed N] [--root DIR] [--keep-alpha] [--verbose]
-Renders a scene description in headless Chromium and prints the timings as one JSON line.
-Only the files the scene names are served to the page. --root DIR refuses any scene path
-outside DIR (and URLs): use it when rendering scene files you do not trust.
-The PNG is opaque (its RGB already shows the background) unless --keep-alpha writes the
+/** vpt-render's option table: the parser and the --help text both come from it. */
+export const RENDER_CLI = {
+  name: 'vpt-render',
+  synopsis: 'scene.json -o out.png [--pfm out.pfm] [options]',
+  summary:
+    'Renders a scene description in headless Chromium and prints the timings as one JSON line.\n' +
+    'Only the files the scene names are served to the page.',
+  options: {
+    output: {
+      type: 'string',
+      short: 'o',
+      valueName: 'FILE',
+      description: 'the PNG to write (LDR, after the post chain)',
+    },
+    pfm: { type: 'string', valueName: 'FILE', description: 'the PFM to write (linear HDR RGB, see below)' },
+    backend: {
+      type: 'string',
+      choices: BACKEND_NAMES,
+      description: "the GPU backend (default: the scene's, else auto)",
+    },
+    iterations: {
+      type: 'integer',
+      short: 'n',
+      min: 1,
+      description: "iterations to accumulate (overrides the scene's)",
+    },
+    width: { type: 'integer', min: 1, valueName: 'W', description: 'image width in pixels' },
+    height: { type: 'integer', min: 1, valueName: 'H', description: 'image height in pixels' },
+    seed: { type: 'integer', min: 0, description: "the random seed (overrides the scene's)" },
+    root: {
+      type: 'string',
+      valueName: 'DIR',
+      description: 'refuse scene paths outside DIR (and URLs): for scene files you do not trust',
+    },
+    'keep-alpha': {
+      type: 'boolean',
+      description: 'write the coverage as PNG alpha (default: opaque over the background)',
+    },
+    verbose: { type: 'boolean', short: 'v', description: "echo the page's console to stderr; stack traces on errors" },
+  },
+  positionals: [{ key: 'scene', name: 'scene.json', type: 'string', description: 'the scene file (JSON)' }],
+  epilog: `The PNG is opaque (its RGB already shows the background) unless --keep-alpha writes the
 coverage as alpha; the PFM holds the linear HDR RGB after the post chain's leading HDR steps
 (a "denoise" step first in the chain gives a denoised PFM; the JSON line's hdrPostSteps says so),
-before exposure and tone mapping.`;
+before exposure and tone mapping.
+
+A scene file is one JSON object; every field is optional (defaults: a procedural sphere, EAM):
+  renderer         eam, mip, mcrt or iso; rendererParams: that renderer's parameters
+  volume           one of {"sidecar": "head.json"} (a JSON sidecar beside its .raw),
+                   {"raw": "v.raw", "dims": [x, y, z], "type": "uint8|uint16|int16|float32"},
+                   {"zarr": "cells.ome.zarr", "level": 0} (OME-Zarr folder or http(s) URL),
+                   {"procedural": "sphere|cube|ramp|blob", "size": 32}; paths are relative to the scene file
+  transferFunction {"points": [{"value", "color", "opacity"}, …]} or {"dimensions": "2d", "widgets": […]}
+  camera           position, target, up, fovy (full vertical angle, radians)
+  lights           [{"type": "directional", "direction": [x, y, z], "irradiance": [r, g, b]}]:
+                   direction points from the scene TOWARD the light
+  environment      {"type": "constant", "radiance": [r, g, b]} or a "latlong" map
+  also             width, height, iterations, seed, densityScale, sampling (fast|exact),
+                   maxGpuBytes, backend, post (the post chain as JSON)
+Every field is checked first, with an error naming it. The full description, field by field:
+src/scene-description.ts in the @vpt/headless package; examples: apps/gallery/scenes/ in the repository.`,
+} as const satisfies CliSpec;
+
+export const RENDER_USAGE = cliUsage(RENDER_CLI);
 
 export interface RenderArgs {
   scene: string;
@@ -26,56 +81,31 @@ export interface RenderArgs {
   help: boolean;
 }
 
-function integer(name: string, value: string | undefined, min: number): number | undefined {
-  if (value === undefined) return undefined;
-  const n = Number(value);
-  if (!/^\d+$/.test(value.trim()) || !Number.isSafeInteger(n) || n < min) {
-    throw new Error(`--${name} must be an integer >= ${min}, got "${value}"`);
-  }
-  return n;
-}
-
-/** Parse vpt-render's arguments; throws an Error with a one-line message on bad input. */
+/** Parse vpt-render's arguments; throws a CliArgsError (or Error) with a one-line message on bad input. */
 export function parseRenderArgs(argv: string[]): RenderArgs {
-  const { values, positionals } = parseArgs({
-    args: argv,
-    allowPositionals: true,
-    strict: true,
-    options: {
-      output: { type: 'string', short: 'o' },
-      pfm: { type: 'string' },
-      backend: { type: 'string' },
-      iterations: { type: 'string', short: 'n' },
-      width: { type: 'string' },
-      height: { type: 'string' },
-      seed: { type: 'string' },
-      root: { type: 'string' },
-      'keep-alpha': { type: 'boolean', default: false },
-      verbose: { type: 'boolean', short: 'v', default: false },
-      help: { type: 'boolean', short: 'h', default: false },
-    },
-  });
-  if (values.help) return { scene: '', keepAlpha: false, verbose: false, help: true };
-  if (positionals.length !== 1)
-    throw new Error(
-      positionals.length
-        ? `expected one scene file, got ${positionals.length}: ${positionals.join(' ')}`
-        : 'missing the scene file',
-    );
-  if (values.output === undefined && values.pfm === undefined)
-    throw new Error('nothing to write: give -o out.png and/or --pfm out.pfm');
-  if (values.backend !== undefined && !BACKEND_NAMES.includes(values.backend as BackendName)) {
-    throw new Error(`--backend must be one of ${BACKEND_NAMES.join(', ')}, got "${values.backend}"`);
+  let parsed;
+  try {
+    parsed = parseCli(RENDER_CLI, argv);
+  } catch (e) {
+    // More than one positional: say that one scene file is expected, and name the extra ones.
+    if (e instanceof CliArgsError && e.code === 'unexpected-argument')
+      throw new CliArgsError(e.code, `expected one scene file, ${e.message}`);
+    throw e;
   }
+  if (parsed.help) return { scene: '', keepAlpha: false, verbose: false, help: true };
+  const { values } = parsed;
+  if (values.scene === undefined) throw new CliArgsError('missing-argument', 'missing the scene file');
+  if (values.output === undefined && values.pfm === undefined)
+    throw new CliArgsError('missing-argument', 'nothing to write: give -o out.png and/or --pfm out.pfm');
   return {
-    scene: positionals[0],
+    scene: values.scene,
     output: values.output,
     pfm: values.pfm,
-    backend: values.backend as BackendName | undefined,
-    iterations: integer('iterations', values.iterations, 1),
-    width: integer('width', values.width, 1),
-    height: integer('height', values.height, 1),
-    seed: integer('seed', values.seed, 0),
+    backend: values.backend,
+    iterations: values.iterations,
+    width: values.width,
+    height: values.height,
+    seed: values.seed,
     root: values.root,
     keepAlpha: values['keep-alpha'],
     verbose: values.verbose,
@@ -83,9 +113,25 @@ export function parseRenderArgs(argv: string[]): RenderArgs {
   };
 }
 
-export const SERVE_USAGE = `Usage: vpt-serve [--open PAGE] [--root DIR] [--port N] [--check]
-Serves the workspace root (or DIR) on 127.0.0.1 and prints the URL of PAGE.
---check (or --once) fetches PAGE once, prints the result and exits (0 when HTTP 200).`;
+/** vpt-serve's option table. */
+export const SERVE_CLI = {
+  name: 'vpt-serve',
+  synopsis: '[PAGE] [--open PAGE] [--root DIR] [--port N] [--check]',
+  summary: 'Serves the workspace root (or DIR) on 127.0.0.1 and prints the URL of PAGE.',
+  options: {
+    open: { type: 'string', valueName: 'PAGE', description: 'the page whose URL to print (a path under the root)' },
+    root: { type: 'string', valueName: 'DIR', description: 'the folder to serve (default: the workspace root)' },
+    port: { type: 'integer', short: 'p', min: 0, max: 65535, description: 'the port (default 0: any free one)' },
+    check: {
+      type: 'boolean',
+      description: 'fetch PAGE and what it loads once, print the result, exit (0 when all load)',
+    },
+    once: { type: 'boolean', description: 'the same as --check' },
+  },
+  positionals: [{ key: 'page', name: 'PAGE', type: 'string', description: 'the same as --open PAGE' }],
+} as const satisfies CliSpec;
+
+export const SERVE_USAGE = cliUsage(SERVE_CLI);
 
 export interface ServeArgs {
   open: string;
@@ -96,27 +142,14 @@ export interface ServeArgs {
 }
 
 export function parseServeArgs(argv: string[]): ServeArgs {
-  const { values, positionals } = parseArgs({
-    args: argv,
-    allowPositionals: true,
-    strict: true,
-    options: {
-      open: { type: 'string' },
-      root: { type: 'string' },
-      port: { type: 'string', short: 'p' },
-      check: { type: 'boolean', default: false },
-      once: { type: 'boolean', default: false },
-      help: { type: 'boolean', short: 'h', default: false },
-    },
-  });
-  if (positionals.length > 1) throw new Error(`unexpected arguments: ${positionals.join(' ')}`);
-  const port = integer('port', values.port, 0) ?? 0;
-  if (port > 65535) throw new Error(`--port must be at most 65535, got ${port}`);
+  const parsed = parseCli(SERVE_CLI, argv);
+  if (parsed.help) return { open: '', port: 0, check: false, help: true };
+  const { values } = parsed;
   return {
-    open: values.open ?? positionals[0] ?? '',
+    open: values.open ?? values.page ?? '',
     root: values.root,
-    port,
+    port: values.port ?? 0,
     check: values.check || values.once,
-    help: values.help,
+    help: false,
   };
 }
