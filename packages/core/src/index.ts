@@ -43,10 +43,9 @@ export * from './bricking/index.js';
 export { BaseRenderer } from './base-renderer.js';
 export { RUNNING_MEAN_INTEGRATE, HALF_MEANS_INTEGRATE, COPY_ACCUMULATION_RENDER } from './shaders/accumulation.js';
 export type { PostStep } from './post-step.js';
+export { DEFAULT_GPU_BYTES, type RenderContextOptions } from './context/context-options.js';
 export {
   RenderContext,
-  DEFAULT_GPU_BYTES,
-  type RenderContextOptions,
   type RenderStats,
   type GpuBytes,
   type RenderWarning,

@@ -1,6 +1,6 @@
 import { VptError } from '../errors.js';
 import { createBackend } from '../gpu/create-backend.js';
-import type { BackendPreference, GpuBackend, GpuPass, GpuTexture, RenderTarget } from '../gpu/backend.js';
+import type { GpuBackend, GpuPass, GpuTexture, RenderTarget } from '../gpu/backend.js';
 import type { PostStep } from '../post-step.js';
 import type { Renderer } from '../renderer.js';
 import type { Scene } from '../scene/scene.js';
@@ -19,52 +19,17 @@ import { UniformLayout } from '../uniforms/layout.js';
 import { GUIDES } from '../shaders/guides.js';
 import { GUIDE_FRAME_FORMATS, GUIDE_TEXTURE_NAMES, GuideBuffers } from './guide-buffers.js';
 import { PRESENT_PASS } from './present-pass.js';
+import {
+  checkGpuBudget,
+  checkRenderSize,
+  checkVolumeOptions,
+  type BrickingMode,
+  type RenderContextOptions,
+} from './context-options.js';
 import { ProgressiveLoop } from './progressive-loop.js';
 import { SceneResources, sameVoxels, type BrickPlan } from './scene-resources.js';
 import type { BrickingStats } from '../bricking/bricked-volume.js';
 import type { MultiscaleSource } from '../bricking/source.js';
-
-export interface RenderContextOptions {
-  backend?: BackendPreference;
-  canvas?: HTMLCanvasElement | OffscreenCanvas;
-  /** Render resolution in pixels (the canvas drawing buffer is resized to it). */
-  width: number;
-  height: number;
-  renderer: Renderer;
-  post?: PostStep[];
-  /**
-   * Volume sampling when the scene does not say (Scene.sampling): 'fast' (default; compact
-   * texture, one hardware-filtered fetch) or 'exact' (r32float, manual trilinear).
-   */
-  sampling?: VolumeSampling;
-  /** float32 volumes may be stored as r16float on the fast path (half the memory, ~3 significant digits). Default false. */
-  allowHalfFloatVolumes?: boolean;
-  /**
-   * GPU memory budget in bytes for everything the context allocates. A volume that does not
-   * fit (with its gradient volume, the render targets and the transfer function) is
-   * downsampled to the largest resolution that does, with a warning (onWarning). Default:
-   * WebGPU's maxBufferSize clamped to [1 GiB, 4 GiB]; 1 GiB where the device reports nothing
-   * (WebGL 2).
-   */
-  maxGpuBytes?: number;
-  /**
-   * Volumes larger than one texture or the budget: 'off' (default) downsamples them to fit;
-   * 'auto' holds them as bricks in an atlas with a page table instead (bricking/; a scene
-   * with a 2D transfer function, or a renderer that needs the gradient volume, is still
-   * downsampled); 'force' bricks every volume (tests, benchmarks).
-   */
-  bricking?: 'off' | 'auto' | 'force';
-  /** Data voxels per brick side, a power of two (default 32). */
-  brickSize?: number;
-  /** Bricks uploaded per frame at most (default 16); each upload restarts accumulation. */
-  brickUploadsPerFrame?: number;
-  /**
-   * Level of detail for bricked volumes: load no brick finer than the render's pixels need
-   * (a voxel of the next coarser level projects to at most one pixel). Default false: every
-   * visible brick at the finest level the atlas holds.
-   */
-  brickLod?: boolean;
-}
 
 /** GPU memory the context holds, in bytes (texture sizes × bytes per texel, as allocated). */
 export interface GpuBytes {
@@ -96,10 +61,6 @@ export interface VolumeDownsampledWarning {
   from: [number, number, number];
   to: [number, number, number];
 }
-
-/** The default budget where the device reports nothing about its memory. */
-export const DEFAULT_GPU_BYTES = 1024 ** 3;
-const MAX_DEFAULT_GPU_BYTES = 4 * 1024 ** 3;
 
 export interface RenderStats {
   /** Iterations accumulated since the last reset. */
@@ -141,7 +102,7 @@ export class RenderContext {
   // The last budget fit: a scene volume → the volume actually uploaded (itself when it fits).
   private fitted: { source: Scene['volume']; key: string; volume: Scene['volume']; bricks: BrickPlan | null } | null =
     null;
-  private readonly bricking: 'off' | 'auto' | 'force';
+  private readonly bricking: BrickingMode;
   private readonly brickSize: number;
   private readonly brickUploadsPerFrame: number;
   private readonly brickLod: boolean;
@@ -179,33 +140,18 @@ export class RenderContext {
     this.backend = backend;
     this._renderer = opts.renderer;
     this._post = opts.post ?? [];
-    this.sampling = opts.sampling ?? 'fast';
-    if (this.sampling !== 'fast' && this.sampling !== 'exact')
-      throw new VptError('invalid-scene', `sampling must be 'fast' or 'exact', got ${JSON.stringify(opts.sampling)}`);
+    const volumeOptions = checkVolumeOptions(opts);
+    this.sampling = volumeOptions.sampling;
     this.resources = new SceneResources(backend, () => ({ scene: this.scene, renderer: this._renderer }), {
       sampling: this.sampling,
-      allowHalfFloat: opts.allowHalfFloatVolumes === true,
+      allowHalfFloat: volumeOptions.allowHalfFloat,
     });
-    if (opts.maxGpuBytes !== undefined && !(opts.maxGpuBytes > 0))
-      throw new VptError('invalid-scene', `maxGpuBytes must be a positive number of bytes, got ${opts.maxGpuBytes}`);
-    this.maxGpuBytes = opts.maxGpuBytes ?? defaultGpuBytes(backend);
-    this.bricking = opts.bricking ?? 'off';
-    if (!['off', 'auto', 'force'].includes(this.bricking))
-      throw new VptError(
-        'invalid-scene',
-        `bricking must be 'off', 'auto' or 'force', got ${JSON.stringify(opts.bricking)}`,
-      );
-    this.brickSize = opts.brickSize ?? 32;
-    if (!Number.isInteger(Math.log2(this.brickSize)) || this.brickSize < 8 || this.brickSize > 256)
-      throw new VptError('invalid-scene', `brickSize must be a power of two from 8 to 256, got ${opts.brickSize}`);
-    this.brickUploadsPerFrame = opts.brickUploadsPerFrame ?? 16;
-    this.brickLod = opts.brickLod === true;
-    if (!Number.isInteger(this.brickUploadsPerFrame) || this.brickUploadsPerFrame < 1)
-      throw new VptError(
-        'invalid-scene',
-        `brickUploadsPerFrame must be a positive integer, got ${opts.brickUploadsPerFrame}`,
-      );
-    checkSize(opts.width, opts.height, backend);
+    this.maxGpuBytes = checkGpuBudget(opts.maxGpuBytes, backend.limits);
+    this.bricking = volumeOptions.bricking;
+    this.brickSize = volumeOptions.brickSize;
+    this.brickUploadsPerFrame = volumeOptions.brickUploadsPerFrame;
+    this.brickLod = volumeOptions.brickLod;
+    checkRenderSize(opts.width, opts.height, backend.limits);
     this.width = opts.width;
     this.height = opts.height;
     this.backend.resizeCanvas(this.width, this.height);
@@ -500,7 +446,7 @@ export class RenderContext {
   }
 
   setSize(width: number, height: number): void {
-    checkSize(width, height, this.backend);
+    checkRenderSize(width, height, this.backend.limits);
     if (width === this.width && height === this.height) return;
     this.width = width;
     this.height = height;
@@ -1043,24 +989,6 @@ function postDraws(step: PostStep): number {
   if (!Number.isInteger(r) || r < 1)
     throw new VptError('invalid-scene', `post step "${step.name}": repeat must be a positive integer, got ${r}`);
   return r;
-}
-
-/** maxGpuBytes when the caller gives none: WebGPU's maxBufferSize (one allocation the device admits) within [1 GiB, 4 GiB]; 1 GiB on WebGL 2, which reports no memory figure. */
-function defaultGpuBytes(backend: GpuBackend): number {
-  const m = backend.limits.maxBufferSize;
-  return m ? Math.min(MAX_DEFAULT_GPU_BYTES, Math.max(DEFAULT_GPU_BYTES, m)) : DEFAULT_GPU_BYTES;
-}
-
-function checkSize(width: number, height: number, backend: GpuBackend): void {
-  const max = backend.limits.maxTextureDimension2D;
-  if (!Number.isInteger(width) || !Number.isInteger(height) || width < 1 || height < 1) {
-    throw new VptError('invalid-scene', `Render size must be positive integers, got ${width} x ${height}`);
-  }
-  if (width > max || height > max)
-    throw new VptError(
-      'limit-exceeded',
-      `Render size ${width} x ${height} exceeds this device's 2D texture limit of ${max} (maxTextureDimension2D)`,
-    );
 }
 
 /**
