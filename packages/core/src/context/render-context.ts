@@ -6,10 +6,7 @@ import type { Renderer } from '../renderer.js';
 import type { Scene } from '../scene/scene.js';
 import { validateScene } from '../scene/scene.js';
 import { TF_RESOLUTION } from '../scene/transfer-function.js';
-import { voxelCount } from '../scene/volume.js';
-import { downsampleVolume, fitFactors } from '../scene/downsample.js';
 import { BYTES_PER_TEXEL } from '../gpu/backend.js';
-import type { VolumeSampling } from '../gpu/volume-format.js';
 import { commonChunks, PASS_CHUNKS, type CommonChunkOptions } from '../shaders/common.js';
 import { preprocess } from '../shaders/preprocess.js';
 import { validateSceneForDevice } from '../validation/device.js';
@@ -19,15 +16,10 @@ import { UniformLayout } from '../uniforms/layout.js';
 import { GUIDES } from '../shaders/guides.js';
 import { GUIDE_FRAME_FORMATS, GUIDE_TEXTURE_NAMES, GuideBuffers } from './guide-buffers.js';
 import { PRESENT_PASS } from './present-pass.js';
-import {
-  checkGpuBudget,
-  checkRenderSize,
-  checkVolumeOptions,
-  type BrickingMode,
-  type RenderContextOptions,
-} from './context-options.js';
+import { checkGpuBudget, checkRenderSize, checkVolumeOptions, type RenderContextOptions } from './context-options.js';
 import { ProgressiveLoop } from './progressive-loop.js';
-import { SceneResources, sameVoxels, type BrickPlan } from './scene-resources.js';
+import { SceneResources } from './scene-resources.js';
+import { VolumeFit, volumeBudgetBytes, type RenderWarning } from './volume-fit.js';
 import type { BrickingStats } from '../bricking/bricked-volume.js';
 import type { MultiscaleSource } from '../bricking/source.js';
 
@@ -42,24 +34,6 @@ export interface GpuBytes {
   /** Frame, accumulation, HDR and post-chain targets. */
   targets: number;
   total: number;
-}
-
-/** Something the context changed to make a scene fit or could not load, reported through onWarning (and console.warn without a listener). */
-export type RenderWarning = VolumeDownsampledWarning | BrickLoadWarning;
-
-/** A brick of a streamed volume (setVolumeSource) could not be read; a coarser level keeps serving its region. */
-export interface BrickLoadWarning {
-  code: 'brick-load-failed';
-  message: string;
-}
-
-export interface VolumeDownsampledWarning {
-  code: 'volume-downsampled';
-  message: string;
-  /** Integer box-average factors per axis. */
-  factors: [number, number, number];
-  from: [number, number, number];
-  to: [number, number, number];
 }
 
 export interface RenderStats {
@@ -99,16 +73,9 @@ export class RenderContext {
 
   // Volume, transfer function, gradient and auxiliary textures, with their lifetimes.
   private readonly resources: SceneResources;
-  // The last budget fit: a scene volume → the volume actually uploaded (itself when it fits).
-  private fitted: { source: Scene['volume']; key: string; volume: Scene['volume']; bricks: BrickPlan | null } | null =
-    null;
-  private readonly bricking: BrickingMode;
-  private readonly brickSize: number;
-  private readonly brickUploadsPerFrame: number;
+  // The budget fit of the scene's volume (downsampled or bricked) and the multiscale sources.
+  private readonly volumeFit: VolumeFit;
   private readonly brickLod: boolean;
-  // Volumes backed by a multiscale source (setVolumeSource): the scene's volume is a stand-in.
-  private readonly volumeSources = new WeakMap<Scene['volume'], MultiscaleSource>();
-  private readonly sampling: VolumeSampling;
   readonly maxGpuBytes: number;
   private readonly warningListeners = new Set<(w: RenderWarning) => void>();
   private frame: RenderTarget | null = null;
@@ -141,16 +108,20 @@ export class RenderContext {
     this._renderer = opts.renderer;
     this._post = opts.post ?? [];
     const volumeOptions = checkVolumeOptions(opts);
-    this.sampling = volumeOptions.sampling;
     this.resources = new SceneResources(backend, () => ({ scene: this.scene, renderer: this._renderer }), {
-      sampling: this.sampling,
+      sampling: volumeOptions.sampling,
       allowHalfFloat: volumeOptions.allowHalfFloat,
     });
     this.maxGpuBytes = checkGpuBudget(opts.maxGpuBytes, backend.limits);
-    this.bricking = volumeOptions.bricking;
-    this.brickSize = volumeOptions.brickSize;
-    this.brickUploadsPerFrame = volumeOptions.brickUploadsPerFrame;
     this.brickLod = volumeOptions.brickLod;
+    this.volumeFit = new VolumeFit(volumeOptions, {
+      resources: this.resources,
+      maxGpuBytes: this.maxGpuBytes,
+      max3D: () => this.backend.limits.maxTextureDimension3D,
+      size: () => this.size,
+      budgetBytes: () => this.volumeBudgetBytes,
+      warn: (w) => this.warn(w),
+    });
     checkRenderSize(opts.width, opts.height, backend.limits);
     this.width = opts.width;
     this.height = opts.height;
@@ -239,7 +210,7 @@ export class RenderContext {
     this.assertAlive();
     validateScene(input);
     validateSceneForDevice(input, this.renderer, this.backend.limits);
-    const scene = this.fitScene(input);
+    const scene = this.volumeFit.fitScene(input);
     const [nx, ny, nz] = scene.volume.dims;
     if (this.wantsGradient(scene)) {
       const atlas = sliceAtlasLayout(scene.volume.dims);
@@ -253,14 +224,14 @@ export class RenderContext {
     }
     const previous = { scene: this.scene, plan: this.resources.brickPlanNow() };
     this.scene = scene;
-    this.resources.setBrickPlan(this.fitted?.bricks ?? null);
+    this.resources.setBrickPlan(this.volumeFit.bricks);
     try {
       this.resources.sync();
     } catch (e) {
       // A bricked volume that cannot be held (VptError 'limit-exceeded'): keep the previous scene.
       this.scene = previous.scene;
       this.resources.setBrickPlan(previous.plan);
-      this.fitted = null;
+      this.volumeFit.forget();
       throw e;
     }
     this.input = input;
@@ -277,28 +248,7 @@ export class RenderContext {
    */
   setVolumeSource(standIn: Scene['volume'], source: MultiscaleSource): void {
     this.assertAlive();
-    const l = source?.levels;
-    const ok =
-      Array.isArray(l) &&
-      l.length > 0 &&
-      l.every(
-        (v) =>
-          [v.dims, v.spacing, v.origin].every((a) => Array.isArray(a) && a.length === 3 && a.every(Number.isFinite)) &&
-          v.dims.every((d) => Number.isInteger(d) && d >= 1) &&
-          v.spacing.every((x) => x > 0),
-      ) &&
-      typeof source.readRegion === 'function';
-    if (!ok)
-      throw new VptError(
-        'invalid-scene',
-        'setVolumeSource: the source needs levels (level 0 finest) with positive integer dims, positive spacing, an origin each, and readRegion()',
-      );
-    if (source.type !== standIn.type)
-      throw new VptError(
-        'invalid-scene',
-        `setVolumeSource: the stand-in volume is ${standIn.type}, the source ${source.type}; they must match`,
-      );
-    this.volumeSources.set(standIn, source);
+    this.volumeFit.setVolumeSource(standIn, source);
   }
 
   /**
@@ -332,87 +282,7 @@ export class RenderContext {
    * choosing a level of a multiscale source (or whether to stream it) uses this rule.
    */
   get volumeBudgetBytes(): number {
-    const pixels = this.width * this.height;
-    const targetBytes =
-      pixels *
-      16 *
-      (this._renderer.frameFormats.length + 2 * this._renderer.accumulationFormats.length + 1 + this._post.length);
-    return this.maxGpuBytes - targetBytes - TF_RESOLUTION * 16 * 256;
-  }
-
-  /**
-   * The scene with a volume that fits the device: each side within the 3D texture limit and
-   * the whole within maxGpuBytes (volume + gradient at this scene's sampling, plus the render
-   * targets and the TF); otherwise downsampled by integer box averages (scene/downsample.ts)
-   * with a warning naming the factors. The fit is kept per source volume, so setting the same
-   * volume again neither recomputes nor warns again.
-   */
-  private fitScene(scene: Scene): Scene {
-    const sampling = scene.sampling ?? this.sampling;
-    const gradient = this.wantsGradient(scene);
-    const key = `${sampling}|${gradient}|${this.width}x${this.height}`;
-    const f = this.fitted;
-    if (f && f.key === key && f.source === scene.volume) {
-      return f.volume === scene.volume ? scene : { ...scene, volume: f.volume };
-    }
-    if (f && f.key === key && f.bricks && !f.bricks.source && sameVoxels(f.source, scene.volume)) {
-      this.fitted = { ...f, source: scene.volume, volume: scene.volume };
-      return scene;
-    }
-    if (f && f.key === key && sameVoxels(f.source, scene.volume) && f.volume !== f.source) {
-      // The same voxels with another value range: keep the downsampled copy, take the new range.
-      const volume = { ...f.volume, valueRange: scene.volume.valueRange };
-      this.fitted = { source: scene.volume, key, volume, bricks: null };
-      return { ...scene, volume };
-    }
-    const upload = this.resources.planUpload(scene.volume, sampling);
-    const perVoxel = upload.bytesPerVoxel + (gradient ? (sampling === 'exact' ? 4 : 2) : 0);
-    const budget = this.volumeBudgetBytes;
-    const max3D = this.backend.limits.maxTextureDimension3D;
-    const from = [...scene.volume.dims] as [number, number, number];
-    const factors = fitFactors(from, perVoxel, budget, max3D);
-    if (!factors) {
-      throw new VptError(
-        'limit-exceeded',
-        `maxGpuBytes (${this.maxGpuBytes} bytes) leaves no room for a volume next to the ${this.width} x ${this.height} render targets`,
-      );
-    }
-    // Bricks instead of a downsampled copy: the full data stays available to the view.
-    const brickable = scene.transferFunction.dimensions !== '2d' && !gradient;
-    const source = this.volumeSources.get(scene.volume);
-    if (
-      brickable &&
-      (source || this.bricking === 'force' || (this.bricking === 'auto' && factors.some((f) => f > 1)))
-    ) {
-      const bricks: BrickPlan = {
-        capacityBytes: budget,
-        brickSize: this.brickSize,
-        uploadsPerFrame: this.brickUploadsPerFrame,
-        lod: this.brickLod,
-        onFailure: (message) => this.warn({ code: 'brick-load-failed', message }),
-        ...(source ? { source } : {}),
-      };
-      const volume = source ? standInWithLevel0Box(scene.volume, source) : scene.volume;
-      this.fitted = { source: scene.volume, key, volume, bricks };
-      return volume === scene.volume ? scene : { ...scene, volume };
-    }
-    let volume = scene.volume;
-    if (factors.some((f) => f > 1)) {
-      volume = downsampleVolume(scene.volume, factors);
-      const over3D = from.some((d) => d > max3D);
-      const why = over3D
-        ? `a side exceeds this device's 3D texture limit of ${max3D} (maxTextureDimension3D)`
-        : `${voxelCount(from)} voxels x ${perVoxel} bytes exceed the GPU memory budget of ${this.maxGpuBytes} bytes (maxGpuBytes)`;
-      this.warn({
-        code: 'volume-downsampled',
-        factors,
-        from,
-        to: [...volume.dims] as [number, number, number],
-        message: `Volume [${from.join(', ')}] downsampled by [${factors.join(', ')}] to [${volume.dims.join(', ')}]: ${why}`,
-      });
-    }
-    this.fitted = { source: scene.volume, key, volume, bricks: null };
-    return volume === scene.volume ? scene : { ...scene, volume };
+    return volumeBudgetBytes(this.maxGpuBytes, this.width, this.height, this._renderer, this._post.length);
   }
 
   private warn(warning: RenderWarning): void {
@@ -989,16 +859,4 @@ function postDraws(step: PostStep): number {
   if (!Number.isInteger(r) || r < 1)
     throw new VptError('invalid-scene', `post step "${step.name}": repeat must be a positive integer, got ${r}`);
   return r;
-}
-
-/**
- * The stand-in of a streamed volume as the scene renders it: its voxels, with the spacing
- * stretched so that its box is the source's level 0 (a coarser level's box can be a little
- * larger or smaller, its sides rounded to whole voxels), and the source's value range.
- */
-function standInWithLevel0Box(standIn: Scene['volume'], source: MultiscaleSource): Scene['volume'] {
-  const l0 = source.levels[0];
-  const spacing = [0, 1, 2].map((a) => (l0.dims[a] * l0.spacing[a]) / standIn.dims[a]) as [number, number, number];
-  const valueRange = source.valueRange ?? standIn.valueRange;
-  return { ...standIn, spacing, ...(valueRange ? { valueRange: [valueRange[0], valueRange[1]] } : {}) };
 }
