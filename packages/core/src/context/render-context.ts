@@ -14,7 +14,8 @@ import { SCENE_UNIFORM_FIELDS, sceneUniformValues } from '../shaders/scene-unifo
 import { sliceAtlasLayout } from '../shaders/slice-atlas.js';
 import { UniformLayout } from '../uniforms/layout.js';
 import { GUIDES } from '../shaders/guides.js';
-import { GUIDE_FRAME_FORMATS, GUIDE_TEXTURE_NAMES, GuideBuffers } from './guide-buffers.js';
+import { GUIDE_FRAME_FORMATS, GuideBuffers } from './guide-buffers.js';
+import { PostChain } from './post-chain.js';
 import { PRESENT_PASS } from './present-pass.js';
 import { checkGpuBudget, checkRenderSize, checkVolumeOptions, type RenderContextOptions } from './context-options.js';
 import { ProgressiveLoop } from './progressive-loop.js';
@@ -61,14 +62,12 @@ type RendererPasses = { generate: GpuPass; integrate: GpuPass; render: GpuPass }
 export class RenderContext {
   readonly backend: GpuBackend;
   private _renderer: Renderer;
-  private _post: PostStep[];
   private scene: Scene | null = null; // as rendered: its volume may be a downsampled copy (fitScene)
   private input: Scene | null = null; // as given to setScene
   private width: number;
   private height: number;
   private layout!: UniformLayout;
   private passes: RendererPasses | null = null;
-  private postPasses: GpuPass[] = [];
   private presentPass: GpuPass | null = null;
 
   // Volume, transfer function, gradient and auxiliary textures, with their lifetimes.
@@ -81,9 +80,8 @@ export class RenderContext {
   private frame: RenderTarget | null = null;
   private accum: [RenderTarget, RenderTarget] | null = null;
   private hdr: RenderTarget | null = null;
-  private postTargets: RenderTarget[] = [];
-  // Ping-pong targets for the draws of a repeated post step before its last one.
-  private postScratch: RenderTarget[] = [];
+  // The post steps, their passes and targets.
+  private readonly postChain: PostChain;
   // Accumulated denoiser guides, while a post step uses them; the frame target then holds the guide frames too.
   private guides: GuideBuffers | null = null;
   private frameHasGuides = false;
@@ -97,7 +95,6 @@ export class RenderContext {
   private hdrIteration = -1; // iteration count the HDR/LDR images were last rendered at
   private imageVersion = 0; // bumped whenever renderImage() produced a new LDR image
   private presentedVersion = -1;
-  private postKey = ''; // post-chain parameters the current LDR image was made with
   private msPerIteration = 0;
   private disposed = false;
   private readonly loop: ProgressiveLoop;
@@ -106,7 +103,7 @@ export class RenderContext {
   private constructor(backend: GpuBackend, opts: RenderContextOptions) {
     this.backend = backend;
     this._renderer = opts.renderer;
-    this._post = opts.post ?? [];
+    this.postChain = new PostChain(backend, opts.post ?? []);
     const volumeOptions = checkVolumeOptions(opts);
     this.resources = new SceneResources(backend, () => ({ scene: this.scene, renderer: this._renderer }), {
       sampling: volumeOptions.sampling,
@@ -157,7 +154,7 @@ export class RenderContext {
     return this._renderer;
   }
   get post(): readonly PostStep[] {
-    return this._post;
+    return this.postChain.steps;
   }
   get size(): { width: number; height: number } {
     return { width: this.width, height: this.height };
@@ -192,7 +189,7 @@ export class RenderContext {
     for (const a of res.auxTextures.values()) auxiliary += tex(a.texture);
     let targets =
       target(this.frame) + target(this.hdr) + (this.accum ? target(this.accum[0]) + target(this.accum[1]) : 0);
-    for (const t of [...this.postTargets, ...this.postScratch, ...(this.guides?.targets ?? [])]) targets += target(t);
+    for (const t of [...this.postChain.allTargets(), ...(this.guides?.targets ?? [])]) targets += target(t);
     return { volume, gradient, auxiliary, targets, total: volume + gradient + auxiliary + targets };
   }
 
@@ -282,7 +279,7 @@ export class RenderContext {
    * choosing a level of a multiscale source (or whether to stream it) uses this rule.
    */
   get volumeBudgetBytes(): number {
-    return volumeBudgetBytes(this.maxGpuBytes, this.width, this.height, this._renderer, this._post.length);
+    return volumeBudgetBytes(this.maxGpuBytes, this.width, this.height, this._renderer, this.postChain.steps.length);
   }
 
   private warn(warning: RenderWarning): void {
@@ -308,11 +305,10 @@ export class RenderContext {
   }
 
   setPost(steps: PostStep[]): void {
-    this._post = steps;
-    this.postPasses = [];
+    this.postChain.setSteps(steps);
     this.hdrIteration = -1;
     // Guides are means over every iteration since the reset: a chain that starts using them starts over.
-    if (!this.guidesActive && this.guidesWanted()) this.reset();
+    if (!this.guidesActive && this.postChain.wantsGuides()) this.reset();
   }
 
   setSize(width: number, height: number): void {
@@ -322,7 +318,7 @@ export class RenderContext {
     this.height = height;
     this.backend.resizeCanvas(width, height);
     this.destroyRendererTargets();
-    this.destroyPostTargets();
+    this.postChain.destroy();
     this.reset();
   }
 
@@ -330,7 +326,7 @@ export class RenderContext {
   reset(): void {
     this.iteration = 0;
     this.hdrIteration = -1;
-    this.guidesActive = this.guidesWanted();
+    this.guidesActive = this.postChain.wantsGuides();
   }
 
   /** Run n iterations (generate + integrate each). Does not wait for the GPU. */
@@ -395,14 +391,9 @@ export class RenderContext {
   renderImage(): void {
     this.assertAlive();
     if (!this.scene || this.backend.isLost || this.iteration === 0) return;
-    const postKey = JSON.stringify(this._post.map((s) => [s.name, s.uniformValues(), s.defines?.()]));
-    if (
-      this.hdrIteration === this.iteration &&
-      this.postKey === postKey &&
-      this.postPasses.length === this._post.length
-    )
-      return;
-    this.postKey = postKey;
+    const postKey = this.postChain.parameterKey();
+    if (this.hdrIteration === this.iteration && this.postChain.madeWith(postKey)) return;
+    this.postChain.remember(postKey);
     this.prepare();
     const uniforms = this.uniforms(this.scene, this.iteration - 1);
     const accTextures: Record<string, GpuTexture> = {};
@@ -410,23 +401,7 @@ export class RenderContext {
       accTextures[`accum${i}`] = t;
     });
     this.backend.draw(this.passes!.render, { uniforms, textures: accTextures, target: this.hdr! });
-    this.preparePost();
-    let input = this.hdr!.textures[0];
-    this._post.forEach((step, i) => {
-      const pass = this.postPasses[i];
-      const guides = step.usesGuides && this.guides ? this.guides.textures() : {};
-      const draws = postDraws(step);
-      for (let d = 0; d < draws; d++) {
-        // Draws before the last alternate between the two scratch targets; the last writes the step's own.
-        const target = d === draws - 1 ? this.postTargets[i] : this.scratchTarget(d % 2);
-        this.backend.draw(pass, {
-          uniforms: step.uniforms.pack(step.uniformValues(d)),
-          textures: { ...guides, inputImage: input },
-          target,
-        });
-        input = target.textures[0];
-      }
-    });
+    this.postChain.run(this.hdr!.textures[0], this.guides, this.width, this.height);
     this.hdrIteration = this.iteration;
     this.imageVersion++;
   }
@@ -439,7 +414,7 @@ export class RenderContext {
     this.presentPass ??= this.backend.createPass(PRESENT_PASS);
     this.backend.draw(this.presentPass, {
       uniforms: PRESENT_PASS.uniforms.pack({ pad: 0 }),
-      textures: { inputImage: this.ldrTexture() },
+      textures: { inputImage: this.postChain.ldrTexture() },
       target: 'canvas',
     });
     this.presentedVersion = this.imageVersion;
@@ -482,7 +457,7 @@ export class RenderContext {
     this.renderImage();
     if (!this.hdr) throw new VptError('invalid-scene', 'Nothing rendered yet: call setScene() and iterate first');
     const steps = options.afterPost ? this.radianceStepCount() : 0;
-    const image = steps > 0 ? this.postTargets[steps - 1] : this.hdr;
+    const image = steps > 0 ? this.postChain.output(steps - 1) : this.hdr;
     return (await this.backend.readTexture(image.textures[0])) as Float32Array;
   }
 
@@ -492,9 +467,7 @@ export class RenderContext {
    * made that way was processed by them. The last step writes the LDR image and never counts.
    */
   radianceStepCount(): number {
-    let n = 0;
-    while (n < this._post.length - 1 && this._post[n].keepsRadiance) n++;
-    return n;
+    return this.postChain.radianceStepCount();
   }
 
   /** The LDR image after the post chain, RGBA8, top row first (waits for the first sample like readHDR). */
@@ -502,7 +475,7 @@ export class RenderContext {
     if (this.scene && this.iteration === 0) await this.whenSamples(1);
     this.renderImage();
     if (!this.hdr) throw new VptError('invalid-scene', 'Nothing rendered yet: call setScene() and iterate first');
-    return (await this.backend.readTexture(this.ldrTexture())) as Uint8Array;
+    return (await this.backend.readTexture(this.postChain.ldrTexture())) as Uint8Array;
   }
 
   /**
@@ -749,63 +722,6 @@ export class RenderContext {
     }
   }
 
-  /** Some post step reads the denoiser guides. */
-  private guidesWanted(): boolean {
-    return this._post.some((s) => s.usesGuides === true);
-  }
-
-  /** Scratch target k (0 or 1) for the non-final draws of repeated post steps, made on first use. */
-  private scratchTarget(k: number): RenderTarget {
-    while (this.postScratch.length <= k)
-      this.postScratch.push(
-        this.backend.createRenderTarget(
-          this.width,
-          this.height,
-          ['rgba32float'],
-          `post scratch ${this.postScratch.length}`,
-        ),
-      );
-    return this.postScratch[k];
-  }
-
-  private preparePost(): void {
-    if (this.postPasses.length !== this._post.length || this.postTargets.length !== this._post.length) {
-      this.destroyPostTargets();
-      this.postPasses = this._post.map((step, i) =>
-        this.backend.createPass({
-          label: `post.${step.name}`,
-          glsl: step.glsl,
-          wgsl: step.wgsl,
-          uniforms: step.uniforms,
-          textures: [
-            { name: 'inputImage', dimension: '2d' },
-            ...(step.usesGuides ? GUIDE_TEXTURE_NAMES.map((name) => ({ name, dimension: '2d' as const })) : []),
-          ],
-          outputs: [i === this._post.length - 1 ? 'rgba8unorm' : 'rgba32float'],
-          defines: step.defines?.() ?? {},
-        }),
-      );
-      this.postTargets = this._post.map((_, i) =>
-        this.backend.createRenderTarget(
-          this.width,
-          this.height,
-          [i === this._post.length - 1 ? 'rgba8unorm' : 'rgba32float'],
-          `post ${i}`,
-        ),
-      );
-    }
-  }
-
-  private ldrTexture(): GpuTexture {
-    if (this._post.length === 0) {
-      throw new VptError(
-        'invalid-scene',
-        'The post chain is empty: add at least one step (e.g. sRGB encoding) to get an LDR image',
-      );
-    }
-    return this.postTargets[this.postTargets.length - 1].textures[0];
-  }
-
   private destroyRendererTargets(): void {
     if (this.frame) this.backend.destroyRenderTarget(this.frame);
     this.accum?.forEach((t) => this.backend.destroyRenderTarget(t));
@@ -817,16 +733,9 @@ export class RenderContext {
     this.guides = null;
   }
 
-  private destroyPostTargets(): void {
-    [...this.postTargets, ...this.postScratch].forEach((t) => this.backend.destroyRenderTarget(t));
-    this.postTargets = [];
-    this.postScratch = [];
-    this.postPasses = [];
-  }
-
   private releaseGpuResources(): void {
     this.destroyRendererTargets();
-    this.destroyPostTargets();
+    this.postChain.destroy();
     this.resources.release();
   }
 
@@ -838,9 +747,7 @@ export class RenderContext {
     this.accum = null;
     this.hdr = null;
     this.guides = null;
-    this.postTargets = [];
-    this.postScratch = [];
-    this.postPasses = [];
+    this.postChain.forget();
     this.presentPass = null;
     this.resources.forget();
     this.passes = null;
@@ -851,12 +758,4 @@ export class RenderContext {
     this.reset();
     this.loop.resume();
   }
-}
-
-/** Draws of a post step: its `repeat` (a positive integer), else 1. */
-function postDraws(step: PostStep): number {
-  const r = step.repeat ?? 1;
-  if (!Number.isInteger(r) || r < 1)
-    throw new VptError('invalid-scene', `post step "${step.name}": repeat must be a positive integer, got ${r}`);
-  return r;
 }
