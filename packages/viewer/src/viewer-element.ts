@@ -63,6 +63,7 @@ import {
 const BYTES_PER_VOXEL: Record<string, number> = { uint8: 1, uint16: 2, int16: 2, float32: 4 };
 import { OrbitCamera } from './orbit.js';
 import { renderPanels, type PanelName, PANEL_NAMES } from './panels.js';
+import type { InternalProperty, PanelHost, PanelState } from './panel-host.js';
 import { DEFAULT_TRANSFER_FUNCTION, transferFunctionPreset } from './presets.js';
 import { createRenderer } from './renderer-registry.js';
 import { RenderSession, type RefinementStats } from './session.js';
@@ -119,7 +120,7 @@ const SYNC_FIELDS = [
   'resolutionScale',
 ] as const;
 
-export class VptViewer extends LitElement {
+export class VptViewer extends LitElement implements PanelHost {
   static override styles = viewerStyles;
 
   static override properties = {
@@ -607,7 +608,7 @@ export class VptViewer extends LitElement {
   // ——— state the panels read and write ———
 
   /** @internal for the panels */
-  get panelState() {
+  get panelState(): PanelState {
     return {
       transferFunction: this.currentTransferFunction(),
       histogram: this._histogram,
@@ -622,24 +623,7 @@ export class VptViewer extends LitElement {
   }
 
   /** @internal Set a property as the user did through the element: reflected, and announced with `change`. */
-  setInternal(
-    property:
-      | 'camera'
-      | 'transferFunction'
-      | 'lights'
-      | 'environment'
-      | 'renderer'
-      | 'backend'
-      | 'exposure'
-      | 'toneMapper'
-      | 'maxSamples'
-      | 'targetError'
-      | 'densityScale'
-      | 'seed'
-      | 'rendererParams'
-      | 'resolutionScale',
-    value: unknown,
-  ): void {
+  setInternal(property: InternalProperty, value: unknown): void {
     if (sameValue(this[property], value)) return;
     (this as Record<string, unknown>)[property] = value;
     if (property === 'camera') this.internalChange.add('camera');
