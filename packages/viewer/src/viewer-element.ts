@@ -964,11 +964,13 @@ export class VptViewer extends LitElement implements PanelHost {
     return { index, count: levels.length, dims: [...levels[index]] as Dims, final };
   }
 
-  /** Bytes a volume may take: the context's maxGpuBytes less its render targets and the TF (1 GiB before a context exists). */
+  /**
+   * Bytes a volume may take: the context's own budget (RenderContext.volumeBudgetBytes, the
+   * rule its fit applies), so a level chosen here is not downsampled there; 1 GiB before a
+   * context exists.
+   */
   private volumeBudget(): number {
-    const ctx = this.session?.ctx;
-    if (!ctx) return 1 << 30;
-    return ctx.maxGpuBytes - ctx.stats.gpuBytes.targets - (1 << 20);
+    return this.session?.ctx.volumeBudgetBytes ?? 1 << 30;
   }
 
   private max3D(): number {
