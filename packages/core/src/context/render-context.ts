@@ -9,9 +9,8 @@ import { TF_RESOLUTION } from '../scene/transfer-function.js';
 import { BYTES_PER_TEXEL } from '../gpu/backend.js';
 import { commonChunks, PASS_CHUNKS, type CommonChunkOptions } from '../shaders/common.js';
 import { preprocess } from '../shaders/preprocess.js';
-import { validateSceneForDevice } from '../validation/device.js';
+import { validateGradientAtlasForDevice, validateSceneForDevice } from '../validation/device.js';
 import { SCENE_UNIFORM_FIELDS, sceneUniformValues } from '../shaders/scene-uniforms.js';
-import { sliceAtlasLayout } from '../shaders/slice-atlas.js';
 import { UniformLayout } from '../uniforms/layout.js';
 import { GUIDES } from '../shaders/guides.js';
 import { GUIDE_FRAME_FORMATS, GuideBuffers } from './guide-buffers.js';
@@ -208,17 +207,7 @@ export class RenderContext {
     validateScene(input);
     validateSceneForDevice(input, this.renderer, this.backend.limits);
     const scene = this.volumeFit.fitScene(input);
-    const [nx, ny, nz] = scene.volume.dims;
-    if (this.wantsGradient(scene)) {
-      const atlas = sliceAtlasLayout(scene.volume.dims);
-      const max2D = this.backend.limits.maxTextureDimension2D;
-      if (atlas.width > max2D || atlas.height > max2D) {
-        throw new VptError(
-          'limit-exceeded',
-          `The gradient volume of a [${nx}, ${ny}, ${nz}] volume (needed by the 2D transfer function or the renderer) needs a ${atlas.width} x ${atlas.height} slice atlas; this device's 2D texture limit is ${max2D} (maxTextureDimension2D)`,
-        );
-      }
-    }
+    if (this.wantsGradient(scene)) validateGradientAtlasForDevice(scene.volume.dims, this.backend.limits);
     const previous = { scene: this.scene, plan: this.resources.brickPlanNow() };
     this.scene = scene;
     this.resources.setBrickPlan(this.volumeFit.bricks);
