@@ -1,15 +1,17 @@
 /**
- * Code installed into the headless page with `page.evaluate(installBenchPage)` as
- * `window.bench` (it uses the page's `window.vpt`: core, post, createRenderer, loadVolume).
- * Images stay in the page: only curves and timings travel back to Node.
+ * Code installed into the headless page as `window.bench` (it uses the page's `window.vpt`:
+ * core, post, createRenderer, loadVolume). Images stay in the page: only curves and timings
+ * travel back to Node.
  * Timing: every measured span ends with backend.finish() (a blocking 1-texel readback on
  * WebGL 2 — gl.finish() does not wait in Chrome — and onSubmittedWorkDone on WebGPU), and
  * read-backs for error measurement are excluded from the clock.
- * Typed TypeScript sent by puppeteer as the function's source: it may use nothing from
- * this module's scope (types only).
+ * An ES module of the benchmarks' build (dist/page-code.js), which the page imports from
+ * where run.ts mounts dist/ (installInPage): it may import modules that run in a browser
+ * (the anchor scene) and types, nothing that needs Node.
  */
 import type { VptPageApi } from '@vpt/headless';
 import type { RendererConfig, SceneSpec } from './configs.js';
+import { anchorVolume as anchorVoxels } from './vpt-side/anchor-scene.js';
 
 // Core's types as the page API exposes them (this package depends on @vpt/headless only).
 type Volume = Awaited<ReturnType<VptPageApi['loadVolume']>>;
@@ -93,78 +95,10 @@ export function installBenchPage(): void {
     return vol;
   }
 
-  // The VPT anchor scene's volume (issue 14; terier/vpt measured side by side): a tilted noisy
-  // torus, a Gaussian core, the lower half of a thin shell and a faint haze inside the
-  // bounding sphere, as uint8 round(255·density) at voxel centres, x fastest.
+  // The VPT anchor scene's volume (issue 14; terier/vpt measured side by side): the
+  // side-by-side suite's own voxels (vpt-side/anchor-scene.ts), as a uint8 volume.
   function anchorVolume(size: number): Volume {
-    const hash3 = (i: number, j: number, k: number) => {
-      let h = (Math.imul(i, 0x8da6b343) ^ Math.imul(j, 0xd8163841) ^ Math.imul(k, 0xcb1ab31f)) >>> 0;
-      h = Math.imul(h ^ (h >>> 16), 0x7feb352d) >>> 0;
-      h = Math.imul(h ^ (h >>> 15), 0x846ca68b) >>> 0;
-      return ((h ^ (h >>> 16)) >>> 0) / 4294967296;
-    };
-    const sstep = (t: number) => t * t * (3 - 2 * t);
-    const valueNoise = (x: number, y: number, z: number) => {
-      const xi = Math.floor(x),
-        yi = Math.floor(y),
-        zi = Math.floor(z);
-      const fx = sstep(x - xi),
-        fy = sstep(y - yi),
-        fz = sstep(z - zi);
-      let v = 0;
-      for (let c = 0; c < 8; c++) {
-        const dx = c & 1,
-          dy = (c >> 1) & 1,
-          dz = (c >> 2) & 1;
-        v += (dx ? fx : 1 - fx) * (dy ? fy : 1 - fy) * (dz ? fz : 1 - fz) * hash3(xi + dx, yi + dy, zi + dz);
-      }
-      return v;
-    };
-    const fbm = (x: number, y: number, z: number) => {
-      let v = 0,
-        a = 0.5,
-        f = 1,
-        n = 0;
-      for (let o = 0; o < 4; o++) {
-        v += a * valueNoise(x * f, y * f, z * f);
-        n += a;
-        a *= 0.5;
-        f *= 2;
-      }
-      return v / n;
-    };
-    const smoothstep = (e0: number, e1: number, x: number) => {
-      const t = Math.min(Math.max((x - e0) / (e1 - e0), 0), 1);
-      return t * t * (3 - 2 * t);
-    };
-    const density = (px: number, py: number, pz: number) => {
-      const qx = px - 0.5,
-        qy = py - 0.5,
-        qz = pz - 0.5;
-      const c = Math.cos(Math.PI / 3),
-        s = Math.sin(Math.PI / 3);
-      const ty = c * qy - s * qz,
-        tz = s * qy + c * qz;
-      const dt = Math.hypot(Math.hypot(qx, tz) - 0.27, ty) - 0.085;
-      const n = fbm(px * 5 + 11.3, py * 5 + 7.1, pz * 5 + 3.7);
-      const torus = smoothstep(0.02, -0.02, dt) * (0.55 + 0.45 * n);
-      const gx = qx - 0.05,
-        gy = qy + 0.04,
-        gz = qz - 0.02;
-      const core = 0.9 * Math.exp(-(gx * gx + gy * gy + gz * gz) / (2 * 0.07 * 0.07));
-      const r = Math.hypot(qx, qy, qz);
-      const bowl = 0.12 * smoothstep(0.015, -0.015, Math.abs(r - 0.42) - 0.02) * smoothstep(0.1, -0.05, qy) * (0.4 + n);
-      const haze = 0.015 * (0.5 + n) * smoothstep(0.48, 0.4, r);
-      return Math.min(Math.max(Math.max(torus, core, bowl) + haze, 0), 1);
-    };
-    const data = new Uint8Array(size * size * size);
-    for (let z = 0; z < size; z++)
-      for (let y = 0; y < size; y++)
-        for (let x = 0; x < size; x++)
-          data[x + size * (y + size * z)] = Math.round(
-            255 * density((x + 0.5) / size, (y + 0.5) / size, (z + 0.5) / size),
-          );
-    const vol = vpt.core.createVolume([size, size, size], 'uint8', data);
+    const vol = vpt.core.createVolume([size, size, size], 'uint8', anchorVoxels(size));
     vol.name = 'vpt-anchor-' + size;
     return vol;
   }

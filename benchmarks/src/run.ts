@@ -15,7 +15,6 @@ import { benchSettings, wantsSideBySide, type BenchSettings } from './bench-args
 import { BENCH_CLI } from './bench-cli.mjs';
 import { ESTIMATOR_VARIANTS, FETCHED_SCENES, MCRT_VARIANTS, PRESETS, RENDERERS, type SceneSpec } from './configs.js';
 import { machineRecord } from './environment.js';
-import { installBenchPage } from './page-code.js';
 import { htmlReport, type Results } from './report.js';
 import { convergence } from './suites/convergence.js';
 import { errorVsTime } from './suites/error-vs-time.js';
@@ -85,7 +84,12 @@ const started = Date.now();
 const log = (line: string) => console.log(`[${((Date.now() - started) / 1000).toFixed(0).padStart(5)} s] ${line}`);
 const session = await openVptPage();
 try {
-  await session.page.evaluate(installBenchPage);
+  // page-code.js is an ES module of this build: the page imports it from the mounted dist/.
+  const dist = session.mount(fileURLToPath(new URL('.', import.meta.url)));
+  await session.page.evaluate(async (url: string) => {
+    const pageCode = (await import(url)) as typeof import('./page-code.js');
+    pageCode.installBenchPage();
+  }, `${dist}page-code.js`);
   const available = await session.page.evaluate(() =>
     (window as unknown as { bench: { available(): string[] } }).bench.available(),
   );

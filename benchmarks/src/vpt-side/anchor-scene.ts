@@ -5,7 +5,8 @@
  * warm, a perspective camera at z = 1.5 looking down −z with fovy 1 rad, and a lat-long sky
  * whose radiance depends on the direction's height only. docs/benchmarks.md ("Side by side
  * with VPT") describes the method. Node side: the voxels are made here and served to the
- * page, so both renderers read the same bytes.
+ * page, so both renderers read the same bytes. The benchmark page (page-code.ts) imports
+ * the same functions for its `kind: 'anchor'` scene, so this module must run in a browser too.
  */
 
 /** An integer hash of a lattice point to [0, 1) (three odd multipliers, then two xor-shift-multiply rounds). */

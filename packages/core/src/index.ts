@@ -43,16 +43,9 @@ export * from './bricking/index.js';
 export { BaseRenderer } from './base-renderer.js';
 export { RUNNING_MEAN_INTEGRATE, HALF_MEANS_INTEGRATE, COPY_ACCUMULATION_RENDER } from './shaders/accumulation.js';
 export type { PostStep } from './post-step.js';
-export {
-  RenderContext,
-  DEFAULT_GPU_BYTES,
-  type RenderContextOptions,
-  type RenderStats,
-  type GpuBytes,
-  type RenderWarning,
-  type BrickLoadWarning,
-  type VolumeDownsampledWarning,
-} from './context/render-context.js';
+export { DEFAULT_GPU_BYTES, type RenderContextOptions } from './context/context-options.js';
+export { RenderContext, type RenderStats, type GpuBytes } from './context/render-context.js';
+export type { RenderWarning, BrickLoadWarning, VolumeDownsampledWarning } from './context/volume-fit.js';
 
 export { SCENE_UNIFORM_FIELDS, sceneUniformValues } from './shaders/scene-uniforms.js';
 // Shader chunks: each <name>.glsl.ts / <name>.wgsl.ts pair exports the same identifiers;

@@ -199,6 +199,24 @@ export function parseNumber(
   return n as number;
 }
 
+/**
+ * Objects a parser here made, and so validated: when one comes back as a property's value
+ * (from the converter, or the element setting what it parsed) it is not checked again.
+ * Parsers return fresh copies, so nothing else holds these objects before the element does.
+ */
+const parsedValues = new WeakSet<object>();
+
+/** Mark a parser's result as validated (see parsedValues); returns it. */
+export function markParsed<T>(value: T): T {
+  if (value && typeof value === 'object') parsedValues.add(value);
+  return value;
+}
+
+/** Whether `value` is an object a parser here made (validated once already). */
+export function isParsed(value: unknown): boolean {
+  return !!value && typeof value === 'object' && parsedValues.has(value);
+}
+
 /** An attribute value that did not parse; the element reports `vpt-error` and keeps the last valid value. */
 export class InvalidAttribute {
   constructor(readonly error: unknown) {}
@@ -215,7 +233,7 @@ export function jsonConverter(parse: (v: unknown) => unknown, keep: (value: stri
       if (value === null) return null;
       if (keep(value)) return value; // parsed later, with more context (a preset fitted to the volume)
       try {
-        return parse(value);
+        return markParsed(parse(value));
       } catch (e) {
         return new InvalidAttribute(e);
       }
@@ -339,7 +357,12 @@ export class AttributeValidator {
       }
       try {
         if (value instanceof InvalidAttribute) throw value.error;
-        const parsed = parsers[key](value);
+        if (isParsed(value)) {
+          // Parsed (and validated) on its way in: checked once, at that boundary.
+          this.lastValid.set(key, value);
+          continue;
+        }
+        const parsed = markParsed(parsers[key](value));
         if (typeof value === 'string' && typeof parsed === 'object') target[key] = parsed;
         this.lastValid.set(key, typeof parsed === 'object' && typeof value !== 'string' ? value : parsed);
       } catch (e) {

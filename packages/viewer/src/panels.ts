@@ -12,7 +12,7 @@ import { BACKEND_NAMES } from './attributes.js';
 import { hexToLinear, intensityOf, linearToHex, round4 } from './color.js';
 import { TRANSFER_FUNCTION_PRESETS, transferFunctionPreset } from './presets.js';
 import { rendererEntries, rendererEntry, type RendererParamSpec } from './renderer-registry.js';
-import type { VptViewer } from './viewer-element.js';
+import type { PanelHost } from './panel-host.js';
 
 export const PANEL_NAMES = ['tf', 'lights', 'quality', 'stats', 'export'] as const;
 export type PanelName = (typeof PANEL_NAMES)[number];
@@ -23,7 +23,7 @@ const id = (name: string) => `vpt-${name}-${++uid}`;
 const num = (e: Event) => Number((e.target as HTMLInputElement).value);
 const str = (e: Event) => (e.target as HTMLInputElement | HTMLSelectElement).value;
 
-export function renderPanels(v: VptViewer, panels: Set<PanelName>) {
+export function renderPanels(v: PanelHost, panels: Set<PanelName>) {
   return html` ${panels.has('tf') ? tfPanel(v) : nothing} ${panels.has('lights') ? lightsPanel(v) : nothing}
   ${panels.has('quality') ? qualityPanel(v) : nothing} ${panels.has('stats') ? statsPanel(v) : nothing}
   ${panels.has('export') ? exportPanel(v) : nothing}`;
@@ -36,7 +36,7 @@ function presetOf(tf: TransferFunction): string {
   );
 }
 
-function tfPanel(v: VptViewer) {
+function tfPanel(v: PanelHost) {
   const st = v.panelState;
   const tf = st.transferFunction;
   const presetId = id('preset'),
@@ -113,7 +113,7 @@ function angles(d: readonly number[]): { azimuth: number; elevation: number } {
   };
 }
 
-function lightsPanel(v: VptViewer) {
+function lightsPanel(v: PanelHost) {
   const st = v.panelState;
   const env = st.environment;
   const constant = !env || env.type === 'constant' ? (env?.radiance ?? [1, 1, 1]) : null;
@@ -243,7 +243,7 @@ function lightsPanel(v: VptViewer) {
   </details>`;
 }
 
-function qualityPanel(v: VptViewer) {
+function qualityPanel(v: PanelHost) {
   const ids = {
     r: id('renderer'),
     b: id('backend'),
@@ -351,7 +351,7 @@ function qualityPanel(v: VptViewer) {
 }
 
 /** One renderer parameter as a labelled control; clearing a number field restores the renderer's default. */
-function paramControl(v: VptViewer, spec: RendererParamSpec, params: Record<string, unknown>) {
+function paramControl(v: PanelHost, spec: RendererParamSpec, params: Record<string, unknown>) {
   const pid = id(spec.name);
   const value = spec.read ? spec.read(params) : params[spec.name];
   const write = (next: unknown) => {
@@ -417,7 +417,7 @@ function rendererChoiceReasons(r: Record<string, string>): string {
     .join('\n');
 }
 
-function statsPanel(v: VptViewer) {
+function statsPanel(v: PanelHost) {
   const st = v.panelState;
   const s = st.stats;
   const vol = st.volume;
@@ -451,7 +451,7 @@ function statsPanel(v: VptViewer) {
   </details>`;
 }
 
-function exportPanel(v: VptViewer) {
+function exportPanel(v: PanelHost) {
   const fileId = id('file');
   return html`<details>
     <summary>View and export</summary>

@@ -22,8 +22,6 @@ import {
   type Light,
   type Renderer,
   type Scene,
-  type MultiscaleSource,
-  type RenderWarning,
   type TransferFunction,
   type Volume,
 } from '@vpt/core';
@@ -50,23 +48,18 @@ import { autoTransferFunction, defaultRendererParams, rendererLook } from './def
 import { download, encodeExr, encodePfm, encodePngBlob } from './export.js';
 import { gradientSamples, valueHistogram, type GradientSamples, type Histogram1D } from './histogram.js';
 import { loadEnvironment } from './loading/environment-loader.js';
+import type { ViewerLoadDetail, ViewerProgressDetail } from './loading/load-events.js';
 import type { LoadedVolumeLike, VolumeSource } from './loading/types.js';
-import { loadVolumeSource, openMultiscaleSource } from './loading/volume-source.js';
-import {
-  finestFittingLevel,
-  isProgressiveSource,
-  refinementPlan,
-  sourceAtLevel,
-  type Dims,
-} from './loading/multiscale.js';
-
-const BYTES_PER_VOXEL: Record<string, number> = { uint8: 1, uint16: 2, int16: 2, float32: 4 };
+import { VolumeLoading, type DataLevel } from './loading/volume-loading.js';
 import { OrbitCamera } from './orbit.js';
 import { renderPanels, type PanelName, PANEL_NAMES } from './panels.js';
+import type { InternalProperty, PanelHost, PanelState } from './panel-host.js';
 import { DEFAULT_TRANSFER_FUNCTION, transferFunctionPreset } from './presets.js';
 import { createRenderer } from './renderer-registry.js';
 import { RenderSession, type RefinementStats } from './session.js';
 import { viewerStyles } from './styles.js';
+
+export type { ViewerLoadDetail, ViewerProgressDetail } from './loading/load-events.js';
 
 export interface ViewerErrorDetail {
   /** The typed error (a VptError: `code`, and `reason` for load failures). */
@@ -76,27 +69,7 @@ export interface ViewerErrorDetail {
   /** What failed: the volume, the renderer, the environment image, the GPU context, or an attribute value. */
   source: 'src' | 'renderer' | 'environment' | 'context' | 'attribute' | 'export';
 }
-export type ViewerProgressDetail =
-  { phase: 'loading'; stage: string; loaded: number; total?: number } | ({ phase: 'refining' } & RefinementStats);
 export type ViewerConvergedDetail = RefinementStats & { reason: 'max-samples' | 'target-error' };
-export interface ViewerLoadDetail {
-  volume: Volume;
-  format: string;
-  dims: [number, number, number];
-  type: string;
-  /**
-   * For a multiscale store (OME-Zarr) loaded level by level: the level now shown (0 =
-   * finest), how many the store has, its dims, and whether it is the last one coming.
-   */
-  level?: {
-    index: number;
-    count: number;
-    dims: [number, number, number];
-    final: boolean;
-    /** Level 0 streamed as bricks (it does not fit the budget): `volume` is the stand-in level the cache starts from. */
-    bricked?: boolean;
-  };
-}
 export interface ViewerChangeDetail {
   property: string;
 }
@@ -119,7 +92,7 @@ const SYNC_FIELDS = [
   'resolutionScale',
 ] as const;
 
-export class VptViewer extends LitElement {
+export class VptViewer extends LitElement implements PanelHost {
   static override styles = viewerStyles;
 
   static override properties = {
@@ -223,16 +196,9 @@ export class VptViewer extends LitElement {
   declare private _histogram: Histogram1D | null;
   declare private _dragOver: boolean;
   /** A multiscale volume's levels: shown, how many, the one that fits the budget, the one loading (null: none). */
-  declare private _dataLevel: {
-    shown: number;
-    count: number;
-    target: number;
-    loading: number | null;
-    bricked?: boolean;
-  } | null;
-  /** A level 0 streamed as bricks: the stand-in volume the scene holds and its source (registered on every new context). */
-  private streamed: { standIn: LoadedVolumeLike; source: MultiscaleSource } | null = null;
-  private brickFailureWarned = false;
+  declare private _dataLevel: DataLevel | null;
+  /** Loading src: one volume, or a multiscale store level by level (loading/volume-loading.ts). */
+  private readonly volumeLoading: VolumeLoading;
 
   private session: RenderSession | null = null;
   private canvas: HTMLCanvasElement | null = null;
@@ -253,8 +219,7 @@ export class VptViewer extends LitElement {
   private readonly resolution = new AdaptiveResolution(this, () => this.applySize());
   private readonly validator: AttributeValidator;
   private pending = new Set<Promise<unknown>>();
-  private tokens = { session: 0, renderer: 0, src: 0, environment: 0 };
-  private srcAbort: AbortController | null = null;
+  private tokens = { session: 0, renderer: 0, environment: 0 };
   private postKey = '';
   // The chain's denoise step, when the denoise mode and the renderer want one (makePost).
   private denoiseStep: DenoiseStep | null = null;
@@ -301,6 +266,25 @@ export class VptViewer extends LitElement {
       change: (camera) => this.onUserCamera(camera),
       end: () => this.resolution.interactionEnded(),
     });
+    this.volumeLoading = new VolumeLoading({
+      session: () => this.session,
+      opening: () => this.opening,
+      volume: () => this.volume,
+      setStatus: (status) => {
+        this._status = status;
+      },
+      setLoading: (loading) => {
+        this._loading = loading;
+      },
+      dataLevel: () => this._dataLevel,
+      setDataLevel: (level) => {
+        this._dataLevel = level;
+      },
+      applyVolume: (volume, source, level) => this.applyVolume(volume, source, level),
+      fail: (e) => this.fail(e, 'src'),
+      dispatchEvent: (event) => this.dispatchEvent(event),
+      requestUpdate: () => this.requestUpdate(),
+    });
   }
 
   // ——— public API ———
@@ -342,7 +326,7 @@ export class VptViewer extends LitElement {
       await this.whenSettled();
       return;
     }
-    await this.track(this.loadSource(source));
+    await this.track(this.volumeLoading.loadSource(source));
   }
 
   /** Frame the volume again (the camera attribute's value when one was given, else an automatic fit). */
@@ -389,7 +373,7 @@ export class VptViewer extends LitElement {
     super.disconnectedCallback();
     this.connected = false;
     this.hostObserver?.disconnect();
-    this.srcAbort?.abort();
+    this.volumeLoading.abort();
     this.tokens.session++;
     this.session?.dispose();
     this.session = null;
@@ -429,7 +413,7 @@ export class VptViewer extends LitElement {
     if (changed.has('backend') || (!this.session && !this.opening)) this.track(this.openSession());
     else if (this.session && (changed.has('renderer') || changed.has('rendererParams')))
       this.track(this.switchRenderer());
-    if (changed.has('src')) this.track(this.loadSource(this.src));
+    if (changed.has('src')) this.track(this.volumeLoading.loadSource(this.src));
     if (changed.has('environment')) this.track(this.resolveEnvironment());
     if (SYNC_FIELDS.some((f) => changed.has(f))) this.applySync();
   }
@@ -560,10 +544,11 @@ export class VptViewer extends LitElement {
       `${s.msPerIteration < 10 ? s.msPerIteration.toFixed(1) : Math.round(s.msPerIteration)} ms/it`,
     ];
     const level = this._dataLevel;
-    const bricking = level?.bricked && this.streamed ? (this.session?.ctx.stats.bricking ?? null) : null;
+    const streamed = this.volumeLoading.streamed;
+    const bricking = level?.bricked && streamed ? (this.session?.ctx.stats.bricking ?? null) : null;
     if (bricking) {
       // Level-0 bricks served by their own data, of all of them.
-      const total = this.streamed!.source.levels[0].dims.reduce((n, d) => n * Math.ceil(d / bricking.brickSize), 1);
+      const total = streamed!.source.levels[0].dims.reduce((n, d) => n * Math.ceil(d / bricking.brickSize), 1);
       const failed = bricking.failed ? `, ${bricking.failed} failed` : '';
       parts.push(`level bricked 0 (${bricking.finest}/${total} bricks${failed}) of ${level!.count}`);
     } else if (level)
@@ -607,7 +592,7 @@ export class VptViewer extends LitElement {
   // ——— state the panels read and write ———
 
   /** @internal for the panels */
-  get panelState() {
+  get panelState(): PanelState {
     return {
       transferFunction: this.currentTransferFunction(),
       histogram: this._histogram,
@@ -622,24 +607,7 @@ export class VptViewer extends LitElement {
   }
 
   /** @internal Set a property as the user did through the element: reflected, and announced with `change`. */
-  setInternal(
-    property:
-      | 'camera'
-      | 'transferFunction'
-      | 'lights'
-      | 'environment'
-      | 'renderer'
-      | 'backend'
-      | 'exposure'
-      | 'toneMapper'
-      | 'maxSamples'
-      | 'targetError'
-      | 'densityScale'
-      | 'seed'
-      | 'rendererParams'
-      | 'resolutionScale',
-    value: unknown,
-  ): void {
+  setInternal(property: InternalProperty, value: unknown): void {
     if (sameValue(this[property], value)) return;
     (this as Record<string, unknown>)[property] = value;
     if (property === 'camera') this.internalChange.add('camera');
@@ -831,8 +799,9 @@ export class VptViewer extends LitElement {
     this.canvas = canvas;
     view.prepend(canvas);
     this.session = session;
-    if (this.streamed) session.ctx.setVolumeSource(this.streamed.standIn, this.streamed.source);
-    session.ctx.onWarning((w) => this.onContextWarning(w));
+    const streamed = this.volumeLoading.streamed;
+    if (streamed) session.ctx.setVolumeSource(streamed.standIn, streamed.source);
+    session.ctx.onWarning((w) => this.volumeLoading.onContextWarning(w));
     this.postKey = this.postKeyNow();
     this.orbit.attach(canvas);
     if (this.camera) this.orbit.set(this.camera as Camera);
@@ -843,152 +812,6 @@ export class VptViewer extends LitElement {
     // The renderer attribute may have changed while the context was opening.
     if (this.desiredRendererKey() !== this.rendererKey && this.desiredRendererKey() !== this.failedRendererKey)
       this.track(this.switchRenderer());
-  }
-
-  private async loadSource(source: VolumeSource | null): Promise<void> {
-    const token = ++this.tokens.src;
-    this.srcAbort?.abort();
-    this._dataLevel = null;
-    this.streamed = null;
-    if (source === null || source === '') return;
-    const abort = new AbortController();
-    this.srcAbort = abort;
-    if (isProgressiveSource(source)) return this.loadLevels(source, token, abort.signal);
-    try {
-      const volume = await this.loadOnce(source, token, abort.signal);
-      if (token !== this.tokens.src) return;
-      this.applyVolume(volume, source, null);
-    } catch (e) {
-      if (token !== this.tokens.src) return;
-      this._status = '';
-      this._loading = null;
-      this.fail(e, 'src');
-    }
-  }
-
-  /** One volume load with the loading status, bar and `vpt-progress` events. */
-  private async loadOnce(source: VolumeSource, token: number, signal: AbortSignal): Promise<LoadedVolumeLike> {
-    this._status = this._dataLevel ? `Refining data… level ${this._dataLevel.loading}` : 'Loading…';
-    this._loading = NaN;
-    const prefix = this._dataLevel ? `Refining data… level ${this._dataLevel.loading}: ` : 'Loading… ';
-    const limits = this.session
-      ? { maxTextureDimension3D: this.session.ctx.backend.limits.maxTextureDimension3D }
-      : undefined;
-    return loadVolumeSource(source, {
-      signal,
-      limits,
-      onProgress: (p) => {
-        if (token !== this.tokens.src) return;
-        this._status = p.total
-          ? `${prefix}${Math.round((100 * p.loaded) / p.total)}%`
-          : `${prefix}${(p.loaded / 1048576).toFixed(1)} MB`;
-        this._loading = p.total ? Math.min(1, p.loaded / p.total) : NaN;
-        this.dispatchEvent(
-          new CustomEvent<ViewerProgressDetail>('vpt-progress', { detail: { phase: 'loading', ...p } }),
-        );
-      },
-    });
-  }
-
-  /**
-   * A multiscale store (OME-Zarr without a level in its URL): the coarsest level first, then
-   * finer ones up to the finest that fits the GPU memory budget (loading/multiscale.ts).
-   * Each level replaces the volume; the camera stays. A finer level that fails to load
-   * leaves the coarser one on screen and reports the error.
-   */
-  private async loadLevels(source: string, token: number, signal: AbortSignal): Promise<void> {
-    let shown = false;
-    try {
-      const t0 = performance.now();
-      const first = await this.loadOnce(sourceAtLevel(source, 'coarsest'), token, signal);
-      if (token !== this.tokens.src) return;
-      const zarr = first.meta?.zarr as { level: number; levels: { dims: Dims }[] } | undefined;
-      const levels = zarr?.levels.map((l) => l.dims) ?? [first.dims];
-      const ms = Math.max(1, performance.now() - t0);
-      // The budget and the texture limit are the context's: wait for one that is opening.
-      if (this.opening) await this.opening;
-      if (token !== this.tokens.src) return;
-      const target = finestFittingLevel(levels, BYTES_PER_VOXEL[first.type], this.volumeBudget(), this.max3D());
-      const plan = refinementPlan(levels, target, (first.dims[0] * first.dims[1] * first.dims[2]) / ms);
-      // Level 0 beyond the budget streams as bricks after the last level that fits.
-      const bricks = target > 0;
-      this._dataLevel = { shown: levels.length - 1, count: levels.length, target, loading: plan[0] ?? null };
-      this.applyVolume(first, source, this.levelDetail(levels.length - 1, levels, plan.length === 0 && !bricks));
-      shown = true;
-      for (const [i, level] of plan.entries()) {
-        this._dataLevel = { ...this._dataLevel, loading: level };
-        const volume = await this.loadOnce(sourceAtLevel(source, level), token, signal);
-        if (token !== this.tokens.src) return;
-        this._dataLevel = { ...this._dataLevel, shown: level, loading: plan[i + 1] ?? null };
-        this.applyVolume(volume, source, this.levelDetail(level, levels, i === plan.length - 1 && !bricks));
-      }
-      if (bricks) await this.streamLevel0(source, token, levels);
-    } catch (e) {
-      if (token !== this.tokens.src) return;
-      this._status = '';
-      this._loading = null;
-      if (shown && this._dataLevel) this._dataLevel = { ...this._dataLevel, loading: null };
-      this.fail(e, 'src');
-    }
-  }
-
-  /**
-   * Level 0 of a store that does not fit the budget: the brick cache streams it from the
-   * store's chunks (RenderContext.setVolumeSource), starting from the level on screen, which
-   * becomes the stand-in (histogram, transfer function, renderer defaults). Bricks the view
-   * needs load at level 0, nearest first; a chunk that fails warns once and its region keeps
-   * the coarser level. Reads are not aborted by a new src: the cache drops them with the volume.
-   */
-  private async streamLevel0(source: string, token: number, levels: readonly Dims[]): Promise<void> {
-    const shown = this.volume;
-    if (!shown || !this._dataLevel) return;
-    this._dataLevel = { ...this._dataLevel, loading: 0 };
-    const multiscale = await openMultiscaleSource(source);
-    if (token !== this.tokens.src || this.volume !== shown) return;
-    if (!multiscale) {
-      this._dataLevel = { ...this._dataLevel, loading: null };
-      return;
-    }
-    // A new object: the context fits it afresh, as bricks, instead of reusing the upload of `shown`.
-    const standIn: LoadedVolumeLike = { ...shown };
-    this.streamed = { standIn, source: multiscale };
-    this.brickFailureWarned = false;
-    this.session?.ctx.setVolumeSource(standIn, multiscale);
-    this._dataLevel = { ...this._dataLevel, shown: 0, loading: null, bricked: true };
-    this.applyVolume(standIn, source, { ...this.levelDetail(0, levels, true)!, bricked: true });
-  }
-
-  /**
-   * The context's warnings go to the console as before, except that a streamed volume's
-   * failed bricks warn once: one bad chunk fails every brick whose apron reaches it, and the
-   * stats line counts them.
-   */
-  private onContextWarning(warning: RenderWarning): void {
-    if (warning.code === 'brick-load-failed') {
-      this.requestUpdate(); // the stats line's count of failed bricks
-      if (this.brickFailureWarned) return;
-      this.brickFailureWarned = true;
-      console.warn(
-        `vpt: ${warning.message} (its region keeps a coarser level; the stats line counts further failed bricks)`,
-      );
-      return;
-    }
-    console.warn(`vpt: ${warning.message}`);
-  }
-
-  private levelDetail(index: number, levels: readonly Dims[], final: boolean): ViewerLoadDetail['level'] {
-    return { index, count: levels.length, dims: [...levels[index]] as Dims, final };
-  }
-
-  /** Bytes a volume may take: the context's maxGpuBytes less its render targets and the TF (1 GiB before a context exists). */
-  private volumeBudget(): number {
-    const ctx = this.session?.ctx;
-    if (!ctx) return 1 << 30;
-    return ctx.maxGpuBytes - ctx.stats.gpuBytes.targets - (1 << 20);
-  }
-
-  private max3D(): number {
-    return this.session?.ctx.backend.limits.maxTextureDimension3D ?? 2048;
   }
 
   /**

@@ -1,70 +1,27 @@
 import { VptError } from '../errors.js';
 import { createBackend } from '../gpu/create-backend.js';
-import type { BackendPreference, GpuBackend, GpuPass, GpuTexture, RenderTarget } from '../gpu/backend.js';
+import type { GpuBackend, GpuPass, GpuTexture, RenderTarget } from '../gpu/backend.js';
 import type { PostStep } from '../post-step.js';
 import type { Renderer } from '../renderer.js';
 import type { Scene } from '../scene/scene.js';
 import { validateScene } from '../scene/scene.js';
 import { TF_RESOLUTION } from '../scene/transfer-function.js';
-import { voxelCount } from '../scene/volume.js';
-import { downsampleVolume, fitFactors } from '../scene/downsample.js';
 import { BYTES_PER_TEXEL } from '../gpu/backend.js';
-import type { VolumeSampling } from '../gpu/volume-format.js';
 import { commonChunks, PASS_CHUNKS, type CommonChunkOptions } from '../shaders/common.js';
 import { preprocess } from '../shaders/preprocess.js';
-import { validateSceneForDevice } from '../validation/device.js';
+import { validateGradientAtlasForDevice, validateSceneForDevice } from '../validation/device.js';
 import { SCENE_UNIFORM_FIELDS, sceneUniformValues } from '../shaders/scene-uniforms.js';
-import { sliceAtlasLayout } from '../shaders/slice-atlas.js';
 import { UniformLayout } from '../uniforms/layout.js';
 import { GUIDES } from '../shaders/guides.js';
-import { GUIDE_FRAME_FORMATS, GUIDE_TEXTURE_NAMES, GuideBuffers } from './guide-buffers.js';
+import { GUIDE_FRAME_FORMATS, GuideBuffers } from './guide-buffers.js';
+import { PostChain } from './post-chain.js';
 import { PRESENT_PASS } from './present-pass.js';
+import { checkGpuBudget, checkRenderSize, checkVolumeOptions, type RenderContextOptions } from './context-options.js';
 import { ProgressiveLoop } from './progressive-loop.js';
-import { SceneResources, sameVoxels, type BrickPlan } from './scene-resources.js';
+import { SceneResources } from './scene-resources.js';
+import { VolumeFit, volumeBudgetBytes, type RenderWarning } from './volume-fit.js';
 import type { BrickingStats } from '../bricking/bricked-volume.js';
 import type { MultiscaleSource } from '../bricking/source.js';
-
-export interface RenderContextOptions {
-  backend?: BackendPreference;
-  canvas?: HTMLCanvasElement | OffscreenCanvas;
-  /** Render resolution in pixels (the canvas drawing buffer is resized to it). */
-  width: number;
-  height: number;
-  renderer: Renderer;
-  post?: PostStep[];
-  /**
-   * Volume sampling when the scene does not say (Scene.sampling): 'fast' (default; compact
-   * texture, one hardware-filtered fetch) or 'exact' (r32float, manual trilinear).
-   */
-  sampling?: VolumeSampling;
-  /** float32 volumes may be stored as r16float on the fast path (half the memory, ~3 significant digits). Default false. */
-  allowHalfFloatVolumes?: boolean;
-  /**
-   * GPU memory budget in bytes for everything the context allocates. A volume that does not
-   * fit (with its gradient volume, the render targets and the transfer function) is
-   * downsampled to the largest resolution that does, with a warning (onWarning). Default:
-   * WebGPU's maxBufferSize clamped to [1 GiB, 4 GiB]; 1 GiB where the device reports nothing
-   * (WebGL 2).
-   */
-  maxGpuBytes?: number;
-  /**
-   * Volumes larger than one texture or the budget: 'off' (default) downsamples them to fit;
-   * 'auto' holds them as bricks in an atlas with a page table instead (bricking/; a scene
-   * with a 2D transfer function, or a renderer that needs the gradient volume, is still
-   * downsampled); 'force' bricks every volume (tests, benchmarks).
-   */
-  bricking?: 'off' | 'auto' | 'force';
-  /** Data voxels per brick side, a power of two (default 32). */
-  brickSize?: number;
-  /** Bricks uploaded per frame at most (default 16); each upload restarts accumulation. */
-  brickUploadsPerFrame?: number;
-  /**
-   * Level of detail for bricked volumes: load no brick finer than the render's pixels need
-   * (a voxel of the next coarser level projects to at most one pixel). Default false: every
-   * visible brick at the finest level the atlas holds.
-   */
-  brickLod?: boolean;
-}
 
 /** GPU memory the context holds, in bytes (texture sizes × bytes per texel, as allocated). */
 export interface GpuBytes {
@@ -78,28 +35,6 @@ export interface GpuBytes {
   targets: number;
   total: number;
 }
-
-/** Something the context changed to make a scene fit or could not load, reported through onWarning (and console.warn without a listener). */
-export type RenderWarning = VolumeDownsampledWarning | BrickLoadWarning;
-
-/** A brick of a streamed volume (setVolumeSource) could not be read; a coarser level keeps serving its region. */
-export interface BrickLoadWarning {
-  code: 'brick-load-failed';
-  message: string;
-}
-
-export interface VolumeDownsampledWarning {
-  code: 'volume-downsampled';
-  message: string;
-  /** Integer box-average factors per axis. */
-  factors: [number, number, number];
-  from: [number, number, number];
-  to: [number, number, number];
-}
-
-/** The default budget where the device reports nothing about its memory. */
-export const DEFAULT_GPU_BYTES = 1024 ** 3;
-const MAX_DEFAULT_GPU_BYTES = 4 * 1024 ** 3;
 
 export interface RenderStats {
   /** Iterations accumulated since the last reset. */
@@ -126,36 +61,26 @@ type RendererPasses = { generate: GpuPass; integrate: GpuPass; render: GpuPass }
 export class RenderContext {
   readonly backend: GpuBackend;
   private _renderer: Renderer;
-  private _post: PostStep[];
   private scene: Scene | null = null; // as rendered: its volume may be a downsampled copy (fitScene)
   private input: Scene | null = null; // as given to setScene
   private width: number;
   private height: number;
   private layout!: UniformLayout;
   private passes: RendererPasses | null = null;
-  private postPasses: GpuPass[] = [];
   private presentPass: GpuPass | null = null;
 
   // Volume, transfer function, gradient and auxiliary textures, with their lifetimes.
   private readonly resources: SceneResources;
-  // The last budget fit: a scene volume → the volume actually uploaded (itself when it fits).
-  private fitted: { source: Scene['volume']; key: string; volume: Scene['volume']; bricks: BrickPlan | null } | null =
-    null;
-  private readonly bricking: 'off' | 'auto' | 'force';
-  private readonly brickSize: number;
-  private readonly brickUploadsPerFrame: number;
+  // The budget fit of the scene's volume (downsampled or bricked) and the multiscale sources.
+  private readonly volumeFit: VolumeFit;
   private readonly brickLod: boolean;
-  // Volumes backed by a multiscale source (setVolumeSource): the scene's volume is a stand-in.
-  private readonly volumeSources = new WeakMap<Scene['volume'], MultiscaleSource>();
-  private readonly sampling: VolumeSampling;
   readonly maxGpuBytes: number;
   private readonly warningListeners = new Set<(w: RenderWarning) => void>();
   private frame: RenderTarget | null = null;
   private accum: [RenderTarget, RenderTarget] | null = null;
   private hdr: RenderTarget | null = null;
-  private postTargets: RenderTarget[] = [];
-  // Ping-pong targets for the draws of a repeated post step before its last one.
-  private postScratch: RenderTarget[] = [];
+  // The post steps, their passes and targets.
+  private readonly postChain: PostChain;
   // Accumulated denoiser guides, while a post step uses them; the frame target then holds the guide frames too.
   private guides: GuideBuffers | null = null;
   private frameHasGuides = false;
@@ -169,7 +94,6 @@ export class RenderContext {
   private hdrIteration = -1; // iteration count the HDR/LDR images were last rendered at
   private imageVersion = 0; // bumped whenever renderImage() produced a new LDR image
   private presentedVersion = -1;
-  private postKey = ''; // post-chain parameters the current LDR image was made with
   private msPerIteration = 0;
   private disposed = false;
   private readonly loop: ProgressiveLoop;
@@ -178,34 +102,23 @@ export class RenderContext {
   private constructor(backend: GpuBackend, opts: RenderContextOptions) {
     this.backend = backend;
     this._renderer = opts.renderer;
-    this._post = opts.post ?? [];
-    this.sampling = opts.sampling ?? 'fast';
-    if (this.sampling !== 'fast' && this.sampling !== 'exact')
-      throw new VptError('invalid-scene', `sampling must be 'fast' or 'exact', got ${JSON.stringify(opts.sampling)}`);
+    this.postChain = new PostChain(backend, opts.post ?? []);
+    const volumeOptions = checkVolumeOptions(opts);
     this.resources = new SceneResources(backend, () => ({ scene: this.scene, renderer: this._renderer }), {
-      sampling: this.sampling,
-      allowHalfFloat: opts.allowHalfFloatVolumes === true,
+      sampling: volumeOptions.sampling,
+      allowHalfFloat: volumeOptions.allowHalfFloat,
     });
-    if (opts.maxGpuBytes !== undefined && !(opts.maxGpuBytes > 0))
-      throw new VptError('invalid-scene', `maxGpuBytes must be a positive number of bytes, got ${opts.maxGpuBytes}`);
-    this.maxGpuBytes = opts.maxGpuBytes ?? defaultGpuBytes(backend);
-    this.bricking = opts.bricking ?? 'off';
-    if (!['off', 'auto', 'force'].includes(this.bricking))
-      throw new VptError(
-        'invalid-scene',
-        `bricking must be 'off', 'auto' or 'force', got ${JSON.stringify(opts.bricking)}`,
-      );
-    this.brickSize = opts.brickSize ?? 32;
-    if (!Number.isInteger(Math.log2(this.brickSize)) || this.brickSize < 8 || this.brickSize > 256)
-      throw new VptError('invalid-scene', `brickSize must be a power of two from 8 to 256, got ${opts.brickSize}`);
-    this.brickUploadsPerFrame = opts.brickUploadsPerFrame ?? 16;
-    this.brickLod = opts.brickLod === true;
-    if (!Number.isInteger(this.brickUploadsPerFrame) || this.brickUploadsPerFrame < 1)
-      throw new VptError(
-        'invalid-scene',
-        `brickUploadsPerFrame must be a positive integer, got ${opts.brickUploadsPerFrame}`,
-      );
-    checkSize(opts.width, opts.height, backend);
+    this.maxGpuBytes = checkGpuBudget(opts.maxGpuBytes, backend.limits);
+    this.brickLod = volumeOptions.brickLod;
+    this.volumeFit = new VolumeFit(volumeOptions, {
+      resources: this.resources,
+      maxGpuBytes: this.maxGpuBytes,
+      max3D: () => this.backend.limits.maxTextureDimension3D,
+      size: () => this.size,
+      budgetBytes: () => this.volumeBudgetBytes,
+      warn: (w) => this.warn(w),
+    });
+    checkRenderSize(opts.width, opts.height, backend.limits);
     this.width = opts.width;
     this.height = opts.height;
     this.backend.resizeCanvas(this.width, this.height);
@@ -240,7 +153,7 @@ export class RenderContext {
     return this._renderer;
   }
   get post(): readonly PostStep[] {
-    return this._post;
+    return this.postChain.steps;
   }
   get size(): { width: number; height: number } {
     return { width: this.width, height: this.height };
@@ -275,7 +188,7 @@ export class RenderContext {
     for (const a of res.auxTextures.values()) auxiliary += tex(a.texture);
     let targets =
       target(this.frame) + target(this.hdr) + (this.accum ? target(this.accum[0]) + target(this.accum[1]) : 0);
-    for (const t of [...this.postTargets, ...this.postScratch, ...(this.guides?.targets ?? [])]) targets += target(t);
+    for (const t of [...this.postChain.allTargets(), ...(this.guides?.targets ?? [])]) targets += target(t);
     return { volume, gradient, auxiliary, targets, total: volume + gradient + auxiliary + targets };
   }
 
@@ -293,28 +206,18 @@ export class RenderContext {
     this.assertAlive();
     validateScene(input);
     validateSceneForDevice(input, this.renderer, this.backend.limits);
-    const scene = this.fitScene(input);
-    const [nx, ny, nz] = scene.volume.dims;
-    if (this.wantsGradient(scene)) {
-      const atlas = sliceAtlasLayout(scene.volume.dims);
-      const max2D = this.backend.limits.maxTextureDimension2D;
-      if (atlas.width > max2D || atlas.height > max2D) {
-        throw new VptError(
-          'limit-exceeded',
-          `The gradient volume of a [${nx}, ${ny}, ${nz}] volume (needed by the 2D transfer function or the renderer) needs a ${atlas.width} x ${atlas.height} slice atlas; this device's 2D texture limit is ${max2D} (maxTextureDimension2D)`,
-        );
-      }
-    }
+    const scene = this.volumeFit.fitScene(input);
+    if (this.wantsGradient(scene)) validateGradientAtlasForDevice(scene.volume.dims, this.backend.limits);
     const previous = { scene: this.scene, plan: this.resources.brickPlanNow() };
     this.scene = scene;
-    this.resources.setBrickPlan(this.fitted?.bricks ?? null);
+    this.resources.setBrickPlan(this.volumeFit.bricks);
     try {
       this.resources.sync();
     } catch (e) {
       // A bricked volume that cannot be held (VptError 'limit-exceeded'): keep the previous scene.
       this.scene = previous.scene;
       this.resources.setBrickPlan(previous.plan);
-      this.fitted = null;
+      this.volumeFit.forget();
       throw e;
     }
     this.input = input;
@@ -331,28 +234,7 @@ export class RenderContext {
    */
   setVolumeSource(standIn: Scene['volume'], source: MultiscaleSource): void {
     this.assertAlive();
-    const l = source?.levels;
-    const ok =
-      Array.isArray(l) &&
-      l.length > 0 &&
-      l.every(
-        (v) =>
-          [v.dims, v.spacing, v.origin].every((a) => Array.isArray(a) && a.length === 3 && a.every(Number.isFinite)) &&
-          v.dims.every((d) => Number.isInteger(d) && d >= 1) &&
-          v.spacing.every((x) => x > 0),
-      ) &&
-      typeof source.readRegion === 'function';
-    if (!ok)
-      throw new VptError(
-        'invalid-scene',
-        'setVolumeSource: the source needs levels (level 0 finest) with positive integer dims, positive spacing, an origin each, and readRegion()',
-      );
-    if (source.type !== standIn.type)
-      throw new VptError(
-        'invalid-scene',
-        `setVolumeSource: the stand-in volume is ${standIn.type}, the source ${source.type}; they must match`,
-      );
-    this.volumeSources.set(standIn, source);
+    this.volumeFit.setVolumeSource(standIn, source);
   }
 
   /**
@@ -386,87 +268,7 @@ export class RenderContext {
    * choosing a level of a multiscale source (or whether to stream it) uses this rule.
    */
   get volumeBudgetBytes(): number {
-    const pixels = this.width * this.height;
-    const targetBytes =
-      pixels *
-      16 *
-      (this._renderer.frameFormats.length + 2 * this._renderer.accumulationFormats.length + 1 + this._post.length);
-    return this.maxGpuBytes - targetBytes - TF_RESOLUTION * 16 * 256;
-  }
-
-  /**
-   * The scene with a volume that fits the device: each side within the 3D texture limit and
-   * the whole within maxGpuBytes (volume + gradient at this scene's sampling, plus the render
-   * targets and the TF); otherwise downsampled by integer box averages (scene/downsample.ts)
-   * with a warning naming the factors. The fit is kept per source volume, so setting the same
-   * volume again neither recomputes nor warns again.
-   */
-  private fitScene(scene: Scene): Scene {
-    const sampling = scene.sampling ?? this.sampling;
-    const gradient = this.wantsGradient(scene);
-    const key = `${sampling}|${gradient}|${this.width}x${this.height}`;
-    const f = this.fitted;
-    if (f && f.key === key && f.source === scene.volume) {
-      return f.volume === scene.volume ? scene : { ...scene, volume: f.volume };
-    }
-    if (f && f.key === key && f.bricks && !f.bricks.source && sameVoxels(f.source, scene.volume)) {
-      this.fitted = { ...f, source: scene.volume, volume: scene.volume };
-      return scene;
-    }
-    if (f && f.key === key && sameVoxels(f.source, scene.volume) && f.volume !== f.source) {
-      // The same voxels with another value range: keep the downsampled copy, take the new range.
-      const volume = { ...f.volume, valueRange: scene.volume.valueRange };
-      this.fitted = { source: scene.volume, key, volume, bricks: null };
-      return { ...scene, volume };
-    }
-    const upload = this.resources.planUpload(scene.volume, sampling);
-    const perVoxel = upload.bytesPerVoxel + (gradient ? (sampling === 'exact' ? 4 : 2) : 0);
-    const budget = this.volumeBudgetBytes;
-    const max3D = this.backend.limits.maxTextureDimension3D;
-    const from = [...scene.volume.dims] as [number, number, number];
-    const factors = fitFactors(from, perVoxel, budget, max3D);
-    if (!factors) {
-      throw new VptError(
-        'limit-exceeded',
-        `maxGpuBytes (${this.maxGpuBytes} bytes) leaves no room for a volume next to the ${this.width} x ${this.height} render targets`,
-      );
-    }
-    // Bricks instead of a downsampled copy: the full data stays available to the view.
-    const brickable = scene.transferFunction.dimensions !== '2d' && !gradient;
-    const source = this.volumeSources.get(scene.volume);
-    if (
-      brickable &&
-      (source || this.bricking === 'force' || (this.bricking === 'auto' && factors.some((f) => f > 1)))
-    ) {
-      const bricks: BrickPlan = {
-        capacityBytes: budget,
-        brickSize: this.brickSize,
-        uploadsPerFrame: this.brickUploadsPerFrame,
-        lod: this.brickLod,
-        onFailure: (message) => this.warn({ code: 'brick-load-failed', message }),
-        ...(source ? { source } : {}),
-      };
-      const volume = source ? standInWithLevel0Box(scene.volume, source) : scene.volume;
-      this.fitted = { source: scene.volume, key, volume, bricks };
-      return volume === scene.volume ? scene : { ...scene, volume };
-    }
-    let volume = scene.volume;
-    if (factors.some((f) => f > 1)) {
-      volume = downsampleVolume(scene.volume, factors);
-      const over3D = from.some((d) => d > max3D);
-      const why = over3D
-        ? `a side exceeds this device's 3D texture limit of ${max3D} (maxTextureDimension3D)`
-        : `${voxelCount(from)} voxels x ${perVoxel} bytes exceed the GPU memory budget of ${this.maxGpuBytes} bytes (maxGpuBytes)`;
-      this.warn({
-        code: 'volume-downsampled',
-        factors,
-        from,
-        to: [...volume.dims] as [number, number, number],
-        message: `Volume [${from.join(', ')}] downsampled by [${factors.join(', ')}] to [${volume.dims.join(', ')}]: ${why}`,
-      });
-    }
-    this.fitted = { source: scene.volume, key, volume, bricks: null };
-    return volume === scene.volume ? scene : { ...scene, volume };
+    return volumeBudgetBytes(this.maxGpuBytes, this.width, this.height, this._renderer, this.postChain.steps.length);
   }
 
   private warn(warning: RenderWarning): void {
@@ -492,21 +294,20 @@ export class RenderContext {
   }
 
   setPost(steps: PostStep[]): void {
-    this._post = steps;
-    this.postPasses = [];
+    this.postChain.setSteps(steps);
     this.hdrIteration = -1;
     // Guides are means over every iteration since the reset: a chain that starts using them starts over.
-    if (!this.guidesActive && this.guidesWanted()) this.reset();
+    if (!this.guidesActive && this.postChain.wantsGuides()) this.reset();
   }
 
   setSize(width: number, height: number): void {
-    checkSize(width, height, this.backend);
+    checkRenderSize(width, height, this.backend.limits);
     if (width === this.width && height === this.height) return;
     this.width = width;
     this.height = height;
     this.backend.resizeCanvas(width, height);
     this.destroyRendererTargets();
-    this.destroyPostTargets();
+    this.postChain.destroy();
     this.reset();
   }
 
@@ -514,7 +315,7 @@ export class RenderContext {
   reset(): void {
     this.iteration = 0;
     this.hdrIteration = -1;
-    this.guidesActive = this.guidesWanted();
+    this.guidesActive = this.postChain.wantsGuides();
   }
 
   /** Run n iterations (generate + integrate each). Does not wait for the GPU. */
@@ -579,14 +380,9 @@ export class RenderContext {
   renderImage(): void {
     this.assertAlive();
     if (!this.scene || this.backend.isLost || this.iteration === 0) return;
-    const postKey = JSON.stringify(this._post.map((s) => [s.name, s.uniformValues(), s.defines?.()]));
-    if (
-      this.hdrIteration === this.iteration &&
-      this.postKey === postKey &&
-      this.postPasses.length === this._post.length
-    )
-      return;
-    this.postKey = postKey;
+    const postKey = this.postChain.parameterKey();
+    if (this.hdrIteration === this.iteration && this.postChain.madeWith(postKey)) return;
+    this.postChain.remember(postKey);
     this.prepare();
     const uniforms = this.uniforms(this.scene, this.iteration - 1);
     const accTextures: Record<string, GpuTexture> = {};
@@ -594,23 +390,7 @@ export class RenderContext {
       accTextures[`accum${i}`] = t;
     });
     this.backend.draw(this.passes!.render, { uniforms, textures: accTextures, target: this.hdr! });
-    this.preparePost();
-    let input = this.hdr!.textures[0];
-    this._post.forEach((step, i) => {
-      const pass = this.postPasses[i];
-      const guides = step.usesGuides && this.guides ? this.guides.textures() : {};
-      const draws = postDraws(step);
-      for (let d = 0; d < draws; d++) {
-        // Draws before the last alternate between the two scratch targets; the last writes the step's own.
-        const target = d === draws - 1 ? this.postTargets[i] : this.scratchTarget(d % 2);
-        this.backend.draw(pass, {
-          uniforms: step.uniforms.pack(step.uniformValues(d)),
-          textures: { ...guides, inputImage: input },
-          target,
-        });
-        input = target.textures[0];
-      }
-    });
+    this.postChain.run(this.hdr!.textures[0], this.guides, this.width, this.height);
     this.hdrIteration = this.iteration;
     this.imageVersion++;
   }
@@ -623,7 +403,7 @@ export class RenderContext {
     this.presentPass ??= this.backend.createPass(PRESENT_PASS);
     this.backend.draw(this.presentPass, {
       uniforms: PRESENT_PASS.uniforms.pack({ pad: 0 }),
-      textures: { inputImage: this.ldrTexture() },
+      textures: { inputImage: this.postChain.ldrTexture() },
       target: 'canvas',
     });
     this.presentedVersion = this.imageVersion;
@@ -666,7 +446,7 @@ export class RenderContext {
     this.renderImage();
     if (!this.hdr) throw new VptError('invalid-scene', 'Nothing rendered yet: call setScene() and iterate first');
     const steps = options.afterPost ? this.radianceStepCount() : 0;
-    const image = steps > 0 ? this.postTargets[steps - 1] : this.hdr;
+    const image = steps > 0 ? this.postChain.output(steps - 1) : this.hdr;
     return (await this.backend.readTexture(image.textures[0])) as Float32Array;
   }
 
@@ -676,9 +456,7 @@ export class RenderContext {
    * made that way was processed by them. The last step writes the LDR image and never counts.
    */
   radianceStepCount(): number {
-    let n = 0;
-    while (n < this._post.length - 1 && this._post[n].keepsRadiance) n++;
-    return n;
+    return this.postChain.radianceStepCount();
   }
 
   /** The LDR image after the post chain, RGBA8, top row first (waits for the first sample like readHDR). */
@@ -686,7 +464,7 @@ export class RenderContext {
     if (this.scene && this.iteration === 0) await this.whenSamples(1);
     this.renderImage();
     if (!this.hdr) throw new VptError('invalid-scene', 'Nothing rendered yet: call setScene() and iterate first');
-    return (await this.backend.readTexture(this.ldrTexture())) as Uint8Array;
+    return (await this.backend.readTexture(this.postChain.ldrTexture())) as Uint8Array;
   }
 
   /**
@@ -933,63 +711,6 @@ export class RenderContext {
     }
   }
 
-  /** Some post step reads the denoiser guides. */
-  private guidesWanted(): boolean {
-    return this._post.some((s) => s.usesGuides === true);
-  }
-
-  /** Scratch target k (0 or 1) for the non-final draws of repeated post steps, made on first use. */
-  private scratchTarget(k: number): RenderTarget {
-    while (this.postScratch.length <= k)
-      this.postScratch.push(
-        this.backend.createRenderTarget(
-          this.width,
-          this.height,
-          ['rgba32float'],
-          `post scratch ${this.postScratch.length}`,
-        ),
-      );
-    return this.postScratch[k];
-  }
-
-  private preparePost(): void {
-    if (this.postPasses.length !== this._post.length || this.postTargets.length !== this._post.length) {
-      this.destroyPostTargets();
-      this.postPasses = this._post.map((step, i) =>
-        this.backend.createPass({
-          label: `post.${step.name}`,
-          glsl: step.glsl,
-          wgsl: step.wgsl,
-          uniforms: step.uniforms,
-          textures: [
-            { name: 'inputImage', dimension: '2d' },
-            ...(step.usesGuides ? GUIDE_TEXTURE_NAMES.map((name) => ({ name, dimension: '2d' as const })) : []),
-          ],
-          outputs: [i === this._post.length - 1 ? 'rgba8unorm' : 'rgba32float'],
-          defines: step.defines?.() ?? {},
-        }),
-      );
-      this.postTargets = this._post.map((_, i) =>
-        this.backend.createRenderTarget(
-          this.width,
-          this.height,
-          [i === this._post.length - 1 ? 'rgba8unorm' : 'rgba32float'],
-          `post ${i}`,
-        ),
-      );
-    }
-  }
-
-  private ldrTexture(): GpuTexture {
-    if (this._post.length === 0) {
-      throw new VptError(
-        'invalid-scene',
-        'The post chain is empty: add at least one step (e.g. sRGB encoding) to get an LDR image',
-      );
-    }
-    return this.postTargets[this.postTargets.length - 1].textures[0];
-  }
-
   private destroyRendererTargets(): void {
     if (this.frame) this.backend.destroyRenderTarget(this.frame);
     this.accum?.forEach((t) => this.backend.destroyRenderTarget(t));
@@ -1001,16 +722,9 @@ export class RenderContext {
     this.guides = null;
   }
 
-  private destroyPostTargets(): void {
-    [...this.postTargets, ...this.postScratch].forEach((t) => this.backend.destroyRenderTarget(t));
-    this.postTargets = [];
-    this.postScratch = [];
-    this.postPasses = [];
-  }
-
   private releaseGpuResources(): void {
     this.destroyRendererTargets();
-    this.destroyPostTargets();
+    this.postChain.destroy();
     this.resources.release();
   }
 
@@ -1022,9 +736,7 @@ export class RenderContext {
     this.accum = null;
     this.hdr = null;
     this.guides = null;
-    this.postTargets = [];
-    this.postScratch = [];
-    this.postPasses = [];
+    this.postChain.forget();
     this.presentPass = null;
     this.resources.forget();
     this.passes = null;
@@ -1035,42 +747,4 @@ export class RenderContext {
     this.reset();
     this.loop.resume();
   }
-}
-
-/** Draws of a post step: its `repeat` (a positive integer), else 1. */
-function postDraws(step: PostStep): number {
-  const r = step.repeat ?? 1;
-  if (!Number.isInteger(r) || r < 1)
-    throw new VptError('invalid-scene', `post step "${step.name}": repeat must be a positive integer, got ${r}`);
-  return r;
-}
-
-/** maxGpuBytes when the caller gives none: WebGPU's maxBufferSize (one allocation the device admits) within [1 GiB, 4 GiB]; 1 GiB on WebGL 2, which reports no memory figure. */
-function defaultGpuBytes(backend: GpuBackend): number {
-  const m = backend.limits.maxBufferSize;
-  return m ? Math.min(MAX_DEFAULT_GPU_BYTES, Math.max(DEFAULT_GPU_BYTES, m)) : DEFAULT_GPU_BYTES;
-}
-
-function checkSize(width: number, height: number, backend: GpuBackend): void {
-  const max = backend.limits.maxTextureDimension2D;
-  if (!Number.isInteger(width) || !Number.isInteger(height) || width < 1 || height < 1) {
-    throw new VptError('invalid-scene', `Render size must be positive integers, got ${width} x ${height}`);
-  }
-  if (width > max || height > max)
-    throw new VptError(
-      'limit-exceeded',
-      `Render size ${width} x ${height} exceeds this device's 2D texture limit of ${max} (maxTextureDimension2D)`,
-    );
-}
-
-/**
- * The stand-in of a streamed volume as the scene renders it: its voxels, with the spacing
- * stretched so that its box is the source's level 0 (a coarser level's box can be a little
- * larger or smaller, its sides rounded to whole voxels), and the source's value range.
- */
-function standInWithLevel0Box(standIn: Scene['volume'], source: MultiscaleSource): Scene['volume'] {
-  const l0 = source.levels[0];
-  const spacing = [0, 1, 2].map((a) => (l0.dims[a] * l0.spacing[a]) / standIn.dims[a]) as [number, number, number];
-  const valueRange = source.valueRange ?? standIn.valueRange;
-  return { ...standIn, spacing, ...(valueRange ? { valueRange: [valueRange[0], valueRange[1]] } : {}) };
 }

@@ -140,9 +140,14 @@ function environmentOf(d: SceneDescription): Environment {
   return env;
 }
 
-/** Build the core Scene for a description (defaults filled in). */
+/** Build the core Scene for a description (defaults filled in): the page API's entry, which checks it. */
 async function buildScene(d: SceneDescription, baseUrl?: string): Promise<Scene> {
   checkSceneDescription(d, [...rendererClasses.keys()]);
+  return sceneOf(d, baseUrl);
+}
+
+/** The Scene of a description that was checked where it entered the page (buildScene, renderDescription). */
+async function sceneOf(d: SceneDescription, baseUrl?: string): Promise<Scene> {
   const tf = d.transferFunction;
   return {
     volume: await loadVolume(d.volume ?? SCENE_DEFAULTS.volume, baseUrl),
@@ -214,7 +219,8 @@ async function renderDescription(
     // An OME-Zarr level 0 beyond the budget streams through the brick cache, from the finest level that fits.
     const streamed = await zarrToStream(desc, ctx, options.baseUrl ?? document.baseURI);
     const volume = streamed && { ...(desc.volume as ZarrVolumeDescription), level: streamed.level };
-    const scene = await buildScene(volume ? { ...desc, volume } : desc, options.baseUrl);
+    // Checked on entry above; the level added to a streamed volume is the page's own.
+    const scene = await sceneOf(volume ? { ...desc, volume } : desc, options.baseUrl);
     if (streamed) ctx.setVolumeSource(scene.volume, streamed.source);
     ctx.setScene(scene);
     // Every brick the view needs (or as many as the atlas holds) before the timed iterations.

@@ -1,0 +1,201 @@
+import type { MultiscaleSource } from '../bricking/source.js';
+import { VptError } from '../errors.js';
+import type { Renderer } from '../renderer.js';
+import { downsampleVolume, fitFactors } from '../scene/downsample.js';
+import type { Scene } from '../scene/scene.js';
+import { TF_RESOLUTION } from '../scene/transfer-function.js';
+import { voxelCount } from '../scene/volume.js';
+import type { VolumeOptions } from './context-options.js';
+import { sameVoxels, type BrickPlan, type SceneResources } from './scene-resources.js';
+
+/**
+ * The GPU memory budget's fit of a scene's volume: each side within the 3D texture limit
+ * and the whole within maxGpuBytes, by integer box-average downsampling (scene/downsample.ts)
+ * or, with bricking, by a brick atlas with a page table (bricking/); and the multiscale
+ * sources that back stand-in volumes (RenderContext.setVolumeSource).
+ */
+
+/** Something the context changed to make a scene fit or could not load, reported through onWarning (and console.warn without a listener). */
+export type RenderWarning = VolumeDownsampledWarning | BrickLoadWarning;
+
+/** A brick of a streamed volume (setVolumeSource) could not be read; a coarser level keeps serving its region. */
+export interface BrickLoadWarning {
+  code: 'brick-load-failed';
+  message: string;
+}
+
+export interface VolumeDownsampledWarning {
+  code: 'volume-downsampled';
+  message: string;
+  /** Integer box-average factors per axis. */
+  factors: [number, number, number];
+  from: [number, number, number];
+  to: [number, number, number];
+}
+
+/**
+ * Bytes a volume (with its gradient) or a brick atlas may take at this size, renderer and
+ * post chain: maxGpuBytes less the render targets (16 bytes a texel: frames, two sets of
+ * accumulations, the HDR image, one target per post step) and the transfer function.
+ */
+export function volumeBudgetBytes(
+  maxGpuBytes: number,
+  width: number,
+  height: number,
+  renderer: Pick<Renderer, 'frameFormats' | 'accumulationFormats'>,
+  postSteps: number,
+): number {
+  const pixels = width * height;
+  const targetBytes =
+    pixels * 16 * (renderer.frameFormats.length + 2 * renderer.accumulationFormats.length + 1 + postSteps);
+  return maxGpuBytes - targetBytes - TF_RESOLUTION * 16 * 256;
+}
+
+/** What the fit reads of the context at the time of each fit. */
+export interface VolumeFitHost {
+  readonly resources: Pick<SceneResources, 'planUpload' | 'wantsGradient'>;
+  readonly maxGpuBytes: number;
+  /** The device's 3D texture limit (maxTextureDimension3D). */
+  max3D(): number;
+  /** The render size now. */
+  size(): { width: number; height: number };
+  /** volumeBudgetBytes for the current size, renderer and post chain. */
+  budgetBytes(): number;
+  warn(warning: RenderWarning): void;
+}
+
+export class VolumeFit {
+  // The last fit: a scene volume → the volume actually uploaded (itself when it fits).
+  private fitted: { source: Scene['volume']; key: string; volume: Scene['volume']; bricks: BrickPlan | null } | null =
+    null;
+  // Volumes backed by a multiscale source (setVolumeSource): the scene's volume is a stand-in.
+  private readonly volumeSources = new WeakMap<Scene['volume'], MultiscaleSource>();
+
+  constructor(
+    private readonly options: VolumeOptions,
+    private readonly host: VolumeFitHost,
+  ) {}
+
+  /** The brick plan of the last fit (null: the volume is one texture). */
+  get bricks(): BrickPlan | null {
+    return this.fitted?.bricks ?? null;
+  }
+
+  /** Forget the last fit (the scene it was made for was not kept). */
+  forget(): void {
+    this.fitted = null;
+  }
+
+  /** RenderContext.setVolumeSource: checks the source and remembers it for `standIn`. */
+  setVolumeSource(standIn: Scene['volume'], source: MultiscaleSource): void {
+    const l = source?.levels;
+    const ok =
+      Array.isArray(l) &&
+      l.length > 0 &&
+      l.every(
+        (v) =>
+          [v.dims, v.spacing, v.origin].every((a) => Array.isArray(a) && a.length === 3 && a.every(Number.isFinite)) &&
+          v.dims.every((d) => Number.isInteger(d) && d >= 1) &&
+          v.spacing.every((x) => x > 0),
+      ) &&
+      typeof source.readRegion === 'function';
+    if (!ok)
+      throw new VptError(
+        'invalid-scene',
+        'setVolumeSource: the source needs levels (level 0 finest) with positive integer dims, positive spacing, an origin each, and readRegion()',
+      );
+    if (source.type !== standIn.type)
+      throw new VptError(
+        'invalid-scene',
+        `setVolumeSource: the stand-in volume is ${standIn.type}, the source ${source.type}; they must match`,
+      );
+    this.volumeSources.set(standIn, source);
+  }
+
+  /**
+   * The scene with a volume that fits the device: each side within the 3D texture limit and
+   * the whole within maxGpuBytes (volume + gradient at this scene's sampling, plus the render
+   * targets and the TF); otherwise downsampled by integer box averages (scene/downsample.ts)
+   * with a warning naming the factors. The fit is kept per source volume, so setting the same
+   * volume again neither recomputes nor warns again.
+   */
+  fitScene(scene: Scene): Scene {
+    const host = this.host;
+    const { width, height } = host.size();
+    const sampling = scene.sampling ?? this.options.sampling;
+    const gradient = host.resources.wantsGradient(scene);
+    const key = `${sampling}|${gradient}|${width}x${height}`;
+    const f = this.fitted;
+    if (f && f.key === key && f.source === scene.volume) {
+      return f.volume === scene.volume ? scene : { ...scene, volume: f.volume };
+    }
+    if (f && f.key === key && f.bricks && !f.bricks.source && sameVoxels(f.source, scene.volume)) {
+      this.fitted = { ...f, source: scene.volume, volume: scene.volume };
+      return scene;
+    }
+    if (f && f.key === key && sameVoxels(f.source, scene.volume) && f.volume !== f.source) {
+      // The same voxels with another value range: keep the downsampled copy, take the new range.
+      const volume = { ...f.volume, valueRange: scene.volume.valueRange };
+      this.fitted = { source: scene.volume, key, volume, bricks: null };
+      return { ...scene, volume };
+    }
+    const upload = host.resources.planUpload(scene.volume, sampling);
+    const perVoxel = upload.bytesPerVoxel + (gradient ? (sampling === 'exact' ? 4 : 2) : 0);
+    const budget = host.budgetBytes();
+    const max3D = host.max3D();
+    const from = [...scene.volume.dims] as [number, number, number];
+    const factors = fitFactors(from, perVoxel, budget, max3D);
+    if (!factors) {
+      throw new VptError(
+        'limit-exceeded',
+        `maxGpuBytes (${host.maxGpuBytes} bytes) leaves no room for a volume next to the ${width} x ${height} render targets`,
+      );
+    }
+    // Bricks instead of a downsampled copy: the full data stays available to the view.
+    const brickable = scene.transferFunction.dimensions !== '2d' && !gradient;
+    const source = this.volumeSources.get(scene.volume);
+    const bricking = this.options.bricking;
+    if (brickable && (source || bricking === 'force' || (bricking === 'auto' && factors.some((f) => f > 1)))) {
+      const bricks: BrickPlan = {
+        capacityBytes: budget,
+        brickSize: this.options.brickSize,
+        uploadsPerFrame: this.options.brickUploadsPerFrame,
+        lod: this.options.brickLod,
+        onFailure: (message) => host.warn({ code: 'brick-load-failed', message }),
+        ...(source ? { source } : {}),
+      };
+      const volume = source ? standInWithLevel0Box(scene.volume, source) : scene.volume;
+      this.fitted = { source: scene.volume, key, volume, bricks };
+      return volume === scene.volume ? scene : { ...scene, volume };
+    }
+    let volume = scene.volume;
+    if (factors.some((f) => f > 1)) {
+      volume = downsampleVolume(scene.volume, factors);
+      const over3D = from.some((d) => d > max3D);
+      const why = over3D
+        ? `a side exceeds this device's 3D texture limit of ${max3D} (maxTextureDimension3D)`
+        : `${voxelCount(from)} voxels x ${perVoxel} bytes exceed the GPU memory budget of ${host.maxGpuBytes} bytes (maxGpuBytes)`;
+      host.warn({
+        code: 'volume-downsampled',
+        factors,
+        from,
+        to: [...volume.dims] as [number, number, number],
+        message: `Volume [${from.join(', ')}] downsampled by [${factors.join(', ')}] to [${volume.dims.join(', ')}]: ${why}`,
+      });
+    }
+    this.fitted = { source: scene.volume, key, volume, bricks: null };
+    return volume === scene.volume ? scene : { ...scene, volume };
+  }
+}
+
+/**
+ * The stand-in of a streamed volume as the scene renders it: its voxels, with the spacing
+ * stretched so that its box is the source's level 0 (a coarser level's box can be a little
+ * larger or smaller, its sides rounded to whole voxels), and the source's value range.
+ */
+function standInWithLevel0Box(standIn: Scene['volume'], source: MultiscaleSource): Scene['volume'] {
+  const l0 = source.levels[0];
+  const spacing = [0, 1, 2].map((a) => (l0.dims[a] * l0.spacing[a]) / standIn.dims[a]) as [number, number, number];
+  const valueRange = source.valueRange ?? standIn.valueRange;
+  return { ...standIn, spacing, ...(valueRange ? { valueRange: [valueRange[0], valueRange[1]] } : {}) };
+}
