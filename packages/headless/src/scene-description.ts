@@ -5,12 +5,12 @@
  * loaded by the in-browser page.
  */
 
-import type { TransferWidget } from '@vpt/core';
+import { DEFAULT_RENDERER_NAME, type TransferWidget } from '@vpt/core';
 
 export type Vec3 = [number, number, number];
 export type VoxelTypeName = 'uint8' | 'uint16' | 'int16' | 'float32';
 export type BackendName = 'auto' | 'webgl2' | 'webgpu';
-/** A renderer of core's RENDERER_CATALOG (`'eam' | 'mip' | 'mcrt' | 'iso'` in this repository). */
+/** A renderer of core's RENDERER_CATALOG. */
 export type RendererName = string;
 
 /** Raw voxels at a URL (relative URLs resolve against the scene file's folder). */
@@ -97,7 +97,7 @@ export interface SceneDescription {
 export const SCENE_DEFAULTS = {
   width: 64,
   height: 64,
-  renderer: 'eam' as RendererName,
+  renderer: DEFAULT_RENDERER_NAME as RendererName,
   volume: { procedural: 'sphere', size: 32 } as VolumeDescription,
   environment: { type: 'constant', radiance: [1, 1, 1] } as EnvironmentDescription,
   densityScale: 10,
