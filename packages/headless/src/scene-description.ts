@@ -5,7 +5,7 @@
  * loaded by the in-browser page.
  */
 
-import { DEFAULT_RENDERER_NAME, type TransferWidget } from '@vpt/core';
+import type { TransferWidget } from '@vpt/core';
 
 export type Vec3 = [number, number, number];
 export type VoxelTypeName = 'uint8' | 'uint16' | 'int16' | 'float32';
@@ -94,10 +94,10 @@ export interface SceneDescription {
   backend?: BackendName;
 }
 
+/** What an unset field means (an unset renderer is core's DEFAULT_RENDERER_NAME). */
 export const SCENE_DEFAULTS = {
   width: 64,
   height: 64,
-  renderer: DEFAULT_RENDERER_NAME as RendererName,
   volume: { procedural: 'sphere', size: 32 } as VolumeDescription,
   environment: { type: 'constant', radiance: [1, 1, 1] } as EnvironmentDescription,
   densityScale: 10,

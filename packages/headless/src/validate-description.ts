@@ -5,7 +5,7 @@
  * so a bad scene file fails at once with a VptError naming the field and the limit.
  * Loaded by the CLI in Node and by the headless page (after its packages loaded).
  */
-import { BACKEND_NAMES, SCENE_DEFAULTS, type RendererName, type SceneDescription } from './scene-description.js';
+import { BACKEND_NAMES, type RendererName, type SceneDescription } from './scene-description.js';
 import {
   checkKnownKeys,
   checkNumber,
@@ -26,6 +26,7 @@ import {
   validateCamera,
   validateEnvironment,
   validateLights,
+  DEFAULT_RENDERER_NAME,
   RENDERER_CATALOG,
   validateRendererParams,
   VptError,
@@ -168,7 +169,7 @@ export function validateSceneDescription(d: unknown): SceneDescription {
         unit: 'extinction per world unit; MAX_DENSITY_SCALE',
       });
     const renderer =
-      s.renderer === undefined ? SCENE_DEFAULTS.renderer : checkOneOf('renderer', s.renderer, rendererNames());
+      s.renderer === undefined ? DEFAULT_RENDERER_NAME : checkOneOf('renderer', s.renderer, rendererNames());
     if (s.backend !== undefined) checkOneOf('backend', s.backend, BACKEND_NAMES);
     if (s.sampling !== undefined) checkOneOf('sampling', s.sampling, ['fast', 'exact'] as const);
     if (s.maxGpuBytes !== undefined)
