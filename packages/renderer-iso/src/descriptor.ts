@@ -3,7 +3,14 @@
  * viewer look. Side-effect free and kernel free, so user interfaces import it alone
  * (`@vpt/renderer-iso/descriptor`).
  */
-import { defineRenderer, stepInVoxels, VptError, type ParamsOf, type RendererParamSpec } from '@vpt/core';
+import {
+  constantDefault,
+  defineRenderer,
+  stepInVoxels,
+  VptError,
+  type ParamsOf,
+  type RendererParamSpec,
+} from '@vpt/core';
 
 /** One isosurface: where the normalized value crosses `value`, with its own colour and opacity. */
 export interface IsoSurface {
@@ -161,7 +168,7 @@ export const ISO_DESCRIPTOR = defineRenderer({
      */
     emptySpaceSkipping: { kind: 'boolean', default: true },
   },
-  check: (p) => void resolveIsoSurfaces(p.surfaces),
+  check: (p) => void resolveIsoParams(p),
   writesGuides: true,
   needs: { transferFunction: false, lights: true, environment: true },
   look: {
@@ -183,6 +190,59 @@ export const ISO_DESCRIPTOR = defineRenderer({
 });
 
 export type IsoParams = ParamsOf<typeof ISO_DESCRIPTOR>;
+
+export interface ResolvedIsoParams {
+  surfaces: Required<IsoSurface>[];
+  stepSize: number | null;
+  specular: number;
+  shininess: number;
+  shadows: boolean;
+  ambientOcclusion: boolean;
+  aoRadius: number;
+  lightAngularRadius: number;
+  jitter: boolean;
+  output: IsoOutput;
+  emptySpaceSkipping: boolean;
+}
+
+const DEFAULT = <K extends keyof IsoParams>(key: K) => constantDefault(ISO_DESCRIPTOR, key) as Required<IsoParams>[K];
+
+/** Defaults filled in and every value checked; throws VptError('invalid-scene') naming the parameter. */
+export function resolveIsoParams(p: IsoParams): ResolvedIsoParams {
+  const resolved = resolveIsoSurfaces(p.surfaces);
+  if (p.stepSize !== undefined && !(finite(p.stepSize) && p.stepSize >= 1e-4 && p.stepSize <= 1))
+    bad(`stepSize must be in [1e-4, 1] world units, got ${p.stepSize}`);
+  const specular = p.specular ?? DEFAULT('specular');
+  if (!(finite(specular) && specular >= 0 && specular <= 1)) bad(`specular must be in [0, 1], got ${p.specular}`);
+  const shininess = p.shininess ?? DEFAULT('shininess');
+  if (!(finite(shininess) && shininess > 0 && shininess <= 1e4))
+    bad(`shininess must be in (0, 10000], got ${p.shininess}`);
+  const aoRadius = p.aoRadius ?? DEFAULT('aoRadius');
+  if (!(aoRadius > 0) || Number.isNaN(aoRadius))
+    bad(`aoRadius must be positive (Infinity for unlimited), got ${p.aoRadius}`);
+  const lightAngularRadius = p.lightAngularRadius ?? DEFAULT('lightAngularRadius');
+  if (!(finite(lightAngularRadius) && lightAngularRadius >= 0 && lightAngularRadius < Math.PI / 2))
+    bad(`lightAngularRadius must be in [0, π/2) radians, got ${p.lightAngularRadius}`);
+  const output = p.output ?? DEFAULT('output');
+  if (!ISO_DESCRIPTOR.params.output.values.includes(output))
+    bad(`output must be one of ${ISO_DESCRIPTOR.params.output.values.join(', ')}, got ${JSON.stringify(p.output)}`);
+  for (const k of ['shadows', 'ambientOcclusion', 'jitter', 'emptySpaceSkipping'] as const) {
+    if (p[k] !== undefined && typeof p[k] !== 'boolean') bad(`${k} must be true or false, got ${JSON.stringify(p[k])}`);
+  }
+  return {
+    surfaces: resolved,
+    stepSize: p.stepSize ?? null,
+    specular,
+    shininess,
+    shadows: p.shadows ?? DEFAULT('shadows'),
+    ambientOcclusion: p.ambientOcclusion ?? DEFAULT('ambientOcclusion'),
+    aoRadius,
+    lightAngularRadius,
+    jitter: p.jitter ?? DEFAULT('jitter'),
+    output,
+    emptySpaceSkipping: p.emptySpaceSkipping ?? DEFAULT('emptySpaceSkipping'),
+  };
+}
 
 /** The package's descriptor under the name every renderer package uses (the generated loaders read it). */
 export { ISO_DESCRIPTOR as descriptor };
