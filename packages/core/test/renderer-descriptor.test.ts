@@ -111,6 +111,12 @@ describe('renderer descriptor', () => {
       depth: -1,
     });
     expect(paramUniformValues(PROBE, resolveRendererParams(PROBE, { mode: 'one' }, scene)).depth).toBe(1);
+    // An unlimited gain would be Infinity in the uniform: refused.
+    expectVptError(
+      () => paramUniformValues(PROBE, resolveRendererParams(PROBE, { gain: Infinity }, scene)),
+      'invalid-scene',
+      /PROBE\.gain: no finite uniform value \(got Infinity\)/,
+    );
     // Without the scene the step has no value: refused rather than NaN in a uniform.
     expectVptError(
       () => paramUniformValues(PROBE, resolveRendererParams(PROBE, {})),

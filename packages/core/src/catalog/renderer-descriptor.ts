@@ -221,15 +221,16 @@ export function paramUniformFields(d: RendererDescriptor): UniformField[] {
   );
 }
 
-/** The uniform values of resolved parameters (resolveRendererParams with the scene). */
+/** The uniform values of resolved parameters (resolveRendererParams with the scene); throws VptError('invalid-scene') for a missing or non-finite one. */
 export function paramUniformValues(d: RendererDescriptor, resolved: Readonly<Record<string, unknown>>): UniformValues {
   const out: UniformValues = {};
   for (const [k, p] of Object.entries(d.params)) {
     if (!p.uniform) continue;
     const v = resolved[k];
     const packed = p.uniform.pack ? (p.uniform.pack as (v: unknown, r: typeof resolved) => number)(v, resolved) : v;
-    if (typeof packed !== 'number' || Number.isNaN(packed))
-      throw new VptError('invalid-scene', `${d.owner}.${k}: no uniform value (got ${JSON.stringify(v)})`);
+    // A uniform is a finite number: NaN or Infinity would reach the accumulation buffers.
+    if (typeof packed !== 'number' || !Number.isFinite(packed))
+      throw new VptError('invalid-scene', `${d.owner}.${k}: no finite uniform value (got ${String(v)})`);
     out[p.uniform.name ?? k] = packed;
   }
   return out;
