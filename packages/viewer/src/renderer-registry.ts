@@ -34,8 +34,10 @@ export interface RendererEntry {
 const registry = new Map<string, RendererEntry>();
 const loaded = new Map<string, Promise<RendererConstructor>>();
 
+/** Add (or replace) a renderer; without `params`, the quality panel offers its descriptor's controls. */
 export function registerRenderer(entry: RendererEntry): void {
-  registry.set(entry.name, entry);
+  const params = entry.params ?? (entry.descriptor ? rendererControls(entry.descriptor) : undefined);
+  registry.set(entry.name, params ? { ...entry, params } : entry);
   loaded.delete(entry.name);
 }
 
@@ -97,8 +99,7 @@ for (const e of RENDERER_CATALOG) {
     // An absent optional package has no descriptor: listed by name, it fails when chosen.
     label: descriptor?.label ?? e.name,
     packageName: e.packageName,
-    params: descriptor ? rendererControls(descriptor) : [],
-    ...(descriptor ? { descriptor } : {}),
+    ...(descriptor ? { descriptor } : { params: [] }),
     load: () =>
       (PACKAGE_LOADERS[e.packageName] ?? (() => import(/* @vite-ignore */ e.packageName)))().then((m) =>
         exported<RendererConstructor>(m, e.exportName),

@@ -1,7 +1,19 @@
 import { describe, expect, it } from 'vitest';
-import { createProceduralVolume, RENDERER_CATALOG, type Renderer, type RendererParamSpec } from '@vpt/core';
+import {
+  createProceduralVolume,
+  defineRenderer,
+  RENDERER_CATALOG,
+  type Renderer,
+  type RendererParamSpec,
+} from '@vpt/core';
 import { testScene } from '../../../tests/helpers/test-scene.js';
-import { createRenderer, PACKAGE_LOADERS, rendererEntries } from '../src/renderer-registry.js';
+import {
+  createRenderer,
+  PACKAGE_LOADERS,
+  registerRenderer,
+  rendererEntries,
+  rendererEntry,
+} from '../src/renderer-registry.js';
 
 /** A renderer's effective value of one control's parameter, read from the renderer itself (not its descriptor). */
 function effectiveValue(r: Renderer, spec: RendererParamSpec, dims: number): unknown {
@@ -35,6 +47,27 @@ describe('renderer registry', () => {
       expect(e.descriptor?.name).toBe(e.name);
       expect(e.label).toBe(e.descriptor?.label);
     }
+  });
+
+  it("offers an application renderer's descriptor controls when it registers without params", () => {
+    const descriptor = defineRenderer({
+      name: 'app-probe',
+      label: 'App probe',
+      owner: 'APP',
+      params: { gain: { kind: 'number', min: 0, max: 2, default: 0.5, ui: { label: 'Gain' } } },
+      writesGuides: false,
+      needs: { transferFunction: true, lights: false, environment: false },
+    });
+    registerRenderer({
+      name: 'app-probe',
+      label: 'App probe',
+      packageName: 'app',
+      load: async () => null!,
+      descriptor,
+    });
+    expect(rendererEntry('app-probe')?.params).toEqual([
+      { name: 'gain', label: 'Gain', min: 0, max: 2, placeholder: '0.5' },
+    ]);
   });
 
   // The quality panel's placeholders and shown defaults against what each renderer does when the parameter is unset.
