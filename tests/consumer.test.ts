@@ -17,16 +17,15 @@ import { nodeResolve } from '@rollup/plugin-node-resolve';
 import commonjs from '@rollup/plugin-commonjs';
 import type { Browser } from 'puppeteer-core';
 import { encodePNG, launchChromium, startStaticServer, type StaticServer } from '../packages/headless/src/index.js';
+import { RENDERER_CATALOG } from '@vpt/core';
 import { ROOT } from './helpers/viewer-page.js';
 
 const run = promisify(execFile);
+/** Package folders under packages/: every renderer package of core's catalog among them. */
 const PACKAGES = [
   'core',
   'post',
-  'renderer-mip',
-  'renderer-eam',
-  'renderer-iso',
-  'renderer-mcrt',
+  ...new Set(RENDERER_CATALOG.map((e) => e.packageName.replace(/^@vpt\//, ''))),
   'loaders',
   'viewer',
   'headless',

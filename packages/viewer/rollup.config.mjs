@@ -10,10 +10,15 @@ import terser from '@rollup/plugin-terser';
 import commonjs from '@rollup/plugin-commonjs';
 import { libraryConfig } from '../../rollup.lib.mjs';
 
-// Packages the viewer imports only dynamically and that may not be installed (or built):
-// each missing one becomes a module that rejects, so only its renderer (or the full
-// loaders) is unavailable and the rest of the viewer builds and runs.
-const OPTIONAL = ['@vpt/renderer-iso', '@vpt/renderer-mcrt', '@vpt/loaders'];
+// Packages that may not be installed (or built): every renderer package (this package's
+// @vpt/renderer-* dependencies, written from core's catalog by `pnpm run gen:renderers`) and
+// the full loaders. Each missing one (and its subpaths, such as its descriptor) becomes a stub
+// module, so only that renderer (or the full loaders) is unavailable and the rest builds and runs.
+const OWN_PACKAGE = JSON.parse(fs.readFileSync(new URL('./package.json', import.meta.url), 'utf8'));
+const OPTIONAL = [
+  ...Object.keys(OWN_PACKAGE.dependencies).filter((name) => name.startsWith('@vpt/renderer-')),
+  '@vpt/loaders',
+];
 
 // Only this package's own node_modules counts (a declared dependency): Node's resolution
 // from here would also find pnpm's hidden hoisted copies, which a user's install lacks.
@@ -38,7 +43,7 @@ function optionalPackages(needBuilt) {
     plugin: {
       name: 'vpt-optional-packages',
       resolveId(id) {
-        return missing.includes(id) ? PREFIX + id : null;
+        return missing.some((name) => id === name || id.startsWith(`${name}/`)) ? PREFIX + id : null;
       },
       load(id) {
         if (!id.startsWith(PREFIX)) return null;
@@ -54,7 +59,8 @@ function optionalPackages(needBuilt) {
 const lib = libraryConfig({ input: { index: 'src/index.ts', bundle: 'src/bundle.ts' } });
 const libOptional = optionalPackages(false);
 const libExternal = lib.external;
-lib.external = (id, ...rest) => !libOptional.missing.includes(id) && libExternal(id, ...rest);
+lib.external = (id, ...rest) =>
+  !libOptional.missing.some((name) => id === name || id.startsWith(`${name}/`)) && libExternal(id, ...rest);
 lib.plugins = [libOptional.plugin, ...lib.plugins];
 
 const bundleOptional = optionalPackages(true);

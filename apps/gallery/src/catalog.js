@@ -7,14 +7,22 @@
 // The automatic transfer function, albedo conversion, isovalue and key light are the
 // viewer's own defaults (packages/viewer/src/defaults.ts), so the gallery and a bare
 // <vpt-viewer src> agree.
-import { asAlbedo, autoTransferFunction, fitCamera, isoValueOf, keyLight } from './vpt-viewer.bundle.js';
+import {
+  asAlbedo,
+  autoTransferFunction,
+  core,
+  fitCamera,
+  isoValueOf,
+  keyLight,
+  rendererEntries,
+} from './vpt-viewer.bundle.js';
 
-export const RENDERERS = [
-  { name: 'mip', label: 'MIP' },
-  { name: 'iso', label: 'Isosurface' },
-  { name: 'eam', label: 'Emission–absorption' },
-  { name: 'mcrt', label: 'Path traced' },
-];
+// Every renderer the viewer registers (core's catalog), in its order; the gallery's shorter
+// names for some, the others under their descriptor's label.
+const SHORT_LABELS = { mip: 'MIP', mcrt: 'Path traced' };
+export const RENDERERS = rendererEntries().map((e) => ({ name: e.name, label: SHORT_LABELS[e.name] ?? e.label }));
+/** The renderer a dataset opens with when neither the link nor the previous choice names one. */
+export const DEFAULT_RENDERER = core.DEFAULT_RENDERER_NAME;
 
 const PROCEDURAL = [
   {

@@ -2,7 +2,7 @@
 // state (dataset, renderer, transfer function, camera, exposure, tone mapper, density)
 // lives in the URL, so any view can be linked to; the link restores it.
 import './vpt-viewer.bundle.js';
-import { catalogInfo, loadCatalog, presetFor, RENDERERS } from './catalog.js';
+import { catalogInfo, DEFAULT_RENDERER, loadCatalog, presetFor, RENDERERS } from './catalog.js';
 import { overridesOf, readState, stateQuery, wireCopyLink } from './state.js';
 
 const $ = (id) => document.getElementById(id);
@@ -62,7 +62,7 @@ function renderDatasetList() {
       b.innerHTML = '<span class="t"></span><span class="f"></span>';
       b.querySelector('.t').textContent = d.title;
       b.querySelector('.f').textContent = facts + (d.gpl ? ' · GPL' : '');
-      b.addEventListener('click', () => select(d.id, current?.renderer ?? 'eam', {}, true));
+      b.addEventListener('click', () => select(d.id, current?.renderer ?? DEFAULT_RENDERER, {}, true));
       li.append(b);
       ul.append(li);
     }
@@ -146,7 +146,7 @@ viewer.addEventListener('vpt-change', () => {
 });
 window.addEventListener('popstate', () => {
   const s = readState();
-  select(s.dataset ?? current?.dataset.id, s.renderer ?? 'eam', overridesOf(s));
+  select(s.dataset ?? current?.dataset.id, s.renderer ?? DEFAULT_RENDERER, overridesOf(s));
 });
 wireCopyLink(() => updateUrl(false));
 
@@ -162,5 +162,9 @@ window.gallery = {
 
 const first =
   catalog.find((d) => d.id === page.dataset) ?? catalog.find((d) => d.bundled && d.format === 'raw') ?? catalog[0];
-await select(first.id, RENDERERS.some((r) => r.name === page.renderer) ? page.renderer : 'eam', overridesOf(page));
+await select(
+  first.id,
+  RENDERERS.some((r) => r.name === page.renderer) ? page.renderer : DEFAULT_RENDERER,
+  overridesOf(page),
+);
 window.__galleryReady = true;

@@ -84,11 +84,36 @@ export * as reference from './reference/cpu-reference.js';
 
 export {
   RENDERER_CATALOG,
+  DEFAULT_RENDERER_NAME,
   rendererCatalogEntry,
   rendererNames,
   type RendererCatalogEntry,
-  type RendererParamSpec,
 } from './catalog/renderer-catalog.js';
+export {
+  defineRenderer,
+  stepInVoxels,
+  paramSpecsOf,
+  validateRendererParams,
+  resolveRendererParams,
+  constantDefault,
+  paramUniformFields,
+  paramUniformValues,
+  rendererControls,
+  type RendererDescriptor,
+  type RendererParam,
+  type RendererParams,
+  type RendererParamSpec,
+  type ParamsOf,
+  type ParamUi,
+  type ParamUniform,
+  type NumberParam,
+  type StepParam,
+  type EnumParam,
+  type BooleanParam,
+  type CustomParam,
+  type RendererLookDefaults,
+  type RendererInputs,
+} from './catalog/renderer-descriptor.js';
 export * from './validation/limits.js';
 export {
   describeValue,

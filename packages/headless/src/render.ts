@@ -21,7 +21,7 @@ export interface VptPageOptions {
   onConsole?: (line: string) => void;
   /**
    * Serve other folders for some of the page's packages, by URL folder name
-   * (`core`, `renderer-mip`, `renderer-eam`, `post`), e.g. another build of core.
+   * (`core`, `post`, `renderer-<name>`), e.g. another build of core.
    */
   packageDirs?: Record<string, string>;
   /** How long the page may take to load the packages, in ms (default 60 s). */

@@ -10,7 +10,7 @@ import type { TransferWidget } from '@vpt/core';
 export type Vec3 = [number, number, number];
 export type VoxelTypeName = 'uint8' | 'uint16' | 'int16' | 'float32';
 export type BackendName = 'auto' | 'webgl2' | 'webgpu';
-/** A renderer of core's RENDERER_CATALOG (`'eam' | 'mip' | 'mcrt' | 'iso'` in this repository). */
+/** A renderer of core's RENDERER_CATALOG. */
 export type RendererName = string;
 
 /** Raw voxels at a URL (relative URLs resolve against the scene file's folder). */
@@ -94,10 +94,10 @@ export interface SceneDescription {
   backend?: BackendName;
 }
 
+/** What an unset field means (an unset renderer is core's DEFAULT_RENDERER_NAME). */
 export const SCENE_DEFAULTS = {
   width: 64,
   height: 64,
-  renderer: 'eam' as RendererName,
   volume: { procedural: 'sphere', size: 32 } as VolumeDescription,
   environment: { type: 'constant', radiance: [1, 1, 1] } as EnvironmentDescription,
   densityScale: 10,

@@ -5,7 +5,7 @@
  * so a bad scene file fails at once with a VptError naming the field and the limit.
  * Loaded by the CLI in Node and by the headless page (after its packages loaded).
  */
-import { BACKEND_NAMES, SCENE_DEFAULTS, type RendererName, type SceneDescription } from './scene-description.js';
+import { BACKEND_NAMES, type RendererName, type SceneDescription } from './scene-description.js';
 import {
   checkKnownKeys,
   checkNumber,
@@ -26,17 +26,16 @@ import {
   validateCamera,
   validateEnvironment,
   validateLights,
-  validateParams,
+  DEFAULT_RENDERER_NAME,
+  RENDERER_CATALOG,
+  validateRendererParams,
   VptError,
   type Camera,
   type Environment,
   type Light,
 } from '@vpt/core';
 import { postChainFromJSON } from '@vpt/post';
-import { EAM_PARAM_SPECS } from '@vpt/renderer-eam';
-import { MIP_PARAM_SPECS } from '@vpt/renderer-mip';
-import { ISO_PARAM_SPECS, resolveIsoParams } from '@vpt/renderer-iso';
-import { MCRT_PARAM_SPECS, resolveParams as resolveMcrtParams } from '@vpt/renderer-mcrt';
+import { RENDERER_DESCRIPTORS } from './renderers.generated.js';
 
 const TOP_KEYS = [
   'width',
@@ -62,21 +61,15 @@ const PROCEDURAL_KINDS = ['sphere', 'cube', 'ramp', 'blob'] as const;
 export const MAX_VOLUME_SIDE = 2048;
 
 /**
- * Renderer parameters of each renderer of core's RENDERER_CATALOG: declared ranges and
- * unknown keys, then the renderer's own rules across them.
+ * Renderer parameters of each renderer of core's RENDERER_CATALOG, checked by its descriptor:
+ * declared ranges and unknown keys, then the descriptor's rules across them.
  */
-export const RENDERER_PARAM_CHECKS: Record<RendererName, (params: unknown) => void> = {
-  eam: (p) => validateParams('EAM', EAM_PARAM_SPECS, p),
-  mip: (p) => validateParams('MIP', MIP_PARAM_SPECS, p),
-  iso: (p) => {
-    validateParams('ISO', ISO_PARAM_SPECS, p);
-    resolveIsoParams(p as object);
-  },
-  mcrt: (p) => {
-    validateParams('MCRT', MCRT_PARAM_SPECS, p);
-    resolveMcrtParams(p as object);
-  },
-};
+export const RENDERER_PARAM_CHECKS: Record<RendererName, (params: unknown) => void> = Object.fromEntries(
+  RENDERER_CATALOG.flatMap((e) => {
+    const descriptor = RENDERER_DESCRIPTORS[e.packageName];
+    return descriptor ? [[e.name, (p: unknown) => validateRendererParams(descriptor, p)]] : [];
+  }),
+);
 
 function checkVolume(v: unknown): void {
   const vol = checkObject('volume', v);
@@ -176,7 +169,7 @@ export function validateSceneDescription(d: unknown): SceneDescription {
         unit: 'extinction per world unit; MAX_DENSITY_SCALE',
       });
     const renderer =
-      s.renderer === undefined ? SCENE_DEFAULTS.renderer : checkOneOf('renderer', s.renderer, rendererNames());
+      s.renderer === undefined ? DEFAULT_RENDERER_NAME : checkOneOf('renderer', s.renderer, rendererNames());
     if (s.backend !== undefined) checkOneOf('backend', s.backend, BACKEND_NAMES);
     if (s.sampling !== undefined) checkOneOf('sampling', s.sampling, ['fast', 'exact'] as const);
     if (s.maxGpuBytes !== undefined)

@@ -1,7 +1,8 @@
+export { EamRenderer, EAM_PARAM_SPECS } from './eam-renderer.js';
 export {
-  EamRenderer,
-  EAM_PARAM_SPECS,
+  EAM_DESCRIPTOR,
+  descriptor,
   DEFAULT_EAM_STEP_VOXELS,
   DEFAULT_EAM_CUTOFF,
   type EamParams,
-} from './eam-renderer.js';
+} from './descriptor.js';

@@ -7,6 +7,9 @@ import {
   GRID_CELLS_FIELD,
   gridGeometry,
   majorantGridTextures,
+  paramUniformFields,
+  paramUniformValues,
+  resolveRendererParams,
   volumeBox,
   VptError,
   type AuxiliaryTexture,
@@ -18,6 +21,7 @@ import {
 } from '@vpt/core';
 import * as glsl from './kernels/iso.glsl.js';
 import * as wgsl from './kernels/iso.wgsl.js';
+import { ISO_DESCRIPTOR } from './descriptor.js';
 import {
   ISO_PARAM_SPECS,
   MAX_ISO_LIGHTS,
@@ -33,10 +37,8 @@ export const ISO_PARAM_FIELDS: readonly UniformField[] = [
   { name: 'isoLightDirection', type: 'vec4', count: MAX_ISO_LIGHTS },
   { name: 'isoLightIrradiance', type: 'vec4', count: MAX_ISO_LIGHTS },
   { name: 'gradientStep', type: 'vec3' },
-  { name: 'stepSize', type: 'f32' },
-  { name: 'specular', type: 'f32' },
-  { name: 'shininess', type: 'f32' },
-  { name: 'aoRadius', type: 'f32' },
+  // stepSize, specular, shininess, aoRadius
+  ...paramUniformFields(ISO_DESCRIPTOR),
   { name: 'rayEpsilon', type: 'f32' },
   GRID_CELLS_FIELD,
 ];
@@ -57,9 +59,9 @@ const OUTPUT_CODE = { shaded: 0, depth: 1, normal: 2 } as const;
  * lat-long). The scene's transfer function, 1D or 2D, is not used.
  */
 export class IsoRenderer extends BaseRenderer<IsoParams> {
-  readonly name = 'iso';
+  readonly name = ISO_DESCRIPTOR.name;
   readonly frameFormats = ['rgba32float', 'rgba32float'] as const;
-  readonly writesGuides = true;
+  readonly writesGuides = ISO_DESCRIPTOR.writesGuides;
   readonly accumulationFormats = ['rgba32float', 'rgba32float'] as const;
   readonly kernels = {
     generate: { glsl: glsl.generate, wgsl: wgsl.generate },
@@ -71,7 +73,7 @@ export class IsoRenderer extends BaseRenderer<IsoParams> {
 
   constructor(params: IsoParams = {}) {
     const resolved = resolveIsoParams(params);
-    super(params, ISO_PARAM_SPECS, 'ISO');
+    super(params, ISO_PARAM_SPECS, ISO_DESCRIPTOR.owner);
     this.resolved = resolved;
   }
 
@@ -135,10 +137,7 @@ export class IsoRenderer extends BaseRenderer<IsoParams> {
       isoLightDirection: dirs,
       isoLightIrradiance: irr,
       gradientStep: voxel,
-      stepSize: p.stepSize ?? 0.5 / Math.max(...scene.volume.dims),
-      specular: p.specular,
-      shininess: p.shininess,
-      aoRadius: Number.isFinite(p.aoRadius) ? p.aoRadius : 1e30,
+      ...paramUniformValues(ISO_DESCRIPTOR, resolveRendererParams(ISO_DESCRIPTOR, this.getParams(), scene)),
       // Shadow/AO rays start half a voxel off the surface, outside the crossing they left.
       rayEpsilon: 0.5 * Math.min(...voxel),
       gridCells: gridGeometry(scene.volume.dims, DEFAULT_SKIP_CELL_SIZE),

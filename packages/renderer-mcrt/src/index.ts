@@ -1,6 +1,9 @@
 export { McrtRenderer, MCRT_PARAM_FIELDS } from './mcrt-renderer.js';
+export { MCRT_DESCRIPTOR, descriptor } from './descriptor.js';
 export {
   MCRT_DEFAULTS,
+  FIXED_TRACKING,
+  FIXED_ENVIRONMENT_SAMPLING,
   MCRT_PARAM_SPECS,
   MAX_ANISOTROPY,
   MAX_LIGHT_SAMPLES,

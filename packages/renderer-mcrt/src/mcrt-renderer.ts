@@ -23,16 +23,18 @@ import {
   gridGeometry,
   majorantGridTextures,
   type MajorantGrid,
+  paramUniformFields,
+  paramUniformValues,
 } from '@vpt/core';
+import { MCRT_DESCRIPTOR } from './descriptor.js';
 import { activeLights, computeFeatures, featureKey, MAX_LIGHTS, type McrtFeatures } from './features.js';
 import { generateKernel, INTEGRATE_HALVES } from './kernel-sources.js';
 import { MCRT_PARAM_SPECS, resolveParams, type McrtParams, type ResolvedMcrtParams } from './params.js';
 import { chooseEstimator, GridStatisticsMemo, type EstimatorChoice } from './estimator-choice.js';
 
 export const MCRT_PARAM_FIELDS: readonly UniformField[] = [
-  { name: 'phaseG', type: 'f32' },
-  { name: 'maxDepth', type: 'i32' },
-  { name: 'rouletteDepth', type: 'i32' },
+  // phaseG (the anisotropy), maxDepth, rouletteDepth
+  ...paramUniformFields(MCRT_DESCRIPTOR),
   { name: 'globalMajorant', type: 'f32' },
   { name: 'globalMinorant', type: 'f32' },
   /** Majorant-grid cells per axis and the slice atlas's column count (atlasTexel in tracking.*.ts). */
@@ -54,11 +56,11 @@ export const MCRT_PARAM_FIELDS: readonly UniformField[] = [
  * calling `features()` for the same scene), cached by flag set.
  */
 export class McrtRenderer extends BaseRenderer<McrtParams> {
-  readonly name = 'mcrt';
+  readonly name = MCRT_DESCRIPTOR.name;
   readonly frameFormats = ['rgba32float'] as const;
   readonly accumulationFormats = ['rgba32float', 'rgba32float', 'rgba32float'] as const;
   readonly halfAccumulations = [1, 2] as const;
-  readonly writesGuides = true;
+  readonly writesGuides = MCRT_DESCRIPTOR.writesGuides;
   readonly paramFields = MCRT_PARAM_FIELDS;
   private resolved: ResolvedMcrtParams;
   private current: McrtFeatures | null = null;
@@ -70,9 +72,9 @@ export class McrtRenderer extends BaseRenderer<McrtParams> {
   private choiceMemo: { scene: Scene; params: ResolvedMcrtParams; choice: EstimatorChoice | null } | null = null;
 
   constructor(params: McrtParams = {}) {
-    validateParams('MCRT', MCRT_PARAM_SPECS, params);
+    validateParams(MCRT_DESCRIPTOR.owner, MCRT_PARAM_SPECS, params);
     const resolved = resolveParams(params);
-    super(params, MCRT_PARAM_SPECS, 'MCRT');
+    super(params, MCRT_PARAM_SPECS, MCRT_DESCRIPTOR.owner);
     this.resolved = resolved;
   }
 
@@ -123,9 +125,7 @@ export class McrtRenderer extends BaseRenderer<McrtParams> {
       irr.set(l.irradiance, 4 * i);
     });
     return {
-      phaseG: p.anisotropy,
-      maxDepth: p.scattering === 'single' ? 1 : p.maxDepth,
-      rouletteDepth: p.rouletteDepth,
+      ...paramUniformValues(MCRT_DESCRIPTOR, p),
       globalMajorant: grid ? grid.globalMajorant : 0,
       globalMinorant: grid ? grid.globalMinorant : 0,
       gridCells: this.gridGeometry(scene),

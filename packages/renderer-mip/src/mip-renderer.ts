@@ -4,6 +4,10 @@ import {
   GRID_CELLS_FIELD,
   gridGeometry,
   majorantGridTextures,
+  paramSpecsOf,
+  paramUniformFields,
+  paramUniformValues,
+  resolveRendererParams,
   type AuxiliaryTexture,
   type ParamSpecs,
   type Scene,
@@ -13,35 +17,26 @@ import {
 } from '@vpt/core';
 import * as glsl from './kernels/mip.glsl.js';
 import * as wgsl from './kernels/mip.wgsl.js';
-
-export interface MipParams {
-  /** Distance between samples along a ray, in world units (box longest side = 1). Default: DEFAULT_MIP_STEP_VOXELS voxels. */
-  stepSize?: number;
-  /**
-   * Jump over the majorant-grid cells whose largest value cannot raise the ray's running
-   * maximum, and stop at the largest normalized value (default true). The maximum is the same
-   * bits either way; false is the plain march, for tests and benchmarks.
-   */
-  emptySpaceSkipping?: boolean;
-}
+import { DEFAULT_MIP_STEP_VOXELS, MIP_DESCRIPTOR, type MipParams } from './descriptor.js';
 
 /** MIP's parameters and their ranges (core's validateParams; steps also ≥ MIN_STEP_VOXELS voxels per scene). */
-export const MIP_PARAM_SPECS: ParamSpecs = { stepSize: { kind: 'step' }, emptySpaceSkipping: { kind: 'boolean' } };
+export const MIP_PARAM_SPECS: ParamSpecs = paramSpecsOf(MIP_DESCRIPTOR);
 
 /** Maximum intensity projection. HDR output: the maximum normalized value as grey, a = coverage. */
 export class MipRenderer extends BaseRenderer<MipParams> {
-  readonly name = 'mip';
+  readonly name = MIP_DESCRIPTOR.name;
   readonly frameFormats = ['rgba32float'] as const;
   readonly accumulationFormats = ['rgba32float'] as const;
+  readonly writesGuides = MIP_DESCRIPTOR.writesGuides;
   readonly kernels = {
     generate: { glsl: glsl.generate, wgsl: wgsl.generate },
     integrate: { glsl: glsl.integrate, wgsl: wgsl.integrate },
     render: { glsl: glsl.render, wgsl: wgsl.render },
   };
-  readonly paramFields: readonly UniformField[] = [{ name: 'stepSize', type: 'f32' }, GRID_CELLS_FIELD];
+  readonly paramFields: readonly UniformField[] = [...paramUniformFields(MIP_DESCRIPTOR), GRID_CELLS_FIELD];
 
   constructor(params: MipParams = {}) {
-    super(params, MIP_PARAM_SPECS, 'MIP');
+    super(params, MIP_PARAM_SPECS, MIP_DESCRIPTOR.owner);
   }
 
   override features(_scene: Scene): Record<string, boolean | number> {
@@ -50,7 +45,7 @@ export class MipRenderer extends BaseRenderer<MipParams> {
 
   paramValues(scene: Scene): UniformValues {
     return {
-      stepSize: this.getParams().stepSize ?? defaultStepSize(scene),
+      ...paramUniformValues(MIP_DESCRIPTOR, resolveRendererParams(MIP_DESCRIPTOR, this.getParams(), scene)),
       gridCells: gridGeometry(scene.volume.dims, DEFAULT_SKIP_CELL_SIZE),
     };
   }
@@ -64,14 +59,6 @@ export class MipRenderer extends BaseRenderer<MipParams> {
     return this.getParams().emptySpaceSkipping ?? true;
   }
 }
-
-/**
- * MIP's default step in voxels of the volume's longest side. The running maximum over random
- * offsets converges to the maximum along the ray at any step, so the step only trades cost
- * against the iterations to get there: 1 voxel reached 35 dB after one iteration on the VPT
- * anchor and the head, and did so soonest (docs/benchmarks.md, "Step sweep").
- */
-export const DEFAULT_MIP_STEP_VOXELS = 1;
 
 /** DEFAULT_MIP_STEP_VOXELS along the longest axis in world units. */
 export function defaultStepSize(scene: Scene): number {

@@ -4,7 +4,16 @@
  * (a warm, emissive or lit volume against a dark background). Each applies only while
  * its attribute is unset; environment and lights are one choice (either set: neither default).
  */
-import type { Camera, Environment, Light, TransferFunction, Volume } from '@vpt/core';
+import {
+  DEFAULT_RENDERER_NAME,
+  type Camera,
+  type Environment,
+  type Light,
+  type RendererLookDefaults,
+  type TransferFunction,
+  type Volume,
+} from '@vpt/core';
+import { rendererEntry } from './renderer-registry.js';
 import { valueHistogram } from './histogram.js';
 
 type Rgb = [number, number, number];
@@ -112,47 +121,28 @@ export interface RendererLook {
 
 const dark = (r: number, g: number, b: number): Environment => ({ type: 'constant', radiance: [r, g, b] });
 
-/** The default look of each built-in renderer (others get the emission–absorption one). */
+/**
+ * The default look of a renderer: its descriptor's (core's RendererLookDefaults), else the
+ * default renderer's (emission–absorption), else an unlit black sky.
+ */
 export function rendererLook(renderer: string): RendererLook {
-  switch (renderer) {
-    case 'mip':
-      return { densityScale: 20, environment: dark(0, 0, 0), lights: () => [], transferFunction: (tf) => tf };
-    case 'iso':
-      return {
-        densityScale: 20,
-        environment: dark(0.1, 0.11, 0.14),
-        lights: (c) => keyLight(c, [2.6, 2.5, 2.3]),
-        transferFunction: (tf) => tf,
-      };
-    case 'mcrt':
-      return {
-        densityScale: 150,
-        environment: dark(0.08, 0.09, 0.12),
-        lights: (c) => keyLight(c, [4, 3.7, 3.2]),
-        transferFunction: asAlbedo,
-      };
-    default:
-      // Emission–absorption: the palette's emissive top (2.2) saturates a dense volume; 0.55× keeps its structure.
-      return {
-        densityScale: 60,
-        environment: dark(0.03, 0.035, 0.05),
-        lights: () => [],
-        transferFunction: (tf) => scaleColors(tf, 0.55),
-      };
-  }
+  const look =
+    rendererEntry(renderer)?.descriptor?.look ?? rendererEntry(DEFAULT_RENDERER_NAME)?.descriptor?.look ?? BLACK_LOOK;
+  const [r, g, b] = look.environment;
+  const key = look.keyLight;
+  const adapt = look.transferFunction ?? 'as-is';
+  return {
+    densityScale: look.densityScale,
+    environment: dark(r, g, b),
+    lights: key ? (c) => keyLight(c, [key[0], key[1], key[2]]) : () => [],
+    transferFunction:
+      adapt === 'albedo' ? asAlbedo : adapt === 'as-is' ? (tf) => tf : (tf) => scaleColors(tf, adapt.scaleColors),
+  };
 }
 
-/** Renderer parameters that depend on the data, used while `renderer-params` is unset (iso: one surface at the automatic function's isovalue). */
+const BLACK_LOOK: RendererLookDefaults = { densityScale: 20, environment: [0, 0, 0] };
+
+/** Renderer parameters that depend on the data, used while `renderer-params` is unset (the descriptor's look.params; iso: one surface at the automatic function's isovalue). */
 export function defaultRendererParams(renderer: string, tf: TransferFunction | null): Record<string, unknown> {
-  if (renderer === 'iso' && tf?.dimensions === '1d' && tf.points.length >= 2) {
-    // Halfway between where the automatic function starts (the median of the foreground)
-    // and its 90th percentile: the outer surface of the object rather than its densest core.
-    const value = (tf.points[0].value + tf.points[1].value) / 2;
-    return {
-      surfaces: [{ value: Math.round(value * 1000) / 1000, color: [0.92, 0.88, 0.8], opacity: 1 }],
-      specular: 0.15,
-      shininess: 30,
-    };
-  }
-  return {};
+  return rendererEntry(renderer)?.descriptor?.look?.params?.(tf) ?? {};
 }

@@ -4,7 +4,15 @@
  * with a message that says what to install. Applications add their own with
  * `registerRenderer()`.
  */
-import { RENDERER_CATALOG, VptError, type Renderer, type RendererParamSpec } from '@vpt/core';
+import {
+  RENDERER_CATALOG,
+  rendererControls,
+  VptError,
+  type Renderer,
+  type RendererDescriptor,
+  type RendererParamSpec,
+} from '@vpt/core';
+import { DESCRIPTOR_MODULES, PACKAGE_LOADERS } from './renderer-packages.generated.js';
 
 /** A renderer class: constructed with its parameter object (unknown keys are the renderer's business). */
 export type RendererConstructor = new (params?: Record<string, unknown>) => Renderer;
@@ -17,14 +25,19 @@ export interface RendererEntry {
   /** npm package that provides it, for the error message when it is missing. */
   packageName: string;
   load(): Promise<RendererConstructor>;
+  /** The controls the quality panel offers. */
   params?: readonly RendererParamSpec[];
+  /** The renderer's descriptor (its look and whether it writes denoiser guides); absent for an application's own renderer without one. */
+  descriptor?: RendererDescriptor;
 }
 
 const registry = new Map<string, RendererEntry>();
 const loaded = new Map<string, Promise<RendererConstructor>>();
 
+/** Add (or replace) a renderer; without `params`, the quality panel offers its descriptor's controls. */
 export function registerRenderer(entry: RendererEntry): void {
-  registry.set(entry.name, entry);
+  const params = entry.params ?? (entry.descriptor ? rendererControls(entry.descriptor) : undefined);
+  registry.set(entry.name, params ? { ...entry, params } : entry);
   loaded.delete(entry.name);
 }
 
@@ -74,26 +87,19 @@ export async function createRenderer(name: string, params: Record<string, unknow
   return new Ctor(params);
 }
 
-// Bundlers include only what a literal import() names, so the viewer keeps one loader per
-// package of the catalog (the viewer's build replaces an uninstalled optional one with a
-// stub that says so: see rollup.config.mjs). A catalog entry without a loader here is
-// imported by its bare name, which works in a page with an import map.
-export const PACKAGE_LOADERS: Readonly<Record<string, () => Promise<Record<string, unknown>>>> = {
-  '@vpt/renderer-mip': () => import('@vpt/renderer-mip'),
-  // @ts-ignore -- optional package, may be absent when this is type-checked
-  '@vpt/renderer-iso': () => import('@vpt/renderer-iso'),
-  '@vpt/renderer-eam': () => import('@vpt/renderer-eam'),
-  // @ts-ignore -- optional package, may be absent when this is type-checked
-  '@vpt/renderer-mcrt': () => import('@vpt/renderer-mcrt'),
-};
-
-// The renderers of the catalog (core's renderer-catalog.ts), each loaded on first use.
+// The catalog's renderers, each loaded on first use: the loaders and descriptor modules are
+// generated from core's renderer catalog (renderer-packages.generated.ts, `pnpm run
+// gen:renderers`), since bundlers include only what an import names literally. A catalog
+// entry without a loader there is imported by its bare name (works with an import map).
+export { PACKAGE_LOADERS };
 for (const e of RENDERER_CATALOG) {
+  const descriptor = DESCRIPTOR_MODULES[e.packageName]?.descriptor;
   registerRenderer({
     name: e.name,
-    label: e.label,
+    // An absent optional package has no descriptor: listed by name, it fails when chosen.
+    label: descriptor?.label ?? e.name,
     packageName: e.packageName,
-    params: e.params,
+    ...(descriptor ? { descriptor } : { params: [] }),
     load: () =>
       (PACKAGE_LOADERS[e.packageName] ?? (() => import(/* @vite-ignore */ e.packageName)))().then((m) =>
         exported<RendererConstructor>(m, e.exportName),

@@ -15,6 +15,7 @@
  */
 import { LitElement, html, nothing, type PropertyValues } from 'lit';
 import {
+  DEFAULT_RENDERER_NAME,
   isVptError,
   VptError,
   type Camera,
@@ -55,7 +56,7 @@ import { OrbitCamera } from './orbit.js';
 import { renderPanels, type PanelName, PANEL_NAMES } from './panels.js';
 import type { InternalProperty, PanelHost, PanelState } from './panel-host.js';
 import { DEFAULT_TRANSFER_FUNCTION, transferFunctionPreset } from './presets.js';
-import { createRenderer } from './renderer-registry.js';
+import { createRenderer, rendererEntry } from './renderer-registry.js';
 import { RenderSession, type RefinementStats } from './session.js';
 import { viewerStyles } from './styles.js';
 
@@ -228,7 +229,7 @@ export class VptViewer extends LitElement implements PanelHost {
   constructor() {
     super();
     this.src = null;
-    this.renderer = 'eam';
+    this.renderer = DEFAULT_RENDERER_NAME;
     this.backend = 'auto';
     this.transferFunction = null;
     this.camera = null;
@@ -743,7 +744,7 @@ export class VptViewer extends LitElement implements PanelHost {
       this.fail(e, 'renderer');
       // Keep going with the previous renderer, or else the default one, so the element stays usable.
       try {
-        renderer = this.rendererInstance ?? (await createRenderer('eam'));
+        renderer = this.rendererInstance ?? (await createRenderer(DEFAULT_RENDERER_NAME));
       } catch {
         return;
       }
@@ -906,8 +907,10 @@ export class VptViewer extends LitElement implements PanelHost {
 
   private makePost() {
     const chain = defaultPostChain({ exposure: this.exposure, toneMapper: this.toneMapper });
-    // MIP's estimate is a running maximum, whose per-sample variance does not describe its error: auto leaves it alone.
-    const wanted = this.denoise === 'on' || (this.denoise === 'auto' && this.renderer !== 'mip');
+    // Auto denoises a renderer that writes the guides (MIP's running maximum does not: its variance does not describe its error).
+    const wanted =
+      this.denoise === 'on' ||
+      (this.denoise === 'auto' && (rendererEntry(this.renderer)?.descriptor?.writesGuides ?? true));
     this.denoiseStep = wanted ? new DenoiseStep() : null;
     this.updateDenoiser();
     return this.denoiseStep ? [this.denoiseStep, ...chain] : chain;

@@ -4,12 +4,9 @@
  * with full types.
  */
 import type * as CoreModule from '@vpt/core';
-import type * as MipModule from '@vpt/renderer-mip';
-import type * as EamModule from '@vpt/renderer-eam';
-import type * as IsoModule from '@vpt/renderer-iso';
-import type * as McrtModule from '@vpt/renderer-mcrt';
 import type { BrickingStats, PostStep, Scene, Volume } from '@vpt/core';
 import type { SceneDescription, VolumeDescription } from '../scene-description.js';
+import type { RendererModules } from '../renderers.generated.js';
 
 /** The part of @vpt/post the page relies on. */
 export interface PostModule {
@@ -60,16 +57,13 @@ export interface PageRenderResult {
   bricking: BrickingStats | null;
 }
 
-export interface VptPageApi {
+/** Also each renderer package's module by renderer name (`window.vpt.mcrt`; RendererModules is generated from the catalog). */
+export interface VptPageApi extends RendererModules {
   core: typeof CoreModule;
-  /** Each renderer package of core's RENDERER_CATALOG, by renderer name (typed below for this repository's four). */
+  /** Each renderer package of core's RENDERER_CATALOG, by renderer name. */
   renderers: Record<string, Record<string, unknown>>;
   /** A renderer of the catalog by name, constructed with its parameter object. */
   createRenderer(name: string, params?: Record<string, unknown>): CoreModule.Renderer;
-  mip: typeof MipModule;
-  eam: typeof EamModule;
-  iso: typeof IsoModule;
-  mcrt: typeof McrtModule;
   post: PostModule;
   renderDescription(
     desc: SceneDescription,

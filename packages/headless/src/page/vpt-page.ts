@@ -174,7 +174,7 @@ function createRenderer(name: string, params: Record<string, unknown> = {}): Ren
 }
 
 function makeRenderer(d: SceneDescription): Renderer {
-  return createRenderer(d.renderer ?? SCENE_DEFAULTS.renderer, d.rendererParams ?? {});
+  return createRenderer(d.renderer ?? core.DEFAULT_RENDERER_NAME, d.rendererParams ?? {});
 }
 
 /** Base64 of a typed array's bytes, in chunks (String.fromCharCode takes limited arguments). */

@@ -1,0 +1,41 @@
+/**
+ * MIP described as data (core's RendererDescriptor): its parameters, defaults, uniforms and
+ * viewer look. Side-effect free and kernel free, so user interfaces import it alone
+ * (`@vpt/renderer-mip/descriptor`).
+ */
+import { defineRenderer, stepInVoxels, type ParamsOf } from '@vpt/core';
+
+/**
+ * MIP's default step in voxels of the volume's longest side. The running maximum over random
+ * offsets converges to the maximum along the ray at any step, so the step only trades cost
+ * against the iterations to get there: 1 voxel reached 35 dB after one iteration on the VPT
+ * anchor and the head, and did so soonest (docs/benchmarks.md, "Step sweep").
+ */
+export const DEFAULT_MIP_STEP_VOXELS = 1;
+
+/** The UI span of a ray-march step (world units), shared by the march renderers' quality panels. */
+const STEP_UI = { label: 'Step size', min: 0.0005, max: 0.05, step: 0.0005 } as const;
+
+export const MIP_DESCRIPTOR = defineRenderer({
+  name: 'mip',
+  label: 'Maximum intensity',
+  owner: 'MIP',
+  params: {
+    /** Distance between samples along a ray, in world units (box longest side = 1). Default: DEFAULT_MIP_STEP_VOXELS voxels. */
+    stepSize: { kind: 'step', ...stepInVoxels(DEFAULT_MIP_STEP_VOXELS), ui: STEP_UI, uniform: { type: 'f32' } },
+    /**
+     * Jump over the majorant-grid cells whose largest value cannot raise the ray's running
+     * maximum, and stop at the largest normalized value (default true). The maximum is the same
+     * bits either way; false is the plain march, for tests and benchmarks.
+     */
+    emptySpaceSkipping: { kind: 'boolean', default: true },
+  },
+  writesGuides: false,
+  needs: { transferFunction: false, lights: false, environment: false },
+  look: { densityScale: 20, environment: [0, 0, 0] },
+});
+
+export type MipParams = ParamsOf<typeof MIP_DESCRIPTOR>;
+
+/** The package's descriptor under the name every renderer package uses (the generated loaders read it). */
+export { MIP_DESCRIPTOR as descriptor };
