@@ -301,3 +301,15 @@ describe('NRRD: files from pynrrd and layouts other writers use', () => {
     );
   });
 });
+
+describe('NRRD: 32-bit integers', () => {
+  it('int32 beyond ±2^24 says it rounds as float32, as the OME-Zarr reader does', async () => {
+    const big = new Int32Array([-(2 ** 30), 1, 2, 3]);
+    const v = await loadVolume(
+      nrrdFile({ type: 'int', dimension: '1', sizes: '4', endian: 'little', encoding: 'raw' }, bytesIn(big, true)),
+    );
+    expect(v.type).toBe('float32');
+    expect(Array.from(v.data)).toEqual(Array.from(big).map(Math.fround));
+    expect(String(v.meta?.warnings)).toMatch(/int32 data is read as float32.*2\^24 round/);
+  });
+});

@@ -100,6 +100,36 @@ export function chooseType(source: SourceType, scaled: { min: number; max: numbe
   return 'float32';
 }
 
+/**
+ * The core type for these samples, scanning them only when the answer depends on their
+ * range (32-bit integers, integer rescaling); 8/16-bit integers and floats map to a fixed
+ * type, so the common files are read with no per-voxel pass here. `warnings` gets a note
+ * when 32-bit integers beyond ±2^24 become float32 (they round), as OME-Zarr's reader says.
+ */
+export function chooseTypeOf(
+  samples: SourceArray,
+  source: SourceType,
+  scaling: Scaling,
+  warnings: string[],
+): VoxelType {
+  const integral = integralScaling(scaling);
+  const identity = scaling.slope === 1 && scaling.inter === 0;
+  if (!integral || !isIntegral(source)) return 'float32';
+  if (identity && (source === 'uint8' || source === 'uint16' || source === 'int16' || source === 'int8'))
+    return source === 'int8' ? 'int16' : source;
+  const range = scanRange(samples);
+  const type = chooseType(source, scaledRange(range, scaling), integral);
+  const scaled = scaledRange(range, scaling);
+  if (type === 'float32' && Math.max(Math.abs(scaled.min), Math.abs(scaled.max)) > FLOAT32_EXACT_INTEGER)
+    warnings.push(
+      `${source} data is read as float32, and its values reach ${Math.max(Math.abs(scaled.min), Math.abs(scaled.max))}: integers beyond ±2^24 round`,
+    );
+  return type;
+}
+
+/** 2^24: the largest integer magnitude below which float32 holds every integer exactly. */
+export const FLOAT32_EXACT_INTEGER = 1 << 24;
+
 export interface Scaling {
   slope: number;
   inter: number;

@@ -4,9 +4,8 @@ import type { LoadedVolume } from '../types.js';
 import { finishVolume } from '../convert/finish.js';
 import { checkAvailable, checkDims, checkFits, SOURCE_BYTES, type SourceType } from '../convert/size.js';
 import {
-  chooseType,
+  chooseTypeOf,
   readSamples,
-  scanRange,
   toVoxelArray,
   IDENTITY,
   OUTPUT_BYTES,
@@ -394,8 +393,7 @@ export async function decodeNrrd(
     );
   }
 
-  const range = scanRange(samples);
-  const type = chooseType(source, range, true);
+  const type = chooseTypeOf(samples, source, IDENTITY, ctx.warnings);
   const voxels = toVoxelArray(samples, type, IDENTITY);
   ctx.progress('convert', count, count);
 
