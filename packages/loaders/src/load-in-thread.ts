@@ -76,7 +76,9 @@ async function dispatch(source: VolumeSource, options: LoadOptions, ctx: LoadCon
     return decodeBytes(bytes, name, wanted, options, ctx, undefined);
   }
   if (source instanceof ArrayBuffer || ArrayBuffer.isView(source)) {
-    return decodeBytes(bytesOf(source as ArrayBuffer), '', wanted, options, ctx, undefined);
+    const bytes = bytesOf(source as ArrayBuffer);
+    ctx.borrowed = bytes.buffer;
+    return decodeBytes(bytes, '', wanted, options, ctx, undefined);
   }
   throw new LoaderError(
     'unsupported',

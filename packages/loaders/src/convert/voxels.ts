@@ -31,8 +31,10 @@ export const OUTPUT_BYTES: Record<VoxelType, number> = { uint8: 1, uint16: 2, in
 const HOST_LITTLE = new Uint8Array(new Uint16Array([1]).buffer)[0] === 1;
 
 /**
- * Copy `count` samples of `type` from `bytes` at `offset` into a fresh, aligned array in
- * this machine's byte order (the caller has checked that the bytes are there).
+ * `count` samples of `type` from `bytes` at `offset`, in this machine's byte order (the
+ * caller has checked that the bytes are there). With `view` (bytes the loader owns), aligned
+ * data in this machine's order is a typed-array view over them, no copy and no per-voxel
+ * work; otherwise one slab copy (memcpy), then a byte swap where the order differs.
  */
 export function readSamples(
   bytes: Uint8Array,
@@ -40,11 +42,20 @@ export function readSamples(
   count: number,
   type: SourceType,
   littleEndian: boolean,
+  view = false,
 ): SourceArray {
   const size = SOURCE_BYTES[type];
+  const at = bytes.byteOffset + offset;
+  if (view && (size === 1 || littleEndian === HOST_LITTLE) && at % size === 0)
+    return new SOURCE_ARRAY[type](bytes.buffer as ArrayBuffer, at, count);
   const copy = bytes.slice(offset, offset + count * size);
   if (size > 1 && littleEndian !== HOST_LITTLE) swapBytes(copy, size);
   return new SOURCE_ARRAY[type](copy.buffer, 0, count);
+}
+
+/** May voxels read from these bytes share their memory (the loader's own, not the caller's)? */
+export function ownsMemory(bytes: Uint8Array, borrowed: ArrayBufferLike | undefined): boolean {
+  return bytes.buffer !== borrowed;
 }
 
 function swapBytes(b: Uint8Array, size: number): void {

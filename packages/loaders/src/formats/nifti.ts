@@ -6,6 +6,7 @@ import { checkAvailable, checkDims, checkFits, SOURCE_BYTES, type SourceType } f
 import {
   chooseTypeOf,
   integralScaling,
+  ownsMemory,
   readSamples,
   toVoxelArray,
   IDENTITY,
@@ -318,7 +319,7 @@ export async function decodeNifti(input: Uint8Array, ctx: LoadContext, resolve?:
     ctx.warnings.push(`${extra} bytes past the data the header declares are ignored; check the dims and datatype`);
   earlyFits(plan, ctx);
   ctx.progress('convert', 0, count);
-  const samples = readSamples(bytes, offset, count, source, header.littleEndian);
+  const samples = readSamples(bytes, offset, count, source, header.littleEndian, ownsMemory(bytes, ctx.borrowed));
   const type = chooseTypeOf(samples, source, scaling, ctx.warnings);
   const data = toVoxelArray(samples, type, scaling);
   ctx.progress('convert', count, count);

@@ -5,6 +5,7 @@ import { finishVolume } from '../convert/finish.js';
 import { checkAvailable, checkDims, checkFits, SOURCE_BYTES, type SourceType } from '../convert/size.js';
 import {
   chooseTypeOf,
+  ownsMemory,
   readSamples,
   toVoxelArray,
   IDENTITY,
@@ -362,7 +363,7 @@ export async function decodeNrrd(
       warnExtra(data.length - byteSkip - dataBytes, ctx);
       data = data.subarray(byteSkip);
     }
-    samples = readSamples(data, 0, count, source, endian === 'little');
+    samples = readSamples(data, 0, count, source, endian === 'little', ownsMemory(data, ctx.borrowed));
   } else if (encoding === 'gzip' || encoding === 'gz') {
     const inflated = await gunzip(data, ctx, {
       // Peak inflated memory is bounded by limits.maxBytes (plus the skipped bytes), whatever the stream holds.
@@ -376,7 +377,7 @@ export async function decodeNrrd(
     const from = byteSkip === -1 ? Math.max(0, inflated.length - dataBytes) : byteSkip;
     if (byteSkip !== -1) warnExtra(inflated.length - from - dataBytes, ctx);
     checkAvailable(inflated.length - from, dataBytes, ctx);
-    samples = readSamples(inflated, from, count, source, endian === 'little');
+    samples = readSamples(inflated, from, count, source, endian === 'little', true);
   } else if (encoding === 'ascii' || encoding === 'text' || encoding === 'txt') {
     samples = parseAscii(data, count, source, ctx);
   } else if (encoding === 'hex') {
