@@ -61,7 +61,7 @@ function niftiBytes() {
   return out;
 }
 function nrrdBytes(encoding, data) {
-  const header = new TextEncoder().encode(
+  const header = Buffer.from(
     `NRRD0004\ntype: short\ndimension: 3\nsizes: ${n} ${n} ${n}\nendian: little\nencoding: ${encoding}\nspacings: 1 1 1\n\n`,
   );
   const out = new Uint8Array(header.length + data.length);
