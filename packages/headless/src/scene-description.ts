@@ -44,7 +44,7 @@ export interface ZarrVolumeDescription {
   channel?: number;
   time?: number;
   valueRange?: [number, number];
-  /** A chunk the store lacks: 'error' (default) or 'fill' (the array's fill value). */
+  /** A chunk the store lacks: 'fill' (default: the array's fill value, as the Zarr spec says) or 'error' (strict). */
   missingChunks?: 'error' | 'fill';
 }
 
