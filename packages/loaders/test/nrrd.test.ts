@@ -240,10 +240,11 @@ describe('NRRD: files from pynrrd and layouts other writers use', () => {
 
   it('an (x, y, z, t) NRRD loads its first volume and says it is a time series, not values per voxel', async () => {
     const values = new Uint8Array(2 * 2 * 2 * 13).map((_, i) => i);
-    for (const fields of [
+    const layouts: Record<string, string>[] = [
       { kinds: 'domain domain domain time' },
       { 'space directions': '(1,0,0) (0,1,0) (0,0,2) none', space: 'right-anterior-superior' },
-    ]) {
+    ];
+    for (const fields of layouts) {
       const v = await loadVolume(
         nrrdFile({ type: 'uint8', dimension: '4', sizes: '2 2 2 13', encoding: 'raw', ...fields }, values),
       );
