@@ -7,6 +7,7 @@
  * load average is printed before and after, and the medians give the ratio vpt / peer.
  *
  *   pnpm run build && node benchmarks/read-speed.mjs [--runs 7] [--size 256] [--python python3] [--json out.json]
+ *     [--loaders path/to/loaders/dist/index.js]
  *
  * Needs Python with numpy, nibabel and pynrrd (`pip install nibabel pynrrd`).
  */
@@ -27,6 +28,8 @@ const { values: flags } = parseArgs({
     size: { type: 'string', default: '256' },
     python: { type: 'string', default: 'python3' },
     json: { type: 'string' },
+    // Another build of @vpt/loaders (its dist/index.js), e.g. an older commit's, to compare.
+    loaders: { type: 'string', default: path.join(here, '../packages/loaders/dist/index.js') },
   },
 });
 const runs = Number(flags.runs);
@@ -34,7 +37,7 @@ const n = Number(flags.size);
 if (!(Number.isInteger(runs) && runs >= 1) || !(Number.isInteger(n) && n >= 2 && n <= 512))
   throw new Error('--runs must be a positive integer and --size an integer in 2..512');
 
-const { loadVolume } = await import(path.join(here, '../packages/loaders/dist/index.js'));
+const { loadVolume } = await import(path.resolve(flags.loaders));
 
 // ——— the files: one size³ int16 volume (a smooth field plus noise, so gzip has work) ———
 const count = n ** 3;
