@@ -160,4 +160,19 @@ describe.skipIf(!fs.existsSync(chromiumExecutable()))('vpt-render: a scene names
     expect(lit).toBeGreaterThan(16); // the brain shows, so equal images mean something
     expect(Array.from(nifti.hdr)).toEqual(Array.from(twin.hdr));
   }, 180_000);
+
+  it('a .hdr fetches its .img, an .nhdr its detached gzip data file, both served beside it', async () => {
+    const scene = (file: string): SceneDescription => ({
+      width: 8,
+      height: 8,
+      renderer: 'mip',
+      iterations: 1,
+      backend: 'webgl2',
+      volume: { file },
+    });
+    const opts = { baseDir: LOADER_FIXTURES };
+    expect((await session.render(scene('nibabel_pair.hdr'), opts)).volumeDims).toEqual([5, 4, 3]);
+    const ball = await session.render(scene('pynrrd/BallBinary30x30x30_byteskip_minus_one_nifti.nhdr'), opts);
+    expect(ball.volumeDims).toEqual([30, 30, 30]);
+  }, 180_000);
 });

@@ -116,7 +116,8 @@ async function loadFile(desc: FileVolumeDescription, baseUrl: string): Promise<V
     throw new core.VptError('load-failed', `Could not load ${where}: ${(e as Error).message}`, { cause: e });
   }
   const volume = core.createVolume(loaded.dims, loaded.type, loaded.data, loaded.spacing);
-  const window = loaded.meta?.value_range as [number, number] | undefined;
+  // As for a sidecar's or an OME-Zarr omero window: the description's range wins.
+  const window = loaded.valueRange ?? (loaded.meta?.value_range as [number, number] | undefined);
   const range = desc.valueRange ?? window;
   if (range) volume.valueRange = [range[0], range[1]];
   volume.name = loaded.name ?? where.split('/').filter(Boolean).pop();
