@@ -217,12 +217,13 @@ describe('NIfTI-1: bad input', () => {
       ),
       'bad-magic',
     );
+    // sizeof_hdr 540 says NIfTI-2, whose header this NIfTI-1 file does not hold.
     await expectLoaderError(
       loadVolume(
         edit((v) => v.setInt32(0, 540, true)),
         { format: 'nifti' },
       ),
-      'unsupported',
+      'truncated',
     );
     await expectLoaderError(
       loadVolume(
@@ -351,6 +352,27 @@ describe('NIfTI-1: what other writers produce', () => {
     );
     const w = await loadVolume(fileOf(padded, 'padded.nii.gz'));
     expect(String(w.meta?.warnings)).toMatch(/10 inflated bytes past the data/);
+  });
+
+  it('NIfTI-2 (a gzip .nii written by nibabel) loads equal to nibabel, placed by its double-precision sform', async () => {
+    const ref = reference['nibabel_nifti2.nii.gz'];
+    const v = await loadVolume(fileOf(fixture('nibabel_nifti2.nii.gz'), 'nibabel_nifti2.nii.gz'));
+    expect(v.meta?.niftiVersion).toBe(2);
+    expect(v.dims).toEqual(ref.dims);
+    expect(v.type).toBe('float32');
+    expect(sha256(v.data)).toBe(ref.sha256);
+    for (const ijk of [
+      [0, 0, 0],
+      [3, 2, 1],
+    ]) {
+      const expected = ref.affine
+        .slice(0, 3)
+        .map((row) => row[0] * ijk[0] + row[1] * ijk[1] + row[2] * ijk[2] + row[3]);
+      worldOf(v, ijk).forEach((x, r) => expect(x).toBeCloseTo(expected[r], 9));
+    }
+    // Cut inside its 540-byte header: truncated, not misread as NIfTI-1.
+    const plain = new Uint8Array(zlib.gunzipSync(fixture('nibabel_nifti2.nii.gz')));
+    await expectLoaderError(loadVolume(plain.subarray(0, 500), { format: 'nifti' }), 'truncated');
   });
 
   it('a .hdr/.img pair written by nibabel loads as one volume, equal to nibabel voxel for voxel', async () => {

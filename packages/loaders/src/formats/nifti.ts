@@ -19,6 +19,9 @@ import { axisCodes, directionCosines, isFiniteVector } from './orientation.js';
 
 const HEADER = 348;
 const MIN_OFFSET = 352; // header + the 4-byte extension flag
+/** NIfTI-2 (2011): the same fields, 64-bit dims and doubles, in a 540-byte header with its magic at byte 4. */
+const HEADER2 = 540;
+const MIN_OFFSET2 = 544;
 
 /** NIfTI-1 datatype codes vpt reads, and the type they are read as. */
 const DATATYPES: Record<number, SourceType> = {
@@ -43,15 +46,14 @@ const UNSUPPORTED_TYPES: Record<number, string> = {
   2304: 'RGBA32',
 };
 
-/** Is this a NIfTI-1 single file (magic "n+1\0" at byte 344)? */
+/** Is this a NIfTI-1 header (magic "n+1\0" / "ni1\0" at byte 344) or a NIfTI-2 one ("n+2\0" / "ni2\0" at byte 4)? */
 export function hasNiftiMagic(bytes: Uint8Array): boolean {
-  return (
-    bytes.length >= HEADER &&
-    bytes[344] === 0x6e &&
-    (bytes[345] === 0x2b || bytes[345] === 0x69) &&
-    bytes[346] === 0x31 &&
-    bytes[347] === 0
-  );
+  const at = (i: number, version: number) =>
+    bytes[i] === 0x6e &&
+    (bytes[i + 1] === 0x2b || bytes[i + 1] === 0x69) &&
+    bytes[i + 2] === version &&
+    bytes[i + 3] === 0;
+  return (bytes.length >= HEADER && at(344, 0x31)) || (bytes.length >= HEADER2 && at(4, 0x32));
 }
 
 interface NiftiHeader {
@@ -70,6 +72,8 @@ interface NiftiHeader {
   qform_code: number;
   sform_code: number;
   magic: string;
+  /** NIfTI-2: the sform rows as read (doubles); NIfTI-1's are read from the bytes as float32. */
+  affine?: number[][];
   getQformMat(): number[][];
 }
 
@@ -80,8 +84,10 @@ interface Plan {
   offset: number;
   count: number;
   extraVolumes: number;
-  /** A .hdr/.img pair (magic "ni1"): the data is in the .img file, from vox_offset. */
+  /** A .hdr/.img pair (magic "ni1" / "ni2"): the data is in the .img file, from vox_offset. */
   pair: boolean;
+  headerSize: number;
+  version: 1 | 2;
 }
 
 /**
@@ -92,29 +98,27 @@ interface Plan {
 type NiftiModule = typeof import('nifti-reader-js');
 
 function readPlan(head: Uint8Array, ctx: LoadContext, nifti: NiftiModule): Plan {
-  if (head.length < HEADER)
+  const version = isNifti2(head) ? 2 : 1;
+  const size = version === 2 ? HEADER2 : HEADER;
+  if (head.length < size)
     throw new LoaderError(
       'truncated',
-      `${ctx.name}: ${head.length} bytes is shorter than a NIfTI-1 header (348 bytes)`,
+      `${ctx.name}: ${head.length} bytes is shorter than a NIfTI-${version} header (${size} bytes)`,
     );
-  const view = new DataView(head.buffer, head.byteOffset, HEADER);
+  const view = new DataView(head.buffer, head.byteOffset, size);
   const sizeLE = view.getInt32(0, true),
     sizeBE = view.getInt32(0, false);
-  if (sizeLE === 540 || sizeBE === 540) {
-    throw new LoaderError(
-      'unsupported',
-      `${ctx.name} is NIfTI-2, which vpt does not read; save it as NIfTI-1 (e.g. nibabel.Nifti1Image)`,
-    );
-  }
-  if (sizeLE !== HEADER && sizeBE !== HEADER) {
+  if (sizeLE !== size && sizeBE !== size) {
     throw new LoaderError(
       'bad-magic',
-      `${ctx.name} is not a NIfTI-1 file: its first 4 bytes (sizeof_hdr) are not 348 in either byte order`,
+      `${ctx.name} is not a NIfTI file: its first 4 bytes (sizeof_hdr) are not 348 (NIfTI-1) or 540 (NIfTI-2) in either byte order`,
     );
   }
-  const header = new nifti.NIFTI1() as unknown as NiftiHeader & { readHeader(b: ArrayBuffer): void };
+  const header = (version === 2 ? new nifti.NIFTI2() : new nifti.NIFTI1()) as unknown as NiftiHeader & {
+    readHeader(b: ArrayBuffer): void;
+  };
   try {
-    header.readHeader(head.slice(0, HEADER).buffer);
+    header.readHeader(head.slice(0, size).buffer);
   } catch (e) {
     throw new LoaderError(
       'bad-header',
@@ -122,17 +126,31 @@ function readPlan(head: Uint8Array, ctx: LoadContext, nifti: NiftiModule): Plan 
       { cause: e },
     );
   }
-  if (header.magic === '' || header.magic === undefined)
+  if (version === 1) header.affine = undefined; // NIfTI-1's sform is read from the bytes (float32)
+  if (version === 1 && (header.magic === '' || header.magic === undefined))
     throw new LoaderError(
       'unsupported',
-      `${ctx.name} is an Analyze 7.5 header (no NIfTI magic at byte 344); vpt reads NIfTI-1: convert it, e.g. with nibabel`,
+      `${ctx.name} is an Analyze 7.5 header (no NIfTI magic at byte 344); vpt reads NIfTI-1 and NIfTI-2: convert it, e.g. with nibabel`,
     );
-  if (header.magic !== 'n+1' && header.magic !== 'ni1')
+  const single = `n+${version}`,
+    paired = `ni${version}`;
+  // NIfTI-2's 8-byte magic continues "\0\r\n\x1a\n" (to catch text-mode transfers): the name is its first 3 printable characters.
+  header.magic = String(header.magic ?? '')
+    .replace(/[^\x20-\x7e]/g, '')
+    .slice(0, 3);
+  if (header.magic !== single && header.magic !== paired)
     throw new LoaderError(
       'bad-magic',
-      `${ctx.name}: the NIfTI magic at byte 344 is "${header.magic}", not "n+1" (one file) or "ni1" (a .hdr/.img pair)`,
+      `${ctx.name}: the NIfTI-${version} magic at byte ${version === 2 ? 4 : 344} is "${header.magic}", not "${single}" (one file) or "${paired}" (a .hdr/.img pair)`,
     );
-  const pair = header.magic === 'ni1';
+  const pair = header.magic === paired;
+  // CIFTI-2 (intent codes 3000–3099) is a matrix over surfaces and grayordinates in a NIfTI-2 shell, not a volume.
+  const intent = (header as { intent_code?: number }).intent_code ?? 0;
+  if (intent >= 3000 && intent <= 3099)
+    throw new LoaderError(
+      'unsupported',
+      `${ctx.name} is CIFTI-2 (NIfTI intent code ${intent}), a matrix over surfaces and grayordinates, not a volume; vpt reads volumes`,
+    );
 
   const d = header.dims;
   if (!(d[0] >= 1 && d[0] <= 7))
@@ -159,17 +177,18 @@ function readPlan(head: Uint8Array, ctx: LoadContext, nifti: NiftiModule): Plan 
   }
   const offset = header.vox_offset;
   // In a pair, vox_offset is where the data starts in the .img file (usually 0).
-  const least = pair ? 0 : HEADER;
+  const least = pair ? 0 : size;
+  const standard = version === 2 ? MIN_OFFSET2 : MIN_OFFSET;
   if (!Number.isFinite(offset) || offset < least || !Number.isInteger(offset)) {
     throw new LoaderError(
       'bad-header',
-      `${ctx.name}: vox_offset = ${offset} must be a whole number ≥ ${pair ? 0 : 352}`,
+      `${ctx.name}: vox_offset = ${offset} must be a whole number ≥ ${pair ? 0 : standard}`,
     );
   }
-  if (!pair && offset < MIN_OFFSET)
-    ctx.warnings.push(`vox_offset ${offset} is below the 352 the NIfTI-1 standard requires`);
+  if (!pair && offset < standard)
+    ctx.warnings.push(`vox_offset ${offset} is below the ${standard} the NIfTI-${version} standard requires`);
   const count = dims[0] * dims[1] * dims[2];
-  return { header, dims, source, offset, count, extraVolumes, pair };
+  return { header, dims, source, offset, count, extraVolumes, pair, headerSize: size, version };
 }
 
 function scalingOf(h: NiftiHeader, ctx: LoadContext): Scaling {
@@ -197,7 +216,9 @@ function placement(
 ): { orientation?: number[]; origin?: [number, number, number]; lengths?: number[]; xform: string } {
   const view = new DataView(head.buffer, head.byteOffset, HEADER);
   if (h.sform_code > 0) {
-    const rows = [0, 1, 2].map((r) => [0, 1, 2, 3].map((c) => view.getFloat32(280 + (4 * r + c) * 4, h.littleEndian)));
+    const rows = h.affine
+      ? h.affine.slice(0, 3).map((row) => row.slice(0, 4))
+      : [0, 1, 2].map((r) => [0, 1, 2, 3].map((c) => view.getFloat32(280 + (4 * r + c) * 4, h.littleEndian)));
     const cos = rows.every(isFiniteVector) ? directionCosines([0, 1, 2].map((c) => rows.map((row) => row[c]))) : null;
     if (cos) {
       warnShear(cos.orientation, 'sform', ctx);
@@ -234,8 +255,9 @@ function warnShear(o: readonly number[], which: string, ctx: LoadContext): void 
 }
 
 function isNifti2(head: Uint8Array): boolean {
-  const v = new DataView(head.buffer, head.byteOffset, Math.min(head.length, 4));
-  return head.length >= 4 && (v.getInt32(0, true) === 540 || v.getInt32(0, false) === 540);
+  if (head.length < 4) return false;
+  const v = new DataView(head.buffer, head.byteOffset, 4);
+  return v.getInt32(0, true) === HEADER2 || v.getInt32(0, false) === HEADER2;
 }
 
 /** Limit check before allocating, at the smallest size the result can have; finishVolume checks the exact one. */
@@ -259,7 +281,7 @@ export function pairImageName(hdrName: string): string {
   );
 }
 
-/** NIfTI-1: a single file (.nii, .nii.gz) or a .hdr/.img pair (either may be gzip-compressed), either byte order. */
+/** NIfTI-1 or NIfTI-2: a single file (.nii, .nii.gz) or a .hdr/.img pair (either may be gzip-compressed), either byte order. */
 export async function decodeNifti(input: Uint8Array, ctx: LoadContext, resolve?: PairResolver): Promise<LoadedVolume> {
   const nifti = await loadDependency('nifti-reader-js', () => import('nifti-reader-js'));
   let bytes = input;
@@ -271,17 +293,17 @@ export async function decodeNifti(input: Uint8Array, ctx: LoadContext, resolve?:
     // stops before the rest is inflated, and the output is allocated once at its exact size.
     bytes = await gunzip(input, ctx, {
       maxOutput,
-      headBytes: MIN_OFFSET,
+      headBytes: MIN_OFFSET2, // enough for either version's header and extension flag
       onHead: (head) => {
         if (!hasNiftiMagic(head) && head.length >= HEADER && !isNifti2(head)) {
           throw new LoaderError(
             'bad-magic',
-            `${ctx.name}: gzip-compressed data that is not NIfTI-1 (no "n+1" magic at byte 344)`,
+            `${ctx.name}: gzip-compressed data that is not NIfTI (no "n+1" magic at byte 344, no "n+2" at byte 4)`,
           );
         }
         plan = readPlan(head, ctx, nifti);
         earlyFits(plan, ctx);
-        if (plan.pair) return HEADER;
+        if (plan.pair) return plan.headerSize;
         // Keep the first volume; the others are declared data, not "bytes past the data".
         const volumeBytes = plan.count * SOURCE_BYTES[plan.source];
         return { keep: plan.offset + volumeBytes, declared: plan.offset + volumeBytes * plan.extraVolumes };
@@ -345,6 +367,7 @@ export async function decodeNifti(input: Uint8Array, ctx: LoadContext, resolve?:
     sclInter: scaling.inter,
     littleEndian: header.littleEndian,
     datatype: source,
+    niftiVersion: plan.version,
     pixdim,
   };
   if (plan.pair) meta.pair = true;
