@@ -266,7 +266,7 @@ function worldOf(v: { orientation?: number[]; spacing: number[]; origin?: number
   return [0, 1, 2].map((r) => o[3 * r] * s[0] + o[3 * r + 1] * s[1] + o[3 * r + 2] * s[2] + v.origin![r]);
 }
 
-describe('NIfTI-1: what other writers produce', () => {
+describe('NIfTI: what other writers produce', () => {
   const values = new Int16Array(24).map((_, i) => i - 5);
   const base = { dims: [4, 3, 2], datatype: 4, bitpix: 16, data: bytesIn(values, true) };
 

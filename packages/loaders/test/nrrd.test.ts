@@ -313,4 +313,19 @@ describe('NRRD: 32-bit integers', () => {
     expect(Array.from(v.data)).toEqual(Array.from(big).map(Math.fround));
     expect(String(v.meta?.warnings)).toMatch(/int32 data is read as float32.*2\^24 round/);
   });
+
+  it('big-endian 16-, 32- and 64-bit samples read as the values written', async () => {
+    const cases: [string, Int16Array | Uint32Array | Float32Array | Float64Array][] = [
+      ['short', new Int16Array([-32768, -2, 0x1234, 32767])],
+      ['uint', new Uint32Array([0, 1, 0x89abcdef, 0xffffffff])],
+      ['float', new Float32Array([-1.5, 0, 3.25e-20, 6.5e30])],
+      ['double', new Float64Array([-0.1, 1e-300, 123456.789, Math.PI])],
+    ];
+    for (const [type, values] of cases) {
+      const v = await loadVolume(
+        nrrdFile({ type, dimension: '1', sizes: '4', endian: 'big', encoding: 'raw' }, bytesIn(values, false)),
+      );
+      expect(Array.from(v.data), type).toEqual(Array.from(values).map(Math.fround));
+    }
+  });
 });

@@ -58,13 +58,28 @@ export function ownsMemory(bytes: Uint8Array, borrowed: ArrayBufferLike | undefi
   return bytes.buffer !== borrowed;
 }
 
+/** Reverse the byte order of each `size`-byte sample of a fresh (aligned) copy, a word at a time. */
 function swapBytes(b: Uint8Array, size: number): void {
+  const n = Math.floor(b.length / size);
   if (size === 2) {
-    for (let i = 0; i + 1 < b.length; i += 2) {
-      const t = b[i];
-      b[i] = b[i + 1];
-      b[i + 1] = t;
+    const w = new Uint16Array(b.buffer, b.byteOffset, n);
+    for (let i = 0; i < n; i++) {
+      const x = w[i];
+      w[i] = (x >>> 8) | ((x & 0xff) << 8);
     }
+  } else if (size === 4 || size === 8) {
+    const w = new Uint32Array(b.buffer, b.byteOffset, (n * size) / 4);
+    for (let i = 0; i < w.length; i++) {
+      const x = w[i];
+      w[i] = ((x & 0xff) << 24) | ((x & 0xff00) << 8) | ((x >>> 8) & 0xff00) | (x >>> 24);
+    }
+    // An 8-byte sample is two swapped words, which also trade places.
+    if (size === 8)
+      for (let i = 0; i + 1 < w.length; i += 2) {
+        const t = w[i];
+        w[i] = w[i + 1];
+        w[i + 1] = t;
+      }
   } else {
     for (let i = 0; i + size <= b.length; i += size) b.subarray(i, i + size).reverse();
   }
