@@ -175,7 +175,13 @@ describe('OME-Zarr over a failing HTTP server', () => {
     server.faults.clear();
     expect(await outcome({})).toMatchObject({ dims: [128, 128, 84], loadedIn: 'worker' });
     server.faults.set('/0/c/1/1/0', '404');
-    expect(await outcome({})).toMatchObject({ name: 'LoaderError', reason: 'not-found', code: 'load-failed' });
+    // A chunk the store lacks is the fill value (the Zarr spec's default), not-found when strict.
+    expect(await outcome({})).toMatchObject({ dims: [128, 128, 84], loadedIn: 'worker' });
+    expect(await outcome({ zarr: { missingChunks: 'error' } })).toMatchObject({
+      name: 'LoaderError',
+      reason: 'not-found',
+      code: 'load-failed',
+    });
     server.faults.clear();
     server.faults.set('/0/c/1/1/0', 'truncate');
     expect(await outcome({ zarr: { retries: 1 } })).toMatchObject({ name: 'LoaderError', reason: 'truncated' });
@@ -200,7 +206,8 @@ describe('OME-Zarr over a failing HTTP server', () => {
   it('a scene whose store fails renders nothing and says why; the next scene renders', async () => {
     server.faults.clear();
     server.faults.set('/0/c/0/1/1', '404');
-    const scene = headScene({ zarr: `${server.url}head.ome.zarr` }, 'webgl2');
+    // Strict: a missing chunk fails the load (by default it would be the fill value).
+    const scene = headScene({ zarr: `${server.url}head.ome.zarr`, missingChunks: 'error' }, 'webgl2');
     const e = await page()
       .render(scene)
       .then(

@@ -44,8 +44,26 @@ export interface ZarrVolumeDescription {
   channel?: number;
   time?: number;
   valueRange?: [number, number];
-  /** A chunk the store lacks: 'error' (default) or 'fill' (the array's fill value). */
+  /** A chunk the store lacks: 'fill' (default: the array's fill value, as the Zarr spec says) or 'error' (strict). */
   missingChunks?: 'error' | 'fill';
+}
+
+/** The formats `volume.format` may force (default 'auto': by name, confirmed by magic bytes). */
+export type VolumeFileFormat = 'auto' | 'nifti' | 'nrrd' | 'dicom' | 'raw' | 'ome-zarr';
+export const VOLUME_FILE_FORMATS: readonly VolumeFileFormat[] = ['auto', 'nifti', 'nrrd', 'dicom', 'raw', 'ome-zarr'];
+
+/**
+ * A volume file in any format @vpt/loaders reads, as the viewer reads it: NIfTI-1 (`.nii`,
+ * `.nii.gz`, a `.hdr` with its `.img`), NRRD (`.nrrd`, an `.nhdr` with its data file), a
+ * DICOM file, a raw file with its JSON sidecar (either named), an OME-Zarr folder, or a
+ * folder of DICOM slices. A list names files loaded together (a series, a header and its
+ * data). Paths are relative to the scene file. The normalization range is `valueRange`,
+ * else the data's (as for raw data), else the OME-Zarr omero window.
+ */
+export interface FileVolumeDescription {
+  file: string | string[];
+  format?: VolumeFileFormat;
+  valueRange?: [number, number];
 }
 
 /** A test volume generated in code (core `createProceduralVolume`). */
@@ -55,7 +73,11 @@ export interface ProceduralVolumeDescription {
 }
 
 export type VolumeDescription =
-  RawVolumeDescription | SidecarVolumeDescription | ZarrVolumeDescription | ProceduralVolumeDescription;
+  | RawVolumeDescription
+  | SidecarVolumeDescription
+  | ZarrVolumeDescription
+  | FileVolumeDescription
+  | ProceduralVolumeDescription;
 
 export interface TransferPointDescription {
   value: number;
@@ -158,8 +180,14 @@ export function checkSceneDescription(d: unknown, rendererNames?: readonly strin
       if (!Array.isArray(v.dims) || v.dims.length !== 3) bad('"volume.dims" must be [nx, ny, nz]');
       if (!['uint8', 'uint16', 'int16', 'float32'].includes(v.type as string))
         bad(`"volume.type" must be uint8, uint16, int16 or float32, got ${JSON.stringify(v.type)}`);
-    } else if (typeof v.sidecar !== 'string' && typeof v.procedural !== 'string' && typeof v.zarr !== 'string') {
-      bad('"volume" needs one of "raw" (with dims and type), "sidecar", "zarr" or "procedural"');
+    } else if (
+      typeof v.sidecar !== 'string' &&
+      typeof v.procedural !== 'string' &&
+      typeof v.zarr !== 'string' &&
+      typeof v.file !== 'string' &&
+      !Array.isArray(v.file)
+    ) {
+      bad('"volume" needs one of "file", "raw" (with dims and type), "sidecar", "zarr" or "procedural"');
     }
   }
 }

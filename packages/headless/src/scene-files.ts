@@ -2,9 +2,15 @@ import fs from 'node:fs';
 import path from 'node:path';
 import { pathToFileURL, fileURLToPath } from 'node:url';
 import { checkRawByteLength, parseRawSidecar, rawFileBeside, VptError } from '@vpt/core';
-import type { RawVolumeDescription, SceneDescription, VolumeDescription } from './scene-description.js';
+import type {
+  FileVolumeDescription,
+  RawVolumeDescription,
+  SceneDescription,
+  VolumeDescription,
+} from './scene-description.js';
 import type { StaticServer } from './server.js';
 import { validateSceneDescription } from './validate-description.js';
+import { isZarrFolder, servedPaths, volumeFileSet, type VolumeFileSet } from './volume-file-set.js';
 
 /** Largest scene or sidecar file read (a lat-long environment inline in JSON can be large). */
 const MAX_SCENE_FILE_BYTES = 256 * 1024 * 1024;
@@ -59,7 +65,7 @@ function mapVolumeRefs(
   map: (ref: string, volume: VolumeDescription) => string,
 ): SceneDescription {
   const volume = desc.volume;
-  if (!volume || 'procedural' in volume) return desc;
+  if (!volume || 'procedural' in volume || 'file' in volume) return desc;
   const mapped: VolumeDescription =
     'zarr' in volume
       ? { ...volume, zarr: map(volume.zarr, volume) }
@@ -124,6 +130,8 @@ export function resolveSceneFiles(
   baseDir: string,
   options: SceneFileOptions = {},
 ): SceneDescription {
+  if (desc.volume && 'file' in desc.volume)
+    return { ...desc, volume: resolveFileVolume(desc.volume, baseDir, options) };
   return mapVolumeRefs(desc, (ref, volume) => {
     const confined = options.root !== undefined;
     if (HAS_SCHEME.test(ref)) {
@@ -162,16 +170,6 @@ export function resolveSceneFiles(
   });
 }
 
-/** An OME-Zarr store is a folder holding zarr.json (v3) or .zattrs / .zgroup (v2). */
-function isZarrFolder(dir: string): boolean {
-  try {
-    if (!fs.statSync(dir).isDirectory()) return false;
-  } catch {
-    return false;
-  }
-  return ['zarr.json', '.zattrs', '.zgroup'].some((f) => statFile(path.join(dir, f)) !== null);
-}
-
 /** A scene's `volume.zarr` path: an OME-Zarr folder (inside `root` when confined), as an absolute path. */
 function resolveZarrFolder(ref: string, dir: string, options: SceneFileOptions): string {
   const confined = options.root !== undefined;
@@ -202,7 +200,10 @@ export function mountSceneFiles(
   server: StaticServer,
   options: SceneFileOptions = {},
 ): SceneDescription {
-  return mapVolumeRefs(resolveSceneFiles(desc, baseDir, options), (ref, volume) => {
+  const resolved = resolveSceneFiles(desc, baseDir, options);
+  if (resolved.volume && 'file' in resolved.volume)
+    return { ...resolved, volume: mountFileVolume(resolved.volume, server) };
+  return mapVolumeRefs(resolved, (ref, volume) => {
     if ('zarr' in volume) {
       // A store is a folder of many files: that folder alone is served (symlinks that leave it refused).
       if (!path.isAbsolute(ref) || !isZarrFolder(ref)) return ref;
@@ -212,4 +213,60 @@ export function mountSceneFiles(
     const files = 'sidecar' in volume ? [ref, checkSidecarFile(ref).rawFile] : [ref];
     return server.mountFiles(files) + encodeURIComponent(path.basename(ref));
   });
+}
+
+/** The refs of a `volume.file`, each a URL (left alone), or a path made absolute against baseDir. */
+function fileRefs(volume: FileVolumeDescription): string[] {
+  return Array.isArray(volume.file) ? volume.file : [volume.file];
+}
+
+/**
+ * `volume.file` (any format the loaders read): paths made absolute and checked to exist,
+ * with the companions the loader will fetch beside them (volume-file-set.ts), all inside
+ * `root` when confined; URLs pass only when not confined. An OME-Zarr folder gets
+ * `format: 'ome-zarr'`, since its name need not end in .zarr.
+ */
+function resolveFileVolume(
+  volume: FileVolumeDescription,
+  baseDir: string,
+  options: SceneFileOptions,
+): FileVolumeDescription {
+  const refs = fileRefs(volume);
+  const confined = options.root !== undefined;
+  const urls = refs.filter((r) => HAS_SCHEME.test(r));
+  if (urls.length) {
+    if (confined)
+      throw new VptError(
+        'invalid-scene',
+        `Volume reference ${urls[0]}: URLs are refused when scene paths are confined to ${options.root}`,
+      );
+    if (urls.length !== refs.length)
+      throw new VptError('invalid-scene', 'volume.file: a list mixes URLs and paths; give all of one kind');
+    return volume;
+  }
+  const files = refs.map((r) => path.resolve(baseDir, r));
+  // Without --root, an absolute path that is nothing on this machine is a URL path on the page's server.
+  if (!confined && refs.every((r) => r.startsWith('/')) && files.every((f) => !fs.existsSync(f))) return volume;
+  const set = volumeFileSet(files, (sidecar) => checkSidecarFile(sidecar).rawFile);
+  if (confined)
+    for (const f of servedPaths(set))
+      if (!insideRoot(f, options.root!))
+        throw new VptError(
+          'invalid-scene',
+          `Volume file ${f} is outside ${path.resolve(options.root!)}, the folder scene paths are confined to (--root)`,
+        );
+  const file = Array.isArray(volume.file) ? files : files[0];
+  return set.kind === 'zarr' && !volume.format ? { ...volume, file, format: 'ome-zarr' } : { ...volume, file };
+}
+
+/** Serve exactly the files of a resolved `volume.file` and put their URLs in its place. */
+function mountFileVolume(volume: FileVolumeDescription, server: StaticServer): FileVolumeDescription {
+  const refs = fileRefs(volume);
+  if (!refs.every((r) => path.isAbsolute(r) && fs.existsSync(r))) return volume; // URLs, URL paths
+  const set: VolumeFileSet = volumeFileSet(refs, (sidecar) => checkSidecarFile(sidecar).rawFile);
+  if (set.kind === 'zarr') return { ...volume, file: server.mount(set.dir, undefined, { confine: true }) };
+  const files = servedPaths(set);
+  const prefix = server.mountFiles(files);
+  const url = (f: string) => prefix + encodeURIComponent(path.basename(f));
+  return { ...volume, file: set.kind === 'file' ? url(set.main) : set.files.map(url) };
 }

@@ -5,7 +5,7 @@
  * so a bad scene file fails at once with a VptError naming the field and the limit.
  * Loaded by the CLI in Node and by the headless page (after its packages loaded).
  */
-import { BACKEND_NAMES, type RendererName, type SceneDescription } from './scene-description.js';
+import { BACKEND_NAMES, VOLUME_FILE_FORMATS, type RendererName, type SceneDescription } from './scene-description.js';
 import {
   checkKnownKeys,
   checkNumber,
@@ -100,6 +100,18 @@ function checkVolume(v: unknown): void {
     }
     if (vol.missingChunks !== undefined)
       checkOneOf('volume.missingChunks', vol.missingChunks, ['error', 'fill'] as const);
+  } else if ('file' in vol) {
+    checkKnownKeys('volume', vol, ['file', 'format', 'valueRange']);
+    if (Array.isArray(vol.file)) {
+      if (!vol.file.length) throw new VptError('invalid-scene', 'volume.file: an empty list names no file');
+      vol.file.forEach((f, i) => checkString(`volume.file[${i}]`, f));
+    } else checkString('volume.file', vol.file);
+    if (vol.format !== undefined) checkOneOf('volume.format', vol.format, VOLUME_FILE_FORMATS);
+    if (vol.valueRange !== undefined) {
+      const [lo, hi] = checkNumbers('volume.valueRange', vol.valueRange, 2);
+      if (lo === hi)
+        throw new VptError('invalid-scene', `volume.valueRange: min and max are equal (${lo}), an empty range`);
+    }
   } else if ('procedural' in vol) {
     checkKnownKeys('volume', vol, ['procedural', 'size']);
     checkOneOf('volume.procedural', vol.procedural, PROCEDURAL_KINDS);
@@ -108,7 +120,7 @@ function checkVolume(v: unknown): void {
   } else {
     throw new VptError(
       'invalid-scene',
-      'volume: needs one of "raw" (with dims and type), "sidecar", "zarr" or "procedural"',
+      'volume: needs one of "file", "raw" (with dims and type), "sidecar", "zarr" or "procedural"',
     );
   }
 }

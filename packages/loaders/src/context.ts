@@ -12,6 +12,11 @@ export interface LoadContext {
   checkAborted(): void;
   /** Human-readable notes collected along the way (meta.warnings). */
   warnings: string[];
+  /**
+   * The caller's own memory, when it passed bytes: voxels read from it are copied. Bytes the
+   * loader read or inflated itself may become the volume's data as they are (a typed-array view).
+   */
+  borrowed?: ArrayBufferLike;
 }
 
 export function createContext(name: string, options: LoadOptions): LoadContext {

@@ -9,7 +9,7 @@ export type Format = Exclude<LoaderFormat, 'auto'> | 'sidecar';
 /** The format a file name suggests, if any. */
 export function formatFromName(name: string): Format | undefined {
   const n = name.toLowerCase().replace(/[?#].*$/, '');
-  if (n.endsWith('.nii') || n.endsWith('.nii.gz')) return 'nifti';
+  if (n.endsWith('.nii') || n.endsWith('.nii.gz') || n.endsWith('.hdr') || n.endsWith('.hdr.gz')) return 'nifti';
   if (n.endsWith('.nrrd') || n.endsWith('.nhdr')) return 'nrrd';
   if (n.endsWith('.dcm') || n.endsWith('.dicom') || n.endsWith('.ima')) return 'dicom';
   if (n.endsWith('.json')) return 'sidecar';

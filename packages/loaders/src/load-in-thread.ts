@@ -5,7 +5,7 @@ import { baseName, formatFromBytes, formatFromName, type Format } from './detect
 import { bytesOf, fetchBytes, fetchText, readBlob } from './io/read-bytes.js';
 import { checkRawOptions, decodeRaw, parseSidecar, rawFromName, type RawDescription } from './formats/raw.js';
 import { decodeDicom, type DicomFile } from './formats/dicom.js';
-import { decodeNifti } from './formats/nifti.js';
+import { decodeNifti, pairImageName } from './formats/nifti.js';
 import { decodeNrrd } from './formats/nrrd.js';
 import { isZarrLocation } from './zarr/location.js';
 
@@ -76,7 +76,9 @@ async function dispatch(source: VolumeSource, options: LoadOptions, ctx: LoadCon
     return decodeBytes(bytes, name, wanted, options, ctx, undefined);
   }
   if (source instanceof ArrayBuffer || ArrayBuffer.isView(source)) {
-    return decodeBytes(bytesOf(source as ArrayBuffer), '', wanted, options, ctx, undefined);
+    const bytes = bytesOf(source as ArrayBuffer);
+    ctx.borrowed = bytes.buffer;
+    return decodeBytes(bytes, '', wanted, options, ctx, undefined);
   }
   throw new LoaderError(
     'unsupported',
@@ -184,7 +186,9 @@ async function loadFiles(
   const niftiIndex = kinds.indexOf('nifti');
   if ((!wanted && niftiIndex >= 0) || wanted === 'nifti') {
     const f = files[niftiIndex >= 0 ? niftiIndex : 0];
-    if (files.length > 1) ctx.warnings.push(`several files given; ${f.name} is loaded`);
+    // A .hdr/.img pair is one volume in two files; anything more is said.
+    const pairImage = byName(pairImageName(f.name));
+    if (files.length > (pairImage ? 2 : 1)) ctx.warnings.push(`several files given; ${f.name} is loaded`);
     return decodeBytes(await readBlob(f, ctx), f.name, 'nifti', options, { ...ctx, name: f.name }, resolve);
   }
   if (wanted === 'raw') {
@@ -254,7 +258,7 @@ async function decodeBytes(
       return decodeRaw(await resolve(sidecar.file ?? name.replace(/\.json$/i, '.raw')), sidecar, ctx, sidecar.meta);
     }
     case 'nifti': {
-      return decodeNifti(bytes, ctx);
+      return decodeNifti(bytes, ctx, resolve);
     }
     case 'nrrd': {
       return decodeNrrd(bytes, ctx, resolve);

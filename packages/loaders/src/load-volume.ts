@@ -16,7 +16,7 @@ export async function loadVolume(source: VolumeSource, options: LoadOptions = {}
   if (useWorker && workersAvailable()) {
     try {
       const volume = await loadInWorker(source, options);
-      volume.meta = { ...(volume.meta ?? {}), loadedIn: 'worker' };
+      (volume.meta ??= {}).loadedIn = 'worker';
       return volume;
     } catch (e) {
       if (!(e instanceof WorkerUnavailable)) throw e;
@@ -24,6 +24,7 @@ export async function loadVolume(source: VolumeSource, options: LoadOptions = {}
     }
   }
   const volume = await loadInThread(source, options);
-  volume.meta = { ...(volume.meta ?? {}), loadedIn: 'main' };
+  // Set in place, not spread: a spread would read meta.dataRange's getter (a scan of every voxel).
+  (volume.meta ??= {}).loadedIn = 'main';
   return volume;
 }

@@ -27,7 +27,7 @@ export interface ZarrLoadOptions {
   channel?: number;
   /** Index along the `t` axis (default 0). */
   time?: number;
-  /** A chunk the store lacks: 'error' (default, reason 'not-found') or 'fill' (the array's fill value). */
+  /** A chunk the store lacks: 'fill' (default: the array's fill value, as the Zarr spec says) or 'error' (strict, reason 'not-found'). */
   missingChunks?: 'error' | 'fill';
   /** Longest wait for one HTTP request before it fails with reason 'network' (ms, default 30 000). */
   requestTimeoutMs?: number;

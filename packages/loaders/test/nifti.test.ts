@@ -1,7 +1,16 @@
 import zlib from 'node:zlib';
 import { describe, expect, it } from 'vitest';
 import { loadVolume } from '../src/index.js';
-import { bytesIn, expectLoaderError, fileOf, fixture, niftiFile, normalizedChecksum, sha256 } from './helpers.js';
+import {
+  bytesIn,
+  concatBytes,
+  expectLoaderError,
+  fileOf,
+  fixture,
+  niftiFile,
+  normalizedChecksum,
+  sha256,
+} from './helpers.js';
 
 const ANAT = 'mri_brain_nibabel_anatomical';
 const ANISO = 'mri_brain_dipy_aniso_vox';
@@ -208,12 +217,13 @@ describe('NIfTI-1: bad input', () => {
       ),
       'bad-magic',
     );
+    // sizeof_hdr 540 says NIfTI-2, whose header this NIfTI-1 file does not hold.
     await expectLoaderError(
       loadVolume(
         edit((v) => v.setInt32(0, 540, true)),
         { format: 'nifti' },
       ),
-      'unsupported',
+      'truncated',
     );
     await expectLoaderError(
       loadVolume(
@@ -240,5 +250,159 @@ describe('NIfTI-1: bad input', () => {
     const gz = new Uint8Array(zlib.gzipSync(hdr));
     const e = await expectLoaderError(loadVolume(gz, { limits: { maxBytes: 1 << 20 } }), 'limit');
     expect(e.message).toContain('maxBytes = 1048576');
+  });
+});
+
+/** Reference voxels from nibabel (fixtures/make_reference.py). */
+const reference = JSON.parse(new TextDecoder().decode(fixture('reference.json'))) as Record<
+  string,
+  { dims: number[]; sha256: string; affine: number[][] }
+>;
+
+/** world = orientation · (index ∘ spacing) + origin, the LoadedVolume contract. */
+function worldOf(v: { orientation?: number[]; spacing: number[]; origin?: number[] }, ijk: number[]): number[] {
+  const o = v.orientation!;
+  const s = ijk.map((x, i) => x * v.spacing[i]);
+  return [0, 1, 2].map((r) => o[3 * r] * s[0] + o[3 * r + 1] * s[1] + o[3 * r + 2] * s[2] + v.origin![r]);
+}
+
+describe('NIfTI: what other writers produce', () => {
+  const values = new Int16Array(24).map((_, i) => i - 5);
+  const base = { dims: [4, 3, 2], datatype: 4, bitpix: 16, data: bytesIn(values, true) };
+
+  it('an sform whose column lengths differ from pixdim, or that is sheared, places voxels exactly where the sform does', async () => {
+    for (const srow of [
+      [
+        [0, 0, 3, -1],
+        [2, 0, 0, -2],
+        [0, 5, 0, -3],
+      ],
+      [
+        [2, 1, 0, 4],
+        [0, 2, 0.5, 5],
+        [0, 0, 3, 6],
+      ],
+    ]) {
+      // pixdim says 1 mm everywhere; the sform says otherwise, and wins (nibabel's affine).
+      const v = await loadVolume(niftiFile({ ...base, sformCode: 1, srow, pixdim: [1, 1, 1, 1, 1, 1, 1, 1] }));
+      for (const ijk of [
+        [0, 0, 0],
+        [3, 2, 1],
+        [1, 2, 0],
+      ]) {
+        const expected = srow.map((row) => row[0] * ijk[0] + row[1] * ijk[1] + row[2] * ijk[2] + row[3]);
+        worldOf(v, ijk).forEach((x, r) => expect(x).toBeCloseTo(expected[r], 5));
+      }
+      expect(String(v.meta?.warnings)).toMatch(/pixdim \[1, 1, 1\] differs from the sform/);
+    }
+    const sheared = await loadVolume(
+      niftiFile({
+        ...base,
+        sformCode: 1,
+        srow: [
+          [2, 1, 0, 0],
+          [0, 2, 0, 0],
+          [0, 0, 3, 0],
+        ],
+      }),
+    );
+    expect(String(sheared.meta?.warnings)).toMatch(/sform is sheared/);
+  });
+
+  it('int32 and uint32 data beyond ±2^24 say that they round as float32; within 16 bits they stay exact', async () => {
+    const big = new Int32Array([0, (1 << 24) + 1, -5, 7]);
+    const v = await loadVolume(niftiFile({ dims: [4, 1, 1], datatype: 8, bitpix: 32, data: bytesIn(big, true) }));
+    expect(v.type).toBe('float32');
+    expect(Array.from(v.data)).toEqual(Array.from(big).map(Math.fround));
+    expect(String(v.meta?.warnings)).toMatch(/int32 data is read as float32.*2\^24 round/);
+    const u = await loadVolume(
+      niftiFile({ dims: [2, 1, 1], datatype: 768, bitpix: 32, data: bytesIn(new Uint32Array([1, 2 ** 31]), true) }),
+    );
+    expect(String(u.meta?.warnings)).toMatch(/uint32 data is read as float32/);
+    const small = await loadVolume(
+      niftiFile({ dims: [2, 1, 1], datatype: 8, bitpix: 32, data: bytesIn(new Int32Array([-3, 30000]), true) }),
+    );
+    expect(small.type).toBe('int16');
+    expect(small.meta?.warnings).toBeUndefined();
+  });
+
+  it('a NaN scl_inter with a valid scl_slope is refused (nibabel refuses it too), not read as 0', async () => {
+    const e = await expectLoaderError(loadVolume(niftiFile({ ...base, slope: 2, inter: NaN })), 'bad-header');
+    expect(e.message).toMatch(/scl_inter = NaN/);
+  });
+
+  it('a 4D .nii.gz says it holds several volumes, and nothing about bytes past the data', async () => {
+    const two = new Int16Array(48).map((_, i) => i);
+    const gz = new Uint8Array(
+      zlib.gzipSync(niftiFile({ dims: [4, 4, 3, 2, 2, 1, 1, 1], datatype: 4, bitpix: 16, data: bytesIn(two, true) })),
+    );
+    const v = await loadVolume(fileOf(gz, 'four.nii.gz'));
+    expect(Array.from(v.data)).toEqual(Array.from(two.subarray(0, 24)));
+    expect(v.meta?.warnings).toEqual(['the file holds 2 volumes (4D or more); the first is loaded']);
+    // Bytes past the whole declared 4D data are still said.
+    const padded = new Uint8Array(
+      zlib.gzipSync(
+        niftiFile({
+          dims: [4, 4, 3, 2, 2, 1, 1, 1],
+          datatype: 4,
+          bitpix: 16,
+          data: concatBytes([bytesIn(two, true), new Uint8Array(10)]),
+        }),
+      ),
+    );
+    const w = await loadVolume(fileOf(padded, 'padded.nii.gz'));
+    expect(String(w.meta?.warnings)).toMatch(/10 inflated bytes past the data/);
+  });
+
+  it('NIfTI-2 (a gzip .nii written by nibabel) loads equal to nibabel, placed by its double-precision sform', async () => {
+    const ref = reference['nibabel_nifti2.nii.gz'];
+    const v = await loadVolume(fileOf(fixture('nibabel_nifti2.nii.gz'), 'nibabel_nifti2.nii.gz'));
+    expect(v.meta?.niftiVersion).toBe(2);
+    expect(v.dims).toEqual(ref.dims);
+    expect(v.type).toBe('float32');
+    expect(sha256(v.data)).toBe(ref.sha256);
+    for (const ijk of [
+      [0, 0, 0],
+      [3, 2, 1],
+    ]) {
+      const expected = ref.affine
+        .slice(0, 3)
+        .map((row) => row[0] * ijk[0] + row[1] * ijk[1] + row[2] * ijk[2] + row[3]);
+      worldOf(v, ijk).forEach((x, r) => expect(x).toBeCloseTo(expected[r], 9));
+    }
+    // Cut inside its 540-byte header: truncated, not misread as NIfTI-1.
+    const plain = new Uint8Array(zlib.gunzipSync(fixture('nibabel_nifti2.nii.gz')));
+    await expectLoaderError(loadVolume(plain.subarray(0, 500), { format: 'nifti' }), 'truncated');
+  });
+
+  it('a .hdr/.img pair written by nibabel loads as one volume, equal to nibabel voxel for voxel', async () => {
+    const ref = reference['nibabel_pair.hdr'];
+    const files = [
+      fileOf(fixture('nibabel_pair.hdr'), 'nibabel_pair.hdr'),
+      fileOf(fixture('nibabel_pair.img'), 'nibabel_pair.img'),
+    ];
+    for (const list of [files, [...files].reverse()]) {
+      const v = await loadVolume(list);
+      expect(v.format).toBe('nifti');
+      expect(v.dims).toEqual(ref.dims);
+      expect(sha256(v.data)).toBe(ref.sha256);
+      expect(v.meta?.warnings).toBeUndefined();
+      for (const ijk of [
+        [0, 0, 0],
+        [4, 3, 2],
+      ]) {
+        const expected = ref.affine
+          .slice(0, 3)
+          .map((row) => row[0] * ijk[0] + row[1] * ijk[1] + row[2] * ijk[2] + row[3]);
+        worldOf(v, ijk).forEach((x, r) => expect(x).toBeCloseTo(expected[r], 5));
+      }
+    }
+    // The header alone names what is missing; Analyze 7.5 (no magic) is refused by name.
+    const alone = await expectLoaderError(loadVolume([files[0]]), 'not-found');
+    expect(alone.message).toContain('nibabel_pair.img');
+    const analyze = fixture('nibabel_pair.hdr').slice();
+    analyze.fill(0, 344, 348);
+    const a = await expectLoaderError(loadVolume([fileOf(analyze, 'old.hdr'), files[1]]), 'unsupported');
+    expect(a.message).toMatch(/Analyze 7\.5/);
   });
 });

@@ -6,6 +6,7 @@ import { loadVolume } from '../src/index.js';
 import {
   FIXTURES,
   bytesIn,
+  concatBytes,
   expectLoaderError,
   fileOf,
   fixture,
@@ -187,5 +188,144 @@ describe('NRRD over HTTP', () => {
   it('loads by URL', async () => {
     const v = await loadVolume(`${server.url}a.nrrd`);
     expect(Array.from(v.data)).toEqual([1, 2, 3, 4, 5, 6, 7, 8]);
+  });
+});
+
+/** Reference voxels from pynrrd/nibabel (fixtures/make_reference.py). */
+const reference = JSON.parse(new TextDecoder().decode(fixture('reference.json'))) as Record<
+  string,
+  { dims: number[]; sha256: string; nonzero?: number }
+>;
+
+describe('NRRD: files from pynrrd and layouts other writers use', () => {
+  it('gzip with "byte skip: -1" keeps the last bytes of the stream (pynrrd BallBinary30x30x30_byteskip_minus_one_nifti.nhdr)', async () => {
+    const ref = reference['pynrrd/BallBinary30x30x30_byteskip_minus_one_nifti.nhdr'];
+    const v = await loadVolume([
+      fileOf(fixture('pynrrd/BallBinary30x30x30_byteskip_minus_one_nifti.nhdr'), 'ball.nhdr'),
+      fileOf(fixture('pynrrd/BallBinary30x30x30.nii.gz'), 'BallBinary30x30x30.nii.gz'),
+    ]);
+    expect(v.dims).toEqual(ref.dims);
+    expect(v.type).toBe('int16');
+    expect(Array.from(v.data).filter((x) => x !== 0).length).toBe(ref.nonzero);
+    expect(sha256(v.data)).toBe(ref.sha256);
+    expect(v.meta?.warnings).toBeUndefined();
+  });
+
+  it('gzip with "byte skip: -1" on a stream longer than the data keeps its tail, with no warning', async () => {
+    const values = new Int16Array(24).map((_, i) => 3 * i - 20);
+    const junk = new Uint8Array(1000).fill(0x5a);
+    const gz = new Uint8Array(zlib.gzipSync(concatBytes([junk, bytesIn(values, true)])));
+    const v = await loadVolume(
+      nrrdFile(
+        { type: 'short', dimension: '3', sizes: '4 3 2', endian: 'little', encoding: 'gzip', 'byte skip': '-1' },
+        gz,
+      ),
+    );
+    expect(Array.from(v.data)).toEqual(Array.from(values));
+    expect(v.meta?.warnings).toBeUndefined();
+  });
+
+  it('a 4D NRRD whose length-1 axis is last, with a "none" direction (pynrrd test_simple4d_raw.nrrd)', async () => {
+    const ref = reference['pynrrd/test_simple4d_raw.nrrd'];
+    const v = await loadVolume(fileOf(fixture('pynrrd/test_simple4d_raw.nrrd'), 'test_simple4d_raw.nrrd'));
+    expect(v.dims).toEqual(ref.dims);
+    // pynrrd's double, read as float32 by vpt: compare the value, not the bytes.
+    expect(v.spacing).toEqual([1.5, 1.5, 1]); // the lengths of its space directions
+    const four = await loadVolume(
+      nrrdFile({ type: 'uint8', dimension: '4', sizes: '2 2 1 1', encoding: 'raw' }, new Uint8Array([9, 8, 7, 6])),
+    );
+    expect(four.dims).toEqual([2, 2, 1]);
+    expect(Array.from(four.data)).toEqual([9, 8, 7, 6]);
+  });
+
+  it('an (x, y, z, t) NRRD loads its first volume and says it is a time series, not values per voxel', async () => {
+    const values = new Uint8Array(2 * 2 * 2 * 13).map((_, i) => i);
+    const layouts: Record<string, string>[] = [
+      { kinds: 'domain domain domain time' },
+      { 'space directions': '(1,0,0) (0,1,0) (0,0,2) none', space: 'right-anterior-superior' },
+    ];
+    for (const fields of layouts) {
+      const v = await loadVolume(
+        nrrdFile({ type: 'uint8', dimension: '4', sizes: '2 2 2 13', encoding: 'raw', ...fields }, values),
+      );
+      expect(v.dims).toEqual([2, 2, 2]);
+      expect(Array.from(v.data)).toEqual(Array.from(values.subarray(0, 8)));
+      const warnings = String(v.meta?.warnings);
+      expect(warnings).toMatch(/13 volumes/);
+      expect(warnings).not.toMatch(/per voxel/);
+    }
+    // Values per voxel (the fastest axis) stay refused, and the message says so.
+    const rgb = await expectLoaderError(
+      loadVolume(
+        nrrdFile(
+          { type: 'uint8', dimension: '4', sizes: '3 2 2 2', encoding: 'raw', kinds: 'RGB-color domain domain domain' },
+          new Uint8Array(24),
+        ),
+      ),
+      'unsupported',
+    );
+    expect(rgb.message).toMatch(/3 values per voxel/);
+    expect(rgb.message).toContain('RGB-color');
+  });
+
+  it('a 2D NRRD in a 2D space ("space dimension: 2") places its pixels in the z = 0 plane', async () => {
+    const values = new Float32Array([1, 2, 3, 4, 5, 6]);
+    const v = await loadVolume(
+      nrrdFile(
+        {
+          type: 'float',
+          dimension: '2',
+          'space dimension': '2',
+          sizes: '3 2',
+          'space directions': '(0,0.5) (-2,0)',
+          'space origin': '(10,20)',
+          endian: 'little',
+          encoding: 'raw',
+        },
+        bytesIn(values, true),
+      ),
+    );
+    expect(v.dims).toEqual([3, 2, 1]);
+    expect(Array.from(v.data)).toEqual(Array.from(values));
+    expect(v.spacing).toEqual([0.5, 2, 1]);
+    // Columns: x runs along +y, y along −x, the normal is their cross product (+z).
+    expect(v.orientation?.map((x) => x + 0)).toEqual([0, -1, 0, 1, 0, 0, 0, 0, 1]); // + 0: −0 is 0
+    expect(v.origin).toEqual([10, 20, 0]);
+    await expectLoaderError(
+      loadVolume(
+        nrrdFile(
+          { type: 'uchar', dimension: '2', 'space dimension': '4', sizes: '1 1', encoding: 'raw' },
+          new Uint8Array(1),
+        ),
+      ),
+      'unsupported',
+    );
+  });
+});
+
+describe('NRRD: 32-bit integers', () => {
+  it('int32 beyond ±2^24 says it rounds as float32, as the OME-Zarr reader does', async () => {
+    const big = new Int32Array([-(2 ** 30), 1, 2, 3]);
+    const v = await loadVolume(
+      nrrdFile({ type: 'int', dimension: '1', sizes: '4', endian: 'little', encoding: 'raw' }, bytesIn(big, true)),
+    );
+    expect(v.type).toBe('float32');
+    expect(Array.from(v.data)).toEqual(Array.from(big).map(Math.fround));
+    expect(String(v.meta?.warnings)).toMatch(/int32 data is read as float32.*2\^24 round/);
+  });
+
+  it('big-endian 16-, 32- and 64-bit samples read as the values written', async () => {
+    const cases: [string, Int16Array | Uint32Array | Float32Array | Float64Array][] = [
+      ['short', new Int16Array([-32768, -2, 0x1234, 32767])],
+      ['uint', new Uint32Array([0, 1, 0x89abcdef, 0xffffffff])],
+      ['float', new Float32Array([-1.5, 0, 3.25e-20, 6.5e30])],
+      ['double', new Float64Array([-0.1, 1e-300, 123456.789, Math.PI])],
+    ];
+    for (const [type, values] of cases) {
+      const v = await loadVolume(
+        nrrdFile({ type, dimension: '1', sizes: '4', endian: 'big', encoding: 'raw' }, bytesIn(values, false)),
+      );
+      expect(Array.from(v.data), type).toEqual(Array.from(values).map(Math.fround));
+    }
   });
 });

@@ -4,7 +4,7 @@ import type { AddressInfo } from 'node:net';
 import path from 'node:path';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { LoaderError, loadVolume, openOmeZarr, parseOmeMultiscales, splitZarrLocation } from '../src/index.js';
-import { expectLoaderError } from './helpers.js';
+import { FIXTURES, expectLoaderError, fixture, sha256 } from './helpers.js';
 import { openZarrStore } from '../src/zarr/store.js';
 import {
   headVoxels,
@@ -307,11 +307,11 @@ describe('OME-Zarr: bad stores give typed errors', () => {
     expect(String(v.meta?.warnings)).toMatch(/float64 data is read as float32/);
   });
 
-  it('a missing chunk is an error by default and the fill value when asked', async () => {
+  it('a missing chunk is the fill value by default (the Zarr spec) and an error when strict', async () => {
     const dir = await store('missing', (d) => fs.rmSync(path.join(d, '0', '1', '0', '1')));
-    const e = await expectLoaderError(loadVolume(dir), 'not-found');
+    const e = await expectLoaderError(loadVolume(dir, { zarr: { missingChunks: 'error' } }), 'not-found');
     expect(e.message).toMatch(/chunk .*1\/0\/1 is missing/);
-    const v = await loadVolume(dir, { zarr: { missingChunks: 'fill' } });
+    const v = await loadVolume(dir);
     expect(at(v.data, dims, 5, 1, 6)).toBe(0); // inside the missing chunk (x 4–7, y 0–3, z 4–7)
     expect(at(v.data, dims, 1, 1, 6)).toBe(at(pattern(dims, 'uint16'), dims, 1, 1, 6));
   });
@@ -368,10 +368,11 @@ describe('OME-Zarr over HTTP', () => {
     expect((await loadVolume(url(), { zarr: { level: 1 } })).dims).toEqual([64, 64, 42]);
   });
 
-  it('a 404 chunk is not-found; a one-off 500 is retried; a truncated answer is retried and then fails', async () => {
+  it('a 404 chunk is the fill value, or not-found when strict; a one-off 500 is retried; a truncated answer is retried and then fails', async () => {
     server.faults.clear();
     server.faults.set('/0/c/1/0/1', '404');
-    await expectLoaderError(loadVolume(url()), 'not-found');
+    expect((await loadVolume(url())).dims).toEqual([128, 128, 84]);
+    await expectLoaderError(loadVolume(url(), { zarr: { missingChunks: 'error' } }), 'not-found');
     server.faults.clear();
     server.faults.set('/0/c/1/0/1', '500-once');
     expect((await loadVolume(url())).dims).toEqual([128, 128, 84]);
@@ -439,5 +440,21 @@ describe('OME-Zarr progress', () => {
     ).readRegion(0, [7, 0, 0], [9, 1, 1]);
     expect(box.length).toBe(2);
     expect(events.at(-1)).toEqual({ stage: 'box', loaded: 2, total: 2 }); // x 7–8 straddles chunks 0 and 1
+  });
+});
+
+describe('OME-Zarr written by zarr-python', () => {
+  it("a store without its all-fill chunks (zarr-python's default) loads equal to zarr-python's own read", async () => {
+    const ref = JSON.parse(new TextDecoder().decode(fixture('reference.json')))['zarr_python_sparse.ome.zarr'];
+    expect(ref.chunksWritten).toBeLessThan(ref.chunksTotal); // the fixture really lacks chunks
+    const v = await loadVolume(path.join(FIXTURES, 'zarr_python_sparse.ome.zarr'));
+    expect(v.dims).toEqual(ref.dims);
+    expect(v.type).toBe('uint16');
+    expect(sha256(v.data)).toBe(ref.sha256);
+    expect(v.spacing).toEqual([0.5, 1, 2]); // x, y, z from the (z, y, x) scale
+    await expectLoaderError(
+      loadVolume(path.join(FIXTURES, 'zarr_python_sparse.ome.zarr'), { zarr: { missingChunks: 'error' } }),
+      'not-found',
+    );
   });
 });

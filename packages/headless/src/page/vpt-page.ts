@@ -9,6 +9,7 @@ import type { Environment, MultiscaleSource, RenderContext, Renderer, Scene, Vol
 import {
   SCENE_DEFAULTS,
   checkSceneDescription,
+  type FileVolumeDescription,
   type SceneDescription,
   type VolumeDescription,
   type ZarrVolumeDescription,
@@ -19,8 +20,8 @@ type CoreModule = VptPageApi['core'];
 /** The part of @vpt/loaders this page uses (imported on first use; not a dependency of this package's types). */
 interface LoadersModule {
   loadVolume(
-    url: string,
-    options: { format: 'ome-zarr'; zarr: Record<string, unknown> },
+    source: string | File[],
+    options: { format?: string; zarr?: Record<string, unknown> },
   ): Promise<Volume & { meta?: Record<string, unknown> }>;
   openOmeZarr(url: string, options: Record<string, unknown>): Promise<MultiscaleSource>;
 }
@@ -45,6 +46,7 @@ async function fetchOk(url: string): Promise<Response> {
 async function loadVolume(desc: VolumeDescription, baseUrl: string = document.baseURI): Promise<Volume> {
   if ('procedural' in desc) return core.createProceduralVolume(desc.procedural, desc.size ?? 32);
   if ('zarr' in desc) return loadZarr(desc, baseUrl);
+  if ('file' in desc) return loadFile(desc, baseUrl);
   if ('sidecar' in desc) {
     // core's raw reader parses the sidecar (as @vpt/loaders and the viewer's fallback do).
     const sidecarUrl = new URL(desc.sidecar, baseUrl).href;
@@ -86,6 +88,39 @@ async function loadZarr(desc: ZarrVolumeDescription, baseUrl: string): Promise<V
   const range = desc.valueRange ?? window;
   if (range) volume.valueRange = [range[0], range[1]];
   volume.name = loaded.name ?? url.split('/').filter(Boolean).pop();
+  return volume;
+}
+
+/**
+ * `volume.file` through @vpt/loaders, as the viewer reads a file: one URL (the loader fetches
+ * a sidecar's raw file, an .nhdr's data or an .hdr's .img beside it), or a list of URLs
+ * fetched here and handed over as Files (a DICOM series, files loaded together).
+ */
+async function loadFile(desc: FileVolumeDescription, baseUrl: string): Promise<Volume> {
+  const loaders = await load<LoadersModule>('@vpt/loaders');
+  const format = desc.format && desc.format !== 'auto' ? { format: desc.format } : {};
+  const list = Array.isArray(desc.file) ? desc.file.map((f) => new URL(f, baseUrl).href) : null;
+  const where = list ? `${list.length} files` : new URL(desc.file as string, baseUrl).href;
+  let loaded: Awaited<ReturnType<LoadersModule['loadVolume']>>;
+  try {
+    const source = list
+      ? await Promise.all(
+          list.map(
+            async (url) =>
+              new File([await (await fetchOk(url)).arrayBuffer()], decodeURIComponent(url.split('/').pop() ?? '')),
+          ),
+        )
+      : where;
+    loaded = await loaders.loadVolume(source, format);
+  } catch (e) {
+    throw new core.VptError('load-failed', `Could not load ${where}: ${(e as Error).message}`, { cause: e });
+  }
+  const volume = core.createVolume(loaded.dims, loaded.type, loaded.data, loaded.spacing);
+  // As for a sidecar's or an OME-Zarr omero window: the description's range wins.
+  const window = loaded.valueRange ?? (loaded.meta?.value_range as [number, number] | undefined);
+  const range = desc.valueRange ?? window;
+  if (range) volume.valueRange = [range[0], range[1]];
+  volume.name = loaded.name ?? where.split('/').filter(Boolean).pop();
   return volume;
 }
 

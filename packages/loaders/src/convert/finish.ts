@@ -41,14 +41,18 @@ export function finishVolume(v: DecodedVolume, ctx: LoadContext): LoadedVolume {
     data = shrunk.data;
     ctx.warnings.push(`downsampled by [${factors.join(', ')}] to fit the limits`);
   }
-  const range = scanRange(data);
   if (v.type === 'float32') {
     // Documented behaviour: NaN/±Inf voxels load as they are (core's normalizedData
     // turns them into 0, and the normalization range ignores them); the count says how many.
+    const range = scanRange(data);
     meta.nonFiniteCount = range.nonFinite;
     if (range.nonFinite > 0) ctx.warnings.push(`${range.nonFinite} voxels are NaN or ±Infinity; they render as 0`);
+    if (range.min <= range.max) meta.dataRange = [range.min, range.max];
+  } else {
+    // Integer data cannot hold NaN: the range is worked out when first read, so a load does
+    // no per-voxel pass of its own (core scans again for normalization anyway).
+    lazyDataRange(meta, data);
   }
-  if (range.min <= range.max) meta.dataRange = [range.min, range.max];
   if (ctx.warnings.length) meta.warnings = [...ctx.warnings];
   const out: LoadedVolume = { format: v.format, dims, spacing, type: v.type, data, meta, name: ctx.name };
   if (v.orientation) out.orientation = v.orientation;
@@ -61,6 +65,20 @@ export function finishVolume(v: DecodedVolume, ctx: LoadContext): LoadedVolume {
     });
   }
   return out;
+}
+
+/** `meta.dataRange` as a getter that scans once, on first read, then holds the value (enumerable, so it is cloned). */
+function lazyDataRange(meta: Record<string, unknown>, data: VoxelArray): void {
+  Object.defineProperty(meta, 'dataRange', {
+    enumerable: true,
+    configurable: true,
+    get() {
+      const r = scanRange(data);
+      const value = r.min <= r.max ? [r.min, r.max] : undefined;
+      Object.defineProperty(meta, 'dataRange', { value, enumerable: true, configurable: true, writable: true });
+      return value;
+    },
+  });
 }
 
 /** Box-average `f`-sized blocks (partial blocks at the far edges average what they hold); NaN/±Inf are skipped. */

@@ -31,8 +31,10 @@ export const OUTPUT_BYTES: Record<VoxelType, number> = { uint8: 1, uint16: 2, in
 const HOST_LITTLE = new Uint8Array(new Uint16Array([1]).buffer)[0] === 1;
 
 /**
- * Copy `count` samples of `type` from `bytes` at `offset` into a fresh, aligned array in
- * this machine's byte order (the caller has checked that the bytes are there).
+ * `count` samples of `type` from `bytes` at `offset`, in this machine's byte order (the
+ * caller has checked that the bytes are there). With `view` (bytes the loader owns), aligned
+ * data in this machine's order is a typed-array view over them, no copy and no per-voxel
+ * work; otherwise one slab copy (memcpy), then a byte swap where the order differs.
  */
 export function readSamples(
   bytes: Uint8Array,
@@ -40,20 +42,44 @@ export function readSamples(
   count: number,
   type: SourceType,
   littleEndian: boolean,
+  view = false,
 ): SourceArray {
   const size = SOURCE_BYTES[type];
+  const at = bytes.byteOffset + offset;
+  if (view && (size === 1 || littleEndian === HOST_LITTLE) && at % size === 0)
+    return new SOURCE_ARRAY[type](bytes.buffer as ArrayBuffer, at, count);
   const copy = bytes.slice(offset, offset + count * size);
   if (size > 1 && littleEndian !== HOST_LITTLE) swapBytes(copy, size);
   return new SOURCE_ARRAY[type](copy.buffer, 0, count);
 }
 
+/** May voxels read from these bytes share their memory (the loader's own, not the caller's)? */
+export function ownsMemory(bytes: Uint8Array, borrowed: ArrayBufferLike | undefined): boolean {
+  return bytes.buffer !== borrowed;
+}
+
+/** Reverse the byte order of each `size`-byte sample of a fresh (aligned) copy, a word at a time. */
 function swapBytes(b: Uint8Array, size: number): void {
+  const n = Math.floor(b.length / size);
   if (size === 2) {
-    for (let i = 0; i + 1 < b.length; i += 2) {
-      const t = b[i];
-      b[i] = b[i + 1];
-      b[i + 1] = t;
+    const w = new Uint16Array(b.buffer, b.byteOffset, n);
+    for (let i = 0; i < n; i++) {
+      const x = w[i];
+      w[i] = (x >>> 8) | ((x & 0xff) << 8);
     }
+  } else if (size === 4 || size === 8) {
+    const w = new Uint32Array(b.buffer, b.byteOffset, (n * size) / 4);
+    for (let i = 0; i < w.length; i++) {
+      const x = w[i];
+      w[i] = ((x & 0xff) << 24) | ((x & 0xff00) << 8) | ((x >>> 8) & 0xff00) | (x >>> 24);
+    }
+    // An 8-byte sample is two swapped words, which also trade places.
+    if (size === 8)
+      for (let i = 0; i + 1 < w.length; i += 2) {
+        const t = w[i];
+        w[i] = w[i + 1];
+        w[i + 1] = t;
+      }
   } else {
     for (let i = 0; i + size <= b.length; i += size) b.subarray(i, i + size).reverse();
   }
@@ -99,6 +125,36 @@ export function chooseType(source: SourceType, scaled: { min: number; max: numbe
   if (min >= 0 && max <= 65535) return 'uint16';
   return 'float32';
 }
+
+/**
+ * The core type for these samples, scanning them only when the answer depends on their
+ * range (32-bit integers, integer rescaling); 8/16-bit integers and floats map to a fixed
+ * type, so the common files are read with no per-voxel pass here. `warnings` gets a note
+ * when 32-bit integers beyond ±2^24 become float32 (they round), as OME-Zarr's reader says.
+ */
+export function chooseTypeOf(
+  samples: SourceArray,
+  source: SourceType,
+  scaling: Scaling,
+  warnings: string[],
+): VoxelType {
+  const integral = integralScaling(scaling);
+  const identity = scaling.slope === 1 && scaling.inter === 0;
+  if (!integral || !isIntegral(source)) return 'float32';
+  if (identity && (source === 'uint8' || source === 'uint16' || source === 'int16' || source === 'int8'))
+    return source === 'int8' ? 'int16' : source;
+  const range = scanRange(samples);
+  const type = chooseType(source, scaledRange(range, scaling), integral);
+  const scaled = scaledRange(range, scaling);
+  if (type === 'float32' && Math.max(Math.abs(scaled.min), Math.abs(scaled.max)) > FLOAT32_EXACT_INTEGER)
+    warnings.push(
+      `${source} data is read as float32, and its values reach ${Math.max(Math.abs(scaled.min), Math.abs(scaled.max))}: integers beyond ±2^24 round`,
+    );
+  return type;
+}
+
+/** 2^24: the largest integer magnitude below which float32 holds every integer exactly. */
+export const FLOAT32_EXACT_INTEGER = 1 << 24;
 
 export interface Scaling {
   slope: number;

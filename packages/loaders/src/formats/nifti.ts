@@ -4,11 +4,10 @@ import type { LoadedVolume } from '../types.js';
 import { finishVolume } from '../convert/finish.js';
 import { checkAvailable, checkDims, checkFits, SOURCE_BYTES, type SourceType } from '../convert/size.js';
 import {
-  chooseType,
+  chooseTypeOf,
   integralScaling,
+  ownsMemory,
   readSamples,
-  scanRange,
-  scaledRange,
   toVoxelArray,
   IDENTITY,
   OUTPUT_BYTES,
@@ -20,6 +19,9 @@ import { axisCodes, directionCosines, isFiniteVector } from './orientation.js';
 
 const HEADER = 348;
 const MIN_OFFSET = 352; // header + the 4-byte extension flag
+/** NIfTI-2 (2011): the same fields, 64-bit dims and doubles, in a 540-byte header with its magic at byte 4. */
+const HEADER2 = 540;
+const MIN_OFFSET2 = 544;
 
 /** NIfTI-1 datatype codes vpt reads, and the type they are read as. */
 const DATATYPES: Record<number, SourceType> = {
@@ -44,15 +46,14 @@ const UNSUPPORTED_TYPES: Record<number, string> = {
   2304: 'RGBA32',
 };
 
-/** Is this a NIfTI-1 single file (magic "n+1\0" at byte 344)? */
+/** Is this a NIfTI-1 header (magic "n+1\0" / "ni1\0" at byte 344) or a NIfTI-2 one ("n+2\0" / "ni2\0" at byte 4)? */
 export function hasNiftiMagic(bytes: Uint8Array): boolean {
-  return (
-    bytes.length >= HEADER &&
-    bytes[344] === 0x6e &&
-    (bytes[345] === 0x2b || bytes[345] === 0x69) &&
-    bytes[346] === 0x31 &&
-    bytes[347] === 0
-  );
+  const at = (i: number, version: number) =>
+    bytes[i] === 0x6e &&
+    (bytes[i + 1] === 0x2b || bytes[i + 1] === 0x69) &&
+    bytes[i + 2] === version &&
+    bytes[i + 3] === 0;
+  return (bytes.length >= HEADER && at(344, 0x31)) || (bytes.length >= HEADER2 && at(4, 0x32));
 }
 
 interface NiftiHeader {
@@ -71,6 +72,8 @@ interface NiftiHeader {
   qform_code: number;
   sform_code: number;
   magic: string;
+  /** NIfTI-2: the sform rows as read (doubles); NIfTI-1's are read from the bytes as float32. */
+  affine?: number[][];
   getQformMat(): number[][];
 }
 
@@ -81,6 +84,10 @@ interface Plan {
   offset: number;
   count: number;
   extraVolumes: number;
+  /** A .hdr/.img pair (magic "ni1" / "ni2"): the data is in the .img file, from vox_offset. */
+  pair: boolean;
+  headerSize: number;
+  version: 1 | 2;
 }
 
 /**
@@ -91,29 +98,27 @@ interface Plan {
 type NiftiModule = typeof import('nifti-reader-js');
 
 function readPlan(head: Uint8Array, ctx: LoadContext, nifti: NiftiModule): Plan {
-  if (head.length < HEADER)
+  const version = isNifti2(head) ? 2 : 1;
+  const size = version === 2 ? HEADER2 : HEADER;
+  if (head.length < size)
     throw new LoaderError(
       'truncated',
-      `${ctx.name}: ${head.length} bytes is shorter than a NIfTI-1 header (348 bytes)`,
+      `${ctx.name}: ${head.length} bytes is shorter than a NIfTI-${version} header (${size} bytes)`,
     );
-  const view = new DataView(head.buffer, head.byteOffset, HEADER);
+  const view = new DataView(head.buffer, head.byteOffset, size);
   const sizeLE = view.getInt32(0, true),
     sizeBE = view.getInt32(0, false);
-  if (sizeLE === 540 || sizeBE === 540) {
-    throw new LoaderError(
-      'unsupported',
-      `${ctx.name} is NIfTI-2, which vpt does not read; save it as NIfTI-1 (e.g. nibabel.Nifti1Image)`,
-    );
-  }
-  if (sizeLE !== HEADER && sizeBE !== HEADER) {
+  if (sizeLE !== size && sizeBE !== size) {
     throw new LoaderError(
       'bad-magic',
-      `${ctx.name} is not a NIfTI-1 file: its first 4 bytes (sizeof_hdr) are not 348 in either byte order`,
+      `${ctx.name} is not a NIfTI file: its first 4 bytes (sizeof_hdr) are not 348 (NIfTI-1) or 540 (NIfTI-2) in either byte order`,
     );
   }
-  const header = new nifti.NIFTI1() as unknown as NiftiHeader & { readHeader(b: ArrayBuffer): void };
+  const header = (version === 2 ? new nifti.NIFTI2() : new nifti.NIFTI1()) as unknown as NiftiHeader & {
+    readHeader(b: ArrayBuffer): void;
+  };
   try {
-    header.readHeader(head.slice(0, HEADER).buffer);
+    header.readHeader(head.slice(0, size).buffer);
   } catch (e) {
     throw new LoaderError(
       'bad-header',
@@ -121,14 +126,31 @@ function readPlan(head: Uint8Array, ctx: LoadContext, nifti: NiftiModule): Plan 
       { cause: e },
     );
   }
-  if (header.magic === 'ni1') {
+  if (version === 1) header.affine = undefined; // NIfTI-1's sform is read from the bytes (float32)
+  if (version === 1 && (header.magic === '' || header.magic === undefined))
     throw new LoaderError(
       'unsupported',
-      `${ctx.name} is the header of a .hdr/.img pair; vpt reads single-file NIfTI (.nii, .nii.gz): convert it, e.g. with nibabel or fslchfiletype`,
+      `${ctx.name} is an Analyze 7.5 header (no NIfTI magic at byte 344); vpt reads NIfTI-1 and NIfTI-2: convert it, e.g. with nibabel`,
     );
-  }
-  if (header.magic !== 'n+1')
-    throw new LoaderError('bad-magic', `${ctx.name}: the NIfTI magic at byte 344 is "${header.magic}", not "n+1"`);
+  const single = `n+${version}`,
+    paired = `ni${version}`;
+  // NIfTI-2's 8-byte magic continues "\0\r\n\x1a\n" (to catch text-mode transfers): the name is its first 3 printable characters.
+  header.magic = String(header.magic ?? '')
+    .replace(/[^\x20-\x7e]/g, '')
+    .slice(0, 3);
+  if (header.magic !== single && header.magic !== paired)
+    throw new LoaderError(
+      'bad-magic',
+      `${ctx.name}: the NIfTI-${version} magic at byte ${version === 2 ? 4 : 344} is "${header.magic}", not "${single}" (one file) or "${paired}" (a .hdr/.img pair)`,
+    );
+  const pair = header.magic === paired;
+  // CIFTI-2 (intent codes 3000–3099) is a matrix over surfaces and grayordinates in a NIfTI-2 shell, not a volume.
+  const intent = (header as { intent_code?: number }).intent_code ?? 0;
+  if (intent >= 3000 && intent <= 3099)
+    throw new LoaderError(
+      'unsupported',
+      `${ctx.name} is CIFTI-2 (NIfTI intent code ${intent}), a matrix over surfaces and grayordinates, not a volume; vpt reads volumes`,
+    );
 
   const d = header.dims;
   if (!(d[0] >= 1 && d[0] <= 7))
@@ -154,12 +176,19 @@ function readPlan(head: Uint8Array, ctx: LoadContext, nifti: NiftiModule): Plan 
     );
   }
   const offset = header.vox_offset;
-  if (!Number.isFinite(offset) || offset < HEADER || !Number.isInteger(offset)) {
-    throw new LoaderError('bad-header', `${ctx.name}: vox_offset = ${offset} must be a whole number ≥ 352`);
+  // In a pair, vox_offset is where the data starts in the .img file (usually 0).
+  const least = pair ? 0 : size;
+  const standard = version === 2 ? MIN_OFFSET2 : MIN_OFFSET;
+  if (!Number.isFinite(offset) || offset < least || !Number.isInteger(offset)) {
+    throw new LoaderError(
+      'bad-header',
+      `${ctx.name}: vox_offset = ${offset} must be a whole number ≥ ${pair ? 0 : standard}`,
+    );
   }
-  if (offset < MIN_OFFSET) ctx.warnings.push(`vox_offset ${offset} is below the 352 the NIfTI-1 standard requires`);
+  if (!pair && offset < standard)
+    ctx.warnings.push(`vox_offset ${offset} is below the ${standard} the NIfTI-${version} standard requires`);
   const count = dims[0] * dims[1] * dims[2];
-  return { header, dims, source, offset, count, extraVolumes };
+  return { header, dims, source, offset, count, extraVolumes, pair, headerSize: size, version };
 }
 
 function scalingOf(h: NiftiHeader, ctx: LoadContext): Scaling {
@@ -170,8 +199,11 @@ function scalingOf(h: NiftiHeader, ctx: LoadContext): Scaling {
     return IDENTITY;
   }
   if (!Number.isFinite(inter)) {
-    ctx.warnings.push(`scl_inter = ${inter} ignored`);
-    return { slope, inter: 0 };
+    // A valid slope with a NaN/Inf intercept cannot be meant: refused, as nibabel does.
+    throw new LoaderError(
+      'bad-header',
+      `${ctx.name}: scl_slope = ${slope} is valid but scl_inter = ${inter} is not a finite number; fix the header's scaling`,
+    );
   }
   return { slope, inter };
 }
@@ -181,12 +213,22 @@ function placement(
   h: NiftiHeader,
   head: Uint8Array,
   ctx: LoadContext,
-): { orientation?: number[]; origin?: [number, number, number]; xform: string } {
+): { orientation?: number[]; origin?: [number, number, number]; lengths?: number[]; xform: string } {
   const view = new DataView(head.buffer, head.byteOffset, HEADER);
   if (h.sform_code > 0) {
-    const rows = [0, 1, 2].map((r) => [0, 1, 2, 3].map((c) => view.getFloat32(280 + (4 * r + c) * 4, h.littleEndian)));
+    const rows = h.affine
+      ? h.affine.slice(0, 3).map((row) => row.slice(0, 4))
+      : [0, 1, 2].map((r) => [0, 1, 2, 3].map((c) => view.getFloat32(280 + (4 * r + c) * 4, h.littleEndian)));
     const cos = rows.every(isFiniteVector) ? directionCosines([0, 1, 2].map((c) => rows.map((row) => row[c]))) : null;
-    if (cos) return { orientation: cos.orientation, origin: [rows[0][3], rows[1][3], rows[2][3]], xform: 'sform' };
+    if (cos) {
+      warnShear(cos.orientation, 'sform', ctx);
+      return {
+        orientation: cos.orientation,
+        origin: [rows[0][3], rows[1][3], rows[2][3]],
+        lengths: cos.lengths,
+        xform: 'sform',
+      };
+    }
     ctx.warnings.push('the sform is degenerate; ignored');
   }
   if (h.qform_code > 0) {
@@ -194,15 +236,28 @@ function placement(
     const cos = q.slice(0, 3).every(isFiniteVector)
       ? directionCosines([0, 1, 2].map((c) => [q[0][c], q[1][c], q[2][c]]))
       : null;
+    // The qform is a rotation times pixdim (and qfac), so pixdim already is its voxel size.
     if (cos) return { orientation: cos.orientation, origin: [q[0][3], q[1][3], q[2][3]], xform: 'qform' };
     ctx.warnings.push('the qform is degenerate; ignored');
   }
   return { xform: 'none' };
 }
 
+/** A sheared transform (axes not perpendicular) is kept exactly, but said: most viewers assume right angles. */
+function warnShear(o: readonly number[], which: string, ctx: LoadContext): void {
+  const col = (c: number) => [o[c], o[3 + c], o[6 + c]];
+  const dot = (a: number[], b: number[]) => a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+  const worst = Math.max(Math.abs(dot(col(0), col(1))), Math.abs(dot(col(0), col(2))), Math.abs(dot(col(1), col(2))));
+  if (worst > 1e-4)
+    ctx.warnings.push(
+      `the ${which} is sheared (its axes are ${(90 - (Math.asin(Math.min(1, worst)) * 180) / Math.PI).toFixed(2)}° apart at the least); orientation holds its unit, non-perpendicular axis directions`,
+    );
+}
+
 function isNifti2(head: Uint8Array): boolean {
-  const v = new DataView(head.buffer, head.byteOffset, Math.min(head.length, 4));
-  return head.length >= 4 && (v.getInt32(0, true) === 540 || v.getInt32(0, false) === 540);
+  if (head.length < 4) return false;
+  const v = new DataView(head.buffer, head.byteOffset, 4);
+  return v.getInt32(0, true) === HEADER2 || v.getInt32(0, false) === HEADER2;
 }
 
 /** Limit check before allocating, at the smallest size the result can have; finishVolume checks the exact one. */
@@ -215,55 +270,96 @@ function earlyFits(plan: Plan, ctx: LoadContext): void {
 
 const SPATIAL_UNITS: Record<number, string> = { 1: 'm', 2: 'mm', 3: 'µm' };
 
-/** NIfTI-1 single file, plain or gzip-compressed, either byte order. */
-export async function decodeNifti(input: Uint8Array, ctx: LoadContext): Promise<LoadedVolume> {
+/** Loads the .img beside a .hdr (by URL, or among the dropped files). */
+export type PairResolver = (name: string) => Promise<Uint8Array>;
+
+/** The .img name of a pair's .hdr (keeping the case of the extension and a .gz). */
+export function pairImageName(hdrName: string): string {
+  return hdrName.replace(
+    /\.(hdr)(\.gz)?$/i,
+    (_, h: string, gz?: string) => (h === 'HDR' ? '.IMG' : '.img') + (gz ?? ''),
+  );
+}
+
+/** NIfTI-1 or NIfTI-2: a single file (.nii, .nii.gz) or a .hdr/.img pair (either may be gzip-compressed), either byte order. */
+export async function decodeNifti(input: Uint8Array, ctx: LoadContext, resolve?: PairResolver): Promise<LoadedVolume> {
   const nifti = await loadDependency('nifti-reader-js', () => import('nifti-reader-js'));
   let bytes = input;
   let plan: Plan | undefined;
+  // Peak inflated memory: at most limits.maxBytes of voxel data plus the header and extensions (≤ 1 MiB).
+  const maxOutput = ctx.downsample ? Number.MAX_SAFE_INTEGER : ctx.limits.maxBytes + (1 << 20);
   if (isGzip(input)) {
     // Inflate in steps: once the header is out it is checked, so a lying or oversize file
     // stops before the rest is inflated, and the output is allocated once at its exact size.
     bytes = await gunzip(input, ctx, {
-      // Peak inflated memory: at most limits.maxBytes of voxel data plus the header and extensions (≤ 1 MiB).
-      maxOutput: ctx.downsample ? Number.MAX_SAFE_INTEGER : ctx.limits.maxBytes + (1 << 20),
-      headBytes: MIN_OFFSET,
+      maxOutput,
+      headBytes: MIN_OFFSET2, // enough for either version's header and extension flag
       onHead: (head) => {
         if (!hasNiftiMagic(head) && head.length >= HEADER && !isNifti2(head)) {
           throw new LoaderError(
             'bad-magic',
-            `${ctx.name}: gzip-compressed data that is not NIfTI-1 (no "n+1" magic at byte 344)`,
+            `${ctx.name}: gzip-compressed data that is not NIfTI (no "n+1" magic at byte 344, no "n+2" at byte 4)`,
           );
         }
         plan = readPlan(head, ctx, nifti);
         earlyFits(plan, ctx);
-        return plan.offset + plan.count * SOURCE_BYTES[plan.source];
+        if (plan.pair) return plan.headerSize;
+        // Keep the first volume; the others are declared data, not "bytes past the data".
+        const volumeBytes = plan.count * SOURCE_BYTES[plan.source];
+        return { keep: plan.offset + volumeBytes, declared: plan.offset + volumeBytes * plan.extraVolumes };
       },
     });
   }
   plan ??= readPlan(bytes, ctx, nifti);
   const { header, dims, source, offset, count } = plan;
+  const volumeBytes = count * SOURCE_BYTES[source];
+  const headerBytes = bytes;
+  let inflated = bytes !== input;
+  if (plan.pair) {
+    const imgName = pairImageName(ctx.name);
+    if (!resolve)
+      throw new LoaderError(
+        'unsupported',
+        `${ctx.name} is the header of a .hdr/.img pair; load it by URL or together with ${imgName}`,
+      );
+    const img = await resolve(imgName);
+    inflated = isGzip(img);
+    bytes = inflated
+      ? await gunzip(img, ctx, {
+          maxOutput,
+          onHead: () => ({ keep: offset + volumeBytes, declared: offset + volumeBytes * plan!.extraVolumes }),
+          headBytes: 0,
+        })
+      : img;
+  }
   if (plan.extraVolumes > 1)
     ctx.warnings.push(`the file holds ${plan.extraVolumes} volumes (4D or more); the first is loaded`);
   const scaling = scalingOf(header, ctx);
-  const integral = integralScaling(scaling);
-  checkAvailable(bytes.length - offset, count * SOURCE_BYTES[source], ctx);
-  const extra = bytes.length - offset - count * SOURCE_BYTES[source] * Math.max(1, plan.extraVolumes);
-  if (bytes === input && extra > 0)
+  checkAvailable(bytes.length - offset, volumeBytes, ctx);
+  const extra = bytes.length - offset - volumeBytes * Math.max(1, plan.extraVolumes);
+  if (!inflated && extra > 0)
     ctx.warnings.push(`${extra} bytes past the data the header declares are ignored; check the dims and datatype`);
   earlyFits(plan, ctx);
   ctx.progress('convert', 0, count);
-  const samples = readSamples(bytes, offset, count, source, header.littleEndian);
-  const range = scanRange(samples);
-  const type = chooseType(source, scaledRange(range, scaling), integral);
+  const samples = readSamples(bytes, offset, count, source, header.littleEndian, ownsMemory(bytes, ctx.borrowed));
+  const type = chooseTypeOf(samples, source, scaling, ctx.warnings);
   const data = toVoxelArray(samples, type, scaling);
   ctx.progress('convert', count, count);
+  // The header's xform is the placement (nibabel's affine): its column lengths are the voxel
+  // sizes, even where pixdim says otherwise; pixdim only when there is no xform.
+  const place = placement(header, headerBytes, ctx);
   const pixdim = [1, 2, 3].map((i) => Math.abs(header.pixDims[i]));
-  const spacing = pixdim.map((s, i) => {
+  // float32 sform rows give lengths a few ulps off pixdim; those agree, and pixdim is exact.
+  const differs = !!place.lengths && pixdim.some((p, i) => !(Math.abs(p - place.lengths![i]) <= 1e-5 * Math.max(1, p)));
+  const spacing = (differs ? place.lengths! : pixdim).map((s, i) => {
     if (Number.isFinite(s) && s > 0) return s;
     if (dims[i] > 1) ctx.warnings.push(`pixdim[${i + 1}] = ${header.pixDims[i + 1]} is not a positive size; 1 used`);
     return 1;
   }) as [number, number, number];
-  const place = placement(header, bytes, ctx);
+  if (differs)
+    ctx.warnings.push(
+      `pixdim [${pixdim.join(', ')}] differs from the ${place.xform}'s voxel sizes [${place.lengths!.map((l) => +l.toPrecision(7)).join(', ')}]; the ${place.xform}'s are used (as nibabel's affine does)`,
+    );
   const meta: Record<string, unknown> = {
     space: 'RAS',
     xform: place.xform,
@@ -271,7 +367,10 @@ export async function decodeNifti(input: Uint8Array, ctx: LoadContext): Promise<
     sclInter: scaling.inter,
     littleEndian: header.littleEndian,
     datatype: source,
+    niftiVersion: plan.version,
+    pixdim,
   };
+  if (plan.pair) meta.pair = true;
   if (place.orientation) meta.axisCodes = axisCodes(place.orientation, 'RAS');
   const units = SPATIAL_UNITS[header.xyzt_units & 7];
   if (units) meta.spacingUnits = units;

@@ -4,9 +4,9 @@ import type { LoadedVolume } from '../types.js';
 import { finishVolume } from '../convert/finish.js';
 import { checkAvailable, checkDims, checkFits, SOURCE_BYTES, type SourceType } from '../convert/size.js';
 import {
-  chooseType,
+  chooseTypeOf,
+  ownsMemory,
   readSamples,
-  scanRange,
   toVoxelArray,
   IDENTITY,
   OUTPUT_BYTES,
@@ -133,18 +133,118 @@ function numbers(text: string | undefined): number[] {
 }
 
 /** `(1,0,0) (0,1,0) none …` → vectors (null for "none"). */
-function vectors(text: string, ctx: LoadContext, field: string): (number[] | null)[] {
+function vectors(text: string, ctx: LoadContext, field: string, spaceDim = 3): (number[] | null)[] {
   const out: (number[] | null)[] = [];
   const re = /\(([^)]*)\)|none/g;
   let m: RegExpExecArray | null;
   while ((m = re.exec(text))) out.push(m[1] === undefined ? null : m[1].split(',').map(Number));
-  if (out.some((v) => v && (v.length !== 3 || !isFiniteVector(v)))) {
+  if (out.some((v) => v && (v.length !== spaceDim || !isFiniteVector(v)))) {
     throw new LoaderError(
       'bad-header',
-      `${ctx.name}: NRRD "${field}: ${text.slice(0, 80)}" must hold vectors of three numbers`,
+      `${ctx.name}: NRRD "${field}: ${text.slice(0, 80)}" must hold vectors of ${spaceDim} numbers (the space dimension)`,
     );
   }
-  return out;
+  // A 2D space (x, y) is embedded in 3D at z = 0.
+  return out.map((v) => (v && v.length < 3 ? [...v, 0, 0].slice(0, 3) : v));
+}
+
+/**
+ * The space's dimension: "space dimension" (2 or 3), or 3 for a named space (every named
+ * space vpt knows is 3D). A 4D space (e.g. "3D-right-handed-time") is refused by name.
+ */
+function spaceDimension(fields: Record<string, string>, ctx: LoadContext): number {
+  const named = fields.space?.toLowerCase();
+  if (named !== undefined && !(named in SPACES))
+    throw new LoaderError(
+      'unsupported',
+      `${ctx.name}: NRRD space "${fields.space}" is not supported; vpt reads 2D and 3D spaces (${Object.keys(SPACES).join(', ')})`,
+    );
+  const given = fields['space dimension'];
+  if (given === undefined) return 3;
+  const n = Number(given);
+  if (n !== 2 && n !== 3)
+    throw new LoaderError(
+      'unsupported',
+      `${ctx.name}: NRRD "space dimension: ${given}" is not supported; vpt reads 2D and 3D spaces`,
+    );
+  return n;
+}
+
+/** NRRD axis kinds that are positions in space (teem's nrrdKindDomain / nrrdKindSpace). */
+const SPATIAL_KINDS = new Set(['domain', 'space']);
+
+/**
+ * Which axes are the volume's x, y, z, and how many volumes the others hold. An axis is
+ * spatial when its space direction is a vector (not "none"), else when its kind is domain or
+ * space, else (no directions, no kinds) when the file has at most 3 axes or the axis is not a
+ * length-1 one that can be dropped. Non-spatial axes of length 1 are dropped wherever they
+ * are; those longer than 1 are allowed only after every spatial axis (a time series: the
+ * first volume is the file's first `count` samples), never before one (values per voxel:
+ * vectors, colours, tensors, which are not a scalar volume).
+ */
+function volumeAxes(
+  fields: Record<string, string>,
+  sizes: number[],
+  spaceDim: number,
+  ctx: LoadContext,
+): { spatial: number[]; volumes: number; volumeKind: string } {
+  const n = sizes.length;
+  const kinds = fields.kinds?.trim().split(/\s+/);
+  let spatial: boolean[];
+  if (fields['space directions']) {
+    spatial = vectors(fields['space directions'], ctx, 'space directions', spaceDim).map((v) => v !== null);
+    if (spatial.length !== n)
+      throw new LoaderError(
+        'bad-header',
+        `${ctx.name}: NRRD space directions has ${spatial.length} entries for ${n} axes`,
+      );
+  } else if (kinds && kinds.length === n) {
+    spatial = kinds.map((k) => SPATIAL_KINDS.has(k.toLowerCase()));
+  } else if (n <= 3) {
+    spatial = sizes.map(() => true);
+  } else {
+    // No geometry at all: drop length-1 axes, leading first, until three are left.
+    spatial = sizes.map(() => true);
+    for (let i = 0, left = n; i < n && left > 3; i++)
+      if (sizes[i] === 1) {
+        spatial[i] = false;
+        left--;
+      }
+    for (let i = n - 1, left = spatial.filter(Boolean).length; i >= 0 && left > 3; i--)
+      if (sizes[i] === 1 && spatial[i]) {
+        spatial[i] = false;
+        left--;
+      }
+  }
+  const kindOf = (i: number) => (kinds && kinds[i] ? `"${kinds[i]}"` : `${i}th`);
+  const idx = spatial.flatMap((s, i) => (s ? [i] : []));
+  if (idx.length > 3)
+    throw new LoaderError(
+      'unsupported',
+      `${ctx.name}: a NRRD with ${idx.length} spatial axes (sizes ${sizes.join(' ')}) is not supported; vpt reads 1D to 3D scalar data`,
+    );
+  if (idx.length === 0)
+    throw new LoaderError('bad-header', `${ctx.name}: no NRRD axis is spatial (space directions or kinds)`);
+  let volumes = 1;
+  const extra: number[] = [];
+  for (let i = 0; i < n; i++) {
+    if (spatial[i] || sizes[i] === 1) continue;
+    if (i < idx[idx.length - 1])
+      throw new LoaderError(
+        'unsupported',
+        `${ctx.name}: NRRD axis ${i} (kind ${kindOf(i)}, size ${sizes[i]}) holds ${sizes[i]} values per voxel; vpt reads scalar volumes`,
+      );
+    volumes *= sizes[i];
+    extra.push(i);
+  }
+  return { spatial: idx, volumes, volumeKind: extra.map(kindOf).join(' × ') || 'none' };
+}
+
+/** ISIZE, the last 4 bytes of a gzip member: its inflated length mod 2^32 (RFC 1952 §2.3.1). */
+function gzipTrailerSize(gz: Uint8Array): number {
+  if (gz.length < 18) return 0;
+  const t = gz.length - 4;
+  return (gz[t] | (gz[t + 1] << 8) | (gz[t + 2] << 16) | (gz[t + 3] << 24)) >>> 0;
 }
 
 const SPACES: Record<string, string> = {
@@ -194,24 +294,16 @@ export async function decodeNrrd(
       `${ctx.name}: NRRD dimension ${fields.dimension} does not match sizes "${fields.sizes}"`,
     );
   }
-  // Spatial axes: all of them, or all but a leading length-1 axis.
-  let axes = sizes.map((_, i) => i);
-  if (dimension === 4) {
-    if (sizes[0] !== 1)
-      throw new LoaderError(
-        'unsupported',
-        `${ctx.name}: a 4D NRRD with ${sizes[0]} values per voxel (kinds: ${fields.kinds ?? 'none'}) is not a scalar volume`,
-      );
-    axes = [1, 2, 3];
-  } else if (dimension > 4) {
-    throw new LoaderError(
-      'unsupported',
-      `${ctx.name}: a ${dimension}-dimensional NRRD is not supported; vpt reads 2D and 3D scalar data`,
-    );
-  }
+  const spaceDim = spaceDimension(fields, ctx);
+  const layout = volumeAxes(fields, sizes, spaceDim, ctx);
+  const axes = layout.spatial;
   const dims = [0, 1, 2].map((i) => (i < axes.length ? sizes[axes[i]] : 1));
   checkDims(dims, ctx, 'NRRD header');
   const count = dims[0] * dims[1] * dims[2];
+  if (layout.volumes > 1)
+    ctx.warnings.push(
+      `the file holds ${layout.volumes} volumes along its ${layout.volumeKind} axis; the first is loaded`,
+    );
   const size = SOURCE_BYTES[source];
   const endian = (fields.endian ?? 'little').toLowerCase();
   if (endian !== 'little' && endian !== 'big')
@@ -246,7 +338,7 @@ export async function decodeNrrd(
   if (!Number.isInteger(lineSkip) || lineSkip < 0 || !Number.isInteger(byteSkip) || byteSkip < -1) {
     throw new LoaderError(
       'bad-header',
-      `${ctx.name}: NRRD line skip ${fields['line skip']} / byte skip ${fields['byte skip']} must be whole numbers ≥ 0 (byte skip may be -1)`,
+      `${ctx.name}: NRRD line skip ${lineSkip} / byte skip ${byteSkip} must be whole numbers ≥ 0 (byte skip may be -1)`,
     );
   }
   for (let l = 0; l < lineSkip; l++) {
@@ -271,19 +363,21 @@ export async function decodeNrrd(
       warnExtra(data.length - byteSkip - dataBytes, ctx);
       data = data.subarray(byteSkip);
     }
-    samples = readSamples(data, 0, count, source, endian === 'little');
+    samples = readSamples(data, 0, count, source, endian === 'little', ownsMemory(data, ctx.borrowed));
   } else if (encoding === 'gzip' || encoding === 'gz') {
     const inflated = await gunzip(data, ctx, {
       // Peak inflated memory is bounded by limits.maxBytes (plus the skipped bytes), whatever the stream holds.
       maxOutput: ctx.downsample ? Number.MAX_SAFE_INTEGER : ctx.limits.maxBytes + Math.max(0, byteSkip),
       // The header already says the size: allocate once, and stop at it.
+      // "byte skip: -1" means the data is the *last* dataBytes of the inflated stream, so the
+      // whole stream is kept: its length is the gzip trailer's ISIZE (checked after inflating).
       headBytes: 0,
-      onHead: () => (byteSkip > 0 ? byteSkip : 0) + dataBytes,
+      onHead: () => (byteSkip === -1 ? Math.max(dataBytes, gzipTrailerSize(data)) : byteSkip + dataBytes),
     });
-    const from = byteSkip === -1 ? inflated.length - dataBytes : byteSkip;
-    if (byteSkip !== -1) warnExtra(inflated.length - Math.max(0, from) - dataBytes, ctx);
-    checkAvailable(inflated.length - Math.max(0, from), dataBytes, ctx);
-    samples = readSamples(inflated, Math.max(0, from), count, source, endian === 'little');
+    const from = byteSkip === -1 ? Math.max(0, inflated.length - dataBytes) : byteSkip;
+    if (byteSkip !== -1) warnExtra(inflated.length - from - dataBytes, ctx);
+    checkAvailable(inflated.length - from, dataBytes, ctx);
+    samples = readSamples(inflated, from, count, source, endian === 'little', true);
   } else if (encoding === 'ascii' || encoding === 'text' || encoding === 'txt') {
     samples = parseAscii(data, count, source, ctx);
   } else if (encoding === 'hex') {
@@ -300,8 +394,7 @@ export async function decodeNrrd(
     );
   }
 
-  const range = scanRange(samples);
-  const type = chooseType(source, range, true);
+  const type = chooseTypeOf(samples, source, IDENTITY, ctx.warnings);
   const voxels = toVoxelArray(samples, type, IDENTITY);
   ctx.progress('convert', count, count);
 
@@ -311,17 +404,13 @@ export async function decodeNrrd(
   let origin: [number, number, number] | undefined;
   const meta: Record<string, unknown> = { encoding, datatype: source, endianness: endian };
   if (fields['space directions']) {
-    const dirs = vectors(fields['space directions'], ctx, 'space directions');
-    if (dirs.length !== dimension)
-      throw new LoaderError(
-        'bad-header',
-        `${ctx.name}: NRRD space directions has ${dirs.length} entries for ${dimension} axes`,
-      );
-    const spatial = axes.map((a) => dirs[a]);
-    if (spatial.some((v) => v === null))
-      throw new LoaderError('bad-header', `${ctx.name}: a spatial NRRD axis has space direction "none"`);
+    const dirs = vectors(fields['space directions'], ctx, 'space directions', spaceDim);
+    const spatial = axes.map((a) => dirs[a]!);
     const cols = [0, 1, 2].map((i) => spatial[i] ?? [0, 0, 0]);
-    if (spatial.length < 3) cols[2] = cross(cols[0], cols[1]); // a 2D image: its normal, unit length
+    // A 1D or 2D image: the missing axes are unit vectors perpendicular to the given ones.
+    if (spatial.length === 1)
+      cols[1] = cross(cols[0], Math.abs(cols[0][0]) < 0.9 * Math.hypot(...cols[0]) ? [1, 0, 0] : [0, 1, 0]);
+    if (spatial.length < 3) cols[2] = cross(cols[0], cols[1]);
     const cos = directionCosines(cols);
     if (!cos) throw new LoaderError('bad-header', `${ctx.name}: NRRD space directions has a zero-length axis`);
     // Collinear (or coplanar) axes span no volume: index → world is not invertible.
@@ -348,7 +437,7 @@ export async function decodeNrrd(
     }) as [number, number, number];
   }
   if (fields['space origin']) {
-    const o = vectors(fields['space origin'], ctx, 'space origin')[0];
+    const o = vectors(fields['space origin'], ctx, 'space origin', spaceDim)[0];
     if (o) origin = [o[0], o[1], o[2]];
   }
   const space = fields.space?.toLowerCase();

@@ -23,9 +23,9 @@ export interface ZarrStoreOptions {
   /** Retries of a request that failed for a transient reason (network error, 5xx, timeout); default 2. */
   retries?: number;
   /**
-   * A chunk the store does not have: 'error' (default) fails with reason 'not-found';
-   * 'fill' reads it as the array's fill value, as the Zarr spec allows for stores written
-   * without empty chunks.
+   * A chunk the store does not have: 'fill' (default) reads it as the array's fill value, as
+   * the Zarr spec says (zarr-python does not write chunks that hold only the fill value);
+   * 'error' fails with reason 'not-found' (strict: for stores known to be complete).
    */
   missingChunks?: 'error' | 'fill';
   /** Called with the byte count of every answer (for progress and benchmarks). */
@@ -110,7 +110,7 @@ function abortable<T>(promise: Promise<T>, signal: AbortSignal | undefined): Pro
 
 export async function openZarrStore(location: string, options: ZarrStoreOptions = {}): Promise<CountingStore> {
   const base = isHttpLocation(location) ? httpReader(location, options) : await fileReader(location);
-  const missing = options.missingChunks ?? 'error';
+  const missing = options.missingChunks ?? 'fill';
   const cache = chunkCache(options.chunkCacheBytes ?? 32 << 20);
   const store: CountingStore = {
     location,
@@ -137,7 +137,7 @@ export async function openZarrStore(location: string, options: ZarrStoreOptions 
         throw new LoaderError(
           'not-found',
           `${location}: chunk ${key} is missing (the store answered "not found"); ` +
-            "pass zarr.missingChunks = 'fill' for stores written without empty chunks",
+            "zarr.missingChunks is 'error' (strict); the default 'fill' reads it as the fill value",
         );
       return undefined;
     }
