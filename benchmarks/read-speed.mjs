@@ -17,26 +17,29 @@ import os from 'node:os';
 import path from 'node:path';
 import readline from 'node:readline';
 import { fileURLToPath } from 'node:url';
-import { parseArgs } from 'node:util';
+import { parseCliOrExit } from '@vpt/cli-options';
 import zlib from 'node:zlib';
 
 const here = path.dirname(fileURLToPath(import.meta.url));
-const { values: flags } = parseArgs({
-  strict: true,
+const flags = parseCliOrExit({
+  name: 'node benchmarks/read-speed.mjs',
+  synopsis: '[--runs 7] [--size 256] [--python python3] [--json out.json] [--loaders FILE]',
+  summary:
+    'Read speed of @vpt/loaders against nibabel / pynrrd on the same size³ int16 bytes, interleaved.\n' +
+    'Needs a build (pnpm run build) and Python with numpy, nibabel and pynrrd.',
   options: {
-    runs: { type: 'string', default: '7' },
-    size: { type: 'string', default: '256' },
-    python: { type: 'string', default: 'python3' },
-    json: { type: 'string' },
+    runs: { type: 'integer', min: 1, default: 7, description: 'interleaved rounds per format' },
+    size: { type: 'integer', min: 2, max: 512, default: 256, description: 'the volume side in voxels' },
+    python: { type: 'string', valueName: 'CMD', description: 'the Python to run (default python3)' },
+    json: { type: 'string', valueName: 'FILE', description: 'also write the results as JSON' },
     // Another build of @vpt/loaders (its dist/index.js), e.g. an older commit's, to compare.
-    loaders: { type: 'string', default: path.join(here, '../packages/loaders/dist/index.js') },
+    loaders: { type: 'string', valueName: 'FILE', description: 'the @vpt/loaders build to time (default this tree)' },
   },
 });
-const runs = Number(flags.runs);
-const n = Number(flags.size);
-if (!(Number.isInteger(runs) && runs >= 1) || !(Number.isInteger(n) && n >= 2 && n <= 512))
-  throw new Error('--runs must be a positive integer and --size an integer in 2..512');
-
+flags.python ??= 'python3';
+flags.loaders ??= path.join(here, '../packages/loaders/dist/index.js');
+const runs = flags.runs;
+const n = flags.size;
 const { loadVolume } = await import(path.resolve(flags.loaders));
 
 // ——— the files: one size³ int16 volume (a smooth field plus noise, so gzip has work) ———

@@ -7,7 +7,18 @@
 import fs from 'node:fs';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { rendererPlumbing } from './renderer-plumbing.mjs';
+import { parseCliOrExit } from '@vpt/cli-options';
+
+parseCliOrExit({
+  name: 'pnpm run gen:renderers',
+  synopsis: '',
+  summary:
+    "Rewrite the plumbing derived from core's renderer catalog (import map, the viewer's loaders,\n" +
+    'the headless descriptors and page types, package lists). Run it after adding a catalog line, then pnpm install.',
+  options: {},
+});
+// Imported after the arguments are checked: the plumbing reads core's built catalog.
+const { rendererPlumbing } = await import('./renderer-plumbing.mjs');
 
 const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..');
 for (const [file, content] of Object.entries(await rendererPlumbing(root))) {

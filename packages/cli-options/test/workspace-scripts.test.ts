@@ -16,12 +16,14 @@ const ROOT = fileURLToPath(new URL('../../..', import.meta.url));
 /** Each script, with arguments whose only fault is a non-number where a number belongs. */
 const SCRIPTS: Record<string, { notANumber?: { argv: string[]; names: string } }> = {
   'scripts/fetch-data.mjs': {},
+  'scripts/gen-renderers.mjs': {},
   'scripts/mutations.mjs': {},
   'scripts/raw-to-ome-zarr.mjs': { notANumber: { argv: ['a.json', 'b.zarr', '--levels', 'abc'], names: '--levels' } },
   'tools/dev-browser.mjs': { notANumber: { argv: ['page.html', 'soon'], names: 'TIMEOUT' } },
   'tools/screenshot.mjs': { notANumber: { argv: ['http://x/', 'o.png', 'NaN'], names: 'WAIT_MS' } },
   'tools/viewer-screenshots.mjs': {},
   'benchmarks/bricking.mjs': { notANumber: { argv: ['--size', 'abc'], names: '--size' } },
+  'benchmarks/read-speed.mjs': { notANumber: { argv: ['--runs', 'many'], names: '--runs' } },
   'benchmarks/mcrt-fetches.mjs': { notANumber: { argv: ['--iterations', '1.5'], names: '--iterations' } },
   'benchmarks/single-variants.mjs': { notANumber: { argv: ['{}', 'five'], names: 'ROUNDS' } },
   'benchmarks/zarr-streaming.mjs': { notANumber: { argv: ['--mbit', 'fast'], names: '--mbit' } },
@@ -30,7 +32,7 @@ const SCRIPTS: Record<string, { notANumber?: { argv: string[]; names: string } }
 /** Shell scripts: no options, but --help and a refusal all the same. */
 const SHELL_SCRIPTS = ['scripts/setup.sh'];
 /** Scripts with their own test (see above), and modules that are not commands. */
-const ELSEWHERE = ['benchmarks/bench.mjs', 'tools/tool-browser.mjs'];
+const ELSEWHERE = ['benchmarks/bench.mjs', 'scripts/renderer-plumbing.mjs', 'tools/tool-browser.mjs'];
 
 function run(script: string, argv: string[]) {
   return spawnSync(process.execPath, [path.join(ROOT, script), ...argv], {
