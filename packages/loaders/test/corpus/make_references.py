@@ -157,7 +157,13 @@ def dicom(path, rel):
     if path.endswith('.gz'):
         return refused(['bad-magic', 'unsupported'], 'gzip-compressed DICOM (neither reader opens it as it is)', reader)
     try:
-        ds = pydicom.dcmread(path)
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter('always')
+            ds = pydicom.dcmread(path)
+            ds.get('PixelData')
+        # pydicom recovered from a file that contradicts its own header (explicit VR declared,
+        # implicit found): a reader that does not guess may refuse it as corrupt instead.
+        malformed = [str(w.message) for w in caught if 'Expected explicit VR' in str(w.message)]
     except pydicom.errors.InvalidDicomError as e:
         return refused(['bad-magic'], f'no DICOM Part 10 preamble ({e})', reader)
     except Exception as e:  # noqa: BLE001
@@ -168,8 +174,9 @@ def dicom(path, rel):
     # Nothing to render; a file cut short may also fail to parse at all.
     empty = ['empty', 'bad-header', 'truncated']
     if syntax not in NATIVE:
-        also = empty if 'PixelData' not in ds else []
-        return refused(['unsupported'] + also, f'compressed transfer syntax {syntax}', reader)
+        also = (empty if 'PixelData' not in ds else []) + (CORRUPT if malformed else [])
+        why = f'compressed transfer syntax {syntax}' + (f'; pydicom: {malformed[0]}' if malformed else '')
+        return refused(['unsupported'] + [r for r in also if r != 'unsupported'], why, reader)
     if 'PixelData' not in ds:
         return refused(empty, 'no Pixel Data', reader)
     if any(k not in ds for k in ('Rows', 'Columns', 'BitsAllocated')):
