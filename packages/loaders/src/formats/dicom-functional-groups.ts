@@ -56,6 +56,10 @@ function uint32s(ds: DataSet, tag: string, at: boolean): number[] {
  */
 export function enhancedFrames(ds: DataSet, frames: number, where: string, ctx: LoadContext): FrameGeometry[] {
   const items = ds.elements[PER_FRAME].items!;
+  if (items.length !== frames)
+    ctx.warnings.push(
+      `${where}: the Per-Frame Functional Groups Sequence describes ${items.length} frames, NumberOfFrames says ${frames}; the ${Math.min(items.length, frames)} described are read`,
+    );
   const shared = firstItem(ds, SHARED);
   const dimItems = ds.elements.x00209222?.items ?? [];
   const pointers = dimItems.map((d) => uint32s(d.dataSet!, 'x00209165', true)[0]);
