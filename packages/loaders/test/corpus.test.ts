@@ -4,7 +4,8 @@
  * what those projects' own readers make of it. corpus/references.json (written by
  * corpus/make_references.py with nibabel and pydicom) holds per file either the voxels'
  * checksum (float32 values, x fastest, NaN as 0x7fc00000), range, spacing and origin, or
- * the typed refusal reasons expected. Skipped, saying so, when the corpus is not fetched.
+ * the typed refusal reasons expected; a key ending in '/' is a folder of pydicom's loaded
+ * as one series. Skipped, saying so, when the corpus is not fetched.
  */
 import fs from 'node:fs';
 import path from 'node:path';
@@ -54,7 +55,8 @@ function valuesChecksum(v: LoadedVolume): string {
   return sha256(f);
 }
 
-const formatOf = (rel: string) => (/\.(nii|nii\.gz|hdr)$/.test(rel) ? 'NIfTI' : 'DICOM');
+const formatOf = (rel: string) =>
+  /\.(nii|nii\.gz|hdr)$/.test(rel) ? 'NIfTI' : rel.endsWith('/') ? 'DICOM series' : 'DICOM';
 const table: Record<string, { tried: number; matched: number; refused: number; known: number }> = {};
 const count = (rel: string, what: 'matched' | 'refused' | 'known') => {
   const row = (table[formatOf(rel)] ??= { tried: 0, matched: 0, refused: 0, known: 0 });
@@ -62,10 +64,20 @@ const count = (rel: string, what: 'matched' | 'refused' | 'known') => {
   row[what]++;
 };
 
+/** A key ending in '/' is a folder whose image files load together (a series); else one file. */
+function sourceOf(rel: string): File | File[] {
+  const read = (p: string) => fileOf(new Uint8Array(fs.readFileSync(path.join(corpus, p))), path.basename(p));
+  if (!rel.endsWith('/')) return read(rel);
+  return fs
+    .readdirSync(path.join(corpus, rel))
+    .filter((n) => !n.includes('.') && n !== 'DICOMDIR' && fs.statSync(path.join(corpus, rel, n)).isFile())
+    .sort()
+    .map((n) => read(rel + n));
+}
+
 async function outcome(rel: string): Promise<{ volume?: LoadedVolume; error?: unknown }> {
-  const bytes = new Uint8Array(fs.readFileSync(path.join(corpus, rel)));
   try {
-    return { volume: await loadVolume(fileOf(bytes, path.basename(rel)), { worker: false }) };
+    return { volume: await loadVolume(sourceOf(rel), { worker: false }) };
   } catch (error) {
     return { error };
   }

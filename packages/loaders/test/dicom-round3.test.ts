@@ -109,6 +109,20 @@ describe('DICOM: a localizer series (slices in several orientations)', () => {
   });
 });
 
+describe('DICOM: a radial or tri-planar localizer (every slice its own orientation)', () => {
+  it('is refused: there is no stack to make a volume of', async () => {
+    const iops = [AXIAL, [0, 1, 0, 0, 0, -1], [1, 0, 0, 0, 0, -1]];
+    const files = iops.map((iop, k) =>
+      fileOf(
+        dicomFile({ rows: 2, cols: 2, pixels: new Uint16Array(4), iop, ipp: [0, 0, k], instance: k + 1 }),
+        `tri${k}.dcm`,
+      ),
+    );
+    const e = await expectLoaderError(loadVolume(files), 'invalid-data');
+    expect(e.message).toMatch(/own orientation/);
+  });
+});
+
 describe('DICOM: refused features name themselves', () => {
   it('PALETTE COLOR is unsupported, naming it', async () => {
     const file = dicomFile({

@@ -374,7 +374,8 @@ function arrange(slices: Slice[], ctx: LoadContext): Geometry {
 /**
  * The slices of one orientation. A localizer (scout) series holds slices in several
  * planes; stacking them would make a volume out of unrelated images, so the largest group
- * of equally oriented slices is kept (the first such group on a tie), and said.
+ * of equally oriented slices is kept (the first such group on a tie), and said; when every
+ * slice has an orientation of its own there is no stack, and that is an error.
  */
 function sameOrientation(slices: Slice[], ctx: LoadContext): Slice[] {
   if (slices.length < 2 || !slices.every((s) => s.iop)) return slices;
@@ -386,6 +387,11 @@ function sameOrientation(slices: Slice[], ctx: LoadContext): Slice[] {
   }
   if (groups.length === 1) return slices;
   const largest = groups.reduce((a, b) => (b.length > a.length ? b : a));
+  if (largest.length === 1)
+    throw new LoaderError(
+      'invalid-data',
+      `${ctx.name}: each of the ${slices.length} slices lies in its own orientation (ImageOrientationPatient; a localizer or a radial series), so there is no stack to make a volume of; load one file at a time`,
+    );
   ctx.warnings.push(
     `the slices lie in ${groups.length} different orientations (ImageOrientationPatient; a localizer?); ` +
       `the ${largest.length} oriented ${largest[0].iop!.map((v) => +v.toFixed(3)).join('\\')} are loaded, the other ${slices.length - largest.length} left out`,

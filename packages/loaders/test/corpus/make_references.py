@@ -13,6 +13,10 @@ claims (DICOM by its "DICM" preamble or a .dcm name, NIfTI by .nii / .nii.gz / .
 or
   {"refuse": [reasons], "why", "reader"}
 
+and, for each folder of pydicom's dicomdirtests (key "folder/"), the same for its files
+loaded together as one series (its largest series, sorted along the slice normal, spacing
+the mean gap of the positions), where that series is not tied with another.
+
 Comparison rule (the test applies the same): the voxel values as float32, x (DICOM columns,
 NIfTI i) fastest, then y, then z, NaN written as the one quiet NaN 0x7fc00000, hashed as
 little-endian bytes. Integer outputs up to 2^24 are exact in float32, and vpt computes a
@@ -233,6 +237,40 @@ def nifti(path, rel):
     return loaded(data.ravel(order='F'), data.shape, reader, spacing=spacing, origin=img.affine[:3, 3])
 
 
+def series_folder(folder, names):
+    """A folder of single-frame files loaded together: its largest series, one orientation,
+    sorted along the slice normal; None when that is ambiguous (largest series tied)."""
+    reader = 'pydicom 3.0.2 (a series)'
+    images = []
+    for name in names:
+        ds = pydicom.dcmread(os.path.join(folder, name))
+        if 'PixelData' in ds:
+            images.append(ds)
+    if len(images) < 2:
+        return None
+    by_series = {}
+    for ds in images:
+        by_series.setdefault(str(ds.SeriesInstanceUID), []).append(ds)
+    sizes = sorted((len(v) for v in by_series.values()), reverse=True)
+    if len(sizes) > 1 and sizes[0] == sizes[1]:
+        return None
+    series = max(by_series.values(), key=len)
+    orientations = {tuple(round(float(x), 3) for x in ds.ImageOrientationPatient) for ds in series}
+    if len(orientations) == len(series) and len(series) > 1:
+        return refused(['invalid-data', 'unsupported'], f'every one of the {len(series)} slices has its own orientation (a localizer or radial series)', reader)
+    if len(orientations) > 1:
+        return None
+    iop = [float(x) for x in series[0].ImageOrientationPatient]
+    normal = np.cross(iop[:3], iop[3:])
+    series.sort(key=lambda ds: float(np.dot([float(x) for x in ds.ImagePositionPatient], normal)))
+    d = [float(np.dot([float(x) for x in ds.ImagePositionPatient], normal)) for ds in series]
+    values = np.stack([apply_modality_lut(ds.pixel_array, ds).astype(np.float64) for ds in series])
+    ps = [float(x) for x in series[0].PixelSpacing]
+    return loaded(values.ravel(), (series[0].Columns, series[0].Rows, len(series)), reader,
+                  spacing=[ps[1], ps[0], (d[-1] - d[0]) / (len(d) - 1)],
+                  origin=[float(x) for x in series[0].ImagePositionPatient], rowCol=iop)
+
+
 def is_dicom(path):
     with open(path, 'rb') as f:
         head = f.read(132)
@@ -254,6 +292,13 @@ def main():
                 refs[rel] = nifti(path, rel)
             elif name.endswith(('.dcm', '.dcm.gz')) or is_dicom(path):
                 refs[rel] = dicom(path, rel)
+        # pydicom's DICOMDIR test folders hold real series (and localizers): each folder of
+        # extension-less image files is also loaded as one set of files, key "folder/".
+        names = sorted(n for n in files if '.' not in n and n != 'DICOMDIR' and is_dicom(os.path.join(base, n)))
+        if 'dicomdirtests' in base and len(names) > 1:
+            ref = series_folder(base, names)
+            if ref is not None:
+                refs[os.path.relpath(base, CORPUS) + '/'] = ref
     out = os.path.join(HERE, 'references.json')
     with open(out, 'w') as f:
         json.dump({'generator': 'packages/loaders/test/corpus/make_references.py', 'files': refs}, f, indent=1)
