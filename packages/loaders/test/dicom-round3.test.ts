@@ -9,7 +9,7 @@
  */
 import { describe, expect, it } from 'vitest';
 import { loadVolume } from '../src/index.js';
-import { dicomFile, expectLoaderError, fileOf, type DicomSpec } from './helpers.js';
+import { dicomElement, dicomFile, dicomText, expectLoaderError, fileOf, uints, type DicomSpec } from './helpers.js';
 import { AXIAL, ENHANCED, enhancedFile, modalityLutSequence as lutSequence } from './dicom-fixtures.js';
 
 describe('DICOM: 8-bit pixels in OW, Explicit VR Big Endian', () => {
@@ -120,6 +120,41 @@ describe('DICOM: a radial or tri-planar localizer (every slice its own orientati
     );
     const e = await expectLoaderError(loadVolume(files), 'invalid-data');
     expect(e.message).toMatch(/own orientation/);
+  });
+});
+
+describe('DICOM: RT Dose grids (pydicom’s rtdose.dcm: 15 frames, Dose Grid Scaling 1e-6)', () => {
+  const doseFile = (offsets: number[], scale: string) =>
+    dicomFile({
+      rows: 1,
+      cols: 2,
+      pixels: new Uint16Array(2 * offsets.length).map((_, i) => 100 * i + 7),
+      frames: offsets.length,
+      ipp: [-4, 6, 20],
+      iop: AXIAL,
+      pixelSpacing: [3, 2],
+      extra: (mode) => [
+        // Frame Increment Pointer → Grid Frame Offset Vector (an AT: group, element).
+        dicomElement(0x28, 0x09, 'AT', uints([0x3004, 0x000c], 2, mode.little), mode),
+        dicomElement(0x3004, 0x0c, 'DS', dicomText(offsets.join('\\')), mode),
+        dicomElement(0x3004, 0x0e, 'DS', dicomText(scale), mode),
+      ],
+    });
+
+  it('values are stored × Dose Grid Scaling; z spacing and direction from the Grid Frame Offset Vector', async () => {
+    const v = await loadVolume(fileOf(doseFile([0, -2.5, -5], '0.001'), 'dose.dcm'));
+    expect(v.type).toBe('float32');
+    expect(Array.from(v.data)).toEqual(Array.from({ length: 6 }, (_, i) => Math.fround((100 * i + 7) * 0.001)));
+    expect(v.spacing).toEqual([2, 3, 2.5]);
+    // Decreasing offsets: frame k lies at z = 20 − 2.5k, so the third axis points along −z.
+    expect(v.orientation).toEqual([1, 0, 0, 0, 1, 0, 0, 0, -1]);
+    expect(v.origin).toEqual([-4, 6, 20]);
+    expect(((v.meta?.warnings as string[] | undefined) ?? []).join()).not.toMatch(/multi-frame spacing/);
+  });
+
+  it('offsets that do not run one way are refused', async () => {
+    const e = await expectLoaderError(loadVolume(fileOf(doseFile([0, 5, 2], '1'), 'dose.dcm')), 'invalid-data');
+    expect(e.message).toMatch(/Grid Frame Offset Vector/);
   });
 });
 

@@ -22,6 +22,7 @@ import { directionCosines } from './orientation.js';
 import { finite, numbersOf, presentText, reader, type DataSet } from './dicom-elements.js';
 import { applyModalityLut, readModalityLut, type ModalityLut } from './dicom-modality-lut.js';
 import { enhancedFrames, hasFunctionalGroups } from './dicom-functional-groups.js';
+import { readDoseGrid } from './dicom-rt-dose.js';
 
 /** Transfer syntaxes with native (uncompressed) pixel data, and whether it is little-endian. */
 const NATIVE: Record<string, { little: boolean; name: string }> = {
@@ -80,6 +81,8 @@ interface Slice {
   pixels: Uint8Array;
   modality?: string;
   syntax: string;
+  /** RT Dose: each frame's offset along the normal (Grid Frame Offset Vector). */
+  frameOffsets?: number[];
 }
 
 type Parser = typeof import('dicom-parser');
@@ -183,6 +186,11 @@ function parseFile(
   let inter = r.num('x00281052');
   if (!finite(slope) || slope === 0) slope = 1;
   if (!finite(inter)) inter = 0;
+  const dose = readDoseGrid(ds, frames);
+  if (dose.scale !== undefined) {
+    slope *= dose.scale;
+    inter *= dose.scale;
+  }
   const ps = numbersOf(ds, 'x00280030', 2);
   const need = rows * cols * frames * (bitsAllocated / 8);
   const array = ds.byteArray as Uint8Array;
@@ -230,6 +238,7 @@ function parseFile(
     pixels,
     modality: r.str('x00080060')?.trim(),
     syntax,
+    frameOffsets: dose.frameOffsets,
   };
   if (!hasFunctionalGroups(ds)) return [base];
   // Enhanced multi-frame: every frame a slice with its own position, orientation, spacing
@@ -246,6 +255,7 @@ function parseFile(
     thickness: g.thickness ?? base.thickness,
     between: g.between ?? base.between,
     scaling: lut ? IDENTITY : (g.scaling ?? base.scaling),
+    frameOffsets: undefined,
   }));
 }
 
@@ -313,11 +323,36 @@ interface Geometry {
   sortedBy: string;
 }
 
+/**
+ * A multi-frame RT Dose grid: frame k lies at ImagePositionPatient + offset_k · normal, so
+ * the z spacing is the mean offset step; offsets that decrease turn the third axis around.
+ */
+function doseGridGeometry(s: Slice, orientation: number[], ctx: LoadContext): Geometry {
+  const off = s.frameOffsets!;
+  const gaps = off.slice(1).map((o, i) => o - off[i]);
+  const mean = (off[off.length - 1] - off[0]) / gaps.length;
+  if (!(Math.abs(mean) > 0) || gaps.some((g) => Math.sign(g) !== Math.sign(mean)))
+    throw new LoaderError(
+      'invalid-data',
+      `${ctx.name}: the Grid Frame Offset Vector (${off.join('\\')}) does not run one way; the frames are no stack`,
+    );
+  if (Math.max(...gaps.map(Math.abs)) - Math.min(...gaps.map(Math.abs)) > 0.05 * Math.abs(mean))
+    ctx.warnings.push(`the dose grid's frame offsets are unevenly spaced; their mean step ${Math.abs(mean)} is used`);
+  const o = orientation.slice();
+  if (mean < 0) for (const i of [2, 5, 8]) o[i] = 0 - o[i]; // 0 - x: no -0 for a zero component
+  // The first frame lies at ImagePositionPatient whether the offsets are relative to it
+  // (first offset 0) or, as the retired form has them, absolute z values (PS3.3 C.8.8.3.2).
+  const origin = s.ipp!.slice(0, 3) as [number, number, number];
+  return { order: [s], zSpacing: Math.abs(mean), orientation: o, origin, sortedBy: 'Grid Frame Offset Vector' };
+}
+
 function arrange(slices: Slice[], ctx: LoadContext): Geometry {
   const first = slices[0];
   const iop = first.iop;
   const normal = iop ? cross(iop.slice(0, 3), iop.slice(3, 6)) : undefined;
   const cos = iop && normal ? directionCosines([iop.slice(0, 3), iop.slice(3, 6), normal]) : null;
+  if (slices.length === 1 && first.frameOffsets && first.ipp && cos)
+    return doseGridGeometry(first, cos.orientation, ctx);
   if (slices.length === 1) {
     const z = first.between ?? first.thickness ?? 1;
     if (first.frames > 1 && first.between === undefined)

@@ -32,7 +32,8 @@ fractional rescale in float64 before rounding to float32, as numpy does here.
   this is checked against nibabel's own multi-frame reader ([..., 0] of its 4D array).
   Spacing is [column, row] PixelSpacing (Pixel Measures group for enhanced) and, with
   several positioned frames, the mean gap of their positions; origin is the first
-  frame's ImagePositionPatient.
+  frame's ImagePositionPatient. RT Dose: values times Dose Grid Scaling, z spacing the
+  mean step of the Grid Frame Offset Vector (PS3.3 C.8.8.3).
 - NIfTI: nibabel's get_fdata() (scl_slope/inter applied as nibabel does), the first volume
   of 4D data, spacing the lengths of the affine's columns (world distance per index step).
 Refusals: the reader refuses the file, or it uses a feature vpt names as unsupported
@@ -201,10 +202,16 @@ def dicom(path, rel):
     frames = int(ds.get('NumberOfFrames', 1) or 1)
     ps = [float(x) for x in ds.PixelSpacing] if 'PixelSpacing' in ds and len(ds.PixelSpacing) == 2 else None
     spacing = [ps[1], ps[0], None] if ps and ps[0] > 0 and ps[1] > 0 else None
+    if 'DoseGridScaling' in ds:
+        # RT Dose (PS3.3 C.8.8.3): stored values times Dose Grid Scaling are the dose.
+        values = values * float(ds.DoseGridScaling)
+        offsets = ds.get('GridFrameOffsetVector')
+        if spacing and frames > 1 and offsets is not None and ds.get('FrameIncrementPointer') == 0x3004000C:
+            spacing[2] = abs(float(offsets[-1]) - float(offsets[0])) / (frames - 1)
     ipp = [float(x) for x in ds.ImagePositionPatient] if 'ImagePositionPatient' in ds else None
     res = loaded(values.ravel(), (ds.Columns, ds.Rows, frames), reader, origin=ipp)
     if spacing:
-        res['load']['spacing'] = spacing[:2]
+        res['load']['spacing'] = spacing if spacing[2] is not None else spacing[:2]
     return res
 
 
