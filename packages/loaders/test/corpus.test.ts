@@ -27,6 +27,8 @@ interface Loaded {
 }
 interface Reference {
   load?: Loaded;
+  /** PALETTE COLOR: the stored indices, for the same file relabelled MONOCHROME2. */
+  indices?: Loaded;
   refuse?: LoaderError['reason'][];
   why?: string;
   reader: string;
@@ -120,6 +122,21 @@ async function mismatch(rel: string, ref: Reference): Promise<string | null> {
   return null;
 }
 
+/**
+ * A PALETTE COLOR file with its PhotometricInterpretation relabelled MONOCHROME2 (same
+ * length), so its stored indices load: the pixel decoding checked on the real file.
+ */
+function relabelled(rel: string): File {
+  const bytes = new Uint8Array(fs.readFileSync(path.join(corpus, rel)));
+  const from = new TextEncoder().encode('PALETTE COLOR');
+  const to = new TextEncoder().encode('MONOCHROME2  ');
+  let at = -1;
+  for (let i = 0; i + from.length <= bytes.length && at < 0; i++) if (from.every((b, k) => bytes[i + k] === b)) at = i;
+  if (at < 0) throw new Error(`${rel}: no "PALETTE COLOR" text`);
+  bytes.set(to, at);
+  return fileOf(bytes, path.basename(rel));
+}
+
 describe('corpus: other projects’ test files against their own readers', () => {
   it('the references cover DICOM and NIfTI, loads and refusals', () => {
     const refs = Object.entries(references);
@@ -151,6 +168,19 @@ describe('corpus: other projects’ test files against their own readers', () =>
       expect(stale, stale.join('\n')).toEqual([]);
     },
     300_000,
+  );
+
+  it.skipIf(!fetched)(
+    `PALETTE COLOR files relabelled MONOCHROME2 load their stored indices as pydicom reads them${fetched ? '' : ` (${NOT_FETCHED})`}`,
+    async () => {
+      const palette = Object.entries(references).filter(([, r]) => r.indices);
+      expect(palette.map(([k]) => k)).toContain('pydicom-data/OBXXXX1A_expb.dcm');
+      for (const [rel, ref] of palette) {
+        const v = await loadVolume(relabelled(rel), { worker: false });
+        expect(v.dims, rel).toEqual(ref.indices!.dims);
+        expect(valuesChecksum(v), `${rel}: stored indices`).toBe(ref.indices!.sha256);
+      }
+    },
   );
 
   afterAll(() => {

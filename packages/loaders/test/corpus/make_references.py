@@ -11,7 +11,9 @@ claims (DICOM by its "DICM" preamble or a .dcm name, NIfTI by .nii / .nii.gz / .
 
   {"load": {"dims", "sha256", "min", "max", "spacing"?, "origin"?, "rowCol"?}, "reader"}
 or
-  {"refuse": [reasons], "why", "reader"}
+  {"refuse": [reasons], "why", "reader", "indices"?}
+
+("indices": for PALETTE COLOR, the stored indices' checksum, as for a load)
 
 and, for each folder of pydicom's dicomdirtests (key "folder/"), the same for its files
 loaded together as one series (its largest series, sorted along the slice normal, spacing
@@ -191,7 +193,12 @@ def dicom(path, rel):
     if int(ds.BitsAllocated) not in (8, 16, 32):
         return refused(['unsupported'], f'{ds.BitsAllocated} bits allocated', reader)
     if str(ds.get('PhotometricInterpretation', '')) == 'PALETTE COLOR':
-        return refused(['unsupported'], 'PALETTE COLOR (indices into a colour table)', reader)
+        res = refused(['unsupported'], 'PALETTE COLOR (indices into a colour table)', reader)
+        # The stored indices too: the test relabels the file MONOCHROME2 and compares, which
+        # checks the pixel decoding (OBXXXX1A_expb.dcm: 8-bit OW, big endian) on the real file.
+        frames = int(ds.get('NumberOfFrames', 1) or 1)
+        res['indices'] = loaded(ds.pixel_array.ravel(), (ds.Columns, ds.Rows, frames), reader)['load']
+        return res
     try:
         arr = ds.pixel_array
     except Exception as e:  # noqa: BLE001
