@@ -62,7 +62,9 @@ export function enhancedFrames(ds: DataSet, frames: number, where: string, ctx: 
     );
   const shared = firstItem(ds, SHARED);
   const dimItems = ds.elements.x00209222?.items ?? [];
-  const pointers = dimItems.map((d) => uint32s(d.dataSet!, 'x00209165', true)[0]);
+  const pointers: (number | undefined)[] = dimItems.map((d) =>
+    d.dataSet ? uint32s(d.dataSet, 'x00209165', true)[0] : undefined,
+  );
   const others = pointers.map((p, i) => (p === STACK_ID || p === IN_STACK_POSITION ? -1 : i)).filter((i) => i >= 0);
 
   const all = items.slice(0, frames).map((item, frame) => {
@@ -96,7 +98,11 @@ export function enhancedFrames(ds: DataSet, frames: number, where: string, ctx: 
   });
 
   const stacks = new Map<string, typeof all>();
-  for (const f of all) stacks.set(f.stack, [...(stacks.get(f.stack) ?? []), f]);
+  for (const f of all) {
+    const list = stacks.get(f.stack);
+    if (list) list.push(f);
+    else stacks.set(f.stack, [f]);
+  }
   let chosen = [...stacks.values()].sort((a, b) => b.length - a.length)[0];
   if (stacks.size > 1)
     ctx.warnings.push(
@@ -120,6 +126,7 @@ export function enhancedFrames(ds: DataSet, frames: number, where: string, ctx: 
   return chosen.map((f) => f.geometry);
 }
 
-function pointerName(p: number): string {
+function pointerName(p: number | undefined): string {
+  if (p === undefined) return '(unnamed)';
   return `(${(p >>> 16).toString(16).padStart(4, '0')},${(p & 0xffff).toString(16).padStart(4, '0')})`;
 }

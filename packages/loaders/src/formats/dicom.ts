@@ -399,8 +399,9 @@ function arrange(slices: Slice[], ctx: LoadContext): Geometry {
       sortedBy: 'position along the slice normal',
     };
   }
+  const oneFile = slices.every((s) => s.name === first.name && s.pixels === first.pixels);
   ctx.warnings.push(
-    'the slices carry no usable ImagePositionPatient/ImageOrientationPatient; sorted by InstanceNumber, spacing from SpacingBetweenSlices or SliceThickness',
+    `the ${oneFile ? 'frames' : 'slices'} carry no usable ImagePositionPatient/ImageOrientationPatient; sorted by ${oneFile ? 'frame order' : 'InstanceNumber'}, spacing from SpacingBetweenSlices or SliceThickness`,
   );
   const order = [...slices].sort((a, b) => a.instance - b.instance);
   return { order, zSpacing: first.between ?? first.thickness ?? 1, sortedBy: 'InstanceNumber' };
