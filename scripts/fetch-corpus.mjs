@@ -97,7 +97,8 @@ for (const p of manifest.packages) {
   const archive = path.join(work, p.file);
   if (!fs.existsSync(archive) || sha256(archive) !== p.sha256) {
     console.log(`${p.name} ${p.version}: pip download (${p.kind})`);
-    const only = p.kind === 'wheel' ? ['--only-binary', ':all:'] : ['--no-binary', ':all:'];
+    // Only the package itself is pinned to its kind; its build backend (for an sdist's metadata) may come as a wheel.
+    const only = p.kind === 'wheel' ? ['--only-binary', p.name] : ['--no-binary', p.name];
     if (!run('python3', ['-m', 'pip', 'download', '-q', '--no-deps', ...only, '-d', work, `${p.name}==${p.version}`])) {
       failures.push(`${p.name}: pip download failed`);
       continue;
