@@ -24,6 +24,8 @@ interface Loaded {
   spacing?: (number | null)[];
   origin?: number[];
   rowCol?: number[];
+  /** The full 3×3 direction cosines, row-major (NIfTI: the affine's columns normalised). */
+  direction?: number[];
 }
 interface Reference {
   load?: Loaded;
@@ -118,6 +120,11 @@ async function mismatch(rel: string, ref: Reference): Promise<string | null> {
     const cols = o ? [o[0], o[3], o[6], o[1], o[4], o[7]] : [];
     if (!o || !want.rowCol.every((x, i) => near(cols[i], x)))
       return `orientation ${o?.join(',') ?? 'none'}, ${ref.reader} rows/columns ${want.rowCol.join(',')}`;
+  }
+  if (want.direction) {
+    const o = v.orientation ?? [1, 0, 0, 0, 1, 0, 0, 0, 1];
+    if (!want.direction.every((x, i) => near(o[i], x)))
+      return `orientation ${o.join(',')}, ${ref.reader} ${want.direction.map((x) => +x.toFixed(6)).join(',')}`;
   }
   return null;
 }

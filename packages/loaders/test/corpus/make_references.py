@@ -9,7 +9,7 @@ Run after `pnpm corpus:fetch`, in a Python with the pinned readers:
 It walks data/corpus/ and writes references.json beside this script: for every file vpt
 claims (DICOM by its "DICM" preamble or a .dcm name, NIfTI by .nii / .nii.gz / .hdr) either
 
-  {"load": {"dims", "sha256", "min", "max", "spacing"?, "origin"?, "rowCol"?}, "reader"}
+  {"load": {"dims", "sha256", "min", "max", "spacing"?, "origin"?, "rowCol"?, "direction"?}, "reader"}
 or
   {"refuse": [reasons], "why", "reader", "indices"?}
 
@@ -37,7 +37,8 @@ fractional rescale in float64 before rounding to float32, as numpy does here.
   frame's ImagePositionPatient. RT Dose: values times Dose Grid Scaling, z spacing the
   mean step of the Grid Frame Offset Vector (PS3.3 C.8.8.3).
 - NIfTI: nibabel's get_fdata() (scl_slope/inter applied as nibabel does), the first volume
-  of 4D data, spacing the lengths of the affine's columns (world distance per index step).
+  of 4D data, spacing the lengths of the affine's columns (world distance per index step),
+  direction those columns over their lengths (row-major 3×3), origin the affine's offset.
 Refusals: the reader refuses the file, or it uses a feature vpt names as unsupported
 (compressed transfer syntaxes, colour, 1-bit, PALETTE COLOR, NIfTI-2, Analyze).
 """
@@ -216,7 +217,9 @@ def dicom(path, rel):
         if spacing and frames > 1 and offsets is not None and ds.get('FrameIncrementPointer') == 0x3004000C:
             spacing[2] = abs(float(offsets[-1]) - float(offsets[0])) / (frames - 1)
     ipp = [float(x) for x in ds.ImagePositionPatient] if 'ImagePositionPatient' in ds else None
-    res = loaded(values.ravel(), (ds.Columns, ds.Rows, frames), reader, origin=ipp)
+    iop = [float(x) for x in ds.ImageOrientationPatient] if 'ImageOrientationPatient' in ds else None
+    res = loaded(values.ravel(), (ds.Columns, ds.Rows, frames), reader, origin=ipp,
+                 rowCol=iop if iop and len(iop) == 6 else None)
     if spacing:
         res['load']['spacing'] = spacing if spacing[2] is not None else spacing[:2]
     return res
@@ -248,7 +251,10 @@ def nifti(path, rel):
     while data.ndim < 3:
         data = data[..., np.newaxis]
     spacing = np.sqrt((img.affine[:3, :3] ** 2).sum(axis=0))
-    return loaded(data.ravel(order='F'), data.shape, reader, spacing=spacing, origin=img.affine[:3, 3])
+    # Direction cosines: the affine's columns over their lengths, row-major like vpt's orientation.
+    direction = (img.affine[:3, :3] / spacing).ravel()
+    return loaded(data.ravel(order='F'), data.shape, reader, spacing=spacing, origin=img.affine[:3, 3],
+                  direction=direction)
 
 
 def series_folder(folder, names):
