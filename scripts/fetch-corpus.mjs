@@ -11,7 +11,9 @@
  *   pnpm corpus:fetch -- --force      fetch and extract every package again
  *
  * Needs python3 with pip (on Debian: `apt-get install python3-pip`; run as root, this
- * script installs it when missing) and tar. Nothing here is needed at run time.
+ * script installs it when missing); Python's own zipfile/tarfile extract. Nothing here is
+ * needed at run time. Changing a pinned version means regenerating the references
+ * (packages/loaders/test/corpus/make_references.py, with the same reader versions).
  */
 import { spawnSync } from 'node:child_process';
 import crypto from 'node:crypto';
