@@ -1,6 +1,6 @@
 /**
  * The corpus test: other projects' test files (nibabel's, pydicom's, pydicom-data's; see
- * data/corpus.json), fetched by `pnpm corpus:fetch` into data/corpus/, each compared with
+ * corpus/archives.json), fetched by `pnpm corpus:fetch` into data/corpus/, each compared with
  * what those projects' own readers make of it. corpus/references.json (written by
  * corpus/make_references.py with nibabel and pydicom) holds per file either the voxels'
  * checksum (float32 values, x fastest, NaN as 0x7fc00000), range, spacing and origin, or
