@@ -20,13 +20,26 @@ import crypto from 'node:crypto';
 import fs from 'node:fs';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
+// By path, not by package name: .ci/run calls this before `pnpm install` has linked the workspace
+// (cli-options is plain JavaScript with no dependencies, so its source runs as it is).
+import { parseCliOrExit } from '../packages/cli-options/src/index.js';
 
 const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..');
 const manifest = JSON.parse(
   fs.readFileSync(path.join(root, 'packages', 'loaders', 'test', 'corpus', 'archives.json'), 'utf8'),
 );
 const outDir = path.join(root, 'data', 'corpus');
-const force = process.argv.includes('--force');
+const args = parseCliOrExit({
+  name: 'pnpm corpus:fetch',
+  synopsis: '[--force]',
+  summary:
+    "Obtain nibabel's, pydicom's and pydicom-data's test files (sha256-pinned) into data/corpus/\n" +
+    'for the loaders\' corpus test. Needs python3 with pip.',
+  options: {
+    force: { type: 'boolean', description: 'fetch and extract every package again' },
+  },
+});
+const force = args.force === true;
 
 const run = (cmd, args, opts = {}) => spawnSync(cmd, args, { stdio: 'inherit', ...opts }).status === 0;
 const quiet = (cmd, args) => spawnSync(cmd, args, { stdio: 'ignore' }).status === 0;
