@@ -243,8 +243,11 @@ def nifti(path, rel):
         img = nib.load(path)
     except Exception as e:  # noqa: BLE001
         return refused(CORRUPT, f'nibabel cannot read it ({type(e).__name__}: {e})', reader)
-    if not isinstance(img, nib.Nifti1Image) or isinstance(img, nib.Nifti2Image):
-        return refused(['unsupported'], f'{type(img).__name__}, not NIfTI-1', reader)
+    if not isinstance(img, nib.Nifti1Image):  # Nifti2Image is a subclass: vpt reads NIfTI-2 too
+        return refused(['unsupported'], f'{type(img).__name__}, not NIfTI', reader)
+    # CIFTI-2 (intent codes 3000-3099) is a NIfTI-2 file of brain-surface data, not a volume: vpt refuses it by name.
+    if 3000 <= int(img.header['intent_code']) <= 3099:
+        return refused(['unsupported'], 'CIFTI-2 (NIfTI intent code 3000-3099), not a volume', reader)
     data = img.get_fdata(dtype=np.float64)
     while data.ndim > 3:
         data = data[..., 0]
