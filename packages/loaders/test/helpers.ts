@@ -181,18 +181,25 @@ export interface DicomSpec {
   instance?: number;
   thickness?: number;
   syntax?: 'explicit-le' | 'explicit-be' | 'implicit-le' | string;
-  frames?: number;
+  /** NumberOfFrames; a string is written as it is (to test malformed values). */
+  frames?: number | string;
+  /** PhotometricInterpretation (default MONOCHROME2). */
+  photometric?: string;
+  /** VR of 8-bit pixel data (default OB). OW holds 16-bit words: big endian swaps each byte pair. */
+  pixelVR?: 'OB' | 'OW';
+  /** Further elements between (0028,1053) and the pixel data, in ascending tag order (see dicomElement). */
+  extra?: (mode: DicomMode) => Uint8Array[];
+}
+
+/** How a data set is encoded. */
+export interface DicomMode {
+  explicit: boolean;
+  little: boolean;
 }
 
 const LONG_VR = new Set(['OB', 'OW', 'OF', 'SQ', 'UT', 'UN']);
 
-function element(
-  group: number,
-  elem: number,
-  vr: string,
-  value: Uint8Array,
-  mode: { explicit: boolean; little: boolean },
-): Uint8Array {
+function element(group: number, elem: number, vr: string, value: Uint8Array, mode: DicomMode): Uint8Array {
   const padded =
     value.length % 2 ? concatBytes([value, new Uint8Array([vr === 'UI' || vr === 'OB' ? 0 : 0x20])]) : value;
   const head = new Uint8Array(mode.explicit ? (LONG_VR.has(vr) ? 12 : 8) : 8);
@@ -208,6 +215,34 @@ function element(
   }
   return concatBytes([head, padded]);
 }
+
+/** One element, for DicomSpec.extra: value bytes already in the data set's byte order. */
+export const dicomElement = element;
+
+/** A sequence of defined length whose items hold the given elements (PS3.5 7.5). */
+export function dicomSequence(group: number, elem: number, items: Uint8Array[][], mode: DicomMode): Uint8Array {
+  const itemBytes = items.map((els) => {
+    const body = concatBytes(els);
+    const head = new Uint8Array(8);
+    const v = new DataView(head.buffer);
+    v.setUint16(0, 0xfffe, mode.little);
+    v.setUint16(2, 0xe000, mode.little);
+    v.setUint32(4, body.length, mode.little);
+    return concatBytes([head, body]);
+  });
+  return element(group, elem, 'SQ', concatBytes(itemBytes), mode);
+}
+
+/** Unsigned 16- or 32-bit values in the data set's byte order (US, UL, AT, LUT Data). */
+export function uints(values: number[], bytes: 2 | 4, little: boolean): Uint8Array {
+  const out = new Uint8Array(values.length * bytes);
+  const v = new DataView(out.buffer);
+  values.forEach((x, i) => (bytes === 2 ? v.setUint16(i * 2, x, little) : v.setUint32(i * 4, x, little)));
+  return out;
+}
+
+/** Text as element bytes. */
+export const dicomText = (t: string): Uint8Array => new TextEncoder().encode(t);
 
 export function concatBytes(parts: Uint8Array[]): Uint8Array {
   const out = new Uint8Array(parts.reduce((n, p) => n + p.length, 0));
@@ -251,10 +286,15 @@ export function dicomFile(s: DicomSpec): Uint8Array {
   const ds = (tag: [number, number], vr: string, value: Uint8Array | undefined) =>
     value ? element(tag[0], tag[1], vr, value, mode) : new Uint8Array(0);
   const ds3 = (xs: number[] | undefined) => (xs ? str(xs.join('\\')) : undefined);
-  const pixelBytes =
-    bits === 8
-      ? new Uint8Array(s.pixels.buffer, s.pixels.byteOffset, s.pixels.byteLength)
-      : bytesIn(s.pixels as Uint16Array, mode.little);
+  const bytes8 = new Uint8Array(s.pixels.buffer, s.pixels.byteOffset, s.pixels.byteLength);
+  const pixelVR = bits === 8 ? (s.pixelVR ?? 'OB') : 'OW';
+  // 8-bit pixels in OW: byte 2k is the low byte of word k, written in the file's byte order.
+  const ow8 = () => {
+    const words = new Uint16Array(Math.ceil(bytes8.length / 2));
+    bytes8.forEach((b, i) => (words[i >> 1] |= i & 1 ? b << 8 : b));
+    return bytesIn(words, mode.little);
+  };
+  const pixelBytes = bits === 8 ? (pixelVR === 'OW' ? ow8() : bytes8) : bytesIn(s.pixels as Uint16Array, mode.little);
   const body = concatBytes([
     ds([8, 0x16], 'UI', str('1.2.840.10008.5.1.4.1.1.4')),
     ds([8, 0x60], 'CS', str('MR')),
@@ -264,7 +304,7 @@ export function dicomFile(s: DicomSpec): Uint8Array {
     ds([0x20, 0x32], 'DS', ds3(s.ipp)),
     ds([0x20, 0x37], 'DS', ds3(s.iop)),
     ds([0x28, 0x02], 'US', us(1, mode.little)),
-    ds([0x28, 0x04], 'CS', str('MONOCHROME2')),
+    ds([0x28, 0x04], 'CS', str(s.photometric ?? 'MONOCHROME2')),
     ds([0x28, 0x08], 'IS', s.frames !== undefined ? str(String(s.frames)) : undefined),
     ds([0x28, 0x10], 'US', us(s.rows, mode.little)),
     ds([0x28, 0x11], 'US', us(s.cols, mode.little)),
@@ -275,7 +315,8 @@ export function dicomFile(s: DicomSpec): Uint8Array {
     ds([0x28, 0x103], 'US', us(s.signed ? 1 : 0, mode.little)),
     ds([0x28, 0x1052], 'DS', s.inter !== undefined ? str(String(s.inter)) : undefined),
     ds([0x28, 0x1053], 'DS', s.slope !== undefined ? str(String(s.slope)) : undefined),
-    element(0x7fe0, 0x10, bits === 8 ? 'OB' : 'OW', pixelBytes, mode),
+    ...(s.extra?.(mode) ?? []),
+    element(0x7fe0, 0x10, pixelVR, pixelBytes, mode),
   ]);
   const preamble = new Uint8Array(132);
   preamble.set(str('DICM'), 128);

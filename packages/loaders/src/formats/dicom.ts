@@ -8,6 +8,7 @@ import {
   chooseType,
   convertInto,
   integralScaling,
+  IDENTITY,
   readSamples,
   scaledRange,
   scanRange,
@@ -18,6 +19,10 @@ import {
 } from '../convert/voxels.js';
 import { fflate, loadDependency } from '../io/deps.js';
 import { directionCosines } from './orientation.js';
+import { finite, numbersOf, presentText, reader, type DataSet } from './dicom-elements.js';
+import { applyModalityLut, readModalityLut, type ModalityLut } from './dicom-modality-lut.js';
+import { enhancedFrames, hasFunctionalGroups } from './dicom-functional-groups.js';
+import { readDoseGrid } from './dicom-rt-dose.js';
 
 /** Transfer syntaxes with native (uncompressed) pixel data, and whether it is little-endian. */
 const NATIVE: Record<string, { little: boolean; name: string }> = {
@@ -52,12 +57,17 @@ interface Slice {
   name: string;
   rows: number;
   cols: number;
+  /** Frames this slice stands for: >1 only for a classic multi-frame file loaded as one block. */
   frames: number;
+  /** Index of this slice's (first) frame in `pixels`: an enhanced file's frames are slices of their own. */
+  frame: number;
   bitsAllocated: number;
   bitsStored: number;
   signed: boolean;
   photometric: string;
   scaling: Scaling;
+  /** Modality LUT Sequence: replaces the rescale. */
+  lut?: ModalityLut;
   pixelSpacing?: [number, number];
   /** The PixelSpacing text when present but not two positive finite numbers (reported, then 1 used). */
   badPixelSpacing?: string;
@@ -71,51 +81,11 @@ interface Slice {
   pixels: Uint8Array;
   modality?: string;
   syntax: string;
+  /** RT Dose: each frame's offset along the normal (Grid Frame Offset Vector). */
+  frameOffsets?: number[];
 }
 
-type DataSet = import('dicom-parser').DataSet;
 type Parser = typeof import('dicom-parser');
-
-const finite = (x: number | undefined): x is number => typeof x === 'number' && Number.isFinite(x);
-
-/**
- * dicom-parser's accessors read element values lazily and can throw on a mangled element
- * (a length past the end, a string VR with no text): a corrupt optional field reads as absent.
- */
-function safe<T>(f: () => T): T | undefined {
-  try {
-    return f();
-  } catch {
-    return undefined;
-  }
-}
-
-function reader(ds: DataSet) {
-  return {
-    u16: (tag: string) => safe(() => ds.uint16(tag)),
-    str: (tag: string) => safe(() => ds.string(tag)),
-    num: (tag: string, i?: number) => safe(() => ds.floatString(tag, i)),
-    int: (tag: string) => safe(() => ds.intString(tag)),
-  };
-}
-
-/** The raw text of a present element (undefined when absent), for messages. */
-function presentText(ds: DataSet, tag: string): string | undefined {
-  const el = (ds as unknown as { elements: Record<string, unknown> }).elements?.[tag];
-  if (!el) return undefined;
-  const text = safe(() => ds.string(tag));
-  return typeof text === 'string' ? text : '';
-}
-
-function numbersOf(ds: DataSet, tag: string, n: number): number[] | undefined {
-  const out: number[] = [];
-  for (let i = 0; i < n; i++) {
-    const v = safe(() => ds.floatString(tag, i));
-    if (!finite(v)) return undefined;
-    out.push(v);
-  }
-  return out;
-}
 
 function thrownMessage(e: unknown): string {
   if (typeof e === 'string') return e;
@@ -127,13 +97,17 @@ function thrownMessage(e: unknown): string {
   return String(e);
 }
 
-/** Parse one file with dicom-parser; null for a DICOM file without pixel data (a DICOMDIR, a report). */
+/**
+ * Parse one file with dicom-parser into its slices: one for a single-frame or classic
+ * multi-frame file, one per frame of the first volume of an enhanced file; none for a
+ * DICOM file without pixel data (a DICOMDIR, a report).
+ */
 function parseFile(
   file: DicomFile,
   parser: Parser,
   inflateRaw: (b: Uint8Array) => Uint8Array,
   ctx: LoadContext,
-): Slice | null {
+): Slice[] {
   const where = `${ctx.name}${file.name && file.name !== ctx.name ? ` (${file.name})` : ''}`;
   if (!hasDicomMagic(file.bytes)) {
     throw new LoaderError('bad-magic', `${where} is not a DICOM Part 10 file: no "DICM" at byte 128`);
@@ -162,7 +136,7 @@ function parseFile(
   const r = reader(ds);
   const syntax = (r.str('x00020010') ?? '').replace(/\0/g, '').trim();
   const pixel = ds.elements.x7fe00010;
-  if (!pixel) return null;
+  if (!pixel) return [];
   const native = NATIVE[syntax];
   if (!native) {
     const known = COMPRESSED.find(([re]) => re.test(syntax));
@@ -189,6 +163,12 @@ function parseFile(
   }
   if (samples !== 1)
     throw new LoaderError('unsupported', `${where}: ${samples} samples per pixel (colour) is not a scalar volume`);
+  const photometric = (r.str('x00280004') ?? '').trim();
+  if (photometric === 'PALETTE COLOR')
+    throw new LoaderError(
+      'unsupported',
+      `${where}: PALETTE COLOR pixels are indices into a colour table, not a scalar quantity; vpt reads MONOCHROME1/MONOCHROME2 images`,
+    );
   if (bitsAllocated !== 8 && bitsAllocated !== 16 && bitsAllocated !== 32) {
     throw new LoaderError(
       'unsupported',
@@ -198,12 +178,19 @@ function parseFile(
   const bitsStoredRaw = r.u16('x00280101');
   const bitsStored =
     finite(bitsStoredRaw) && bitsStoredRaw >= 1 && bitsStoredRaw <= bitsAllocated ? bitsStoredRaw : bitsAllocated;
-  const framesText = r.int('x00280008');
-  const frames = finite(framesText) && framesText >= 1 ? framesText : 1;
+  const framesText = presentText(ds, 'x00280008')?.replace(/\0/g, '').trim();
+  if (framesText !== undefined && framesText !== '' && !/^\+?\d+$/.test(framesText))
+    throw new LoaderError('bad-header', `${where}: NumberOfFrames "${framesText}" is not a whole number`);
+  const frames = framesText ? Math.max(1, parseInt(framesText, 10)) : 1;
   let slope = r.num('x00281053');
   let inter = r.num('x00281052');
   if (!finite(slope) || slope === 0) slope = 1;
   if (!finite(inter)) inter = 0;
+  const dose = readDoseGrid(ds, frames);
+  if (dose.scale !== undefined) {
+    slope *= dose.scale;
+    inter *= dose.scale;
+  }
   const ps = numbersOf(ds, 'x00280030', 2);
   const need = rows * cols * frames * (bitsAllocated / 8);
   const array = ds.byteArray as Uint8Array;
@@ -214,19 +201,31 @@ function parseFile(
       `${where}: the pixel data holds ${Math.max(0, available)} bytes; ${rows}×${cols}${frames > 1 ? `×${frames}` : ''} pixels of ${bitsAllocated} bits need ${need}; the file is cut short or its header is wrong`,
     );
   }
+  let pixels = array.subarray(pixel.dataOffset, pixel.dataOffset + need);
+  if (!native.little && bitsAllocated === 8 && pixel.vr === 'OW') {
+    // Big endian OW holds 16-bit words: 8-bit pixels come byte-swapped in pairs (PS3.5 8.1.1, 8.2);
+    // an odd count's last pixel sits in the padding word's second byte.
+    const padded = Math.min(need + (need & 1), available);
+    pixels = swapBytePairs(array.subarray(pixel.dataOffset, pixel.dataOffset + padded)).subarray(0, need);
+  }
+  const signed = r.u16('x00280103') === 1;
+  const lut = readModalityLut(ds, native.little, signed, where);
   const thickness = r.num('x00180050');
   const between = r.num('x00180088');
   const instance = r.int('x00200013');
-  return {
+  const base: Slice = {
     name: file.name,
     rows,
     cols,
     frames,
+    frame: 0,
     bitsAllocated,
     bitsStored,
-    signed: r.u16('x00280103') === 1,
-    photometric: (r.str('x00280004') ?? '').trim(),
-    scaling: { slope, inter },
+    signed,
+    photometric,
+    // A Modality LUT replaces the rescale (PS3.3 C.11.1: the two are mutually exclusive).
+    scaling: lut ? IDENTITY : { slope, inter },
+    lut,
     pixelSpacing: ps && ps[0] > 0 && ps[1] > 0 ? [ps[0], ps[1]] : undefined,
     badPixelSpacing: ps && ps[0] > 0 && ps[1] > 0 ? undefined : presentText(ds, 'x00280030'),
     ipp: numbersOf(ds, 'x00200032', 3),
@@ -236,10 +235,38 @@ function parseFile(
     thickness: finite(thickness) && thickness > 0 ? thickness : undefined,
     between: finite(between) && between > 0 ? between : undefined,
     little: native.little,
-    pixels: array.subarray(pixel.dataOffset, pixel.dataOffset + need),
+    pixels,
     modality: r.str('x00080060')?.trim(),
     syntax,
+    frameOffsets: dose.frameOffsets,
   };
+  if (!hasFunctionalGroups(ds)) return [base];
+  // Enhanced multi-frame: every frame a slice with its own position, orientation, spacing
+  // and rescale, so the series logic below sorts and spaces them.
+  return enhancedFrames(ds, frames, where, ctx).map((g) => ({
+    ...base,
+    frames: 1,
+    frame: g.frame,
+    instance: g.frame,
+    ipp: g.ipp ?? base.ipp,
+    iop: g.iop ?? base.iop,
+    pixelSpacing: g.pixelSpacing ?? base.pixelSpacing,
+    badPixelSpacing: g.pixelSpacing ? undefined : base.badPixelSpacing,
+    thickness: g.thickness ?? base.thickness,
+    between: g.between ?? base.between,
+    scaling: lut ? IDENTITY : (g.scaling ?? base.scaling),
+    frameOffsets: undefined,
+  }));
+}
+
+function swapBytePairs(b: Uint8Array): Uint8Array {
+  const out = new Uint8Array(b.length);
+  for (let i = 0; i + 1 < b.length; i += 2) {
+    out[i] = b[i + 1];
+    out[i + 1] = b[i];
+  }
+  if (b.length & 1) out[b.length - 1] = b[b.length - 1];
+  return out;
 }
 
 const cross = (a: number[], b: number[]) => [
@@ -249,8 +276,14 @@ const cross = (a: number[], b: number[]) => [
 ];
 const dot = (a: number[], b: number[]) => a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 
-/** Pixels of one frame, BitsStored applied (masked, sign-extended when signed). */
+/** Values of one frame: stored values, then the Modality LUT when there is one (the rescale comes later). */
 function framePixels(s: Slice, frame: number): SourceArray {
+  const stored = storedPixels(s, frame);
+  return s.lut ? applyModalityLut(stored, s.lut) : stored;
+}
+
+/** Stored pixels of one frame, BitsStored applied (masked, sign-extended when signed). */
+function storedPixels(s: Slice, frame: number): SourceArray {
   const plane = s.rows * s.cols;
   const size = s.bitsAllocated / 8;
   const unsigned: SourceType = size === 1 ? 'uint8' : size === 2 ? 'uint16' : 'uint32';
@@ -275,6 +308,7 @@ function framePixels(s: Slice, frame: number): SourceArray {
 }
 
 function sourceTypeOf(s: Slice): SourceType {
+  if (s.lut) return s.lut.bits === 8 ? 'uint8' : 'uint16';
   const size = s.bitsAllocated / 8;
   if (s.signed) return size === 1 ? 'int8' : size === 2 ? 'int16' : 'int32';
   return size === 1 ? 'uint8' : size === 2 ? 'uint16' : 'uint32';
@@ -289,11 +323,36 @@ interface Geometry {
   sortedBy: string;
 }
 
+/**
+ * A multi-frame RT Dose grid: frame k lies at ImagePositionPatient + offset_k · normal, so
+ * the z spacing is the mean offset step; offsets that decrease turn the third axis around.
+ */
+function doseGridGeometry(s: Slice, orientation: number[], ctx: LoadContext): Geometry {
+  const off = s.frameOffsets!;
+  const gaps = off.slice(1).map((o, i) => o - off[i]);
+  const mean = (off[off.length - 1] - off[0]) / gaps.length;
+  if (!(Math.abs(mean) > 0) || gaps.some((g) => Math.sign(g) !== Math.sign(mean)))
+    throw new LoaderError(
+      'invalid-data',
+      `${ctx.name}: the Grid Frame Offset Vector (${off.join('\\')}) does not run one way; the frames are no stack`,
+    );
+  if (Math.max(...gaps.map(Math.abs)) - Math.min(...gaps.map(Math.abs)) > 0.05 * Math.abs(mean))
+    ctx.warnings.push(`the dose grid's frame offsets are unevenly spaced; their mean step ${Math.abs(mean)} is used`);
+  const o = orientation.slice();
+  if (mean < 0) for (const i of [2, 5, 8]) o[i] = 0 - o[i]; // 0 - x: no -0 for a zero component
+  // The first frame lies at ImagePositionPatient whether the offsets are relative to it
+  // (first offset 0) or, as the retired form has them, absolute z values (PS3.3 C.8.8.3.2).
+  const origin = s.ipp!.slice(0, 3) as [number, number, number];
+  return { order: [s], zSpacing: Math.abs(mean), orientation: o, origin, sortedBy: 'Grid Frame Offset Vector' };
+}
+
 function arrange(slices: Slice[], ctx: LoadContext): Geometry {
   const first = slices[0];
   const iop = first.iop;
   const normal = iop ? cross(iop.slice(0, 3), iop.slice(3, 6)) : undefined;
   const cos = iop && normal ? directionCosines([iop.slice(0, 3), iop.slice(3, 6), normal]) : null;
+  if (slices.length === 1 && first.frameOffsets && first.ipp && cos)
+    return doseGridGeometry(first, cos.orientation, ctx);
   if (slices.length === 1) {
     const z = first.between ?? first.thickness ?? 1;
     if (first.frames > 1 && first.between === undefined)
@@ -340,11 +399,40 @@ function arrange(slices: Slice[], ctx: LoadContext): Geometry {
       sortedBy: 'position along the slice normal',
     };
   }
+  const oneFile = slices.every((s) => s.name === first.name && s.pixels === first.pixels);
   ctx.warnings.push(
-    'the slices carry no usable ImagePositionPatient/ImageOrientationPatient; sorted by InstanceNumber, spacing from SpacingBetweenSlices or SliceThickness',
+    `the ${oneFile ? 'frames' : 'slices'} carry no usable ImagePositionPatient/ImageOrientationPatient; sorted by ${oneFile ? 'frame order' : 'InstanceNumber'}, spacing from SpacingBetweenSlices or SliceThickness`,
   );
   const order = [...slices].sort((a, b) => a.instance - b.instance);
   return { order, zSpacing: first.between ?? first.thickness ?? 1, sortedBy: 'InstanceNumber' };
+}
+
+/**
+ * The slices of one orientation. A localizer (scout) series holds slices in several
+ * planes; stacking them would make a volume out of unrelated images, so the largest group
+ * of equally oriented slices is kept (the first such group on a tie), and said; when every
+ * slice has an orientation of its own there is no stack, and that is an error.
+ */
+function sameOrientation(slices: Slice[], ctx: LoadContext): Slice[] {
+  if (slices.length < 2 || !slices.every((s) => s.iop)) return slices;
+  const groups: Slice[][] = [];
+  for (const s of slices) {
+    const g = groups.find((x) => x[0].iop!.every((v, i) => Math.abs(v - s.iop![i]) < 1e-3));
+    if (g) g.push(s);
+    else groups.push([s]);
+  }
+  if (groups.length === 1) return slices;
+  const largest = groups.reduce((a, b) => (b.length > a.length ? b : a));
+  if (largest.length === 1)
+    throw new LoaderError(
+      'invalid-data',
+      `${ctx.name}: each of the ${slices.length} slices lies in its own orientation (ImageOrientationPatient; a localizer or a radial series), so there is no stack to make a volume of; load one file at a time`,
+    );
+  ctx.warnings.push(
+    `the slices lie in ${groups.length} different orientations (ImageOrientationPatient; a localizer?); ` +
+      `the ${largest.length} oriented ${largest[0].iop!.map((v) => +v.toFixed(3)).join('\\')} are loaded, the other ${slices.length - largest.length} left out`,
+  );
+  return largest;
 }
 
 /** A DICOM series (one or more files, or one multi-frame file) as one volume. */
@@ -366,8 +454,8 @@ export async function decodeDicom(files: DicomFile[], ctx: LoadContext): Promise
   ctx.progress('parse', 0, files.length);
   for (let i = 0; i < files.length; i++) {
     ctx.checkAborted();
-    const s = parseFile(files[i], parser, inflateRaw, ctx);
-    if (s) parsed.push(s);
+    const slices = parseFile(files[i], parser, inflateRaw, ctx);
+    if (slices.length) parsed.push(...slices);
     else skipped++;
     ctx.progress('parse', i + 1, files.length);
   }
@@ -378,9 +466,9 @@ export async function decodeDicom(files: DicomFile[], ctx: LoadContext): Promise
   const bySeries = new Map<string, Slice[]>();
   for (const s of parsed) bySeries.set(s.series, [...(bySeries.get(s.series) ?? []), s]);
   const series = [...bySeries.values()].sort((a, b) => b.length - a.length);
-  const slices = series[0];
   if (series.length > 1)
-    ctx.warnings.push(`the files hold ${series.length} series; the largest (${slices.length} files) is loaded`);
+    ctx.warnings.push(`the files hold ${series.length} series; the largest (${series[0].length} slices) is loaded`);
+  const slices = sameOrientation(series[0], ctx);
   const first = slices[0];
   for (const s of slices) {
     if (
@@ -414,7 +502,7 @@ export async function decodeDicom(files: DicomFile[], ctx: LoadContext): Promise
   const frames: { s: Slice; f: number }[] =
     geometry.order.length === 1 && first.frames > 1
       ? Array.from({ length: first.frames }, (_, f) => ({ s: first, f }))
-      : geometry.order.map((s) => ({ s, f: 0 }));
+      : geometry.order.map((s) => ({ s, f: s.frame }));
   let lo = Infinity,
     hi = -Infinity;
   for (const { s, f } of frames) {
@@ -443,10 +531,12 @@ export async function decodeDicom(files: DicomFile[], ctx: LoadContext): Promise
     sortedBy: geometry.sortedBy,
     transferSyntax: first.syntax,
     photometric: first.photometric,
-    rescale: slices.every((s) => s.scaling.slope === first.scaling.slope && s.scaling.inter === first.scaling.inter)
-      ? first.scaling
-      : 'per slice',
-    files: geometry.order.map((s) => s.name),
+    rescale: first.lut
+      ? 'Modality LUT Sequence'
+      : slices.every((s) => s.scaling.slope === first.scaling.slope && s.scaling.inter === first.scaling.inter)
+        ? first.scaling
+        : 'per slice',
+    files: [...new Set(geometry.order.map((s) => s.name))],
   };
   if (first.modality) meta.modality = first.modality;
   if (skipped) meta.skippedFiles = skipped;
