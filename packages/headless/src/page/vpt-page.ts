@@ -46,13 +46,14 @@ async function fetchOk(url: string): Promise<Response> {
 async function loadVolume(desc: VolumeDescription, baseUrl: string = document.baseURI): Promise<Volume> {
   if ('procedural' in desc) return core.createProceduralVolume(desc.procedural, desc.size ?? 32);
   if ('zarr' in desc) return loadZarr(desc, baseUrl);
-  // A raw description built from a sidecar keeps the sidecar's `file` (its raw file's name): `raw` decides.
-  if ('file' in desc && !('raw' in desc)) return loadFile(desc, baseUrl);
+  if ('file' in desc) return loadFile(desc, baseUrl);
   if ('sidecar' in desc) {
     // core's raw reader parses the sidecar (as @vpt/loaders and the viewer's fallback do).
     const sidecarUrl = new URL(desc.sidecar, baseUrl).href;
     const sidecar = core.parseRawSidecar(await (await fetchOk(sidecarUrl)).text(), sidecarUrl);
-    return loadVolume({ raw: core.rawFileBeside(sidecarUrl, sidecar), ...sidecar }, sidecarUrl);
+    // Without the sidecar's `file` (its raw file's name, now in `raw`): `file` is the loaders' volume kind.
+    const { file: _rawName, ...header } = sidecar;
+    return loadVolume({ raw: core.rawFileBeside(sidecarUrl, sidecar), ...header }, sidecarUrl);
   }
   const url = new URL(desc.raw, baseUrl).href;
   const data = core.rawVoxels(new Uint8Array(await (await fetchOk(url)).arrayBuffer()), desc, url);
