@@ -34,7 +34,7 @@ const args = parseCliOrExit({
   synopsis: '[--force]',
   summary:
     "Obtain nibabel's, pydicom's and pydicom-data's test files (sha256-pinned) into data/corpus/\n" +
-    'for the loaders\' corpus test. Needs python3 with pip.',
+    "for the loaders' corpus test. Needs python3 with pip.",
   options: {
     force: { type: 'boolean', description: 'fetch and extract every package again' },
   },
