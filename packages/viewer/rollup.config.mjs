@@ -13,7 +13,7 @@ import { libraryConfig } from '../../rollup.lib.mjs';
 // Packages the viewer imports only dynamically and that may not be installed (or built):
 // each missing one becomes a module that rejects, so only its renderer (or the full
 // loaders) is unavailable and the rest of the viewer builds and runs.
-const OPTIONAL = ['@vpt/renderer-iso', '@vpt/renderer-mcrt', '@vpt/loaders'];
+const OPTIONAL = ['@vpt/renderer-iso', '@vpt/renderer-mcrt', '@vpt/renderer-slice', '@vpt/loaders'];
 
 // Only this package's own node_modules counts (a declared dependency): Node's resolution
 // from here would also find pnpm's hidden hoisted copies, which a user's install lacks.

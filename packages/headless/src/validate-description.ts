@@ -37,6 +37,7 @@ import { EAM_PARAM_SPECS } from '@vpt/renderer-eam';
 import { MIP_PARAM_SPECS } from '@vpt/renderer-mip';
 import { ISO_PARAM_SPECS, resolveIsoParams } from '@vpt/renderer-iso';
 import { MCRT_PARAM_SPECS, resolveParams as resolveMcrtParams } from '@vpt/renderer-mcrt';
+import { resolveSliceParams, type SliceParams } from '@vpt/renderer-slice';
 
 const TOP_KEYS = [
   'width',
@@ -76,6 +77,8 @@ export const RENDERER_PARAM_CHECKS: Record<RendererName, (params: unknown) => vo
     validateParams('MCRT', MCRT_PARAM_SPECS, p);
     resolveMcrtParams(p as object);
   },
+  // Specs, vectors and combinations; the plane against the volume is checked by setScene in the page.
+  slice: (p) => void resolveSliceParams(p as SliceParams),
 };
 
 function checkVolume(v: unknown): void {

@@ -85,6 +85,8 @@ export const PACKAGE_LOADERS: Readonly<Record<string, () => Promise<Record<strin
   '@vpt/renderer-eam': () => import('@vpt/renderer-eam'),
   // @ts-ignore -- optional package, may be absent when this is type-checked
   '@vpt/renderer-mcrt': () => import('@vpt/renderer-mcrt'),
+  // @ts-ignore -- optional package, may be absent when this is type-checked
+  '@vpt/renderer-slice': () => import('@vpt/renderer-slice'),
 };
 
 // The renderers of the catalog (core's renderer-catalog.ts), each loaded on first use.

@@ -143,6 +143,27 @@ export const RENDERER_CATALOG: readonly RendererCatalogEntry[] = [
       { name: 'majorantGrid', label: 'Majorant grid', kind: 'boolean', defaultValue: true },
     ],
   },
+  {
+    // The parameters' one definition is SLICE_PARAM_TABLE in @vpt/renderer-slice (core cannot import it);
+    // the window ([center, width] in data units) is set through renderer-params.
+    name: 'slice',
+    label: 'Slice',
+    packageName: '@vpt/renderer-slice',
+    exportName: 'SliceRenderer',
+    params: [
+      { name: 'axis', label: 'Axis', kind: 'select', options: ['x', 'y', 'z'], defaultValue: 'z' },
+      { name: 'index', label: 'Slice index', min: 0, max: 2047, step: 1, placeholder: 'the middle slice' },
+      { name: 'sampling', label: 'Sampling', kind: 'select', options: ['nearest', 'linear'], defaultValue: 'nearest' },
+      {
+        name: 'colormap',
+        label: 'Colour map',
+        kind: 'select',
+        options: ['grey', 'viridis', 'hot', 'coolwarm', 'transfer-function'],
+        defaultValue: 'grey',
+      },
+      { name: 'fit', label: 'Fit to image', kind: 'boolean', defaultValue: false },
+    ],
+  },
 ];
 
 /** The catalog entry of a renderer name, or undefined. */

@@ -7,7 +7,8 @@ import { validateStepParams } from './params.js';
 /**
  * The checks that need the device and the renderer, run by RenderContext.setScene after
  * validateScene: texture sizes against this device's limits, and renderer parameters whose
- * range depends on the scene (ray-march steps of at least MIN_STEP_VOXELS voxels).
+ * range depends on the scene (ray-march steps of at least MIN_STEP_VOXELS voxels, and the
+ * renderer's own `validateScene`).
  */
 export function validateSceneForDevice(
   scene: Scene,
@@ -32,4 +33,5 @@ export function validateSceneForDevice(
     renderer.getParams?.() as Record<string, unknown> | undefined,
     scene.volume.dims,
   );
+  renderer.validateScene?.(scene);
 }

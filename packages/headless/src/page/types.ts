@@ -8,6 +8,7 @@ import type * as MipModule from '@vpt/renderer-mip';
 import type * as EamModule from '@vpt/renderer-eam';
 import type * as IsoModule from '@vpt/renderer-iso';
 import type * as McrtModule from '@vpt/renderer-mcrt';
+import type * as SliceModule from '@vpt/renderer-slice';
 import type { BrickingStats, PostStep, Scene, Volume } from '@vpt/core';
 import type { SceneDescription, VolumeDescription } from '../scene-description.js';
 
@@ -62,7 +63,7 @@ export interface PageRenderResult {
 
 export interface VptPageApi {
   core: typeof CoreModule;
-  /** Each renderer package of core's RENDERER_CATALOG, by renderer name (typed below for this repository's four). */
+  /** Each renderer package of core's RENDERER_CATALOG, by renderer name (typed below for this repository's five). */
   renderers: Record<string, Record<string, unknown>>;
   /** A renderer of the catalog by name, constructed with its parameter object. */
   createRenderer(name: string, params?: Record<string, unknown>): CoreModule.Renderer;
@@ -70,6 +71,7 @@ export interface VptPageApi {
   eam: typeof EamModule;
   iso: typeof IsoModule;
   mcrt: typeof McrtModule;
+  slice: typeof SliceModule;
   post: PostModule;
   renderDescription(
     desc: SceneDescription,

@@ -1,0 +1,131 @@
+import {
+  BaseRenderer,
+  COPY_ACCUMULATION_RENDER,
+  RUNNING_MEAN_INTEGRATE,
+  VptError,
+  type AuxiliaryTexture,
+  type Scene,
+  type UniformField,
+  type UniformValues,
+  type Volume,
+} from '@vpt/core';
+import { colormapTable } from './colormaps.js';
+import * as glsl from './kernels/slice.glsl.js';
+import * as wgsl from './kernels/slice.wgsl.js';
+import {
+  resolveSliceParams,
+  SLICE_OWNER,
+  SLICE_PARAM_SPECS,
+  type ResolvedSliceParams,
+  type SliceParams,
+} from './params.js';
+import { slicePlane } from './plane.js';
+import { windowMapping } from './window-mapping.js';
+
+/** The slice's uniforms, after the scene's (SCENE_UNIFORM_FIELDS): the plane (plane.ts) and the window (window-mapping.ts). */
+export const SLICE_UNIFORM_FIELDS: readonly UniformField[] = [
+  { name: 'planeOrigin', type: 'vec3' },
+  { name: 'windowScale', type: 'f32' },
+  { name: 'planeU', type: 'vec3' },
+  { name: 'windowOffset', type: 'f32' },
+  { name: 'planeV', type: 'vec3' },
+  { name: 'planeNormal', type: 'vec3' },
+];
+
+/**
+ * A slice through the volume: a plane (axis-aligned by axis + index or position, or oblique
+ * by normal + point), sampled nearest or linear, windowed in data units and colour-mapped.
+ * HDR output: the colour-mapped windowed value in [0, 1] (grey: the value itself; a named map:
+ * its published sRGB components), a = 1 on the slice and 0 elsewhere. Every iteration renders
+ * the same image, so the estimate is final after one.
+ */
+export class SliceRenderer extends BaseRenderer<SliceParams> {
+  readonly name = 'slice';
+  readonly frameFormats = ['rgba32float'] as const;
+  readonly accumulationFormats = ['rgba32float'] as const;
+  readonly kernels = {
+    generate: { glsl: glsl.generate, wgsl: wgsl.generate },
+    integrate: RUNNING_MEAN_INTEGRATE,
+    render: COPY_ACCUMULATION_RENDER,
+  };
+  readonly paramFields = SLICE_UNIFORM_FIELDS;
+  private resolved: ResolvedSliceParams;
+  /** The volume of the last scene validated (validateScene), against which setParams checks the plane. */
+  private shape: Pick<Volume, 'dims' | 'spacing'> | null = null;
+
+  constructor(params: SliceParams = {}) {
+    const resolved = resolveSliceParams(params);
+    super(params, SLICE_PARAM_SPECS, SLICE_OWNER);
+    this.resolved = resolved;
+  }
+
+  /** Merge and validate new parameters (VptError 'invalid-scene' naming the field, nothing changed); resets accumulation. */
+  override setParams(params: Partial<SliceParams>): void {
+    const resolved = resolveSliceParams({ ...this.getParams(), ...params });
+    if (this.shape) slicePlane(resolved.plane, this.shape);
+    super.setParams(params);
+    this.resolved = resolved;
+  }
+
+  /** The parameters with defaults filled in. */
+  get resolvedParams(): ResolvedSliceParams {
+    return structuredClone(this.resolved);
+  }
+
+  /** Scene-dependent rules, run by RenderContext.setScene: the plane must cut this volume's box; 'transfer-function' needs a 1D one. */
+  validateScene(scene: Scene): void {
+    slicePlane(this.resolved.plane, scene.volume);
+    if (this.resolved.colormap === 'transfer-function' && scene.transferFunction.dimensions !== '1d') {
+      throw new VptError(
+        'invalid-scene',
+        `${SLICE_OWNER}.colormap: "transfer-function" reads a 1D transfer function; the scene's is ${scene.transferFunction.dimensions}`,
+      );
+    }
+    this.shape = { dims: [...scene.volume.dims], spacing: [...scene.volume.spacing] };
+  }
+
+  override features(_scene: Scene): Record<string, boolean | number> {
+    const c = this.resolved.colormap;
+    return {
+      FIT: this.resolved.fit,
+      NEAREST: this.resolved.sampling === 'nearest',
+      COLOR_TF: c === 'transfer-function',
+      COLOR_TABLE: c !== 'grey' && c !== 'transfer-function',
+    };
+  }
+
+  paramValues(scene: Scene): UniformValues {
+    const plane = slicePlane(this.resolved.plane, scene.volume);
+    return {
+      planeOrigin: plane.origin,
+      planeU: plane.u,
+      planeV: plane.v,
+      planeNormal: plane.normal,
+      ...windowMapping(scene.volume, this.resolved.window),
+    };
+  }
+
+  /** The named colour map's table (colormaps.ts), uploaded once per map. */
+  auxiliaryTextures(_scene: Scene): readonly AuxiliaryTexture[] {
+    const c = this.resolved.colormap;
+    if (c === 'grey' || c === 'transfer-function') return [];
+    return [
+      {
+        name: 'colormap',
+        dimension: '2d',
+        key: `colormap ${c}`,
+        create: () => {
+          const data = colormapTable(c);
+          return {
+            dimension: '2d',
+            width: data.length / 4,
+            height: 1,
+            format: 'rgba32float',
+            data,
+            label: `colormap ${c}`,
+          };
+        },
+      },
+    ];
+  }
+}
