@@ -27,6 +27,7 @@ const PACKAGES = [
   'renderer-eam',
   'renderer-iso',
   'renderer-mcrt',
+  'renderer-slice',
   'loaders',
   'viewer',
   'headless',

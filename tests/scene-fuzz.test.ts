@@ -153,6 +153,7 @@ describe('scene description fuzz', () => {
             mip: vpt.mip.MipRenderer,
             iso: vpt.iso.IsoRenderer,
             mcrt: vpt.mcrt.McrtRenderer,
+            slice: vpt.slice.SliceRenderer,
           };
           const out: string[] = [];
           for (const d of descs) {

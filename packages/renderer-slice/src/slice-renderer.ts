@@ -20,7 +20,7 @@ import {
   type SliceParams,
 } from './params.js';
 import { slicePlane } from './plane.js';
-import { windowMapping } from './window-mapping.js';
+import { checkedWindowMapping } from './window-mapping.js';
 
 /** The slice's uniforms, after the scene's (SCENE_UNIFORM_FIELDS): the plane (plane.ts) and the window (window-mapping.ts). */
 export const SLICE_UNIFORM_FIELDS: readonly UniformField[] = [
@@ -50,8 +50,8 @@ export class SliceRenderer extends BaseRenderer<SliceParams> {
   };
   readonly paramFields = SLICE_UNIFORM_FIELDS;
   private resolved: ResolvedSliceParams;
-  /** The volume of the last scene validated (validateScene), against which setParams checks the plane. */
-  private shape: Pick<Volume, 'dims' | 'spacing'> | null = null;
+  /** The volume of the last scene validated (validateScene), against which setParams checks the plane and the window. */
+  private volume: Volume | null = null;
 
   constructor(params: SliceParams = {}) {
     const resolved = resolveSliceParams(params);
@@ -62,7 +62,7 @@ export class SliceRenderer extends BaseRenderer<SliceParams> {
   /** Merge and validate new parameters (VptError 'invalid-scene' naming the field, nothing changed); resets accumulation. */
   override setParams(params: Partial<SliceParams>): void {
     const resolved = resolveSliceParams({ ...this.getParams(), ...params });
-    if (this.shape) slicePlane(resolved.plane, this.shape);
+    if (this.volume) checkForVolume(resolved, this.volume);
     super.setParams(params);
     this.resolved = resolved;
   }
@@ -72,16 +72,19 @@ export class SliceRenderer extends BaseRenderer<SliceParams> {
     return structuredClone(this.resolved);
   }
 
-  /** Scene-dependent rules, run by RenderContext.setScene: the plane must cut this volume's box; 'transfer-function' needs a 1D one. */
+  /**
+   * Scene-dependent rules, run by RenderContext.setScene: the plane must cut this volume's box,
+   * the window must be finite in float32 against its value range, 'transfer-function' needs a 1D one.
+   */
   validateScene(scene: Scene): void {
-    slicePlane(this.resolved.plane, scene.volume);
+    checkForVolume(this.resolved, scene.volume);
     if (this.resolved.colormap === 'transfer-function' && scene.transferFunction.dimensions !== '1d') {
       throw new VptError(
         'invalid-scene',
         `${SLICE_OWNER}.colormap: "transfer-function" reads a 1D transfer function; the scene's is ${scene.transferFunction.dimensions}`,
       );
     }
-    this.shape = { dims: [...scene.volume.dims], spacing: [...scene.volume.spacing] };
+    this.volume = scene.volume;
   }
 
   override features(_scene: Scene): Record<string, boolean | number> {
@@ -101,7 +104,7 @@ export class SliceRenderer extends BaseRenderer<SliceParams> {
       planeU: plane.u,
       planeV: plane.v,
       planeNormal: plane.normal,
-      ...windowMapping(scene.volume, this.resolved.window),
+      ...checkedWindowMapping(scene.volume, this.resolved.window),
     };
   }
 
@@ -128,4 +131,10 @@ export class SliceRenderer extends BaseRenderer<SliceParams> {
       },
     ];
   }
+}
+
+/** The rules that need the volume: the plane (plane.ts) and the window's float32 range (window-mapping.ts). */
+function checkForVolume(p: ResolvedSliceParams, volume: Volume): void {
+  slicePlane(p.plane, volume);
+  checkedWindowMapping(volume, p.window);
 }

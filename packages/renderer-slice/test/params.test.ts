@@ -109,6 +109,17 @@ describe('slice renderer parameters', () => {
     expect(r.getParams()).toEqual({ index: 2 });
   });
 
+  it('refuses a window whose mapping would overflow float32 against the value range', () => {
+    const s = scene([4, 4, 4]); // uint8: value range [0, 255]
+    expect(() => new SliceRenderer({ window: [100, 1e-30] }).validateScene(s)).not.toThrow(); // scale 2.55e32
+    expect(thrown(() => new SliceRenderer({ window: [100, 1e-37] }).validateScene(s)).message).toMatch(
+      /SLICE\.window: \[100,1e-37\] against the volume's value range \[0, 255\] .* beyond the float32 range/,
+    );
+    const r = new SliceRenderer();
+    r.validateScene(s);
+    expect(thrown(() => r.setParams({ window: [1e38, 1e-3] })).message).toMatch(/SLICE\.window: .*float32/);
+  });
+
   it('"transfer-function" needs a 1D transfer function', () => {
     const tf2d: Scene['transferFunction'] = { dimensions: '2d', widgets: [] };
     const r = new SliceRenderer({ colormap: 'transfer-function' });
