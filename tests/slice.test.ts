@@ -166,6 +166,28 @@ describe.each(BACKENDS)('slice renderer on %s', (backend) => {
       return [...colour('grey', windowed(trilinear(data, dims, [1 - s, s, t]), window)), 1];
     });
     expect(err).toBeLessThan(1e-5);
+    // The fast path's hardware filter on a uint8 volume (r8unorm is filterable; 8-bit weights on
+    // SwiftShader): the same interpolation up to the weights' rounding, not a shifted one (half a
+    // voxel off would be off by up to half a neighbour difference, ~0.5 here).
+    const bytes = voxels(512, 0, 255, 7);
+    const byteWindow: [number, number] = [128, 256];
+    const fast = await render({
+      backend,
+      dims,
+      type: 'uint8',
+      data: bytes,
+      params: { ...params, window: byteWindow },
+      width: W,
+      height: H,
+      sampling: 'fast',
+    });
+    const fastErr = maxError(fast, W, H, (x, y) => {
+      const s = (x + 0.5) / W,
+        t = (y + 0.5) / H;
+      return [...colour('grey', windowed(trilinear(bytes, dims, [1 - s, s, t]), byteWindow)), 1];
+    });
+    expect(fastErr).toBeGreaterThan(0); // the hardware filter, not the exact one
+    expect(fastErr).toBeLessThan(1e-2);
   });
 
   it('linear, oblique, under the camera: the pixel-centre ray meets the plane where the CPU says', async () => {
