@@ -331,8 +331,13 @@ describe.each(BACKENDS)('slice renderer on %s', (backend) => {
       ctx.setScene(scene);
       const thin = errorOf(() => ctx.setScene(t.scene({ volume: core.createVolume([4, 4, 2], 'uint8') })));
       const kept = ctx.getScene().volume.dims;
+      // setRenderer keeps the scene and does not validate it: a plane that does not fit draws nothing and says so.
+      ctx.setRenderer(window.vpt.createRenderer('slice', { index: 9 }));
+      await ctx.renderIterations(1);
+      const blank = Array.from(await ctx.readHDR()).every((v) => v === 0);
+      const stats = ctx.stats.renderer;
       ctx.dispose();
-      return { ctor, thin, kept };
+      return { ctor, thin, kept, blank, stats };
     }, backend);
     expect(result.ctor.map((e) => e?.code)).toEqual([
       'invalid-scene',
@@ -349,6 +354,8 @@ describe.each(BACKENDS)('slice renderer on %s', (backend) => {
       message: expect.stringMatching(/^SLICE\.index: 3 is past the last of the volume's 2 layers along z/),
     });
     expect(result.kept).toEqual([4, 4, 4]);
+    expect(result.blank).toBe(true);
+    expect(result.stats.slice).toMatch(/^nothing drawn: SLICE\.index: 9 is past the last of the volume's 4 layers/);
   });
 });
 

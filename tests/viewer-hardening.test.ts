@@ -133,7 +133,7 @@ describe('<vpt-viewer> context loss that is never restored', () => {
 // ——— attribute fuzz ———
 
 const VALID: Record<string, Json[]> = {
-  renderer: ['eam', 'mip', 'iso', 'mcrt'],
+  renderer: ['eam', 'mip', 'iso', 'mcrt', 'slice'],
   'transfer-function': [
     'ramp',
     'tissue',

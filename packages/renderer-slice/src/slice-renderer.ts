@@ -32,6 +32,16 @@ export const SLICE_UNIFORM_FIELDS: readonly UniformField[] = [
   { name: 'planeNormal', type: 'vec3' },
 ];
 
+/** A plane no pixel meets: in fit mode every point is the origin, outside the box; under the camera no ray meets a zero normal. */
+const NOTHING_DRAWN: UniformValues = {
+  planeOrigin: [2e4, 2e4, 2e4],
+  planeU: [0, 0, 0],
+  planeV: [0, 0, 0],
+  planeNormal: [0, 0, 0],
+  windowScale: 1,
+  windowOffset: 0,
+};
+
 /**
  * A slice through the volume: a plane (axis-aligned by axis + index or position, or oblique
  * by normal + point), sampled nearest or linear, windowed in data units and colour-mapped.
@@ -52,6 +62,8 @@ export class SliceRenderer extends BaseRenderer<SliceParams> {
   private resolved: ResolvedSliceParams;
   /** The volume of the last scene validated (validateScene), against which setParams checks the plane and the window. */
   private volume: Volume | null = null;
+  /** The error of the last paramValues() whose scene the plane or window did not fit. */
+  private problem: string | null = null;
 
   constructor(params: SliceParams = {}) {
     const resolved = resolveSliceParams(params);
@@ -98,14 +110,24 @@ export class SliceRenderer extends BaseRenderer<SliceParams> {
   }
 
   paramValues(scene: Scene): UniformValues {
-    const plane = slicePlane(this.resolved.plane, scene.volume);
-    return {
-      planeOrigin: plane.origin,
-      planeU: plane.u,
-      planeV: plane.v,
-      planeNormal: plane.normal,
-      ...checkedWindowMapping(scene.volume, this.resolved.window),
-    };
+    try {
+      const plane = slicePlane(this.resolved.plane, scene.volume);
+      const window = checkedWindowMapping(scene.volume, this.resolved.window);
+      this.problem = null;
+      return { planeOrigin: plane.origin, planeU: plane.u, planeV: plane.v, planeNormal: plane.normal, ...window };
+    } catch (e) {
+      if (!(e instanceof VptError)) throw e;
+      // Only for a scene these parameters were never validated against (RenderContext.setRenderer
+      // keeps the scene it has, and setScene is what runs validateScene): draw nothing rather than
+      // stop the render loop with an exception, and say why in stats().
+      this.problem = e.message;
+      return NOTHING_DRAWN;
+    }
+  }
+
+  /** Why nothing is drawn, when the parameters do not fit the scene being rendered (else nothing to report). */
+  stats(): Record<string, string> {
+    return this.problem ? { slice: `nothing drawn: ${this.problem}` } : {};
   }
 
   /** The named colour map's table (colormaps.ts), uploaded once per map. */

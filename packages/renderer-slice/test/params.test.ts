@@ -120,6 +120,19 @@ describe('slice renderer parameters', () => {
     expect(thrown(() => r.setParams({ window: [1e38, 1e-3] })).message).toMatch(/SLICE\.window: .*float32/);
   });
 
+  it('a scene never validated against the parameters: nothing drawn, and stats() says why', () => {
+    const r = new SliceRenderer({ index: 5 });
+    const fits = r.paramValues(scene([4, 4, 8]));
+    expect(r.stats()).toEqual({});
+    expect(fits.planeNormal).toEqual([0, 0, 1]);
+    const none = r.paramValues(scene([4, 4, 4]));
+    expect(none.planeNormal).toEqual([0, 0, 0]);
+    expect(none.planeU).toEqual([0, 0, 0]);
+    expect(r.stats().slice).toMatch(/^nothing drawn: SLICE\.index: 5 is past the last of the volume's 4 layers/);
+    r.paramValues(scene([4, 4, 8]));
+    expect(r.stats()).toEqual({});
+  });
+
   it('"transfer-function" needs a 1D transfer function', () => {
     const tf2d: Scene['transferFunction'] = { dimensions: '2d', widgets: [] };
     const r = new SliceRenderer({ colormap: 'transfer-function' });
