@@ -1,6 +1,7 @@
 import { describe, expect, it } from 'vitest';
 import { defaultCamera, reference, type Scene, type Vec3, type VoxelType } from '../packages/core/src/index.js';
-import { validateSceneDescription } from '../packages/headless/src/index.js';
+import { readFileSync } from 'node:fs';
+import { decodePFM, encodePFM, readSceneFile, validateSceneDescription } from '../packages/headless/src/index.js';
 import { colormapTable, type SliceColormap, type SliceParams } from '../packages/renderer-slice/src/index.js';
 import { BACKENDS, usePage } from './helpers/session.js';
 
@@ -411,5 +412,30 @@ describe('slice renderer: WebGL 2 and WebGPU', () => {
     expect(() => validateSceneDescription(desc({ axis: 'y', index: 2, fit: true, window: [0.5, 1] }))).not.toThrow();
     expect(() => validateSceneDescription(desc({ window: [1, -1] }))).toThrow(/SLICE\.window\[1\]/);
     expect(() => validateSceneDescription(desc({ point: [0, 0, 0] }))).toThrow(/SLICE\.point: needs "normal"/);
+  });
+});
+
+describe('slice gallery scene', () => {
+  it('apps/gallery/scenes/head-slice.json: the PFM holds the windowed voxels of the axial slice, on both backends', async () => {
+    const { description, baseDir } = readSceneFile('apps/gallery/scenes/head-slice.json');
+    const p = description.rendererParams as unknown as SliceParams & { index: number; window: [number, number] };
+    expect(description.renderer).toBe('slice');
+    expect([p.axis, p.fit, p.sampling]).toEqual(['y', true, 'nearest']);
+    const [W, H] = [description.width!, description.height!];
+    const [nx, ny, nz] = [128, 128, 84];
+    expect([W % nx, H % nz]).toEqual([0, 0]); // whole pixels per voxel: nearest picks voxel ⌊pixel · n / W⌋
+    const voxels = readFileSync('data/mri_head_volpack_brainsmall_128x128x84_uint8.raw');
+    for (const backend of BACKENDS) {
+      const r = await page().render({ ...description, backend }, { baseDir });
+      const pfm = decodePFM(encodePFM(r.hdr, W, H)); // what vpt-render --pfm writes (RGB)
+      let worst = 0;
+      for (let y = 0; y < H; y++)
+        for (let x = 0; x < W; x++) {
+          const d = voxels[Math.floor((x * nx) / W) + nx * (p.index + ny * Math.floor((y * nz) / H))];
+          const w = windowed(d, p.window);
+          for (let c = 0; c < 3; c++) worst = Math.max(worst, Math.abs(pfm.rgba[4 * (x + W * y) + c] - w));
+        }
+      expect(worst, backend).toBeLessThan(1e-6);
+    }
   });
 });
