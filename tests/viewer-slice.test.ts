@@ -27,7 +27,10 @@ describe('<vpt-viewer renderer="slice">', () => {
         );
         await vt.converged(el);
         const hdr: Float32Array = await el.context.readHDR();
+        const ldr: Uint8Array = await el.context.readLDR();
         const out = {
+          ldr: Array.from(ldr),
+          post: el.context.post.map((s: { name: string }) => s.name),
           size: el.context.size,
           renderer: el.context.renderer.name,
           errors: el.__events.filter((e: { type: string }) => e.type === 'error'),
@@ -54,5 +57,11 @@ describe('<vpt-viewer renderer="slice">', () => {
         worst = Math.max(worst, Math.abs(r.hdr[i + 3] - 1));
       }
     expect(worst).toBeLessThan(1e-6);
+    // Shown as it is: the windowed value to 8 bits, no tone curve, no sRGB encoding, no denoiser.
+    expect(r.post).toEqual(['exposure', 'tonemap']);
+    let ldrWorst = 0;
+    for (let i = 0; i < r.ldr.length; i += 4)
+      for (let c = 0; c < 3; c++) ldrWorst = Math.max(ldrWorst, Math.abs(r.ldr[i + c] - 255 * r.hdr[i + c]));
+    expect(ldrWorst).toBeLessThanOrEqual(0.5001);
   });
 });

@@ -27,7 +27,7 @@ import {
   type TransferFunction,
   type Volume,
 } from '@vpt/core';
-import { DenoiseStep, defaultPostChain, type ToneMapOperator } from '@vpt/post';
+import { DenoiseStep, ExposureStep, ToneMapStep, defaultPostChain, type ToneMapOperator } from '@vpt/post';
 import { AdaptiveResolution } from './adaptive-resolution.js';
 import {
   AttributeValidator,
@@ -1082,9 +1082,15 @@ export class VptViewer extends LitElement {
   }
 
   private makePost() {
-    const chain = defaultPostChain({ exposure: this.exposure, toneMapper: this.toneMapper });
-    // MIP's estimate is a running maximum, whose per-sample variance does not describe its error: auto leaves it alone.
-    const wanted = this.denoise === 'on' || (this.denoise === 'auto' && this.renderer !== 'mip');
+    // The slice renderer's HDR image holds display values already (a window through a colour map):
+    // shown as they are, clamped, with no tone mapping or sRGB encoding (tone-mapper does not apply).
+    const displayValues = this.renderer === 'slice';
+    const chain = displayValues
+      ? [new ExposureStep(this.exposure), new ToneMapStep('clamp')]
+      : defaultPostChain({ exposure: this.exposure, toneMapper: this.toneMapper });
+    // MIP's estimate is a running maximum, whose per-sample variance does not describe its error, and a
+    // slice is exact from its first sample: auto leaves both alone.
+    const wanted = this.denoise === 'on' || (this.denoise === 'auto' && this.renderer !== 'mip' && !displayValues);
     this.denoiseStep = wanted ? new DenoiseStep() : null;
     this.updateDenoiser();
     return this.denoiseStep ? [this.denoiseStep, ...chain] : chain;
