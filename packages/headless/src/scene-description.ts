@@ -10,7 +10,7 @@ import type { TransferWidget } from '@vpt/core';
 export type Vec3 = [number, number, number];
 export type VoxelTypeName = 'uint8' | 'uint16' | 'int16' | 'float32';
 export type BackendName = 'auto' | 'webgl2' | 'webgpu';
-/** A renderer of core's RENDERER_CATALOG (`'eam' | 'mip' | 'mcrt' | 'iso'` in this repository). */
+/** A renderer of core's RENDERER_CATALOG (`'eam' | 'mip' | 'mcrt' | 'iso' | 'slice'` in this repository). */
 export type RendererName = string;
 
 /** Raw voxels at a URL (relative URLs resolve against the scene file's folder). */
