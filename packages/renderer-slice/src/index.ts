@@ -12,5 +12,11 @@ export {
   type SliceColormap,
 } from './params.js';
 export { slicePlane, type SlicePlane } from './plane.js';
-export { windowMapping, checkedWindowMapping } from './window-mapping.js';
+export {
+  windowMapping,
+  windowCoefficients,
+  checkedWindowCoefficients,
+  volumeRange,
+  type WindowCoefficients,
+} from './window-mapping.js';
 export { COLORMAP_NAMES, colormapTable, type ColormapName } from './colormaps.js';

@@ -20,7 +20,7 @@ import {
   type SliceParams,
 } from './params.js';
 import { slicePlane } from './plane.js';
-import { checkedWindowMapping } from './window-mapping.js';
+import { checkedWindowCoefficients, volumeRange } from './window-mapping.js';
 
 /** The slice's uniforms, after the scene's (SCENE_UNIFORM_FIELDS): the plane (plane.ts) and the window (window-mapping.ts). */
 export const SLICE_UNIFORM_FIELDS: readonly UniformField[] = [
@@ -60,8 +60,11 @@ export class SliceRenderer extends BaseRenderer<SliceParams> {
   };
   readonly paramFields = SLICE_UNIFORM_FIELDS;
   private resolved: ResolvedSliceParams;
-  /** The volume of the last scene validated (validateScene), against which setParams checks the plane and the window. */
-  private volume: Volume | null = null;
+  /**
+   * What setParams checks the plane and the window against: the last validated volume's shape and
+   * value range (not the volume itself, which this renderer must not keep alive).
+   */
+  private shape: VolumeShape | null = null;
   /** The error of the last paramValues() whose scene the plane or window did not fit. */
   private problem: string | null = null;
 
@@ -74,7 +77,7 @@ export class SliceRenderer extends BaseRenderer<SliceParams> {
   /** Merge and validate new parameters (VptError 'invalid-scene' naming the field, nothing changed); resets accumulation. */
   override setParams(params: Partial<SliceParams>): void {
     const resolved = resolveSliceParams({ ...this.getParams(), ...params });
-    if (this.volume) checkForVolume(resolved, this.volume);
+    if (this.shape) checkForShape(resolved, this.shape);
     super.setParams(params);
     this.resolved = resolved;
   }
@@ -89,14 +92,15 @@ export class SliceRenderer extends BaseRenderer<SliceParams> {
    * the window must be finite in float32 against its value range, 'transfer-function' needs a 1D one.
    */
   validateScene(scene: Scene): void {
-    checkForVolume(this.resolved, scene.volume);
+    const shape = shapeOf(scene.volume);
+    checkForShape(this.resolved, shape);
     if (this.resolved.colormap === 'transfer-function' && scene.transferFunction.dimensions !== '1d') {
       throw new VptError(
         'invalid-scene',
         `${SLICE_OWNER}.colormap: "transfer-function" reads a 1D transfer function; the scene's is ${scene.transferFunction.dimensions}`,
       );
     }
-    this.volume = scene.volume;
+    this.shape = shape;
   }
 
   override features(_scene: Scene): Record<string, boolean | number> {
@@ -112,7 +116,7 @@ export class SliceRenderer extends BaseRenderer<SliceParams> {
   paramValues(scene: Scene): UniformValues {
     try {
       const plane = slicePlane(this.resolved.plane, scene.volume);
-      const window = checkedWindowMapping(scene.volume, this.resolved.window);
+      const window = checkedWindowCoefficients(volumeRange(scene.volume), this.resolved.window);
       this.problem = null;
       return { planeOrigin: plane.origin, planeU: plane.u, planeV: plane.v, planeNormal: plane.normal, ...window };
     } catch (e) {
@@ -155,8 +159,19 @@ export class SliceRenderer extends BaseRenderer<SliceParams> {
   }
 }
 
+/** What the scene-dependent rules read of a volume. */
+interface VolumeShape {
+  dims: Volume['dims'];
+  spacing: Volume['spacing'];
+  range: [number, number];
+}
+
+function shapeOf(volume: Volume): VolumeShape {
+  return { dims: [...volume.dims], spacing: [...volume.spacing], range: volumeRange(volume) };
+}
+
 /** The rules that need the volume: the plane (plane.ts) and the window's float32 range (window-mapping.ts). */
-function checkForVolume(p: ResolvedSliceParams, volume: Volume): void {
-  slicePlane(p.plane, volume);
-  checkedWindowMapping(volume, p.window);
+function checkForShape(p: ResolvedSliceParams, shape: VolumeShape): void {
+  slicePlane(p.plane, shape);
+  checkedWindowCoefficients(shape.range, p.window);
 }

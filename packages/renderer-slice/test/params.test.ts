@@ -113,11 +113,17 @@ describe('slice renderer parameters', () => {
     const s = scene([4, 4, 4]); // uint8: value range [0, 255]
     expect(() => new SliceRenderer({ window: [100, 1e-30] }).validateScene(s)).not.toThrow(); // scale 2.55e32
     expect(thrown(() => new SliceRenderer({ window: [100, 1e-37] }).validateScene(s)).message).toMatch(
-      /SLICE\.window: \[100,1e-37\] against the volume's value range \[0, 255\] .* beyond the float32 range/,
+      /SLICE\.window: \[100,1e-37\] against the volume's value range \[0, 255\] .* outside the float32 range/,
     );
     const r = new SliceRenderer();
     r.validateScene(s);
     expect(thrown(() => r.setParams({ window: [1e38, 1e-3] })).message).toMatch(/SLICE\.window: .*float32/);
+    // Far wider than the range: a scale below float32's normal range would reach the kernel as 0.
+    const narrow = scene([4, 4, 4]);
+    narrow.volume.valueRange = [0, 1e-3];
+    expect(thrown(() => new SliceRenderer({ window: [0, 1e36] }).validateScene(narrow)).message).toMatch(
+      /SLICE\.window: .*scale of 1e-39/,
+    );
   });
 
   it('a scene never validated against the parameters: nothing drawn, and stats() says why', () => {
