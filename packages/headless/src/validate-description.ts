@@ -24,6 +24,7 @@ import {
   LATLONG_SIDE_RULE,
   transferFunctionFromJSON,
   validateCamera,
+  validateClip,
   validateEnvironment,
   validateLights,
   validateParams,
@@ -51,6 +52,7 @@ const TOP_KEYS = [
   'densityScale',
   'seed',
   'sampling',
+  'clip',
   'maxGpuBytes',
   'post',
   'iterations',
@@ -179,6 +181,7 @@ export function validateSceneDescription(d: unknown): SceneDescription {
       s.renderer === undefined ? SCENE_DEFAULTS.renderer : checkOneOf('renderer', s.renderer, rendererNames());
     if (s.backend !== undefined) checkOneOf('backend', s.backend, BACKEND_NAMES);
     if (s.sampling !== undefined) checkOneOf('sampling', s.sampling, ['fast', 'exact'] as const);
+    if (s.clip !== undefined) validateClip(s.clip, 'clip');
     if (s.maxGpuBytes !== undefined)
       checkNumber('maxGpuBytes', s.maxGpuBytes, { min: 0, exclusiveMin: true, unit: 'bytes' });
     if (s.rendererParams !== undefined) {

@@ -157,6 +157,7 @@ async function buildScene(d: SceneDescription, baseUrl?: string): Promise<Scene>
     densityScale: d.densityScale ?? SCENE_DEFAULTS.densityScale,
     seed: d.seed ?? SCENE_DEFAULTS.seed,
     ...(d.sampling ? { sampling: d.sampling } : {}),
+    ...(d.clip ? { clip: d.clip } : {}),
   };
 }
 
