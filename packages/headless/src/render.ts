@@ -1,9 +1,11 @@
+import type { RequestPolicy } from '@vpt/core';
 import type { Browser, Page } from 'puppeteer-core';
 import { launchChromium, type ChromiumOptions } from './chromium.js';
 import { PAGE_PATH, mountPagePackages, workspaceRoot } from './packages.js';
 import type { BackendSummary, PageRenderResult, RenderTimings } from './page/types.js';
 import type { BackendName, SceneDescription } from './scene-description.js';
 import { mountSceneFiles, resolveSceneFiles } from './scene-files.js';
+import { requestPolicyFromEnv } from './request-policy-env.js';
 import { validateSceneDescription } from './validate-description.js';
 import { startStaticServer, type StaticServer } from './server.js';
 
@@ -56,6 +58,11 @@ export interface PageRenderOptions {
    * outside it, URLs and server URL paths are refused (see resolveSceneFiles).
    */
   sceneRoot?: string;
+  /**
+   * Bounds on every URL the scene names (core's RequestPolicy: stall timeout, total bound,
+   * retries); default: $VPT_REQUEST_POLICY (JSON), else core's DEFAULT_REQUEST_POLICY.
+   */
+  request?: Partial<RequestPolicy>;
 }
 
 export interface VptPageSession {
@@ -170,7 +177,7 @@ async function renderInPage(
       }
     },
     mounted,
-    { warmup: options.warmup ?? true },
+    { warmup: options.warmup ?? true, request: options.request ?? requestPolicyFromEnv() },
   );
   if (out.error) throw new PageError(out.error.message, out.error.code);
   return decodeResult(out.ok!);
@@ -231,6 +238,8 @@ export async function renderScene(desc: SceneDescription, options: RenderSceneOp
     options.baseDir ?? process.cwd(),
     { root: options.sceneRoot },
   );
+  // A bad request policy fails here too, before a browser is started.
+  const request = options.request ?? requestPolicyFromEnv();
   const session =
     options.session ??
     (await openVptPage({
@@ -240,7 +249,7 @@ export async function renderScene(desc: SceneDescription, options: RenderSceneOp
       packageDirs: options.packageDirs,
     }));
   try {
-    return await session.render(full, options);
+    return await session.render(full, { ...options, request });
   } finally {
     if (!options.session) await session.close();
   }

@@ -21,6 +21,7 @@ import {
   type Environment,
   type Light,
   type Renderer,
+  type RequestPolicy,
   type Scene,
   type MultiscaleSource,
   type RenderWarning,
@@ -218,6 +219,11 @@ export class VptViewer extends LitElement {
    * opens; undefined: the context's default. It decides which levels of a multiscale store fit.
    */
   maxGpuBytes: number | undefined = undefined;
+  /**
+   * Bounds on every URL the element fetches (volumes, sidecars, environments, OME-Zarr):
+   * core's RequestPolicy overrides, read when a load starts; {}: DEFAULT_REQUEST_POLICY.
+   */
+  requestPolicy: Partial<RequestPolicy> = {};
   private lostTimer: ReturnType<typeof setTimeout> | undefined;
   declare private _stats: RefinementStats | null;
   declare private _histogram: Histogram1D | null;
@@ -877,6 +883,7 @@ export class VptViewer extends LitElement {
     return loadVolumeSource(source, {
       signal,
       limits,
+      request: this.requestPolicy,
       onProgress: (p) => {
         if (token !== this.tokens.src) return;
         this._status = p.total
@@ -943,7 +950,7 @@ export class VptViewer extends LitElement {
     const shown = this.volume;
     if (!shown || !this._dataLevel) return;
     this._dataLevel = { ...this._dataLevel, loading: 0 };
-    const multiscale = await openMultiscaleSource(source);
+    const multiscale = await openMultiscaleSource(source, this.requestPolicy);
     if (token !== this.tokens.src || this.volume !== shown) return;
     if (!multiscale) {
       this._dataLevel = { ...this._dataLevel, loading: null };
@@ -1042,7 +1049,7 @@ export class VptViewer extends LitElement {
     else if (env.type !== 'url') this.resolvedEnvironment = env;
     else {
       try {
-        const loaded = await loadEnvironment(env.url, env.scale ?? 1);
+        const loaded = await loadEnvironment(env.url, env.scale ?? 1, { request: this.requestPolicy });
         if (token !== this.tokens.environment) return;
         this.resolvedEnvironment = loaded;
         this.clearError('environment');

@@ -73,10 +73,10 @@ export interface VptPageApi {
   post: PostModule;
   renderDescription(
     desc: SceneDescription,
-    options?: { baseUrl?: string; warmup?: boolean },
+    options?: { baseUrl?: string; warmup?: boolean; request?: Partial<CoreModule.RequestPolicy> },
   ): Promise<PageRenderResult>;
-  buildScene(desc: SceneDescription, baseUrl?: string): Promise<Scene>;
-  loadVolume(desc: VolumeDescription, baseUrl?: string): Promise<Volume>;
+  buildScene(desc: SceneDescription, baseUrl?: string, request?: Partial<CoreModule.RequestPolicy>): Promise<Scene>;
+  loadVolume(desc: VolumeDescription, baseUrl?: string, request?: Partial<CoreModule.RequestPolicy>): Promise<Volume>;
 }
 
 declare global {

@@ -5,7 +5,7 @@
  * renderers, <renderer name>: <its module>…, renderDescription, buildScene, loadVolume }` and
  * sets `window.__vptReady`, or `window.__vptError` when a package cannot be loaded.
  */
-import type { Environment, MultiscaleSource, RenderContext, Renderer, Scene, Volume } from '@vpt/core';
+import type { Environment, MultiscaleSource, RenderContext, Renderer, RequestPolicy, Scene, Volume } from '@vpt/core';
 import {
   SCENE_DEFAULTS,
   checkSceneDescription,
@@ -20,7 +20,7 @@ type CoreModule = VptPageApi['core'];
 interface LoadersModule {
   loadVolume(
     url: string,
-    options: { format: 'ome-zarr'; zarr: Record<string, unknown> },
+    options: { format: 'ome-zarr'; zarr: Record<string, unknown>; request: Partial<RequestPolicy> },
   ): Promise<Volume & { meta?: Record<string, unknown> }>;
   openOmeZarr(url: string, options: Record<string, unknown>): Promise<MultiscaleSource>;
 }
@@ -30,29 +30,33 @@ let post!: PostModule;
 /** The renderer classes of the catalog, by renderer name. */
 const rendererClasses = new Map<string, new (params?: Record<string, unknown>) => Renderer>();
 
-async function fetchOk(url: string): Promise<Response> {
-  let res: Response;
-  try {
-    res = await fetch(url);
-  } catch (e) {
-    throw new core.VptError('load-failed', `Could not fetch ${url}: ${(e as Error).message}`, { cause: e });
-  }
-  if (!res.ok) throw new core.VptError('load-failed', `Could not fetch ${url}: HTTP ${res.status}`);
-  return res;
+/** Largest sidecar fetched (as @vpt/loaders bounds its text files). */
+const MAX_SIDECAR_BYTES = 16 * 1024 * 1024;
+
+/** A URL's bytes under core's request policy: a stalled or hostile server ends in a typed error. */
+async function fetchBounded(url: string, maxBytes: number, request: Partial<RequestPolicy>): Promise<Uint8Array> {
+  return (await core.fetchWithPolicy(url, { policy: request, maxBytes })).bytes;
 }
 
 /** Turn a volume description into a core Volume; relative URLs resolve against baseUrl. */
-async function loadVolume(desc: VolumeDescription, baseUrl: string = document.baseURI): Promise<Volume> {
+async function loadVolume(
+  desc: VolumeDescription,
+  baseUrl: string = document.baseURI,
+  request: Partial<RequestPolicy> = {},
+): Promise<Volume> {
   if ('procedural' in desc) return core.createProceduralVolume(desc.procedural, desc.size ?? 32);
-  if ('zarr' in desc) return loadZarr(desc, baseUrl);
+  if ('zarr' in desc) return loadZarr(desc, baseUrl, request);
   if ('sidecar' in desc) {
     // core's raw reader parses the sidecar (as @vpt/loaders and the viewer's fallback do).
     const sidecarUrl = new URL(desc.sidecar, baseUrl).href;
-    const sidecar = core.parseRawSidecar(await (await fetchOk(sidecarUrl)).text(), sidecarUrl);
-    return loadVolume({ raw: core.rawFileBeside(sidecarUrl, sidecar), ...sidecar }, sidecarUrl);
+    const text = new TextDecoder().decode(await fetchBounded(sidecarUrl, MAX_SIDECAR_BYTES, request));
+    const sidecar = core.parseRawSidecar(text, sidecarUrl);
+    return loadVolume({ raw: core.rawFileBeside(sidecarUrl, sidecar), ...sidecar }, sidecarUrl, request);
   }
   const url = new URL(desc.raw, baseUrl).href;
-  const data = core.rawVoxels(new Uint8Array(await (await fetchOk(url)).arrayBuffer()), desc, url);
+  // A raw file holds exactly dims × type bytes (rawVoxels checks it): nothing longer is read.
+  const expected = desc.dims.reduce((a, b) => a * b, 1) * BYTES_PER_VOXEL[desc.type];
+  const data = core.rawVoxels(await fetchBounded(url, expected, request), desc, url);
   const volume = core.createVolume(desc.dims, desc.type, data, desc.spacing ?? [1, 1, 1]);
   if (desc.valueRange) volume.valueRange = desc.valueRange;
   volume.name = url.split('/').pop();
@@ -64,7 +68,11 @@ async function loadVolume(desc: VolumeDescription, baseUrl: string = document.ba
  * page's import map needs nothing more). The omero window is the normalization range
  * unless the description gives one, as a sidecar's value_range is for raw data.
  */
-async function loadZarr(desc: ZarrVolumeDescription, baseUrl: string): Promise<Volume> {
+async function loadZarr(
+  desc: ZarrVolumeDescription,
+  baseUrl: string,
+  request: Partial<RequestPolicy>,
+): Promise<Volume> {
   const url = new URL(desc.zarr, baseUrl).href;
   const loaders = await load<LoadersModule>('@vpt/loaders');
   let loaded: Awaited<ReturnType<LoadersModule['loadVolume']>>;
@@ -77,6 +85,7 @@ async function loadZarr(desc: ZarrVolumeDescription, baseUrl: string): Promise<V
         ...(desc.time !== undefined ? { time: desc.time } : {}),
         ...(desc.missingChunks ? { missingChunks: desc.missingChunks } : {}),
       },
+      request,
     });
   } catch (e) {
     throw new core.VptError('load-failed', `Could not load OME-Zarr ${url}: ${(e as Error).message}`, { cause: e });
@@ -101,6 +110,7 @@ async function zarrToStream(
   d: SceneDescription,
   ctx: RenderContext,
   baseUrl: string,
+  request: Partial<RequestPolicy>,
 ): Promise<{ source: MultiscaleSource; level: number } | null> {
   const v = d.volume;
   if (!v || !('zarr' in v) || v.level !== undefined) return null;
@@ -112,6 +122,7 @@ async function zarrToStream(
       ...(v.channel !== undefined ? { channel: v.channel } : {}),
       ...(v.time !== undefined ? { time: v.time } : {}),
       ...(v.missingChunks ? { missingChunks: v.missingChunks } : {}),
+      request,
     });
   } catch (e) {
     throw new core.VptError('load-failed', `Could not load OME-Zarr ${url}: ${(e as Error).message}`, { cause: e });
@@ -141,11 +152,11 @@ function environmentOf(d: SceneDescription): Environment {
 }
 
 /** Build the core Scene for a description (defaults filled in). */
-async function buildScene(d: SceneDescription, baseUrl?: string): Promise<Scene> {
+async function buildScene(d: SceneDescription, baseUrl?: string, request?: Partial<RequestPolicy>): Promise<Scene> {
   checkSceneDescription(d, [...rendererClasses.keys()]);
   const tf = d.transferFunction;
   return {
-    volume: await loadVolume(d.volume ?? SCENE_DEFAULTS.volume, baseUrl),
+    volume: await loadVolume(d.volume ?? SCENE_DEFAULTS.volume, baseUrl, request),
     transferFunction: !tf
       ? core.rampTransferFunction()
       : tf.dimensions === '2d'
@@ -188,7 +199,7 @@ function toBase64(a: ArrayBufferView): string {
  */
 async function renderDescription(
   desc: SceneDescription,
-  options: { baseUrl?: string; warmup?: boolean } = {},
+  options: { baseUrl?: string; warmup?: boolean; request?: Partial<RequestPolicy> } = {},
 ): Promise<PageRenderResult> {
   const t0 = performance.now();
   checkSceneDescription(desc, [...rendererClasses.keys()]);
@@ -212,9 +223,10 @@ async function renderDescription(
   ctx.onWarning((w) => warnings.push(w.message));
   try {
     // An OME-Zarr level 0 beyond the budget streams through the brick cache, from the finest level that fits.
-    const streamed = await zarrToStream(desc, ctx, options.baseUrl ?? document.baseURI);
+    const request = options.request ?? {};
+    const streamed = await zarrToStream(desc, ctx, options.baseUrl ?? document.baseURI, request);
     const volume = streamed && { ...(desc.volume as ZarrVolumeDescription), level: streamed.level };
-    const scene = await buildScene(volume ? { ...desc, volume } : desc, options.baseUrl);
+    const scene = await buildScene(volume ? { ...desc, volume } : desc, options.baseUrl, request);
     if (streamed) ctx.setVolumeSource(scene.volume, streamed.source);
     ctx.setScene(scene);
     // Every brick the view needs (or as many as the atlas holds) before the timed iterations.

@@ -2,7 +2,7 @@
  * Lat-long HDR environments from a URL: Radiance .hdr (RGBE) and OpenEXR, decoded by
  * Three.js' loaders, converted to core's Environment (RGB floats, row 0 at the top).
  */
-import { VptError, type Environment } from '@vpt/core';
+import { RequestError, VptError, fetchWithPolicy, type Environment, type RequestPolicy } from '@vpt/core';
 import { FloatType } from 'three';
 import { EXRLoader } from 'three/addons/loaders/EXRLoader.js';
 import { HDRLoader } from 'three/addons/loaders/HDRLoader.js';
@@ -31,15 +31,34 @@ function decode(url: string, buffer: ArrayBuffer): Decoded {
   return { width: r.width, height: r.height, data: r.data, bottomUp: false };
 }
 
-export async function loadEnvironment(url: string, scale = 1, signal?: AbortSignal): Promise<Environment> {
+/** Largest environment file fetched: an 8k × 4k float RGBA EXR, uncompressed. */
+export const MAX_ENVIRONMENT_BYTES = 512 * 1024 * 1024;
+
+export interface EnvironmentLoadOptions {
+  signal?: AbortSignal;
+  /** Bounds on the request (core's RequestPolicy overrides). */
+  request?: Partial<RequestPolicy>;
+}
+
+export async function loadEnvironment(
+  url: string,
+  scale = 1,
+  options: EnvironmentLoadOptions = {},
+): Promise<Environment> {
   const href = new URL(url, globalThis.document?.baseURI).href;
   let buffer: ArrayBuffer;
   try {
-    const res = await fetch(href, { signal });
-    if (!res.ok) throw new Error(`HTTP ${res.status}`);
-    buffer = await res.arrayBuffer();
+    const { bytes } = await fetchWithPolicy(href, {
+      signal: options.signal,
+      policy: options.request,
+      maxBytes: MAX_ENVIRONMENT_BYTES,
+    });
+    const whole = bytes.byteOffset === 0 && bytes.byteLength === bytes.buffer.byteLength;
+    buffer = (whole ? bytes.buffer : bytes.slice().buffer) as ArrayBuffer;
   } catch (e) {
-    throw new VptError('load-failed', `environment: could not fetch ${href} (${(e as Error).message})`, { cause: e });
+    // A size bound stays limit-exceeded; everything else is a failed load naming the URL.
+    const code = e instanceof RequestError ? e.code : 'load-failed';
+    throw new VptError(code, `environment: could not fetch ${href} (${(e as Error).message})`, { cause: e });
   }
   let d: Decoded;
   try {
