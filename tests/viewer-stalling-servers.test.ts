@@ -1,5 +1,6 @@
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { startAbusiveServer, type AbuseFault, type AbusiveServer } from './helpers/abusive-server.js';
+import { seededRandom } from './helpers/seeded-random.js';
 import { useViewerPage } from './helpers/viewer-page.js';
 
 /**
@@ -17,6 +18,11 @@ beforeAll(async () => {
   server.files.set('/v.json', JSON.stringify({ file: 'v.raw', dims: [4, 4, 4], voxel_type: 'uint8' }));
   server.files.set('/v.raw', new Uint8Array(64));
   server.files.set('/v.nrrd', `NRRD0004\ntype: uchar\ndimension: 3\nsizes: 4 4 4\nencoding: raw\n\n${'\0'.repeat(64)}`);
+  // 2 KB of random bytes after the EXR magic: Three.js' EXRLoader alone loops for ever on it.
+  const random = seededRandom(28);
+  const bomb = new Uint8Array(2048).map(() => Math.floor(random() * 256));
+  bomb.set([0x76, 0x2f, 0x31, 0x01, 2, 0, 0, 0]);
+  server.files.set('/bomb.exr', bomb);
   server.files.set('/sky.hdr', '#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 1 +X 2\n' + '\x80\x80\x80\x80'.repeat(2));
 });
 afterAll(() => server?.close());
@@ -71,4 +77,12 @@ describe('<vpt-viewer> with a misbehaving server', () => {
       expect(r.ms).toBeLessThan(BOUND_MS);
     },
   );
+
+  it('environment: an EXR bomb (the magic, then random bytes) is refused at once and the page stays responsive', async () => {
+    server.faults.clear();
+    const r = await settle('environment', JSON.stringify({ type: 'url', url: `${server.url}bomb.exr` }));
+    expect(r).toMatchObject({ code: 'load-failed', source: 'environment' });
+    expect(r.message).toMatch(/bomb\.exr has a broken header/);
+    expect(r.ms).toBeLessThan(BOUND_MS);
+  });
 });

@@ -6,6 +6,7 @@ import { RequestError, VptError, fetchWithPolicy, type Environment, type Request
 import { FloatType } from 'three';
 import { EXRLoader } from 'three/addons/loaders/EXRLoader.js';
 import { HDRLoader } from 'three/addons/loaders/HDRLoader.js';
+import { checkExrHeader, checkHdrHeader, isExr } from './environment-header.js';
 
 interface Decoded {
   width: number;
@@ -14,8 +15,14 @@ interface Decoded {
   bottomUp: boolean;
 }
 
+/**
+ * Decode after the header checks of environment-header.ts (the decoders trust the header:
+ * an unbounded loop or allocation otherwise). OpenEXR by its magic number or extension.
+ */
 function decode(url: string, buffer: ArrayBuffer): Decoded {
-  if (/\.exr(\?|#|$)/i.test(url)) {
+  const bytes = new Uint8Array(buffer);
+  if (isExr(bytes) || /\.exr(\?|#|$)/i.test(url)) {
+    checkExrHeader(bytes, url);
     const r = new EXRLoader().setDataType(FloatType).parse(buffer) as {
       width: number;
       height: number;
@@ -23,6 +30,7 @@ function decode(url: string, buffer: ArrayBuffer): Decoded {
     };
     return { width: r.width, height: r.height, data: r.data, bottomUp: true };
   }
+  checkHdrHeader(bytes, url);
   const r = new HDRLoader().setDataType(FloatType).parse(buffer) as {
     width: number;
     height: number;
@@ -64,6 +72,7 @@ export async function loadEnvironment(
   try {
     d = decode(href, buffer);
   } catch (e) {
+    if (e instanceof VptError) throw e; // the header checks' own, naming what is wrong
     throw new VptError(
       'load-failed',
       `environment: ${href} is not a readable .hdr/.exr image (${(e as Error).message})`,
