@@ -36,6 +36,8 @@ export function readSceneFile(file: string): { description: SceneDescription; ba
       `Cannot read scene file ${file}: ${(e as NodeJS.ErrnoException).code === 'ENOENT' ? 'no such file' : (e as Error).message}`,
     );
   }
+  if (text.trim() === '')
+    throw new VptError('invalid-scene', `Scene file ${file} is empty; it should hold a JSON object describing a scene`);
   let json: unknown;
   try {
     json = JSON.parse(text);
@@ -124,6 +126,7 @@ export function resolveSceneFiles(
   baseDir: string,
   options: SceneFileOptions = {},
 ): SceneDescription {
+  if (options.root !== undefined) checkRootFolder(options.root);
   return mapVolumeRefs(desc, (ref, volume) => {
     const confined = options.root !== undefined;
     if (HAS_SCHEME.test(ref)) {
@@ -160,6 +163,17 @@ export function resolveSceneFiles(
     }
     return file;
   });
+}
+
+/** The folder scene paths are confined to must exist and be a folder (else every path check would fail obscurely). */
+function checkRootFolder(root: string): void {
+  let st: fs.Stats;
+  try {
+    st = fs.statSync(root);
+  } catch {
+    throw new VptError('invalid-scene', `--root ${root}: no such folder`);
+  }
+  if (!st.isDirectory()) throw new VptError('invalid-scene', `--root ${root}: is a file, not a folder`);
 }
 
 /** An OME-Zarr store is a folder holding zarr.json (v3) or .zattrs / .zgroup (v2). */

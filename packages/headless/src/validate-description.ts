@@ -33,6 +33,7 @@ import {
   type Light,
 } from '@vpt/core';
 import { postChainFromJSON } from '@vpt/post';
+import { checkJsonShape } from './json-shape.js';
 import { EAM_PARAM_SPECS } from '@vpt/renderer-eam';
 import { MIP_PARAM_SPECS } from '@vpt/renderer-mip';
 import { ISO_PARAM_SPECS, resolveIsoParams } from '@vpt/renderer-iso';
@@ -164,6 +165,7 @@ function checkLights(l: unknown): Light[] {
 export function validateSceneDescription(d: unknown): SceneDescription {
   try {
     const s = checkObject('scene', d);
+    checkJsonShape(s, 'scene');
     checkKnownKeys('scene', s, TOP_KEYS);
     for (const k of ['width', 'height'] as const)
       if (s[k] !== undefined) checkNumber(k, s[k], countUpTo(MAX_RENDER_SIDE, 'pixels'));

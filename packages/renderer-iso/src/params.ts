@@ -70,6 +70,8 @@ export interface ResolvedIsoParams {
 }
 
 const OUTPUTS: readonly IsoOutput[] = ['shaded', 'depth', 'normal'];
+/** The keys of an IsoSurface (an unknown one, such as "colour", is a typo to report, as elsewhere). */
+const SURFACE_KEYS: readonly string[] = ['value', 'color', 'opacity'];
 
 /** ISO's parameters and their ranges (core's validateParams; resolveIsoParams adds the surface rules). */
 export const ISO_PARAM_SPECS: ParamSpecs = {
@@ -100,6 +102,8 @@ export function resolveIsoParams(p: IsoParams): ResolvedIsoParams {
   }
   const resolved = surfaces.map((s, i): Required<IsoSurface> => {
     if (!s || typeof s !== 'object') bad(`surface ${i} must be an object`);
+    const unknown = Object.keys(s).filter((k) => !SURFACE_KEYS.includes(k));
+    if (unknown.length) bad(`surface ${i}: unknown key "${unknown[0]}" (known: ${SURFACE_KEYS.join(', ')})`);
     if (!finite(s.value) || s.value < 0 || s.value > 1)
       bad(`surface ${i}: value must be in [0, 1] (normalized), got ${s.value}`);
     if (!Array.isArray(s.color) || s.color.length !== 3 || !s.color.every((c) => finite(c) && c >= 0 && c <= 1))

@@ -1,15 +1,12 @@
-import fs from 'node:fs';
-import path from 'node:path';
 import { encodePFM, encodePNG, opaque } from '../image-io.js';
 import { renderScene } from '../render.js';
 import { readSceneFile } from '../scene-files.js';
 import { parseRenderArgs, RENDER_USAGE } from './args.js';
 import { oneLine, processIO, type CliIO } from './io.js';
+import { checkOutputFile, writeOutputFile } from './output-file.js';
 
-function writeFile(file: string, data: Uint8Array): void {
-  fs.mkdirSync(path.dirname(path.resolve(file)), { recursive: true });
-  fs.writeFileSync(file, data);
-}
+const EMPTY_CHAIN =
+  "the scene's post chain is empty, so there is no LDR image to write with -o (use --pfm for the HDR image)";
 
 /**
  * vpt-render: scene.json → PNG (LDR) and/or PFM (HDR), timings as one JSON line on
@@ -24,7 +21,12 @@ export async function runRender(argv: string[], io: CliIO = processIO): Promise<
       io.out(RENDER_USAGE);
       return 0;
     }
+    // Output paths first: a folder or an unwritable file must not fail after the whole render.
+    if (args.output !== undefined) checkOutputFile(args.output, '-o');
+    if (args.pfm !== undefined) checkOutputFile(args.pfm, '--pfm');
     const { description, baseDir } = readSceneFile(args.scene);
+    if (args.output !== undefined && Array.isArray(description.post) && description.post.length === 0)
+      throw new Error(EMPTY_CHAIN);
     const result = await renderScene(description, {
       baseDir,
       backend: args.backend,
@@ -36,13 +38,11 @@ export async function runRender(argv: string[], io: CliIO = processIO): Promise<
       onConsole: args.verbose ? (line) => io.err(line) : undefined,
     });
     if (args.output !== undefined) {
-      if (!result.ldr)
-        throw new Error(
-          "the scene's post chain is empty, so there is no LDR image to write with -o (use --pfm for the HDR image)",
-        );
-      writeFile(args.output, encodePNG(args.keepAlpha ? result.ldr : opaque(result.ldr), result.width, result.height));
+      if (!result.ldr) throw new Error(EMPTY_CHAIN);
+      const png = encodePNG(args.keepAlpha ? result.ldr : opaque(result.ldr), result.width, result.height);
+      writeOutputFile(args.output, png, '-o');
     }
-    if (args.pfm !== undefined) writeFile(args.pfm, encodePFM(result.hdr, result.width, result.height));
+    if (args.pfm !== undefined) writeOutputFile(args.pfm, encodePFM(result.hdr, result.width, result.height), '--pfm');
     io.out(
       JSON.stringify({
         ...result.timings,
