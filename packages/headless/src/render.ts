@@ -44,6 +44,8 @@ export interface RenderResult {
   gpuBytes: PageRenderResult['gpuBytes'];
   volumeDims: [number, number, number];
   warnings: string[];
+  /** What the renderer chose for the scene (RenderContext.stats.renderer: MCRT auto's estimator and reasons…). */
+  rendererStats: Record<string, string>;
   /** A bricked volume's residency before the iterations (an OME-Zarr level 0 beyond maxGpuBytes streams as bricks); null: not bricked. */
   bricking?: PageRenderResult['bricking'];
 }
@@ -63,6 +65,10 @@ export interface PageRenderOptions {
    * retries); default: $VPT_REQUEST_POLICY (JSON), else core's DEFAULT_REQUEST_POLICY.
    */
   request?: Partial<RequestPolicy>;
+  /** Stop the iterations after this many ms; the result then holds those done (`timings.timeLimited`). */
+  timeLimitMs?: number;
+  /** Iterations done of the total and ms since they began, after each batch (the render then runs in batches). */
+  onProgress?: (done: number, total: number, ms: number) => void;
 }
 
 export interface VptPageSession {
@@ -164,6 +170,7 @@ async function renderInPage(
   options: PageRenderOptions,
 ): Promise<RenderResult> {
   const mounted = mountSceneFiles(desc, options.baseDir ?? process.cwd(), server, { root: options.sceneRoot });
+  if (options.onProgress) await progressChannel(page).then((channel) => (channel.current = options.onProgress));
   // Errors come back as data: a rejected evaluate would lose VptError's code.
   type Outcome =
     { ok: PageRenderResult; error?: undefined } | { ok?: undefined; error: { message: string; code?: string } };
@@ -177,10 +184,36 @@ async function renderInPage(
       }
     },
     mounted,
-    { warmup: options.warmup ?? true, request: options.request ?? requestPolicyFromEnv() },
+    {
+      warmup: options.warmup ?? true,
+      request: options.request ?? requestPolicyFromEnv(),
+      ...(options.timeLimitMs !== undefined ? { timeLimitMs: options.timeLimitMs } : {}),
+      ...(options.onProgress ? { progress: true } : {}),
+    },
   );
+  const channel = progressChannels.get(page);
+  if (channel) channel.current = undefined;
   if (out.error) throw new PageError(out.error.message, out.error.code);
   return decodeResult(out.ok!);
+}
+
+/** The page's progress callback, exposed once per page; each render sets the handler it reports to. */
+interface ProgressChannel {
+  current?: (done: number, total: number, ms: number) => void;
+}
+const progressChannels = new WeakMap<Page, ProgressChannel>();
+
+async function progressChannel(page: Page): Promise<ProgressChannel> {
+  let channel = progressChannels.get(page);
+  if (!channel) {
+    const c: ProgressChannel = {};
+    await page.exposeFunction('__vptRenderProgress', (done: number, total: number, ms: number) => {
+      c.current?.(done, total, ms);
+    });
+    progressChannels.set(page, c);
+    channel = c;
+  }
+  return channel;
 }
 
 function decodeResult(r: PageRenderResult): RenderResult {
@@ -195,6 +228,7 @@ function decodeResult(r: PageRenderResult): RenderResult {
     gpuBytes: r.gpuBytes,
     volumeDims: r.volumeDims,
     warnings: r.warnings,
+    rendererStats: r.rendererStats ?? {},
     bricking: r.bricking,
   };
 }

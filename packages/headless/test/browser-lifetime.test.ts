@@ -20,6 +20,22 @@ function alive(pid: number): boolean {
   }
 }
 
+/** Processes whose parent is `pid` (from /proc). */
+function childrenOf(pid: number): number[] {
+  return fs
+    .readdirSync('/proc')
+    .filter((d) => /^\d+$/.test(d))
+    .filter((d) => {
+      try {
+        const stat = fs.readFileSync(`/proc/${d}/stat`, 'utf8');
+        return Number(stat.slice(stat.lastIndexOf(')') + 2).split(' ')[1]) === pid;
+      } catch {
+        return false;
+      }
+    })
+    .map(Number);
+}
+
 describe('Chromium dies with its parent', () => {
   it.skipIf(!fs.existsSync('/proc/self/stat'))(
     'SIGKILL of the launching process ends the browser within a few seconds',
@@ -58,5 +74,41 @@ describe('Chromium dies with its parent', () => {
       }
     },
     60_000,
+  );
+
+  it.skipIf(!fs.existsSync('/proc/self/stat'))(
+    'Ctrl-C (SIGINT) during a long vpt-render ends it and its browser',
+    async () => {
+      const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'vpt-sigint-'));
+      const scene = path.join(dir, 'long.json');
+      fs.writeFileSync(
+        scene,
+        JSON.stringify({ volume: { procedural: 'blob', size: 8 }, width: 8, height: 8, iterations: 1_000_000 }),
+      );
+      const cli = path.join(HERE, '..', 'dist', 'cli', 'render.js');
+      const child = spawn(process.execPath, [cli, scene, '-o', path.join(dir, 'a.png'), '--backend', 'webgl2'], {
+        stdio: ['ignore', 'ignore', 'pipe'],
+      });
+      let stderr = '';
+      child.stderr!.on('data', (d) => (stderr += d));
+      const exited = new Promise<number | null>((r) => child.on('exit', (code) => r(code)));
+      try {
+        // The first progress line: the browser is up and iterating.
+        const t0 = Date.now();
+        while (!/iterations \(/.test(stderr) && Date.now() - t0 < 60_000) await new Promise((r) => setTimeout(r, 100));
+        expect(stderr).toMatch(/vpt-render: \d+\/1000000 iterations/);
+        const browsers = childrenOf(child.pid!);
+        expect(browsers.length).toBeGreaterThan(0);
+        child.kill('SIGINT');
+        const t1 = Date.now();
+        expect(await exited).toBe(130);
+        expect(Date.now() - t1).toBeLessThan(10_000);
+        for (const pid of browsers) expect(alive(pid)).toBe(false);
+      } finally {
+        child.kill('SIGKILL');
+        fs.rmSync(dir, { recursive: true, force: true });
+      }
+    },
+    120_000,
   );
 });

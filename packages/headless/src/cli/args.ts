@@ -3,13 +3,17 @@ import { BACKEND_NAMES, type BackendName } from '../scene-description.js';
 
 export const RENDER_USAGE = `Usage: vpt-render scene.json -o out.png [--pfm out.pfm] [--backend auto|webgl2|webgpu]
                   [--iterations N] [--width W --height H] [--seed N] [--root DIR] [--keep-alpha] [--verbose]
+                  [--time-limit SECONDS]
 Renders a scene description in headless Chromium and prints the timings as one JSON line.
 Only the files the scene names are served to the page. --root DIR refuses any scene path
 outside DIR (and URLs): use it when rendering scene files you do not trust.
 The PNG is opaque (its RGB already shows the background) unless --keep-alpha writes the
 coverage as alpha; the PFM holds the linear HDR RGB after the post chain's leading HDR steps
 (a "denoise" step first in the chain gives a denoised PFM; the JSON line's hdrPostSteps says so),
-before exposure and tone mapping.`;
+before exposure and tone mapping.
+--time-limit SECONDS stops the iterations after that long and writes the image of those done
+(the JSON line then says "timeLimited": true); runs longer than a few seconds print progress
+to stderr.`;
 
 export interface RenderArgs {
   scene: string;
@@ -21,6 +25,8 @@ export interface RenderArgs {
   height?: number;
   seed?: number;
   root?: string;
+  /** --time-limit, in seconds. */
+  timeLimit?: number;
   keepAlpha: boolean;
   verbose: boolean;
   help: boolean;
@@ -32,6 +38,14 @@ function integer(name: string, value: string | undefined, min: number): number |
   if (!/^\d+$/.test(value.trim()) || !Number.isSafeInteger(n) || n < min) {
     throw new Error(`--${name} must be an integer >= ${min}, got "${value}"`);
   }
+  return n;
+}
+
+/** A positive, finite number of seconds (at most a day). */
+function seconds(name: string, value: string): number {
+  const n = Number(value);
+  if (value.trim() === '' || !Number.isFinite(n) || n <= 0 || n > 86_400)
+    throw new Error(`--${name} must be a number of seconds in (0, 86400], got "${value}"`);
   return n;
 }
 
@@ -50,6 +64,7 @@ export function parseRenderArgs(argv: string[]): RenderArgs {
       height: { type: 'string' },
       seed: { type: 'string' },
       root: { type: 'string' },
+      'time-limit': { type: 'string' },
       'keep-alpha': { type: 'boolean', default: false },
       verbose: { type: 'boolean', short: 'v', default: false },
       help: { type: 'boolean', short: 'h', default: false },
@@ -77,6 +92,7 @@ export function parseRenderArgs(argv: string[]): RenderArgs {
     height: integer('height', values.height, 1),
     seed: integer('seed', values.seed, 0),
     root: values.root,
+    ...(values['time-limit'] !== undefined ? { timeLimit: seconds('time-limit', values['time-limit']) } : {}),
     keepAlpha: values['keep-alpha'],
     verbose: values.verbose,
     help: false,

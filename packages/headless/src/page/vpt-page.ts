@@ -13,7 +13,7 @@ import {
   type VolumeDescription,
   type ZarrVolumeDescription,
 } from '../scene-description.js';
-import type { PageRenderResult, PostModule, VptPageApi } from './types.js';
+import type { PageRenderCallOptions, PageRenderResult, PostModule, VptPageApi } from './types.js';
 
 type CoreModule = VptPageApi['core'];
 /** The part of @vpt/loaders this page uses (imported on first use; not a dependency of this package's types). */
@@ -199,7 +199,7 @@ function toBase64(a: ArrayBufferView): string {
  */
 async function renderDescription(
   desc: SceneDescription,
-  options: { baseUrl?: string; warmup?: boolean; request?: Partial<RequestPolicy> } = {},
+  options: PageRenderCallOptions = {},
 ): Promise<PageRenderResult> {
   const t0 = performance.now();
   checkSceneDescription(desc, [...rendererClasses.keys()]);
@@ -233,7 +233,10 @@ async function renderDescription(
     const bricking = streamed ? await ctx.whenBricksSettled() : null;
     if (options.warmup !== false) await ctx.renderIterations(1);
     const t1 = performance.now();
-    await ctx.renderIterations(iterations);
+    const run =
+      options.progress || options.timeLimitMs !== undefined
+        ? await iterateInBatches(ctx, iterations, options.timeLimitMs ?? Infinity)
+        : { done: await ctx.renderIterations(iterations).then(() => iterations), timeLimited: false };
     const totalMs = performance.now() - t1;
     // The HDR image after the post steps that keep radiance (a denoiser), before exposure and tone mapping.
     const hdr = await ctx.readHDR({ afterPost: true });
@@ -247,16 +250,59 @@ async function renderDescription(
       hdr: toBase64(hdr),
       hdrPostSteps,
       ldr: ldr ? toBase64(ldr) : null,
-      timings: { totalMs, iterations: stats.iterations, msPerIteration: stats.msPerIteration, setupMs: t1 - t0 },
+      timings: {
+        totalMs,
+        iterations: stats.iterations,
+        msPerIteration: run.timeLimited || options.progress ? totalMs / run.done : stats.msPerIteration,
+        setupMs: t1 - t0,
+        ...(run.timeLimited ? { timeLimited: true } : {}),
+      },
       backend: { kind: ctx.backend.kind, renderer: ctx.backend.info.renderer },
       gpuBytes: stats.gpuBytes,
       volumeDims: [...ctx.getScene()!.volume.dims] as [number, number, number],
       warnings,
       bricking,
+      rendererStats: { ...stats.renderer },
     };
   } finally {
     ctx.dispose();
   }
+}
+
+/**
+ * The same iterations as renderIterations(n) (one reset, then iterate, then the image), in
+ * batches of about BATCH_MS each, so that progress is reported and a time limit can stop
+ * between batches. The batch grows from 1 while batches are quick.
+ */
+const BATCH_MS = 250;
+async function iterateInBatches(
+  ctx: RenderContext,
+  total: number,
+  timeLimitMs: number,
+): Promise<{ done: number; timeLimited: boolean }> {
+  ctx.reset();
+  const t0 = performance.now();
+  let done = 0;
+  let batch = 1;
+  let timeLimited = false;
+  while (done < total) {
+    const n = Math.min(batch, total - done);
+    const tb = performance.now();
+    ctx.iterate(n);
+    await ctx.backend.finish();
+    done += n;
+    const elapsed = performance.now() - t0;
+    window.__vptRenderProgress?.(done, total, elapsed);
+    if (done < total && elapsed >= timeLimitMs) {
+      timeLimited = true;
+      break;
+    }
+    const ms = performance.now() - tb;
+    if (ms < BATCH_MS / 2) batch = Math.min(batch * 2, 1 << 16);
+  }
+  ctx.renderImage();
+  await ctx.backend.finish();
+  return { done, timeLimited };
 }
 
 async function load<T>(name: string): Promise<T> {
