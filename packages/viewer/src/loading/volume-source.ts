@@ -4,6 +4,7 @@
  * small sidecar loader beside this file.
  */
 import {
+  MAX_PROCEDURAL_SIZE,
   VptError,
   createProceduralVolume,
   type MultiscaleSource,
@@ -41,8 +42,11 @@ export function proceduralVolume(source: VolumeSource): LoadedVolumeLike | null 
   if (!PROCEDURAL.includes(kind))
     throw new VptError('load-failed', `${source}: unknown procedural volume "${kind}" (${PROCEDURAL.join(', ')})`);
   const size = url.searchParams.has('size') ? Number(url.searchParams.get('size')) : 64;
-  if (!Number.isInteger(size) || size < 2 || size > 512)
-    throw new VptError('load-failed', `${source}: size must be an integer in [2, 512]`);
+  if (!Number.isInteger(size) || size < 2 || size > MAX_PROCEDURAL_SIZE)
+    throw new VptError(
+      size > MAX_PROCEDURAL_SIZE ? 'limit-exceeded' : 'load-failed',
+      `${source}: size must be an integer in [2, ${MAX_PROCEDURAL_SIZE}] (MAX_PROCEDURAL_SIZE)`,
+    );
   return Object.assign(createProceduralVolume(kind, size), { format: 'procedural' });
 }
 
