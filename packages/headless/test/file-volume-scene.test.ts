@@ -3,7 +3,7 @@ import os from 'node:os';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
-import { isVptError } from '@vpt/core';
+import { thrownVptError as thrown } from '../../../tests/helpers/test-scene.js';
 import { chromiumExecutable } from '../src/chromium.js';
 import { openVptPage, type VptPageSession } from '../src/render.js';
 import { mountSceneFiles, resolveSceneFiles } from '../src/scene-files.js';
@@ -12,16 +12,6 @@ import { validateSceneDescription } from '../src/validate-description.js';
 import { checkSceneDescription, type FileVolumeDescription, type SceneDescription } from '../src/scene-description.js';
 
 const LOADER_FIXTURES = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '../../loaders/test/fixtures');
-
-function thrown(f: () => unknown): { code: string; message: string } {
-  try {
-    f();
-  } catch (e) {
-    expect(isVptError(e), `not a VptError: ${String(e)}`).toBe(true);
-    return { code: (e as { code: string }).code, message: (e as Error).message };
-  }
-  throw new Error('expected a VptError');
-}
 
 describe('scene descriptions name a volume file of any format', () => {
   it('accepts a file, a list, a format and a valueRange', () => {

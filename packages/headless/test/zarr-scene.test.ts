@@ -2,21 +2,11 @@ import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
-import { isVptError } from '@vpt/core';
+import { thrownVptError as thrown } from '../../../tests/helpers/test-scene.js';
 import { mountSceneFiles, resolveSceneFiles } from '../src/scene-files.js';
 import { startStaticServer, type StaticServer } from '../src/server.js';
 import { validateSceneDescription } from '../src/validate-description.js';
 import { checkSceneDescription } from '../src/scene-description.js';
-
-function thrown(f: () => unknown): { code: string; message: string } {
-  try {
-    f();
-  } catch (e) {
-    expect(isVptError(e), `not a VptError: ${String(e)}`).toBe(true);
-    return { code: (e as { code: string }).code, message: (e as Error).message };
-  }
-  throw new Error('expected a VptError');
-}
 
 describe('scene descriptions name OME-Zarr volumes', () => {
   it('accepts zarr with level, channel, time, valueRange and missingChunks', () => {
