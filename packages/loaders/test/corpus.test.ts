@@ -1,8 +1,9 @@
 /**
- * The corpus test: other projects' test files (nibabel's, pydicom's, pydicom-data's; see
- * corpus/archives.json), fetched by `pnpm corpus:fetch` into data/corpus/, each compared with
- * what those projects' own readers make of it. corpus/references.json (written by
- * corpus/make_references.py with nibabel and pydicom) holds per file either the voxels'
+ * The corpus test: other projects' test files (nibabel's, pydicom's, pydicom-data's, and the
+ * NRRD files of pyradiomics and slicerio; see corpus/archives.json), fetched by
+ * `pnpm corpus:fetch` into data/corpus/, each compared with what the format's own reader
+ * makes of it. corpus/references.json (written by corpus/make_references.py with nibabel,
+ * pydicom and pynrrd) holds per file either the voxels'
  * checksum (float32 values, x fastest, NaN as 0x7fc00000), range, spacing and origin, or
  * the typed refusal reasons expected; a key ending in '/' is a folder of pydicom's loaded
  * as one series. Skipped, saying so, when the corpus is not fetched.
@@ -60,7 +61,13 @@ function valuesChecksum(v: LoadedVolume): string {
 }
 
 const formatOf = (rel: string) =>
-  /\.(nii|nii\.gz|hdr)$/.test(rel) ? 'NIfTI' : rel.endsWith('/') ? 'DICOM series' : 'DICOM';
+  /\.(nii|nii\.gz|hdr)$/.test(rel)
+    ? 'NIfTI'
+    : /\.(nrrd|nhdr)$/.test(rel)
+      ? 'NRRD'
+      : rel.endsWith('/')
+        ? 'DICOM series'
+        : 'DICOM';
 const table: Record<string, { tried: number; matched: number; refused: number; known: number }> = {};
 const count = (rel: string, what: 'matched' | 'refused' | 'known') => {
   const row = (table[formatOf(rel)] ??= { tried: 0, matched: 0, refused: 0, known: 0 });
@@ -145,10 +152,14 @@ function relabelled(rel: string): File {
 }
 
 describe('corpus: other projects’ test files against their own readers', () => {
-  it('the references cover DICOM and NIfTI, loads and refusals', () => {
+  it('the references cover DICOM, NIfTI and NRRD, loads and refusals', () => {
     const refs = Object.entries(references);
-    expect(refs.some(([k, r]) => formatOf(k) === 'DICOM' && r.load)).toBe(true);
-    expect(refs.some(([k, r]) => formatOf(k) === 'NIfTI' && r.load)).toBe(true);
+    for (const format of ['DICOM', 'NIfTI', 'NRRD'])
+      expect(
+        refs.some(([k, r]) => formatOf(k) === format && r.load),
+        format,
+      ).toBe(true);
+    expect(refs.some(([k, r]) => formatOf(k) === 'NRRD' && r.refuse)).toBe(true);
     expect(refs.some(([, r]) => r.refuse)).toBe(true);
     for (const k of Object.keys(KNOWN_FAILURES))
       expect(references[k], `known failure ${k} has a reference`).toBeDefined();

@@ -3,11 +3,12 @@
 
 Run after `pnpm corpus:fetch`, in a Python with the pinned readers:
 
-    python3 -m venv /tmp/refs && /tmp/refs/bin/pip install numpy nibabel==5.4.2 pydicom==3.0.2
+    python3 -m venv /tmp/refs && /tmp/refs/bin/pip install numpy nibabel==5.4.2 pydicom==3.0.2 pynrrd==1.1.3
     /tmp/refs/bin/python packages/loaders/test/corpus/make_references.py
 
 It walks data/corpus/ and writes references.json beside this script: for every file vpt
-claims (DICOM by its "DICM" preamble or a .dcm name, NIfTI by .nii / .nii.gz / .hdr) either
+claims (DICOM by its "DICM" preamble or a .dcm name, NIfTI by .nii / .nii.gz / .hdr, NRRD by
+.nrrd / .nhdr) either
 
   {"load": {"dims", "sha256", "min", "max", "spacing"?, "origin"?, "rowCol"?, "direction"?}, "reader"}
 or
@@ -39,6 +40,13 @@ fractional rescale in float64 before rounding to float32, as numpy does here.
 - NIfTI: nibabel's get_fdata() (scl_slope/inter applied as nibabel does), the first volume
   of 4D data, spacing the lengths of the affine's columns (world distance per index step),
   direction those columns over their lengths (row-major 3×3), origin the affine's offset.
+- NRRD: pynrrd's nrrd.read() (index order F: axis 0 fastest, as in the file). Spatial axes:
+  those whose space direction is a vector, else those of kind domain/space, else all (up to
+  3). A non-spatial axis longer than 1 before a spatial one (values per voxel: a list, vector
+  or colour) is a refusal; one after them all is a series whose first volume is taken.
+  Spacing is the lengths of the spatial axes' space directions (else |spacings|), direction
+  those vectors over their lengths as columns (row-major 3×3, in the file's space, as vpt
+  keeps it), origin the space origin.
 Refusals: the reader refuses the file, or it uses a feature vpt names as unsupported
 (compressed transfer syntaxes, colour, 1-bit, PALETTE COLOR, NIfTI-2, Analyze).
 """
@@ -53,6 +61,7 @@ import numpy as np
 
 warnings.filterwarnings('ignore')
 import nibabel as nib  # noqa: E402
+import nrrd  # noqa: E402
 import pydicom  # noqa: E402
 from pydicom.pixels import apply_modality_lut  # noqa: E402
 
@@ -260,6 +269,49 @@ def nifti(path, rel):
                   direction=direction)
 
 
+def nrrd_file(path, rel):
+    reader = 'pynrrd 1.1.3'
+    try:
+        data, header = nrrd.read(path)
+    except Exception as e:  # noqa: BLE001
+        return refused(CORRUPT, f'pynrrd cannot read it ({type(e).__name__}: {e})', reader)
+    sizes = list(data.shape)
+    n = len(sizes)
+    dirs = header.get('space directions')
+    kinds = header.get('kinds')
+    if dirs is not None:
+        dirs = np.asarray(dirs, dtype=np.float64)
+        spatial = [bool(np.all(np.isfinite(dirs[i]))) for i in range(n)]
+    elif kinds is not None and len(kinds) == n:
+        spatial = [k.lower() in ('domain', 'space') for k in kinds]
+    else:
+        spatial = [True] * n
+    axes = [i for i in range(n) if spatial[i]]
+    if len(axes) > 3:
+        return refused(['unsupported'], f'{len(axes)} spatial axes', reader)
+    for i in range(n):
+        if not spatial[i] and sizes[i] > 1 and i < axes[-1]:
+            kind = kinds[i] if kinds is not None else '?'
+            return refused(['unsupported'], f'axis {i} (kind {kind}, size {sizes[i]}) holds values per voxel, before the spatial axes', reader)
+    # The first volume of any series axis after the spatial ones; length-1 axes dropped.
+    index = tuple(slice(None) if spatial[i] else 0 for i in range(n))
+    values = np.asarray(data[index], dtype=np.float64)
+    dims = [sizes[a] for a in axes] + [1] * (3 - len(axes))
+    extra = {}
+    if dirs is not None:
+        vecs = np.stack([dirs[a] for a in axes])
+        lengths = np.sqrt((vecs ** 2).sum(axis=1))
+        extra['spacing'] = lengths
+        if len(axes) == 3 and vecs.shape[1] == 3:
+            extra['direction'] = (vecs.T / lengths).ravel()
+    elif 'spacings' in header:
+        extra['spacing'] = [abs(float(header['spacings'][a])) for a in axes]
+    if 'space origin' in header:
+        o = [float(x) for x in header['space origin']]
+        extra['origin'] = (o + [0.0, 0.0])[:3]
+    return loaded(values.ravel(order='F'), dims, reader, **extra)
+
+
 def series_folder(folder, names):
     """A folder of single-frame files loaded together: its largest series, one orientation,
     sorted along the slice normal; None when that is ambiguous (largest series tied)."""
@@ -313,6 +365,8 @@ def main():
                 continue
             if name.endswith(('.nii', '.nii.gz', '.hdr')):
                 refs[rel] = nifti(path, rel)
+            elif name.endswith(('.nrrd', '.nhdr')):
+                refs[rel] = nrrd_file(path, rel)
             elif name.endswith(('.dcm', '.dcm.gz')) or is_dicom(path):
                 refs[rel] = dicom(path, rel)
         # pydicom's DICOMDIR test folders hold real series (and localizers): each folder of
