@@ -264,7 +264,7 @@ export const PRESETS: Record<string, Preset> = {
     compactSize: 16,
     ctDepths: [4],
   },
-  /** Only the frame-time table at 256² and 512² on the 128³ cloud (the figures quoted in issue notes). */
+  /** Only the frame-time table at 256² and 512² on the 128³ cloud (docs/benchmarks.md, "Frame time"). */
   table: {
     name: 'table',
     specializationSize: 64,
@@ -285,7 +285,7 @@ export const PRESETS: Record<string, Preset> = {
     ctDepths: [64],
   },
   /**
-   * The MCRT figures of issue 3: time to 30/35 dB at 256² on the 128³ cloud
+   * MCRT's time to 30/35 dB at 256² on the 128³ cloud (docs/benchmarks.md, "MCRT: time to 30 and 35 dB")
    * (`--suites error --renderers "mcrt single,mcrt multiple"`).
    */
   mcrt256: {
@@ -308,7 +308,7 @@ export const PRESETS: Record<string, Preset> = {
     compactSize: 256,
     ctDepths: [64],
   },
-  /** `estimator: 'auto'` against every fixed estimator (issue 14): time to 30/35 dB at 64² on five scenes. */
+  /** `estimator: 'auto'` against every fixed estimator (docs/benchmarks.md, "MCRT: estimator 'auto'"): time to 30/35 dB at 64² on five scenes. */
   estimators: {
     name: 'estimators',
     estimatorStudy: true,

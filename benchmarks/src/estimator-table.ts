@@ -4,7 +4,8 @@
  * `estimator: 'auto'` and every fixed estimator: iterations to 30 and 35 dB (from the curve:
  * the variance side, independent of the machine's load), ms per iteration measured
  * round-robin across the configurations (the cost side), and their product, the time to
- * 30 / 35 dB; then the best fixed estimator and auto's time over it (issue 14's goal ≤ 1.10).
+ * 30 / 35 dB; then the best fixed estimator and auto's time over it (the target:
+ * docs/benchmarks.md#fig-estimator-table).
  * Several runs (`pnpm bench … --seed N`, one seed each) are combined: iteration figures are
  * averaged over the runs (they are proportional to the estimator's variance), cost samples pooled.
  */

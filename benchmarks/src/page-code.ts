@@ -95,7 +95,7 @@ export function installBenchPage(): void {
     return vol;
   }
 
-  // The VPT anchor scene's volume (issue 14; terier/vpt measured side by side): the
+  // The VPT anchor scene's volume (docs/benchmarks.md, "Side by side with VPT"): the
   // side-by-side suite's own voxels (vpt-side/anchor-scene.ts), as a uint8 volume.
   function anchorVolume(size: number): Volume {
     const vol = vpt.core.createVolume([size, size, size], 'uint8', anchorVoxels(size));

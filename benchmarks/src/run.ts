@@ -134,7 +134,7 @@ try {
     results.specialization = await specialization(ctx);
   if (suites.includes('compact')) results.compact = await compact(ctx);
   if (suites.includes('skipping')) results.skipping = await skipping(ctx);
-  // Not in the default list: `--suites denoise` (issue 14's denoiser figures).
+  // Not in the default list: `--suites denoise` (docs/benchmarks.md, "Denoiser").
   if (suites.includes('denoise') && available.includes('mcrt')) results.denoise = await denoise(ctx);
 
   const dir = path.join(

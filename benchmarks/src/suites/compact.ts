@@ -48,7 +48,7 @@ export interface CompactResults {
 }
 
 /**
- * Compact volumes (issue 12): GPU bytes per voxel per type; ms per iteration of the fast
+ * Compact volumes (docs/benchmarks.md, "Compact volumes"): GPU bytes per voxel per type; ms per iteration of the fast
  * path (compact texture, hardware filter) against the exact path (r32float, manual
  * trilinear) for every renderer on the bundled head, alternately in one run (A/B, B/A);
  * load time and peak JS heap of a synthetic 512 × 512 × N int16 CT (first backend only).

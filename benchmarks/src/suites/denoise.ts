@@ -32,7 +32,7 @@ export function denoiseCheckpoints(max: number): number[] {
 }
 
 /**
- * The denoise step's worth (issue 14 item 5): PSNR against wall-clock time of MCRT (multiple
+ * The denoise step's worth (docs/benchmarks.md, "Denoiser"): PSNR against wall-clock time of MCRT (multiple
  * scattering) with and without the denoiser on every scene (cloud, head, the fetched chest CT),
  * measured interleaved A/B/B/A so drift in the machine's speed affects both, and the bias the
  * denoiser leaves at the reference's sample count.

@@ -4,7 +4,7 @@ import { median, spread, timeToPsnr, type CurvePoint } from '../metrics.js';
 import { referenceKey } from './error-vs-time.js';
 import { bench, type SuiteContext } from './types.js';
 
-/** Ray-march steps swept, in voxels of the volume's longest side (vpt's default before issue 14: 0.5). */
+/** Ray-march steps swept, in voxels of the volume's longest side (the renderers' defaults and around them). */
 export const STEPS_VOXELS = [0.25, 0.5, 1, 1.5, 2];
 /** The step whose converged image stands for the exact integral: the finest of the sweep. */
 const FINE_STEP = Math.min(...STEPS_VOXELS);
@@ -22,7 +22,7 @@ const PLAN: Record<
   full: { size: 256, frameSize: 256, refIterations: 1024, curveIterations: 256, budgetMs: 300_000 },
 };
 
-/** The VPT anchor scene (terier/vpt side by side; issue 14): VPT's EAM ramp TF, extinction 100, camera at z = 1.5. */
+/** The VPT anchor scene (docs/benchmarks.md, "Side by side with VPT"): VPT's EAM ramp TF, extinction 100, camera at z = 1.5. */
 export const ANCHOR_SCENE: SceneSpec = {
   volume: { kind: 'anchor', size: 128 },
   // VPT's 256-texel ramp (alpha = i/255) as vpt TF points; emission = VPT's albedo after its sRGB8 round trip.
@@ -102,7 +102,8 @@ const iterationsToDb = (points: CurvePoint[], db: number) =>
   );
 
 /**
- * Empty-space skipping and step control in the ray marches (issue 14): per renderer and
+ * Empty-space skipping and step control in the ray marches (docs/benchmarks.md, "Empty-space
+ * skipping and the ray-march step"): per renderer and
  * scene, ms per iteration with skipping on and off (alternately in one run, at each step),
  * then the step sweep: time to 30/35/40 dB against the step's own converged image and
  * against the finest step's (so a coarse step's bias counts), skipping on.

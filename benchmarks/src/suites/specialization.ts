@@ -19,7 +19,7 @@ export interface SpecializationRow {
 }
 
 /**
- * What kernel specialisation saves (issue 3): ms per iteration of the MCRT kernel compiled
+ * What kernel specialisation saves (docs/benchmarks.md, "MCRT kernel specialization"): ms per iteration of the MCRT kernel compiled
  * for the scene against the generic kernel (`specialize: false`: environment map, light
  * loop, scattering order and majorant grid as runtime data) on the same scene. The two are
  * measured alternately, two rounds each, so drift in the machine's speed affects both.

@@ -6,13 +6,9 @@
 import { defineRenderer, stepInVoxels, type ParamsOf } from '@vpt/core';
 
 /**
- * The default step in voxels (was 0.5, then 1). Measured (docs/benchmarks.md, "Step sweep"): on
- * the VPT anchor scene and the head, EAM is within 35 dB of the finest step's converged image
- * after one iteration at every step from 0.25 to 2 voxels (the pixel jitter dominates its
- * error), so the cheapest step wins: 1.5 voxels cost 0.6–0.9× 1 voxel per iteration with
- * skipping. 2 voxels is no cheaper on the anchor (a cell then holds 4 samples and the cell walk
- * costs what it saves) and converges too slowly on thin high-gradient shells (the 2D-TF block of
- * tests/tf2d-eam.test.ts: 0.036 from the CPU model after 32 iterations, limit 0.03; 1.5 passes).
+ * The default step in voxels: the pixel jitter, not the step, dominates EAM's early error at
+ * any step up to 2 voxels, so the cheapest step wins; 2 voxels saves no time on the cell walk
+ * and converges too slowly on thin high-gradient shells (figures: docs/benchmarks.md#fig-eam-step).
  */
 export const DEFAULT_EAM_STEP_VOXELS = 1.5;
 

@@ -2,48 +2,37 @@
  * `estimator: 'auto'`: the estimator choices MCRT makes per scene, from quantities the scene
  * already provides (the environment's radiance, the volume and the transfer function). Every
  * choice is unbiased; they differ only in cost and variance. The thresholds come from the
- * time-to-30/35 dB measurements in docs/benchmarks.md ("MCRT: estimator 'auto'").
+ * time-to-30/35 dB measurements in docs/benchmarks.md ("MCRT: estimator 'auto'"; the figures
+ * behind each rule: docs/benchmarks.md#fig-estimator-choice).
  *
  *  - Environment: phase sampling alone for a constant environment (or a map whose texels are
  *    all within ENV_PEAK_RATIO_FOR_MIS of its mean: a constant one), MIS for any other map.
  *    Under a constant sky the phase function samples the light as well as uniform light
- *    sampling would, and light sampling adds a shadow ray per event (fewer iterations to a
- *    target and cheaper ones on the cloud, head and CT scenes); even a smooth gradient sky (the
- *    VPT anchor's, peak 2.7× its mean) needs 2.6–3.6× the iterations without light sampling.
+ *    sampling would, and light sampling adds a shadow ray per event; a map, even a smooth
+ *    gradient sky, needs several times the iterations without light sampling.
  *    Directional lights are sampled by next-event estimation either way. Single scattering
  *    under a map with a near-isotropic phase function (peak ≤ PHASE_PEAK_FOR_LIGHT_ONLY × 1/4π,
  *    |g| ≤ 0.2) takes light sampling alone: there its weight Le·T·p/pdf stays within that peak
- *    of the mean, phase sampling cannot do much better, and the VPT anchor needed 6.4 iterations
- *    to 35 dB with two light samples against 7.7 with one light + one phase sample (same cost).
+ *    of the mean, phase sampling cannot do much better, and two light samples beat one light +
+ *    one phase sample at the same cost.
  *  - Light samples (single scattering with light sampling alone): SINGLE_SCATTERING_LIGHT_SAMPLES
- *    in-scattering estimates per scattering event. On the VPT anchor the in-scattering estimate
- *    carries most of the variance: iterations to 35 dB ≈ 3.0 + 6.8/N with N light samples,
- *    each costing about a fifth of the rest of an iteration, so N = 3–4 were the fastest to
- *    35 dB (0.77–0.86× the time of MIS with one sample of each strategy; N = 2: 0.79–0.87×).
+ *    in-scattering estimates per scattering event: there the in-scattering estimate carries
+ *    most of the variance and a light sample costs a fraction of the rest of an iteration.
  *    With phase or MIS sampling one (see chooseLightSamples).
  *  - Majorant grid: walked unless it lowers the bound too little (global majorant below
  *    GRID_GAIN_FOR_WALK times the mean cell majorant), where the DDA's cell steps cost more
- *    than the null collisions they save: the cloud (2.03) cost 3–16% more per iteration with
- *    the grid than with its global bound in every run, the CT (7.5) and the head (23)
- *    1.6–1.7× and 1.3–1.5× less (the VPT anchor: 4.0 at 64³, 7.0 at 128³, 8-voxel cells).
+ *    than the null collisions they save.
  *  - Shadow rays: residual ratio tracking for single scattering (every path ends in a shadow
- *    ray: the VPT anchor's single scattering needed 27% fewer iterations than with delta
- *    tracking). For multiple scattering: residual where the cells' minorants are at least
- *    RESIDUAL_MINORANT_FRACTION of their majorants (Novák et al. 2014: the control then
- *    carries most of the optical depth in closed form; a homogeneous medium needs no tentative
- *    collision at all); else delta tracking where the environment is phase-sampled (shadow
+ *    ray, and it needed fewer iterations than delta tracking there). For multiple scattering:
+ *    residual where the cells' minorants are at least RESIDUAL_MINORANT_FRACTION of their
+ *    majorants (Novák et al. 2014: the control then carries most of the optical depth in
+ *    closed form; a homogeneous medium needs no tentative collision at all); else delta tracking where the environment is phase-sampled (shadow
  *    rays only toward directional lights) and the medium is dense (mean cell minorant at least
  *    DELTA_MINORANT_DEPTH per box length: most shadow rays are blocked, and delta tracking stops
- *    them at their first collision); else ratio tracking. Measured 2026-12-01 (docs/
- *    benchmarks.md; iterations to 35 dB over 4 seeds and 2 more runs, cost per iteration as the GPU
- *    process's CPU time, interleaved): against delta tracking, ratio tracking needs 11–15%
- *    fewer iterations under sun + sky and costs 1% (head), 7% (CT) and 18–29% (the dense cloud,
- *    mean minorant 10) more per iteration: 0.90× delta's time on the head and CT (minorants
- *    0–0.08), 0.97–1.15× on the cloud. Under the cloud's sun map (MIS, shadow rays at every
- *    event) it needs 16–24% fewer and leads delta by 3–16% even there. Residual tracking needs
- *    as many iterations as ratio but, where the minorants are partial (the cloud: 34% of the
- *    majorants), costs 7–10% more: its per-step weights fall more slowly, so Russian roulette
- *    ends its walks later.
+ *    them at their first collision); else ratio tracking, which needs fewer iterations than
+ *    delta tracking for some extra cost per iteration. Below that minorant fraction residual
+ *    tracking needs no fewer iterations than ratio tracking and costs more: its per-step
+ *    weights fall more slowly, so Russian roulette ends its walks later.
  *
  * The grid statistics are computed on the CPU from a strided subsample of the volume (at most
  * about 2²¹ voxels, so a large volume costs milliseconds): they steer a choice between unbiased
@@ -240,8 +229,8 @@ export function chooseEstimator(scene: Scene, request: EstimatorRequest, stats: 
  * with the environment sampled by light alone, where one sample is one shadow ray per light
  * and the in-scattering estimate carries most of a pixel's variance (the camera ray's walk is
  * shared by all of them); one otherwise (with phase or MIS sampling a sample adds a second,
- * phase-sampled shadow ray, and more samples did not pay: MIS ×2–4 1.11–1.25× the time to
- * 35 dB on the VPT anchor, phase ×2–3 1.04–1.11× on a blob under sun and sky).
+ * phase-sampled shadow ray, and more samples took longer to a target; figures:
+ * docs/benchmarks.md#fig-estimator-choice).
  */
 export function chooseLightSamples(
   request: EstimatorRequest,

@@ -46,7 +46,7 @@ export const MCRT_PARAM_FIELDS: readonly UniformField[] = [
 ];
 
 /**
- * Monte Carlo volumetric path tracer (docs/design.md; issue 3). HDR = estimated radiance,
+ * Monte Carlo volumetric path tracer (docs/design.md). HDR = estimated radiance,
  * a = 1 if the camera ray had a real collision (its mean is the opacity along the ray).
  * Accumulates the running mean of all iterations and of the even and odd ones
  * (`halfAccumulations`), so RenderContext.estimateError() works.

@@ -8,8 +8,8 @@ import { defineRenderer, stepInVoxels, type ParamsOf } from '@vpt/core';
 /**
  * MIP's default step in voxels of the volume's longest side. The running maximum over random
  * offsets converges to the maximum along the ray at any step, so the step only trades cost
- * against the iterations to get there: 1 voxel reached 35 dB after one iteration on the VPT
- * anchor and the head, and did so soonest (docs/benchmarks.md, "Step sweep").
+ * against the iterations to get there; 1 voxel got there soonest (figures:
+ * docs/benchmarks.md#fig-mip-step).
  */
 export const DEFAULT_MIP_STEP_VOXELS = 1;
 

@@ -1,5 +1,5 @@
 /**
- * A renderer described by one object (issue 22): its name, label, parameters (kind, range,
+ * A renderer described by one object: its name, label, parameters (kind, range,
  * default, UI hints, uniform), its viewer look, whether it writes denoiser guides and what
  * it reads from the scene. Each renderer package exports its descriptor from a small,
  * side-effect-free `descriptor.ts` (also the subpath `@vpt/renderer-<name>/descriptor`), so

@@ -20,9 +20,8 @@ export const MAX_RADIANCE = 1e18;
  * Largest extinction, densityScale × the transfer function's largest opacity, per world unit
  * (the box's longest side is 1). Free flights are −ln(ξ)/σ long: above ~3e8 they fall below
  * the float32 resolution of a position in the box (~6e-8), paths stop moving until the
- * tracking-step cap ends them, and the MCRT white furnace loses energy (measured: 1.001 at
- * 1e8, 0.988 at 3e8, 0.88 at 1e9 on 8×8, with 5.7 s per iteration). densityScale alone
- * has the same bound.
+ * tracking-step cap ends them, and the MCRT white furnace loses energy (figures:
+ * docs/benchmarks.md#fig-limits). densityScale alone has the same bound.
  */
 export const MAX_EXTINCTION = 1e8;
 export const MAX_DENSITY_SCALE = MAX_EXTINCTION;
