@@ -243,6 +243,50 @@ describe.each(BACKENDS)('slice renderer on %s', (backend) => {
     expect(worst).toBeLessThan(1e-4);
   });
 
+  // (f) every voxel type, with its own value range and an inverted one: nearest is the voxel, linear the CPU trilinear.
+  it('every voxel type, value range as given or inverted: nearest is the voxel, linear is CPU trilinear', async () => {
+    const dims: [number, number, number] = [8, 6, 4];
+    const n = dims[0] * dims[1] * dims[2];
+    const types: [VoxelType, number[]][] = [
+      ['uint8', voxels(n, 0, 255, 3)],
+      ['uint16', voxels(n, 0, 60000, 5)],
+      ['int16', voxels(n, -1000, 3000, 9)],
+      ['float32', voxels(n, 0, 20000, 11).map((v) => v / 100 - 50)],
+    ];
+    const W = 16,
+      H = 12;
+    for (const [type, data] of types) {
+      const [lo, hi] = [Math.min(...data), Math.max(...data)];
+      const window: [number, number] = [(lo + hi) / 2, (hi - lo) * 0.8];
+      for (const valueRange of [undefined, [hi, lo]] as ([number, number] | undefined)[]) {
+        const what = `${type} ${JSON.stringify(valueRange)}`;
+        const base = { backend, dims, type, data, valueRange, sampling: 'exact' as const };
+        const nearest = await render({
+          ...base,
+          params: { axis: 'z', index: 2, fit: true, window },
+          width: 8,
+          height: 6,
+        });
+        const nearestErr = maxError(nearest, 8, 6, (c, r) => {
+          const w = windowed(data[c + dims[0] * (r + dims[1] * 2)], window);
+          return [w, w, w, 1];
+        });
+        expect(nearestErr, `nearest ${what}`).toBeLessThan(1e-5);
+        // The box is 1 × 0.75 × 0.5; the plane through its diagonal corners (0.5, -0.375) and (-0.5, 0.375) has the
+        // normal (0.75, 1, 0) ∝ (6, 8, 0), dominant y, so columns run along +x and rows along +z: (s, 1 − s, t) in [0, 1]³.
+        const params: SliceParams = { normal: [dims[1], dims[0], 0], sampling: 'linear', fit: true, window };
+        const linear = await render({ ...base, params, width: W, height: H });
+        const lin = maxError(linear, W, H, (x, y) => {
+          const s = (x + 0.5) / W,
+            t = (y + 0.5) / H;
+          const w = windowed(trilinear(data, dims, [s, 1 - s, t]), window);
+          return [w, w, w, 1];
+        });
+        expect(lin, `linear ${what}`).toBeLessThan(1e-5);
+      }
+    }
+  });
+
   // (c) the window is in data units: an int16 CT in HU, whatever value range normalizes it.
   it('an int16 CT: the window [40, 400] is in HU, whatever the volume value range', async () => {
     // The ranges: a CT's, inverted, narrower than the data (the window reads past the range's clamp), none (the data's own).
