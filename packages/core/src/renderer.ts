@@ -80,7 +80,7 @@ export interface Renderer {
    */
   readonly paramSpecs?: ParamSpecs;
   /**
-   * The renderer's rules that depend on the scene (a slice index past the volume's last
+   * The renderer's rules that depend on the scene (a layer index past the volume's last
    * layer, say): run by RenderContext.setScene (validateSceneForDevice);
    * throws a VptError naming the parameter, and the context keeps what it had.
    */
