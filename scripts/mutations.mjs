@@ -225,6 +225,35 @@ export const MUTATIONS = [
     tests: ['tests/denoise.test.ts'],
     only: 'converged EAM',
   },
+  // Slice renderer
+  {
+    name: 'slice-window-after-range-clamp-glsl',
+    why: 'the slice window applied to the value-range-clamped normalized value instead of the data',
+    file: 'packages/renderer-slice/src/kernels/slice.glsl.ts',
+    find: 'float n = sliceTexel(p) * u.valueScale + u.valueOffset;',
+    replace: 'float n = volumeValue(sliceTexel(p));',
+    build: '@vpt/renderer-slice',
+    tests: ['tests/slice.test.ts'],
+    only: 'webgl2.*int16',
+  },
+  {
+    name: 'slice-nearest-rounds-wgsl',
+    why: 'nearest sampling rounds the voxel coordinate (the neighbouring voxel at every centre)',
+    file: 'packages/renderer-slice/src/kernels/slice.wgsl.ts',
+    find: 'vec3i(floor(tc * vec3f(dims)))',
+    replace: 'vec3i(round(tc * vec3f(dims)))',
+    build: '@vpt/renderer-slice',
+    tests: ['tests/slice.test.ts'],
+    only: 'webgpu.*fit with the image',
+  },
+  {
+    name: 'slice-axial-image-axes-swapped',
+    why: 'a z slice shows y along the columns and x down the rows (a transposed image)',
+    file: 'packages/renderer-slice/src/plane.ts',
+    find: '{ 0: [1, 2], 1: [0, 2], 2: [0, 1] }',
+    replace: '{ 0: [1, 2], 1: [0, 2], 2: [1, 0] }',
+    tests: ['packages/renderer-slice/test/plane.test.ts'],
+  },
 ];
 
 const args = parseCliOrExit({

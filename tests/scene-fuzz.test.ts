@@ -148,17 +148,11 @@ describe('scene description fuzz', () => {
           const { core } = vpt;
           const w = window as any;
           w.fuzzContexts ??= {};
-          const ctors: Record<string, any> = {
-            eam: vpt.eam.EamRenderer,
-            mip: vpt.mip.MipRenderer,
-            iso: vpt.iso.IsoRenderer,
-            mcrt: vpt.mcrt.McrtRenderer,
-          };
           const out: string[] = [];
           for (const d of descs) {
             try {
               const name = d.renderer ?? 'eam';
-              const renderer = new ctors[name](d.rendererParams ?? {});
+              const renderer = vpt.createRenderer(name, d.rendererParams ?? {});
               const scene = await vpt.buildScene(d);
               w.fuzzContexts[name] ??= await core.RenderContext.create({
                 backend: 'webgl2',

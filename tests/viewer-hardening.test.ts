@@ -1,4 +1,5 @@
 import { describe, expect, it } from 'vitest';
+import { rendererNames } from '../packages/core/src/index.js';
 import { useViewerPage } from './helpers/viewer-page.js';
 import { mutateScene, seededRandom, EXTREME_NUMBERS, type Json } from './helpers/scene-fuzz.js';
 
@@ -133,7 +134,7 @@ describe('<vpt-viewer> context loss that is never restored', () => {
 // ——— attribute fuzz ———
 
 const VALID: Record<string, Json[]> = {
-  renderer: ['eam', 'mip', 'iso', 'mcrt'],
+  renderer: rendererNames(),
   'transfer-function': [
     'ramp',
     'tissue',

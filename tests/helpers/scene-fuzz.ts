@@ -38,6 +38,7 @@ const WORDS = [
   'mip',
   'mcrt',
   'iso',
+  'slice',
   'auto',
   'webgl2',
   'webgpu',
@@ -244,5 +245,20 @@ export const BASE_SCENES: Record<string, Json>[] = [
     },
     camera: CAMERA,
     densityScale: 4,
+  },
+  {
+    width: 8,
+    height: 8,
+    iterations: 2,
+    renderer: 'slice',
+    rendererParams: {
+      normal: [0.2, 1, 0.3],
+      point: [0, 0.1, 0],
+      sampling: 'linear',
+      window: [0.5, 0.8],
+      colormap: 'viridis',
+    },
+    volume: { procedural: 'blob', size: 16 },
+    camera: CAMERA,
   },
 ];

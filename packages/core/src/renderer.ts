@@ -79,6 +79,12 @@ export interface Renderer {
    * checked against the scene's voxel size by RenderContext.setScene.
    */
   readonly paramSpecs?: ParamSpecs;
+  /**
+   * The renderer's rules that depend on the scene (a layer index past the volume's last
+   * layer, say): run by RenderContext.setScene (validateSceneForDevice);
+   * throws a VptError naming the parameter, and the context keeps what it had.
+   */
+  validateScene?(scene: Scene): void;
   /** The current parameter values (as given, defaults not filled in). */
   getParams?(): object;
   /**

@@ -100,7 +100,9 @@ function unexplained(twin: (typeof DECLARED)[number], kind: Kind, lang: Lang): s
 describe('GLSL/WGSL twins', () => {
   it('are found in every package that has shaders, and every half has its twin', () => {
     expect(TWINS.length).toBeGreaterThan(10);
-    for (const pkg of ['core', 'post', 'renderer-eam', 'renderer-mip', 'renderer-mcrt', 'renderer-iso'])
+    // core, post and every renderer package (each has kernels).
+    const withShaders = ['core', 'post', ...fs.readdirSync(PACKAGES).filter((p) => p.startsWith('renderer-'))];
+    for (const pkg of withShaders)
       expect(
         TWINS.some((t) => t.stem.startsWith(`${pkg}/`)),
         pkg,

@@ -4,10 +4,12 @@ import { descriptor as RendererMipDescriptor } from '@vpt/renderer-mip/descripto
 import { descriptor as RendererIsoDescriptor } from '@vpt/renderer-iso/descriptor';
 import { descriptor as RendererEamDescriptor } from '@vpt/renderer-eam/descriptor';
 import { descriptor as RendererMcrtDescriptor } from '@vpt/renderer-mcrt/descriptor';
+import { descriptor as RendererSliceDescriptor } from '@vpt/renderer-slice/descriptor';
 import type * as RendererMip from '@vpt/renderer-mip';
 import type * as RendererIso from '@vpt/renderer-iso';
 import type * as RendererEam from '@vpt/renderer-eam';
 import type * as RendererMcrt from '@vpt/renderer-mcrt';
+import type * as RendererSlice from '@vpt/renderer-slice';
 
 /** The descriptor of every renderer of the catalog, by package. */
 export const RENDERER_DESCRIPTORS: Readonly<Record<string, RendererDescriptor>> = {
@@ -15,6 +17,7 @@ export const RENDERER_DESCRIPTORS: Readonly<Record<string, RendererDescriptor>> 
   '@vpt/renderer-iso': RendererIsoDescriptor,
   '@vpt/renderer-eam': RendererEamDescriptor,
   '@vpt/renderer-mcrt': RendererMcrtDescriptor,
+  '@vpt/renderer-slice': RendererSliceDescriptor,
 };
 
 /** Each renderer package's module by renderer name, as the headless page exposes them (`window.vpt.<name>`). */
@@ -23,4 +26,5 @@ export interface RendererModules {
   iso: typeof RendererIso;
   eam: typeof RendererEam;
   mcrt: typeof RendererMcrt;
+  slice: typeof RendererSlice;
 }

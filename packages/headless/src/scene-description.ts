@@ -110,7 +110,7 @@ export interface SceneDescription {
   sampling?: 'fast' | 'exact';
   /** GPU memory budget in bytes (RenderContext's maxGpuBytes): a larger volume is downsampled, with a warning. */
   maxGpuBytes?: number;
-  /** Post chain as JSON, for `postChainFromJSON` of @vpt/post. */
+  /** Post chain as JSON, for `postChainFromJSON` of @vpt/post (default SCENE_DEFAULTS.post, or DISPLAY_REFERRED_POST for a renderer whose descriptor is displayReferred). */
   post?: Record<string, unknown>[];
   iterations?: number;
   backend?: BackendName;
@@ -131,6 +131,12 @@ export const SCENE_DEFAULTS = {
   iterations: 64,
   backend: 'auto' as BackendName,
 };
+
+/** The post chain of an unset `post` for a renderer whose descriptor says its HDR image holds display values: exposure → clamp. */
+export const DISPLAY_REFERRED_POST: Record<string, unknown>[] = [
+  { type: 'exposure', exposure: 0 },
+  { type: 'tonemap', operator: 'clamp' },
+];
 
 export const BACKEND_NAMES: readonly BackendName[] = ['auto', 'webgl2', 'webgpu'];
 

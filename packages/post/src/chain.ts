@@ -16,10 +16,16 @@ export interface DefaultPostChainOptions {
   exposure?: number;
   /** Default 'aces'. */
   toneMapper?: ToneMapOperator;
+  /**
+   * The HDR image holds display values already (a renderer descriptor's `displayReferred`):
+   * exposure → clamp, no tone curve (`toneMapper` does not apply) and no sRGB encoding.
+   */
+  displayReferred?: boolean;
 }
 
-/** Exposure → tone map → sRGB: HDR linear radiance in, display-ready sRGB out. */
+/** Exposure → tone map → sRGB: HDR linear radiance in, display-ready sRGB out (display values: exposure → clamp). */
 export function defaultPostChain(options: DefaultPostChainOptions = {}): PostStep[] {
+  if (options.displayReferred) return [new ExposureStep(options.exposure ?? 0), new ToneMapStep('clamp')];
   return [new ExposureStep(options.exposure ?? 0), new ToneMapStep(options.toneMapper ?? 'aces'), new SrgbEncodeStep()];
 }
 

@@ -122,6 +122,15 @@ describe('CPU references', () => {
     );
     expect(postChainRef(chain, [0.5, 0, 1])[0]).toBeCloseTo(srgbOetfRef(0.5), 15);
   });
+
+  it('a display-referred image is shown as it is: exposure and a clamp, whatever the tone mapper', () => {
+    const chain = defaultPostChain({ exposure: 0, toneMapper: 'aces', displayReferred: true });
+    expect(postChainToJSON(chain)).toEqual([
+      { type: 'exposure', exposure: 0 },
+      { type: 'tonemap', operator: 'clamp' },
+    ]);
+    expect(postChainRef(chain, [0.25, 0.5, 1.5])).toEqual([0.25, 0.5, 1]);
+  });
 });
 
 describe('steps', () => {

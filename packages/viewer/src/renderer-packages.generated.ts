@@ -11,6 +11,8 @@ import * as RendererIsoDescriptor from '@vpt/renderer-iso/descriptor';
 import * as RendererEamDescriptor from '@vpt/renderer-eam/descriptor';
 // @ts-ignore -- optional package
 import * as RendererMcrtDescriptor from '@vpt/renderer-mcrt/descriptor';
+// @ts-ignore -- optional package
+import * as RendererSliceDescriptor from '@vpt/renderer-slice/descriptor';
 
 /** Each catalog package's main entry (the renderer class), loaded on first use. */
 export const PACKAGE_LOADERS: Readonly<Record<string, () => Promise<Record<string, unknown>>>> = {
@@ -22,6 +24,8 @@ export const PACKAGE_LOADERS: Readonly<Record<string, () => Promise<Record<strin
   '@vpt/renderer-eam': () => import('@vpt/renderer-eam'),
   // @ts-ignore -- optional package
   '@vpt/renderer-mcrt': () => import('@vpt/renderer-mcrt'),
+  // @ts-ignore -- optional package
+  '@vpt/renderer-slice': () => import('@vpt/renderer-slice'),
 };
 
 /** Each catalog package's descriptor module (small, kernel free), loaded with the viewer. */
@@ -30,4 +34,5 @@ export const DESCRIPTOR_MODULES: Readonly<Record<string, { descriptor?: Renderer
   '@vpt/renderer-iso': RendererIsoDescriptor as { descriptor?: RendererDescriptor },
   '@vpt/renderer-eam': RendererEamDescriptor as { descriptor?: RendererDescriptor },
   '@vpt/renderer-mcrt': RendererMcrtDescriptor as { descriptor?: RendererDescriptor },
+  '@vpt/renderer-slice': RendererSliceDescriptor as { descriptor?: RendererDescriptor },
 };

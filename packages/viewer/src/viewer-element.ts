@@ -906,11 +906,15 @@ export class VptViewer extends LitElement implements PanelHost {
   }
 
   private makePost() {
-    const chain = defaultPostChain({ exposure: this.exposure, toneMapper: this.toneMapper });
+    const descriptor = rendererEntry(this.renderer)?.descriptor;
+    // A renderer whose HDR image holds display values is shown as it is (tone-mapper does not apply).
+    const chain = defaultPostChain({
+      exposure: this.exposure,
+      toneMapper: this.toneMapper,
+      displayReferred: descriptor?.displayReferred ?? false,
+    });
     // Auto denoises a renderer that writes the guides (MIP's running maximum does not: its variance does not describe its error).
-    const wanted =
-      this.denoise === 'on' ||
-      (this.denoise === 'auto' && (rendererEntry(this.renderer)?.descriptor?.writesGuides ?? true));
+    const wanted = this.denoise === 'on' || (this.denoise === 'auto' && (descriptor?.writesGuides ?? true));
     this.denoiseStep = wanted ? new DenoiseStep() : null;
     this.updateDenoiser();
     return this.denoiseStep ? [this.denoiseStep, ...chain] : chain;

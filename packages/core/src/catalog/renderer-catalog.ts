@@ -24,6 +24,7 @@ export const RENDERER_CATALOG: readonly RendererCatalogEntry[] = [
   { name: 'iso', packageName: '@vpt/renderer-iso', exportName: 'IsoRenderer' },
   { name: 'eam', packageName: '@vpt/renderer-eam', exportName: 'EamRenderer' },
   { name: 'mcrt', packageName: '@vpt/renderer-mcrt', exportName: 'McrtRenderer' },
+  { name: 'slice', packageName: '@vpt/renderer-slice', exportName: 'SliceRenderer' },
 ];
 
 /** The renderer a scene, the viewer and the CLI use when none is named. */

@@ -142,6 +142,12 @@ export interface RendererDescriptor<P extends RendererParams = RendererParams> {
   check?(params: Readonly<Record<string, unknown>>): void;
   /** The generate kernel writes the denoiser's guides (see Renderer.writesGuides): the viewer denoises it by default. */
   readonly writesGuides: boolean;
+  /**
+   * The HDR image holds display values (linear, in [0, 1], a colour map's components) rather
+   * than radiance: user interfaces and the CLI show it through exposure and a clamp, with no
+   * tone curve and no sRGB encoding, so a PFM and the PNG hold the same values. Default false.
+   */
+  readonly displayReferred?: boolean;
   readonly needs: RendererInputs;
   /** The viewer's default look (absent: the emission–absorption look). */
   readonly look?: RendererLookDefaults;

@@ -9,8 +9,8 @@ import { validateStepParams } from './params.js';
 /**
  * The checks that need the device and the renderer, run by RenderContext.setScene after
  * validateScene: texture sizes against this device's limits, and renderer parameters whose
- * range depends on the scene (ray-march steps of at least MIN_STEP_VOXELS voxels). The
- * gradient volume's check (validateGradientAtlasForDevice) runs after the budget fit, on
+ * range depends on the scene (ray-march steps of at least MIN_STEP_VOXELS voxels, and the
+ * renderer's own `validateScene`). The gradient volume's check (validateGradientAtlasForDevice) runs after the budget fit, on
  * the volume as uploaded.
  */
 export function validateSceneForDevice(
@@ -36,6 +36,7 @@ export function validateSceneForDevice(
     renderer.getParams?.() as Record<string, unknown> | undefined,
     scene.volume.dims,
   );
+  renderer.validateScene?.(scene);
 }
 
 /**

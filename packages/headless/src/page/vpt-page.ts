@@ -7,6 +7,7 @@
  */
 import type { Environment, MultiscaleSource, RenderContext, Renderer, Scene, Volume } from '@vpt/core';
 import {
+  DISPLAY_REFERRED_POST,
   SCENE_DEFAULTS,
   checkSceneDescription,
   type FileVolumeDescription,
@@ -30,6 +31,8 @@ let core!: CoreModule;
 let post!: PostModule;
 /** The renderer classes of the catalog, by renderer name. */
 const rendererClasses = new Map<string, new (params?: Record<string, unknown>) => Renderer>();
+/** The renderer packages' modules (class and descriptor), by renderer name. */
+const rendererModules = new Map<string, Record<string, unknown>>();
 
 async function fetchOk(url: string): Promise<Response> {
   let res: Response;
@@ -237,7 +240,7 @@ async function renderDescription(
   const width = desc.width ?? SCENE_DEFAULTS.width;
   const height = desc.height ?? SCENE_DEFAULTS.height;
   const iterations = desc.iterations ?? SCENE_DEFAULTS.iterations;
-  const steps = post.postChainFromJSON(desc.post ?? SCENE_DEFAULTS.post);
+  const steps = post.postChainFromJSON(desc.post ?? defaultPost(desc));
   const canvas = document.createElement('canvas');
   canvas.width = width;
   canvas.height = height;
@@ -290,6 +293,13 @@ async function renderDescription(
   }
 }
 
+/** The post chain of a description without one: the renderer's descriptor says whether its HDR image holds display values. */
+function defaultPost(desc: SceneDescription): Record<string, unknown>[] {
+  const name = desc.renderer ?? core.DEFAULT_RENDERER_NAME;
+  const descriptor = rendererModules.get(name)?.descriptor as { displayReferred?: boolean } | undefined;
+  return descriptor?.displayReferred ? DISPLAY_REFERRED_POST : SCENE_DEFAULTS.post;
+}
+
 async function load<T>(name: string): Promise<T> {
   try {
     return (await import(/* @vite-ignore */ name)) as T;
@@ -307,6 +317,7 @@ try {
     const Ctor = modules[i][e.exportName];
     if (typeof Ctor !== 'function') throw new Error(`${e.packageName} does not export ${e.exportName}`);
     rendererClasses.set(e.name, Ctor as new (params?: Record<string, unknown>) => Renderer);
+    rendererModules.set(e.name, modules[i]);
     renderers[e.name] = modules[i];
   });
   window.vpt = {
