@@ -2,7 +2,7 @@
  * `<vpt-viewer>`: a progressive volume renderer as one HTML element.
  *
  * Attributes (all reflected, all also properties): src, renderer, backend,
- * transfer-function, camera, lights, environment, exposure, tone-mapper, max-samples,
+ * transfer-function, camera, clip, lights, environment, exposure, tone-mapper, max-samples,
  * target-error, density-scale, seed, renderer-params, resolution-scale, panels, collapsed.
  * Events (typed through HTMLElementEventMap, prefixed so none collides with a native
  * event): vpt-load, vpt-progress (loading and refinement), vpt-converged, vpt-error,
@@ -16,9 +16,11 @@
 import { LitElement, html, nothing, type PropertyValues } from 'lit';
 import {
   DEFAULT_RENDERER_NAME,
+  hasClip,
   isVptError,
   VptError,
   type Camera,
+  type Clip,
   type Environment,
   type Light,
   type Renderer,
@@ -34,6 +36,7 @@ import {
   isFittedPreset,
   jsonConverter,
   parseCamera,
+  parseClip,
   parseEnvironment,
   parseLights,
   parseRendererParams,
@@ -71,9 +74,13 @@ export interface ViewerErrorDetail {
   source: 'src' | 'renderer' | 'environment' | 'context' | 'attribute' | 'export';
 }
 export type ViewerConvergedDetail = RefinementStats & { reason: 'max-samples' | 'target-error' };
-export interface ViewerChangeDetail {
-  property: string;
-}
+/**
+ * `vpt-change`: the user changed `property` through the element (a panel, a camera drag);
+ * `value` is its new value. A clip change (the Clip panel) carries the Clip object, or null
+ * when nothing is cut any more.
+ */
+export type ViewerChangeDetail =
+  { property: 'clip'; value: Clip | null } | { property: Exclude<InternalProperty, 'clip'>; value: unknown };
 
 /** Below a sidebar's width plus this much image, the panels become an overlay. */
 const NARROW_MIN_IMAGE_PX = 320;
@@ -82,6 +89,7 @@ const NARROW_MIN_IMAGE_PX = 320;
 const SYNC_FIELDS = [
   'transferFunction',
   'camera',
+  'clip',
   'lights',
   'densityScale',
   'seed',
@@ -107,6 +115,7 @@ export class VptViewer extends LitElement implements PanelHost {
       hasChanged,
     },
     camera: { reflect: true, converter: jsonConverter(parseCamera), hasChanged },
+    clip: { reflect: true, converter: jsonConverter(parseClip), hasChanged },
     lights: { reflect: true, converter: jsonConverter(parseLights), hasChanged },
     environment: { reflect: true, converter: jsonConverter(parseEnvironment), hasChanged },
     exposure: { type: Number, reflect: true },
@@ -149,6 +158,11 @@ export class VptViewer extends LitElement implements PanelHost {
   declare transferFunction: TransferFunction | string | null;
   /** null: framed automatically when a volume loads. */
   declare camera: Camera | string | null;
+  /**
+   * Clip planes and a crop box, the scene file's `clip` JSON (world units of the volume box:
+   * centred at 0, longest side 1); null: nothing is cut. The Clip panel edits it.
+   */
+  declare clip: Clip | string | null;
   declare lights: Light[] | string | null;
   declare environment: EnvironmentValue | string | null;
   /** Exposure in stops (applied before tone mapping). */
@@ -166,7 +180,7 @@ export class VptViewer extends LitElement implements PanelHost {
   declare rendererParams: Record<string, unknown> | string | null;
   /** Render resolution relative to the element's device pixels (1 = full). */
   declare resolutionScale: number;
-  /** "all", "none", or a space-separated list of tf lights quality stats export. */
+  /** "all", "none", or a space-separated list of tf lights clip quality stats export. */
   declare panels: string;
   /** Panels sidebar closed (the toolbar button opens it). */
   declare collapsed: boolean;
@@ -233,6 +247,7 @@ export class VptViewer extends LitElement implements PanelHost {
     this.backend = 'auto';
     this.transferFunction = null;
     this.camera = null;
+    this.clip = null;
     this.lights = null;
     this.environment = null;
     this.exposure = 0;
@@ -612,7 +627,8 @@ export class VptViewer extends LitElement implements PanelHost {
     if (sameValue(this[property], value)) return;
     (this as Record<string, unknown>)[property] = value;
     if (property === 'camera') this.internalChange.add('camera');
-    this.dispatchEvent(new CustomEvent<ViewerChangeDetail>('vpt-change', { detail: { property } }));
+    const detail = { property, value } as ViewerChangeDetail;
+    this.dispatchEvent(new CustomEvent<ViewerChangeDetail>('vpt-change', { detail }));
   }
 
   private gradientCache: { volume: Volume; samples: GradientSamples } | null = null;
@@ -929,6 +945,7 @@ export class VptViewer extends LitElement implements PanelHost {
   private sceneNow(): Scene | null {
     if (!this.volume) return null;
     const camera = this.camera && typeof this.camera === 'object' ? this.camera : fitCamera(this.volume);
+    const clip = this.clip && typeof this.clip === 'object' && hasClip(this.clip) ? this.clip : null;
     return {
       volume: this.volume,
       transferFunction: this.currentTransferFunction(),
@@ -937,6 +954,7 @@ export class VptViewer extends LitElement implements PanelHost {
       environment: this.resolvedEnvironment ?? rendererLook(this.renderer).environment,
       densityScale: this.effectiveDensityScale(),
       seed: this.seed,
+      ...(clip ? { clip } : {}),
     };
   }
 
