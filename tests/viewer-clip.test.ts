@@ -205,6 +205,59 @@ describe('<vpt-viewer clip>', () => {
     expect(r.sliders).toEqual(['box-min-x', 'box-min-y', 'box-min-z', 'box-max-x', 'box-max-y', 'box-max-z']);
   });
 
+  it("dragging a plane's handle on the image moves the plane along its axis, toward the pointer", async () => {
+    const page = vp.page;
+    const start = await vp.run(async (vt) => {
+      const el = vt.create(
+        {
+          src: 'procedural:blob?size=16',
+          renderer: 'eam',
+          backend: 'webgl2',
+          panels: 'clip',
+          'max-samples': '2',
+          'resolution-scale': '0.1',
+          clip: '{"planes":[{"normal":[1,0,0],"offset":0}]}',
+        },
+        'width:660px;height:200px;position:absolute;left:0;top:0',
+      );
+      el.id = 'handles';
+      await vt.converged(el);
+      await el.updateComplete;
+      const h = el.shadowRoot.querySelector('[data-clip-handle="x"]').getBoundingClientRect();
+      return { x: h.x + h.width / 2, y: h.y + h.height / 2, img: Array.from(await el.context.readHDR()) as number[] };
+    });
+    // A real pointer drag (puppeteer's mouse: pointerdown, moves, pointerup).
+    const to = { x: start.x + 40, y: start.y + 12 };
+    await page.mouse.move(start.x, start.y);
+    await page.mouse.down();
+    for (let i = 1; i <= 4; i++)
+      await page.mouse.move(start.x + (i / 4) * (to.x - start.x), start.y + (i / 4) * (to.y - start.y));
+    await page.mouse.up();
+    const after = await vp.run(async (vt, to) => {
+      const el = document.getElementById('handles') as any;
+      await vt.converged(el);
+      await el.updateComplete;
+      const h = el.shadowRoot.querySelector('[data-clip-handle="x"]').getBoundingClientRect();
+      const out = {
+        clip: el.clip,
+        handle: { x: h.x + h.width / 2, y: h.y + h.height / 2 },
+        img: Array.from(await el.context.readHDR()) as number[],
+        changes: el.__events.filter((e: { type: string }) => e.type === 'change').map((e: any) => e.property),
+        camera: el.camera,
+      };
+      el.remove();
+      return { ...out, to };
+    }, to);
+    const offset = after.clip.planes[0].offset;
+    expect(after.clip.planes[0].normal).toEqual([1, 0, 0]);
+    expect(Math.abs(offset)).toBeGreaterThan(0.01);
+    // The handle lands where the pointer projects onto the axis: closer to the pointer than it started.
+    const dist = (a: { x: number; y: number }) => Math.hypot(a.x - to.x, a.y - to.y);
+    expect(dist(after.handle)).toBeLessThan(dist(start) - 5);
+    expect(new Set(after.changes)).toEqual(new Set(['clip'])); // the camera did not orbit
+    expect(after.img.some((x, i) => x !== start.img[i])).toBe(true);
+  });
+
   it('a bad clip attribute is a typed error naming the field; the last valid clip stays and the element renders', async () => {
     const r = await vp.run(async (vt) => {
       const el = vt.blob('eam', 2);

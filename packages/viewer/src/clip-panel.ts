@@ -94,7 +94,7 @@ export function clipPanel(v: PanelHost) {
           const sid = id(`box-${side}-${axis}`);
           const value = c.box![side][i];
           return html`<div class="row">
-            <label for=${sid}>Box ${side} ${axis} ${fmt(value)}</label>
+            <label for=${sid}>${side} ${axis} ${fmt(value)}</label>
             <input
               id=${sid}
               type="range"

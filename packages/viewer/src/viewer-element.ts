@@ -27,6 +27,7 @@ import {
   type Scene,
   type TransferFunction,
   type Volume,
+  volumeBox,
 } from '@vpt/core';
 import { DenoiseStep, defaultPostChain, type ToneMapOperator } from '@vpt/post';
 import { AdaptiveResolution } from './adaptive-resolution.js';
@@ -48,6 +49,8 @@ import {
   type EnvironmentValue,
 } from './attributes.js';
 import { fitCamera } from './camera-fit.js';
+import { axisPoint, draggedPosition, projectPoint } from './clip-handles.js';
+import { CLIP_AXES, clipControls, clipFromControls, type ClipAxis } from './clip-model.js';
 import { autoTransferFunction, defaultRendererParams, rendererLook } from './defaults.js';
 import { download, encodeExr, encodePfm, encodePngBlob } from './export.js';
 import { gradientSamples, valueHistogram, type GradientSamples, type Histogram1D } from './histogram.js';
@@ -463,7 +466,7 @@ export class VptViewer extends LitElement implements PanelHost {
         @drop=${this.onDrop}
       >
         ${this._status ? html`<p class="overlay status" part="status" role="status">${this._status}</p>` : nothing}
-        ${this.renderHud()}
+        ${panels.has('clip') ? this.renderClipHandles() : nothing} ${this.renderHud()}
         ${
           panels.size
             ? html`<div class="toolbar">
@@ -515,6 +518,86 @@ export class VptViewer extends LitElement implements PanelHost {
       ${showAside ? html`<aside id="panels" part="panels" aria-label="Viewer settings">${renderPanels(this, panels)}</aside>` : nothing}
     </div>`;
   }
+
+  /** The clip value as an object (null: nothing cut, or a string not parsed yet). */
+  private clipNow(): Clip | null {
+    return this.clip && typeof this.clip === 'object' ? this.clip : null;
+  }
+
+  /** A drag of a clip plane's handle: its axis, the position and pointer where it started. */
+  private clipDrag: { axis: ClipAxis; start: number; x: number; y: number } | null = null;
+
+  /**
+   * The axis planes' handles over the image (clip-handles.ts), shown with the Clip panel: each
+   * at the centre of its cut face; dragging one moves its plane along the axis.
+   */
+  private renderClipHandles() {
+    const ctx = this.session?.ctx;
+    if (!this.volume || !ctx) return nothing;
+    const c = clipControls(this.clipNow());
+    const camera = this.sceneNow()!.camera;
+    const aspect = ctx.size.width / ctx.size.height;
+    const handles = CLIP_AXES.flatMap((axis) => {
+      const plane = c.axes[axis];
+      const p = plane ? projectPoint(camera, aspect, axisPoint(axis, plane.position)) : null;
+      return p && p.x >= 0 && p.x <= 1 && p.y >= 0 && p.y <= 1 ? [{ axis, p }] : [];
+    });
+    return handles.map(
+      ({ axis, p }) =>
+        html`<div
+          class="clip-handle"
+          part="clip-handle"
+          data-clip-handle=${axis}
+          title="Drag to move the ${axis} clip plane"
+          aria-hidden="true"
+          style="left: ${(100 * p.x).toFixed(3)}%; top: ${(100 * p.y).toFixed(3)}%"
+          @pointerdown=${(e: PointerEvent) => this.onClipHandleDown(e, axis)}
+          @pointermove=${this.onClipHandleMove}
+          @pointerup=${this.onClipHandleUp}
+          @pointercancel=${this.onClipHandleUp}
+        >
+          ${axis}
+        </div>`,
+    );
+  }
+
+  private onClipHandleDown(e: PointerEvent, axis: ClipAxis): void {
+    const plane = clipControls(this.clipNow()).axes[axis];
+    if (!plane || e.button !== 0) return;
+    e.preventDefault();
+    e.stopPropagation();
+    (e.currentTarget as Element).setPointerCapture?.(e.pointerId);
+    this.clipDrag = { axis, start: plane.position, x: e.clientX, y: e.clientY };
+  }
+
+  private onClipHandleMove = (e: PointerEvent): void => {
+    const drag = this.clipDrag;
+    const ctx = this.session?.ctx;
+    const view = this.renderRoot.querySelector('.view') as HTMLElement | null;
+    if (!drag || !ctx || !view || !this.volume) return;
+    const c = clipControls(this.clipNow());
+    const plane = c.axes[drag.axis];
+    if (!plane) return;
+    const rect = view.getBoundingClientRect();
+    const i = CLIP_AXES.indexOf(drag.axis);
+    const box = volumeBox(this.volume);
+    const position = draggedPosition(
+      this.sceneNow()!.camera,
+      ctx.size.width / ctx.size.height,
+      drag.axis,
+      drag.start,
+      { dx: (e.clientX - drag.x) / rect.width, dy: (e.clientY - drag.y) / rect.height },
+      { min: box.min[i], max: box.max[i] },
+    );
+    this.resolution.interactionStarted();
+    this.setInternal('clip', clipFromControls({ ...c, axes: { ...c.axes, [drag.axis]: { ...plane, position } } }));
+  };
+
+  private onClipHandleUp = (): void => {
+    if (!this.clipDrag) return;
+    this.clipDrag = null;
+    this.resolution.interactionEnded();
+  };
 
   /** The thin progress bar (loading bytes; refining toward max-samples or target-error) and the stats line. */
   private renderHud() {
