@@ -125,6 +125,44 @@ describe('gallery pages', () => {
   });
 });
 
+describe('gallery: the cut-open head', () => {
+  it('is listed, opens path traced with the clip of scenes/head-mcrt-clip.json, and the plain head drops the clip', async () => {
+    const scene = JSON.parse(
+      fs.readFileSync(new URL('../apps/gallery/scenes/head-mcrt-clip.json', import.meta.url), 'utf8'),
+    );
+    const { page, errors } = await open(`index.html?dataset=mri_head_cut&${FAST}`, 'gallery', 1);
+    const [r] = await page.evaluate(imageSummaries, 'gallery' as GalleryPage);
+    const cut = await page.evaluate(() => {
+      const v = (window as any).gallery.viewer;
+      return {
+        clip: v.clip,
+        sceneClip: v.context.getScene().clip,
+        pressed: document.querySelector('[aria-pressed="true"]')?.getAttribute('data-id'),
+        title: document.querySelector('[data-id="mri_head_cut"] .t')?.textContent,
+      };
+    });
+    await page.click('[data-id="mri_head_volpack_brainsmall_128x128x84_uint8"]');
+    // select() ends by writing the URL, after the preset is applied.
+    await page.waitForFunction(() => location.search.includes('dataset=mri_head_volpack'), { timeout: 60_000 });
+    await page.evaluate(() => (window as any).gallery.viewer.whenSettled());
+    const plain = await page.evaluate(() => {
+      const v = (window as any).gallery.viewer;
+      return { clip: v.clip, sceneClip: v.context.getScene().clip ?? null };
+    });
+    await page.close();
+    expect(errors).toEqual([]);
+    expect(r.renderer).toBe('mcrt');
+    expect(r.distinct).toBeGreaterThan(20);
+    expect(cut).toEqual({
+      clip: scene.clip,
+      sceneClip: scene.clip,
+      pressed: 'mri_head_cut',
+      title: expect.stringMatching(/cut open/),
+    });
+    expect(plain).toEqual({ clip: null, sceneClip: null });
+  });
+});
+
 describe('gallery deep links', () => {
   const camera = { position: [0.3, 1.2, 1.1], target: [0.05, 0, 0], up: [0, 1, 0], fovy: 0.6 };
   const cam = [...camera.position, ...camera.target, ...camera.up, camera.fovy].join(',');

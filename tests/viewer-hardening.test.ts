@@ -157,6 +157,10 @@ const VALID: Record<string, Json[]> = {
   seed: [1, 42],
   'renderer-params': [{}, { stepSize: 0.05 }],
   'resolution-scale': [0.5, 1],
+  clip: [
+    { planes: [{ normal: [1, 0, 0], offset: 0 }] },
+    { planes: [{ normal: [0, 1, 1], offset: 0.1 }], box: { min: [-0.3, -0.4, -0.5], max: [0.3, 0.4, 0.5] } },
+  ],
   src: ['procedural:blob?size=16', 'procedural:sphere?size=12'],
 };
 const NAMES = Object.keys(VALID);

@@ -14,6 +14,12 @@ el.addEventListener('vpt-error', (e) => console.log(e.detail.code, e.detail.erro
 el.addEventListener('vpt-load', (e) => console.log(e.detail.dims[0], e.detail.format));
 el.addEventListener('vpt-converged', (e) => console.log(e.detail.reason === 'target-error'));
 el.addEventListener('vpt-change', (e) => console.log(e.detail.property));
+// A clip change carries the Clip (or null); the other properties an unknown value.
+el.addEventListener('vpt-change', (e) => {
+  if (e.detail.property === 'clip') console.log(e.detail.value?.planes?.length, e.detail.value?.box?.min[0]);
+  // @ts-expect-error a clip change's value is a Clip or null, not a number
+  if (e.detail.property === 'clip') console.log(e.detail.value.toFixed(2));
+});
 // @ts-expect-error no such field on the load event
 el.addEventListener('vpt-load', (e) => console.log(e.detail.nope));
 // The native events keep their own types.

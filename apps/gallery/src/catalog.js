@@ -51,6 +51,17 @@ const PROCEDURAL = [
   },
 ];
 
+/**
+ * A view of the bundled head rather than a dataset of its own: its scene file's clip (one
+ * plane) cuts it open with every renderer; it opens with the renderer of that scene file.
+ */
+const HEAD_CUT = {
+  id: 'mri_head_cut',
+  title: 'MRI head, cut open (a clip plane)',
+  clipScene: 'head-mcrt-clip',
+  renderer: 'mcrt',
+};
+
 /** About the build: a development build shows developer hints (`pnpm data:fetch`). */
 export const catalogInfo = { development: false };
 
@@ -67,8 +78,12 @@ export async function loadCatalog() {
   } catch {
     // Without a manifest (not built?) the procedural volumes still work.
   }
+  // The bundled head once more, cut open by the clip plane of scenes/head-mcrt-clip.json.
+  const head = datasets.find((d) => d.id === HEAD);
+  const cut = head ? [{ ...head, ...HEAD_CUT, sameAs: HEAD }] : [];
   return [
     ...datasets,
+    ...cut,
     ...PROCEDURAL.map((d) => ({ ...d, bundled: true, format: 'procedural', license: 'generated in code' })),
   ];
 }
@@ -157,6 +172,7 @@ function fromSceneFile(s) {
     rendererParams: s.rendererParams ?? null,
     exposure: 0,
     toneMapper: 'aces',
+    clip: s.clip ?? null,
   };
   if (s.transferFunction) p.transferFunction = { dimensions: '1d', ...s.transferFunction };
   for (const step of s.post ?? []) {
@@ -184,10 +200,13 @@ async function sceneFile(name) {
  */
 export async function presetFor(d, renderer, volume) {
   if (d.id === HEAD || d.sameAs === HEAD) {
-    const s = await sceneFile(`head-${renderer}`);
+    // The cut-open head: its own scene file for its renderer, the other renderers' scene files plus its clip.
+    const cut = d.clipScene ? await sceneFile(d.clipScene) : null;
+    const s = cut && renderer === cut.renderer ? cut : await sceneFile(`head-${renderer}`);
     if (s) {
       const p = fromSceneFile(s);
       if (!p.transferFunction) p.transferFunction = fromSceneFile(await sceneFile('head-eam')).transferFunction;
+      if (cut) p.clip = cut.clip;
       return p;
     }
   }
@@ -202,6 +221,7 @@ export async function presetFor(d, renderer, volume) {
     toneMapper: 'aces',
     rendererParams: null,
     lights: [],
+    clip: null,
   };
   // CT: bone at 300 HU; otherwise where the automatic function turns a third opaque.
   const iso = d.modality === 'CT' && d.valueRange ? hu(300, d.valueRange) : isoValueOf(tf);

@@ -62,7 +62,7 @@ function renderDatasetList() {
       b.innerHTML = '<span class="t"></span><span class="f"></span>';
       b.querySelector('.t').textContent = d.title;
       b.querySelector('.f').textContent = facts + (d.gpl ? ' · GPL' : '');
-      b.addEventListener('click', () => select(d.id, current?.renderer ?? DEFAULT_RENDERER, {}, true));
+      b.addEventListener('click', () => select(d.id, d.renderer ?? current?.renderer ?? DEFAULT_RENDERER, {}, true));
       li.append(b);
       ul.append(li);
     }
@@ -164,7 +164,7 @@ const first =
   catalog.find((d) => d.id === page.dataset) ?? catalog.find((d) => d.bundled && d.format === 'raw') ?? catalog[0];
 await select(
   first.id,
-  RENDERERS.some((r) => r.name === page.renderer) ? page.renderer : DEFAULT_RENDERER,
+  RENDERERS.some((r) => r.name === page.renderer) ? page.renderer : (first.renderer ?? DEFAULT_RENDERER),
   overridesOf(page),
 );
 window.__galleryReady = true;

@@ -1,6 +1,7 @@
 // Deep-linkable gallery state in the page's query string:
 //   ?dataset=<id>&renderer=<mip|iso|eam|mcrt>&tf=<preset name | JSON>&camera=<10 numbers>
 //    &exposure=<stops>&tone=<operator>&density=<scale>&backend=<auto|webgl2|webgpu>&scale=<0.25…2>&max=<samples>
+//    &clip=<the clip attribute's JSON>
 // camera = position x,y,z, target x,y,z, up x,y,z, fovy (radians).
 import { TRANSFER_FUNCTION_PRESETS } from './vpt-viewer.bundle.js';
 
@@ -38,6 +39,7 @@ export function readState(search = location.search) {
     backend: q.get('backend') ?? undefined,
     scale: num('scale'),
     max: num('max'),
+    clip: q.get('clip') ?? undefined,
   };
 }
 
@@ -49,6 +51,7 @@ export function overridesOf(state) {
   if (state.exposure !== undefined) o.exposure = state.exposure;
   if (state.tone !== undefined) o.toneMapper = state.tone;
   if (state.density !== undefined) o.densityScale = state.density;
+  if (state.clip !== undefined) o.clip = state.clip; // JSON: the element parses and checks it
   return o;
 }
 
@@ -65,6 +68,7 @@ export function stateQuery(datasetId, viewer, page = readState()) {
   q.set('exposure', String(viewer.exposure));
   q.set('tone', viewer.toneMapper);
   q.set('density', String(viewer.densityScale));
+  if (viewer.clip && typeof viewer.clip === 'object') q.set('clip', JSON.stringify(viewer.clip));
   for (const k of ['backend', 'scale', 'max']) if (page[k] !== undefined) q.set(k, String(page[k]));
   return `?${q}`;
 }

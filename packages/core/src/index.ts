@@ -7,6 +7,7 @@ export * from './scene/transfer-function.js';
 export * from './scene/transfer-function-json.js';
 export * from './scene/transfer-function-presets.js';
 export * from './scene/scene.js';
+export * from './scene/clip.js';
 export * from './scene/procedural.js';
 export * from './scene/raw-sidecar.js';
 export * from './scene/axis-codes.js';

@@ -5,7 +5,7 @@
  * loaded by the in-browser page.
  */
 
-import type { TransferWidget } from '@vpt/core';
+import type { Clip, TransferWidget } from '@vpt/core';
 
 export type Vec3 = [number, number, number];
 export type VoxelTypeName = 'uint8' | 'uint16' | 'int16' | 'float32';
@@ -108,6 +108,8 @@ export interface SceneDescription {
   seed?: number;
   /** Volume sampling: 'fast' (default; compact texture, hardware filter) or 'exact' (r32float, manual trilinear). */
   sampling?: 'fast' | 'exact';
+  /** Clip planes and a crop box in world units of the volume box (core's scene/clip.ts). */
+  clip?: Clip;
   /** GPU memory budget in bytes (RenderContext's maxGpuBytes): a larger volume is downsampled, with a warning. */
   maxGpuBytes?: number;
   /** Post chain as JSON, for `postChainFromJSON` of @vpt/post (default SCENE_DEFAULTS.post, or DISPLAY_REFERRED_POST for a renderer whose descriptor is displayReferred). */

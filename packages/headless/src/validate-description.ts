@@ -24,6 +24,7 @@ import {
   LATLONG_SIDE_RULE,
   transferFunctionFromJSON,
   validateCamera,
+  validateClip,
   validateEnvironment,
   validateLights,
   DEFAULT_RENDERER_NAME,
@@ -50,6 +51,7 @@ const TOP_KEYS = [
   'densityScale',
   'seed',
   'sampling',
+  'clip',
   'maxGpuBytes',
   'post',
   'iterations',
@@ -184,6 +186,7 @@ export function validateSceneDescription(d: unknown): SceneDescription {
       s.renderer === undefined ? DEFAULT_RENDERER_NAME : checkOneOf('renderer', s.renderer, rendererNames());
     if (s.backend !== undefined) checkOneOf('backend', s.backend, BACKEND_NAMES);
     if (s.sampling !== undefined) checkOneOf('sampling', s.sampling, ['fast', 'exact'] as const);
+    if (s.clip !== undefined) validateClip(s.clip, 'clip');
     if (s.maxGpuBytes !== undefined)
       checkNumber('maxGpuBytes', s.maxGpuBytes, { min: 0, exclusiveMin: true, unit: 'bytes' });
     if (s.rendererParams !== undefined) {

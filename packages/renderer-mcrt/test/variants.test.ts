@@ -66,10 +66,11 @@ describe('MCRT feature variants', () => {
     expect(darkMap.ENV_MAP).toBe(false);
   });
 
-  // The context's own flag (VPT_GUIDES, deferred by generateKernel) resolved as RenderContext does without a denoiser.
+  // The context's own flags (VPT_GUIDES, VPT_CLIP, deferred by generateKernel) resolved as RenderContext does
+  // without a denoiser and for an unclipped scene.
   const both = (f: McrtFeatures) => {
     const k = generateKernel(f);
-    return [k.glsl, k.wgsl].map((src) => preprocess(src, { VPT_GUIDES: false }));
+    return [k.glsl, k.wgsl].map((src) => preprocess(src, { VPT_GUIDES: false, VPT_CLIP: false }));
   };
 
   it('compiles only the code a variant needs, in both languages', () => {
@@ -84,6 +85,16 @@ describe('MCRT feature variants', () => {
     for (const src of both({ ...base, ENV_MAP: true, LIGHT_COUNT: 2 })) {
       expect(src).toContain('sampleEnvironment(xi1, xi2)');
       expect(src).toContain('u.lightDirection[i]');
+    }
+    // Unclipped: every ray meets the volume box alone; clipped: every ray (camera, scattered, shadow) its kept interval.
+    for (const src of both(base)) expect(src).not.toContain('keptInterval');
+    for (const lang of ['glsl', 'wgsl'] as const) {
+      const clipped = preprocess(generateKernel({ ...base, LIGHT_COUNT: 1 })[lang], {
+        VPT_GUIDES: false,
+        VPT_CLIP: true,
+      });
+      expect(clipped).toContain('keptInterval(');
+      expect(clipped).not.toContain('intersectBox(');
     }
     for (const src of both({ ...base, MAJORANT_GRID: false })) {
       expect(src).not.toContain('majorantGrid');

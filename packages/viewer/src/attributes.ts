@@ -8,12 +8,14 @@ import {
   MAX_DENSITY_SCALE,
   VptError,
   validateCamera,
+  validateClip,
   validateEnvironment,
   validateLights,
   validateTransferFunction,
   TRANSFER_FUNCTION_PRESETS as CORE_TF_PRESETS,
   transferFunctionPreset as coreTransferFunctionPreset,
   type Camera,
+  type Clip,
   type Environment,
   type Light,
   type TransferFunction,
@@ -158,6 +160,21 @@ export function parseEnvironment(v: unknown): EnvironmentValue {
   return env.type === 'constant' ? { type: 'constant', radiance: [...env.radiance] } : env;
 }
 
+/**
+ * The clip attribute: the scene file's `clip` JSON (`{"planes":[{"normal":[x,y,z],"offset":d}],
+ * "box":{"min":[x,y,z],"max":[x,y,z]}}`, world units of the volume box), checked by core's
+ * validateClip so the errors name the same fields as a scene file's.
+ */
+export function parseClip(v: unknown): Clip {
+  const attribute = 'clip';
+  const c = typeof v === 'string' ? parseJson(attribute, v) : v;
+  if (!c || typeof c !== 'object' || Array.isArray(c))
+    return bad(attribute, 'expected JSON like {"planes":[{"normal":[1,0,0],"offset":0}],"box":{"min":[…],"max":[…]}}');
+  const copy = structuredClone(c) as Clip;
+  withAttribute(attribute, () => validateClip(copy, 'clip'));
+  return copy;
+}
+
 export function parseRendererParams(v: unknown): Record<string, unknown> {
   const p = typeof v === 'string' ? (v.trim() === '' ? {} : parseJson('renderer-params', v)) : (v ?? {});
   if (!p || typeof p !== 'object' || Array.isArray(p))
@@ -272,6 +289,7 @@ export const hasChanged = (value: unknown, old: unknown): boolean => !sameValue(
 export type CheckedProperty =
   | 'transferFunction'
   | 'camera'
+  | 'clip'
   | 'lights'
   | 'environment'
   | 'rendererParams'
@@ -290,6 +308,7 @@ function propertyParsers(volume: Volume | undefined): Record<CheckedProperty, (v
   return {
     transferFunction: (v) => parseTransferFunction(v, volume),
     camera: parseCamera,
+    clip: parseClip,
     lights: parseLights,
     environment: parseEnvironment,
     rendererParams: parseRendererParams,

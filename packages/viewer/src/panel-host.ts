@@ -4,7 +4,7 @@
  * `<vpt-viewer>` element implements it; the panels import this interface, never the element,
  * so the two modules do not import each other.
  */
-import type { Light, Renderer, TransferFunction } from '@vpt/core';
+import type { Clip, Light, Renderer, TransferFunction } from '@vpt/core';
 import type { ToneMapOperator } from '@vpt/post';
 import type { BackendName, EnvironmentValue } from './attributes.js';
 import type { GradientSamples, Histogram1D } from './histogram.js';
@@ -14,6 +14,7 @@ import type { RefinementStats } from './session.js';
 /** The properties a panel control may set, each through PanelHost.setInternal. */
 export type InternalProperty =
   | 'camera'
+  | 'clip'
   | 'transferFunction'
   | 'lights'
   | 'environment'
@@ -51,6 +52,8 @@ export interface PanelHost {
   readonly targetError: number;
   readonly resolutionScale: number;
   readonly seed: number;
+  /** The clip planes and crop box (null: nothing cut); the Clip panel edits it. */
+  readonly clip: Clip | string | null;
   readonly converged: boolean;
   readonly panelState: PanelState;
   /** The core 2D preset the transfer function was fitted from, if any. */

@@ -1,6 +1,6 @@
 /**
  * The viewer's side panels, as template functions over the element: transfer function,
- * lights and environment, renderer and quality, a live readout, and export. Each control
+ * lights and environment, clip planes and crop box (clip-panel.ts), renderer and quality, a live readout, and export. Each control
  * writes through `setInternal`, so the matching attribute is reflected and a `vpt-change`
  * event announces it. Native <details>, labelled controls and buttons keep it all
  * reachable and operable from the keyboard.
@@ -12,9 +12,10 @@ import { BACKEND_NAMES } from './attributes.js';
 import { hexToLinear, intensityOf, linearToHex, round4 } from './color.js';
 import { TRANSFER_FUNCTION_PRESETS, transferFunctionPreset } from './presets.js';
 import { rendererEntries, rendererEntry, type RendererParamSpec } from './renderer-registry.js';
+import { clipPanel } from './clip-panel.js';
 import type { PanelHost } from './panel-host.js';
 
-export const PANEL_NAMES = ['tf', 'lights', 'quality', 'stats', 'export'] as const;
+export const PANEL_NAMES = ['tf', 'lights', 'clip', 'quality', 'stats', 'export'] as const;
 export type PanelName = (typeof PANEL_NAMES)[number];
 
 let uid = 0;
@@ -25,8 +26,8 @@ const str = (e: Event) => (e.target as HTMLInputElement | HTMLSelectElement).val
 
 export function renderPanels(v: PanelHost, panels: Set<PanelName>) {
   return html` ${panels.has('tf') ? tfPanel(v) : nothing} ${panels.has('lights') ? lightsPanel(v) : nothing}
-  ${panels.has('quality') ? qualityPanel(v) : nothing} ${panels.has('stats') ? statsPanel(v) : nothing}
-  ${panels.has('export') ? exportPanel(v) : nothing}`;
+  ${panels.has('clip') ? clipPanel(v) : nothing} ${panels.has('quality') ? qualityPanel(v) : nothing}
+  ${panels.has('stats') ? statsPanel(v) : nothing} ${panels.has('export') ? exportPanel(v) : nothing}`;
 }
 
 function presetOf(tf: TransferFunction): string {

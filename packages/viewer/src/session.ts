@@ -196,7 +196,7 @@ export class RenderSession {
   }
 }
 
-/** Same image: same volume object, and equal transfer function, camera, lights, environment, density and seed. */
+/** Same image: same volume object, and equal transfer function, camera, lights, environment, clip, density and seed. */
 export function sameScene(a: Scene, b: Scene): boolean {
   return (
     a.volume === b.volume &&
@@ -205,6 +205,7 @@ export function sameScene(a: Scene, b: Scene): boolean {
     sameValue(a.transferFunction, b.transferFunction) &&
     sameValue(a.camera, b.camera) &&
     sameValue(a.lights, b.lights) &&
-    sameValue(a.environment, b.environment)
+    sameValue(a.environment, b.environment) &&
+    sameValue(a.clip ?? null, b.clip ?? null)
   );
 }

@@ -2,7 +2,7 @@
  * `<vpt-viewer>`: a progressive volume renderer as one HTML element.
  *
  * Attributes (all reflected, all also properties): src, renderer, backend,
- * transfer-function, camera, lights, environment, exposure, tone-mapper, max-samples,
+ * transfer-function, camera, clip, lights, environment, exposure, tone-mapper, max-samples,
  * target-error, density-scale, seed, renderer-params, resolution-scale, panels, collapsed.
  * Events (typed through HTMLElementEventMap, prefixed so none collides with a native
  * event): vpt-load, vpt-progress (loading and refinement), vpt-converged, vpt-error,
@@ -16,15 +16,18 @@
 import { LitElement, html, nothing, type PropertyValues } from 'lit';
 import {
   DEFAULT_RENDERER_NAME,
+  hasClip,
   isVptError,
   VptError,
   type Camera,
+  type Clip,
   type Environment,
   type Light,
   type Renderer,
   type Scene,
   type TransferFunction,
   type Volume,
+  volumeBox,
 } from '@vpt/core';
 import { DenoiseStep, defaultPostChain, type ToneMapOperator } from '@vpt/post';
 import { AdaptiveResolution } from './adaptive-resolution.js';
@@ -34,6 +37,7 @@ import {
   isFittedPreset,
   jsonConverter,
   parseCamera,
+  parseClip,
   parseEnvironment,
   parseLights,
   parseRendererParams,
@@ -45,6 +49,8 @@ import {
   type EnvironmentValue,
 } from './attributes.js';
 import { fitCamera } from './camera-fit.js';
+import { axisPoint, draggedPosition, projectPoint } from './clip-handles.js';
+import { CLIP_AXES, clipControls, clipFromControls, type ClipAxis } from './clip-model.js';
 import { autoTransferFunction, defaultRendererParams, rendererLook } from './defaults.js';
 import { download, encodeExr, encodePfm, encodePngBlob } from './export.js';
 import { gradientSamples, valueHistogram, type GradientSamples, type Histogram1D } from './histogram.js';
@@ -71,9 +77,13 @@ export interface ViewerErrorDetail {
   source: 'src' | 'renderer' | 'environment' | 'context' | 'attribute' | 'export';
 }
 export type ViewerConvergedDetail = RefinementStats & { reason: 'max-samples' | 'target-error' };
-export interface ViewerChangeDetail {
-  property: string;
-}
+/**
+ * `vpt-change`: the user changed `property` through the element (a panel, a camera drag);
+ * `value` is its new value. A clip change (the Clip panel) carries the Clip object, or null
+ * when nothing is cut any more.
+ */
+export type ViewerChangeDetail =
+  { property: 'clip'; value: Clip | null } | { property: Exclude<InternalProperty, 'clip'>; value: unknown };
 
 /** Below a sidebar's width plus this much image, the panels become an overlay. */
 const NARROW_MIN_IMAGE_PX = 320;
@@ -82,6 +92,7 @@ const NARROW_MIN_IMAGE_PX = 320;
 const SYNC_FIELDS = [
   'transferFunction',
   'camera',
+  'clip',
   'lights',
   'densityScale',
   'seed',
@@ -107,6 +118,7 @@ export class VptViewer extends LitElement implements PanelHost {
       hasChanged,
     },
     camera: { reflect: true, converter: jsonConverter(parseCamera), hasChanged },
+    clip: { reflect: true, converter: jsonConverter(parseClip), hasChanged },
     lights: { reflect: true, converter: jsonConverter(parseLights), hasChanged },
     environment: { reflect: true, converter: jsonConverter(parseEnvironment), hasChanged },
     exposure: { type: Number, reflect: true },
@@ -149,6 +161,11 @@ export class VptViewer extends LitElement implements PanelHost {
   declare transferFunction: TransferFunction | string | null;
   /** null: framed automatically when a volume loads. */
   declare camera: Camera | string | null;
+  /**
+   * Clip planes and a crop box, the scene file's `clip` JSON (world units of the volume box:
+   * centred at 0, longest side 1); null: nothing is cut. The Clip panel edits it.
+   */
+  declare clip: Clip | string | null;
   declare lights: Light[] | string | null;
   declare environment: EnvironmentValue | string | null;
   /** Exposure in stops (applied before tone mapping). */
@@ -166,7 +183,7 @@ export class VptViewer extends LitElement implements PanelHost {
   declare rendererParams: Record<string, unknown> | string | null;
   /** Render resolution relative to the element's device pixels (1 = full). */
   declare resolutionScale: number;
-  /** "all", "none", or a space-separated list of tf lights quality stats export. */
+  /** "all", "none", or a space-separated list of tf lights clip quality stats export. */
   declare panels: string;
   /** Panels sidebar closed (the toolbar button opens it). */
   declare collapsed: boolean;
@@ -233,6 +250,7 @@ export class VptViewer extends LitElement implements PanelHost {
     this.backend = 'auto';
     this.transferFunction = null;
     this.camera = null;
+    this.clip = null;
     this.lights = null;
     this.environment = null;
     this.exposure = 0;
@@ -448,7 +466,7 @@ export class VptViewer extends LitElement implements PanelHost {
         @drop=${this.onDrop}
       >
         ${this._status ? html`<p class="overlay status" part="status" role="status">${this._status}</p>` : nothing}
-        ${this.renderHud()}
+        ${panels.has('clip') ? this.renderClipHandles() : nothing} ${this.renderHud()}
         ${
           panels.size
             ? html`<div class="toolbar">
@@ -500,6 +518,86 @@ export class VptViewer extends LitElement implements PanelHost {
       ${showAside ? html`<aside id="panels" part="panels" aria-label="Viewer settings">${renderPanels(this, panels)}</aside>` : nothing}
     </div>`;
   }
+
+  /** The clip value as an object (null: nothing cut, or a string not parsed yet). */
+  private clipNow(): Clip | null {
+    return this.clip && typeof this.clip === 'object' ? this.clip : null;
+  }
+
+  /** A drag of a clip plane's handle: its axis, the position and pointer where it started. */
+  private clipDrag: { axis: ClipAxis; start: number; x: number; y: number } | null = null;
+
+  /**
+   * The axis planes' handles over the image (clip-handles.ts), shown with the Clip panel: each
+   * at the centre of its cut face; dragging one moves its plane along the axis.
+   */
+  private renderClipHandles() {
+    const ctx = this.session?.ctx;
+    if (!this.volume || !ctx) return nothing;
+    const c = clipControls(this.clipNow());
+    const camera = this.sceneNow()!.camera;
+    const aspect = ctx.size.width / ctx.size.height;
+    const handles = CLIP_AXES.flatMap((axis) => {
+      const plane = c.axes[axis];
+      const p = plane ? projectPoint(camera, aspect, axisPoint(axis, plane.position)) : null;
+      return p && p.x >= 0 && p.x <= 1 && p.y >= 0 && p.y <= 1 ? [{ axis, p }] : [];
+    });
+    return handles.map(
+      ({ axis, p }) =>
+        html`<div
+          class="clip-handle"
+          part="clip-handle"
+          data-clip-handle=${axis}
+          title="Drag to move the ${axis} clip plane"
+          aria-hidden="true"
+          style="left: ${(100 * p.x).toFixed(3)}%; top: ${(100 * p.y).toFixed(3)}%"
+          @pointerdown=${(e: PointerEvent) => this.onClipHandleDown(e, axis)}
+          @pointermove=${this.onClipHandleMove}
+          @pointerup=${this.onClipHandleUp}
+          @pointercancel=${this.onClipHandleUp}
+        >
+          ${axis}
+        </div>`,
+    );
+  }
+
+  private onClipHandleDown(e: PointerEvent, axis: ClipAxis): void {
+    const plane = clipControls(this.clipNow()).axes[axis];
+    if (!plane || e.button !== 0) return;
+    e.preventDefault();
+    e.stopPropagation();
+    (e.currentTarget as Element).setPointerCapture?.(e.pointerId);
+    this.clipDrag = { axis, start: plane.position, x: e.clientX, y: e.clientY };
+  }
+
+  private onClipHandleMove = (e: PointerEvent): void => {
+    const drag = this.clipDrag;
+    const ctx = this.session?.ctx;
+    const view = this.renderRoot.querySelector('.view') as HTMLElement | null;
+    if (!drag || !ctx || !view || !this.volume) return;
+    const c = clipControls(this.clipNow());
+    const plane = c.axes[drag.axis];
+    if (!plane) return;
+    const rect = view.getBoundingClientRect();
+    const i = CLIP_AXES.indexOf(drag.axis);
+    const box = volumeBox(this.volume);
+    const position = draggedPosition(
+      this.sceneNow()!.camera,
+      ctx.size.width / ctx.size.height,
+      drag.axis,
+      drag.start,
+      { dx: (e.clientX - drag.x) / rect.width, dy: (e.clientY - drag.y) / rect.height },
+      { min: box.min[i], max: box.max[i] },
+    );
+    this.resolution.interactionStarted();
+    this.setInternal('clip', clipFromControls({ ...c, axes: { ...c.axes, [drag.axis]: { ...plane, position } } }));
+  };
+
+  private onClipHandleUp = (): void => {
+    if (!this.clipDrag) return;
+    this.clipDrag = null;
+    this.resolution.interactionEnded();
+  };
 
   /** The thin progress bar (loading bytes; refining toward max-samples or target-error) and the stats line. */
   private renderHud() {
@@ -612,7 +710,8 @@ export class VptViewer extends LitElement implements PanelHost {
     if (sameValue(this[property], value)) return;
     (this as Record<string, unknown>)[property] = value;
     if (property === 'camera') this.internalChange.add('camera');
-    this.dispatchEvent(new CustomEvent<ViewerChangeDetail>('vpt-change', { detail: { property } }));
+    const detail = { property, value } as ViewerChangeDetail;
+    this.dispatchEvent(new CustomEvent<ViewerChangeDetail>('vpt-change', { detail }));
   }
 
   private gradientCache: { volume: Volume; samples: GradientSamples } | null = null;
@@ -933,6 +1032,7 @@ export class VptViewer extends LitElement implements PanelHost {
   private sceneNow(): Scene | null {
     if (!this.volume) return null;
     const camera = this.camera && typeof this.camera === 'object' ? this.camera : fitCamera(this.volume);
+    const clip = this.clip && typeof this.clip === 'object' && hasClip(this.clip) ? this.clip : null;
     return {
       volume: this.volume,
       transferFunction: this.currentTransferFunction(),
@@ -941,6 +1041,7 @@ export class VptViewer extends LitElement implements PanelHost {
       environment: this.resolvedEnvironment ?? rendererLook(this.renderer).environment,
       densityScale: this.effectiveDensityScale(),
       seed: this.seed,
+      ...(clip ? { clip } : {}),
     };
   }
 

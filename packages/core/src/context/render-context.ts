@@ -11,6 +11,7 @@ import { commonChunks, PASS_CHUNKS, type CommonChunkOptions } from '../shaders/c
 import { preprocess } from '../shaders/preprocess.js';
 import { validateGradientAtlasForDevice, validateSceneForDevice } from '../validation/device.js';
 import { SCENE_UNIFORM_FIELDS, sceneUniformValues } from '../shaders/scene-uniforms.js';
+import { CLIP_UNIFORM_FIELDS, clipUniformValues, hasClip } from '../scene/clip.js';
 import { UniformLayout } from '../uniforms/layout.js';
 import { GUIDES } from '../shaders/guides.js';
 import { GUIDE_FRAME_FORMATS, GuideBuffers } from './guide-buffers.js';
@@ -596,6 +597,7 @@ export class RenderContext {
       // scene's volume is a coarser stand-in); nothing else reads volumeDims when bricked.
       ...(bricked ? { volumeDims: [...bricked.geometry.levels[0].dims, bricked.geometry.brickSize] } : {}),
       ...this._renderer.paramValues(scene),
+      ...(hasClip(scene.clip) ? clipUniformValues(scene.clip, scene.volume) : {}),
     });
   }
 
@@ -612,6 +614,7 @@ export class RenderContext {
       gradient: this.wantsGradient(scene),
       hardwareFilter: this.resources.volumeUpload?.filter === 'linear',
       bricked: this.resources.bricked !== null,
+      clip: hasClip(scene.clip),
     };
   }
 
@@ -626,7 +629,12 @@ export class RenderContext {
       VPT_TF_2D: chunks.tf2d,
       VPT_GRADIENT: chunks.gradient,
       VPT_GUIDES: writeGuides,
+      VPT_CLIP: chunks.clip,
     };
+    // VPT_CLIP cuts the kernels' #if lines but becomes a backend define only when set, so an
+    // unclipped variant's program is today's byte for byte.
+    const { VPT_CLIP: clipFlag, ...unclipped } = features;
+    const defines = clipFlag ? features : unclipped;
     const frameFormats = writeGuides ? [...r.frameFormats, ...GUIDE_FRAME_FORMATS] : r.frameFormats;
     if (this.frame && this.frameHasGuides !== writeGuides) this.destroyRendererTargets();
     if (r.version !== this.rendererVersion) {
@@ -646,7 +654,12 @@ export class RenderContext {
       : [];
     const key = `${r.name}|${JSON.stringify(features)}|${auxBindings.map((b) => b.name).join(',')}|${chunks.hardwareFilter ? 'filtered' : 'exact'}${chunks.bricked ? '|bricked' : ''}`;
     if (!this.passes || key !== this.variantKey) {
-      this.layout = new UniformLayout('Params', [...SCENE_UNIFORM_FIELDS, ...r.paramFields]);
+      // The clip uniforms come last, and only in a clipped variant: an unclipped layout is unchanged.
+      this.layout = new UniformLayout('Params', [
+        ...SCENE_UNIFORM_FIELDS,
+        ...r.paramFields,
+        ...(chunks.clip ? CLIP_UNIFORM_FIELDS : []),
+      ]);
       // The volume/TF chunks read the `volume` and `transferFunction` (and gradient) textures,
       // which only the generate pass binds; integrate and render get the texture-free chunks.
       const common = commonChunks(chunks);
@@ -668,7 +681,7 @@ export class RenderContext {
           uniforms: this.layout,
           textures,
           outputs,
-          defines: features,
+          defines,
         });
       const frameTex = r.frameFormats.map((_, i) => ({ name: `frame${i}`, dimension: '2d' as const }));
       const accTex = r.accumulationFormats.map((_, i) => ({ name: `accum${i}`, dimension: '2d' as const }));

@@ -1,5 +1,6 @@
 import { VptError } from '../errors.js';
 import { validateCamera, type Camera } from './camera.js';
+import { validateClip, type Clip } from './clip.js';
 import { validateEnvironment, validateLights, type Environment, type Light } from './lights.js';
 import { validateTransferFunction, type TransferFunction } from './transfer-function.js';
 import { validateVolume, type Volume } from './volume.js';
@@ -23,6 +24,11 @@ export interface Scene {
    * reference for CPU twins and bit parity). Default: the context's `sampling` option ('fast').
    */
   sampling?: 'fast' | 'exact';
+  /**
+   * Clip planes and a crop box (scene/clip.ts) that cut the volume away; absent: nothing is
+   * cut and the kernels compile no clipping code. Changing it resets accumulation only.
+   */
+  clip?: Clip;
 }
 
 export function validateScene(s: Scene): void {
@@ -53,4 +59,5 @@ export function validateScene(s: Scene): void {
     throw new VptError('invalid-scene', `Scene: seed must be an integer in [0, 2^32), got ${s.seed}`);
   if (s.sampling !== undefined && s.sampling !== 'fast' && s.sampling !== 'exact')
     throw new VptError('invalid-scene', `Scene: sampling must be 'fast' or 'exact', got ${JSON.stringify(s.sampling)}`);
+  if (s.clip !== undefined) validateClip(s.clip);
 }

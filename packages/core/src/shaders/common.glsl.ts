@@ -62,6 +62,47 @@ vec3 centreCameraRay(ivec2 pixel, ivec2 size) {
 `;
 
 /**
+ * Clipping (scene/clip.ts), only in variants compiled with CLIP: the kept region is the crop
+ * box and every half-space dot(n, p) <= d (unit n, uniforms u.clipPlanes / u.clipBoxMin /
+ * u.clipBoxMax, CLIP_UNIFORM_FIELDS). It is convex, so a ray meets it in one interval.
+ */
+export const CLIP = /* glsl */ `
+// (tNear, tFar) cut to the kept region: the box by its slabs (Kay & Kajiya 1986), then each plane as one
+// parametric half-space clip (Cyrus & Beck 1978); empty when tNear >= tFar.
+vec2 clipRayInterval(vec3 origin, vec3 dir, float tNear, float tFar) {
+  vec2 b = intersectBox(origin, dir, u.clipBoxMin, u.clipBoxMax);
+  float t0 = max(tNear, b.x);
+  float t1 = min(tFar, b.y);
+  for (int i = 0; i < u.clipPlaneCount; i++) {
+    vec4 pl = u.clipPlanes[i];
+    float denom = dot(pl.xyz, dir);
+    float num = pl.w - dot(pl.xyz, origin);
+    if (denom > 0.0) {
+      t1 = min(t1, num / denom);
+    } else if (denom < 0.0) {
+      t0 = max(t0, num / denom);
+    } else if (num < 0.0) {
+      t1 = -1.0; // parallel to the plane and on its removed side
+    }
+  }
+  return vec2(t0, t1);
+}
+// The ray's interval in the volume box cut to the kept region: where the medium is (vacuum elsewhere).
+vec2 keptInterval(vec3 origin, vec3 dir) {
+  vec2 t = intersectBox(origin, dir, u.boxMin, u.boxMax);
+  return clipRayInterval(origin, dir, t.x, t.y);
+}
+// Whether the point is cut away: outside the crop box or beyond a plane.
+bool isClipped(vec3 p) {
+  if (any(lessThan(p, u.clipBoxMin)) || any(greaterThan(p, u.clipBoxMax))) { return true; }
+  for (int i = 0; i < u.clipPlaneCount; i++) {
+    if (dot(u.clipPlanes[i].xyz, p) > u.clipPlanes[i].w) { return true; }
+  }
+  return false;
+}
+`;
+
+/**
  * The volume value at a world point: cell-centred trilinear interpolation with clamp-to-edge
  * (GL LINEAR + CLAMP_TO_EDGE) of the stored texels, then the value mapping of
  * gpu/volume-format.ts, v = clamp(texel · u.valueScale + u.valueOffset, 0, 1) (value range,
@@ -280,6 +321,9 @@ vec4 transferAt(vec3 p) {
 export const GENERATE_CHUNKS = [
   RNG,
   RAY,
+  '#if CLIP',
+  CLIP,
+  '#endif',
   SLICE_ATLAS,
   LERP,
   '#if BRICKED',

@@ -13,6 +13,8 @@ export interface CommonChunkOptions {
   hardwareFilter?: boolean;
   /** The volume is bricked (bricking/): `volume` is the brick atlas, read through `pageTable` and `brickLevels`. */
   bricked?: boolean;
+  /** The scene clips (scene/clip.ts): clipRayInterval() / isClipped() exist, reading the clip uniforms. */
+  clip?: boolean;
 }
 
 /**
@@ -27,6 +29,7 @@ export function commonChunks(opts: CommonChunkOptions = {}): KernelSource {
     TF_2D: !!opts.tf2d,
     HARDWARE_FILTER: !!opts.hardwareFilter,
     BRICKED: !!opts.bricked,
+    CLIP: !!opts.clip,
   };
   return { glsl: preprocess(glsl.GENERATE_CHUNKS, flags), wgsl: preprocess(wgsl.GENERATE_CHUNKS, flags) };
 }

@@ -54,6 +54,43 @@ fn centreCameraRay(pixel: vec2i, size: vec2i) -> vec3f {
 }
 `;
 
+/** Clipping: twin of common.glsl.ts CLIP (see there), only in variants compiled with CLIP. */
+export const CLIP = /* wgsl */ `
+// (tNear, tFar) cut to the kept region: the box by its slabs (Kay & Kajiya 1986), then each plane as one
+// parametric half-space clip (Cyrus & Beck 1978); empty when tNear >= tFar.
+fn clipRayInterval(origin: vec3f, dir: vec3f, tNear: f32, tFar: f32) -> vec2f {
+  let b = intersectBox(origin, dir, u.clipBoxMin, u.clipBoxMax);
+  var t0 = max(tNear, b.x);
+  var t1 = min(tFar, b.y);
+  for (var i = 0; i < u.clipPlaneCount; i++) {
+    let pl = u.clipPlanes[i];
+    let denom = dot(pl.xyz, dir);
+    let num = pl.w - dot(pl.xyz, origin);
+    if (denom > 0.0) {
+      t1 = min(t1, num / denom);
+    } else if (denom < 0.0) {
+      t0 = max(t0, num / denom);
+    } else if (num < 0.0) {
+      t1 = -1.0; // parallel to the plane and on its removed side
+    }
+  }
+  return vec2f(t0, t1);
+}
+// The ray's interval in the volume box cut to the kept region: where the medium is (vacuum elsewhere).
+fn keptInterval(origin: vec3f, dir: vec3f) -> vec2f {
+  let t = intersectBox(origin, dir, u.boxMin, u.boxMax);
+  return clipRayInterval(origin, dir, t.x, t.y);
+}
+// Whether the point is cut away: outside the crop box or beyond a plane.
+fn isClipped(p: vec3f) -> bool {
+  if (any(p < u.clipBoxMin) || any(p > u.clipBoxMax)) { return true; }
+  for (var i = 0; i < u.clipPlaneCount; i++) {
+    if (dot(u.clipPlanes[i].xyz, p) > u.clipPlanes[i].w) { return true; }
+  }
+  return false;
+}
+`;
+
 /** Volume sampling: twins of common.glsl.ts (see there): value mapping, exact and hardware filters. */
 export const LERP = /* wgsl */ `
 fn lerp1(a: f32, b: f32, t: f32) -> f32 { return a + (b - a) * t; }
@@ -235,6 +272,9 @@ fn transferAt(p: vec3f) -> vec4f {
 export const GENERATE_CHUNKS = [
   RNG,
   RAY,
+  '#if CLIP',
+  CLIP,
+  '#endif',
   SLICE_ATLAS,
   LERP,
   '#if BRICKED',

@@ -36,6 +36,12 @@ export const MAX_OPACITY = 1e6;
  */
 export const MAX_CAMERA_COORDINATE = 1e4;
 
+/** Most clip planes a scene may have (scene/clip.ts): each is one uniform vec4 and one slab test per ray. */
+export const MAX_CLIP_PLANES = 6;
+
+/** Largest |coordinate| of a clip plane's offset and the crop box's corners, as MAX_CAMERA_COORDINATE. */
+export const MAX_CLIP_COORDINATE = 1e4;
+
 /** Most samples any ray march takes per ray (EAM, MIP, ISO); the kernels clamp to it. */
 export const MAX_MARCH_STEPS = 65536;
 

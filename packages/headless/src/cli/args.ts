@@ -58,6 +58,8 @@ A scene file is one JSON object; every field is optional (defaults: a procedural
   lights           [{"type": "directional", "direction": [x, y, z], "irradiance": [r, g, b]}]:
                    direction points from the scene TOWARD the light
   environment      {"type": "constant", "radiance": [r, g, b]} or a "latlong" map
+  clip             {"planes": [{"normal": [x, y, z], "offset": d}], "box": {"min": [x, y, z], "max": [x, y, z]}}:
+                   up to 6 planes, each removing dot(normal, p) > offset, and a crop box (world units of the box)
   also             width, height, iterations, seed, densityScale, sampling (fast|exact),
                    maxGpuBytes, backend, post (the post chain as JSON)
 Every field is checked first, with an error naming it. The full description, field by field:

@@ -202,6 +202,7 @@ async function sceneOf(d: SceneDescription, baseUrl?: string): Promise<Scene> {
     densityScale: d.densityScale ?? SCENE_DEFAULTS.densityScale,
     seed: d.seed ?? SCENE_DEFAULTS.seed,
     ...(d.sampling ? { sampling: d.sampling } : {}),
+    ...(d.clip ? { clip: d.clip } : {}),
   };
 }
 

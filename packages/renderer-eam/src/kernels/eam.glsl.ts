@@ -28,7 +28,11 @@ void main() {
   ivec2 pixel = vptPixel();
   uint rng = rngInit(pixel, u.iteration, u.seed);
   vec3 dir = jitteredCameraRay(pixel, vptTargetSize(), rng);
+#if VPT_CLIP
+  vec2 t = keptInterval(u.cameraPosition, dir);
+#else
   vec2 t = intersectBox(u.cameraPosition, dir, u.boxMin, u.boxMax);
+#endif
   vec3 color = vec3(0.0);
   float transmittance = 1.0;
   // Denoiser guides at the mean termination depth: segments weighted by T·alpha, their share of the pixel.

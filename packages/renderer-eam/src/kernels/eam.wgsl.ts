@@ -25,7 +25,11 @@ fn eamSample(
   let pixel = vptPixel(fragCoord);
   var rng = rngInit(pixel, u.iteration, u.seed);
   let dir = jitteredCameraRay(pixel, vptTargetSize(), &rng);
+#if VPT_CLIP
+  let t = keptInterval(u.cameraPosition, dir);
+#else
   let t = intersectBox(u.cameraPosition, dir, u.boxMin, u.boxMax);
+#endif
   var color = vec3f(0.0);
   var transmittance = 1.0;
   // Denoiser guides at the mean termination depth: segments weighted by T·alpha, their share of the pixel.

@@ -99,7 +99,11 @@ vec4 isoTrace(vec3 o, vec3 d, float t0, float t1, inout uint rng) {
 // 1 when the ray o + s d, 0 < s <= maxDist, crosses no surface that stochastic transparency
 // makes opaque, else 0 (a shadow or ambient-occlusion ray).
 float isoVisibility(vec3 o, vec3 d, float maxDist, inout uint rng) {
+#if VPT_CLIP
+  vec2 tb = keptInterval(o, d);
+#else
   vec2 tb = intersectBox(o, d, u.boxMin, u.boxMax);
+#endif
   float t1 = min(tb.y, maxDist);
   if (!(tb.x < t1)) { return 1.0; }
   float t0 = tb.x;
@@ -249,7 +253,11 @@ void main() {
   vec3 dir = cameraRayDirection(vec2((float(pixel.x) + 0.5) / float(size.x), (float(pixel.y) + 0.5) / float(size.y)));
 #endif
   vec3 o = u.cameraPosition;
+#if VPT_CLIP
+  vec2 tb = keptInterval(o, dir);
+#else
   vec2 tb = intersectBox(o, dir, u.boxMin, u.boxMax);
+#endif
   vec4 hit = vec4(-1.0);
   if (tb.x < tb.y) { hit = isoTrace(o, dir, tb.x, tb.y, rng); }
   vec4 color = vec4(isoEnvironment(dir), 0.0);

@@ -84,7 +84,11 @@ fn isoTrace(o: vec3f, d: vec3f, t0: f32, t1: f32, rng: ptr<function, u32>) -> ve
 }
 
 fn isoVisibility(o: vec3f, d: vec3f, maxDist: f32, rng: ptr<function, u32>) -> f32 {
+#if VPT_CLIP
+  let tb = keptInterval(o, d);
+#else
   let tb = intersectBox(o, d, u.boxMin, u.boxMax);
+#endif
   let t1 = min(tb.y, maxDist);
   if (!(tb.x < t1)) { return 1.0; }
   let t0 = tb.x;
@@ -222,7 +226,11 @@ export const generate =
   let dir = cameraRayDirection(vec2f((f32(pixel.x) + 0.5) / f32(size.x), (f32(pixel.y) + 0.5) / f32(size.y)));
 #endif
   let o = u.cameraPosition;
+#if VPT_CLIP
+  let tb = keptInterval(o, dir);
+#else
   let tb = intersectBox(o, dir, u.boxMin, u.boxMax);
+#endif
   var hit = vec4f(-1.0);
   if (tb.x < tb.y) { hit = isoTrace(o, dir, tb.x, tb.y, &rng); }
   var color = vec4f(isoEnvironment(dir), 0.0);

@@ -51,7 +51,11 @@ vec3 directLight(vec3 x, vec3 w, inout uint rng) {
 #endif
     vec3 l = u.lightDirection[i].xyz;
     float ph = hgPhase(u.phaseG, dot(w, l));
+#if VPT_CLIP
+    vec2 tb = keptInterval(x, l);
+#else
     vec2 tb = intersectBox(x, l, u.boxMin, u.boxMax);
+#endif
     float T = tb.x < tb.y ? transmittance(x, l, tb.x, tb.y, rng) : 1.0;
     Ld += u.lightIrradiance[i].rgb * (ph * T);
   }
@@ -71,7 +75,11 @@ vec3 directLight(vec3 x, vec3 w, inout uint rng) {
 #endif
   if (pl > 0.0) {
     float ph = hgPhase(u.phaseG, dot(w, wl));
+#if VPT_CLIP
+    vec2 tb = keptInterval(x, wl);
+#else
     vec2 tb = intersectBox(x, wl, u.boxMin, u.boxMax);
+#endif
     float T = tb.x < tb.y ? transmittance(x, wl, tb.x, tb.y, rng) : 1.0;
 #if ENV_SAMPLING == 2
     float wMis = misWeight(pl, ph);
@@ -89,7 +97,11 @@ void main() {
   uint rng = rngInit(pixel, u.iteration, u.seed);
   vec3 dir = jitteredCameraRay(pixel, vptTargetSize(), rng);
   vec3 pos = u.cameraPosition;
+#if VPT_CLIP
+  vec2 tb = keptInterval(pos, dir);
+#else
   vec2 tb = intersectBox(pos, dir, u.boxMin, u.boxMax);
+#endif
 #if VPT_GUIDES
   // Denoiser guides at the first real collision (zeros where the camera ray has none).
   vec4 guide0 = vec4(0.0);
@@ -135,7 +147,11 @@ void main() {
       float xk1 = rngNext(rng);
       float xk2 = rngNext(rng);
       vec4 pk = sampleHG(dir, u.phaseG, xk1, xk2);
+#if VPT_CLIP
+      vec2 tk = keptInterval(pos, pk.xyz);
+#else
       vec2 tk = intersectBox(pos, pk.xyz, u.boxMin, u.boxMax);
+#endif
       float Tk = tk.x < tk.y ? transmittance(pos, pk.xyz, tk.x, tk.y, rng) : 1.0;
       L += beta * escapedRadiance(pk.xyz, depth, pk.w) * Tk;
 #endif
@@ -154,7 +170,11 @@ void main() {
     if (last) {
 #if ENV_LIGHT && ENV_SAMPLING != 1
       // The phase-sampled direction reaches the environment with the ray's transmittance.
+#if VPT_CLIP
+      vec2 tn = keptInterval(pos, ps.xyz);
+#else
       vec2 tn = intersectBox(pos, ps.xyz, u.boxMin, u.boxMax);
+#endif
       float Tn = tn.x < tn.y ? transmittance(pos, ps.xyz, tn.x, tn.y, rng) : 1.0;
       L += beta * escapedRadiance(ps.xyz, depth, phasePdf) * Tn;
 #endif
@@ -167,7 +187,11 @@ void main() {
       beta /= q;
     }
     dir = ps.xyz;
+#if VPT_CLIP
+    tb = keptInterval(pos, dir);
+#else
     tb = intersectBox(pos, dir, u.boxMin, u.boxMax);
+#endif
 #endif
   }
 #if DEBUG_OUTPUT == 2

@@ -41,7 +41,11 @@ fn directLight(x: vec3f, w: vec3f, rng: ptr<function, u32>) -> vec3f {
 #endif
     let l = u.lightDirection[i].xyz;
     let ph = hgPhase(u.phaseG, dot(w, l));
+#if VPT_CLIP
+    let tb = keptInterval(x, l);
+#else
     let tb = intersectBox(x, l, u.boxMin, u.boxMax);
+#endif
     var T = 1.0;
     if (tb.x < tb.y) { T = transmittance(x, l, tb.x, tb.y, rng); }
     Ld += u.lightIrradiance[i].rgb * (ph * T);
@@ -62,7 +66,11 @@ fn directLight(x: vec3f, w: vec3f, rng: ptr<function, u32>) -> vec3f {
 #endif
   if (pl > 0.0) {
     let ph = hgPhase(u.phaseG, dot(w, wl));
+#if VPT_CLIP
+    let tb = keptInterval(x, wl);
+#else
     let tb = intersectBox(x, wl, u.boxMin, u.boxMax);
+#endif
     var T = 1.0;
     if (tb.x < tb.y) { T = transmittance(x, wl, tb.x, tb.y, rng); }
 #if ENV_SAMPLING == 2
@@ -81,7 +89,11 @@ fn directLight(x: vec3f, w: vec3f, rng: ptr<function, u32>) -> vec3f {
   var rng = rngInit(pixel, u.iteration, u.seed);
   var dir = jitteredCameraRay(pixel, vptTargetSize(), &rng);
   var pos = u.cameraPosition;
+#if VPT_CLIP
+  var tb = keptInterval(pos, dir);
+#else
   var tb = intersectBox(pos, dir, u.boxMin, u.boxMax);
+#endif
   var o: VptOut;
 #if VPT_GUIDES
   // Denoiser guides at the first real collision (zeros where the camera ray has none).
@@ -129,7 +141,11 @@ fn directLight(x: vec3f, w: vec3f, rng: ptr<function, u32>) -> vec3f {
       let xk1 = rngNext(&rng);
       let xk2 = rngNext(&rng);
       let pk = sampleHG(dir, u.phaseG, xk1, xk2);
+#if VPT_CLIP
+      let tk = keptInterval(pos, pk.xyz);
+#else
       let tk = intersectBox(pos, pk.xyz, u.boxMin, u.boxMax);
+#endif
       var Tk = 1.0;
       if (tk.x < tk.y) { Tk = transmittance(pos, pk.xyz, tk.x, tk.y, &rng); }
       L += beta * escapedRadiance(pk.xyz, depth, pk.w) * Tk;
@@ -148,7 +164,11 @@ fn directLight(x: vec3f, w: vec3f, rng: ptr<function, u32>) -> vec3f {
 #endif
     if (last) {
 #if ENV_LIGHT && ENV_SAMPLING != 1
+#if VPT_CLIP
+      let tn = keptInterval(pos, ps.xyz);
+#else
       let tn = intersectBox(pos, ps.xyz, u.boxMin, u.boxMax);
+#endif
       var Tn = 1.0;
       if (tn.x < tn.y) { Tn = transmittance(pos, ps.xyz, tn.x, tn.y, &rng); }
       L += beta * escapedRadiance(ps.xyz, depth, phasePdf) * Tn;
@@ -162,7 +182,11 @@ fn directLight(x: vec3f, w: vec3f, rng: ptr<function, u32>) -> vec3f {
       beta /= q;
     }
     dir = ps.xyz;
+#if VPT_CLIP
+    tb = keptInterval(pos, dir);
+#else
     tb = intersectBox(pos, dir, u.boxMin, u.boxMax);
+#endif
 #endif
   }
 #if DEBUG_OUTPUT == 2

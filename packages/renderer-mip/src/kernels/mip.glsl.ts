@@ -23,7 +23,11 @@ void main() {
   ivec2 pixel = vptPixel();
   uint rng = rngInit(pixel, u.iteration, u.seed);
   vec3 dir = centreCameraRay(pixel, vptTargetSize());
+#if VPT_CLIP
+  vec2 t = keptInterval(u.cameraPosition, dir);
+#else
   vec2 t = intersectBox(u.cameraPosition, dir, u.boxMin, u.boxMax);
+#endif
   float maxValue = 0.0;
   float coverage = 0.0;
   if (t.x < t.y) {

@@ -17,7 +17,11 @@ fn cellMaxValue(walk: CellWalk) -> f32 {
   let pixel = vptPixel(fragCoord);
   var rng = rngInit(pixel, u.iteration, u.seed);
   let dir = centreCameraRay(pixel, vptTargetSize());
+#if VPT_CLIP
+  let t = keptInterval(u.cameraPosition, dir);
+#else
   let t = intersectBox(u.cameraPosition, dir, u.boxMin, u.boxMax);
+#endif
   var maxValue = 0.0;
   var coverage = 0.0;
   if (t.x < t.y) {
