@@ -3,6 +3,7 @@ import { defaultCamera, reference, type Scene, type Vec3, type VoxelType } from 
 import { readFileSync } from 'node:fs';
 import { decodePFM, encodePFM, readSceneFile, validateSceneDescription } from '../packages/headless/src/index.js';
 import { colormapTable, type SliceColormap, type SliceParams } from '../packages/renderer-slice/src/index.js';
+import { clippedAt } from './helpers/clip-volumes.js';
 import { BACKENDS, usePage } from './helpers/session.js';
 
 /**
@@ -28,6 +29,7 @@ interface SliceRender {
   transferFunction?: Scene['transferFunction'];
   iterations?: number;
   bricking?: 'off' | 'force';
+  clip?: Scene['clip'];
 }
 
 /** One render in the page: RGBA float32 HDR, top row first. */
@@ -47,7 +49,8 @@ function render(o: SliceRender): Promise<number[]> {
     });
     const volume = core.createVolume(o.dims, o.type, new arrays[o.type](o.data));
     if (o.valueRange) volume.valueRange = o.valueRange;
-    ctx.setScene(t.scene({ volume, camera: o.camera, transferFunction: o.transferFunction }));
+    const scene = t.scene({ volume, camera: o.camera, transferFunction: o.transferFunction });
+    ctx.setScene(o.clip ? { ...scene, clip: o.clip } : scene);
     if (o.bricking === 'force') await ctx.whenBricksSettled();
     return t.finalHDR(ctx, o.iterations ?? 1);
   }, o);
@@ -147,6 +150,39 @@ describe.each(BACKENDS)('slice renderer on %s', (backend) => {
         }
       }
     }
+  });
+
+  // The scene's clip cuts the plane as it cuts the volume: the cut part is background (0, 0, 0, 0).
+  it('a clip plane and a crop box cut the slice where the CPU says the points are clipped', async () => {
+    const n = 8;
+    const dims: [number, number, number] = [n, n, n];
+    const data = voxels(n * n * n, 0, 255, 7);
+    const window: [number, number] = [128, 256];
+    const clip = {
+      planes: [{ normal: [1, 1, 0] as Vec3, offset: 0.1 }],
+      box: { min: [-0.3, -0.5, -0.5] as Vec3, max: [0.5, 0.5, 0.5] as Vec3 },
+    };
+    const hdr = await render({
+      backend,
+      dims,
+      type: 'uint8',
+      data,
+      params: { axis: 'z', index: 3, fit: true, window },
+      width: n,
+      height: n,
+      clip,
+    });
+    // A cube's box is [-0.5, 0.5]³ with cell-centred voxels: pixel (c, r) of the fitted z = 3 slice is voxel (c, r, 3).
+    const centre = (i: number) => (i + 0.5) / n - 0.5;
+    let cut = 0;
+    const err = maxError(hdr, n, n, (c, r) => {
+      if (clippedAt(clip, [centre(c), centre(r), centre(3)])) return (cut++, [0, 0, 0, 0]);
+      const w = windowed(data[c + n * (r + n * 3)], window);
+      return [w, w, w, 1];
+    });
+    expect(cut, 'the clip removes part of the slice, not all of it').toBeGreaterThan(8);
+    expect(cut).toBeLessThan(n * n - 8);
+    expect(err).toBeLessThan(1e-6);
   });
 
   // (b) linear sampling of an oblique plane against a CPU trilinear expectation.

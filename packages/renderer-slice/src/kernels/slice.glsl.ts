@@ -46,6 +46,10 @@ void main() {
   bool hit = t > 0.0;
 #endif
   hit = hit && all(greaterThanEqual(p, u.boxMin)) && all(lessThanEqual(p, u.boxMax));
+#if VPT_CLIP
+  // A clipped part of the plane is cut away like the volume there (the scene's clip planes and box).
+  hit = hit && !isClipped(p);
+#endif
   vec4 result = vec4(0.0);
   if (hit) {
     float n = sliceTexel(p) * u.valueScale + u.valueOffset;

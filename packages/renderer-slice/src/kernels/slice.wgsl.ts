@@ -38,6 +38,10 @@ fn sliceTexel(p: vec3f) -> f32 {
   var hit = t > 0.0;
 #endif
   hit = hit && all(p >= u.boxMin) && all(p <= u.boxMax);
+#if VPT_CLIP
+  // A clipped part of the plane is cut away like the volume there (the scene's clip planes and box).
+  hit = hit && !isClipped(p);
+#endif
   var result = vec4f(0.0);
   if (hit) {
     let n = sliceTexel(p) * u.valueScale + u.valueOffset;
