@@ -23,8 +23,9 @@ export function generateKernel(f: McrtFeatures): KernelSource {
   const flags = f as unknown as Flags;
   const glsl = GLSL_SAMPLING + (f.ENV_MAP ? GLSL_ENVIRONMENT_MAP : '') + glslTracking.tracking + glslPath.path;
   const wgsl = WGSL_SAMPLING + (f.ENV_MAP ? WGSL_ENVIRONMENT_MAP : '') + wgslTracking.tracking + wgslPath.path;
-  // VPT_GUIDES is the context's flag (RenderContext defines it while a post step uses guides).
-  const defer = { defer: ['VPT_GUIDES'] };
+  // VPT_GUIDES and VPT_DEPTH_LIMIT are the context's flags (RenderContext defines them while a
+  // post step uses guides, and while a depth limit is set).
+  const defer = { defer: ['VPT_GUIDES', 'VPT_DEPTH_LIMIT'] };
   return { glsl: preprocess(glsl, flags, defer), wgsl: preprocess(wgsl, flags, defer) };
 }
 
