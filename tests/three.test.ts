@@ -79,4 +79,243 @@ describe('@vpt/three: VptVolume in a three.js scene', () => {
       if (r === 'eam') expect(maxRgbDiff(got, want)).toBeLessThan(2e-3);
     }
   });
+
+  it('takes its transform from the object: moved, turned and scaled views equal core’s render', async () => {
+    const out = await three().run(async (h3, n) => {
+      const { eam, vt3 } = (window as any).ref;
+      const vscene = h3.vptScene('blob', 16, [1, 0.6, 0.3], 1, 12, [0, 0, 0]);
+      const camera = { position: [0, 0, 2], target: [0, 0, 0], up: [0, 1, 0], fovy: (40 * Math.PI) / 180 };
+      const want = Array.from(await h3.coreRender('eam', { ...vscene, camera }, n, 8));
+      const res: number[][] = [];
+      // (object position, rotation about y, uniform scale, camera position, camera target):
+      // each puts the camera at (0, 0, 2) of the volume's own frame, looking at its centre.
+      const cases: [number[], number, number, number[], number[]][] = [
+        [[0.3, -0.2, 0.1], 0, 1, [0.3, -0.2, 2.1], [0.3, -0.2, 0.1]],
+        [[0, 0, 0], Math.PI / 2, 1, [2, 0, 0], [0, 0, 0]],
+        [[0, 0, 0], 0, 2, [0, 0, 4], [0, 0, 0]],
+      ];
+      for (const [p, ry, k, cp, ct] of cases) {
+        const s = h3.setup(n);
+        const vol = new vt3.VptVolume({ renderer: new eam.EamRenderer(), scene: vscene, iterationsPerFrame: 8 });
+        vol.position.set(p[0], p[1], p[2]);
+        vol.rotation.set(0, ry, 0);
+        vol.scale.setScalar(k);
+        s.scene.add(vol);
+        s.camera.position.set(cp[0], cp[1], cp[2]);
+        s.camera.lookAt(ct[0], ct[1], ct[2]);
+        s.camera.updateMatrixWorld();
+        s.renderer.setClearColor(h3.linear([0, 0, 0]), 1);
+        await s.compositor.prepare(s.scene);
+        h3.frames(s, 1);
+        res.push(Array.from(h3.readTarget(s)));
+        vol.dispose();
+        s.renderer.dispose();
+      }
+      return { want, res };
+    }, N);
+    out.res.forEach((got, i) => {
+      savePng(`transform-${i}`, got);
+      expect(meanRgbDiff(got, out.want)).toBeLessThan(2e-4);
+    });
+  });
+
+  it('an opaque mesh in front of the whole volume shows only the mesh (EAM and MCRT)', async () => {
+    const out = await three().run(async (h3, n) => {
+      const { THREE, eam, mcrt, vt3 } = (window as any).ref;
+      const res: Record<string, number[]> = {};
+      for (const r of ['eam', 'mcrt']) {
+        const s = h3.setup(n);
+        const vol = new vt3.VptVolume({
+          renderer: r === 'eam' ? new eam.EamRenderer() : new mcrt.McrtRenderer(),
+          scene: h3.vptScene('cube', 8, [1, 1, 1], 1, 20, [1, 1, 1]),
+          iterationsPerFrame: 4,
+        });
+        s.scene.add(vol);
+        const plane = new THREE.Mesh(
+          new THREE.PlaneGeometry(3, 3),
+          new THREE.MeshBasicMaterial({ color: h3.linear([0.9, 0.1, 0.3]) }),
+        );
+        plane.position.z = 0.8;
+        s.scene.add(plane);
+        await s.compositor.prepare(s.scene);
+        h3.frames(s, 2);
+        res[r] = Array.from(h3.readTarget(s));
+        vol.dispose();
+        s.renderer.dispose();
+      }
+      return res;
+    }, N);
+    for (const r of ['eam', 'mcrt']) {
+      savePng(`front-${r}`, out[r]);
+      // The mesh's colour exactly, on every pixel.
+      for (let i = 0; i < N * N; i++) {
+        expect(out[r][4 * i]).toBeCloseTo(0.9, 6);
+        expect(out[r][4 * i + 1]).toBeCloseTo(0.1, 6);
+        expect(out[r][4 * i + 2]).toBeCloseTo(0.3, 6);
+      }
+    }
+  });
+
+  it('a mesh inside a homogeneous cube is attenuated by its transmittance (EAM: exact; MCRT: unbiased)', async () => {
+    const m = [0.1, 0.5, 0.9];
+    const color = [1, 0.5, 0.25];
+    const sigma = 2;
+    const out = await three().run(
+      async (h3, n, m, color, sigma) => {
+        const { THREE, eam, mcrt, vt3 } = (window as any).ref;
+        const res: Record<string, number[]> = {};
+        for (const r of ['eam', 'mcrt']) {
+          const s = h3.setup(n);
+          // MCRT: a purely absorbing cube (albedo 0), so the composite is T · mesh in expectation.
+          const vscene = h3.vptScene('cube', 8, r === 'eam' ? color : [0, 0, 0], 1, sigma, [0.5, 0.5, 0.5]);
+          const vol = new vt3.VptVolume({
+            renderer: r === 'eam' ? new eam.EamRenderer() : new mcrt.McrtRenderer(),
+            scene: vscene,
+            iterationsPerFrame: r === 'eam' ? 16 : 64,
+          });
+          s.scene.add(vol);
+          // A plane through the cube's centre, facing the camera.
+          const plane = new THREE.Mesh(
+            new THREE.PlaneGeometry(3, 3),
+            new THREE.MeshBasicMaterial({ color: h3.linear(m) }),
+          );
+          s.scene.add(plane);
+          s.renderer.setClearColor(h3.linear([0, 0, 0]), 1);
+          await s.compositor.prepare(s.scene);
+          h3.frames(s, r === 'eam' ? 1 : 4);
+          res[r] = Array.from(h3.readTarget(s));
+          vol.dispose();
+          s.renderer.dispose();
+        }
+        return res;
+      },
+      N,
+      m,
+      color,
+      sigma,
+    );
+    // CPU expectation along each pixel-centre ray from (0, 0, 2): the ray crosses the front face
+    // z = 0.5 and ends on the plane z = 0 inside the box, a path of 0.5 / |d_z| through the medium.
+    const t = Math.tan((20 * Math.PI) / 180);
+    const expectEam: number[] = [];
+    const gotEam: number[] = [];
+    let sumMcrt = 0;
+    let sumWant = 0;
+    let sumVar = 0;
+    for (let y = 0; y < N; y++) {
+      for (let x = 0; x < N; x++) {
+        const sx = ((2 * (x + 0.5)) / N - 1) * t;
+        const sy = (1 - (2 * (y + 0.5)) / N) * t;
+        // Inside the box at both ends (front face at distance 1.5, plane at 2).
+        if (Math.abs(sx * 2) > 0.48 || Math.abs(sy * 2) > 0.48) continue;
+        const len = 0.5 * Math.hypot(sx, sy, 1);
+        const T = Math.exp(-sigma * len);
+        const i = 4 * (y * N + x);
+        for (let c = 0; c < 3; c++) {
+          expectEam.push(color[c] * (1 - T) + T * m[c]);
+          gotEam.push(out.eam[i + c]);
+        }
+        sumMcrt += out.mcrt[i + 2];
+        sumWant += T * m[2];
+        sumVar += (T * (1 - T) * m[2] * m[2]) / 256;
+      }
+    }
+    savePng('inside-eam', out.eam);
+    savePng('inside-mcrt', out.mcrt);
+    expect(gotEam.length).toBeGreaterThan(300);
+    // Jittered rays within a pixel differ slightly from its centre ray: 2e-3.
+    gotEam.forEach((g, i) => expect(Math.abs(g - expectEam[i])).toBeLessThan(2e-3));
+    // MCRT: the mean over the pixels, 256 paths each, within 4 standard deviations.
+    expect(Math.abs(sumMcrt - sumWant)).toBeLessThan(4 * Math.sqrt(sumVar));
+  });
+
+  it('moving the object or the camera restarts accumulation', async () => {
+    const counts = await three().run(async (h3, n) => {
+      const { eam, vt3 } = (window as any).ref;
+      const s = h3.setup(n);
+      const vol = new vt3.VptVolume({
+        renderer: new eam.EamRenderer(),
+        scene: h3.vptScene('blob', 16, [1, 1, 1], 1, 8, [0, 0, 0]),
+        iterationsPerFrame: 2,
+      });
+      s.scene.add(vol);
+      await s.compositor.prepare(s.scene);
+      const c: number[] = [];
+      const frame = () => {
+        h3.frames(s, 1);
+        c.push(vol.sampleCount);
+      };
+      frame();
+      frame();
+      frame(); // 2, 4, 6
+      vol.position.x = 0.1;
+      frame(); // 2
+      frame(); // 4
+      s.camera.position.set(0.2, 0, 2);
+      s.camera.lookAt(0, 0, 0);
+      s.camera.updateMatrixWorld();
+      frame(); // 2
+      vol.rotation.y = 0.3;
+      frame(); // 2
+      vol.scale.set(1, 1.5, 1);
+      frame(); // 2
+      frame(); // 4
+      vol.dispose();
+      s.renderer.dispose();
+      return c;
+    }, N);
+    expect(counts).toEqual([2, 4, 6, 2, 4, 2, 2, 2, 4]);
+  });
+
+  it('leaves three.js’s state intact: a three-only frame after vpt drew equals one before', async () => {
+    const out = await three().run(async (h3, n) => {
+      const { THREE, eam, vt3 } = (window as any).ref;
+      const s = h3.setup(n);
+      // A three-only scene that exercises textures, lighting, blending and depth.
+      const plain = new THREE.Scene();
+      plain.background = h3.linear([0.1, 0.2, 0.3]);
+      const tex = new THREE.DataTexture(
+        new Uint8Array([255, 0, 0, 255, 0, 255, 0, 255, 0, 0, 255, 255, 255, 255, 255, 255]),
+        2,
+        2,
+      );
+      tex.needsUpdate = true;
+      plain.add(new THREE.Mesh(new THREE.BoxGeometry(0.8, 0.8, 0.8), new THREE.MeshStandardMaterial({ map: tex })));
+      plain.add(new THREE.DirectionalLight(0xffffff, 2));
+      const glass = new THREE.Mesh(
+        new THREE.SphereGeometry(0.3),
+        new THREE.MeshBasicMaterial({ color: 0x00ffff, transparent: true, opacity: 0.5 }),
+      );
+      glass.position.set(0.2, 0.2, 0.6);
+      plain.add(glass);
+      const rt = new THREE.WebGLRenderTarget(n, n, { type: THREE.FloatType });
+      const read = () => {
+        s.renderer.setRenderTarget(rt);
+        s.renderer.render(plain, s.camera);
+        s.renderer.setRenderTarget(null);
+        const px = new Float32Array(n * n * 4);
+        s.renderer.readRenderTargetPixels(rt, 0, 0, n, n, px);
+        return Array.from(px);
+      };
+      const before = read();
+      // The volume scene: vpt draws on the same context (volume, mesh, transparent mesh).
+      const vol = new vt3.VptVolume({
+        renderer: new eam.EamRenderer(),
+        scene: h3.vptScene('blob', 16, [1, 1, 1], 1, 8, [0, 0, 0]),
+        iterationsPerFrame: 2,
+      });
+      s.scene.add(vol);
+      s.scene.add(glass.clone());
+      await s.compositor.prepare(s.scene);
+      h3.frames(s, 3);
+      const after = read();
+      const volumeImage = Array.from(h3.readTarget(s));
+      vol.dispose();
+      s.renderer.dispose();
+      return { before, after, volumeImage };
+    }, N);
+    savePng('state-plain', out.before);
+    savePng('state-volume', out.volumeImage);
+    expect(out.after).toEqual(out.before);
+  });
 });
