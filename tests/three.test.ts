@@ -318,4 +318,134 @@ describe('@vpt/three: VptVolume in a three.js scene', () => {
     savePng('state-volume', out.volumeImage);
     expect(out.after).toEqual(out.before);
   });
+
+  // The cost per frame over plain vpt (docs/benchmarks.md, "three.js"): interleaved rounds of
+  // 20 frames, one iteration each, synchronised by a 1-pixel read. Off by default (minutes on
+  // SwiftShader): VPT_THREE_BENCH=64 (the size) runs it and prints the figures.
+  it.skipIf(!process.env.VPT_THREE_BENCH)('frame cost: plain vpt, @vpt/three, vpt on its own context', async () => {
+    const size = Number(process.env.VPT_THREE_BENCH);
+    const res = await three().run(async (h3, size) => {
+      const { THREE, core, eam, vt3 } = (window as any).ref;
+      const vscene = {
+        volume: core.createProceduralVolume('blob', 64),
+        transferFunction: core.rampTransferFunction([1, 0.8, 0.6]),
+        lights: [],
+        environment: { type: 'constant', radiance: [0.1, 0.1, 0.1] },
+        densityScale: 20,
+        seed: 1,
+      };
+      const cam = { position: [0, 0, 2], target: [0, 0, 0], up: [0, 1, 0], fovy: (40 * Math.PI) / 180 };
+      const px = new Uint8Array(4);
+      const sync = (gl: WebGL2RenderingContext) => gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, px);
+      // A: plain vpt on its own canvas (iterate + HDR image).
+      const ca = document.createElement('canvas');
+      const A = await core.RenderContext.create({
+        backend: 'webgl2',
+        canvas: ca,
+        width: size,
+        height: size,
+        renderer: new eam.EamRenderer(),
+      });
+      A.setScene({ ...vscene, camera: cam });
+      const ga = ca.getContext('webgl2')!;
+      // B: the same volume in a three.js scene with a lit cylinder, on three's context.
+      const s = h3.setup(size);
+      s.compositor.dispose();
+      s.compositor = new vt3.VptCompositor(s.renderer);
+      const mesh = new THREE.Mesh(new THREE.CylinderGeometry(0.05, 0.05, 1.4), new THREE.MeshStandardMaterial());
+      mesh.rotation.z = 1;
+      s.scene.add(mesh, new THREE.DirectionalLight(0xffffff, 2));
+      const vol = new vt3.VptVolume({ renderer: new eam.EamRenderer(), scene: vscene, maxSamples: 1e9 });
+      s.scene.add(vol);
+      await s.compositor.prepare(s.scene);
+      const gb = s.renderer.getContext();
+      // C: vpt on its own context, its HDR image read back and uploaded into three (no depth).
+      const cc = document.createElement('canvas');
+      const C = await core.RenderContext.create({
+        backend: 'webgl2',
+        canvas: cc,
+        width: size,
+        height: size,
+        renderer: new eam.EamRenderer(),
+      });
+      C.setScene({ ...vscene, camera: cam });
+      const tex = new THREE.DataTexture(
+        new Float32Array(size * size * 4),
+        size,
+        size,
+        THREE.RGBAFormat,
+        THREE.FloatType,
+      );
+      const quad = new THREE.Mesh(
+        new THREE.PlaneGeometry(2, 2),
+        new THREE.ShaderMaterial({
+          uniforms: { t: { value: tex } },
+          transparent: true,
+          depthTest: false,
+          depthWrite: false,
+          blending: THREE.CustomBlending,
+          blendSrc: THREE.OneFactor,
+          blendDst: THREE.OneMinusSrcAlphaFactor,
+          vertexShader:
+            'varying vec2 vUv; void main() { vUv = vec2(uv.x, 1.0 - uv.y); gl_Position = vec4(position.xy, 0.0, 1.0); }',
+          fragmentShader: 'uniform sampler2D t; varying vec2 vUv; void main() { gl_FragColor = texture2D(t, vUv); }',
+        }),
+      );
+      quad.frustumCulled = false;
+      const qcam = new THREE.OrthographicCamera(-1, 1, 1, -1, 0, 1);
+      const frames: Record<string, () => Promise<void> | void> = {
+        vpt: () => {
+          A.iterate(1);
+          A.renderImage();
+          sync(ga);
+        },
+        three: () => {
+          s.compositor.render(s.scene, s.camera);
+          sync(gb);
+        },
+        threeAlone: () => {
+          vol.visible = false;
+          s.compositor.render(s.scene, s.camera);
+          vol.visible = true;
+          sync(gb);
+        },
+        ownContext: async () => {
+          C.iterate(1);
+          C.renderImage();
+          tex.image.data.set(await C.readHDR());
+          tex.needsUpdate = true;
+          vol.visible = false;
+          s.renderer.render(s.scene, s.camera);
+          s.renderer.autoClear = false;
+          s.renderer.render(quad, qcam);
+          s.renderer.autoClear = true;
+          vol.visible = true;
+          sync(gb);
+        },
+      };
+      const time = async (f: () => Promise<void> | void, n: number) => {
+        const t0 = performance.now();
+        for (let i = 0; i < n; i++) await f();
+        return (performance.now() - t0) / n;
+      };
+      const out: Record<string, number[]> = {};
+      for (const [k, f] of Object.entries(frames)) {
+        await time(f, 5);
+        out[k] = [];
+      }
+      for (let r = 0; r < 7; r++) for (const [k, f] of Object.entries(frames)) out[k].push(await time(f, 20));
+      A.dispose();
+      C.dispose();
+      vol.dispose();
+      s.renderer.dispose();
+      return out;
+    }, size);
+    const med = (a: number[]) => [...a].sort((x, y) => x - y)[a.length >> 1];
+    const ratio = (x: number[]) => med(x.map((v, i) => v / res.vpt[i]));
+    console.log(
+      `${size}²: plain vpt ${med(res.vpt).toFixed(1)} ms/frame; @vpt/three ${med(res.three).toFixed(1)} ms (× ${ratio(res.three).toFixed(2)}); ` +
+        `three alone ${med(res.threeAlone).toFixed(1)} ms; own context + read-back ${med(res.ownContext).toFixed(1)} ms (× ${ratio(res.ownContext).toFixed(2)})`,
+    );
+    expect(res.three.every(Number.isFinite)).toBe(true);
+  });
 });
