@@ -119,14 +119,20 @@ describe('@vpt/three: VptVolume in a three.js scene', () => {
     });
   });
 
-  it('an opaque mesh in front of the whole volume shows only the mesh (EAM and MCRT)', async () => {
+  it('an opaque mesh in front of the whole volume shows only the mesh (every renderer)', async () => {
     const out = await three().run(async (h3, n) => {
-      const { THREE, eam, mcrt, vt3 } = (window as any).ref;
+      const { THREE, eam, mcrt, mip, iso, vt3 } = (window as any).ref;
+      const make: Record<string, () => unknown> = {
+        eam: () => new eam.EamRenderer(),
+        mcrt: () => new mcrt.McrtRenderer(),
+        mip: () => new mip.MipRenderer(),
+        iso: () => new iso.IsoRenderer(),
+      };
       const res: Record<string, number[]> = {};
-      for (const r of ['eam', 'mcrt']) {
+      for (const r of Object.keys(make)) {
         const s = h3.setup(n);
         const vol = new vt3.VptVolume({
-          renderer: r === 'eam' ? new eam.EamRenderer() : new mcrt.McrtRenderer(),
+          renderer: make[r](),
           scene: h3.vptScene('cube', 8, [1, 1, 1], 1, 20, [1, 1, 1]),
           iterationsPerFrame: 4,
         });
@@ -145,7 +151,7 @@ describe('@vpt/three: VptVolume in a three.js scene', () => {
       }
       return res;
     }, N);
-    for (const r of ['eam', 'mcrt']) {
+    for (const r of ['eam', 'mcrt', 'mip', 'iso']) {
       savePng(`front-${r}`, out[r]);
       // The mesh's colour exactly, on every pixel.
       for (let i = 0; i < N * N; i++) {
