@@ -114,6 +114,7 @@ describe('IsoRenderer parameters', () => {
         VPT_TF_2D: false,
         VPT_GRADIENT: false,
         VPT_GUIDES: false,
+        VPT_DEPTH_LIMIT: false,
       });
       expect(constantVariant).not.toMatch(/envMap|envMarginal|envConditional/);
       expect(constantVariant).toMatch(/u\.background/);

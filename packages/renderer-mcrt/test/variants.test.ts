@@ -66,10 +66,11 @@ describe('MCRT feature variants', () => {
     expect(darkMap.ENV_MAP).toBe(false);
   });
 
-  // The context's own flag (VPT_GUIDES, deferred by generateKernel) resolved as RenderContext does without a denoiser.
+  // The context's own flags (VPT_GUIDES, VPT_DEPTH_LIMIT, deferred by generateKernel) resolved as
+  // RenderContext does without a denoiser or a depth limit.
   const both = (f: McrtFeatures) => {
     const k = generateKernel(f);
-    return [k.glsl, k.wgsl].map((src) => preprocess(src, { VPT_GUIDES: false }));
+    return [k.glsl, k.wgsl].map((src) => preprocess(src, { VPT_GUIDES: false, VPT_DEPTH_LIMIT: false }));
   };
 
   it('compiles only the code a variant needs, in both languages', () => {
