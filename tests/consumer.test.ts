@@ -27,6 +27,7 @@ const PACKAGES = [
   'post',
   ...new Set(RENDERER_CATALOG.map((e) => e.packageName.replace(/^@vpt\//, ''))),
   'loaders',
+  'three',
   'viewer',
   'headless',
   'cli-options',
@@ -102,6 +103,33 @@ beforeAll(async () => {
     `<!doctype html><meta charset="utf-8">${NO_FAVICON}<body><canvas></canvas><script type="module" src="dist/code.js"></script></body>`,
   );
 
+  // "Use it in a three.js scene": the snippet in a bundled app, with the volume and TF it
+  // takes from the next section made here; the canvas is read in the frame that drew it.
+  const threeCode = readmeSnippet('Use it in a three.js scene', 'ts');
+  fs.writeFileSync(
+    path.join(app, 'three.js'),
+    [
+      "import { createProceduralVolume, rampTransferFunction } from '@vpt/core';",
+      "const canvas = document.querySelector('canvas');",
+      'const volume = createProceduralVolume("blob", 32);',
+      'const transferFunction = rampTransferFunction([1, 0.8, 0.6]);',
+      threeCode,
+      'let frames = 0;',
+      'renderer.setAnimationLoop(() => {',
+      '  compositor.render(scene, camera);',
+      '  if (++frames !== 8) return;',
+      '  const gl = renderer.getContext();',
+      '  const px = new Uint8Array(64 * 64 * 4);',
+      '  gl.readPixels(0, 0, 64, 64, gl.RGBA, gl.UNSIGNED_BYTE, px);',
+      '  window.__three = { ldr: Array.from(px), samples: head.sampleCount };',
+      '});',
+    ].join('\n'),
+  );
+  fs.writeFileSync(
+    path.join(app, 'three.html'),
+    `<!doctype html><meta charset="utf-8">${NO_FAVICON}<body><canvas width="64" height="64"></canvas><script type="module" src="dist/three.js"></script></body>`,
+  );
+
   // The element in a bundled app, with only src set; the app uses three and lit itself too.
   fs.writeFileSync(
     path.join(app, 'element.js'),
@@ -119,7 +147,11 @@ beforeAll(async () => {
   );
 
   const bundle = await rollup({
-    input: { code: path.join(app, 'code.js'), element: path.join(app, 'element.js') },
+    input: {
+      code: path.join(app, 'code.js'),
+      element: path.join(app, 'element.js'),
+      three: path.join(app, 'three.js'),
+    },
     plugins: [nodeResolve({ browser: true, rootDir: app }), commonjs()],
     onwarn: (w, warn) => {
       if (w.code !== 'CIRCULAR_DEPENDENCY' && w.code !== 'THIS_IS_UNDEFINED') warn(w);
@@ -222,7 +254,9 @@ describe('the packed packages in a fresh npm app', () => {
         for (const e of fs.readdirSync(dir, { withFileTypes: true })) {
           if (!e.isDirectory()) continue;
           const full = path.join(dir, e.name);
-          if (e.name === name && fs.existsSync(path.join(full, 'package.json'))) found.push(full);
+          // The npm package itself, not a scoped one of the same name (@vpt/three).
+          if (e.name === name && !dir.endsWith('@vpt') && fs.existsSync(path.join(full, 'package.json')))
+            found.push(full);
           if (e.name === 'node_modules' || e.name.startsWith('@') || dir.endsWith('node_modules')) walk(full);
         }
       };
@@ -277,6 +311,21 @@ describe('the packed packages in a fresh npm app', () => {
     expect(value.every(Number.isFinite)).toBe(true);
     keep('readme-code.png', value, 64, 64, 1);
     const c = contrast(value, 64, 64, 1);
+    expect(c.coverage).toBeGreaterThan(0.04);
+    expect(c.difference).toBeGreaterThan(0.2);
+  });
+
+  it('"Use it in a three.js scene" as written, bundled, shows the volume and the mesh, without console errors', async () => {
+    const { value, errors } = await open<{ ldr: number[]; samples: number }>(
+      'three.html',
+      'window.__three !== undefined',
+      'window.__three',
+    );
+    keep('readme-three.png', value.ldr, 64, 64);
+    expect(errors).toEqual([]);
+    // The first frames make the vpt context (asynchronously); the later ones add a sample each.
+    expect(value.samples).toBeGreaterThan(0);
+    const c = contrast(value.ldr, 64, 64, 255);
     expect(c.coverage).toBeGreaterThan(0.04);
     expect(c.difference).toBeGreaterThan(0.2);
   });

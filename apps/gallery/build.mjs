@@ -1,5 +1,6 @@
 // Build the gallery, a static site, into dist/:
-//   dist/index.html, compare.html      the pages (src/*.html)
+//   dist/index.html, compare.html,     the pages (src/*.html)
+//   three.html
 //   dist/assets/                       their scripts and styles (src/*.js, *.css) and
 //                                      the one-file <vpt-viewer> bundle with its lazy chunks
 //   dist/data/                         the bundled volumes (copied) and data/fetched/
@@ -53,6 +54,19 @@ if (fs.existsSync(chunks)) fs.cpSync(chunks, path.join(dist, 'assets', 'bundle-c
 if (fs.existsSync(path.join(viewerDist, 'loader-worker.js'))) {
   fs.copyFileSync(path.join(viewerDist, 'loader-worker.js'), path.join(dist, 'assets', 'loader-worker.js'));
   fs.cpSync(path.join(viewerDist, 'chunks'), path.join(dist, 'assets', 'chunks'), { recursive: true });
+}
+
+// The three.js page's script (three/three-scene.js), bundled with three.js, @vpt/three and
+// the two renderers it offers (the packages' dist/, built by `pnpm run build`).
+{
+  const { rollup } = await import('rollup');
+  const { nodeResolve } = await import('@rollup/plugin-node-resolve');
+  const bundle = await rollup({
+    input: path.join(here, 'three', 'three-scene.js'),
+    plugins: [nodeResolve({ browser: true })],
+  });
+  await bundle.write({ file: path.join(dist, 'assets', 'three-scene.js'), format: 'es' });
+  await bundle.close();
 }
 
 // ——— data ———

@@ -45,7 +45,7 @@ export { BaseRenderer } from './base-renderer.js';
 export { RUNNING_MEAN_INTEGRATE, HALF_MEANS_INTEGRATE, COPY_ACCUMULATION_RENDER } from './shaders/accumulation.js';
 export type { PostStep } from './post-step.js';
 export { DEFAULT_GPU_BYTES, type RenderContextOptions } from './context/context-options.js';
-export { RenderContext, type RenderStats, type GpuBytes } from './context/render-context.js';
+export { RenderContext, type RenderStats, type GpuBytes, type DepthLimit } from './context/render-context.js';
 export type { RenderWarning, BrickLoadWarning, VolumeDownsampledWarning } from './context/volume-fit.js';
 
 export { SCENE_UNIFORM_FIELDS, sceneUniformValues } from './shaders/scene-uniforms.js';
@@ -53,12 +53,14 @@ export { SCENE_UNIFORM_FIELDS, sceneUniformValues } from './shaders/scene-unifor
 // the public names carry the language as a prefix.
 export {
   RNG as GLSL_RNG,
+  DEPTH_LIMIT as GLSL_DEPTH_LIMIT,
   RAY as GLSL_RAY,
   GRADIENT as GLSL_GRADIENT,
   TRANSFER_2D as GLSL_TRANSFER_2D,
 } from './shaders/common.glsl.js';
 export {
   RNG as WGSL_RNG,
+  DEPTH_LIMIT as WGSL_DEPTH_LIMIT,
   RAY as WGSL_RAY,
   GRADIENT as WGSL_GRADIENT,
   TRANSFER_2D as WGSL_TRANSFER_2D,

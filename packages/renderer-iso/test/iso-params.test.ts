@@ -115,6 +115,7 @@ describe('IsoRenderer parameters', () => {
         VPT_GRADIENT: false,
         VPT_GUIDES: false,
         VPT_CLIP: false,
+        VPT_DEPTH_LIMIT: false,
       });
       expect(constantVariant).not.toMatch(/envMap|envMarginal|envConditional/);
       expect(constantVariant).toMatch(/u\.background/);

@@ -66,11 +66,13 @@ describe('MCRT feature variants', () => {
     expect(darkMap.ENV_MAP).toBe(false);
   });
 
-  // The context's own flags (VPT_GUIDES, VPT_CLIP, deferred by generateKernel) resolved as RenderContext does
-  // without a denoiser and for an unclipped scene.
+  // The context's own flags (VPT_GUIDES, VPT_CLIP, VPT_DEPTH_LIMIT, deferred by generateKernel)
+  // resolved as RenderContext does without a denoiser, for an unclipped scene, without a depth limit.
   const both = (f: McrtFeatures) => {
     const k = generateKernel(f);
-    return [k.glsl, k.wgsl].map((src) => preprocess(src, { VPT_GUIDES: false, VPT_CLIP: false }));
+    return [k.glsl, k.wgsl].map((src) =>
+      preprocess(src, { VPT_GUIDES: false, VPT_CLIP: false, VPT_DEPTH_LIMIT: false }),
+    );
   };
 
   it('compiles only the code a variant needs, in both languages', () => {
@@ -92,6 +94,7 @@ describe('MCRT feature variants', () => {
       const clipped = preprocess(generateKernel({ ...base, LIGHT_COUNT: 1 })[lang], {
         VPT_GUIDES: false,
         VPT_CLIP: true,
+        VPT_DEPTH_LIMIT: false,
       });
       expect(clipped).toContain('keptInterval(');
       expect(clipped).not.toContain('intersectBox(');

@@ -12,7 +12,14 @@ import { checkNumber, checkOneOf, fail } from '../validation/checks.js';
 export interface RenderContextOptions {
   backend?: BackendPreference;
   canvas?: HTMLCanvasElement | OffscreenCanvas;
-  /** Render resolution in pixels (the canvas drawing buffer is resized to it). */
+  /**
+   * Draw on an existing WebGL 2 context (shared with another renderer, such as three.js's
+   * WebGLRenderer) instead of one of vpt's own: the WebGL 2 backend is used, the canvas is
+   * never resized, and the owner must reset its GL state cache after vpt drew
+   * (BackendOptions.gl). Default: vpt acquires its own context from `canvas`.
+   */
+  gl?: WebGL2RenderingContext;
+  /** Render resolution in pixels (the canvas drawing buffer is resized to it, except on a shared context). */
   width: number;
   height: number;
   renderer: Renderer;

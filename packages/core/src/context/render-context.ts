@@ -12,7 +12,7 @@ import { preprocess } from '../shaders/preprocess.js';
 import { validateGradientAtlasForDevice, validateSceneForDevice } from '../validation/device.js';
 import { SCENE_UNIFORM_FIELDS, sceneUniformValues } from '../shaders/scene-uniforms.js';
 import { CLIP_UNIFORM_FIELDS, clipUniformValues, hasClip } from '../scene/clip.js';
-import { UniformLayout } from '../uniforms/layout.js';
+import { UniformLayout, type UniformField } from '../uniforms/layout.js';
 import { GUIDES } from '../shaders/guides.js';
 import { GUIDE_FRAME_FORMATS, GuideBuffers } from './guide-buffers.js';
 import { PostChain } from './post-chain.js';
@@ -59,6 +59,21 @@ type RendererPasses = { generate: GpuPass; integrate: GpuPass; render: GpuPass }
  * chain, and runs the progressive loop: generate → integrate per iteration, then
  * render → post → present. Resets accumulation whenever the image would change.
  */
+/** An opaque surface's depth that ends camera rays (RenderContext.setDepthLimit). */
+export interface DepthLimit {
+  /** A depth texture of the render size on the shared WebGL 2 context. */
+  texture: WebGLTexture;
+  /** Forward distance = a / (2d − 1 + b) for window depth d (three.js: a = P[14] / k, b = P[10]). */
+  a: number;
+  b: number;
+}
+
+/** The uniforms of the depth limit, appended to the layout only while one is set. */
+const DEPTH_LIMIT_FIELDS: readonly UniformField[] = [
+  { name: 'depthA', type: 'f32' },
+  { name: 'depthB', type: 'f32' },
+];
+
 export class RenderContext {
   readonly backend: GpuBackend;
   private _renderer: Renderer;
@@ -99,6 +114,7 @@ export class RenderContext {
   private disposed = false;
   private readonly loop: ProgressiveLoop;
   private readonly listeners = new Set<(stats: RenderStats) => void>();
+  private depthLimit: { handle: WebGLTexture; texture: GpuTexture; a: number; b: number } | null = null;
 
   private constructor(backend: GpuBackend, opts: RenderContextOptions) {
     this.backend = backend;
@@ -141,7 +157,11 @@ export class RenderContext {
   }
 
   static async create(opts: RenderContextOptions): Promise<RenderContext> {
-    const backend = await createBackend({ backend: opts.backend ?? 'auto', canvas: opts.canvas });
+    const backend = await createBackend({
+      backend: opts.backend ?? 'auto',
+      canvas: opts.canvas,
+      ...(opts.gl ? { gl: opts.gl } : {}),
+    });
     try {
       return new RenderContext(backend, opts);
     } catch (e) {
@@ -312,6 +332,61 @@ export class RenderContext {
     this.reset();
   }
 
+  /**
+   * End camera rays at an opaque surface drawn by someone else on a shared WebGL 2 context
+   * (RenderContextOptions.gl), or stop doing so (null). `texture` is a depth texture of the
+   * render size holding, per pixel, window depth d ∈ [0, 1] of a perspective projection; the
+   * distance along the camera's forward axis in vpt's world units is a / (2d − 1 + b) (for
+   * three.js's projection matrix P and a world scale k: a = P[14] / k, b = P[10]). A camera
+   * ray then ends at that surface: ray marches (EAM) stop there, and MCRT treats it as an
+   * opaque boundary for camera rays; in both, the image no longer includes the background:
+   * rgb is the volume's radiance and a = 1 − transmittance (in expectation for MCRT), to be
+   * composited over the surface's colour as rgb + (1 − a) · surface. Restarts accumulation.
+   */
+  setDepthLimit(limit: DepthLimit | null): void {
+    this.assertAlive();
+    if (limit === null) {
+      if (this.depthLimit) this.reset();
+      this.depthLimit = null;
+      return;
+    }
+    if (!this.backend.importTexture)
+      throw new VptError('no-backend', 'setDepthLimit needs the WebGL 2 backend on a shared context');
+    for (const [name, v] of [
+      ['a', limit.a],
+      ['b', limit.b],
+    ] as const)
+      if (!Number.isFinite(v)) throw new VptError('invalid-scene', `DepthLimit: ${name} must be finite, got ${v}`);
+    const prev = this.depthLimit;
+    const same =
+      prev !== null &&
+      prev.handle === limit.texture &&
+      prev.a === limit.a &&
+      prev.b === limit.b &&
+      prev.texture.width === this.width &&
+      prev.texture.height === this.height;
+    if (same) return;
+    this.depthLimit = {
+      handle: limit.texture,
+      texture: this.backend.importTexture(limit.texture, this.width, this.height, 'depth limit'),
+      a: limit.a,
+      b: limit.b,
+    };
+    this.reset();
+  }
+
+  /**
+   * The HDR image (rgba32float, linear radiance, a = coverage), rendered from the current
+   * accumulation; on WebGL 2 as a GL texture of this context (null before any iteration),
+   * for compositing on a shared context. Valid until the next iteration or resize.
+   */
+  hdrGlTexture(): WebGLTexture | null {
+    this.assertAlive();
+    if (!this.scene || this.backend.isLost || this.iteration === 0 || !this.backend.textureHandle) return null;
+    this.renderImage();
+    return this.hdr ? this.backend.textureHandle(this.hdr.textures[0]) : null;
+  }
+
   /** Drop accumulated samples: the next iteration starts a new estimate. */
   reset(): void {
     this.iteration = 0;
@@ -342,6 +417,7 @@ export class RenderContext {
       textures.gradientMax = this.resources.gradient.max.textures[0];
     }
     for (const [name, aux] of this.resources.auxTextures) if (aux.bind) textures[name] = aux.texture;
+    if (this.depthLimit) textures.meshDepth = this.depthLimit.texture;
     for (let k = 0; k < n; k++) {
       const uniforms = this.uniforms(scene);
       this.backend.draw(passes.generate, { uniforms, textures, target: this.frame! });
@@ -598,6 +674,7 @@ export class RenderContext {
       ...(bricked ? { volumeDims: [...bricked.geometry.levels[0].dims, bricked.geometry.brickSize] } : {}),
       ...this._renderer.paramValues(scene),
       ...(hasClip(scene.clip) ? clipUniformValues(scene.clip, scene.volume) : {}),
+      ...(this.depthLimit ? { depthA: this.depthLimit.a, depthB: this.depthLimit.b } : {}),
     });
   }
 
@@ -630,6 +707,7 @@ export class RenderContext {
       VPT_GRADIENT: chunks.gradient,
       VPT_GUIDES: writeGuides,
       VPT_CLIP: chunks.clip,
+      VPT_DEPTH_LIMIT: this.depthLimit !== null,
     };
     // VPT_CLIP cuts the kernels' #if lines but becomes a backend define only when set, so an
     // unclipped variant's program is today's byte for byte.
@@ -654,11 +732,13 @@ export class RenderContext {
       : [];
     const key = `${r.name}|${JSON.stringify(features)}|${auxBindings.map((b) => b.name).join(',')}|${chunks.hardwareFilter ? 'filtered' : 'exact'}${chunks.bricked ? '|bricked' : ''}`;
     if (!this.passes || key !== this.variantKey) {
-      // The clip uniforms come last, and only in a clipped variant: an unclipped layout is unchanged.
+      // The clip uniforms, then the depth limit's, come last and only in variants that use them:
+      // a layout without either is unchanged.
       this.layout = new UniformLayout('Params', [
         ...SCENE_UNIFORM_FIELDS,
         ...r.paramFields,
         ...(chunks.clip ? CLIP_UNIFORM_FIELDS : []),
+        ...(this.depthLimit ? DEPTH_LIMIT_FIELDS : []),
       ]);
       // The volume/TF chunks read the `volume` and `transferFunction` (and gradient) textures,
       // which only the generate pass binds; integrate and render get the texture-free chunks.
@@ -699,6 +779,7 @@ export class RenderContext {
               : []),
             ...gradientBindings,
             ...auxBindings,
+            ...(this.depthLimit ? [{ name: 'meshDepth', dimension: '2d' as const }] : []),
           ],
           frameFormats,
         ),

@@ -268,6 +268,15 @@ export interface GpuBackend {
 
   /** Free every GPU resource this backend made. */
   dispose(): void;
+
+  /**
+   * WebGL 2 only (absent on WebGPU): a 2D texture made by someone else on the same context
+   * (a shared one, BackendOptions.gl), bound like this backend's own, never written or
+   * deleted by it. Read with texelFetch as a float sampler (a depth texture reads its depth).
+   */
+  importTexture?(handle: WebGLTexture, width: number, height: number, label: string): GpuTexture;
+  /** WebGL 2 only: the GL texture behind one of this backend's textures. */
+  textureHandle?(texture: GpuTexture): WebGLTexture | null;
 }
 
 export interface BackendOptions {
@@ -276,4 +285,11 @@ export interface BackendOptions {
   canvas?: HTMLCanvasElement | OffscreenCanvas;
   /** WebGPU only: ask the adapter for 'timestamp-query' when present. */
   powerPreference?: 'high-performance' | 'low-power';
+  /**
+   * WebGL 2 only: draw on this existing context (one shared with another renderer, such as
+   * three.js's WebGLRenderer) instead of acquiring one from `canvas`. The backend then sets
+   * the GL state it relies on before each use, never resizes the canvas and never loses the
+   * context on dispose; the other renderer must reset its own state cache afterwards.
+   */
+  gl?: WebGL2RenderingContext;
 }

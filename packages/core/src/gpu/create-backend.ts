@@ -12,6 +12,10 @@ export async function createBackend(options: BackendOptions = {}): Promise<GpuBa
   if (pref !== 'auto' && pref !== 'webgl2' && pref !== 'webgpu') {
     throw new VptError('no-backend', `Unknown backend "${pref}" (use 'auto', 'webgl2' or 'webgpu')`);
   }
+  if (options.gl) {
+    if (pref === 'webgpu') throw new VptError('no-backend', 'A shared WebGL 2 context (gl) needs the WebGL 2 backend');
+    return createWebGL2Backend(options.gl.canvas, options.gl);
+  }
   const canvas = options.canvas ?? makeCanvas();
   if (pref === 'webgpu') return createWebGPUBackend(canvas, options);
   if (pref === 'webgl2') return createWebGL2Backend(canvas);

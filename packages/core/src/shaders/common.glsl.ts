@@ -103,6 +103,21 @@ bool isClipped(vec3 p) {
 `;
 
 /**
+ * The opaque surface behind a pixel (RenderContext.setDepthLimit, shared WebGL 2 contexts):
+ * the distance along the camera ray dir at which it reaches the surface's depth, read from
+ * \`meshDepth\` (window depth d, GL rows bottom-up) as forward distance a / (2d − 1 + b).
+ * Renderers include it under \`#if VPT_DEPTH_LIMIT\` (the uniforms depthA, depthB exist then).
+ */
+export const DEPTH_LIMIT = /* glsl */ `
+float depthLimitAlong(ivec2 pixel, vec3 dir) {
+  ivec2 size = vptTargetSize();
+  float d = texelFetch(meshDepth, ivec2(pixel.x, size.y - 1 - pixel.y), 0).r;
+  float forward = u.depthA / (2.0 * d - 1.0 + u.depthB);
+  return forward / dot(dir, u.cameraForward);
+}
+`;
+
+/**
  * The volume value at a world point: cell-centred trilinear interpolation with clamp-to-edge
  * (GL LINEAR + CLAMP_TO_EDGE) of the stored texels, then the value mapping of
  * gpu/volume-format.ts, v = clamp(texel · u.valueScale + u.valueOffset, 0, 1) (value range,

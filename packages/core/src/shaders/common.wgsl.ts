@@ -91,6 +91,16 @@ fn isClipped(p: vec3f) -> bool {
 }
 `;
 
+/** Twin of DEPTH_LIMIT in common.glsl.ts (the surface behind a pixel; see there). */
+export const DEPTH_LIMIT = /* wgsl */ `
+fn depthLimitAlong(pixel: vec2i, dir: vec3f) -> f32 {
+  let size = vptTargetSize();
+  let d = textureLoad(meshDepth, vec2i(pixel.x, size.y - 1 - pixel.y), 0).r;
+  let forward = u.depthA / (2.0 * d - 1.0 + u.depthB);
+  return forward / dot(dir, u.cameraForward);
+}
+`;
+
 /** Volume sampling: twins of common.glsl.ts (see there): value mapping, exact and hardware filters. */
 export const LERP = /* wgsl */ `
 fn lerp1(a: f32, b: f32, t: f32) -> f32 { return a + (b - a) * t; }

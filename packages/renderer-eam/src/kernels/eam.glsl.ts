@@ -1,4 +1,4 @@
-import { GLSL_CELL_WALK, MAX_MARCH_STEPS } from '@vpt/core';
+import { GLSL_CELL_WALK, GLSL_DEPTH_LIMIT, MAX_MARCH_STEPS } from '@vpt/core';
 
 // Emission-absorption (Max 1995, "Optical models for direct volume rendering", IEEE TVCG 1(2), the emission + absorption model)
 // by a stratified, randomly offset ray march; alpha = 1 - exp(-sigma_t * segment length),
@@ -6,10 +6,15 @@ import { GLSL_CELL_WALK, MAX_MARCH_STEPS } from '@vpt/core';
 // SKIP_EMPTY (empty-space skipping through the majorant grid, core's cell walk): a cell whose
 // opacity bound is 0 holds only samples with alpha = 0, which add exactly 0 colour and leave the
 // transmittance as it is, so the march jumps over its samples and the image keeps its bits.
+// VPT_DEPTH_LIMIT (an opaque surface on a shared context, RenderContext.setDepthLimit): the march
+// ends at the surface and the background is left out, so rgb + (1 − a) · surface composites it.
 
 export const generate = /* glsl */ `
 #if SKIP_EMPTY
 ${GLSL_CELL_WALK}
+#endif
+#if VPT_DEPTH_LIMIT
+${GLSL_DEPTH_LIMIT}
 #endif
 // One sample of the march at distance s; false once the transmittance fell below the cutoff.
 // guide: the denoiser's (sum of T·alpha, sum of T·alpha·s), only accumulated under VPT_GUIDES.
@@ -32,6 +37,9 @@ void main() {
   vec2 t = keptInterval(u.cameraPosition, dir);
 #else
   vec2 t = intersectBox(u.cameraPosition, dir, u.boxMin, u.boxMax);
+#endif
+#if VPT_DEPTH_LIMIT
+  t.y = min(t.y, depthLimitAlong(pixel, dir));
 #endif
   vec3 color = vec3(0.0);
   float transmittance = 1.0;
@@ -61,7 +69,11 @@ void main() {
 #endif
     for (; k < n && going; k++) going = eamSample(dir, t.x + (float(k) + offset) * seg, seg, color, transmittance, guide);
   }
+#if VPT_DEPTH_LIMIT
+  vpt_out0 = vec4(color, 1.0 - transmittance);
+#else
   vpt_out0 = vec4(color + transmittance * u.background.rgb, 1.0 - transmittance);
+#endif
 #if VPT_GUIDES
   vpt_out1 = vec4(0.0);
   vpt_out2 = vec4(0.0);

@@ -1,4 +1,4 @@
-import { MAX_MARCH_STEPS, WGSL_CELL_WALK } from '@vpt/core';
+import { MAX_MARCH_STEPS, WGSL_CELL_WALK, WGSL_DEPTH_LIMIT } from '@vpt/core';
 
 // Emission-absorption (Max 1995, "Optical models for direct volume rendering", IEEE TVCG 1(2), the emission + absorption model)
 // by a stratified, randomly offset ray march; alpha = 1 - exp(-sigma_t * segment length).
@@ -7,6 +7,9 @@ import { MAX_MARCH_STEPS, WGSL_CELL_WALK } from '@vpt/core';
 export const generate = /* wgsl */ `
 #if SKIP_EMPTY
 ${WGSL_CELL_WALK}
+#endif
+#if VPT_DEPTH_LIMIT
+${WGSL_DEPTH_LIMIT}
 #endif
 fn eamSample(
   dir: vec3f, s: f32, seg: f32, color: ptr<function, vec3f>, transmittance: ptr<function, f32>, guide: ptr<function, vec2f>,
@@ -26,9 +29,12 @@ fn eamSample(
   var rng = rngInit(pixel, u.iteration, u.seed);
   let dir = jitteredCameraRay(pixel, vptTargetSize(), &rng);
 #if VPT_CLIP
-  let t = keptInterval(u.cameraPosition, dir);
+  var t = keptInterval(u.cameraPosition, dir);
 #else
-  let t = intersectBox(u.cameraPosition, dir, u.boxMin, u.boxMax);
+  var t = intersectBox(u.cameraPosition, dir, u.boxMin, u.boxMax);
+#endif
+#if VPT_DEPTH_LIMIT
+  t.y = min(t.y, depthLimitAlong(pixel, dir));
 #endif
   var color = vec3f(0.0);
   var transmittance = 1.0;
@@ -59,7 +65,11 @@ fn eamSample(
     for (; k < n && going; k++) { going = eamSample(dir, t.x + (f32(k) + offset) * seg, seg, &color, &transmittance, &guide); }
   }
   var o: VptOut;
+#if VPT_DEPTH_LIMIT
+  o.out0 = vec4f(color, 1.0 - transmittance);
+#else
   o.out0 = vec4f(color + transmittance * u.background.rgb, 1.0 - transmittance);
+#endif
 #if VPT_GUIDES
   if (guide.x > 0.0) {
     let tg = guide.y / guide.x;

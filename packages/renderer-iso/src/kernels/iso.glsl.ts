@@ -1,4 +1,4 @@
-import { GLSL_CELL_WALK, GLSL_ENVIRONMENT_MAP, GLSL_SAMPLING, MAX_MARCH_STEPS } from '@vpt/core';
+import { GLSL_CELL_WALK, GLSL_DEPTH_LIMIT, GLSL_ENVIRONMENT_MAP, GLSL_SAMPLING, MAX_MARCH_STEPS } from '@vpt/core';
 
 // Monte Carlo isosurface rendering (Lesar et al. 2018, "Real-Time Interactive Platform-
 // Agnostic Volumetric Path Tracing in WebGL 2.0", the ISO renderer): each iteration finds
@@ -238,6 +238,8 @@ export const generate =
   GLSL_SAMPLING +
   '\n#if ISO_ENV == 2\n' +
   GLSL_ENVIRONMENT_MAP +
+  '\n#endif\n#if VPT_DEPTH_LIMIT\n' +
+  GLSL_DEPTH_LIMIT +
   '\n#endif\n' +
   ISO_COMMON +
   /* glsl */ `
@@ -258,9 +260,17 @@ void main() {
 #else
   vec2 tb = intersectBox(o, dir, u.boxMin, u.boxMax);
 #endif
+#if VPT_DEPTH_LIMIT
+  tb.y = min(tb.y, depthLimitAlong(pixel, dir));
+#endif
   vec4 hit = vec4(-1.0);
   if (tb.x < tb.y) { hit = isoTrace(o, dir, tb.x, tb.y, rng); }
+#if VPT_DEPTH_LIMIT
+  // Composited over a scene (RenderContext.setDepthLimit): no environment where no surface is hit.
+  vec4 color = vec4(0.0);
+#else
   vec4 color = vec4(isoEnvironment(dir), 0.0);
+#endif
   vec4 nearest = vec4(-1.0, 0.0, 0.0, 0.0);
   if (hit.z >= 0.0) {
     vec3 nz = isoNormal(o + dir * hit.z, dir);

@@ -1,4 +1,4 @@
-import { WGSL_CELL_WALK, WGSL_ENVIRONMENT_MAP, WGSL_SAMPLING, MAX_MARCH_STEPS } from '@vpt/core';
+import { WGSL_CELL_WALK, WGSL_DEPTH_LIMIT, WGSL_ENVIRONMENT_MAP, WGSL_SAMPLING, MAX_MARCH_STEPS } from '@vpt/core';
 
 // Monte Carlo isosurface rendering (Lesar et al. 2018, the ISO renderer) with stochastic
 // transparency (Enderton et al. 2010): twin of iso.glsl.ts, same arithmetic in the same
@@ -213,6 +213,8 @@ export const generate =
   WGSL_SAMPLING +
   '\n#if ISO_ENV == 2\n' +
   WGSL_ENVIRONMENT_MAP +
+  '\n#endif\n#if VPT_DEPTH_LIMIT\n' +
+  WGSL_DEPTH_LIMIT +
   '\n#endif\n' +
   ISO_COMMON +
   /* wgsl */ `
@@ -227,13 +229,20 @@ export const generate =
 #endif
   let o = u.cameraPosition;
 #if VPT_CLIP
-  let tb = keptInterval(o, dir);
+  var tb = keptInterval(o, dir);
 #else
-  let tb = intersectBox(o, dir, u.boxMin, u.boxMax);
+  var tb = intersectBox(o, dir, u.boxMin, u.boxMax);
+#endif
+#if VPT_DEPTH_LIMIT
+  tb.y = min(tb.y, depthLimitAlong(pixel, dir));
 #endif
   var hit = vec4f(-1.0);
   if (tb.x < tb.y) { hit = isoTrace(o, dir, tb.x, tb.y, &rng); }
+#if VPT_DEPTH_LIMIT
+  var color = vec4f(0.0);
+#else
   var color = vec4f(isoEnvironment(dir), 0.0);
+#endif
   var nearest = vec4f(-1.0, 0.0, 0.0, 0.0);
   if (hit.z >= 0.0) {
     let nz = isoNormal(o + dir * hit.z, dir);

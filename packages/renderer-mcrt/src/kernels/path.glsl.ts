@@ -1,11 +1,20 @@
+import { GLSL_DEPTH_LIMIT } from '@vpt/core';
+
 // Volumetric path tracing (Kajiya 1986, "The Rendering Equation"; Pharr, Jakob, Humphreys, PBR 4th ed., ch. 14 "Light Transport II: Volume Rendering"): free
 // flights by delta tracking, Henyey–Greenstein phase sampling, next-event estimation to the
 // directional lights and the environment combined with phase sampling by multiple importance
 // sampling (Veach & Guibas 1995), Russian roulette on the path throughput. Real collisions
 // multiply the throughput by the RGB albedo (extinction is grey), so coloured albedo needs no
 // max(rgb) scattering probability. Preprocessed with the feature flags of features.ts.
+// VPT_DEPTH_LIMIT (an opaque surface on a shared context, RenderContext.setDepthLimit): the
+// surface is an opaque boundary for camera rays; a camera ray that reaches it (or leaves the box)
+// without a real collision adds nothing and keeps alpha 0, so E[a] = 1 − T and rgb + (1 − a) ·
+// surface composites the surface attenuated by the volume's transmittance, without bias.
 
 export const path = /* glsl */ `
+#if VPT_DEPTH_LIMIT
+${GLSL_DEPTH_LIMIT}
+#endif
 float maxComponent(vec3 v) { return max(max(v.x, v.y), v.z); }
 // Non-finite components become 0 (tested on the bits: compilers may assume NaN never occurs).
 float finiteOr0(float x) { return (floatBitsToUint(x) & 0x7f800000u) == 0x7f800000u ? 0.0 : x; }
@@ -102,6 +111,9 @@ void main() {
 #else
   vec2 tb = intersectBox(pos, dir, u.boxMin, u.boxMax);
 #endif
+#if VPT_DEPTH_LIMIT
+  tb.y = min(tb.y, depthLimitAlong(pixel, dir));
+#endif
 #if VPT_GUIDES
   // Denoiser guides at the first real collision (zeros where the camera ray has none).
   vec4 guide0 = vec4(0.0);
@@ -120,6 +132,9 @@ void main() {
     Collision c = Collision(false, 0.0, vec3(0.0));
     if (tb.x < tb.y) c = freeFlight(pos, dir, tb.x, tb.y, rng);
     if (!c.hit) {
+#if VPT_DEPTH_LIMIT
+      if (depth == 0) break;
+#endif
       L += beta * escapedRadiance(dir, depth, phasePdf);
       break;
     }

@@ -1,7 +1,12 @@
+import { WGSL_DEPTH_LIMIT } from '@vpt/core';
+
 // Volumetric path tracing (Kajiya 1986; PBR 4th ed., ch. 14) with NEE + MIS (Veach & Guibas
 // 1995) and throughput Russian roulette. Twin of path.glsl.ts: same arithmetic in the same order.
 
 export const path = /* wgsl */ `
+#if VPT_DEPTH_LIMIT
+${WGSL_DEPTH_LIMIT}
+#endif
 fn maxComponent(v: vec3f) -> f32 { return max(max(v.x, v.y), v.z); }
 fn finiteOr0(x: f32) -> f32 { return select(x, 0.0, (bitcast<u32>(x) & 0x7f800000u) == 0x7f800000u); }
 fn finiteOrZero(v: vec3f) -> vec3f { return vec3f(finiteOr0(v.x), finiteOr0(v.y), finiteOr0(v.z)); }
@@ -94,6 +99,9 @@ fn directLight(x: vec3f, w: vec3f, rng: ptr<function, u32>) -> vec3f {
 #else
   var tb = intersectBox(pos, dir, u.boxMin, u.boxMax);
 #endif
+#if VPT_DEPTH_LIMIT
+  tb.y = min(tb.y, depthLimitAlong(pixel, dir));
+#endif
   var o: VptOut;
 #if VPT_GUIDES
   // Denoiser guides at the first real collision (zeros where the camera ray has none).
@@ -114,6 +122,9 @@ fn directLight(x: vec3f, w: vec3f, rng: ptr<function, u32>) -> vec3f {
     var c = Collision(false, 0.0, vec3f(0.0));
     if (tb.x < tb.y) { c = freeFlight(pos, dir, tb.x, tb.y, &rng); }
     if (!c.hit) {
+#if VPT_DEPTH_LIMIT
+      if (depth == 0) { break; }
+#endif
       L += beta * escapedRadiance(dir, depth, phasePdf);
       break;
     }

@@ -1,4 +1,4 @@
-import { GLSL_CELL_WALK, MAX_MARCH_STEPS } from '@vpt/core';
+import { GLSL_CELL_WALK, GLSL_DEPTH_LIMIT, MAX_MARCH_STEPS } from '@vpt/core';
 
 // Monte Carlo maximum intensity projection (Lesar, Bohak, Marolt 2018, "Real-Time Interactive Platform-Agnostic Volumetric Path Tracing in WebGL 2.0", its MIP renderer): each
 // iteration marches the pixel-centre ray with a random sample offset; the accumulation keeps the
@@ -9,6 +9,9 @@ import { GLSL_CELL_WALK, MAX_MARCH_STEPS } from '@vpt/core';
 // ends once the maximum is 1 (the largest normalized value); the maximum keeps its bits.
 
 export const generate = /* glsl */ `
+#if VPT_DEPTH_LIMIT
+${GLSL_DEPTH_LIMIT}
+#endif
 #if SKIP_EMPTY
 ${GLSL_CELL_WALK}
 // The largest normalized value a point of the current cell can have: its texel range mapped as
@@ -27,6 +30,9 @@ void main() {
   vec2 t = keptInterval(u.cameraPosition, dir);
 #else
   vec2 t = intersectBox(u.cameraPosition, dir, u.boxMin, u.boxMax);
+#endif
+#if VPT_DEPTH_LIMIT
+  t.y = min(t.y, depthLimitAlong(pixel, dir));
 #endif
   float maxValue = 0.0;
   float coverage = 0.0;
@@ -58,6 +64,10 @@ void main() {
       maxValue = max(maxValue, sampleVolume(u.cameraPosition + dir * s));
     }
   }
+#if VPT_DEPTH_LIMIT
+  // Composited over a scene: the maximum is its own opacity, so what is behind shows where it is low.
+  coverage = maxValue;
+#endif
   vpt_out0 = vec4(maxValue, 0.0, 0.0, coverage);
 }
 `;

@@ -1,10 +1,13 @@
-import { MAX_MARCH_STEPS, WGSL_CELL_WALK } from '@vpt/core';
+import { MAX_MARCH_STEPS, WGSL_CELL_WALK, WGSL_DEPTH_LIMIT } from '@vpt/core';
 
 // Monte Carlo maximum intensity projection (Lesar, Bohak, Marolt 2018, Web3D, its MIP renderer): each
 // iteration marches the pixel-centre ray with a random sample offset; the accumulation keeps the max.
 // Twin of mip.glsl.ts (SKIP_EMPTY: cells whose largest value cannot raise the maximum are jumped over).
 
 export const generate = /* wgsl */ `
+#if VPT_DEPTH_LIMIT
+${WGSL_DEPTH_LIMIT}
+#endif
 #if SKIP_EMPTY
 ${WGSL_CELL_WALK}
 fn cellMaxValue(walk: CellWalk) -> f32 {
@@ -18,9 +21,12 @@ fn cellMaxValue(walk: CellWalk) -> f32 {
   var rng = rngInit(pixel, u.iteration, u.seed);
   let dir = centreCameraRay(pixel, vptTargetSize());
 #if VPT_CLIP
-  let t = keptInterval(u.cameraPosition, dir);
+  var t = keptInterval(u.cameraPosition, dir);
 #else
-  let t = intersectBox(u.cameraPosition, dir, u.boxMin, u.boxMax);
+  var t = intersectBox(u.cameraPosition, dir, u.boxMin, u.boxMax);
+#endif
+#if VPT_DEPTH_LIMIT
+  t.y = min(t.y, depthLimitAlong(pixel, dir));
 #endif
   var maxValue = 0.0;
   var coverage = 0.0;
@@ -53,6 +59,9 @@ fn cellMaxValue(walk: CellWalk) -> f32 {
     }
   }
   var o: VptOut;
+#if VPT_DEPTH_LIMIT
+  coverage = maxValue;
+#endif
   o.out0 = vec4f(maxValue, 0.0, 0.0, coverage);
   return o;
 }

@@ -38,8 +38,11 @@ import {
 } from '../validation.js';
 import { BackendBase, runCallbacks } from '../backend-base.js';
 
-export function createWebGL2Backend(canvas: HTMLCanvasElement | OffscreenCanvas): GpuBackend {
-  return new WebGL2Backend(canvas);
+export function createWebGL2Backend(
+  canvas: HTMLCanvasElement | OffscreenCanvas,
+  shared?: WebGL2RenderingContext,
+): GpuBackend {
+  return new WebGL2Backend(canvas, shared);
 }
 
 /** How long simulateLoss() waits for the browser to restore the context before giving up. */
@@ -67,9 +70,17 @@ class WebGL2Backend extends BackendBase implements GpuBackend {
   private loseContextExt: WEBGL_lose_context | null = null;
   private restoreWaiters: Waiter[] = [];
 
-  constructor(readonly canvas: HTMLCanvasElement | OffscreenCanvas) {
+  /** Drawing on a context someone else owns (BackendOptions.gl): state is set before each use. */
+  private readonly shared: boolean;
+  private readonly imported = new WeakSet<WebGL2Texture>();
+
+  constructor(
+    readonly canvas: HTMLCanvasElement | OffscreenCanvas,
+    sharedGl?: WebGL2RenderingContext,
+  ) {
     super({ backend: 'WebGL 2', lossTarget: 'WebGL context' });
-    const gl = acquireContext(canvas);
+    this.shared = sharedGl !== undefined;
+    const gl = sharedGl ?? acquireContext(canvas);
     if (gl.isContextLost())
       throw new VptError('context-lost', 'The WebGL 2 context was lost as soon as it was created');
     requireColorBufferFloat(gl);
@@ -102,6 +113,7 @@ class WebGL2Backend extends BackendBase implements GpuBackend {
 
   createTexture(desc: TextureDescriptor): GpuTexture {
     this.assertNotDisposed();
+    this.enterShared();
     const { label, depth } = textureLabelAndDepth(desc);
     checkTextureSize(label, desc.dimension, desc.width, desc.height, depth, this.sizeLimits());
     if (desc.data) checkTextureData(label, desc.format, desc.width * desc.height * depth, desc.data);
@@ -126,6 +138,7 @@ class WebGL2Backend extends BackendBase implements GpuBackend {
 
   writeTexture(texture: GpuTexture, data: TextureData): void {
     this.assertNotDisposed();
+    this.enterShared();
     const tex = this.own(texture, WebGL2Texture, 'texture');
     checkTextureData(tex.label, tex.format, tex.width * tex.height * tex.depth, data);
     if (this.isLost) return;
@@ -143,6 +156,7 @@ class WebGL2Backend extends BackendBase implements GpuBackend {
 
   writeTextureSlices(texture: GpuTexture, zOffset: number, data: TextureData): void {
     this.assertNotDisposed();
+    this.enterShared();
     const tex = this.own(texture, WebGL2Texture, 'texture');
     const depth = sliceCount(tex, zOffset, data.length / glFormat(tex.format).channels);
     checkTextureData(tex.label, tex.format, tex.width * tex.height * depth, data);
@@ -161,6 +175,7 @@ class WebGL2Backend extends BackendBase implements GpuBackend {
     data: TextureData,
   ): void {
     this.assertNotDisposed();
+    this.enterShared();
     const tex = this.own(texture, WebGL2Texture, 'texture');
     checkTextureRegion(tex, origin, size);
     checkTextureData(tex.label, tex.format, size[0] * size[1] * size[2], data);
@@ -175,8 +190,22 @@ class WebGL2Backend extends BackendBase implements GpuBackend {
   destroyTexture(texture: GpuTexture): void {
     if (this.disposed) return;
     const tex = this.own(texture, WebGL2Texture, 'texture');
+    if (this.imported.has(tex)) return; // its owner deletes it
     this.textures.delete(tex);
     this.deleteTexture(tex);
+  }
+
+  importTexture(handle: WebGLTexture, width: number, height: number, label: string): GpuTexture {
+    this.assertNotDisposed();
+    checkTextureSize(label, '2d', width, height, 1, this.sizeLimits());
+    // Its format is the owner's; the kernels read it as a float sampler with texelFetch.
+    const tex = new WebGL2Texture('2d', width, height, 1, 'r32float', label, handle, this.generation);
+    this.imported.add(tex);
+    return tex;
+  }
+
+  textureHandle(texture: GpuTexture): WebGLTexture | null {
+    return this.own(texture, WebGL2Texture, 'texture').handle;
   }
 
   // ——— render targets ———
@@ -188,6 +217,7 @@ class WebGL2Backend extends BackendBase implements GpuBackend {
     label = 'render target',
   ): RenderTarget {
     this.assertNotDisposed();
+    this.enterShared();
     checkTargetFormats(label, formats);
     if (formats.length > this.glLimits.maxColorAttachments) {
       throw new VptError(
@@ -234,6 +264,7 @@ class WebGL2Backend extends BackendBase implements GpuBackend {
 
   createPass(desc: PassDescriptor): GpuPass {
     this.assertNotDisposed();
+    this.enterShared();
     if (desc.textures.length > this.glLimits.maxTextureUnits) {
       throw new VptError(
         'limit-exceeded',
@@ -259,6 +290,7 @@ class WebGL2Backend extends BackendBase implements GpuBackend {
 
   draw(pass: GpuPass, call: DrawCall): void {
     this.assertNotDisposed();
+    this.enterShared();
     if (this.isLost) return; // nothing can be drawn; the owner redraws after onRestored
     const p = this.own(pass, WebGL2Pass, 'pass');
     const desc = p.descriptor;
@@ -320,6 +352,7 @@ class WebGL2Backend extends BackendBase implements GpuBackend {
 
   async readTexture(texture: GpuTexture): Promise<Float32Array | Uint8Array> {
     this.assertNotDisposed();
+    this.enterShared();
     const tex = this.own(texture, WebGL2Texture, 'texture');
     checkReadable(tex);
     if (this.isLost)
@@ -355,6 +388,7 @@ class WebGL2Backend extends BackendBase implements GpuBackend {
 
   async finish(): Promise<void> {
     this.assertNotDisposed();
+    this.enterShared();
     if (this.isLost) return;
     // gl.finish() returns at once in Chrome; a readPixels must wait for all queued work.
     const gl = this.gl;
@@ -423,6 +457,15 @@ class WebGL2Backend extends BackendBase implements GpuBackend {
     });
   }
 
+  override resizeCanvas(width: number, height: number): void {
+    // A shared canvas belongs to its owner; vpt renders into its own targets of any size.
+    if (this.shared) {
+      this.assertNotDisposed();
+      return;
+    }
+    super.resizeCanvas(width, height);
+  }
+
   private readonly handleLost = (event: Event): void => {
     // Without preventDefault the browser never restores the context.
     event.preventDefault();
@@ -484,12 +527,45 @@ class WebGL2Backend extends BackendBase implements GpuBackend {
     this.disposed = true;
     this.restoreWaiters.forEach((w) => w.reject(new VptError('disposed', 'The WebGL 2 backend was disposed')));
     this.restoreWaiters = [];
-    // Give the driver's memory back now rather than when the canvas is collected.
-    this.loseContextExt?.loseContext();
+    // Give the driver's memory back now rather than when the canvas is collected (not a
+    // shared context: its owner still draws on it).
+    if (!this.shared) this.loseContextExt?.loseContext();
     this.loseContextExt = null;
   }
 
   // ——— internals ———
+
+  /**
+   * On a shared context, the state every pass and upload relies on (initState's, and the
+   * defaults of what another renderer such as three.js changes: pixel-store flags, masks,
+   * unpack buffer), set before each use; the owner resets its state cache after vpt drew.
+   */
+  private enterShared(): void {
+    if (!this.shared || this.isLost) return;
+    const gl = this.gl;
+    gl.pixelStorei(gl.UNPACK_ALIGNMENT, 1);
+    gl.pixelStorei(gl.PACK_ALIGNMENT, 1);
+    gl.pixelStorei(gl.UNPACK_FLIP_Y_WEBGL, false);
+    gl.pixelStorei(gl.UNPACK_PREMULTIPLY_ALPHA_WEBGL, false);
+    gl.pixelStorei(gl.UNPACK_COLORSPACE_CONVERSION_WEBGL, gl.NONE);
+    gl.pixelStorei(gl.UNPACK_ROW_LENGTH, 0);
+    gl.pixelStorei(gl.UNPACK_IMAGE_HEIGHT, 0);
+    gl.pixelStorei(gl.UNPACK_SKIP_ROWS, 0);
+    gl.pixelStorei(gl.UNPACK_SKIP_PIXELS, 0);
+    gl.pixelStorei(gl.UNPACK_SKIP_IMAGES, 0);
+    gl.bindBuffer(gl.PIXEL_UNPACK_BUFFER, null);
+    gl.bindBuffer(gl.PIXEL_PACK_BUFFER, null);
+    gl.disable(gl.BLEND);
+    gl.disable(gl.DEPTH_TEST);
+    gl.disable(gl.STENCIL_TEST);
+    gl.disable(gl.SCISSOR_TEST);
+    gl.disable(gl.CULL_FACE);
+    gl.disable(gl.DITHER);
+    gl.disable(gl.SAMPLE_ALPHA_TO_COVERAGE);
+    gl.disable(gl.POLYGON_OFFSET_FILL);
+    gl.disable(gl.RASTERIZER_DISCARD);
+    gl.colorMask(true, true, true, true);
+  }
 
   /** State every pass relies on; set at creation and again after a restore. */
   private initState(): void {

@@ -1,0 +1,2 @@
+import { libraryConfig } from '../../rollup.lib.mjs';
+export default libraryConfig();
