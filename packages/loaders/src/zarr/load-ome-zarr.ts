@@ -19,6 +19,7 @@ export async function loadOmeZarr(location: string, options: ZarrLoadOptions, ct
     ...(wanted.channel !== undefined ? { channel: wanted.channel } : {}),
     ...(wanted.time !== undefined ? { time: wanted.time } : {}),
     signal: ctx.signal,
+    request: ctx.request,
     // Progress in chunks: their compressed sizes are unknown until they arrive.
     onChunks: (done, total) => ctx.progress('fetch', done, total),
   });
