@@ -94,7 +94,9 @@ async function loadZarr(
       request,
     });
   } catch (e) {
-    throw new core.VptError('load-failed', `Could not load OME-Zarr ${url}: ${(e as Error).message}`, { cause: e });
+    // A store beyond a bound (too many chunk requests, a bomb) stays limit-exceeded.
+    const code = (e as { code?: unknown }).code === 'limit-exceeded' ? 'limit-exceeded' : 'load-failed';
+    throw new core.VptError(code, `Could not load OME-Zarr ${url}: ${(e as Error).message}`, { cause: e });
   }
   const volume = core.createVolume(loaded.dims, loaded.type, loaded.data, loaded.spacing);
   const window = loaded.meta?.value_range as [number, number] | undefined;
@@ -279,10 +281,25 @@ async function renderDescription(
     const volume = streamed && { ...(desc.volume as ZarrVolumeDescription), level: streamed.level };
     // Checked on entry above; the level added to a streamed volume is the page's own.
     const scene = await sceneOf(volume ? { ...desc, volume } : desc, options.baseUrl, request);
-    if (streamed) ctx.setVolumeSource(scene.volume, streamed.source);
-    ctx.setScene(scene);
+    let bricked = false;
+    if (streamed) {
+      ctx.setVolumeSource(scene.volume, streamed.source);
+      try {
+        ctx.setScene(scene);
+        bricked = true;
+      } catch (e) {
+        if (!(e instanceof core.VptError && e.code === 'limit-exceeded')) throw e;
+        // Level 0 cannot be bricked (its page table alone is beyond the budget, a 100000³ shape
+        // say): render the finest level that fits, whole, as if it had been asked for. A copy,
+        // so the context uploads it instead of bricking it from the source.
+        warnings.push(
+          `OME-Zarr level 0 [${streamed.source.levels[0].dims.join(', ')}] cannot be streamed (${e.message}); level ${streamed.level} is rendered whole`,
+        );
+        ctx.setScene({ ...scene, volume: { ...scene.volume } });
+      }
+    } else ctx.setScene(scene);
     // Every brick the view needs (or as many as the atlas holds) before the timed iterations.
-    const bricking = streamed ? await ctx.whenBricksSettled() : null;
+    const bricking = bricked ? await ctx.whenBricksSettled() : null;
     if (options.warmup !== false) await ctx.renderIterations(1);
     const t1 = performance.now();
     const run =
