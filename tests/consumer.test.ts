@@ -15,6 +15,7 @@ import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { rollup } from 'rollup';
 import { nodeResolve } from '@rollup/plugin-node-resolve';
 import commonjs from '@rollup/plugin-commonjs';
+import ts from 'typescript';
 import type { Browser } from 'puppeteer-core';
 import { encodePNG, launchChromium, startStaticServer, type StaticServer } from '../packages/headless/src/index.js';
 import { RENDERER_CATALOG } from '@vpt/core';
@@ -92,12 +93,13 @@ beforeAll(async () => {
     `<!doctype html><meta charset="utf-8">${NO_FAVICON}<body style="margin:0">\n${pageSnippet}</body>`,
   );
 
-  // "Use it from code": the snippet in a module of a bundled app.
+  // "Use it from code": the snippet in a module of a bundled app, TypeScript as written (it
+  // type-checks: packages/core/test/readme-examples.test.ts), its types stripped here.
   const code = readmeSnippet('Use it from code', 'ts').replace('width: 512, height: 512', 'width: 64, height: 64');
-  fs.writeFileSync(
-    path.join(app, 'code.js'),
-    `const canvas = document.querySelector('canvas');\n${code}\nwindow.__hdr = Array.from(hdr);\n`,
-  );
+  const js = ts.transpileModule(`${code}\n(window as any).__hdr = Array.from(hdr);\n`, {
+    compilerOptions: { target: ts.ScriptTarget.ES2022, module: ts.ModuleKind.ESNext, verbatimModuleSyntax: true },
+  }).outputText;
+  fs.writeFileSync(path.join(app, 'code.js'), js);
   fs.writeFileSync(
     path.join(app, 'code.html'),
     `<!doctype html><meta charset="utf-8">${NO_FAVICON}<body><canvas></canvas><script type="module" src="dist/code.js"></script></body>`,

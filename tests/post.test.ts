@@ -22,6 +22,20 @@ const CHAINS = [
   [{ type: 'tonemap', operator: 'pbr-neutral' }],
   [{ type: 'exposure', exposure: -2 }, { type: 'tonemap', operator: 'clamp' }, { type: 'srgb' }],
   [{ type: 'tonemap', operator: 'aces' }, { type: 'srgb' }],
+  // Issue 28: chained steps, each within ±64 stops, overflowed f32 (2^192 × 1e4): Reinhard and
+  // PBR Neutral gave NaN (black), ACES white. Every operator must now give the reference's white.
+  ...['reinhard', 'pbr-neutral', 'aces', 'clamp'].map((operator) => [
+    { type: 'exposure', exposure: 64 },
+    { type: 'exposure', exposure: 64 },
+    { type: 'exposure', exposure: 64 },
+    { type: 'tonemap', operator },
+  ]),
+  // Up and down again: the clamp leaves ordinary values alone.
+  [
+    { type: 'exposure', exposure: 64 },
+    { type: 'exposure', exposure: -64 },
+    { type: 'tonemap', operator: 'reinhard' },
+  ],
 ];
 
 /** Run a chain on the GPU: float output after every step but the last, rgba8 after the last. */

@@ -1,4 +1,14 @@
 export { VptError, isVptError, type VptErrorCode } from './errors.js';
+export {
+  fetchWithPolicy,
+  resolveRequestPolicy,
+  RequestError,
+  DEFAULT_REQUEST_POLICY,
+  type RequestPolicy,
+  type RequestFailure,
+  type FetchOptions,
+  type FetchedBytes,
+} from './io/request.js';
 
 export * from './scene/volume.js';
 export * from './scene/camera.js';

@@ -95,7 +95,7 @@ describe('untyped or late errors become typed VptErrors at validation', () => {
   it('procedural size 100000 is a limit-exceeded error', () => {
     const e = thrown(() => createProceduralVolume('sphere', 100000));
     expect(e.code).toBe('limit-exceeded');
-    expect(e.message).toMatch(/100000 exceeds the limit of 512/);
+    expect(e.message).toMatch(/100000 exceeds the limit of 256 voxels per side/);
   });
   it('a lat-long width of 1.5', () => {
     const e = thrown(() =>

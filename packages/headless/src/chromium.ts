@@ -74,6 +74,9 @@ export async function launchChromium(options: ChromiumOptions = {}): Promise<Bro
       headless: true, // puppeteer adds --headless
       userDataDir,
       args,
+      // DevTools over a pipe, not a WebSocket: when this process dies, even by SIGKILL (no
+      // handler runs), the pipe closes and Chromium exits instead of running on, orphaned.
+      pipe: true,
       protocolTimeout: options.protocolTimeout ?? 30 * 60_000,
     });
   } catch (e) {

@@ -19,6 +19,7 @@ export {
   type SceneFileOptions,
 } from './scene-files.js';
 export { validateSceneDescription, RENDERER_PARAM_CHECKS, MAX_VOLUME_SIDE } from './validate-description.js';
+export { requestPolicyFromEnv, REQUEST_POLICY_ENV } from './request-policy-env.js';
 export { headlessPackageDir, findPackageDir, workspaceRoot, mountPagePackages, PAGE_PATH } from './packages.js';
 export {
   SCENE_DEFAULTS,

@@ -1,9 +1,11 @@
+import type { RequestPolicy } from '@vpt/core';
 import type { Browser, Page } from 'puppeteer-core';
 import { launchChromium, type ChromiumOptions } from './chromium.js';
 import { PAGE_PATH, mountPagePackages, workspaceRoot } from './packages.js';
 import type { BackendSummary, PageRenderResult, RenderTimings } from './page/types.js';
 import type { BackendName, SceneDescription } from './scene-description.js';
 import { mountSceneFiles, resolveSceneFiles } from './scene-files.js';
+import { requestPolicyFromEnv } from './request-policy-env.js';
 import { validateSceneDescription } from './validate-description.js';
 import { startStaticServer, type StaticServer } from './server.js';
 
@@ -42,6 +44,8 @@ export interface RenderResult {
   gpuBytes: PageRenderResult['gpuBytes'];
   volumeDims: [number, number, number];
   warnings: string[];
+  /** What the renderer chose for the scene (RenderContext.stats.renderer: MCRT auto's estimator and reasons…). */
+  rendererStats: Record<string, string>;
   /** A bricked volume's residency before the iterations (an OME-Zarr level 0 beyond maxGpuBytes streams as bricks); null: not bricked. */
   bricking?: PageRenderResult['bricking'];
 }
@@ -56,6 +60,15 @@ export interface PageRenderOptions {
    * outside it, URLs and server URL paths are refused (see resolveSceneFiles).
    */
   sceneRoot?: string;
+  /**
+   * Bounds on every URL the scene names (core's RequestPolicy: stall timeout, total bound,
+   * retries); default: $VPT_REQUEST_POLICY (JSON), else core's DEFAULT_REQUEST_POLICY.
+   */
+  request?: Partial<RequestPolicy>;
+  /** Stop the iterations after this many ms; the result then holds those done (`timings.timeLimited`). */
+  timeLimitMs?: number;
+  /** Iterations done of the total and ms since they began, after each batch (the render then runs in batches). */
+  onProgress?: (done: number, total: number, ms: number) => void;
 }
 
 export interface VptPageSession {
@@ -157,6 +170,7 @@ async function renderInPage(
   options: PageRenderOptions,
 ): Promise<RenderResult> {
   const mounted = mountSceneFiles(desc, options.baseDir ?? process.cwd(), server, { root: options.sceneRoot });
+  if (options.onProgress) await progressChannel(page).then((channel) => (channel.current = options.onProgress));
   // Errors come back as data: a rejected evaluate would lose VptError's code.
   type Outcome =
     { ok: PageRenderResult; error?: undefined } | { ok?: undefined; error: { message: string; code?: string } };
@@ -170,10 +184,36 @@ async function renderInPage(
       }
     },
     mounted,
-    { warmup: options.warmup ?? true },
+    {
+      warmup: options.warmup ?? true,
+      request: options.request ?? requestPolicyFromEnv(),
+      ...(options.timeLimitMs !== undefined ? { timeLimitMs: options.timeLimitMs } : {}),
+      ...(options.onProgress ? { progress: true } : {}),
+    },
   );
+  const channel = progressChannels.get(page);
+  if (channel) channel.current = undefined;
   if (out.error) throw new PageError(out.error.message, out.error.code);
   return decodeResult(out.ok!);
+}
+
+/** The page's progress callback, exposed once per page; each render sets the handler it reports to. */
+interface ProgressChannel {
+  current?: (done: number, total: number, ms: number) => void;
+}
+const progressChannels = new WeakMap<Page, ProgressChannel>();
+
+async function progressChannel(page: Page): Promise<ProgressChannel> {
+  let channel = progressChannels.get(page);
+  if (!channel) {
+    const c: ProgressChannel = {};
+    await page.exposeFunction('__vptRenderProgress', (done: number, total: number, ms: number) => {
+      c.current?.(done, total, ms);
+    });
+    progressChannels.set(page, c);
+    channel = c;
+  }
+  return channel;
 }
 
 function decodeResult(r: PageRenderResult): RenderResult {
@@ -188,6 +228,7 @@ function decodeResult(r: PageRenderResult): RenderResult {
     gpuBytes: r.gpuBytes,
     volumeDims: r.volumeDims,
     warnings: r.warnings,
+    rendererStats: r.rendererStats ?? {},
     bricking: r.bricking,
   };
 }
@@ -231,6 +272,8 @@ export async function renderScene(desc: SceneDescription, options: RenderSceneOp
     options.baseDir ?? process.cwd(),
     { root: options.sceneRoot },
   );
+  // A bad request policy fails here too, before a browser is started.
+  const request = options.request ?? requestPolicyFromEnv();
   const session =
     options.session ??
     (await openVptPage({
@@ -240,7 +283,7 @@ export async function renderScene(desc: SceneDescription, options: RenderSceneOp
       packageDirs: options.packageDirs,
     }));
   try {
-    return await session.render(full, options);
+    return await session.render(full, { ...options, request });
   } finally {
     if (!options.session) await session.close();
   }

@@ -42,6 +42,8 @@ export function readSceneFile(file: string): { description: SceneDescription; ba
       `Cannot read scene file ${file}: ${(e as NodeJS.ErrnoException).code === 'ENOENT' ? 'no such file' : (e as Error).message}`,
     );
   }
+  if (text.trim() === '')
+    throw new VptError('invalid-scene', `Scene file ${file} is empty; it should hold a JSON object describing a scene`);
   let json: unknown;
   try {
     json = JSON.parse(text);
@@ -130,6 +132,7 @@ export function resolveSceneFiles(
   baseDir: string,
   options: SceneFileOptions = {},
 ): SceneDescription {
+  if (options.root !== undefined) checkRootFolder(options.root);
   if (desc.volume && 'file' in desc.volume)
     return { ...desc, volume: resolveFileVolume(desc.volume, baseDir, options) };
   return mapVolumeRefs(desc, (ref, volume) => {
@@ -168,6 +171,17 @@ export function resolveSceneFiles(
     }
     return file;
   });
+}
+
+/** The folder scene paths are confined to must exist and be a folder (else every path check would fail obscurely). */
+function checkRootFolder(root: string): void {
+  let st: fs.Stats;
+  try {
+    st = fs.statSync(root);
+  } catch {
+    throw new VptError('invalid-scene', `--root ${root}: no such folder`);
+  }
+  if (!st.isDirectory()) throw new VptError('invalid-scene', `--root ${root}: is a file, not a folder`);
 }
 
 /** A scene's `volume.zarr` path: an OME-Zarr folder (inside `root` when confined), as an absolute path. */

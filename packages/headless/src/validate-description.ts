@@ -36,6 +36,7 @@ import {
   type Light,
 } from '@vpt/core';
 import { postChainFromJSON } from '@vpt/post';
+import { checkJsonShape } from './json-shape.js';
 import { RENDERER_DESCRIPTORS } from './renderers.generated.js';
 
 const TOP_KEYS = [
@@ -171,6 +172,7 @@ function checkLights(l: unknown): Light[] {
 export function validateSceneDescription(d: unknown): SceneDescription {
   try {
     const s = checkObject('scene', d);
+    checkJsonShape(s, 'scene');
     checkKnownKeys('scene', s, TOP_KEYS);
     for (const k of ['width', 'height'] as const)
       if (s[k] !== undefined) checkNumber(k, s[k], countUpTo(MAX_RENDER_SIDE, 'pixels'));

@@ -23,6 +23,7 @@ vi.mock('../src/render.js', () => ({
       gpuBytes: { volume: 1000, gradient: 0, auxiliary: 16, targets: 64, total: 1080 },
       volumeDims: [10, 10, 10],
       warnings: [],
+      rendererStats: {},
     };
   },
 }));

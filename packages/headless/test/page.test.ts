@@ -27,9 +27,9 @@ describe.skipIf(!pageBuilt || !fs.existsSync(chromiumExecutable()))('the headles
       );
       packageDirs[name] = path.join(tmp, 'packages', name);
     }
-    // The stub core re-exports core's real errors and raw reader (scene/raw-sidecar.ts, built).
+    // The stub core re-exports core's real errors, raw reader and request policy (built).
     const coreDist = path.join(here, '..', '..', 'core', 'dist');
-    for (const file of ['errors.js', 'scene/raw-sidecar.js']) {
+    for (const file of ['errors.js', 'scene/raw-sidecar.js', 'io/request.js']) {
       fs.mkdirSync(path.dirname(path.join(tmp, 'packages', 'core', 'dist', file)), { recursive: true });
       fs.copyFileSync(path.join(coreDist, file), path.join(tmp, 'packages', 'core', 'dist', file));
     }

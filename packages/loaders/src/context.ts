@@ -1,3 +1,4 @@
+import type { RequestPolicy } from '@vpt/core';
 import { throwIfAborted } from './errors.js';
 import { DEFAULT_LIMITS, type LoadLimits, type LoadOptions, type LoadProgress } from './types.js';
 
@@ -7,6 +8,8 @@ export interface LoadContext {
   name: string;
   signal?: AbortSignal;
   limits: Required<LoadLimits>;
+  /** The caller's request-policy overrides, for every URL this load fetches. */
+  request: Partial<RequestPolicy>;
   downsample: boolean;
   progress(stage: LoadProgress['stage'], loaded: number, total?: number): void;
   checkAborted(): void;
@@ -27,6 +30,7 @@ export function createContext(name: string, options: LoadOptions): LoadContext {
     name,
     signal: options.signal,
     limits,
+    request: options.request ?? {},
     downsample: options.downsample === true,
     warnings: [],
     // At most ~100 events per stage: a 64 KiB network chunk or a decoded slab would

@@ -1,3 +1,4 @@
+import { HEADERLESS_RAW_HINT } from '@vpt/core';
 import { LoaderError, toLoaderError } from './errors.js';
 import { createContext, type LoadContext } from './context.js';
 import type { LoadedVolume, LoadOptions, VolumeSource } from './types.js';
@@ -241,11 +242,7 @@ async function decodeBytes(
   switch (format) {
     case 'raw': {
       const raw = options.raw ? checkRawOptions(options.raw, ctx) : rawFromName(name);
-      if (!raw)
-        throw new LoaderError(
-          'bad-header',
-          `${ctx.name}: raw data has no header; pass options.raw = { dims: [NX, NY, NZ], type } or load its JSON sidecar`,
-        );
+      if (!raw) throw new LoaderError('bad-header', `${ctx.name}: raw data has no header; ${HEADERLESS_RAW_HINT}`);
       return decodeRaw(bytes, checkRawOptions(raw, ctx), ctx);
     }
     case 'sidecar': {
@@ -270,7 +267,7 @@ async function decodeBytes(
       throw new LoaderError(
         'bad-magic',
         `${ctx.name}: the format is not recognised (not NIfTI-1, NRRD, DICOM or a JSON sidecar); ` +
-          'for headerless data pass options.raw = { dims, type }, or pass options.format',
+          `for headerless raw data, ${HEADERLESS_RAW_HINT}; or pass options.format`,
       );
   }
 }

@@ -1,4 +1,4 @@
-import type { Volume } from '@vpt/core';
+import type { RequestPolicy, Volume } from '@vpt/core';
 
 /**
  * What loadVolume accepts: a URL (string or URL; a sidecar .json URL works too), a Blob or
@@ -29,9 +29,9 @@ export interface ZarrLoadOptions {
   time?: number;
   /** A chunk the store lacks: 'fill' (default: the array's fill value, as the Zarr spec says) or 'error' (strict, reason 'not-found'). */
   missingChunks?: 'error' | 'fill';
-  /** Longest wait for one HTTP request before it fails with reason 'network' (ms, default 30 000). */
+  /** Shorthand for `request.stallTimeoutMs` (LoadOptions.request): the longest wait for an answer or for progress, in ms. */
   requestTimeoutMs?: number;
-  /** Retries of a request that failed for a transient reason (default 2). */
+  /** Shorthand for `request.retries`: further attempts of a request that failed for a transient reason. */
   retries?: number;
 }
 
@@ -61,6 +61,11 @@ export interface LoadOptions {
   downsample?: boolean;
   /** OME-Zarr: level, channel, time and how to treat missing chunks. */
   zarr?: ZarrLoadOptions;
+  /**
+   * Bounds on every HTTP request of this load (core's RequestPolicy: stall timeout on
+   * headers and body, total bound, retries); unset fields keep DEFAULT_REQUEST_POLICY.
+   */
+  request?: Partial<RequestPolicy>;
   /** Parse in a Web Worker. Default true where Worker exists (browsers); Node parses in-thread. */
   worker?: boolean;
 }

@@ -89,7 +89,18 @@ export function postChainFromJSON(json: unknown): PostStep[] {
       `the post chain must be an array of steps, got ${json === null ? 'null' : typeof json}`,
     );
   }
-  return json.map((step, i) => postStepFromJSON(step, `post step ${i}`));
+  const steps = json.map((step, i) => postStepFromJSON(step, `post step ${i}`));
+  // A step that filters radiance (the denoiser) reads the HDR image and the renderer's guides:
+  // after a step that left radiance (exposure, tone mapping, sRGB) it has neither.
+  const firstDisplay = steps.findIndex((s) => !s.keepsRadiance);
+  steps.forEach((s, i) => {
+    if (s.keepsRadiance && firstDisplay >= 0 && i > firstDisplay)
+      throw new VptError(
+        'invalid-scene',
+        `post step ${i} ("${s.name}") must come before post step ${firstDisplay} ("${steps[firstDisplay].name}"): it filters linear HDR radiance, so it goes first in the chain`,
+      );
+  });
+  return steps;
 }
 
 /** The scene-description JSON of one of this package's steps. */

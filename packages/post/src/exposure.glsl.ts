@@ -1,8 +1,11 @@
 // Exposure: scale linear radiance by 2^exposure (photographic stops). The host packs the
-// factor, so the kernel does one multiply and both backends round it the same way.
+// factor, so the kernel does one multiply and both backends round it the same way. The input
+// is first clamped to ±u.limit = EXPOSURE_OUTPUT_MAX / 2^exposure, so the product stays
+// within ±EXPOSURE_OUTPUT_MAX: chained steps never overflow to Inf (which the tone mappers
+// would turn into NaN), and no Inf is ever computed (WGSL may assume there is none).
 export const EXPOSURE = /* glsl */ `
 void main() {
   vec4 p = texelFetch(inputImage, vptPixel(), 0);
-  vpt_out0 = vec4(p.rgb * u.scale, p.a);
+  vpt_out0 = vec4(clamp(p.rgb, vec3(-u.limit), vec3(u.limit)) * u.scale, p.a);
 }
 `;

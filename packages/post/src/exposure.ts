@@ -9,7 +9,20 @@ import * as wgsl from './exposure.wgsl.js';
  */
 export const MAX_EXPOSURE_STOPS = 64;
 
-const EXPOSURE_UNIFORMS = /* @__PURE__ */ new UniformLayout('ExposureParams', [{ name: 'scale', type: 'f32' }]);
+/**
+ * Largest |value| an exposure step writes. Every tone mapper maps 1e30 to white (to f32
+ * precision), and 1e30 × 2^64 still overflows f32 — so the step clamps its input instead of
+ * its output, and a chain of steps (each within ±64 stops) stays finite.
+ */
+export const EXPOSURE_OUTPUT_MAX = 1e30;
+
+/** The f32 ceiling for the packed limit (a limit of Inf would be an Inf in the kernel). */
+const F32_MAX = 3.4028234663852886e38;
+
+const EXPOSURE_UNIFORMS = /* @__PURE__ */ new UniformLayout('ExposureParams', [
+  { name: 'scale', type: 'f32' },
+  { name: 'limit', type: 'f32' },
+]);
 
 /** Multiplies linear HDR colour by 2^exposure (photographic stops); alpha passes through. */
 export class ExposureStep implements PostStep {
@@ -34,7 +47,9 @@ export class ExposureStep implements PostStep {
 
   uniformValues(): UniformValues {
     // 2^e is computed here in float64, so the kernel is a single multiply on both backends.
-    return { scale: 2 ** this._exposure };
+    const scale = 2 ** this._exposure;
+    // Rounded down to f32 below the bound, so limit × scale ≤ EXPOSURE_OUTPUT_MAX · (1 + 2^-23).
+    return { scale, limit: Math.min(EXPOSURE_OUTPUT_MAX / scale, F32_MAX) };
   }
 }
 

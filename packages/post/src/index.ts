@@ -1,4 +1,4 @@
-export { ExposureStep, MAX_EXPOSURE_STOPS } from './exposure.js';
+export { ExposureStep, MAX_EXPOSURE_STOPS, EXPOSURE_OUTPUT_MAX } from './exposure.js';
 export { ToneMapStep, TONE_MAP_OPERATORS, isToneMapOperator, type ToneMapOperator } from './tone-mapping.js';
 export { SrgbEncodeStep } from './srgb.js';
 export {

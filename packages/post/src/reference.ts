@@ -4,7 +4,7 @@
  * compare the f32 kernels against independent arithmetic rather than against a copy of it.
  */
 import type { PostStep } from '@vpt/core';
-import { ExposureStep } from './exposure.js';
+import { EXPOSURE_OUTPUT_MAX, ExposureStep } from './exposure.js';
 import { SrgbEncodeStep } from './srgb.js';
 import { ToneMapStep } from './tone-mapping.js';
 import { ACES_INPUT_MAX, type ToneMapOperator } from './tone-mapping-operators.js';
@@ -14,10 +14,10 @@ type MutableRgb = [number, number, number];
 
 const map = (rgb: Rgb, f: (c: number) => number): MutableRgb => [f(rgb[0]), f(rgb[1]), f(rgb[2])];
 
-/** color * 2^exposure. */
+/** color * 2^exposure, held within ±EXPOSURE_OUTPUT_MAX (white to every tone mapper). */
 export function exposureRef(exposure: number, rgb: Rgb): MutableRgb {
   const s = 2 ** exposure;
-  return map(rgb, (c) => c * s);
+  return map(rgb, (c) => Math.min(Math.max(c * s, -EXPOSURE_OUTPUT_MAX), EXPOSURE_OUTPUT_MAX));
 }
 
 /** Reinhard per channel, c / (1 + c) (Lesar, Bohak, Marolt 2018). */

@@ -147,6 +147,21 @@ describe('steps', () => {
     expect(() => new ExposureStep(200)).toThrow(/64/);
   });
 
+  it('exposure keeps any finite input, and so any chain of steps within ±64 stops, within f32 (issue 28)', () => {
+    const F32_MAX = 3.4028234663852886e38;
+    for (const stops of [64, 17.5, 0, -64]) {
+      const [scale, limit] = new Float32Array(
+        new ExposureStep(stops).uniforms.pack(new ExposureStep(stops).uniformValues()),
+      );
+      // What the kernel computes, in f32: clamp(x, -limit, limit) * scale for the largest finite x.
+      const out = Math.fround(Math.fround(Math.min(F32_MAX, limit)) * scale);
+      expect(Number.isFinite(limit)).toBe(true);
+      expect(Number.isFinite(out)).toBe(true);
+      // ...and large enough that every tone mapper sees white.
+      for (const op of TONE_MAP_OPERATORS) expect(toneMapRef(op, [out, out, out])[0]).toBeCloseTo(1, 6);
+    }
+  });
+
   it('every layout has at least one field (WGSL forbids empty structs)', () => {
     for (const s of [new ExposureStep(), new ToneMapStep(), new SrgbEncodeStep()]) {
       expect(s.uniforms.fields.length).toBeGreaterThan(0);

@@ -66,6 +66,8 @@ const bad = (m: string): never => {
   throw new VptError('invalid-scene', `IsoRenderer: ${m}`);
 };
 const finite = (x: unknown): x is number => typeof x === 'number' && Number.isFinite(x);
+/** The keys of an IsoSurface (an unknown one, such as "colour", is a typo to report, as elsewhere). */
+const SURFACE_KEYS: readonly string[] = ['value', 'color', 'opacity'];
 
 /** The surfaces with defaults filled in, each checked; throws VptError('invalid-scene') naming the surface. */
 export function resolveIsoSurfaces(given: unknown): Required<IsoSurface>[] {
@@ -77,6 +79,8 @@ export function resolveIsoSurfaces(given: unknown): Required<IsoSurface>[] {
   }
   return surfaces.map((s, i): Required<IsoSurface> => {
     if (!s || typeof s !== 'object') bad(`surface ${i} must be an object`);
+    const unknown = Object.keys(s).filter((k) => !SURFACE_KEYS.includes(k));
+    if (unknown.length) bad(`surface ${i}: unknown key "${unknown[0]}" (known: ${SURFACE_KEYS.join(', ')})`);
     if (!finite(s.value) || s.value < 0 || s.value > 1)
       bad(`surface ${i}: value must be in [0, 1] (normalized), got ${s.value}`);
     if (!Array.isArray(s.color) || s.color.length !== 3 || !s.color.every((c) => finite(c) && c >= 0 && c <= 1))

@@ -24,6 +24,7 @@ import {
   type Environment,
   type Light,
   type Renderer,
+  type RequestPolicy,
   type Scene,
   type TransferFunction,
   type Volume,
@@ -209,6 +210,11 @@ export class VptViewer extends LitElement implements PanelHost {
    * opens; undefined: the context's default. It decides which levels of a multiscale store fit.
    */
   maxGpuBytes: number | undefined = undefined;
+  /**
+   * Bounds on every URL the element fetches (volumes, sidecars, environments, OME-Zarr):
+   * core's RequestPolicy overrides, read when a load starts; {}: DEFAULT_REQUEST_POLICY.
+   */
+  requestPolicy: Partial<RequestPolicy> = {};
   private lostTimer: ReturnType<typeof setTimeout> | undefined;
   declare private _stats: RefinementStats | null;
   declare private _histogram: Histogram1D | null;
@@ -303,6 +309,7 @@ export class VptViewer extends LitElement implements PanelHost {
       fail: (e) => this.fail(e, 'src'),
       dispatchEvent: (event) => this.dispatchEvent(event),
       requestUpdate: () => this.requestUpdate(),
+      requestPolicy: () => this.requestPolicy,
     });
   }
 
@@ -965,7 +972,7 @@ export class VptViewer extends LitElement implements PanelHost {
     else if (env.type !== 'url') this.resolvedEnvironment = env;
     else {
       try {
-        const loaded = await loadEnvironment(env.url, env.scale ?? 1);
+        const loaded = await loadEnvironment(env.url, env.scale ?? 1, { request: this.requestPolicy });
         if (token !== this.tokens.environment) return;
         this.resolvedEnvironment = loaded;
         this.clearError('environment');

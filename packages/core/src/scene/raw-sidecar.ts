@@ -76,13 +76,18 @@ export function checkRawDims(
   }
 }
 
+/**
+ * What to do about headerless raw data, in every way a user can reach: a page element's `src`
+ * or a scene file can only name a sidecar or a file name, code can also pass the dims.
+ */
+export const HEADERLESS_RAW_HINT =
+  'give its dims and type with a JSON sidecar beside it ({"file": "<name>.raw", "dims": [NX, NY, NZ], "voxel_type": "uint8"}) and load the sidecar (the way for <vpt-viewer src> and scene files), ' +
+  'or a file name like name_NXxNYxNZ_uint8.raw, or from code loadVolume(…, { raw: { dims, type } })';
+
 /** Check a raw header given as options or read from a sidecar; anything wrong is 'bad-header' naming the field. */
 export function checkRawHeader(raw: Partial<RawHeader> | undefined, name: string, source = 'options.raw'): RawHeader {
   if (!raw || typeof raw !== 'object') {
-    throw new RawReadError(
-      'bad-header',
-      `${name}: raw data has no header; pass options.raw = { dims: [NX, NY, NZ], type } or a JSON sidecar next to it`,
-    );
+    throw new RawReadError('bad-header', `${name}: raw data has no header; ${HEADERLESS_RAW_HINT}`);
   }
   // Numbers only: "dims": ["256", …] is a mistake to report, not to convert silently.
   if (Array.isArray(raw.dims) && raw.dims.some((d) => typeof d !== 'number')) {

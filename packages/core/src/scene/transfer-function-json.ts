@@ -92,7 +92,9 @@ export function transferFunctionFromJSON(json: string | unknown): TransferFuncti
   try {
     validateTransferFunction(tf);
   } catch (e) {
-    if (e instanceof VptError) bad(e.message.replace(/^TransferFunction: /, ''));
+    // Same prefix as every JSON error; a limit stays limit-exceeded.
+    if (e instanceof VptError)
+      throw new VptError(e.code, `TransferFunction JSON: ${e.message.replace(/^TransferFunction: /, '')}`);
     throw e;
   }
   return canonical(tf);

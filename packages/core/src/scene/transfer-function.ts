@@ -85,8 +85,15 @@ export function transferFunctionSize(tf: TransferFunction, resolution = TF_RESOL
 
 type Bad = (m: string) => never;
 
-/** Most control points (1D) or widgets (2D) of a transfer function: rasterizing stays cheap. */
+/** Most control points of a 1D transfer function: rasterizing stays cheap. */
 export const MAX_TF_POINTS = 4096;
+
+/**
+ * Most widgets of a 2D transfer function. Rasterizing costs texels × widgets (256 × 256 ×
+ * 4,096 exponentials took over 20 s on a loaded 2-core machine, and a scene rasterizes it more
+ * than once); 256 widgets keep it to about a second, far more than an editor shows.
+ */
+export const MAX_TF_WIDGETS = 256;
 
 const describe = (x: unknown) => (typeof x === 'number' ? String(x) : (JSON.stringify(x) ?? String(x)));
 
@@ -169,7 +176,11 @@ export function validateTransferFunction(tf: TransferFunction): void {
     ) {
       bad(`gradientMax must be a positive finite number (or left out), got ${describe(tf.gradientMax)}`);
     }
-    if (tf.widgets.length > MAX_TF_POINTS) bad(`${tf.widgets.length} widgets exceed the limit of ${MAX_TF_POINTS}`);
+    if (tf.widgets.length > MAX_TF_WIDGETS)
+      throw new VptError(
+        'limit-exceeded',
+        `TransferFunction: ${tf.widgets.length} widgets exceed the limit of ${MAX_TF_WIDGETS} (MAX_TF_WIDGETS: rasterizing costs 65,536 texels per widget)`,
+      );
     tf.widgets.forEach((w, i) => validateWidget(w, i, bad));
     return;
   }
@@ -177,7 +188,11 @@ export function validateTransferFunction(tf: TransferFunction): void {
     bad(`unknown dimensions ${describe((tf as { dimensions?: unknown }).dimensions)} (supported: "1d", "2d")`);
   if (!Array.isArray(tf.points) || tf.points.length === 0) bad('needs at least one control point');
   let last = -Infinity;
-  if (tf.points.length > MAX_TF_POINTS) bad(`${tf.points.length} control points exceed the limit of ${MAX_TF_POINTS}`);
+  if (tf.points.length > MAX_TF_POINTS)
+    throw new VptError(
+      'limit-exceeded',
+      `TransferFunction: ${tf.points.length} control points exceed the limit of ${MAX_TF_POINTS} (MAX_TF_POINTS)`,
+    );
   tf.points.forEach((p, i) => {
     if (!p || typeof p !== 'object') bad(`point ${i}: must be an object, got ${describe(p)}`);
     if (typeof p.value !== 'number' || !Number.isFinite(p.value) || p.value < 0 || p.value > 1)

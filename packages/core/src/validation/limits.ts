@@ -55,8 +55,11 @@ export const MIN_STEP_VOXELS = 0.1;
 /** Smallest step size in world units, whatever the volume (the box's longest side is 1). */
 export const MIN_STEP_SIZE = 1e-5;
 
-/** Largest side of a procedural test volume (512³ float32 = 512 MiB). */
-export const MAX_PROCEDURAL_SIZE = 512;
+/**
+ * Largest side of a procedural test volume: 256³ float32 = 64 MiB, a few seconds to build
+ * on a loaded 2-core machine (512³ took over 25 s there, with no progress to show).
+ */
+export const MAX_PROCEDURAL_SIZE = 256;
 
 /** Largest side of a texture checked before a device is known (WebGPU's default limit). */
 export const MAX_TEXTURE_SIDE_2D = 8192;

@@ -35,6 +35,13 @@ export const RENDER_CLI = {
       valueName: 'DIR',
       description: 'refuse scene paths outside DIR (and URLs): for scene files you do not trust',
     },
+    'time-limit': {
+      type: 'number',
+      min: 0.001,
+      max: 86_400,
+      valueName: 'SECONDS',
+      description: 'stop the iterations after this long and write the image of those done',
+    },
     'keep-alpha': {
       type: 'boolean',
       description: 'write the coverage as PNG alpha (default: opaque over the background)',
@@ -46,6 +53,10 @@ export const RENDER_CLI = {
 coverage as alpha; the PFM holds the linear HDR RGB after the post chain's leading HDR steps
 (a "denoise" step first in the chain gives a denoised PFM; the JSON line's hdrPostSteps says so),
 before exposure and tone mapping.
+
+--time-limit SECONDS stops the iterations after that long and writes the image of those done
+(the JSON line then says "timeLimited": true); runs longer than a few seconds print progress
+to stderr.
 
 A scene file is one JSON object; every field is optional (defaults: a procedural sphere, EAM):
   renderer         eam, mip, mcrt or iso; rendererParams: that renderer's parameters
@@ -78,6 +89,8 @@ export interface RenderArgs {
   height?: number;
   seed?: number;
   root?: string;
+  /** --time-limit, in seconds. */
+  timeLimit?: number;
   keepAlpha: boolean;
   verbose: boolean;
   help: boolean;
@@ -109,6 +122,7 @@ export function parseRenderArgs(argv: string[]): RenderArgs {
     height: values.height,
     seed: values.seed,
     root: values.root,
+    ...(values['time-limit'] !== undefined ? { timeLimit: values['time-limit'] } : {}),
     keepAlpha: values['keep-alpha'],
     verbose: values.verbose,
     help: false,

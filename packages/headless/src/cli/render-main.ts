@@ -1,15 +1,35 @@
-import fs from 'node:fs';
-import path from 'node:path';
 import { encodePFM, encodePNG, opaque } from '../image-io.js';
 import { renderScene } from '../render.js';
 import { readSceneFile } from '../scene-files.js';
 import { parseRenderArgs, RENDER_USAGE } from './args.js';
 import { oneLine, processIO, type CliIO } from './io.js';
+import { checkOutputFile, writeOutputFile } from './output-file.js';
 
-function writeFile(file: string, data: Uint8Array): void {
-  fs.mkdirSync(path.dirname(path.resolve(file)), { recursive: true });
-  fs.writeFileSync(file, data);
+/** Progress lines on stderr: none in the first PROGRESS_AFTER_MS, then at most one per PROGRESS_EVERY_MS. */
+const PROGRESS_AFTER_MS = 3000;
+const PROGRESS_EVERY_MS = 5000;
+
+export function progressPrinter(io: CliIO): (done: number, total: number, ms: number) => void {
+  let last = -Infinity;
+  return (done, total, ms) => {
+    if (ms < PROGRESS_AFTER_MS || ms - last < PROGRESS_EVERY_MS || done >= total) return;
+    last = ms;
+    const left = (ms / done) * (total - done);
+    io.err(
+      `vpt-render: ${done}/${total} iterations (${((100 * done) / total).toFixed(1)} %), ${(ms / 1000).toFixed(0)} s, about ${duration(left)} left`,
+    );
+  };
 }
+
+function duration(ms: number): string {
+  const s = Math.round(ms / 1000);
+  if (s < 120) return `${s} s`;
+  if (s < 7200) return `${Math.round(s / 60)} min`;
+  return `${(s / 3600).toFixed(1)} h`;
+}
+
+const EMPTY_CHAIN =
+  "the scene's post chain is empty, so there is no LDR image to write with -o (use --pfm for the HDR image)";
 
 /**
  * vpt-render: scene.json → PNG (LDR) and/or PFM (HDR), timings as one JSON line on
@@ -24,7 +44,12 @@ export async function runRender(argv: string[], io: CliIO = processIO): Promise<
       io.out(RENDER_USAGE);
       return 0;
     }
+    // Output paths first: a folder or an unwritable file must not fail after the whole render.
+    if (args.output !== undefined) checkOutputFile(args.output, '-o');
+    if (args.pfm !== undefined) checkOutputFile(args.pfm, '--pfm');
     const { description, baseDir } = readSceneFile(args.scene);
+    if (args.output !== undefined && Array.isArray(description.post) && description.post.length === 0)
+      throw new Error(EMPTY_CHAIN);
     const result = await renderScene(description, {
       baseDir,
       backend: args.backend,
@@ -33,16 +58,16 @@ export async function runRender(argv: string[], io: CliIO = processIO): Promise<
       height: args.height,
       seed: args.seed,
       sceneRoot: args.root,
+      ...(args.timeLimit !== undefined ? { timeLimitMs: args.timeLimit * 1000 } : {}),
+      onProgress: progressPrinter(io),
       onConsole: args.verbose ? (line) => io.err(line) : undefined,
     });
     if (args.output !== undefined) {
-      if (!result.ldr)
-        throw new Error(
-          "the scene's post chain is empty, so there is no LDR image to write with -o (use --pfm for the HDR image)",
-        );
-      writeFile(args.output, encodePNG(args.keepAlpha ? result.ldr : opaque(result.ldr), result.width, result.height));
+      if (!result.ldr) throw new Error(EMPTY_CHAIN);
+      const png = encodePNG(args.keepAlpha ? result.ldr : opaque(result.ldr), result.width, result.height);
+      writeOutputFile(args.output, png, '-o');
     }
-    if (args.pfm !== undefined) writeFile(args.pfm, encodePFM(result.hdr, result.width, result.height));
+    if (args.pfm !== undefined) writeOutputFile(args.pfm, encodePFM(result.hdr, result.width, result.height), '--pfm');
     io.out(
       JSON.stringify({
         ...result.timings,
@@ -53,12 +78,18 @@ export async function runRender(argv: string[], io: CliIO = processIO): Promise<
         gpuBytes: result.gpuBytes,
         volumeDims: result.volumeDims,
         ...(result.bricking ? { bricking: result.bricking } : {}),
+        // What the renderer chose (MCRT auto: the estimator and why).
+        ...(Object.keys(result.rendererStats ?? {}).length ? { rendererStats: result.rendererStats } : {}),
         // What the PFM holds: the estimate after these post steps (['denoise'] when it was denoised).
         ...(args.pfm !== undefined ? { hdrPostSteps: result.hdrPostSteps } : {}),
         ...(result.warnings.length > 0 ? { warnings: result.warnings } : {}),
       }),
     );
     for (const w of result.warnings) io.err(`vpt-render: warning: ${w}`);
+    if (result.timings.timeLimited)
+      io.err(
+        `vpt-render: the time limit of ${args.timeLimit} s stopped the render after ${result.timings.iterations} iterations`,
+      );
     return 0;
   } catch (e) {
     io.err(`vpt-render: ${oneLine(e)}`);

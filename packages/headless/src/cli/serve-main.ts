@@ -23,8 +23,11 @@ export function pageDependencies(html: string): string[] {
   return [...urls].filter((u) => !/^[a-z][a-z0-9+.-]*:/i.test(u) && !u.startsWith('//'));
 }
 
+/** --check asks this process's own server, which answers at once: anything slower is a failure, not a wait. */
+const CHECK_TIMEOUT_MS = 30_000;
+
 async function check(url: string, io: CliIO): Promise<number> {
-  const res = await fetch(url);
+  const res = await fetch(url, { signal: AbortSignal.timeout(CHECK_TIMEOUT_MS) });
   if (res.status !== 200) {
     io.err(`vpt-serve: GET ${url} -> HTTP ${res.status}`);
     return 1;
@@ -33,7 +36,7 @@ async function check(url: string, io: CliIO): Promise<number> {
   if ((res.headers.get('content-type') ?? '').startsWith('text/html')) {
     for (const dep of pageDependencies(await res.text())) {
       const depUrl = new URL(dep, url).href;
-      const r = await fetch(depUrl, { method: 'HEAD' });
+      const r = await fetch(depUrl, { method: 'HEAD', signal: AbortSignal.timeout(CHECK_TIMEOUT_MS) });
       if (r.status !== 200) missing.push(`${depUrl} (HTTP ${r.status})`);
     }
   }

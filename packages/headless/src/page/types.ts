@@ -24,6 +24,19 @@ export interface RenderTimings {
   msPerIteration: number;
   /** Context creation, volume load and upload, kernel compilation (warm-up iteration). */
   setupMs: number;
+  /** Set when the time limit stopped the render: `iterations` is then fewer than requested. */
+  timeLimited?: boolean;
+}
+
+/** Options of `renderDescription` (all optional). */
+export interface PageRenderCallOptions {
+  baseUrl?: string;
+  warmup?: boolean;
+  request?: Partial<CoreModule.RequestPolicy>;
+  /** Stop the iterations after this many ms (the image then holds those done); default: none. */
+  timeLimitMs?: number;
+  /** Run the iterations in batches and call `window.__vptRenderProgress(done, total, ms)` after each. */
+  progress?: boolean;
 }
 
 export interface BackendSummary {
@@ -50,6 +63,8 @@ export interface PageRenderResult {
   volumeDims: [number, number, number];
   /** The context's warnings (a downsampled volume, a brick that failed to load). */
   warnings: string[];
+  /** What the renderer chose for the scene (RenderContext.stats.renderer, e.g. MCRT auto's estimator and reasons). */
+  rendererStats: Record<string, string>;
   /**
    * A bricked volume's residency once settled, before the iterations (RenderContext.stats.bricking):
    * an OME-Zarr volume whose level 0 exceeds the budget streams as bricks. Null: not bricked.
@@ -65,18 +80,17 @@ export interface VptPageApi extends RendererModules {
   /** A renderer of the catalog by name, constructed with its parameter object. */
   createRenderer(name: string, params?: Record<string, unknown>): CoreModule.Renderer;
   post: PostModule;
-  renderDescription(
-    desc: SceneDescription,
-    options?: { baseUrl?: string; warmup?: boolean },
-  ): Promise<PageRenderResult>;
-  buildScene(desc: SceneDescription, baseUrl?: string): Promise<Scene>;
-  loadVolume(desc: VolumeDescription, baseUrl?: string): Promise<Volume>;
+  renderDescription(desc: SceneDescription, options?: PageRenderCallOptions): Promise<PageRenderResult>;
+  buildScene(desc: SceneDescription, baseUrl?: string, request?: Partial<CoreModule.RequestPolicy>): Promise<Scene>;
+  loadVolume(desc: VolumeDescription, baseUrl?: string, request?: Partial<CoreModule.RequestPolicy>): Promise<Volume>;
 }
 
 declare global {
   interface Window {
     vpt: VptPageApi;
     __vptReady?: boolean;
+    /** Set by the Node side (page.exposeFunction) to receive iteration progress. */
+    __vptRenderProgress?: (done: number, total: number, ms: number) => void;
     __vptError?: string;
   }
 }

@@ -5,7 +5,7 @@
  * renderers, <renderer name>: <its module>…, renderDescription, buildScene, loadVolume }` and
  * sets `window.__vptReady`, or `window.__vptError` when a package cannot be loaded.
  */
-import type { Environment, MultiscaleSource, RenderContext, Renderer, Scene, Volume } from '@vpt/core';
+import type { Environment, MultiscaleSource, RenderContext, Renderer, RequestPolicy, Scene, Volume } from '@vpt/core';
 import {
   DISPLAY_REFERRED_POST,
   SCENE_DEFAULTS,
@@ -15,14 +15,14 @@ import {
   type VolumeDescription,
   type ZarrVolumeDescription,
 } from '../scene-description.js';
-import type { PageRenderResult, PostModule, VptPageApi } from './types.js';
+import type { PageRenderCallOptions, PageRenderResult, PostModule, VptPageApi } from './types.js';
 
 type CoreModule = VptPageApi['core'];
 /** The part of @vpt/loaders this page uses (imported on first use; not a dependency of this package's types). */
 interface LoadersModule {
   loadVolume(
     source: string | File[],
-    options: { format?: string; zarr?: Record<string, unknown> },
+    options: { format?: string; zarr?: Record<string, unknown>; request?: Partial<RequestPolicy> },
   ): Promise<Volume & { meta?: Record<string, unknown> }>;
   openOmeZarr(url: string, options: Record<string, unknown>): Promise<MultiscaleSource>;
 }
@@ -34,32 +34,38 @@ const rendererClasses = new Map<string, new (params?: Record<string, unknown>) =
 /** The renderer packages' modules (class and descriptor), by renderer name. */
 const rendererModules = new Map<string, Record<string, unknown>>();
 
-async function fetchOk(url: string): Promise<Response> {
-  let res: Response;
-  try {
-    res = await fetch(url);
-  } catch (e) {
-    throw new core.VptError('load-failed', `Could not fetch ${url}: ${(e as Error).message}`, { cause: e });
-  }
-  if (!res.ok) throw new core.VptError('load-failed', `Could not fetch ${url}: HTTP ${res.status}`);
-  return res;
+/** Largest sidecar fetched (as @vpt/loaders bounds its text files). */
+const MAX_SIDECAR_BYTES = 16 * 1024 * 1024;
+/** Largest file of a `volume.file` list (a DICOM slice, one of files loaded together). */
+const MAX_LISTED_FILE_BYTES = 2 ** 31;
+
+/** A URL's bytes under core's request policy: a stalled or hostile server ends in a typed error. */
+async function fetchBounded(url: string, maxBytes: number, request: Partial<RequestPolicy>): Promise<Uint8Array> {
+  return (await core.fetchWithPolicy(url, { policy: request, maxBytes })).bytes;
 }
 
 /** Turn a volume description into a core Volume; relative URLs resolve against baseUrl. */
-async function loadVolume(desc: VolumeDescription, baseUrl: string = document.baseURI): Promise<Volume> {
+async function loadVolume(
+  desc: VolumeDescription,
+  baseUrl: string = document.baseURI,
+  request: Partial<RequestPolicy> = {},
+): Promise<Volume> {
   if ('procedural' in desc) return core.createProceduralVolume(desc.procedural, desc.size ?? 32);
-  if ('zarr' in desc) return loadZarr(desc, baseUrl);
-  if ('file' in desc) return loadFile(desc, baseUrl);
+  if ('zarr' in desc) return loadZarr(desc, baseUrl, request);
+  if ('file' in desc) return loadFile(desc, baseUrl, request);
   if ('sidecar' in desc) {
     // core's raw reader parses the sidecar (as @vpt/loaders and the viewer's fallback do).
     const sidecarUrl = new URL(desc.sidecar, baseUrl).href;
-    const sidecar = core.parseRawSidecar(await (await fetchOk(sidecarUrl)).text(), sidecarUrl);
+    const text = new TextDecoder().decode(await fetchBounded(sidecarUrl, MAX_SIDECAR_BYTES, request));
+    const sidecar = core.parseRawSidecar(text, sidecarUrl);
     // Without the sidecar's `file` (its raw file's name, now in `raw`): `file` is the loaders' volume kind.
     const { file: _rawName, ...header } = sidecar;
-    return loadVolume({ raw: core.rawFileBeside(sidecarUrl, sidecar), ...header }, sidecarUrl);
+    return loadVolume({ raw: core.rawFileBeside(sidecarUrl, sidecar), ...header }, sidecarUrl, request);
   }
   const url = new URL(desc.raw, baseUrl).href;
-  const data = core.rawVoxels(new Uint8Array(await (await fetchOk(url)).arrayBuffer()), desc, url);
+  // A raw file holds exactly dims × type bytes (rawVoxels checks it): nothing longer is read.
+  const expected = desc.dims.reduce((a, b) => a * b, 1) * BYTES_PER_VOXEL[desc.type];
+  const data = core.rawVoxels(await fetchBounded(url, expected, request), desc, url);
   const volume = core.createVolume(desc.dims, desc.type, data, desc.spacing ?? [1, 1, 1]);
   if (desc.valueRange) volume.valueRange = desc.valueRange;
   volume.name = url.split('/').pop();
@@ -71,7 +77,11 @@ async function loadVolume(desc: VolumeDescription, baseUrl: string = document.ba
  * page's import map needs nothing more). The omero window is the normalization range
  * unless the description gives one, as a sidecar's value_range is for raw data.
  */
-async function loadZarr(desc: ZarrVolumeDescription, baseUrl: string): Promise<Volume> {
+async function loadZarr(
+  desc: ZarrVolumeDescription,
+  baseUrl: string,
+  request: Partial<RequestPolicy>,
+): Promise<Volume> {
   const url = new URL(desc.zarr, baseUrl).href;
   const loaders = await load<LoadersModule>('@vpt/loaders');
   let loaded: Awaited<ReturnType<LoadersModule['loadVolume']>>;
@@ -84,9 +94,12 @@ async function loadZarr(desc: ZarrVolumeDescription, baseUrl: string): Promise<V
         ...(desc.time !== undefined ? { time: desc.time } : {}),
         ...(desc.missingChunks ? { missingChunks: desc.missingChunks } : {}),
       },
+      request,
     });
   } catch (e) {
-    throw new core.VptError('load-failed', `Could not load OME-Zarr ${url}: ${(e as Error).message}`, { cause: e });
+    // A store beyond a bound (too many chunk requests, a bomb) stays limit-exceeded.
+    const code = (e as { code?: unknown }).code === 'limit-exceeded' ? 'limit-exceeded' : 'load-failed';
+    throw new core.VptError(code, `Could not load OME-Zarr ${url}: ${(e as Error).message}`, { cause: e });
   }
   const volume = core.createVolume(loaded.dims, loaded.type, loaded.data, loaded.spacing);
   const window = loaded.meta?.value_range as [number, number] | undefined;
@@ -101,7 +114,11 @@ async function loadZarr(desc: ZarrVolumeDescription, baseUrl: string): Promise<V
  * a sidecar's raw file, an .nhdr's data or an .hdr's .img beside it), or a list of URLs
  * fetched here and handed over as Files (a DICOM series, files loaded together).
  */
-async function loadFile(desc: FileVolumeDescription, baseUrl: string): Promise<Volume> {
+async function loadFile(
+  desc: FileVolumeDescription,
+  baseUrl: string,
+  request: Partial<RequestPolicy>,
+): Promise<Volume> {
   const loaders = await load<LoadersModule>('@vpt/loaders');
   const format = desc.format && desc.format !== 'auto' ? { format: desc.format } : {};
   const list = Array.isArray(desc.file) ? desc.file.map((f) => new URL(f, baseUrl).href) : null;
@@ -112,11 +129,14 @@ async function loadFile(desc: FileVolumeDescription, baseUrl: string): Promise<V
       ? await Promise.all(
           list.map(
             async (url) =>
-              new File([await (await fetchOk(url)).arrayBuffer()], decodeURIComponent(url.split('/').pop() ?? '')),
+              new File(
+                [(await fetchBounded(url, MAX_LISTED_FILE_BYTES, request)) as Uint8Array<ArrayBuffer>],
+                decodeURIComponent(url.split('/').pop() ?? ''),
+              ),
           ),
         )
       : where;
-    loaded = await loaders.loadVolume(source, format);
+    loaded = await loaders.loadVolume(source, { ...format, request });
   } catch (e) {
     throw new core.VptError('load-failed', `Could not load ${where}: ${(e as Error).message}`, { cause: e });
   }
@@ -141,6 +161,7 @@ async function zarrToStream(
   d: SceneDescription,
   ctx: RenderContext,
   baseUrl: string,
+  request: Partial<RequestPolicy>,
 ): Promise<{ source: MultiscaleSource; level: number } | null> {
   const v = d.volume;
   if (!v || !('zarr' in v) || v.level !== undefined) return null;
@@ -152,6 +173,7 @@ async function zarrToStream(
       ...(v.channel !== undefined ? { channel: v.channel } : {}),
       ...(v.time !== undefined ? { time: v.time } : {}),
       ...(v.missingChunks ? { missingChunks: v.missingChunks } : {}),
+      request,
     });
   } catch (e) {
     throw new core.VptError('load-failed', `Could not load OME-Zarr ${url}: ${(e as Error).message}`, { cause: e });
@@ -181,16 +203,16 @@ function environmentOf(d: SceneDescription): Environment {
 }
 
 /** Build the core Scene for a description (defaults filled in): the page API's entry, which checks it. */
-async function buildScene(d: SceneDescription, baseUrl?: string): Promise<Scene> {
+async function buildScene(d: SceneDescription, baseUrl?: string, request?: Partial<RequestPolicy>): Promise<Scene> {
   checkSceneDescription(d, [...rendererClasses.keys()]);
-  return sceneOf(d, baseUrl);
+  return sceneOf(d, baseUrl, request);
 }
 
 /** The Scene of a description that was checked where it entered the page (buildScene, renderDescription). */
-async function sceneOf(d: SceneDescription, baseUrl?: string): Promise<Scene> {
+async function sceneOf(d: SceneDescription, baseUrl?: string, request?: Partial<RequestPolicy>): Promise<Scene> {
   const tf = d.transferFunction;
   return {
-    volume: await loadVolume(d.volume ?? SCENE_DEFAULTS.volume, baseUrl),
+    volume: await loadVolume(d.volume ?? SCENE_DEFAULTS.volume, baseUrl, request),
     transferFunction: !tf
       ? core.rampTransferFunction()
       : tf.dimensions === '2d'
@@ -234,7 +256,7 @@ function toBase64(a: ArrayBufferView): string {
  */
 async function renderDescription(
   desc: SceneDescription,
-  options: { baseUrl?: string; warmup?: boolean } = {},
+  options: PageRenderCallOptions = {},
 ): Promise<PageRenderResult> {
   const t0 = performance.now();
   checkSceneDescription(desc, [...rendererClasses.keys()]);
@@ -258,17 +280,36 @@ async function renderDescription(
   ctx.onWarning((w) => warnings.push(w.message));
   try {
     // An OME-Zarr level 0 beyond the budget streams through the brick cache, from the finest level that fits.
-    const streamed = await zarrToStream(desc, ctx, options.baseUrl ?? document.baseURI);
+    const request = options.request ?? {};
+    const streamed = await zarrToStream(desc, ctx, options.baseUrl ?? document.baseURI, request);
     const volume = streamed && { ...(desc.volume as ZarrVolumeDescription), level: streamed.level };
     // Checked on entry above; the level added to a streamed volume is the page's own.
-    const scene = await sceneOf(volume ? { ...desc, volume } : desc, options.baseUrl);
-    if (streamed) ctx.setVolumeSource(scene.volume, streamed.source);
-    ctx.setScene(scene);
+    const scene = await sceneOf(volume ? { ...desc, volume } : desc, options.baseUrl, request);
+    let bricked = false;
+    if (streamed) {
+      ctx.setVolumeSource(scene.volume, streamed.source);
+      try {
+        ctx.setScene(scene);
+        bricked = true;
+      } catch (e) {
+        if (!(e instanceof core.VptError && e.code === 'limit-exceeded')) throw e;
+        // Level 0 cannot be bricked (its page table alone is beyond the budget, a 100000³ shape
+        // say): render the finest level that fits, whole, as if it had been asked for. A copy,
+        // so the context uploads it instead of bricking it from the source.
+        warnings.push(
+          `OME-Zarr level 0 [${streamed.source.levels[0].dims.join(', ')}] cannot be streamed (${e.message}); level ${streamed.level} is rendered whole`,
+        );
+        ctx.setScene({ ...scene, volume: { ...scene.volume } });
+      }
+    } else ctx.setScene(scene);
     // Every brick the view needs (or as many as the atlas holds) before the timed iterations.
-    const bricking = streamed ? await ctx.whenBricksSettled() : null;
+    const bricking = bricked ? await ctx.whenBricksSettled() : null;
     if (options.warmup !== false) await ctx.renderIterations(1);
     const t1 = performance.now();
-    await ctx.renderIterations(iterations);
+    const run =
+      options.progress || options.timeLimitMs !== undefined
+        ? await iterateInBatches(ctx, iterations, options.timeLimitMs ?? Infinity)
+        : { done: await ctx.renderIterations(iterations).then(() => iterations), timeLimited: false };
     const totalMs = performance.now() - t1;
     // The HDR image after the post steps that keep radiance (a denoiser), before exposure and tone mapping.
     const hdr = await ctx.readHDR({ afterPost: true });
@@ -282,12 +323,19 @@ async function renderDescription(
       hdr: toBase64(hdr),
       hdrPostSteps,
       ldr: ldr ? toBase64(ldr) : null,
-      timings: { totalMs, iterations: stats.iterations, msPerIteration: stats.msPerIteration, setupMs: t1 - t0 },
+      timings: {
+        totalMs,
+        iterations: stats.iterations,
+        msPerIteration: run.timeLimited || options.progress ? totalMs / run.done : stats.msPerIteration,
+        setupMs: t1 - t0,
+        ...(run.timeLimited ? { timeLimited: true } : {}),
+      },
       backend: { kind: ctx.backend.kind, renderer: ctx.backend.info.renderer },
       gpuBytes: stats.gpuBytes,
       volumeDims: [...ctx.getScene()!.volume.dims] as [number, number, number],
       warnings,
       bricking,
+      rendererStats: { ...stats.renderer },
     };
   } finally {
     ctx.dispose();
@@ -299,6 +347,42 @@ function defaultPost(desc: SceneDescription): Record<string, unknown>[] {
   const name = desc.renderer ?? core.DEFAULT_RENDERER_NAME;
   const descriptor = rendererModules.get(name)?.descriptor as { displayReferred?: boolean } | undefined;
   return descriptor?.displayReferred ? DISPLAY_REFERRED_POST : SCENE_DEFAULTS.post;
+}
+
+/**
+ * The same iterations as renderIterations(n) (one reset, then iterate, then the image), in
+ * batches of about BATCH_MS each, so that progress is reported and a time limit can stop
+ * between batches. The batch grows from 1 while batches are quick.
+ */
+const BATCH_MS = 250;
+async function iterateInBatches(
+  ctx: RenderContext,
+  total: number,
+  timeLimitMs: number,
+): Promise<{ done: number; timeLimited: boolean }> {
+  ctx.reset();
+  const t0 = performance.now();
+  let done = 0;
+  let batch = 1;
+  let timeLimited = false;
+  while (done < total) {
+    const n = Math.min(batch, total - done);
+    const tb = performance.now();
+    ctx.iterate(n);
+    await ctx.backend.finish();
+    done += n;
+    const elapsed = performance.now() - t0;
+    window.__vptRenderProgress?.(done, total, elapsed);
+    if (done < total && elapsed >= timeLimitMs) {
+      timeLimited = true;
+      break;
+    }
+    const ms = performance.now() - tb;
+    if (ms < BATCH_MS / 2) batch = Math.min(batch * 2, 1 << 16);
+  }
+  ctx.renderImage();
+  await ctx.backend.finish();
+  return { done, timeLimited };
 }
 
 async function load<T>(name: string): Promise<T> {

@@ -1,65 +1,48 @@
+import { fetchWithPolicy, RequestError } from '@vpt/core';
 import { LoaderError, isAbort } from '../errors.js';
 import type { LoadContext } from '../context.js';
 
-/** Fetch a URL into one buffer, streaming the body with 'fetch' progress. */
-export async function fetchBytes(url: string, ctx: LoadContext): Promise<Uint8Array> {
-  const response = await fetchResponse(url, ctx);
-  const encoded = response.headers.get('content-encoding');
-  const lengthHeader = response.headers.get('content-length');
-  // With a content-encoding the header counts compressed bytes, not what the body yields.
-  const total = lengthHeader !== null && !encoded && /^\d+$/.test(lengthHeader) ? Number(lengthHeader) : undefined;
-  if (!response.body) {
-    const buf = new Uint8Array(await guard(() => response.arrayBuffer(), url, ctx));
-    ctx.progress('fetch', buf.length, buf.length);
-    return buf;
-  }
-  return readStream(response.body, total, url, ctx);
+/** Largest text file fetched (a JSON sidecar, a detached NRRD header). */
+export const MAX_TEXT_BYTES = 16 * 1024 * 1024;
+
+/**
+ * Largest data file fetched: twice the voxel bound (a float64 file becomes float32) plus a
+ * header; with downsampling on, a file may hold more than the bound, up to 4 GiB.
+ */
+function dataFileBound(ctx: LoadContext): number {
+  return ctx.downsample ? 4 * 1024 ** 3 : 2 * ctx.limits.maxBytes + (1 << 20);
 }
 
-export async function fetchText(url: string, ctx: LoadContext): Promise<string> {
-  const bytes = await fetchBytes(url, ctx);
-  return new TextDecoder().decode(bytes);
-}
-
-async function fetchResponse(url: string, ctx: LoadContext): Promise<Response> {
+/** Fetch a URL into one buffer under core's request policy, with 'fetch' progress. */
+export async function fetchBytes(url: string, ctx: LoadContext, maxBytes = dataFileBound(ctx)): Promise<Uint8Array> {
   ctx.checkAborted();
   if (typeof fetch !== 'function')
     throw new LoaderError(
       'unsupported',
       `Cannot load ${url}: this environment has no fetch(); pass the bytes (ArrayBuffer or Blob) instead`,
     );
-  let response: Response;
   try {
-    response = await fetch(url, { signal: ctx.signal });
+    const { bytes } = await fetchWithPolicy(url, {
+      signal: ctx.signal,
+      policy: ctx.request,
+      maxBytes,
+      onProgress: (loaded, total) => ctx.progress('fetch', loaded, total),
+    });
+    return bytes;
   } catch (e) {
-    if (isAbort(e) || ctx.signal?.aborted) throw new LoaderError('aborted', `Loading ${url} was aborted`, { cause: e });
-    const scheme = safeProtocol(url);
-    const hint =
-      scheme === 'file:'
-        ? "file: URLs cannot be fetched here; pass the file's bytes or a File instead"
-        : 'check the address, that the server is running, and that it allows cross-origin requests (CORS)';
-    throw new LoaderError('network', `Could not fetch ${url}: ${(e as Error)?.message ?? e}; ${hint}`, { cause: e });
+    throw asLoaderRequestError(e);
   }
-  if (response.status === 404 || response.status === 410) {
-    void response.body?.cancel().catch(() => {});
-    throw new LoaderError('not-found', `${url} was not found (HTTP ${response.status}); check the path and file name`);
-  }
-  if (!response.ok) {
-    void response.body?.cancel().catch(() => {});
-    throw new LoaderError(
-      'network',
-      `Fetching ${url} failed with HTTP ${response.status} ${response.statusText}`.trim(),
-    );
-  }
-  return response;
 }
 
-function safeProtocol(url: string): string {
-  try {
-    return new URL(url).protocol;
-  } catch {
-    return '';
-  }
+export async function fetchText(url: string, ctx: LoadContext): Promise<string> {
+  const bytes = await fetchBytes(url, ctx, MAX_TEXT_BYTES);
+  return new TextDecoder().decode(bytes);
+}
+
+/** Core's RequestError as a LoaderError with the same reason and message (a bound or a stall is reason 'network'). */
+export function asLoaderRequestError(e: unknown): unknown {
+  if (e instanceof RequestError) return new LoaderError(e.reason, e.message, { cause: e });
+  return e;
 }
 
 /** Read a Blob or File with 'fetch' progress (Blob.stream where there is one). */

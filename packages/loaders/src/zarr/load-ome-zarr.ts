@@ -8,7 +8,28 @@ import type { LoadContext } from '../context.js';
 import { LoaderError } from '../errors.js';
 import { finishVolume } from '../convert/finish.js';
 import type { LoadedVolume, ZarrLoadOptions } from '../types.js';
-import { openOmeZarr } from './multiscale-source.js';
+import {
+  levelChunkCount,
+  MAX_ZARR_CHUNKS_PER_READ,
+  MAX_ZARR_READ_VOXELS,
+  openOmeZarr,
+  type MultiscaleLevel,
+} from './multiscale-source.js';
+
+const OUTPUT_BYTES = { uint8: 1, uint16: 2, int16: 2, float32: 4 } as const;
+
+/** Why a whole level cannot be read within the load's limits (null: it can). */
+function whyNotWhole(L: MultiscaleLevel, bytesPerVoxel: number, ctx: LoadContext): string | null {
+  const voxels = L.dims[0] * L.dims[1] * L.dims[2];
+  if (voxels > MAX_ZARR_READ_VOXELS) return `${voxels} voxels, more than one read holds`;
+  if (voxels * bytesPerVoxel > ctx.limits.maxBytes)
+    return `${voxels * bytesPerVoxel} bytes, more than the ${ctx.limits.maxBytes} allowed`;
+  if (L.dims.some((n) => n > ctx.limits.maxTextureDimension3D))
+    return `a side beyond the ${ctx.limits.maxTextureDimension3D}-voxel 3D texture limit`;
+  const chunks = levelChunkCount(L);
+  if (chunks > MAX_ZARR_CHUNKS_PER_READ) return `${chunks} chunks, more than ${MAX_ZARR_CHUNKS_PER_READ} requests`;
+  return null;
+}
 import { splitZarrLocation } from './location.js';
 
 export async function loadOmeZarr(location: string, options: ZarrLoadOptions, ctx: LoadContext): Promise<LoadedVolume> {
@@ -19,13 +40,30 @@ export async function loadOmeZarr(location: string, options: ZarrLoadOptions, ct
     ...(wanted.channel !== undefined ? { channel: wanted.channel } : {}),
     ...(wanted.time !== undefined ? { time: wanted.time } : {}),
     signal: ctx.signal,
+    request: ctx.request,
     // Progress in chunks: their compressed sizes are unknown until they arrive.
     onChunks: (done, total) => ctx.progress('fetch', done, total),
   });
   const last = source.levels.length - 1;
-  const level = wanted.level === 'coarsest' ? last : (wanted.level ?? 0);
+  let level = wanted.level === 'coarsest' ? last : (wanted.level ?? 0);
   if (!Number.isInteger(level) || level < 0 || level > last)
     throw new LoaderError('bad-header', `${ctx.name}: level ${level} does not exist (0 to ${last})`);
+  const per = OUTPUT_BYTES[source.type];
+  const why = whyNotWhole(source.levels[level], per, ctx);
+  if (why && wanted.level === undefined) {
+    // No level asked for and the finest does not fit: the finest stored level that does.
+    const fitting = source.levels.findIndex((L) => whyNotWhole(L, per, ctx) === null);
+    if (fitting < 0)
+      throw new LoaderError(
+        'limit',
+        `${ctx.name}: no level can be read whole (level 0 has ${why}; the coarsest, level ${last}, has ${whyNotWhole(source.levels[last], per, ctx)})`,
+      );
+    ctx.warnings.push(`level ${fitting} [${source.levels[fitting].dims.join(', ')}] is read: level 0 has ${why}`);
+    level = fitting;
+  } else if (why && /chunks|voxels, more than one read/.test(why)) {
+    // A level asked for by name that no read can hold: refused before any request (bytes and sides downsample or fail in finishVolume).
+    throw new LoaderError('limit', `${ctx.name}: level ${level} has ${why}; choose a coarser level`);
+  }
   const L = source.levels[level];
   const volume = await source.readLevel(level, ctx.signal);
   ctx.warnings.push(...source.meta.warnings);

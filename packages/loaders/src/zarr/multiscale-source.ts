@@ -85,6 +85,90 @@ const OUTPUT_ARRAY: Record<VoxelType, new (n: number) => VoxelArray> = {
 
 type ZArray = zarr.Array<zarr.DataType, CountingStore>;
 
+/**
+ * Most chunks one read may span (a whole level or a brick's box). 1³ chunks on a 64³ shape
+ * are 262,144 requests, which took minutes; a reasonable store reads a level in a few thousand.
+ */
+export const MAX_ZARR_CHUNKS_PER_READ = 32_768;
+/** Most voxels one read may return: past this no typed array can hold them (2^31 − 1 elements). */
+export const MAX_ZARR_READ_VOXELS = 2 ** 31 - 1;
+/** Slack past a chunk's decoded size that an inflating codec may produce before it is refused (headers, padding). */
+const INFLATE_SLACK_BYTES = 1 << 16;
+
+const DTYPE_BYTES: Record<string, number> = {
+  int8: 1,
+  uint8: 1,
+  bool: 1,
+  int16: 2,
+  uint16: 2,
+  float16: 2,
+  int32: 4,
+  uint32: 4,
+  float32: 4,
+};
+
+/**
+ * gzip and zlib as zarrita decodes them, but with the inflated size bounded by the chunk's
+ * own decoded size: a gzip bomb in a chunk (a few KiB inflating to gigabytes) is refused as
+ * soon as it passes that size, instead of after the whole stream was inflated.
+ */
+function boundedInflateCodec(format: 'gzip' | 'deflate') {
+  return class BoundedInflateCodec {
+    readonly kind = 'bytes_to_bytes';
+    constructor(private readonly maxBytes: number) {}
+    static fromConfig(_config: unknown, meta?: { shape?: number[]; data_type?: string }) {
+      const n = (meta?.shape ?? []).reduce((a, b) => a * b, 1);
+      const per = DTYPE_BYTES[String(meta?.data_type)] ?? 8;
+      return new BoundedInflateCodec(meta?.shape ? n * per + INFLATE_SLACK_BYTES : Infinity);
+    }
+    encode(): never {
+      throw new Error(`${format} encoding is not supported`);
+    }
+    async decode(bytes: Uint8Array): Promise<Uint8Array> {
+      const input = new Uint8Array(bytes.byteLength);
+      input.set(bytes);
+      const stream = new Blob([input]).stream().pipeThrough(new DecompressionStream(format));
+      const reader = stream.getReader();
+      const parts: Uint8Array[] = [];
+      let total = 0;
+      for (;;) {
+        let step: ReadableStreamReadResult<Uint8Array>;
+        try {
+          step = await reader.read();
+        } catch (e) {
+          throw new Error(`Failed to decode ${format}: ${(e as Error).message}`);
+        }
+        if (step.done) break;
+        total += step.value.length;
+        if (total > this.maxBytes) {
+          await reader.cancel().catch(() => {});
+          throw new LoaderError(
+            'limit',
+            `a ${format} chunk inflates past ${this.maxBytes} bytes, more than its shape holds (a compression bomb?)`,
+          );
+        }
+        parts.push(step.value);
+      }
+      const out = new Uint8Array(total);
+      let at = 0;
+      for (const p of parts) {
+        out.set(p, at);
+        at += p.length;
+      }
+      return out;
+    }
+  };
+}
+const BoundedGzip = boundedInflateCodec('gzip');
+const BoundedZlib = boundedInflateCodec('deflate');
+for (const name of ['gzip', 'numcodecs.gzip']) zarr.registry.set(name, () => BoundedGzip as never);
+for (const name of ['zlib', 'numcodecs.zlib']) zarr.registry.set(name, () => BoundedZlib as never);
+
+/** How many chunks a whole level spans. */
+export function levelChunkCount(level: MultiscaleLevel): number {
+  return [0, 1, 2].reduce((n, i) => n * Math.ceil(level.dims[i] / level.chunk[i]), 1);
+}
+
 /** Turn what zarrita throws into a LoaderError (LoaderErrors from the store pass through). */
 export function zarrError(e: unknown, where: string): LoaderError {
   if (e instanceof LoaderError) return e;
@@ -209,6 +293,12 @@ export async function openOmeZarr(location: string, options: OmeZarrOptions = {}
     const dims = [a.shape[x], a.shape[y], a.shape[z]] as Vec3;
     if (!dims.every((n) => Number.isInteger(n) && n >= 1))
       throw new LoaderError('empty', `${where}/${ms.datasets[k].path}: dims [${dims.join(', ')}] hold no voxels`);
+    // A chunk side of 0 (or a fraction) would divide the shape into no chunks, or infinitely many.
+    if (a.chunks.length !== a.shape.length || !a.chunks.every((n) => Number.isInteger(n) && n >= 1))
+      throw new LoaderError(
+        'bad-header',
+        `${where}/${ms.datasets[k].path}: chunk shape [${a.chunks.join(', ')}] must be ${a.shape.length} positive integers`,
+      );
     return {
       dims,
       spacing: ms.datasets[k].spacing,
@@ -256,6 +346,17 @@ export async function openOmeZarr(location: string, options: OmeZarrOptions = {}
     let got: zarr.Chunk<zarr.DataType>;
     const chunk = levels[level].chunk;
     const total = [0, 1, 2].reduce((n, i) => n * (Math.ceil(max[i] / chunk[i]) - Math.floor(min[i] / chunk[i])), 1);
+    const voxels = (max[0] - min[0]) * (max[1] - min[1]) * (max[2] - min[2]);
+    if (voxels > MAX_ZARR_READ_VOXELS)
+      throw new LoaderError(
+        'limit',
+        `${where}: level ${level}'s region of [${max.map((m, i) => m - min[i]).join(', ')}] voxels is more than one read can hold (${MAX_ZARR_READ_VOXELS}); choose a coarser level`,
+      );
+    if (total > MAX_ZARR_CHUNKS_PER_READ)
+      throw new LoaderError(
+        'limit',
+        `${where}: reading level ${level}'s region would take ${total} chunk requests of [${chunk.join(', ')}] voxels, more than ${MAX_ZARR_CHUNKS_PER_READ}; choose a coarser level or rechunk the store`,
+      );
     let done = 0;
     chunkListener = () => options.onChunks?.(++done, total);
     try {

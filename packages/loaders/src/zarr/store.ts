@@ -1,10 +1,15 @@
 /**
  * The read-only key → bytes store zarrita reads an OME-Zarr through: HTTP(S) with range
  * requests, or a folder on disk in Node. It exists (rather than zarrita's FetchStore) so
- * every failure is a LoaderError with a reason, a request that stalls times out instead of
- * hanging, a failed request is retried, and the bytes fetched are counted.
+ * every failure is a LoaderError with a reason, every request runs under core's request
+ * policy (a stall times out instead of hanging, a transient failure is retried, all of it
+ * inside a total bound), and the bytes fetched are counted.
  */
-import { LoaderError, isAbort } from '../errors.js';
+import { fetchWithPolicy, RequestError, type FetchedBytes, type RequestPolicy } from '@vpt/core';
+import { LoaderError } from '../errors.js';
+
+/** Largest object (metadata file or chunk, as stored) fetched from a store. */
+const MAX_OBJECT_BYTES = 1024 * 1024 * 1024;
 
 /** The zarrita store contract (`AsyncReadable` of @zarrita/storage), restated so this module needs no import. */
 export interface ZarrReadStore {
@@ -18,9 +23,11 @@ export interface ZarrReadStore {
 
 export interface ZarrStoreOptions {
   signal?: AbortSignal;
-  /** Longest wait for one request, in ms, before it fails with reason 'network' (default 30 000). */
+  /** Bounds on every request (core's RequestPolicy; unset fields keep DEFAULT_REQUEST_POLICY). */
+  request?: Partial<RequestPolicy>;
+  /** Shorthand for `request.stallTimeoutMs`: the longest wait for an answer or for progress, in ms. */
   requestTimeoutMs?: number;
-  /** Retries of a request that failed for a transient reason (network error, 5xx, timeout); default 2. */
+  /** Shorthand for `request.retries`: further attempts after a transient failure (network error, 5xx, stall). */
   retries?: number;
   /**
    * A chunk the store does not have: 'fill' (default) reads it as the array's fill value, as
@@ -160,8 +167,12 @@ function httpReader(location: string, options: ZarrStoreOptions): Reader {
   // Every key resolves under the store's folder and keeps its query (a signed URL's token).
   const base = new URL(location.replace(/#.*$/, ''));
   if (!base.pathname.endsWith('/')) base.pathname += '/';
-  const timeoutMs = options.requestTimeoutMs ?? 30_000;
-  const retries = options.retries ?? 2;
+  // Core's one request policy; the older shorthands set its stall timeout and retries.
+  const policy: Partial<RequestPolicy> = {
+    ...options.request,
+    ...(options.requestTimeoutMs !== undefined ? { stallTimeoutMs: options.requestTimeoutMs } : {}),
+    ...(options.retries !== undefined ? { retries: options.retries } : {}),
+  };
   return {
     async read(key, range, signal) {
       const target = new URL(key.replace(/^\/+/, ''), base);
@@ -174,76 +185,26 @@ function httpReader(location: string, options: ZarrStoreOptions): Reader {
             ? `bytes=-${range.suffixLength}`
             : `bytes=${range.offset}-${range.offset + range.length - 1}`;
       }
-      for (let attempt = 0; ; attempt++) {
-        try {
-          return await fetchOnce(url, headers, range, signal, timeoutMs);
-        } catch (e) {
-          const transient = e instanceof LoaderError && (e.reason === 'network' || e.reason === 'truncated');
-          if (!transient || attempt >= retries || signal?.aborted) throw e;
-          await new Promise((r) => setTimeout(r, 100 * 2 ** attempt));
-        }
+      let answer: FetchedBytes;
+      try {
+        answer = await fetchWithPolicy(url, { headers, signal, policy, maxBytes: MAX_OBJECT_BYTES });
+      } catch (e) {
+        // 403: object stores answer it for absent keys of a private listing.
+        if (e instanceof RequestError && (e.reason === 'not-found' || e.status === 403)) return undefined;
+        if (e instanceof RequestError) throw new LoaderError(e.reason, e.message, { cause: e });
+        throw e;
       }
+      const { bytes, status } = answer;
+      if (status !== 200 && status !== 206)
+        throw new LoaderError('network', `Fetching ${url} failed with HTTP ${status}`);
+      // A server that ignores Range sends the whole object: cut the range out here.
+      if (range && status === 200) {
+        if ('suffixLength' in range) return bytes.subarray(Math.max(0, bytes.length - range.suffixLength));
+        return bytes.subarray(range.offset, range.offset + range.length);
+      }
+      return bytes;
     },
   };
-}
-
-async function fetchOnce(
-  url: string,
-  headers: Record<string, string>,
-  range: { offset: number; length: number } | { suffixLength: number } | undefined,
-  signal: AbortSignal | undefined,
-  timeoutMs: number,
-): Promise<Uint8Array | undefined> {
-  if (signal?.aborted) throw new LoaderError('aborted', `Loading ${url} was aborted`, { cause: signal.reason });
-  // One controller for the caller's abort and this request's deadline, which covers the
-  // body too: a server that sends headers and then stalls must not hang the load.
-  const controller = new AbortController();
-  let timedOut = false;
-  const timer = setTimeout(() => {
-    timedOut = true;
-    controller.abort();
-  }, timeoutMs);
-  const onAbort = () => controller.abort();
-  signal?.addEventListener('abort', onAbort, { once: true });
-  try {
-    const response = await fetch(url, { headers, signal: controller.signal });
-    if (response.status === 404 || response.status === 410 || response.status === 403) {
-      void response.body?.cancel().catch(() => {});
-      // 403: object stores answer it for absent keys of a private listing.
-      return undefined;
-    }
-    if (response.status !== 200 && response.status !== 206) {
-      void response.body?.cancel().catch(() => {});
-      throw new LoaderError('network', `Fetching ${url} failed with HTTP ${response.status}`);
-    }
-    let bytes: Uint8Array;
-    try {
-      bytes = new Uint8Array(await response.arrayBuffer());
-    } catch (e) {
-      if (signal?.aborted || timedOut) throw e;
-      // The headers came, the body broke off (a dropped connection mid-answer).
-      throw new LoaderError('truncated', `${url}: the answer broke off (${(e as Error)?.message ?? e})`, { cause: e });
-    }
-    const declared = response.headers.get('content-length');
-    if (declared !== null && !response.headers.get('content-encoding') && Number(declared) !== bytes.length)
-      throw new LoaderError('truncated', `${url}: the answer ended after ${bytes.length} of ${declared} bytes`);
-    // A server that ignores Range sends the whole object: cut the range out here.
-    if (range && response.status === 200) {
-      if ('suffixLength' in range) return bytes.subarray(Math.max(0, bytes.length - range.suffixLength));
-      return bytes.subarray(range.offset, range.offset + range.length);
-    }
-    return bytes;
-  } catch (e) {
-    if (e instanceof LoaderError) throw e;
-    if (signal?.aborted) throw new LoaderError('aborted', `Loading ${url} was aborted`, { cause: e });
-    if (timedOut)
-      throw new LoaderError('network', `${url}: no complete answer within ${timeoutMs} ms (timed out)`, { cause: e });
-    if (isAbort(e)) throw new LoaderError('aborted', `Loading ${url} was aborted`, { cause: e });
-    throw new LoaderError('network', `Could not fetch ${url}: ${(e as Error)?.message ?? e}`, { cause: e });
-  } finally {
-    clearTimeout(timer);
-    signal?.removeEventListener('abort', onAbort);
-  }
 }
 
 /** The few Node functions the folder reader uses (this package is built without Node's types). */

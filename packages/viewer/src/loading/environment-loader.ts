@@ -2,10 +2,11 @@
  * Lat-long HDR environments from a URL: Radiance .hdr (RGBE) and OpenEXR, decoded by
  * Three.js' loaders, converted to core's Environment (RGB floats, row 0 at the top).
  */
-import { VptError, type Environment } from '@vpt/core';
+import { RequestError, VptError, fetchWithPolicy, type Environment, type RequestPolicy } from '@vpt/core';
 import { FloatType } from 'three';
 import { EXRLoader } from 'three/addons/loaders/EXRLoader.js';
 import { HDRLoader } from 'three/addons/loaders/HDRLoader.js';
+import { checkExrHeader, checkHdrHeader, isExr } from './environment-header.js';
 
 interface Decoded {
   width: number;
@@ -14,8 +15,14 @@ interface Decoded {
   bottomUp: boolean;
 }
 
+/**
+ * Decode after the header checks of environment-header.ts (the decoders trust the header:
+ * an unbounded loop or allocation otherwise). OpenEXR by its magic number or extension.
+ */
 function decode(url: string, buffer: ArrayBuffer): Decoded {
-  if (/\.exr(\?|#|$)/i.test(url)) {
+  const bytes = new Uint8Array(buffer);
+  if (isExr(bytes) || /\.exr(\?|#|$)/i.test(url)) {
+    checkExrHeader(bytes, url);
     const r = new EXRLoader().setDataType(FloatType).parse(buffer) as {
       width: number;
       height: number;
@@ -23,6 +30,7 @@ function decode(url: string, buffer: ArrayBuffer): Decoded {
     };
     return { width: r.width, height: r.height, data: r.data, bottomUp: true };
   }
+  checkHdrHeader(bytes, url);
   const r = new HDRLoader().setDataType(FloatType).parse(buffer) as {
     width: number;
     height: number;
@@ -31,20 +39,40 @@ function decode(url: string, buffer: ArrayBuffer): Decoded {
   return { width: r.width, height: r.height, data: r.data, bottomUp: false };
 }
 
-export async function loadEnvironment(url: string, scale = 1, signal?: AbortSignal): Promise<Environment> {
+/** Largest environment file fetched: an 8k × 4k float RGBA EXR, uncompressed. */
+export const MAX_ENVIRONMENT_BYTES = 512 * 1024 * 1024;
+
+export interface EnvironmentLoadOptions {
+  signal?: AbortSignal;
+  /** Bounds on the request (core's RequestPolicy overrides). */
+  request?: Partial<RequestPolicy>;
+}
+
+export async function loadEnvironment(
+  url: string,
+  scale = 1,
+  options: EnvironmentLoadOptions = {},
+): Promise<Environment> {
   const href = new URL(url, globalThis.document?.baseURI).href;
   let buffer: ArrayBuffer;
   try {
-    const res = await fetch(href, { signal });
-    if (!res.ok) throw new Error(`HTTP ${res.status}`);
-    buffer = await res.arrayBuffer();
+    const { bytes } = await fetchWithPolicy(href, {
+      signal: options.signal,
+      policy: options.request,
+      maxBytes: MAX_ENVIRONMENT_BYTES,
+    });
+    const whole = bytes.byteOffset === 0 && bytes.byteLength === bytes.buffer.byteLength;
+    buffer = (whole ? bytes.buffer : bytes.slice().buffer) as ArrayBuffer;
   } catch (e) {
-    throw new VptError('load-failed', `environment: could not fetch ${href} (${(e as Error).message})`, { cause: e });
+    // A size bound stays limit-exceeded; everything else is a failed load naming the URL.
+    const code = e instanceof RequestError ? e.code : 'load-failed';
+    throw new VptError(code, `environment: could not fetch ${href} (${(e as Error).message})`, { cause: e });
   }
   let d: Decoded;
   try {
     d = decode(href, buffer);
   } catch (e) {
+    if (e instanceof VptError) throw e; // the header checks' own, naming what is wrong
     throw new VptError(
       'load-failed',
       `environment: ${href} is not a readable .hdr/.exr image (${(e as Error).message})`,

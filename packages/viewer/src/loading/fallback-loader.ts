@@ -7,7 +7,9 @@
  */
 import {
   RawReadError,
+  RequestError,
   VptError,
+  fetchWithPolicy,
   createVolume,
   parseRawSidecar,
   rawFileBeside,
@@ -19,6 +21,10 @@ import type { LoadOptions, LoadedVolumeLike, VolumeSource } from './types.js';
 export type FallbackReason =
   'not-found' | 'network' | 'truncated' | 'bad-header' | 'unsupported' | 'empty' | 'overflow' | 'aborted' | 'limit';
 
+/** Largest sidecar fetched (as @vpt/loaders bounds its text files). */
+const MAX_SIDECAR_BYTES = 16 * 1024 * 1024;
+const BYTES_PER_VOXEL = { uint8: 1, uint16: 2, int16: 2, float32: 4 } as const;
+
 /** A load failure with the same `reason` field as @vpt/loaders' LoaderError. */
 export class ViewerLoadError extends VptError {
   readonly reason: FallbackReason;
@@ -29,38 +35,20 @@ export class ViewerLoadError extends VptError {
   }
 }
 
-/** Fetch a URL's bytes, reporting progress as they arrive. */
-async function fetchBytes(url: string, options: LoadOptions): Promise<Uint8Array> {
-  let res: Response;
+/** A URL's bytes under core's request policy, reporting progress as they arrive. */
+async function fetchBytes(url: string, options: LoadOptions, maxBytes: number): Promise<Uint8Array> {
   try {
-    res = await fetch(url, { signal: options.signal });
+    const { bytes } = await fetchWithPolicy(url, {
+      signal: options.signal,
+      policy: options.request,
+      maxBytes,
+      onProgress: (loaded, total) => options.onProgress?.({ stage: 'fetch', loaded, total }),
+    });
+    return bytes;
   } catch (e) {
-    if ((e as Error).name === 'AbortError')
-      throw new ViewerLoadError('aborted', `Loading ${url} was aborted`, { cause: e });
-    throw new ViewerLoadError('network', `Could not fetch ${url}: ${(e as Error).message}`, { cause: e });
+    if (e instanceof RequestError) throw new ViewerLoadError(e.reason, e.message, { cause: e });
+    throw e;
   }
-  if (res.status === 404 || res.status === 410)
-    throw new ViewerLoadError('not-found', `${url} was not found (HTTP ${res.status})`);
-  if (!res.ok) throw new ViewerLoadError('network', `Could not fetch ${url}: HTTP ${res.status}`);
-  const total = Number(res.headers.get('content-length')) || undefined;
-  if (!res.body) return new Uint8Array(await res.arrayBuffer());
-  const chunks: Uint8Array[] = [];
-  let loaded = 0;
-  const reader = res.body.getReader();
-  for (;;) {
-    const { done, value } = await reader.read();
-    if (done) break;
-    chunks.push(value);
-    loaded += value.byteLength;
-    options.onProgress?.({ stage: 'fetch', loaded, total });
-  }
-  const out = new Uint8Array(loaded);
-  let at = 0;
-  for (const c of chunks) {
-    out.set(c, at);
-    at += c.byteLength;
-  }
-  return out;
 }
 
 /** Core's raw reader, its RawReadError as a ViewerLoadError with the same reason and message. */
@@ -74,7 +62,9 @@ function read<T>(fn: () => T): T {
 }
 
 async function loadSidecar(url: string, options: LoadOptions): Promise<LoadedVolumeLike> {
-  const text = new TextDecoder().decode(await fetchBytes(url, { ...options, onProgress: undefined }));
+  const text = new TextDecoder().decode(
+    await fetchBytes(url, { ...options, onProgress: undefined }, MAX_SIDECAR_BYTES),
+  );
   const sidecar = read(() => parseRawSidecar(text, url));
   const { dims } = sidecar;
   const max = options.limits?.maxTextureDimension3D ?? Infinity;
@@ -84,7 +74,8 @@ async function loadSidecar(url: string, options: LoadOptions): Promise<LoadedVol
       `${url}: dims [${dims.join(', ')}] exceed this device's 3D texture limit of ${max} per side`,
     );
   const rawUrl = rawFileBeside(url, sidecar);
-  const bytes = await fetchBytes(rawUrl, options);
+  // A raw file holds exactly dims × type bytes (rawVoxels checks it): nothing longer is read.
+  const bytes = await fetchBytes(rawUrl, options, dims[0] * dims[1] * dims[2] * BYTES_PER_VOXEL[sidecar.type]);
   const volume: Volume = createVolume(
     dims,
     sidecar.type,

@@ -2,7 +2,7 @@
  * The loading interface the viewer codes against: the one @vpt/loaders implements
  * (restated here so the viewer builds and type-checks without that package).
  */
-import type { Volume } from '@vpt/core';
+import type { RequestPolicy, Volume } from '@vpt/core';
 
 export type VolumeSource = string | URL | Blob | File | ArrayBuffer | readonly File[];
 
@@ -24,6 +24,8 @@ export interface LoadOptions {
   onProgress?: (p: LoadProgress) => void;
   limits?: { maxTextureDimension3D?: number; maxBytes?: number };
   downsample?: boolean;
+  /** Bounds on every request of the load (core's RequestPolicy overrides). */
+  request?: Partial<RequestPolicy>;
 }
 
 /** A core Volume plus the format it was read from (and, from @vpt/loaders, orientation and metadata). */

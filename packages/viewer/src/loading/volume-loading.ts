@@ -7,7 +7,7 @@
  * element is reached through a small host (VolumeLoadingHost); the methods read it under
  * the element's own names, so they read as they did in viewer-element.ts.
  */
-import type { MultiscaleSource, RenderWarning } from '@vpt/core';
+import type { MultiscaleSource, RenderWarning, RequestPolicy } from '@vpt/core';
 import type { RenderSession } from '../session.js';
 import type { ViewerLoadDetail, ViewerProgressDetail } from './load-events.js';
 import { finestFittingLevel, isProgressiveSource, refinementPlan, sourceAtLevel, type Dims } from './multiscale.js';
@@ -46,6 +46,8 @@ export interface VolumeLoadingHost {
   fail(error: unknown): void;
   dispatchEvent(event: Event): boolean;
   requestUpdate(): void;
+  /** Bounds on every fetch of a load (core's RequestPolicy overrides). */
+  requestPolicy(): Partial<RequestPolicy>;
 }
 
 export class VolumeLoading {
@@ -130,6 +132,7 @@ export class VolumeLoading {
     return loadVolumeSource(source, {
       signal,
       limits,
+      request: this.host.requestPolicy(),
       onProgress: (p) => {
         if (token !== this.tokens.src) return;
         this._status = p.total
@@ -196,7 +199,7 @@ export class VolumeLoading {
     const shown = this.volume;
     if (!shown || !this._dataLevel) return;
     this._dataLevel = { ...this._dataLevel, loading: 0 };
-    const multiscale = await openMultiscaleSource(source);
+    const multiscale = await openMultiscaleSource(source, this.host.requestPolicy());
     if (token !== this.tokens.src || this.volume !== shown) return;
     if (!multiscale) {
       this._dataLevel = { ...this._dataLevel, loading: null };

@@ -3,7 +3,14 @@
  * in code, everything else through @vpt/loaders when it is installed, else through the
  * small sidecar loader beside this file.
  */
-import { VptError, createProceduralVolume, type MultiscaleSource, type ProceduralKind } from '@vpt/core';
+import {
+  MAX_PROCEDURAL_SIZE,
+  VptError,
+  createProceduralVolume,
+  type MultiscaleSource,
+  type ProceduralKind,
+  type RequestPolicy,
+} from '@vpt/core';
 import { fallbackLoadVolume } from './fallback-loader.js';
 import type { LoadOptions, LoadVolumeFn, LoadedVolumeLike, VolumeSource } from './types.js';
 
@@ -35,8 +42,11 @@ export function proceduralVolume(source: VolumeSource): LoadedVolumeLike | null 
   if (!PROCEDURAL.includes(kind))
     throw new VptError('load-failed', `${source}: unknown procedural volume "${kind}" (${PROCEDURAL.join(', ')})`);
   const size = url.searchParams.has('size') ? Number(url.searchParams.get('size')) : 64;
-  if (!Number.isInteger(size) || size < 2 || size > 512)
-    throw new VptError('load-failed', `${source}: size must be an integer in [2, 512]`);
+  if (!Number.isInteger(size) || size < 2 || size > MAX_PROCEDURAL_SIZE)
+    throw new VptError(
+      size > MAX_PROCEDURAL_SIZE ? 'limit-exceeded' : 'load-failed',
+      `${source}: size must be an integer in [2, ${MAX_PROCEDURAL_SIZE}] (MAX_PROCEDURAL_SIZE)`,
+    );
   return Object.assign(createProceduralVolume(kind, size), { format: 'procedural' });
 }
 
@@ -66,12 +76,18 @@ export async function loadVolumeSource(source: VolumeSource, options: LoadOption
  * the channel and time of its fragment), for the brick cache (RenderContext.setVolumeSource);
  * null when @vpt/loaders is not installed (the fallback loader cannot read Zarr).
  */
-export async function openMultiscaleSource(source: string): Promise<MultiscaleSource | null> {
+export async function openMultiscaleSource(
+  source: string,
+  request: Partial<RequestPolicy> = {},
+): Promise<MultiscaleSource | null> {
   const { name } = await volumeLoader();
   if (name !== '@vpt/loaders') return null;
   // @ts-ignore -- optional package, may be absent when this is type-checked
   const m = (await import('@vpt/loaders')) as {
-    openOmeZarr: (location: string, o: { channel?: number; time?: number }) => Promise<MultiscaleSource>;
+    openOmeZarr: (
+      location: string,
+      o: { channel?: number; time?: number; request?: Partial<RequestPolicy> },
+    ) => Promise<MultiscaleSource>;
     splitZarrLocation: (location: string) => { store: string; selection: { channel?: number; time?: number } };
   };
   const { store, selection } = m.splitZarrLocation(source);
@@ -80,5 +96,6 @@ export async function openMultiscaleSource(source: string): Promise<MultiscaleSo
   return m.openOmeZarr(location, {
     ...(selection.channel !== undefined ? { channel: selection.channel } : {}),
     ...(selection.time !== undefined ? { time: selection.time } : {}),
+    request,
   });
 }

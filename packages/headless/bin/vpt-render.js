@@ -1,0 +1,10 @@
+#!/usr/bin/env node
+// The vpt-render command. Committed, not built, so the file exists when pnpm links bins at
+// install time (before any build): bins pointing into dist/ printed "Failed to create bin".
+try {
+  await import('../dist/cli/render.js');
+} catch (e) {
+  if (e?.code !== 'ERR_MODULE_NOT_FOUND' || !String(e.message).includes('dist/cli/render.js')) throw e;
+  console.error('vpt-render: @vpt/headless is not built yet; run pnpm run build in the vpt workspace');
+  process.exit(1);
+}
