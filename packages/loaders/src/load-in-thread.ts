@@ -1,6 +1,6 @@
 import { LoaderError, toLoaderError } from './errors.js';
 import { createContext, type LoadContext } from './context.js';
-import type { LoadedVolume, LoadOptions, VolumeSource } from './types.js';
+import { DEFAULT_RAW_HINT, type LoadedVolume, type LoadOptions, type VolumeSource } from './types.js';
 import { baseName, formatFromBytes, formatFromName, type Format } from './detect.js';
 import { bytesOf, fetchBytes, fetchText, readBlob } from './io/read-bytes.js';
 import { checkRawOptions, decodeRaw, parseSidecar, rawFromName, type RawDescription } from './formats/raw.js';
@@ -244,7 +244,7 @@ async function decodeBytes(
       if (!raw)
         throw new LoaderError(
           'bad-header',
-          `${ctx.name}: raw data has no header; pass options.raw = { dims: [NX, NY, NZ], type } or load its JSON sidecar`,
+          `${ctx.name}: raw data has no header; ${options.rawHint ?? DEFAULT_RAW_HINT} or load its JSON sidecar`,
         );
       return decodeRaw(bytes, checkRawOptions(raw, ctx), ctx);
     }
@@ -270,7 +270,7 @@ async function decodeBytes(
       throw new LoaderError(
         'bad-magic',
         `${ctx.name}: the format is not recognised (not NIfTI-1, NRRD, DICOM or a JSON sidecar); ` +
-          'for headerless data pass options.raw = { dims, type }, or pass options.format',
+          `for headerless data ${options.rawHint ?? `${DEFAULT_RAW_HINT}, or pass options.format`}`,
       );
   }
 }

@@ -2,8 +2,9 @@
  * `<vpt-viewer>`: a progressive volume renderer as one HTML element.
  *
  * Attributes (all reflected, all also properties): src, renderer, backend,
- * transfer-function, camera, lights, environment, exposure, tone-mapper, max-samples,
- * target-error, density-scale, seed, renderer-params, resolution-scale, panels, collapsed.
+ * transfer-function, camera, lights, environment, exposure, tone-mapper, denoise,
+ * max-samples, target-error, density-scale, seed, renderer-params, resolution-scale, panels,
+ * collapsed, hide-progress, hide-stats.
  * Events (typed through HTMLElementEventMap, prefixed so none collides with a native
  * event): vpt-load, vpt-progress (loading and refinement), vpt-converged, vpt-error,
  * vpt-change (the user edited something through the element: camera drag, panels).

@@ -24,6 +24,8 @@ export interface LoadOptions {
   onProgress?: (p: LoadProgress) => void;
   limits?: { maxTextureDimension3D?: number; maxBytes?: number };
   downsample?: boolean;
+  /** How headerless raw data gets its dims and type, as the loader's errors say it. */
+  rawHint?: string;
 }
 
 /** A core Volume plus the format it was read from (and, from @vpt/loaders, orientation and metadata). */

@@ -9,6 +9,13 @@ import type { LoadOptions, LoadVolumeFn, LoadedVolumeLike, VolumeSource } from '
 
 const PROCEDURAL: readonly ProceduralKind[] = ['sphere', 'cube', 'ramp', 'blob'];
 
+/**
+ * What the loader's errors suggest for headerless raw data: an element attribute cannot
+ * reach `options.raw`, so name what `src` can be (a sidecar, or dims and type in the name).
+ */
+export const ELEMENT_RAW_HINT =
+  'point src at a JSON sidecar ({"file": "name.raw", "dims": [NX, NY, NZ], "type": "uint8"}) or put dims and type in the file name (name_128x128x84_uint8.raw)';
+
 let loaderPromise: Promise<{ loadVolume: LoadVolumeFn; name: string }> | null = null;
 
 /** @vpt/loaders' loadVolume when it can be imported, else the fallback (decided once per page). */
@@ -44,7 +51,7 @@ export async function loadVolumeSource(source: VolumeSource, options: LoadOption
   const procedural = proceduralVolume(source);
   if (procedural) return procedural;
   const { loadVolume } = await volumeLoader();
-  const volume = await loadVolume(source, options);
+  const volume = await loadVolume(source, { rawHint: ELEMENT_RAW_HINT, ...options });
   // A sidecar's value_range maps to [0, 1] for every voxel type, as the headless renderer
   // (vpt-render) reads scene files; @vpt/loaders keeps it in meta only. Applying it here
   // makes the element show exactly what vpt-render renders for the same scene.
