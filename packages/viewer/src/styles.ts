@@ -40,6 +40,9 @@ export const viewerStyles = css`
     touch-action: none;
     outline: none;
   }
+  .view canvas.still {
+    pointer-events: none;
+  }
   .view canvas:focus-visible {
     box-shadow: inset 0 0 0 2px var(--vpt-accent);
   }

@@ -46,6 +46,7 @@ import {
   type EnvironmentValue,
 } from './attributes.js';
 import { fitCamera } from './camera-fit.js';
+import { webglSlots, type SlotHolder } from './context-slots.js';
 import { autoTransferFunction, defaultRendererParams, rendererLook } from './defaults.js';
 import { download, encodeExr, encodePfm, encodePngBlob } from './export.js';
 import { gradientSamples, valueHistogram, type GradientSamples, type Histogram1D } from './histogram.js';
@@ -76,6 +77,9 @@ export interface ViewerChangeDetail {
   property: string;
 }
 
+/** attributeErrorKey when the scene the attributes made was refused (no one attribute's parse failed). */
+const SCENE_ERROR = '(scene)';
+
 /** Below a sidebar's width plus this much image, the panels become an overlay. */
 const NARROW_MIN_IMAGE_PX = 320;
 
@@ -94,7 +98,7 @@ const SYNC_FIELDS = [
   'resolutionScale',
 ] as const;
 
-export class VptViewer extends LitElement implements PanelHost {
+export class VptViewer extends LitElement implements PanelHost, SlotHolder {
   static override styles = viewerStyles;
 
   static override properties = {
@@ -139,6 +143,7 @@ export class VptViewer extends LitElement implements PanelHost {
     _histogram: { state: true },
     _dataLevel: { state: true },
     _dragOver: { state: true },
+    _parked: { state: true },
   };
 
   /** URL of the volume (any format @vpt/loaders reads; a JSON sidecar; or `procedural:blob?size=64`). */
@@ -197,6 +202,13 @@ export class VptViewer extends LitElement implements PanelHost {
   declare private _stats: RefinementStats | null;
   declare private _histogram: Histogram1D | null;
   declare private _dragOver: boolean;
+  /** The WebGL 2 context was released for another viewer's (context-slots.ts): a still of the image shows until a slot is free. */
+  declare private _parked: boolean;
+  /** On screen, as an IntersectionObserver last said (true until it says otherwise). */
+  private onScreen = true;
+  private visibilityObserver: IntersectionObserver | null = null;
+  /** Whether this element holds (or reserved) one of the page's WebGL 2 slots. */
+  private holdsSlot = false;
   /** A multiscale volume's levels: shown, how many, the one that fits the budget, the one loading (null: none). */
   declare private _dataLevel: DataLevel | null;
   /** Loading src: one volume, or a multiscale store level by level (loading/volume-loading.ts). */
@@ -260,6 +272,7 @@ export class VptViewer extends LitElement implements PanelHost {
     this._stats = null;
     this._histogram = null;
     this._dragOver = false;
+    this._parked = false;
     this.validator = new AttributeValidator(this as unknown as Record<CheckedProperty, unknown>);
     this.orbit = new OrbitCamera({
       start: () => {
@@ -366,6 +379,7 @@ export class VptViewer extends LitElement implements PanelHost {
   override connectedCallback(): void {
     super.connectedCallback();
     this.connected = true;
+    this.observeVisibility();
     // Re-attached after a removal: the GPU context was released, open a new one.
     if (this.hasUpdated) this.observeHostWidth();
     if (this.hasUpdated && !this.session) this.track(this.openSession());
@@ -375,11 +389,95 @@ export class VptViewer extends LitElement implements PanelHost {
     super.disconnectedCallback();
     this.connected = false;
     this.hostObserver?.disconnect();
+    this.visibilityObserver?.disconnect();
     this.volumeLoading.abort();
     this.tokens.session++;
+    // While the canvas is still in the shadow tree (OrbitControls listens on its root node).
+    this.orbit.detach();
     this.session?.dispose();
     this.session = null;
+    this.releaseSlot();
+    this._parked = false;
     this.stopLostTimer();
+  }
+
+  // ——— the page's WebGL 2 context slots (context-slots.ts) ———
+
+  /** @internal SlotHolder: on screen. */
+  get visible(): boolean {
+    return this.onScreen;
+  }
+
+  /** @internal SlotHolder: give the WebGL 2 context up for another viewer's, keeping a still of the image. */
+  async release(): Promise<void> {
+    const session = this.session;
+    this.holdsSlot = false;
+    if (!session) {
+      // Still opening: that open is dropped; a slot is handed back through resume().
+      if (this.opening) {
+        this.tokens.session++;
+        this._parked = true;
+      }
+      return;
+    }
+    this.tokens.session++;
+    ++this.tokens.renderer;
+    let still: HTMLCanvasElement | null = null;
+    try {
+      if (session.ctx.getScene() && !session.ctx.backend.isLost) {
+        const { width, height } = session.ctx.size;
+        const ldr = await session.ctx.readLDR();
+        still = document.createElement('canvas');
+        still.width = width;
+        still.height = height;
+        still.className = 'still';
+        still.setAttribute('part', 'still');
+        still.setAttribute('aria-hidden', 'true');
+        still.getContext('2d')?.putImageData(new ImageData(new Uint8ClampedArray(ldr), width, height), 0, 0);
+      }
+    } catch {
+      still = null; // no still: the released canvas shows until a slot is free
+    }
+    if (this.session !== session) return;
+    this.orbit.detach();
+    session.dispose();
+    this.session = null;
+    this._parked = true;
+    this._lost = false;
+    this.stopLostTimer();
+    this.stillCanvas?.remove();
+    this.stillCanvas = still;
+    // Right after the released canvas, so it paints over it and under the overlays.
+    if (still) (this.canvas ?? this.renderRoot.querySelector('.view'))?.after(still);
+  }
+
+  /** @internal SlotHolder: a slot is free again. */
+  resume(): void {
+    if (!this.connected) {
+      webglSlots.drop(this);
+      return;
+    }
+    this.holdsSlot = true;
+    this._parked = false;
+    if (!this.session) this.track(this.openSession());
+  }
+
+  private stillCanvas: HTMLCanvasElement | null = null;
+
+  private releaseSlot(): void {
+    this.holdsSlot = false;
+    webglSlots.drop(this);
+  }
+
+  private observeVisibility(): void {
+    if (typeof IntersectionObserver !== 'function') return;
+    this.visibilityObserver ??= new IntersectionObserver((entries) => {
+      const entry = entries[entries.length - 1];
+      if (!entry || entry.isIntersecting === this.onScreen) return;
+      this.onScreen = entry.isIntersecting;
+      webglSlots.visibilityChanged(this);
+    });
+    this.visibilityObserver.observe(this);
   }
 
   protected override firstUpdated(): void {
@@ -394,12 +492,22 @@ export class VptViewer extends LitElement implements PanelHost {
     }
     this.keepFittedPreset = false;
     // Normalize and validate what changed; an invalid value is reported and the last valid one restored.
+    const failed = new Set<string>();
     this.validator.validate(
       this as unknown as Record<CheckedProperty, unknown>,
       changed as Map<PropertyKey, unknown>,
       this.volume ?? undefined,
-      (e) => this.fail(e, 'attribute'),
+      (e, key) => {
+        failed.add(key);
+        this.fail(e, 'attribute');
+        this.attributeErrorKey = key;
+      },
     );
+    // The attribute whose value the banner reports got a valid value: it renders now, the banner goes.
+    const key = this.attributeErrorKey;
+    if (key && key !== SCENE_ERROR && changed.has(key as keyof VptViewer) && !failed.has(key)) {
+      this.clearError('attribute');
+    }
     if (changed.has('camera') && !this.internalChange.has('camera')) {
       // A camera given from outside becomes "home" for resetCamera().
       this.cameraIsAuto = this.camera === null;
@@ -412,7 +520,8 @@ export class VptViewer extends LitElement implements PanelHost {
     this.internalChange = new Set();
     if (!this.connected) return;
     if (changed.has('camera') && this.camera && !internal.has('camera')) this.orbit.set(this.camera as Camera);
-    if (changed.has('backend') || (!this.session && !this.opening)) this.track(this.openSession());
+    // A viewer waiting for a WebGL 2 slot opens when one is free (resume), not on every change.
+    if (changed.has('backend') || (!this.session && !this.opening && !this._parked)) this.track(this.openSession());
     else if (this.session && (changed.has('renderer') || changed.has('rendererParams')))
       this.track(this.switchRenderer());
     if (changed.has('src')) this.track(this.volumeLoading.loadSource(this.src));
@@ -751,6 +860,13 @@ export class VptViewer extends LitElement implements PanelHost {
       }
     }
     if (token !== this.tokens.session) return;
+    // A WebGL 2 context takes one of the page's slots first (another viewer may release its context).
+    const mayBeWebgl2 = this.backend === 'webgl2' || (this.backend !== 'webgpu' && !('gpu' in navigator));
+    if (mayBeWebgl2) {
+      this.holdsSlot = true;
+      await webglSlots.acquire(this);
+      if (token !== this.tokens.session) return;
+    }
     const canvas = document.createElement('canvas');
     canvas.tabIndex = 0;
     canvas.setAttribute('part', 'canvas');
@@ -759,7 +875,8 @@ export class VptViewer extends LitElement implements PanelHost {
       'aria-label',
       'Volume rendering. Drag or use the arrow keys to orbit; right-drag or Shift+arrows to pan; wheel, +/- to zoom.',
     );
-    const { width, height } = this.resolution.renderSize(Infinity);
+    // The first size before the device's limits are known; applySize() fits it right after.
+    const { width, height } = this.resolution.renderSize(2048, 2048 * 2048);
     let session: RenderSession;
     try {
       session = await RenderSession.create(
@@ -790,14 +907,32 @@ export class VptViewer extends LitElement implements PanelHost {
         },
       );
     } catch (e) {
-      if (token === this.tokens.session) this.fail(e, 'context');
+      if (token === this.tokens.session) {
+        this.releaseSlot();
+        this.fail(e, 'context');
+      }
       return;
     }
     if (token !== this.tokens.session || !this.connected) {
       session.dispose();
       return;
     }
+    if (session.ctx.backend.kind !== 'webgl2') this.releaseSlot();
+    else if (!this.holdsSlot) {
+      // 'auto' fell back to WebGL 2: take a slot now.
+      this.holdsSlot = true;
+      await webglSlots.acquire(this);
+      if (token !== this.tokens.session || !this.connected) {
+        session.dispose();
+        return;
+      }
+    }
+    // Detach while the old canvas is still in the tree (see OrbitCamera.detach).
+    this.orbit.detach();
     this.canvas?.remove();
+    this.stillCanvas?.remove();
+    this.stillCanvas = null;
+    this._parked = false;
     this.canvas = canvas;
     view.prepend(canvas);
     this.session = session;
@@ -959,6 +1094,8 @@ export class VptViewer extends LitElement implements PanelHost {
     if (!scene) return;
     try {
       s.applyScene(scene);
+      // A scene the attributes made failed before; this one renders: the banner goes.
+      if (this.attributeErrorKey === SCENE_ERROR) this.clearError('attribute');
     } catch (e) {
       if (isVptError(e, 'limit-exceeded')) {
         // The volume does not fit this device: drop it rather than fail again on every change.
@@ -966,6 +1103,7 @@ export class VptViewer extends LitElement implements PanelHost {
         this.fail(e, 'src');
       } else {
         this.fail(e, 'attribute');
+        this.attributeErrorKey = SCENE_ERROR;
       }
     }
   }
@@ -974,7 +1112,8 @@ export class VptViewer extends LitElement implements PanelHost {
     const s = this.session;
     if (!s) return;
     const max = s.ctx.backend.limits.maxTextureDimension2D;
-    const { width, height } = this.resolution.renderSize(max);
+    // Clamped to the GPU memory budget (a 3000 px element at resolution-scale 4 would not fit).
+    const { width, height } = this.resolution.renderSize(max, s.ctx.maxRenderPixels);
     try {
       s.setSize(width, height);
     } catch (e) {
@@ -983,6 +1122,7 @@ export class VptViewer extends LitElement implements PanelHost {
   }
 
   private onProgress(s: RefinementStats): void {
+    if (this.holdsSlot) webglSlots.touch(this);
     this.resolution.recordIteration(s.msPerIteration);
     this._stats = s;
     this.updateDenoiser();
@@ -990,6 +1130,7 @@ export class VptViewer extends LitElement implements PanelHost {
   }
 
   private onUserCamera(camera: Camera): void {
+    if (this.holdsSlot) webglSlots.touch(this);
     this.resolution.interactionStarted();
     this.cameraIsAuto = false;
     this.setInternal('camera', camera);
@@ -1032,8 +1173,13 @@ export class VptViewer extends LitElement implements PanelHost {
   }
 
   private clearError(source: ViewerErrorDetail['source']): void {
-    if (this._error?.source === source) this._error = null;
+    if (this._error?.source !== source) return;
+    this._error = null;
+    if (source === 'attribute') this.attributeErrorKey = null;
   }
+
+  /** The property whose invalid value the 'attribute' banner reports (SCENE_ERROR: the scene they made). */
+  private attributeErrorKey: string | null = null;
 
   // ——— drag and drop ———
 
