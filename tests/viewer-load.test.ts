@@ -216,3 +216,35 @@ describe('<vpt-viewer> under load', () => {
     expect(r.shownAfterGoodExposure).toBeNull();
   });
 });
+
+describe('<vpt-viewer> error readouts', () => {
+  it("MCRT: the Progress panel's Est. error agrees with the stats line and never says n/a", async () => {
+    const r = await viewer().run(async (vt) => {
+      const el = vt.create(
+        { src: 'procedural:blob?size=16', renderer: 'mcrt', backend: 'webgl2', panels: 'stats', 'max-samples': '6' },
+        'width:400px;height:200px;display:block',
+      );
+      const panelTexts: string[] = [];
+      el.addEventListener('vpt-progress', async () => {
+        await el.updateComplete;
+        panelTexts.push(vt.shadowText(el, '[data-stat="error"]') ?? '');
+      });
+      await vt.converged(el);
+      await new Promise((res) => setTimeout(res, 1000)); // an estimate that lands after the last batch
+      await el.updateComplete;
+      const out = {
+        panelTexts,
+        panel: vt.shadowText(el, '[data-stat="error"]'),
+        line: vt.shadowText(el, '.stats-line'),
+        error: el.stats?.error ?? null,
+      };
+      el.remove();
+      return out;
+    });
+    expect(r.panelTexts.filter((t) => /n\/a/.test(t))).toEqual([]);
+    expect(r.error).not.toBeNull();
+    const percent = (100 * r.error!).toFixed(1);
+    expect(r.line).toContain(`err ${percent}%`);
+    expect(r.panel).toBe(`${(100 * r.error!).toFixed(2)} %`);
+  });
+});

@@ -895,6 +895,10 @@ export class VptViewer extends LitElement implements PanelHost, SlotHolder {
             this.updateDenoiser();
             this.dispatchEvent(new CustomEvent<ViewerConvergedDetail>('vpt-converged', { detail: s }));
           },
+          // The panel and the stats line read the estimate from the same stats, as soon as it lands.
+          estimated: (s) => {
+            this._stats = s;
+          },
           lost: () => {
             this._lost = true;
             this.startLostTimer();
