@@ -86,6 +86,9 @@ export const viewerStyles = css`
     top: 6px;
     right: 6px;
     display: flex;
+    flex-wrap: wrap;
+    justify-content: flex-end;
+    max-width: calc(100% - 12px);
     gap: 4px;
   }
   .drop {
