@@ -15,8 +15,8 @@ import { TRANSFER_FUNCTION_PRESETS, transferFunctionPreset } from './presets.js'
 import { rendererEntries, rendererEntry, type RendererParamSpec } from './renderer-registry.js';
 import type { PanelHost } from './panel-host.js';
 
-export const PANEL_NAMES = ['tf', 'lights', 'quality', 'stats', 'export'] as const;
-export type PanelName = (typeof PANEL_NAMES)[number];
+import { PANEL_NAMES, type PanelName } from './panel-host.js';
+export { PANEL_NAMES, type PanelName };
 
 let uid = 0;
 const id = (name: string) => `vpt-${name}-${++uid}`;

@@ -50,13 +50,11 @@ import { webglSlots, type SlotHolder } from './context-slots.js';
 import { autoTransferFunction, defaultRendererParams, rendererLook } from './defaults.js';
 import { download, encodeExr, encodePfm, encodePngBlob } from './export.js';
 import { gradientSamples, valueHistogram, type GradientSamples, type Histogram1D } from './histogram.js';
-import { loadEnvironment } from './loading/environment-loader.js';
 import type { ViewerLoadDetail, ViewerProgressDetail } from './loading/load-events.js';
 import type { LoadedVolumeLike, VolumeSource } from './loading/types.js';
 import { VolumeLoading, type DataLevel } from './loading/volume-loading.js';
 import { OrbitCamera } from './orbit.js';
-import { renderPanels, type PanelName, PANEL_NAMES } from './panels.js';
-import type { InternalProperty, PanelHost, PanelState } from './panel-host.js';
+import { PANEL_NAMES, type InternalProperty, type PanelHost, type PanelName, type PanelState } from './panel-host.js';
 import { DEFAULT_TRANSFER_FUNCTION, transferFunctionPreset } from './presets.js';
 import { createRenderer, rendererEntry } from './renderer-registry.js';
 import { RenderSession, type RefinementStats } from './session.js';
@@ -75,6 +73,19 @@ export interface ViewerErrorDetail {
 export type ViewerConvergedDetail = RefinementStats & { reason: 'max-samples' | 'target-error' };
 export interface ViewerChangeDetail {
   property: string;
+}
+
+/**
+ * The panels' templates (panels.ts), loaded when an element first shows panels: a lazy chunk
+ * of the one-file bundle, so a page with `panels="none"` never loads them.
+ */
+let panelsModule: typeof import('./panels.js') | null = null;
+let panelsLoading: Promise<unknown> | null = null;
+function loadPanels(): Promise<unknown> {
+  panelsLoading ??= import('./panels.js').then((m) => {
+    panelsModule = m;
+  });
+  return panelsLoading;
 }
 
 /** attributeErrorKey when the scene the attributes made was refused (no one attribute's parse failed). */
@@ -380,6 +391,7 @@ export class VptViewer extends LitElement implements PanelHost, SlotHolder {
     super.connectedCallback();
     this.connected = true;
     this.observeVisibility();
+    if (this.panelSet.size) void loadPanels(); // fetched alongside the renderer and the volume
     // Re-attached after a removal: the GPU context was released, open a new one.
     if (this.hasUpdated) this.observeHostWidth();
     if (this.hasUpdated && !this.session) this.track(this.openSession());
@@ -607,8 +619,15 @@ export class VptViewer extends LitElement implements PanelHost, SlotHolder {
         }
         ${this._dragOver ? html`<div class="drop" aria-hidden="true">Drop a volume file</div>` : nothing}
       </div>
-      ${showAside ? html`<aside id="panels" part="panels" aria-label="Viewer settings">${renderPanels(this, panels)}</aside>` : nothing}
+      ${showAside ? html`<aside id="panels" part="panels" aria-label="Viewer settings">${this.panelsNow(panels)}</aside>` : nothing}
     </div>`;
+  }
+
+  /** The panels' templates, or nothing while their module loads (tracked: whenSettled waits for it). */
+  private panelsNow(panels: Set<PanelName>) {
+    if (panelsModule) return panelsModule.renderPanels(this, panels);
+    this.track(loadPanels().then(() => this.requestUpdate()));
+    return nothing;
   }
 
   /** The thin progress bar (loading bytes; refining toward max-samples or target-error) and the stats line. */
@@ -1006,6 +1025,8 @@ export class VptViewer extends LitElement implements PanelHost, SlotHolder {
     else if (env.type !== 'url') this.resolvedEnvironment = env;
     else {
       try {
+        // Loaded on first use (Three.js' EXR and HDR parsers: a lazy chunk of the one-file bundle).
+        const { loadEnvironment } = await import('./loading/environment-loader.js');
         const loaded = await loadEnvironment(env.url, env.scale ?? 1);
         if (token !== this.tokens.environment) return;
         this.resolvedEnvironment = loaded;
