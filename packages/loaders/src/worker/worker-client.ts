@@ -7,13 +7,6 @@ export class WorkerUnavailable extends Error {}
 
 /** How long a started worker may take to say it is ready before the load falls back in-thread. */
 const READY_TIMEOUT_MS = 20_000;
-/**
- * After its answer the worker is terminated this much later, not at once: terminating it
- * in the same task as its last message marks the requests it just finished as aborted
- * (net::ERR_ABORTED in the page's network log; issue 28's "failed .raw request"). Under
- * load 1 s was not always enough; the worker holds nothing but its closed fetches meanwhile.
- */
-const LINGER_MS = 3000;
 
 export function workersAvailable(): boolean {
   return typeof Worker === 'function' && typeof URL === 'function';
@@ -54,14 +47,12 @@ export function loadInWorker(source: VolumeSource, options: LoadOptions): Promis
     }
     let ready = false;
     let settled = false;
-    /** `answered`: the worker sent its result or error and has nothing left to do (it is terminated a moment later). */
-    const finish = (f: () => void, answered = false) => {
+    const finish = (f: () => void) => {
       if (settled) return;
       settled = true;
       clearTimeout(readyTimer);
       options.signal?.removeEventListener('abort', onAbort);
-      if (answered) setTimeout(() => worker.terminate(), LINGER_MS);
-      else worker.terminate();
+      worker.terminate();
       f();
     };
     const readyTimer = setTimeout(
@@ -97,9 +88,9 @@ export function loadInWorker(source: VolumeSource, options: LoadOptions): Promis
           /* a throwing callback must not break the load */
         }
       } else if (m.type === 'result') {
-        finish(() => resolve(m.volume), true);
+        finish(() => resolve(m.volume));
       } else if (m.type === 'error') {
-        finish(() => reject(new LoaderError(m.reason, m.message)), true);
+        finish(() => reject(new LoaderError(m.reason, m.message)));
       }
     };
     worker.onerror = (event: ErrorEvent) => {
