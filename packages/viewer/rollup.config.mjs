@@ -99,10 +99,41 @@ function copyLoaderWorker() {
   };
 }
 
+// The Zarr codecs (numcodecs' zstd, blosc, lz4: WebAssembly inlined, ~450 kB gzip the set) are
+// in the loaders' worker chunks, which copyLoaderWorker puts in bundle-chunks/chunks/. The
+// page's Zarr reads (bricks streamed from level 0) import those same files instead of a
+// second copy of each.
+const WORKER_CHUNKS = path.join(
+  path.dirname(fileURLToPath(import.meta.url)),
+  'node_modules',
+  '@vpt',
+  'loaders',
+  'dist',
+  'worker',
+  'chunks',
+);
+const SHARED_CODECS = ['zstd', 'blosc', 'lz4'];
+function sharedCodecs() {
+  const files = fs.existsSync(WORKER_CHUNKS) ? fs.readdirSync(WORKER_CHUNKS) : [];
+  return {
+    name: 'vpt-shared-codecs',
+    resolveId(id) {
+      const m = /^numcodecs\/(\w+)$/.exec(id);
+      if (!m || !SHARED_CODECS.includes(m[1])) return null;
+      const file = files.find((f) => f.startsWith(`${m[1]}-`) && f.endsWith('.js'));
+      if (!file) return null; // no worker build: bundle the codec as before
+      // Where the worker's copy lands (bundle-chunks/chunks/), made relative to each importer.
+      return { id: path.resolve('dist/bundle-chunks/chunks', file), external: true };
+    },
+  };
+}
+
 fs.rmSync('dist/bundle-chunks', { recursive: true, force: true });
 const bundle = {
   input: { 'vpt-viewer.bundle': 'dist/bundle.js' },
   preserveEntrySignatures: 'allow-extension',
+  // The shared codecs are external by absolute path: import them relative to the chunk.
+  makeAbsoluteExternalsRelative: true,
   // One entry file for a plain page; what the viewer imports dynamically (the iso and mcrt
   // renderers, the NIfTI/DICOM parsers) becomes chunks beside it, fetched on first use.
   output: {
@@ -114,6 +145,7 @@ const bundle = {
   },
   plugins: [
     bundleOptional.plugin,
+    sharedCodecs(),
     // dicom-parser's UMD build names Node's zlib; @vpt/loaders passes its own inflater (fflate).
     {
       name: 'no-zlib',

@@ -3,7 +3,7 @@
 // (and the page settings backend, scale, max) deep-link it.
 import './vpt-viewer.bundle.js';
 import { loadCatalog, presetFor, RENDERERS } from './catalog.js';
-import { encodeCamera, readState, wireCopyLink } from './state.js';
+import { encodeCamera, linkProblems, readState, showLinkProblems, wireCopyLink } from './state.js';
 
 const $ = (id) => document.getElementById(id);
 const page = readState();
@@ -99,5 +99,6 @@ window.compare = {
 };
 const first =
   catalog.find((d) => d.id === page.dataset) ?? catalog.find((d) => d.bundled && d.format === 'raw') ?? catalog[0];
+showLinkProblems(linkProblems(location.search, catalog, RENDERERS, { dataset: first }));
 await show(first.id, page.camera);
 window.__compareReady = true;

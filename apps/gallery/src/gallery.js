@@ -3,7 +3,7 @@
 // lives in the URL, so any view can be linked to; the link restores it.
 import './vpt-viewer.bundle.js';
 import { catalogInfo, DEFAULT_RENDERER, loadCatalog, presetFor, RENDERERS } from './catalog.js';
-import { overridesOf, readState, stateQuery, wireCopyLink } from './state.js';
+import { linkProblems, overridesOf, readState, showLinkProblems, stateQuery, wireCopyLink } from './state.js';
 
 const $ = (id) => document.getElementById(id);
 const viewer = $('viewer');
@@ -162,9 +162,21 @@ window.gallery = {
 
 const first =
   catalog.find((d) => d.id === page.dataset) ?? catalog.find((d) => d.bundled && d.format === 'raw') ?? catalog[0];
-await select(
-  first.id,
-  RENDERERS.some((r) => r.name === page.renderer) ? page.renderer : (first.renderer ?? DEFAULT_RENDERER),
-  overridesOf(page),
+const firstRenderer = RENDERERS.some((r) => r.name === page.renderer) ? page.renderer : (first.renderer ?? DEFAULT_RENDERER);
+// A link naming what this gallery lacks says so (the default view shows under the notice).
+const problems = linkProblems(location.search, catalog, RENDERERS, {
+  dataset: first,
+  renderer: RENDERERS.find((r) => r.name === firstRenderer)?.label,
+});
+showLinkProblems(problems);
+// A transfer function the viewer refuses is reported there too (the viewer's own banner says why).
+viewer.addEventListener(
+  'vpt-error',
+  (e) => {
+    if (e.detail.source === 'attribute' && page.tf !== undefined && !window.__galleryReady)
+      showLinkProblems([...problems, `tf: ${e.detail.message}`]);
+  },
+  { once: true },
 );
+await select(first.id, firstRenderer, overridesOf(page));
 window.__galleryReady = true;

@@ -3,7 +3,7 @@
 //    &exposure=<stops>&tone=<operator>&density=<scale>&backend=<auto|webgl2|webgpu>&scale=<0.25…2>&max=<samples>
 //    &clip=<the clip attribute's JSON>
 // camera = position x,y,z, target x,y,z, up x,y,z, fovy (radians).
-import { TRANSFER_FUNCTION_PRESETS } from './vpt-viewer.bundle.js';
+import { TRANSFER_FUNCTION_PRESETS, post } from './vpt-viewer.bundle.js';
 
 const round = (x) => Math.round(x * 1e4) / 1e4;
 
@@ -34,13 +34,54 @@ export function readState(search = location.search) {
     tf: q.get('tf') ?? undefined,
     camera: q.has('camera') ? (decodeCamera(q.get('camera')) ?? undefined) : undefined,
     exposure: num('exposure'),
-    tone: q.get('tone') ?? undefined,
+    tone: q.has('tone') && post.TONE_MAP_OPERATORS.includes(q.get('tone')) ? q.get('tone') : undefined,
     density: num('density'),
-    backend: q.get('backend') ?? undefined,
+    backend: q.has('backend') && BACKENDS.includes(q.get('backend')) ? q.get('backend') : undefined,
     scale: num('scale'),
     max: num('max'),
     clip: q.get('clip') ?? undefined,
   };
+}
+
+const BACKENDS = ['auto', 'webgl2', 'webgpu'];
+
+/**
+ * What a link asks for that the page cannot show, one sentence each (empty: none), so a bad
+ * link says so instead of silently showing the default view. `datasets` and `renderers` are
+ * the page's ({id, title} and {name, label}); `fallback` is what the page shows instead.
+ */
+export function linkProblems(search, datasets, renderers, fallback = {}) {
+  const q = new URLSearchParams(search);
+  const out = [];
+  const dataset = q.get('dataset');
+  if (dataset !== null && !datasets.some((d) => d.id === dataset))
+    out.push(
+      `dataset "${dataset}" is not in this gallery${fallback.dataset ? ` (showing ${fallback.dataset.title})` : ''}`,
+    );
+  const renderer = q.get('renderer');
+  if (renderer !== null && !renderers.some((r) => r.name === renderer))
+    out.push(
+      `renderer "${renderer}" is not one of ${renderers.map((r) => r.name).join(', ')}${fallback.renderer ? ` (showing ${fallback.renderer})` : ''}`,
+    );
+  if (q.has('camera') && !decodeCamera(q.get('camera')))
+    out.push('camera must be 10 numbers: position, target, up, fovy (the automatic framing is shown)');
+  for (const k of ['exposure', 'density', 'scale', 'max'])
+    if (q.has(k) && !Number.isFinite(Number(q.get(k)))) out.push(`${k} "${q.get(k)}" is not a number (ignored)`);
+  const tone = q.get('tone');
+  if (tone !== null && !post.TONE_MAP_OPERATORS.includes(tone))
+    out.push(`tone "${tone}" is not one of ${post.TONE_MAP_OPERATORS.join(', ')} (ignored)`);
+  const backend = q.get('backend');
+  if (backend !== null && !BACKENDS.includes(backend))
+    out.push(`backend "${backend}" is not one of ${BACKENDS.join(', ')} (ignored)`);
+  return out;
+}
+
+/** Show `problems` in the page's #link-error notice (hidden when there are none). */
+export function showLinkProblems(problems) {
+  const box = document.getElementById('link-error');
+  if (!box) return;
+  box.hidden = problems.length === 0;
+  box.textContent = problems.length ? `This link could not be followed in full: ${problems.join('; ')}.` : '';
 }
 
 /** The view's own properties that the link overrides after the preset, as <vpt-viewer> properties. */

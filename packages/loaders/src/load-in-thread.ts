@@ -242,7 +242,8 @@ async function decodeBytes(
   switch (format) {
     case 'raw': {
       const raw = options.raw ? checkRawOptions(options.raw, ctx) : rawFromName(name);
-      if (!raw) throw new LoaderError('bad-header', `${ctx.name}: raw data has no header; ${HEADERLESS_RAW_HINT}`);
+      if (!raw)
+        throw new LoaderError('bad-header', `${ctx.name}: raw data has no header; ${options.rawHint ?? HEADERLESS_RAW_HINT}`);
       return decodeRaw(bytes, checkRawOptions(raw, ctx), ctx);
     }
     case 'sidecar': {
@@ -267,7 +268,7 @@ async function decodeBytes(
       throw new LoaderError(
         'bad-magic',
         `${ctx.name}: the format is not recognised (not NIfTI-1, NRRD, DICOM or a JSON sidecar); ` +
-          `for headerless raw data, ${HEADERLESS_RAW_HINT}; or pass options.format`,
+          `for headerless raw data, ${options.rawHint ?? HEADERLESS_RAW_HINT}; or pass options.format`,
       );
   }
 }

@@ -68,7 +68,16 @@ export interface LoadOptions {
   request?: Partial<RequestPolicy>;
   /** Parse in a Web Worker. Default true where Worker exists (browsers); Node parses in-thread. */
   worker?: boolean;
+  /**
+   * How the caller can give headerless raw data its dims and type, as the errors for such
+   * data say it (default: "pass options.raw = { dims: [NX, NY, NZ], type }"). A caller
+   * that cannot reach `raw` (an element attribute) names what it can: a sidecar, a file name.
+   */
+  rawHint?: string;
 }
+
+/** The errors' advice for headerless raw data without dims (LoadOptions.rawHint). */
+export const DEFAULT_RAW_HINT = 'pass options.raw = { dims: [NX, NY, NZ], type }';
 
 /**
  * A Volume plus where it sits in the world. `orientation` is the 3×3 matrix of direction

@@ -79,15 +79,27 @@ export class AdaptiveResolution implements ReactiveController {
     }
   }
 
-  /** Device-pixel size to render at: CSS size × DPR × resolution-scale (× the interaction factor while moving), each side in [1, maxDim]. */
-  renderSize(maxDim: number): { width: number; height: number } {
+  /**
+   * Device-pixel size to render at: CSS size × DPR × resolution-scale (× the interaction
+   * factor while moving), each side in [1, maxDim], and at most `maxPixels` pixels in all
+   * (the GPU memory budget's, RenderContext.maxRenderPixels), shrunk with its aspect kept.
+   */
+  renderSize(maxDim: number, maxPixels = Infinity): { width: number; height: number } {
     const dpr = globalThis.devicePixelRatio || 1;
     const base = { width: this.cssSize.width * dpr, height: this.cssSize.height * dpr };
     const scale = this.host.resolutionScale;
     let k = Number.isFinite(scale) ? scale : 1;
     if (this.interactingNow) k *= this.interactionFactor();
-    const fit = (px: number) => Math.max(1, Math.min(maxDim, Math.round(px * k)));
-    return { width: fit(base.width || 1), height: fit(base.height || 1) };
+    const w = Math.max(1, (base.width || 1) * k);
+    const h = Math.max(1, (base.height || 1) * k);
+    const side = (px: number, s: number) => Math.max(1, Math.min(maxDim, Math.floor(px * s)));
+    let s = 1;
+    if (Math.round(w) * Math.round(h) > maxPixels) s = Math.sqrt(maxPixels / (w * h));
+    if (s === 1) {
+      const fit = (px: number) => Math.max(1, Math.min(maxDim, Math.round(px)));
+      return { width: fit(w), height: fit(h) };
+    }
+    return { width: side(w, s), height: side(h, s) };
   }
 
   /** A progress report: the cost of one iteration, learned at full size only. */

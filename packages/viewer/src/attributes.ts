@@ -361,7 +361,7 @@ export class AttributeValidator {
     target: Record<CheckedProperty, unknown>,
     changed: { has(key: string): boolean },
     volume: Volume | undefined,
-    report: (error: unknown) => void,
+    report: (error: unknown, key: CheckedProperty) => void,
   ): void {
     const parsers = propertyParsers(volume);
     for (const key of CHECKED_PROPERTIES) {
@@ -386,7 +386,7 @@ export class AttributeValidator {
         this.lastValid.set(key, typeof parsed === 'object' && typeof value !== 'string' ? value : parsed);
       } catch (e) {
         target[key] = this.lastValid.get(key);
-        report(e);
+        report(e, key);
       }
     }
   }

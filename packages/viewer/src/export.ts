@@ -3,8 +3,6 @@
  * a 32-bit float OpenEXR (Three.js' EXRExporter). Inputs are vpt read-backs: RGBA,
  * top row first.
  */
-import { DataTexture, FloatType, RGBAFormat } from 'three';
-import { EXRExporter } from 'three/addons/exporters/EXRExporter.js';
 
 /** PNG of an RGBA8 image (alpha forced to opaque: a screenshot shows what is on screen). */
 export async function encodePngBlob(rgba: Uint8Array, width: number, height: number): Promise<Blob> {
@@ -51,8 +49,10 @@ export async function encodeExr(rgba: Float32Array, width: number, height: numbe
     flipped.set(src, (height - 1 - row) * width * 4);
   }
   for (let i = 0; i < flipped.length; i++) flipped[i] = finite(flipped[i]);
-  const texture = new DataTexture(flipped, width, height, RGBAFormat, FloatType);
-  return new EXRExporter().parse(texture, { type: FloatType });
+  // Loaded on first use (a lazy chunk of the one-file bundle): most pages never export EXR.
+  // (Named imports in a module of ours: import('three') itself would keep all of Three.js.)
+  const { writeExr } = await import('./export-exr.js');
+  return writeExr(flipped, width, height);
 }
 
 function finite(x: number): number {

@@ -25,6 +25,8 @@ export class OrbitCamera {
   private element: HTMLElement | null = null;
   private up: Vec3 = [0, 1, 0];
   private keyTimer: ReturnType<typeof setTimeout> | null = null;
+  /** The target while detached (OrbitControls holds it otherwise). */
+  private savedTarget: Vector3 | null = null;
   private readonly listeners = {
     change: () => this.callbacks.change(this.get()),
     start: () => this.callbacks.start(),
@@ -35,10 +37,23 @@ export class OrbitCamera {
 
   /** Listen to pointer, wheel and key events on `element` (the canvas); call again after replacing it. */
   attach(element: HTMLElement): void {
-    this.element?.removeEventListener('keydown', this.onKey);
+    this.detach();
     this.element = element;
     element.addEventListener('keydown', this.onKey);
     this.rebuildControls();
+  }
+
+  /**
+   * Stop listening (the camera is kept). Call it while the element is still in its tree:
+   * OrbitControls also listens on the element's root node (a shadow root here) and removes
+   * that listener from whatever root the element has when disposed, so a canvas removed
+   * first would leave the listener, and through it the canvas, behind (issue 28).
+   */
+  detach(): void {
+    this.element?.removeEventListener('keydown', this.onKey);
+    if (this.controls) this.savedTarget = this.controls.target.clone();
+    this.disposeControls();
+    this.element = null;
   }
 
   /** Set the camera from outside (no change callback). */
@@ -49,6 +64,7 @@ export class OrbitCamera {
     this.camera3.position.fromArray(camera.position);
     this.camera3.fov = (camera.fovy * 180) / Math.PI;
     this.camera3.lookAt(new Vector3().fromArray(camera.target));
+    if (this.savedTarget) this.savedTarget.fromArray(camera.target);
     if (this.controls) {
       this.controls.target.fromArray(camera.target);
       // OrbitControls fixes its "up" when constructed: a new up needs new controls.
@@ -57,7 +73,7 @@ export class OrbitCamera {
   }
 
   get(): Camera {
-    const target = this.controls ? this.controls.target : new Vector3();
+    const target = this.controls ? this.controls.target : (this.savedTarget ?? new Vector3());
     return {
       position: round(this.camera3.position.toArray()),
       target: round(target.toArray()),
@@ -77,7 +93,8 @@ export class OrbitCamera {
   }
 
   private rebuildControls(): void {
-    const target = this.controls?.target.clone();
+    const target = this.controls?.target.clone() ?? this.savedTarget ?? undefined;
+    this.savedTarget = null;
     this.disposeControls();
     if (!this.element) return;
     const c = new OrbitControls(this.camera3, this.element);

@@ -11,6 +11,10 @@ import type { GradientSamples, Histogram1D } from './histogram.js';
 import type { LoadedVolumeLike, VolumeSource } from './loading/types.js';
 import type { RefinementStats } from './session.js';
 
+/** The panels, in their order (the `panels` attribute names a subset). */
+export const PANEL_NAMES = ['tf', 'lights', 'clip', 'quality', 'stats', 'export'] as const;
+export type PanelName = (typeof PANEL_NAMES)[number];
+
 /** The properties a panel control may set, each through PanelHost.setInternal. */
 export type InternalProperty =
   | 'camera'

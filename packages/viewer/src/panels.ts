@@ -5,6 +5,7 @@
  * event announces it. Native <details>, labelled controls and buttons keep it all
  * reachable and operable from the keyboard.
  */
+import { errorReadout } from './readouts.js';
 import { html, nothing } from 'lit';
 import { TRANSFER_FUNCTION_PRESETS as CORE_TF_PRESETS, type Light, type TransferFunction } from '@vpt/core';
 import { TONE_MAP_OPERATORS } from '@vpt/post';
@@ -15,8 +16,8 @@ import { rendererEntries, rendererEntry, type RendererParamSpec } from './render
 import { clipPanel } from './clip-panel.js';
 import type { PanelHost } from './panel-host.js';
 
-export const PANEL_NAMES = ['tf', 'lights', 'clip', 'quality', 'stats', 'export'] as const;
-export type PanelName = (typeof PANEL_NAMES)[number];
+import { PANEL_NAMES, type PanelName } from './panel-host.js';
+export { PANEL_NAMES, type PanelName };
 
 let uid = 0;
 const id = (name: string) => `vpt-${name}-${++uid}`;
@@ -431,7 +432,7 @@ function statsPanel(v: PanelHost) {
         <dt>ms / iteration</dt>
         <dd data-stat="ms">${s && s.msPerIteration > 0 ? s.msPerIteration.toFixed(2) : '—'}</dd>
         <dt>Est. error</dt>
-        <dd data-stat="error">${s?.error != null ? `${(s.error * 100).toFixed(2)} %` : 'n/a for this renderer'}</dd>
+        <dd data-stat="error">${errorReadout(s, st.rendererInstance)}</dd>
         <dt>Resolution</dt>
         <dd>${s ? `${s.width} × ${s.height}` : '—'}</dd>
         <dt>Backend</dt>

@@ -23,6 +23,8 @@ export interface SessionCallbacks {
   converged(stats: RefinementStats & { reason: 'max-samples' | 'target-error' }): void;
   lost(): void;
   restored(): void;
+  /** A new error estimate landed (between progress reports): the stats with it. */
+  estimated?(stats: RefinementStats): void;
 }
 
 /** How often (at most) the error estimate is read back; it costs a readback of two float images. */
@@ -181,6 +183,7 @@ export class RenderSession {
       .then((e) => {
         if (this.disposed || accumulation !== this.accumulation || !e) return;
         this.error = e.relativeRmse;
+        this.callbacks.estimated?.(this.stats());
         if (this.targetError > 0 && e.relativeRmse <= this.targetError && !this.converged) {
           // Hold the accumulation where it is: the loop keeps presenting but adds no samples.
           this.ctx.start({ maxIterations: this.samples });

@@ -59,6 +59,9 @@ export const viewerStyles = css`
     box-sizing: border-box;
     z-index: 1;
   }
+  .view canvas.still {
+    pointer-events: none;
+  }
   .view canvas:focus-visible {
     box-shadow: inset 0 0 0 2px var(--vpt-accent);
   }
@@ -102,6 +105,9 @@ export const viewerStyles = css`
     top: 6px;
     right: 6px;
     display: flex;
+    flex-wrap: wrap;
+    justify-content: flex-end;
+    max-width: calc(100% - 12px);
     gap: 4px;
   }
   .drop {

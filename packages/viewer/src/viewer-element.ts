@@ -2,8 +2,9 @@
  * `<vpt-viewer>`: a progressive volume renderer as one HTML element.
  *
  * Attributes (all reflected, all also properties): src, renderer, backend,
- * transfer-function, camera, clip, lights, environment, exposure, tone-mapper, max-samples,
- * target-error, density-scale, seed, renderer-params, resolution-scale, panels, collapsed.
+ * transfer-function, camera, clip, lights, environment, exposure, tone-mapper, denoise,
+ * max-samples, target-error, density-scale, seed, renderer-params, resolution-scale, panels,
+ * collapsed, hide-progress, hide-stats.
  * Events (typed through HTMLElementEventMap, prefixed so none collides with a native
  * event): vpt-load, vpt-progress (loading and refinement), vpt-converged, vpt-error,
  * vpt-change (the user edited something through the element: camera drag, panels).
@@ -52,16 +53,15 @@ import {
 import { fitCamera } from './camera-fit.js';
 import { axisPoint, draggedPosition, projectPoint } from './clip-handles.js';
 import { CLIP_AXES, clipControls, clipFromControls, type ClipAxis } from './clip-model.js';
+import { webglSlots, type SlotHolder } from './context-slots.js';
 import { autoTransferFunction, defaultRendererParams, rendererLook } from './defaults.js';
 import { download, encodeExr, encodePfm, encodePngBlob } from './export.js';
 import { gradientSamples, valueHistogram, type GradientSamples, type Histogram1D } from './histogram.js';
-import { loadEnvironment } from './loading/environment-loader.js';
 import type { ViewerLoadDetail, ViewerProgressDetail } from './loading/load-events.js';
 import type { LoadedVolumeLike, VolumeSource } from './loading/types.js';
 import { VolumeLoading, type DataLevel } from './loading/volume-loading.js';
 import { OrbitCamera } from './orbit.js';
-import { renderPanels, type PanelName, PANEL_NAMES } from './panels.js';
-import type { InternalProperty, PanelHost, PanelState } from './panel-host.js';
+import { PANEL_NAMES, type InternalProperty, type PanelHost, type PanelName, type PanelState } from './panel-host.js';
 import { DEFAULT_TRANSFER_FUNCTION, transferFunctionPreset } from './presets.js';
 import { createRenderer, rendererEntry } from './renderer-registry.js';
 import { RenderSession, type RefinementStats } from './session.js';
@@ -86,6 +86,22 @@ export type ViewerConvergedDetail = RefinementStats & { reason: 'max-samples' | 
 export type ViewerChangeDetail =
   { property: 'clip'; value: Clip | null } | { property: Exclude<InternalProperty, 'clip'>; value: unknown };
 
+/**
+ * The panels' templates (panels.ts), loaded when an element first shows panels: a lazy chunk
+ * of the one-file bundle, so a page with `panels="none"` never loads them.
+ */
+let panelsModule: typeof import('./panels.js') | null = null;
+let panelsLoading: Promise<unknown> | null = null;
+function loadPanels(): Promise<unknown> {
+  panelsLoading ??= import('./panels.js').then((m) => {
+    panelsModule = m;
+  });
+  return panelsLoading;
+}
+
+/** attributeErrorKey when the scene the attributes made was refused (no one attribute's parse failed). */
+const SCENE_ERROR = '(scene)';
+
 /** Below a sidebar's width plus this much image, the panels become an overlay. */
 const NARROW_MIN_IMAGE_PX = 320;
 
@@ -105,7 +121,7 @@ const SYNC_FIELDS = [
   'resolutionScale',
 ] as const;
 
-export class VptViewer extends LitElement implements PanelHost {
+export class VptViewer extends LitElement implements PanelHost, SlotHolder {
   static override styles = viewerStyles;
 
   static override properties = {
@@ -151,6 +167,7 @@ export class VptViewer extends LitElement implements PanelHost {
     _histogram: { state: true },
     _dataLevel: { state: true },
     _dragOver: { state: true },
+    _parked: { state: true },
   };
 
   /** URL of the volume (any format @vpt/loaders reads; a JSON sidecar; or `procedural:blob?size=64`). */
@@ -219,6 +236,13 @@ export class VptViewer extends LitElement implements PanelHost {
   declare private _stats: RefinementStats | null;
   declare private _histogram: Histogram1D | null;
   declare private _dragOver: boolean;
+  /** The WebGL 2 context was released for another viewer's (context-slots.ts): a still of the image shows until a slot is free. */
+  declare private _parked: boolean;
+  /** On screen, as an IntersectionObserver last said (true until it says otherwise). */
+  private onScreen = true;
+  private visibilityObserver: IntersectionObserver | null = null;
+  /** Whether this element holds (or reserved) one of the page's WebGL 2 slots. */
+  private holdsSlot = false;
   /** A multiscale volume's levels: shown, how many, the one that fits the budget, the one loading (null: none). */
   declare private _dataLevel: DataLevel | null;
   /** Loading src: one volume, or a multiscale store level by level (loading/volume-loading.ts). */
@@ -283,6 +307,7 @@ export class VptViewer extends LitElement implements PanelHost {
     this._stats = null;
     this._histogram = null;
     this._dragOver = false;
+    this._parked = false;
     this.validator = new AttributeValidator(this as unknown as Record<CheckedProperty, unknown>);
     this.orbit = new OrbitCamera({
       start: () => {
@@ -390,6 +415,8 @@ export class VptViewer extends LitElement implements PanelHost {
   override connectedCallback(): void {
     super.connectedCallback();
     this.connected = true;
+    this.observeVisibility();
+    if (this.panelSet.size) void loadPanels(); // fetched alongside the renderer and the volume
     // Re-attached after a removal: the GPU context was released, open a new one.
     if (this.hasUpdated) this.observeHostWidth();
     if (this.hasUpdated && !this.session) this.track(this.openSession());
@@ -399,11 +426,95 @@ export class VptViewer extends LitElement implements PanelHost {
     super.disconnectedCallback();
     this.connected = false;
     this.hostObserver?.disconnect();
+    this.visibilityObserver?.disconnect();
     this.volumeLoading.abort();
     this.tokens.session++;
+    // While the canvas is still in the shadow tree (OrbitControls listens on its root node).
+    this.orbit.detach();
     this.session?.dispose();
     this.session = null;
+    this.releaseSlot();
+    this._parked = false;
     this.stopLostTimer();
+  }
+
+  // ——— the page's WebGL 2 context slots (context-slots.ts) ———
+
+  /** @internal SlotHolder: on screen. */
+  get visible(): boolean {
+    return this.onScreen;
+  }
+
+  /** @internal SlotHolder: give the WebGL 2 context up for another viewer's, keeping a still of the image. */
+  async release(): Promise<void> {
+    const session = this.session;
+    this.holdsSlot = false;
+    if (!session) {
+      // Still opening: that open is dropped; a slot is handed back through resume().
+      if (this.opening) {
+        this.tokens.session++;
+        this._parked = true;
+      }
+      return;
+    }
+    this.tokens.session++;
+    ++this.tokens.renderer;
+    let still: HTMLCanvasElement | null = null;
+    try {
+      if (session.ctx.getScene() && !session.ctx.backend.isLost) {
+        const { width, height } = session.ctx.size;
+        const ldr = await session.ctx.readLDR();
+        still = document.createElement('canvas');
+        still.width = width;
+        still.height = height;
+        still.className = 'still';
+        still.setAttribute('part', 'still');
+        still.setAttribute('aria-hidden', 'true');
+        still.getContext('2d')?.putImageData(new ImageData(new Uint8ClampedArray(ldr), width, height), 0, 0);
+      }
+    } catch {
+      still = null; // no still: the released canvas shows until a slot is free
+    }
+    if (this.session !== session) return;
+    this.orbit.detach();
+    session.dispose();
+    this.session = null;
+    this._parked = true;
+    this._lost = false;
+    this.stopLostTimer();
+    this.stillCanvas?.remove();
+    this.stillCanvas = still;
+    // Right after the released canvas, so it paints over it and under the overlays.
+    if (still) (this.canvas ?? this.renderRoot.querySelector('.view'))?.after(still);
+  }
+
+  /** @internal SlotHolder: a slot is free again. */
+  resume(): void {
+    if (!this.connected) {
+      webglSlots.drop(this);
+      return;
+    }
+    this.holdsSlot = true;
+    this._parked = false;
+    if (!this.session) this.track(this.openSession());
+  }
+
+  private stillCanvas: HTMLCanvasElement | null = null;
+
+  private releaseSlot(): void {
+    this.holdsSlot = false;
+    webglSlots.drop(this);
+  }
+
+  private observeVisibility(): void {
+    if (typeof IntersectionObserver !== 'function') return;
+    this.visibilityObserver ??= new IntersectionObserver((entries) => {
+      const entry = entries[entries.length - 1];
+      if (!entry || entry.isIntersecting === this.onScreen) return;
+      this.onScreen = entry.isIntersecting;
+      webglSlots.visibilityChanged(this);
+    });
+    this.visibilityObserver.observe(this);
   }
 
   protected override firstUpdated(): void {
@@ -418,12 +529,22 @@ export class VptViewer extends LitElement implements PanelHost {
     }
     this.keepFittedPreset = false;
     // Normalize and validate what changed; an invalid value is reported and the last valid one restored.
+    const failed = new Set<string>();
     this.validator.validate(
       this as unknown as Record<CheckedProperty, unknown>,
       changed as Map<PropertyKey, unknown>,
       this.volume ?? undefined,
-      (e) => this.fail(e, 'attribute'),
+      (e, key) => {
+        failed.add(key);
+        this.fail(e, 'attribute');
+        this.attributeErrorKey = key;
+      },
     );
+    // The attribute whose value the banner reports got a valid value: it renders now, the banner goes.
+    const key = this.attributeErrorKey;
+    if (key && key !== SCENE_ERROR && changed.has(key as keyof VptViewer) && !failed.has(key)) {
+      this.clearError('attribute');
+    }
     if (changed.has('camera') && !this.internalChange.has('camera')) {
       // A camera given from outside becomes "home" for resetCamera().
       this.cameraIsAuto = this.camera === null;
@@ -436,7 +557,8 @@ export class VptViewer extends LitElement implements PanelHost {
     this.internalChange = new Set();
     if (!this.connected) return;
     if (changed.has('camera') && this.camera && !internal.has('camera')) this.orbit.set(this.camera as Camera);
-    if (changed.has('backend') || (!this.session && !this.opening)) this.track(this.openSession());
+    // A viewer waiting for a WebGL 2 slot opens when one is free (resume), not on every change.
+    if (changed.has('backend') || (!this.session && !this.opening && !this._parked)) this.track(this.openSession());
     else if (this.session && (changed.has('renderer') || changed.has('rendererParams')))
       this.track(this.switchRenderer());
     if (changed.has('src')) this.track(this.volumeLoading.loadSource(this.src));
@@ -522,7 +644,7 @@ export class VptViewer extends LitElement implements PanelHost {
         }
         ${this._dragOver ? html`<div class="drop" aria-hidden="true">Drop a volume file</div>` : nothing}
       </div>
-      ${showAside ? html`<aside id="panels" part="panels" aria-label="Viewer settings">${renderPanels(this, panels)}</aside>` : nothing}
+      ${showAside ? html`<aside id="panels" part="panels" aria-label="Viewer settings">${this.panelsNow(panels)}</aside>` : nothing}
     </div>`;
   }
 
@@ -605,6 +727,13 @@ export class VptViewer extends LitElement implements PanelHost {
     this.clipDrag = null;
     this.resolution.interactionEnded();
   };
+
+  /** The panels' templates, or nothing while their module loads (tracked: whenSettled waits for it). */
+  private panelsNow(panels: Set<PanelName>) {
+    if (panelsModule) return panelsModule.renderPanels(this, panels);
+    this.track(loadPanels().then(() => this.requestUpdate()));
+    return nothing;
+  }
 
   /** The thin progress bar (loading bytes; refining toward max-samples or target-error) and the stats line. */
   private renderHud() {
@@ -856,6 +985,13 @@ export class VptViewer extends LitElement implements PanelHost {
       }
     }
     if (token !== this.tokens.session) return;
+    // A WebGL 2 context takes one of the page's slots first (another viewer may release its context).
+    const mayBeWebgl2 = this.backend === 'webgl2' || (this.backend !== 'webgpu' && !('gpu' in navigator));
+    if (mayBeWebgl2) {
+      this.holdsSlot = true;
+      await webglSlots.acquire(this);
+      if (token !== this.tokens.session) return;
+    }
     const canvas = document.createElement('canvas');
     canvas.tabIndex = 0;
     canvas.setAttribute('part', 'canvas');
@@ -864,7 +1000,8 @@ export class VptViewer extends LitElement implements PanelHost {
       'aria-label',
       'Volume rendering. Drag or use the arrow keys to orbit; right-drag or Shift+arrows to pan; wheel, +/- to zoom.',
     );
-    const { width, height } = this.resolution.renderSize(Infinity);
+    // The first size before the device's limits are known; applySize() fits it right after.
+    const { width, height } = this.resolution.renderSize(2048, 2048 * 2048);
     let session: RenderSession;
     try {
       session = await RenderSession.create(
@@ -883,6 +1020,10 @@ export class VptViewer extends LitElement implements PanelHost {
             this.updateDenoiser();
             this.dispatchEvent(new CustomEvent<ViewerConvergedDetail>('vpt-converged', { detail: s }));
           },
+          // The panel and the stats line read the estimate from the same stats, as soon as it lands.
+          estimated: (s) => {
+            this._stats = s;
+          },
           lost: () => {
             this._lost = true;
             this.startLostTimer();
@@ -895,14 +1036,32 @@ export class VptViewer extends LitElement implements PanelHost {
         },
       );
     } catch (e) {
-      if (token === this.tokens.session) this.fail(e, 'context');
+      if (token === this.tokens.session) {
+        this.releaseSlot();
+        this.fail(e, 'context');
+      }
       return;
     }
     if (token !== this.tokens.session || !this.connected) {
       session.dispose();
       return;
     }
+    if (session.ctx.backend.kind !== 'webgl2') this.releaseSlot();
+    else if (!this.holdsSlot) {
+      // 'auto' fell back to WebGL 2: take a slot now.
+      this.holdsSlot = true;
+      await webglSlots.acquire(this);
+      if (token !== this.tokens.session || !this.connected) {
+        session.dispose();
+        return;
+      }
+    }
+    // Detach while the old canvas is still in the tree (see OrbitCamera.detach).
+    this.orbit.detach();
     this.canvas?.remove();
+    this.stillCanvas?.remove();
+    this.stillCanvas = null;
+    this._parked = false;
     this.canvas = canvas;
     view.prepend(canvas);
     this.session = session;
@@ -972,6 +1131,8 @@ export class VptViewer extends LitElement implements PanelHost {
     else if (env.type !== 'url') this.resolvedEnvironment = env;
     else {
       try {
+        // Loaded on first use (Three.js' EXR and HDR parsers: a lazy chunk of the one-file bundle).
+        const { loadEnvironment } = await import('./loading/environment-loader.js');
         const loaded = await loadEnvironment(env.url, env.scale ?? 1, { request: this.requestPolicy });
         if (token !== this.tokens.environment) return;
         this.resolvedEnvironment = loaded;
@@ -1070,6 +1231,8 @@ export class VptViewer extends LitElement implements PanelHost {
     if (!scene) return;
     try {
       s.applyScene(scene);
+      // A scene the attributes made failed before; this one renders: the banner goes.
+      if (this.attributeErrorKey === SCENE_ERROR) this.clearError('attribute');
     } catch (e) {
       if (isVptError(e, 'limit-exceeded')) {
         // The volume does not fit this device: drop it rather than fail again on every change.
@@ -1077,6 +1240,7 @@ export class VptViewer extends LitElement implements PanelHost {
         this.fail(e, 'src');
       } else {
         this.fail(e, 'attribute');
+        this.attributeErrorKey = SCENE_ERROR;
       }
     }
   }
@@ -1085,7 +1249,8 @@ export class VptViewer extends LitElement implements PanelHost {
     const s = this.session;
     if (!s) return;
     const max = s.ctx.backend.limits.maxTextureDimension2D;
-    const { width, height } = this.resolution.renderSize(max);
+    // Clamped to the GPU memory budget (a 3000 px element at resolution-scale 4 would not fit).
+    const { width, height } = this.resolution.renderSize(max, s.ctx.maxRenderPixels);
     try {
       s.setSize(width, height);
     } catch (e) {
@@ -1094,6 +1259,7 @@ export class VptViewer extends LitElement implements PanelHost {
   }
 
   private onProgress(s: RefinementStats): void {
+    if (this.holdsSlot) webglSlots.touch(this);
     this.resolution.recordIteration(s.msPerIteration);
     this._stats = s;
     this.updateDenoiser();
@@ -1101,6 +1267,7 @@ export class VptViewer extends LitElement implements PanelHost {
   }
 
   private onUserCamera(camera: Camera): void {
+    if (this.holdsSlot) webglSlots.touch(this);
     this.resolution.interactionStarted();
     this.cameraIsAuto = false;
     this.setInternal('camera', camera);
@@ -1143,8 +1310,13 @@ export class VptViewer extends LitElement implements PanelHost {
   }
 
   private clearError(source: ViewerErrorDetail['source']): void {
-    if (this._error?.source === source) this._error = null;
+    if (this._error?.source !== source) return;
+    this._error = null;
+    if (source === 'attribute') this.attributeErrorKey = null;
   }
+
+  /** The property whose invalid value the 'attribute' banner reports (SCENE_ERROR: the scene they made). */
+  private attributeErrorKey: string | null = null;
 
   // ——— drag and drop ———
 

@@ -14,10 +14,16 @@ function sourceFiles(dir: string): string[] {
   });
 }
 
-/** Relative imports of a module, type-only ones included (they tie the modules together just as well). */
+/**
+ * Relative imports of a module, type-only and dynamic ones included (they tie the modules
+ * together just as well; the element loads the panels with import()).
+ */
 function importsOf(file: string): string[] {
   const text = readFileSync(file, 'utf8');
-  const specs = [...text.matchAll(/(?:import|export)[^'";]*?from\s+'(\.[^']+)'/g)].map((m) => m[1]);
+  const specs = [
+    ...[...text.matchAll(/(?:import|export)[^'";]*?from\s+'(\.[^']+)'/g)].map((m) => m[1]),
+    ...[...text.matchAll(/import\(\s*'(\.[^']+)'\s*\)/g)].map((m) => m[1]),
+  ];
   return specs.map((s) => path.resolve(path.dirname(file), s.replace(/\.js$/, '.ts')));
 }
 

@@ -20,7 +20,7 @@ import { PRESENT_PASS } from './present-pass.js';
 import { checkGpuBudget, checkRenderSize, checkVolumeOptions, type RenderContextOptions } from './context-options.js';
 import { ProgressiveLoop } from './progressive-loop.js';
 import { SceneResources } from './scene-resources.js';
-import { VolumeFit, volumeBudgetBytes, type RenderWarning } from './volume-fit.js';
+import { VolumeFit, maxRenderPixels, volumeBudgetBytes, type RenderWarning } from './volume-fit.js';
 import type { BrickingStats } from '../bricking/bricked-volume.js';
 import type { MultiscaleSource } from '../bricking/source.js';
 
@@ -290,6 +290,15 @@ export class RenderContext {
    */
   get volumeBudgetBytes(): number {
     return volumeBudgetBytes(this.maxGpuBytes, this.width, this.height, this._renderer, this.postChain.steps.length);
+  }
+
+  /**
+   * The most pixels a render size may have at this renderer and post chain: the render
+   * targets may take half of maxGpuBytes (the rest is the volume's). A caller sizing the
+   * image to an element (the viewer) clamps to it; setSize itself does not.
+   */
+  get maxRenderPixels(): number {
+    return maxRenderPixels(this.maxGpuBytes, this._renderer, this.postChain.steps.length, this.postChain.wantsGuides());
   }
 
   private warn(warning: RenderWarning): void {

@@ -51,6 +51,31 @@ export function volumeBudgetBytes(
   return maxGpuBytes - targetBytes - TF_RESOLUTION * 16 * 256;
 }
 
+/** The share of maxGpuBytes the render targets may take; the rest is the volume's (maxRenderPixels). */
+export const RENDER_TARGET_BUDGET_SHARE = 0.5;
+
+/**
+ * The most pixels a render size may have within the GPU memory budget: the render targets
+ * (16 bytes a texel: frames with the guide frames when guides are kept, two sets of
+ * accumulations, the guides' two, the HDR image, one target per post step) plus the
+ * canvas's two 8-bit buffers may take RENDER_TARGET_BUDGET_SHARE of maxGpuBytes.
+ */
+export function maxRenderPixels(
+  maxGpuBytes: number,
+  renderer: Pick<Renderer, 'frameFormats' | 'accumulationFormats'>,
+  postSteps: number,
+  guides: boolean,
+): number {
+  const accumulation = renderer.accumulationFormats.length;
+  const texels =
+    renderer.frameFormats.length +
+    2 * accumulation +
+    1 +
+    postSteps +
+    (guides ? 2 /* guide frames */ + 2 * 3 /* guide accumulations, 3 targets each */ : 0);
+  return Math.max(1, Math.floor((maxGpuBytes * RENDER_TARGET_BUDGET_SHARE) / (16 * texels + 8)));
+}
+
 /** What the fit reads of the context at the time of each fit. */
 export interface VolumeFitHost {
   readonly resources: Pick<SceneResources, 'planUpload' | 'wantsGradient'>;

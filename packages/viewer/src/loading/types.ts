@@ -26,6 +26,8 @@ export interface LoadOptions {
   downsample?: boolean;
   /** Bounds on every request of the load (core's RequestPolicy overrides). */
   request?: Partial<RequestPolicy>;
+  /** How headerless raw data gets its dims and type, as the loader's errors say it. */
+  rawHint?: string;
 }
 
 /** A core Volume plus the format it was read from (and, from @vpt/loaders, orientation and metadata). */

@@ -16,6 +16,13 @@ import type { LoadOptions, LoadVolumeFn, LoadedVolumeLike, VolumeSource } from '
 
 const PROCEDURAL: readonly ProceduralKind[] = ['sphere', 'cube', 'ramp', 'blob'];
 
+/**
+ * What the loader's errors suggest for headerless raw data: an element attribute cannot
+ * reach `options.raw`, so name what `src` can be (a sidecar, or dims and type in the name).
+ */
+export const ELEMENT_RAW_HINT =
+  'point src at a JSON sidecar ({"file": "name.raw", "dims": [NX, NY, NZ], "type": "uint8"}) or put dims and type in the file name (name_128x128x84_uint8.raw)';
+
 let loaderPromise: Promise<{ loadVolume: LoadVolumeFn; name: string }> | null = null;
 
 /** @vpt/loaders' loadVolume when it can be imported, else the fallback (decided once per page). */
@@ -50,11 +57,76 @@ export function proceduralVolume(source: VolumeSource): LoadedVolumeLike | null 
   return Object.assign(createProceduralVolume(kind, size), { format: 'procedural' });
 }
 
+function absolute(url: string): string {
+  try {
+    return new URL(url, globalThis.document?.baseURI).href;
+  } catch {
+    return url;
+  }
+}
+
+/** Loads of one URL in flight, shared by the viewers that ask for it (see sharedLoad). */
+const inFlight = new Map<string, { promise: Promise<LoadedVolumeLike>; users: number; abort: AbortController }>();
+
+/**
+ * Viewers on one page that load the same URL at the same time (compare.html's four) share
+ * one load: parallel fetches of one file made Chromium report all but one as aborted
+ * (net::ERR_ABORTED), and fetched it four times. The load is aborted only when every viewer
+ * waiting for it has aborted; nothing is kept once it has landed.
+ */
+function sharedLoad(
+  key: string,
+  options: LoadOptions,
+  start: (signal: AbortSignal) => Promise<LoadedVolumeLike>,
+): Promise<LoadedVolumeLike> {
+  let entry = inFlight.get(key);
+  if (!entry) {
+    const abort = new AbortController();
+    const promise = start(abort.signal).finally(() => {
+      if (inFlight.get(key)?.promise === promise) inFlight.delete(key);
+    });
+    entry = { promise, users: 0, abort };
+    inFlight.set(key, entry);
+  }
+  const shared = entry;
+  shared.users++;
+  const signal = options.signal;
+  return new Promise<LoadedVolumeLike>((resolve, reject) => {
+    const onAbort = () => {
+      reject(signal?.reason ?? new DOMException('Loading was aborted', 'AbortError'));
+      if (--shared.users === 0) {
+        if (inFlight.get(key) === shared) inFlight.delete(key);
+        shared.abort.abort();
+      }
+    };
+    if (signal?.aborted) return onAbort();
+    signal?.addEventListener('abort', onAbort, { once: true });
+    shared.promise.then(
+      (v) => {
+        signal?.removeEventListener('abort', onAbort);
+        resolve(v);
+      },
+      (e) => {
+        signal?.removeEventListener('abort', onAbort);
+        reject(e);
+      },
+    );
+  });
+}
+
 export async function loadVolumeSource(source: VolumeSource, options: LoadOptions): Promise<LoadedVolumeLike> {
   const procedural = proceduralVolume(source);
   if (procedural) return procedural;
   const { loadVolume } = await volumeLoader();
-  const volume = await loadVolume(source, options);
+  const opts: LoadOptions = { rawHint: ELEMENT_RAW_HINT, ...options };
+  // Only URLs are shared, with progress from the first viewer that asked (the others see the bar jump).
+  const key =
+    typeof source === 'string' || source instanceof URL
+      ? JSON.stringify([absolute(String(source)), opts.limits ?? null, opts.format ?? null])
+      : null;
+  const volume = key
+    ? await sharedLoad(key, opts, (signal) => loadVolume(source, { ...opts, signal }))
+    : await loadVolume(source, opts);
   // A sidecar's value_range maps to [0, 1] for every voxel type, as the headless renderer
   // (vpt-render) reads scene files; @vpt/loaders keeps it in meta only. Applying it here
   // makes the element show exactly what vpt-render renders for the same scene.
