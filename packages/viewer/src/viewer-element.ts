@@ -3,7 +3,7 @@
  *
  * Attributes (all reflected, all also properties): src, renderer, backend,
  * transfer-function, camera, clip, lights, environment, exposure, tone-mapper, max-samples,
- * target-error, density-scale, seed, renderer-params, resolution-scale, panels, collapsed.
+ * target-error, density-scale, seed, renderer-params, resolution-scale, panels, collapsed, layout.
  * Events (typed through HTMLElementEventMap, prefixed so none collides with a native
  * event): vpt-load, vpt-progress (loading and refinement), vpt-converged, vpt-error,
  * vpt-change (the user edited something through the element: camera drag, panels).
