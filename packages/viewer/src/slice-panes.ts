@@ -194,6 +194,11 @@ export class SlicePane {
     return this.ctx;
   }
 
+  /** The volume of the scene last drawn (the element's, before the context's own fit to the device). */
+  get volume(): Volume | null {
+    return this.scene?.volume ?? null;
+  }
+
   async open(backend: BackendPreference): Promise<void> {
     const renderer = (await createRenderer('slice', { fit: true })) as SlicePane['renderer'];
     if (this.disposed) return;

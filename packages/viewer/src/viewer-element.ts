@@ -772,7 +772,7 @@ export class VptViewer extends LitElement implements PanelHost {
       const w = Math.min(max, Math.max(1, Math.round(cw * dpr)));
       const h = Math.min(max, Math.max(1, Math.round(ch * dpr)));
       const key = `${cross[g.axis]}|${window.join()}|${w}x${h}`;
-      if (this.paneDrawn.get(g.name) === key && pane.context.getScene()?.volume === this.volume) continue;
+      if (this.paneDrawn.get(g.name) === key && pane.volume === this.volume) continue;
       try {
         pane.draw(unclipped, g.axis, cross[g.axis], window, w, h);
         this.paneDrawn.set(g.name, key);
