@@ -163,6 +163,38 @@ describe('gallery: the cut-open head', () => {
   });
 });
 
+describe('gallery: the head in slices', () => {
+  it('is listed and opens in layout="quad" (three drawn slice panes and the 3D view); the plain head goes back to 3d', async () => {
+    const { page, errors } = await open(`index.html?dataset=mri_head_slices&${FAST}`, 'gallery', 1);
+    await page.waitForFunction(
+      () =>
+        ['axial', 'coronal', 'sagittal'].every(
+          (n) => ((window as any).gallery.viewer.paneContext(n)?.stats.iterations ?? 0) >= 1,
+        ),
+      { timeout: 60_000 },
+    );
+    const quad = await page.evaluate(() => {
+      const v = (window as any).gallery.viewer;
+      return {
+        layout: v.layout,
+        panes: v.shadowRoot.querySelectorAll('.pane').length,
+        title: document.querySelector('[data-id="mri_head_slices"] .t')?.textContent,
+      };
+    });
+    await page.click('[data-id="mri_head_volpack_brainsmall_128x128x84_uint8"]');
+    await page.waitForFunction(() => location.search.includes('dataset=mri_head_volpack'), { timeout: 60_000 });
+    await page.evaluate(() => (window as any).gallery.viewer.whenSettled());
+    const plain = await page.evaluate(() => {
+      const v = (window as any).gallery.viewer;
+      return { layout: v.layout, panes: v.shadowRoot.querySelectorAll('.pane').length };
+    });
+    await page.close();
+    expect(errors).toEqual([]);
+    expect(quad).toEqual({ layout: 'quad', panes: 3, title: expect.stringMatching(/in slices/) });
+    expect(plain).toEqual({ layout: '3d', panes: 0 });
+  });
+});
+
 describe('gallery deep links', () => {
   const camera = { position: [0.3, 1.2, 1.1], target: [0.05, 0, 0], up: [0, 1, 0], fovy: 0.6 };
   const cam = [...camera.position, ...camera.target, ...camera.up, camera.fovy].join(',');

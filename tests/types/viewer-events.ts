@@ -1,6 +1,7 @@
 // Compile test, checked by `pnpm run typecheck` (strict): <vpt-viewer>'s events are typed
 // through HTMLElementEventMap, so listeners get their `detail` without casts; the lines
 // marked as expected errors fail the typecheck if the typing ever loosens.
+import type { VptViewer } from '../../packages/viewer/src/index.js';
 import '../../packages/viewer/src/index.js';
 
 const el = document.createElement('vpt-viewer');
@@ -20,6 +21,17 @@ el.addEventListener('vpt-change', (e) => {
   // @ts-expect-error a clip change's value is a Clip or null, not a number
   if (e.detail.property === 'clip') console.log(e.detail.value.toFixed(2));
 });
+// The slice panes' crosshair is a voxel index, their window [center, width] in data units.
+el.addEventListener('vpt-change', (e) => {
+  if (e.detail.property === 'crosshair') console.log(e.detail.value[0] + e.detail.value[2]);
+  if (e.detail.property === 'window') console.log(e.detail.value[1].toFixed(1));
+  // @ts-expect-error the crosshair is a voxel index, not a string
+  if (e.detail.property === 'crosshair') console.log(e.detail.value.toUpperCase());
+});
+const layout: VptViewer['layout'] = 'quad';
+// @ts-expect-error not a layout
+const badLayout: VptViewer['layout'] = 'triple';
+console.log(layout, badLayout);
 // @ts-expect-error no such field on the load event
 el.addEventListener('vpt-load', (e) => console.log(e.detail.nope));
 // The native events keep their own types.

@@ -62,6 +62,14 @@ const HEAD_CUT = {
   renderer: 'mcrt',
 };
 
+/** The bundled head once more, in the viewer's quad layout: axial, coronal and sagittal slices and the 3D view. */
+const HEAD_SLICES = {
+  id: 'mri_head_slices',
+  title: 'MRI head in slices (axial, coronal, sagittal and 3D)',
+  layout: 'quad',
+  renderer: 'eam',
+};
+
 /** About the build: a development build shows developer hints (`pnpm data:fetch`). */
 export const catalogInfo = { development: false };
 
@@ -81,9 +89,11 @@ export async function loadCatalog() {
   // The bundled head once more, cut open by the clip plane of scenes/head-mcrt-clip.json.
   const head = datasets.find((d) => d.id === HEAD);
   const cut = head ? [{ ...head, ...HEAD_CUT, sameAs: HEAD }] : [];
+  const slices = head ? [{ ...head, ...HEAD_SLICES, sameAs: HEAD }] : [];
   return [
     ...datasets,
     ...cut,
+    ...slices,
     ...PROCEDURAL.map((d) => ({ ...d, bundled: true, format: 'procedural', license: 'generated in code' })),
   ];
 }
@@ -199,6 +209,11 @@ async function sceneFile(name) {
  * is `volume`: an object of <vpt-viewer> properties.
  */
 export async function presetFor(d, renderer, volume) {
+  // The layout is the dataset's (the head in slices: quad), else the 3D view alone.
+  return { ...(await rendererPreset(d, renderer, volume)), layout: d.layout ?? '3d' };
+}
+
+async function rendererPreset(d, renderer, volume) {
   if (d.id === HEAD || d.sameAs === HEAD) {
     // The cut-open head: its own scene file for its renderer, the other renderers' scene files plus its clip.
     const cut = d.clipScene ? await sceneFile(d.clipScene) : null;

@@ -21,8 +21,20 @@ export type {
   ViewerConvergedDetail,
   ViewerLoadDetail,
   ViewerChangeDetail,
+  ProbeReading,
   PanelName,
 } from './viewer-element.js';
+export {
+  paneGeometries,
+  voxelAt,
+  screenPoint,
+  probeValue,
+  VIEWER_LAYOUTS,
+  type PaneGeometry,
+  type PaneName,
+  type ViewerLayout,
+  type Voxel,
+} from './slice-panes.js';
 export type { RefinementStats } from './session.js';
 export {
   registerRenderer,

@@ -31,6 +31,120 @@ export const viewerStyles = css`
     min-width: 0;
     overflow: hidden;
   }
+  .panes {
+    flex: 1 1 auto;
+    min-width: 0;
+    display: grid;
+    grid-template: 1fr / 1fr;
+    gap: 2px;
+    background: #222;
+  }
+  .panes[data-layout='slices'] {
+    grid-template: 1fr / repeat(3, minmax(0, 1fr));
+  }
+  .panes[data-layout='slices'] .view {
+    display: none;
+  }
+  /* Quad: axial and coronal above, sagittal and the 3D view below. */
+  .panes[data-layout='quad'] {
+    grid-template: repeat(2, minmax(0, 1fr)) / repeat(2, minmax(0, 1fr));
+  }
+  .panes[data-layout='quad'] .view {
+    grid-area: 2 / 2;
+  }
+  /* Narrow (a phone): the panes stack, each a share of the height. */
+  .layout.narrow .panes[data-layout='slices'] {
+    grid-template: repeat(3, minmax(0, 1fr)) / minmax(0, 1fr);
+  }
+  .layout.narrow .panes[data-layout='quad'] {
+    grid-template: repeat(4, minmax(0, 1fr)) / minmax(0, 1fr);
+  }
+  .layout.narrow .panes[data-layout='quad'] .view {
+    grid-area: 4 / 1;
+  }
+  .view,
+  .pane {
+    min-height: 0;
+  }
+  .pane {
+    position: relative;
+    overflow: hidden;
+    background: #000;
+    display: flex;
+    align-items: center;
+    justify-content: center;
+    padding-bottom: 18px;
+    box-sizing: border-box;
+  }
+  .stage {
+    position: relative;
+    touch-action: none;
+    cursor: crosshair;
+    user-select: none;
+  }
+  .stage canvas {
+    position: absolute;
+    left: 0;
+    top: 0;
+    display: block;
+    transform-origin: 0 0;
+  }
+  .cross-v,
+  .cross-h {
+    position: absolute;
+    background: rgb(255 200 0 / 0.7);
+    pointer-events: none;
+  }
+  .cross-v {
+    top: 0;
+    bottom: 0;
+    width: 1px;
+  }
+  .cross-h {
+    left: 0;
+    right: 0;
+    height: 1px;
+  }
+  .orient {
+    position: absolute;
+    color: #fc6;
+    font-weight: 600;
+    pointer-events: none;
+    text-shadow: 0 0 2px #000;
+  }
+  .orient.top {
+    top: 2px;
+    left: 50%;
+  }
+  .orient.bottom {
+    bottom: 2px;
+    left: 50%;
+  }
+  .orient.left {
+    left: 3px;
+    top: 50%;
+  }
+  .orient.right {
+    right: 3px;
+    top: 50%;
+  }
+  .pane-title,
+  .probe {
+    position: absolute;
+    bottom: 0;
+    margin: 0;
+    font-size: 11px;
+    line-height: 18px;
+    white-space: nowrap;
+  }
+  .pane-title {
+    left: 6px;
+    color: #aaa;
+  }
+  .probe {
+    right: 6px;
+    color: #fff;
+  }
   .view canvas {
     position: absolute;
     inset: 0;

@@ -4,7 +4,7 @@
  * Attributes (all reflected, all also properties): src, renderer, backend,
  * transfer-function, camera, clip, lights, environment, exposure, tone-mapper, denoise,
  * max-samples, target-error, density-scale, seed, renderer-params, resolution-scale, panels,
- * collapsed, hide-progress, hide-stats.
+ * collapsed, hide-progress, hide-stats, layout.
  * Events (typed through HTMLElementEventMap, prefixed so none collides with a native
  * event): vpt-load, vpt-progress (loading and refinement), vpt-converged, vpt-error,
  * vpt-change (the user edited something through the element: camera drag, panels).
@@ -65,6 +65,22 @@ import { PANEL_NAMES, type InternalProperty, type PanelHost, type PanelName, typ
 import { DEFAULT_TRANSFER_FUNCTION, transferFunctionPreset } from './presets.js';
 import { createRenderer, rendererEntry } from './renderer-registry.js';
 import { RenderSession, type RefinementStats } from './session.js';
+import {
+  canvasPlacement,
+  dataExtent,
+  defaultWindow,
+  paneGeometries,
+  probeValue,
+  screenPoint,
+  sliceAspect,
+  SlicePane,
+  VIEWER_LAYOUTS,
+  voxelAt,
+  type PaneGeometry,
+  type PaneName,
+  type ViewerLayout,
+  type Voxel,
+} from './slice-panes.js';
 import { viewerStyles } from './styles.js';
 
 export type { ViewerLoadDetail, ViewerProgressDetail } from './loading/load-events.js';
@@ -84,7 +100,19 @@ export type ViewerConvergedDetail = RefinementStats & { reason: 'max-samples' | 
  * when nothing is cut any more.
  */
 export type ViewerChangeDetail =
-  { property: 'clip'; value: Clip | null } | { property: Exclude<InternalProperty, 'clip'>; value: unknown };
+  | { property: 'clip'; value: Clip | null }
+  /** The linked crosshair of the slice panes moved (a click, a tap or the wheel): its voxel index [i, j, k]. */
+  | { property: 'crosshair'; value: Voxel }
+  /** The slice panes' window [center, width] in data units changed (right-drag). */
+  | { property: 'window'; value: [number, number] }
+  | { property: Exclude<InternalProperty, 'clip'>; value: unknown };
+
+/** What the value probe reads under the pointer in a slice pane: the voxel and its raw value in data units. */
+export interface ProbeReading {
+  pane: PaneName;
+  index: Voxel;
+  value: number;
+}
 
 /**
  * The panels' templates (panels.ts), loaded when an element first shows panels: a lazy chunk
@@ -156,6 +184,11 @@ export class VptViewer extends LitElement implements PanelHost, SlotHolder {
     collapsed: { type: Boolean, reflect: true },
     hideProgress: { attribute: 'hide-progress', type: Boolean, reflect: true },
     hideStats: { attribute: 'hide-stats', type: Boolean, reflect: true },
+    layout: { type: String, reflect: true },
+    _crosshair: { state: true },
+    _window: { state: true },
+    _probe: { state: true },
+    _paneSizes: { state: true },
     _loading: { state: true },
     _narrow: { state: true },
     _overlayOpen: { state: true },
@@ -209,6 +242,12 @@ export class VptViewer extends LitElement implements PanelHost, SlotHolder {
   declare hideProgress: boolean;
   /** No stats line on the image. */
   declare hideStats: boolean;
+  /** '3d' (default): the rendering alone; 'slices': axial, coronal and sagittal panes; 'quad': those and the 3D view. */
+  declare layout: ViewerLayout;
+  declare private _crosshair: Voxel | null;
+  declare private _window: [number, number] | null;
+  declare private _probe: ProbeReading | null;
+  declare private _paneSizes: Partial<Record<PaneName, { width: number; height: number }>>;
   /** Loading progress in [0, 1] (null: not loading; NaN: size unknown). */
   declare private _loading: number | null;
   /** The element is too narrow for panels beside the image: they become an overlay. */
@@ -296,6 +335,11 @@ export class VptViewer extends LitElement implements PanelHost, SlotHolder {
     this.collapsed = false;
     this.hideProgress = false;
     this.hideStats = false;
+    this.layout = '3d';
+    this._crosshair = null;
+    this._window = null;
+    this._probe = null;
+    this._paneSizes = {};
     this._loading = null;
     this._narrow = false;
     this._overlayOpen = false;
@@ -359,6 +403,33 @@ export class VptViewer extends LitElement implements PanelHost, SlotHolder {
   /** Whether the current image has reached max-samples or target-error. */
   get converged(): boolean {
     return this.session?.isConverged ?? false;
+  }
+
+  /** The slice panes' linked crosshair, a voxel index [i, j, k] (null before a volume is loaded). */
+  get crosshair(): Voxel | null {
+    return this._crosshair ? [...this._crosshair] : null;
+  }
+  set crosshair(voxel: Voxel | null) {
+    this._crosshair = voxel && this.volume ? this.clampVoxel(voxel) : null;
+  }
+  /** The slice panes' window [center, width] in data units (null before a volume is loaded). */
+  get sliceWindow(): [number, number] | null {
+    return this._window ? [...this._window] : null;
+  }
+  set sliceWindow(window: [number, number] | null) {
+    this._window = window && window[1] > 0 && window.every(Number.isFinite) ? [window[0], window[1]] : null;
+  }
+  /** The value probe's reading under the pointer (null: the pointer is over no slice pane). */
+  get probeReading(): ProbeReading | null {
+    return this._probe;
+  }
+  /** A slice pane's RenderContext (null in layout "3d" or before it opens): readHDR/readLDR of the pane. */
+  paneContext(name: PaneName) {
+    return this.slicePanes.get(name)?.context ?? null;
+  }
+  /** The raw data value of a voxel of the loaded volume, in data units (what the probe shows). */
+  probe(voxel: Voxel): number | null {
+    return this.volume ? probeValue(this.volume, this.clampVoxel(voxel)) : null;
   }
 
   /** Resolves once every pending load (renderer, volume, environment, GPU context) has been applied. */
@@ -435,6 +506,7 @@ export class VptViewer extends LitElement implements PanelHost, SlotHolder {
     this.session = null;
     this.releaseSlot();
     this._parked = false;
+    this.closePanes();
     this.stopLostTimer();
   }
 
@@ -528,6 +600,15 @@ export class VptViewer extends LitElement implements PanelHost, SlotHolder {
       this.fittedPreset = isFittedPreset(this.transferFunction) ? (this.transferFunction as string).trim() : null;
     }
     this.keepFittedPreset = false;
+    if (changed.has('layout') && this.layout !== null && !(VIEWER_LAYOUTS as readonly string[]).includes(this.layout)) {
+      this.fail(
+        new VptError('invalid-scene', `layout: "${this.layout}" is not one of ${VIEWER_LAYOUTS.join(', ')}`),
+        'attribute',
+      );
+      this.layout = '3d';
+    }
+    // A new volume: the panes' geometry and a crosshair and window for it, before rendering them.
+    if (this.layoutNow !== '3d') this.paneGeometry();
     // Normalize and validate what changed; an invalid value is reported and the last valid one restored.
     const failed = new Set<string>();
     this.validator.validate(
@@ -564,6 +645,7 @@ export class VptViewer extends LitElement implements PanelHost, SlotHolder {
     if (changed.has('src')) this.track(this.volumeLoading.loadSource(this.src));
     if (changed.has('environment')) this.track(this.resolveEnvironment());
     if (SYNC_FIELDS.some((f) => changed.has(f))) this.applySync();
+    this.syncPanes(changed.has('backend') || changed.has('layout'));
   }
 
   // ——— rendering (DOM) ———
@@ -584,68 +666,326 @@ export class VptViewer extends LitElement implements PanelHost, SlotHolder {
       if (this._narrow) this._overlayOpen = !this._overlayOpen;
       else this.collapsed = !this.collapsed;
     };
+    const layout = this.layoutNow;
     return html` <div class="layout ${this._narrow ? 'narrow' : ''}" @keydown=${this.onLayoutKey}>
-      <div
-        class="view"
-        part="view"
-        @dragover=${this.onDragOver}
-        @dragleave=${() => {
-          this._dragOver = false;
-        }}
-        @drop=${this.onDrop}
-      >
-        ${this._status ? html`<p class="overlay status" part="status" role="status">${this._status}</p>` : nothing}
-        ${panels.has('clip') ? this.renderClipHandles() : nothing} ${this.renderHud()}
-        ${
-          panels.size
-            ? html`<div class="toolbar">
-                ${panels.has('export') && this.volume && !showAside ? html`<button type="button" part="screenshot" title="Download the image as PNG" @click=${() => this.downloadScreenshot()}>PNG</button>` : nothing}
-                <button
-                  type="button"
-                  part="panels-toggle"
-                  aria-expanded=${showAside ? 'true' : 'false'}
-                  aria-controls="panels"
-                  @click=${toggle}
-                >
-                  ${showAside ? (this._narrow ? 'Close' : 'Hide panels') : this._narrow ? 'Settings' : 'Panels'}
-                </button>
-              </div>`
-            : nothing
-        }
-        ${
-          this._lost
-            ? html`<div class="overlay lost" role="alert">
-                <p>
-                  ${this._lostGaveUp ? 'The GPU context was lost and was not restored.' : 'The GPU context was lost. Restoring…'}
-                </p>
-                <div>
-                  <button type="button" @click=${() => this.track(this.openSession())}>
-                    ${this._lostGaveUp ? 'Retry' : 'Restart renderer'}
+      <div class="panes" part="panes" data-layout=${layout}>
+        <div
+          class="view"
+          part="view"
+          @dragover=${this.onDragOver}
+          @dragleave=${() => {
+            this._dragOver = false;
+          }}
+          @drop=${this.onDrop}
+        >
+          ${this._status ? html`<p class="overlay status" part="status" role="status">${this._status}</p>` : nothing}
+          ${panels.has('clip') ? this.renderClipHandles() : nothing} ${this.renderHud()}
+          ${
+            panels.size
+              ? html`<div class="toolbar">
+                  ${panels.has('export') && this.volume && !showAside ? html`<button type="button" part="screenshot" title="Download the image as PNG" @click=${() => this.downloadScreenshot()}>PNG</button>` : nothing}
+                  <button
+                    type="button"
+                    part="panels-toggle"
+                    aria-expanded=${showAside ? 'true' : 'false'}
+                    aria-controls="panels"
+                    @click=${toggle}
+                  >
+                    ${showAside ? (this._narrow ? 'Close' : 'Hide panels') : this._narrow ? 'Settings' : 'Panels'}
                   </button>
-                </div>
-              </div>`
-            : nothing
-        }
-        ${
-          this._error
-            ? html`<div class="overlay error" part="error" role="alert">
-                <p>${this._error.message}</p>
-                <button
-                  type="button"
-                  aria-label="Dismiss error"
-                  @click=${() => {
-                    this._error = null;
-                  }}
-                >
-                  ×
-                </button>
-              </div>`
-            : nothing
-        }
-        ${this._dragOver ? html`<div class="drop" aria-hidden="true">Drop a volume file</div>` : nothing}
+                </div>`
+              : nothing
+          }
+          ${
+            this._lost
+              ? html`<div class="overlay lost" role="alert">
+                  <p>
+                    ${this._lostGaveUp ? 'The GPU context was lost and was not restored.' : 'The GPU context was lost. Restoring…'}
+                  </p>
+                  <div>
+                    <button type="button" @click=${() => this.track(this.openSession())}>
+                      ${this._lostGaveUp ? 'Retry' : 'Restart renderer'}
+                    </button>
+                  </div>
+                </div>`
+              : nothing
+          }
+          ${
+            this._error
+              ? html`<div class="overlay error" part="error" role="alert">
+                  <p>${this._error.message}</p>
+                  <button
+                    type="button"
+                    aria-label="Dismiss error"
+                    @click=${() => {
+                      this._error = null;
+                    }}
+                  >
+                    ×
+                  </button>
+                </div>`
+              : nothing
+          }
+          ${this._dragOver ? html`<div class="drop" aria-hidden="true">Drop a volume file</div>` : nothing}
+        </div>
+        ${layout === '3d' ? nothing : this.renderSlicePanes()}
       </div>
       ${showAside ? html`<aside id="panels" part="panels" aria-label="Viewer settings">${this.panelsNow(panels)}</aside>` : nothing}
     </div>`;
+  }
+
+  /** The layout attribute, '3d' unless it names another layout. */
+  private get layoutNow(): ViewerLayout {
+    return (VIEWER_LAYOUTS as readonly string[]).includes(this.layout) ? this.layout : '3d';
+  }
+
+  // ——— slice panes (layout="slices" | "quad", slice-panes.ts) ———
+
+  private readonly slicePanes = new Map<PaneName, SlicePane>();
+  private geometries: PaneGeometry[] = [];
+  private geometryVolume: LoadedVolumeLike | null = null;
+  private extent: [number, number] = [0, 1];
+  private paneObserver: ResizeObserver | null = null;
+  private paneDrawn = new Map<PaneName, string>();
+  private paneToken = 0;
+  /** A right-drag adjusting the window: where it started and the window then. */
+  private windowDrag: { x: number; y: number; window: [number, number]; width: number; height: number } | null = null;
+
+  private clampVoxel(v: Voxel): Voxel {
+    const d = this.volume!.dims;
+    return v.map((x, i) => Math.min(d[i] - 1, Math.max(0, Math.round(Number.isFinite(x) ? x : 0)))) as Voxel;
+  }
+
+  /** The panes' geometry, extent and starting crosshair and window, refreshed for a new volume. */
+  private paneGeometry(): PaneGeometry[] {
+    const v = this.volume;
+    if (!v) return [];
+    if (this.geometryVolume !== v) {
+      const first = this.geometryVolume === null || this.geometryVolume.dims.join() !== v.dims.join();
+      this.geometryVolume = v;
+      this.geometries = paneGeometries(v);
+      this.extent = dataExtent(v);
+      if (first || !this._crosshair) this._crosshair = v.dims.map((n) => Math.floor(n / 2)) as Voxel;
+      if (first || !this._window) this._window = defaultWindow(this.extent);
+    }
+    return this.geometries;
+  }
+
+  private renderSlicePanes() {
+    const geometries = this.paneGeometry();
+    const v = this.volume;
+    return (geometries.length ? geometries : ([] as PaneGeometry[])).map((g) => {
+      const size = this._paneSizes[g.name];
+      const stage = v && size ? this.stageSize(g, size) : null;
+      const cross = v && this._crosshair ? screenPoint(g, v.dims, this._crosshair) : null;
+      const probe = this._probe?.pane === g.name ? this._probe : null;
+      return html`<div class="pane" part="pane ${g.name}-pane" data-pane=${g.name}>
+        <div
+          class="stage"
+          data-stage=${g.name}
+          style=${stage ? `width:${stage.width}px;height:${stage.height}px` : 'display:none'}
+          @pointerdown=${(e: PointerEvent) => this.onPaneDown(e, g)}
+          @pointermove=${(e: PointerEvent) => this.onPaneMove(e, g)}
+          @pointerup=${this.onPaneUp}
+          @pointercancel=${this.onPaneUp}
+          @pointerleave=${() => {
+            if (this._probe?.pane === g.name) this._probe = null;
+          }}
+          @wheel=${(e: WheelEvent) => this.onPaneWheel(e, g)}
+          @contextmenu=${(e: Event) => e.preventDefault()}
+        >
+          ${
+            cross
+              ? html`<div class="cross-v" style="left:${(100 * cross.fx).toFixed(3)}%"></div>
+                  <div class="cross-h" style="top:${(100 * cross.fy).toFixed(3)}%"></div>`
+              : nothing
+          }
+          ${
+            g.labels
+              ? html`<span class="orient top" data-edge="top">${g.labels.top}</span
+                  ><span class="orient bottom" data-edge="bottom">${g.labels.bottom}</span
+                  ><span class="orient left" data-edge="left">${g.labels.left}</span
+                  ><span class="orient right" data-edge="right">${g.labels.right}</span>`
+              : nothing
+          }
+        </div>
+        <p class="pane-title">${g.name} ${this._crosshair ? this._crosshair[g.axis] : ''}</p>
+        ${probe ? html`<p class="probe" part="probe" data-probe=${g.name}>${this.probeText(probe)}</p>` : nothing}
+      </div>`;
+    });
+  }
+
+  private probeText(p: ProbeReading): string {
+    const units = typeof this.volume?.meta?.units === 'string' ? ` ${this.volume.meta.units}` : '';
+    const value = Number.isInteger(p.value) ? String(p.value) : p.value.toPrecision(6);
+    return `${value}${units} · [${p.index.join(', ')}]`;
+  }
+
+  /** The slice's rectangle in a pane of this CSS size: its physical aspect, as large as fits. */
+  private stageSize(g: PaneGeometry, size: { width: number; height: number }) {
+    const aspect = sliceAspect(g, this.volume!);
+    const w = Math.max(1, size.width),
+      h = Math.max(1, size.height - 18);
+    return w / h > aspect
+      ? { width: Math.round(h * aspect), height: Math.round(h) }
+      : { width: Math.round(w), height: Math.round(w / aspect) };
+  }
+
+  /** Open or close the panes for the layout, then draw what changed. */
+  private syncPanes(reopen: boolean): void {
+    const want = this.connected && this.layoutNow !== '3d';
+    if (!want || reopen) this.closePanes();
+    if (want && !this.slicePanes.size) this.track(this.openPanes());
+    for (const [name, pane] of this.slicePanes) {
+      const stage = this.renderRoot.querySelector(`[data-stage="${name}"]`);
+      if (stage && pane.canvas.parentElement !== stage) stage.prepend(pane.canvas);
+    }
+    const panesEl = this.renderRoot.querySelectorAll('.pane');
+    if (panesEl.length) {
+      this.paneObserver ??= new ResizeObserver((entries) => {
+        const sizes = { ...this._paneSizes };
+        for (const e of entries) {
+          const name = (e.target as HTMLElement).dataset.pane as PaneName;
+          sizes[name] = { width: e.contentRect.width, height: e.contentRect.height };
+        }
+        this._paneSizes = sizes;
+      });
+      panesEl.forEach((p) => this.paneObserver!.observe(p));
+    }
+    this.drawPanes();
+  }
+
+  private async openPanes(): Promise<void> {
+    const token = ++this.paneToken;
+    const panes = ['axial', 'coronal', 'sagittal'].map((n) => new SlicePane(n as PaneName));
+    panes.forEach((p) => this.slicePanes.set(p.name, p));
+    try {
+      await Promise.all(panes.map((p) => p.open(this.backend)));
+    } catch (e) {
+      if (token === this.paneToken) this.fail(e, 'context');
+      return;
+    }
+    if (token !== this.paneToken) return;
+    this.paneDrawn.clear();
+    this.requestUpdate();
+  }
+
+  private closePanes(): void {
+    this.paneToken++;
+    for (const p of this.slicePanes.values()) {
+      p.dispose();
+      p.canvas.remove();
+    }
+    this.slicePanes.clear();
+    this.paneDrawn.clear();
+    this.paneObserver?.disconnect();
+    this.paneObserver = null;
+    this._probe = null;
+  }
+
+  private drawPanes(): void {
+    const scene = this.sceneNow();
+    const cross = this._crosshair;
+    const window = this._window;
+    if (!scene || !cross || !window) return;
+    const { clip: _clip, ...unclipped } = scene;
+    const dpr = globalThis.devicePixelRatio || 1;
+    for (const g of this.paneGeometry()) {
+      const pane = this.slicePanes.get(g.name);
+      const size = this._paneSizes[g.name];
+      if (!pane?.context || !size) continue;
+      const stage = this.stageSize(g, size);
+      pane.canvas.setAttribute('style', canvasPlacement(g, stage));
+      const max = pane.context.backend.limits.maxTextureDimension2D;
+      const [cw, ch] = g.transpose ? [stage.height, stage.width] : [stage.width, stage.height];
+      const w = Math.min(max, Math.max(1, Math.round(cw * dpr)));
+      const h = Math.min(max, Math.max(1, Math.round(ch * dpr)));
+      const key = `${cross[g.axis]}|${window.join()}|${w}x${h}`;
+      if (this.paneDrawn.get(g.name) === key && pane.volume === this.volume) continue;
+      try {
+        pane.draw(unclipped, g.axis, cross[g.axis], window, w, h);
+        this.paneDrawn.set(g.name, key);
+      } catch (e) {
+        this.paneDrawn.set(g.name, key);
+        this.fail(e, 'attribute');
+      }
+    }
+  }
+
+  private paneFraction(e: PointerEvent | WheelEvent): { fx: number; fy: number } {
+    const r = (e.currentTarget as HTMLElement).getBoundingClientRect();
+    return { fx: (e.clientX - r.left) / r.width, fy: (e.clientY - r.top) / r.height };
+  }
+
+  private moveCrosshair(voxel: Voxel): void {
+    const v = this.clampVoxel(voxel);
+    if (this._crosshair && v.every((x, i) => x === this._crosshair![i])) return;
+    this._crosshair = v;
+    this.dispatchEvent(
+      new CustomEvent<ViewerChangeDetail>('vpt-change', { detail: { property: 'crosshair', value: [...v] } }),
+    );
+  }
+
+  private updateProbe(e: PointerEvent, g: PaneGeometry): void {
+    if (!this.volume || !this._crosshair) return;
+    const { fx, fy } = this.paneFraction(e);
+    if (fx < 0 || fx > 1 || fy < 0 || fy > 1) return;
+    const index = voxelAt(g, this.volume.dims, fx, fy, this._crosshair);
+    this._probe = { pane: g.name, index, value: probeValue(this.volume, index) };
+  }
+
+  private onPaneDown(e: PointerEvent, g: PaneGeometry): void {
+    if (!this.volume || !this._crosshair || !this._window) return;
+    const target = e.currentTarget as HTMLElement;
+    target.setPointerCapture?.(e.pointerId);
+    e.preventDefault();
+    if (e.button === 2) {
+      const r = target.getBoundingClientRect();
+      this.windowDrag = { x: e.clientX, y: e.clientY, window: [...this._window], width: r.width, height: r.height };
+      return;
+    }
+    if (e.button !== 0) return;
+    const { fx, fy } = this.paneFraction(e);
+    this.moveCrosshair(voxelAt(g, this.volume.dims, fx, fy, this._crosshair));
+    this.updateProbe(e, g);
+    this.crossDrag = true;
+  }
+
+  private crossDrag = false;
+
+  private onPaneMove(e: PointerEvent, g: PaneGeometry): void {
+    const drag = this.windowDrag;
+    if (drag) {
+      // Radiologists' right-drag: horizontal widens (right) or narrows the window, vertical moves its
+      // centre (down raises it); a drag across the pane spans the data's whole extent.
+      const range = this.extent[1] - this.extent[0] || 1;
+      const width = Math.max(range * 1e-4, drag.window[1] + ((e.clientX - drag.x) / drag.width) * range);
+      const center = drag.window[0] + ((e.clientY - drag.y) / drag.height) * range;
+      this._window = [center, width];
+      this.dispatchEvent(
+        new CustomEvent<ViewerChangeDetail>('vpt-change', { detail: { property: 'window', value: [center, width] } }),
+      );
+      return;
+    }
+    if (this.crossDrag && this.volume && this._crosshair) {
+      const { fx, fy } = this.paneFraction(e);
+      this.moveCrosshair(voxelAt(g, this.volume.dims, fx, fy, this._crosshair));
+    }
+    this.updateProbe(e, g);
+  }
+
+  private onPaneUp = (): void => {
+    this.windowDrag = null;
+    this.crossDrag = false;
+  };
+
+  /** The wheel moves the pane's plane one voxel per notch (down: toward higher indices). */
+  private onPaneWheel(e: WheelEvent, g: PaneGeometry): void {
+    if (!this.volume || !this._crosshair || e.deltaY === 0) return;
+    e.preventDefault();
+    const next: Voxel = [...this._crosshair];
+    next[g.axis] += Math.sign(e.deltaY);
+    this.moveCrosshair(next);
   }
 
   /** The clip value as an object (null: nothing cut, or a string not parsed yet). */
