@@ -1,7 +1,7 @@
 /**
  * WebGL 2 context slots shared by every <vpt-viewer> on a page. Browsers keep only so many
  * live WebGL contexts per page (Chromium 16) and, past that, silently lose the oldest one
- * for good: with 20 viewers the 4 oldest stayed black until Retry (issue 28). Here a viewer
+ * for good: with 20 viewers the 4 oldest stayed black until Retry. Here a viewer
  * takes a slot before it opens a WebGL 2 context; when all are taken, the least recently
  * used viewer that is off screen (else the least recently used one) releases its context
  * (keeping a still of its image) and waits; a freed slot goes to the waiting viewer that is

@@ -47,7 +47,7 @@ export class OrbitCamera {
    * Stop listening (the camera is kept). Call it while the element is still in its tree:
    * OrbitControls also listens on the element's root node (a shadow root here) and removes
    * that listener from whatever root the element has when disposed, so a canvas removed
-   * first would leave the listener, and through it the canvas, behind (issue 28).
+   * first would leave the listener, and through it the canvas, behind.
    */
   detach(): void {
     this.element?.removeEventListener('keydown', this.onKey);
