@@ -162,7 +162,9 @@ window.gallery = {
 
 const first =
   catalog.find((d) => d.id === page.dataset) ?? catalog.find((d) => d.bundled && d.format === 'raw') ?? catalog[0];
-const firstRenderer = RENDERERS.some((r) => r.name === page.renderer) ? page.renderer : (first.renderer ?? DEFAULT_RENDERER);
+const firstRenderer = RENDERERS.some((r) => r.name === page.renderer)
+  ? page.renderer
+  : (first.renderer ?? DEFAULT_RENDERER);
 // A link naming what this gallery lacks says so (the default view shows under the notice).
 const problems = linkProblems(location.search, catalog, RENDERERS, {
   dataset: first,

@@ -243,7 +243,10 @@ async function decodeBytes(
     case 'raw': {
       const raw = options.raw ? checkRawOptions(options.raw, ctx) : rawFromName(name);
       if (!raw)
-        throw new LoaderError('bad-header', `${ctx.name}: raw data has no header; ${options.rawHint ?? HEADERLESS_RAW_HINT}`);
+        throw new LoaderError(
+          'bad-header',
+          `${ctx.name}: raw data has no header; ${options.rawHint ?? HEADERLESS_RAW_HINT}`,
+        );
       return decodeRaw(bytes, checkRawOptions(raw, ctx), ctx);
     }
     case 'sidecar': {
