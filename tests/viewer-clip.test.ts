@@ -1,11 +1,12 @@
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
+import { readSceneFile, validateSceneDescription, type VptPageSession } from '../packages/headless/src/index.js';
 import {
-  openVptPage,
-  readSceneFile,
-  validateSceneDescription,
-  type VptPageSession,
-} from '../packages/headless/src/index.js';
-import { compareRgba, distinctGreys, HEAD_SIDECAR, openViewerPage, type ViewerPage } from './helpers/viewer-page.js';
+  compareRgba,
+  distinctGreys,
+  openViewerAndHeadless,
+  sceneFileAttributes,
+  type ViewerPage,
+} from './helpers/viewer-page.js';
 
 /**
  * The viewer's clipping (docs/architecture.md, "Clipping"): the `clip` attribute takes the
@@ -16,15 +17,13 @@ import { compareRgba, distinctGreys, HEAD_SIDECAR, openViewerPage, type ViewerPa
 let vp: ViewerPage;
 let headless: VptPageSession;
 
+let pages: Awaited<ReturnType<typeof openViewerAndHeadless>> | undefined;
 beforeAll(async () => {
-  vp = await openViewerPage();
-  headless = await openVptPage({ browser: vp.browser });
-  // requestAnimationFrame, which drives refinement, does not run in a background tab.
-  await vp.page.bringToFront();
+  pages = await openViewerAndHeadless();
+  ({ vp, headless } = pages);
 });
 afterAll(async () => {
-  await headless?.close();
-  await vp?.close();
+  await pages?.close();
 });
 
 const SIZE = 32;
@@ -43,20 +42,8 @@ describe('<vpt-viewer clip>', () => {
     expect(validateSceneDescription({ ...desc, clip: CLIP }).clip).toEqual(CLIP);
     const ref = await headless.render({ ...desc, clip: CLIP } as typeof desc, { baseDir });
     const whole = await headless.render(desc, { baseDir });
-    const exposure = (desc.post as { type: string; exposure?: number }[]).find((s) => s.type === 'exposure')!.exposure;
     const attrs = {
-      src: HEAD_SIDECAR,
-      renderer: 'eam',
-      backend: 'webgl2',
-      panels: 'none',
-      'transfer-function': JSON.stringify(desc.transferFunction),
-      camera: JSON.stringify(desc.camera),
-      environment: JSON.stringify(desc.environment),
-      'density-scale': String(desc.densityScale),
-      seed: String(desc.seed),
-      exposure: String(exposure),
-      'tone-mapper': 'aces',
-      'max-samples': String(SAMPLES),
+      ...sceneFileAttributes(desc, { renderer: 'eam', backend: 'webgl2', maxSamples: SAMPLES }),
       clip: JSON.stringify(CLIP),
     };
     const got = await vp.run(

@@ -1,11 +1,11 @@
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
-import { decodePNG, openVptPage, readSceneFile, type VptPageSession } from '../packages/headless/src/index.js';
+import { decodePNG, readSceneFile, type VptPageSession } from '../packages/headless/src/index.js';
 import {
   compareRgba,
   distinctGreys,
-  HEAD_SIDECAR,
-  openViewerPage,
+  openViewerAndHeadless,
   installViewerHelpers,
+  sceneFileAttributes,
   type ViewerPage,
 } from './helpers/viewer-page.js';
 
@@ -13,22 +13,14 @@ import {
 let vp: ViewerPage;
 let headless: VptPageSession;
 
+let pages: Awaited<ReturnType<typeof openViewerAndHeadless>> | undefined;
 beforeAll(async () => {
-  vp = await openViewerPage();
-  headless = await openVptPage({ browser: vp.browser });
-  // requestAnimationFrame, which drives refinement, does not run in a background tab.
-  await vp.page.bringToFront();
+  pages = await openViewerAndHeadless();
+  ({ vp, headless } = pages);
 });
 afterAll(async () => {
-  await headless?.close();
-  await vp?.close();
+  await pages?.close();
 });
-
-/** The exposure step of a scene file's post chain (the element takes it as an attribute). */
-function sceneExposure(desc: { post?: unknown }): number {
-  const steps = (Array.isArray(desc.post) ? desc.post : []) as { type?: string; exposure?: number }[];
-  return steps.find((s) => s.type === 'exposure')?.exposure ?? 0;
-}
 
 const SIZE = 32;
 const SAMPLES = 8;
@@ -42,18 +34,7 @@ describe('<vpt-viewer> renders what the headless renderer renders', () => {
       const ref = await headless.render(desc, { baseDir });
 
       const attrs = {
-        src: HEAD_SIDECAR,
-        renderer: 'eam',
-        backend,
-        panels: 'none',
-        'transfer-function': JSON.stringify(desc.transferFunction),
-        camera: JSON.stringify(desc.camera),
-        environment: JSON.stringify(desc.environment),
-        'density-scale': String(desc.densityScale),
-        seed: String(desc.seed),
-        exposure: String(sceneExposure(desc)),
-        'tone-mapper': 'aces',
-        'max-samples': String(SAMPLES),
+        ...sceneFileAttributes(desc, { renderer: 'eam', backend, maxSamples: SAMPLES }),
         // The screenshot below compares the canvas alone: no progress bar or stats line over it.
         'hide-progress': '',
         'hide-stats': '',

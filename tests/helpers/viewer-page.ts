@@ -6,7 +6,13 @@
 import { fileURLToPath } from 'node:url';
 import type { Browser, Page } from 'puppeteer-core';
 import { afterAll, beforeAll } from 'vitest';
-import { launchChromium, startStaticServer, type StaticServer } from '../../packages/headless/src/index.js';
+import {
+  launchChromium,
+  openVptPage,
+  startStaticServer,
+  type StaticServer,
+  type VptPageSession,
+} from '../../packages/headless/src/index.js';
 import { recordPageErrors } from './page-errors.js';
 
 export const ROOT = fileURLToPath(new URL('../..', import.meta.url));
@@ -211,5 +217,69 @@ export function useViewerPage(): () => ViewerPage {
   return () => {
     if (!vp) throw new Error('the viewer page is not open');
     return vp;
+  };
+}
+
+/** The exposure step of a scene file's post chain (the element takes it as an attribute). */
+export function sceneExposure(desc: { post?: unknown }): number {
+  const steps = (Array.isArray(desc.post) ? desc.post : []) as { type?: string; exposure?: number }[];
+  return steps.find((s) => s.type === 'exposure')?.exposure ?? 0;
+}
+
+/** What a gallery scene file (`readSceneFile`) needs to hand a `<vpt-viewer>`. */
+export interface SceneFileLike {
+  transferFunction?: unknown;
+  camera?: unknown;
+  environment?: unknown;
+  densityScale?: number;
+  seed?: number;
+  post?: unknown;
+}
+
+/**
+ * The attributes that make a `<vpt-viewer>` render what `vpt-render` renders for a scene file
+ * on the bundled head: the same transfer function, camera, environment, density, seed and
+ * exposure, ACES as the scene files' tone mapper, and `maxSamples` iterations, no panels.
+ */
+export function sceneFileAttributes(
+  desc: SceneFileLike,
+  opts: { renderer: string; backend: string; maxSamples: number },
+): Record<string, string> {
+  return {
+    src: HEAD_SIDECAR,
+    renderer: opts.renderer,
+    backend: opts.backend,
+    panels: 'none',
+    'transfer-function': JSON.stringify(desc.transferFunction),
+    camera: JSON.stringify(desc.camera),
+    environment: JSON.stringify(desc.environment),
+    'density-scale': String(desc.densityScale),
+    seed: String(desc.seed),
+    exposure: String(sceneExposure(desc)),
+    'tone-mapper': 'aces',
+    'max-samples': String(opts.maxSamples),
+  };
+}
+
+/**
+ * A viewer page and a headless `vpt-render` page in the same browser (tests compare the
+ * viewer's images with the headless renderer's), the viewer in front: requestAnimationFrame,
+ * which drives refinement, does not run in a background tab.
+ */
+export async function openViewerAndHeadless(): Promise<{
+  vp: ViewerPage;
+  headless: VptPageSession;
+  close(): Promise<void>;
+}> {
+  const vp = await openViewerPage();
+  const headless = await openVptPage({ browser: vp.browser });
+  await vp.page.bringToFront();
+  return {
+    vp,
+    headless,
+    async close() {
+      await headless.close();
+      await vp.close();
+    },
   };
 }

@@ -5,9 +5,16 @@
 import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
-import zlib from 'node:zlib';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
-import { writeOmeZarr } from '@vpt/loaders';
+import {
+  HUGE_SHAPE,
+  plantGzipBomb,
+  TINY_CHUNKS,
+  writeAbusedStore,
+  ZERO_CHUNK,
+  type AbuseStoreOptions,
+  type ZarrayEdit,
+} from '../../loaders/test/zarr-abuse-stores.js';
 import { runRender } from '../src/cli/render-main.js';
 import type { CliIO } from '../src/cli/io.js';
 
@@ -17,28 +24,9 @@ beforeAll(() => {
 });
 afterAll(() => fs.rmSync(dir, { recursive: true, force: true }));
 
-/** A 16³ uint8 v0.4 store (8³ chunks) with `levels` levels, each level's .zarray edited; the scene beside it. */
-async function sceneWith(
-  name: string,
-  edit: (zarray: Record<string, any>, level: number) => void,
-  options: { levels?: number; codec?: 'raw' | 'gzip' } = {},
-): Promise<string> {
-  const store = path.join(dir, `${name}.ome.zarr`);
-  await writeOmeZarr(
-    (key, bytes) => {
-      const file = path.join(store, ...key.split('/'));
-      fs.mkdirSync(path.dirname(file), { recursive: true });
-      fs.writeFileSync(file, bytes);
-    },
-    { dims: [16, 16, 16], type: 'uint8', spacing: [1, 1, 1], images: [[new Uint8Array(16 ** 3).fill(200)]] },
-    { version: '0.4', codec: options.codec ?? 'raw', chunk: [8, 8, 8], levels: options.levels ?? 1 },
-  );
-  for (let k = 0; k < (options.levels ?? 1); k++) {
-    const file = path.join(store, String(k), '.zarray');
-    const j = JSON.parse(fs.readFileSync(file, 'utf8'));
-    edit(j, k);
-    fs.writeFileSync(file, JSON.stringify(j));
-  }
+/** An abused 16³ store (see the loaders' zarr-abuse-stores.ts) and a 16² scene file beside it. */
+async function sceneWith(name: string, edit: ZarrayEdit, options: AbuseStoreOptions = {}): Promise<string> {
+  await writeAbusedStore(path.join(dir, `${name}.ome.zarr`), edit, { fill: 200, ...options });
   const scene = path.join(dir, `${name}.json`);
   fs.writeFileSync(
     scene,
@@ -61,10 +49,7 @@ const BOUND_MS = 60_000;
 
 describe('vpt-render on abusive OME-Zarr stores', () => {
   it('1³ chunks on a 64³ shape: limit-exceeded naming the chunk requests, in bounded time', async () => {
-    const scene = await sceneWith('tiny-chunks', (j) => {
-      j.shape = [64, 64, 64];
-      j.chunks = [1, 1, 1];
-    });
+    const scene = await sceneWith('tiny-chunks', TINY_CHUNKS);
     const r = await render(scene);
     expect(r.code).toBe(1);
     expect(r.stderr).toMatch(/262144 chunks, more than 32768 requests/);
@@ -72,16 +57,7 @@ describe('vpt-render on abusive OME-Zarr stores', () => {
   }, 120_000);
 
   it('100000³ with a 16³ level renders that level, saying so', async () => {
-    const scene = await sceneWith(
-      'huge-with-level',
-      (j, k) => {
-        if (k === 0) {
-          j.shape = [100000, 100000, 100000];
-          j.chunks = [64, 64, 64];
-        }
-      },
-      { levels: 2 },
-    );
+    const scene = await sceneWith('huge-with-level', HUGE_SHAPE, { levels: 2 });
     const r = await render(scene);
     expect(r.stderr).not.toMatch(/Invalid typed array length/);
     expect(r.code).toBe(0);
@@ -91,15 +67,12 @@ describe('vpt-render on abusive OME-Zarr stores', () => {
   }, 120_000);
 
   it('a chunk side of 0 and a gzip bomb in a chunk: typed errors, fast', async () => {
-    const zero = await render(await sceneWith('zero-chunk', (j) => (j.chunks = [0, 8, 8])));
+    const zero = await render(await sceneWith('zero-chunk', ZERO_CHUNK));
     expect(zero.code).toBe(1);
     expect(zero.stderr).toMatch(/chunk shape \[0, 8, 8\] must be 3 positive integers/);
     expect(zero.stderr).not.toMatch(/empty iterator/);
     const bombScene = await sceneWith('gzip-bomb', () => {}, { codec: 'gzip' });
-    fs.writeFileSync(
-      path.join(dir, 'gzip-bomb.ome.zarr', '0', '0', '0', '0'),
-      zlib.gzipSync(Buffer.alloc(256 << 20), { level: 1 }),
-    );
+    plantGzipBomb(path.join(dir, 'gzip-bomb.ome.zarr'));
     const bomb = await render(bombScene);
     expect(bomb.code).toBe(1);
     expect(bomb.stderr).toMatch(/inflates past \d+ bytes/);

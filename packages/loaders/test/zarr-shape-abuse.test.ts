@@ -2,35 +2,27 @@
 // a typed LoaderError within seconds, or read the level that fits, never hang or throw raw.
 import fs from 'node:fs';
 import path from 'node:path';
-import zlib from 'node:zlib';
 import { afterAll, describe, expect, it } from 'vitest';
 import { loadVolume } from '../src/index.js';
 import { MAX_ZARR_CHUNKS_PER_READ } from '../src/zarr/multiscale-source.js';
 import { expectLoaderError } from './helpers.js';
-import { tempDir, writeZarrFolder } from './zarr-fixtures.js';
+import {
+  HUGE_SHAPE,
+  plantGzipBomb,
+  TINY_CHUNKS,
+  writeAbusedStore,
+  ZERO_CHUNK,
+  type AbuseStoreOptions,
+  type ZarrayEdit,
+} from './zarr-abuse-stores.js';
+import { tempDir } from './zarr-fixtures.js';
 
 const TMP = tempDir('vpt-zarr-abuse-');
 afterAll(() => fs.rmSync(TMP, { recursive: true, force: true }));
 
-/** A v0.4 (Zarr v2) uint8 store with `levels` levels of 16³, then `edit` applied to each level's .zarray. */
-async function store(
-  name: string,
-  edit: (zarray: Record<string, any>, level: number) => void,
-  options: { levels?: number; codec?: 'raw' | 'gzip' } = {},
-): Promise<string> {
-  const dims: [number, number, number] = [16, 16, 16];
-  const dir = await writeZarrFolder(
-    path.join(TMP, `${name}.ome.zarr`),
-    { dims, type: 'uint8', spacing: [1, 1, 1], images: [[new Uint8Array(16 ** 3).fill(7)]] },
-    { version: '0.4', codec: options.codec ?? 'raw', chunk: [8, 8, 8], levels: options.levels ?? 1 },
-  );
-  for (let k = 0; k < (options.levels ?? 1); k++) {
-    const file = path.join(dir, String(k), '.zarray');
-    const j = JSON.parse(fs.readFileSync(file, 'utf8'));
-    edit(j, k);
-    fs.writeFileSync(file, JSON.stringify(j));
-  }
-  return dir;
+/** An abused store in the temp folder (see zarr-abuse-stores.ts). */
+function store(name: string, edit: ZarrayEdit, options?: AbuseStoreOptions): Promise<string> {
+  return writeAbusedStore(path.join(TMP, `${name}.ome.zarr`), edit, options);
 }
 
 /** The load's outcome and how long it took. */
@@ -45,10 +37,7 @@ async function timed<T>(p: Promise<T>): Promise<{ ms: number; value?: T; error?:
 
 describe('OME-Zarr shape abuse ends in a typed error or the level that fits', () => {
   it('1³ chunks on a 64³ shape: limit-exceeded naming the chunk requests, before any of them', async () => {
-    const dir = await store('tiny-chunks', (j) => {
-      j.shape = [64, 64, 64];
-      j.chunks = [1, 1, 1];
-    });
+    const dir = await store('tiny-chunks', TINY_CHUNKS);
     const t0 = Date.now();
     const e = await expectLoaderError(loadVolume(dir), 'limit');
     expect(Date.now() - t0).toBeLessThan(5000);
@@ -59,10 +48,7 @@ describe('OME-Zarr shape abuse ends in a typed error or the level that fits', ()
   });
 
   it('a 100000³ shape: limit-exceeded, not "Invalid typed array length"', async () => {
-    const dir = await store('huge-shape', (j) => {
-      j.shape = [100000, 100000, 100000];
-      j.chunks = [64, 64, 64];
-    });
+    const dir = await store('huge-shape', HUGE_SHAPE);
     const e = await expectLoaderError(loadVolume(dir), 'limit');
     expect(e.code).toBe('limit-exceeded');
     expect(e.message).not.toMatch(/Invalid typed array length/);
@@ -70,16 +56,7 @@ describe('OME-Zarr shape abuse ends in a typed error or the level that fits', ()
   });
 
   it('100000³ with a 16³ level: the level that fits is read, with a warning saying why', async () => {
-    const dir = await store(
-      'huge-with-level',
-      (j, k) => {
-        if (k === 0) {
-          j.shape = [100000, 100000, 100000];
-          j.chunks = [64, 64, 64];
-        }
-      },
-      { levels: 2 },
-    );
+    const dir = await store('huge-with-level', HUGE_SHAPE, { levels: 2 });
     const r = await timed(loadVolume(dir));
     expect(r.error).toBeUndefined();
     expect(r.value!.dims).toEqual([8, 8, 8]);
@@ -87,7 +64,7 @@ describe('OME-Zarr shape abuse ends in a typed error or the level that fits', ()
   });
 
   it('a chunk side of 0: a typed bad-header naming the chunk shape', async () => {
-    const dir = await store('zero-chunk', (j) => (j.chunks = [0, 8, 8]));
+    const dir = await store('zero-chunk', ZERO_CHUNK);
     const e = await expectLoaderError(loadVolume(dir), 'bad-header');
     expect(e.message).toMatch(/chunk shape \[0, 8, 8\] must be 3 positive integers/);
     expect(e.message).not.toMatch(/empty iterator/);
@@ -95,11 +72,7 @@ describe('OME-Zarr shape abuse ends in a typed error or the level that fits', ()
 
   it('a gzip bomb in a chunk is refused as soon as it inflates past the chunk size', async () => {
     const dir = await store('gzip-bomb', () => {}, { codec: 'gzip' });
-    // 256 MiB of zeros, ~250 KiB compressed, where an 8³ uint8 chunk (512 bytes) belongs.
-    const bomb = zlib.gzipSync(Buffer.alloc(256 << 20), { level: 1 });
-    const chunk = path.join(dir, '0', '0', '0', '0');
-    expect(fs.existsSync(chunk)).toBe(true);
-    fs.writeFileSync(chunk, bomb);
+    plantGzipBomb(dir);
     const t0 = Date.now();
     const e = await expectLoaderError(loadVolume(dir), 'limit');
     expect(e.message).toMatch(/inflates past \d+ bytes/);
