@@ -5,7 +5,7 @@
  * still fails in createPass / finish with its log.
  */
 import { describe, expect, it } from 'vitest';
-import { rendererNames } from '../packages/core/src/index.js';
+import { rendererNames, type PassDescriptor } from '../packages/core/src/index.js';
 import { usePage } from './helpers/session.js';
 
 const page = usePage();
@@ -43,11 +43,11 @@ describe('compile ahead', () => {
             const be = a.backend;
             const compileAhead = be.compileAhead.bind(be);
             const createPass = be.createPass.bind(be);
-            be.compileAhead = (descs) => {
+            be.compileAhead = (descs: readonly PassDescriptor[]) => {
               for (const d of descs) ahead.add(`${d.label}\n${d.glsl}\n${d.wgsl}\n${d.outputs.join(',')}`);
               return compileAhead(descs);
             };
-            be.createPass = (d) => {
+            be.createPass = (d: PassDescriptor) => {
               if (d.label !== 'present') created.push(`${d.label}\n${d.glsl}\n${d.wgsl}\n${d.outputs.join(',')}`);
               return createPass(d);
             };

@@ -522,8 +522,7 @@ export class RenderContext {
       if (!this.loop.running && !this.backend.isLost) {
         await this.precompile();
         if (!this.loop.running) this.iterate(n - this.iteration);
-      }
-      else await new Promise((resolve) => setTimeout(resolve, 10));
+      } else await new Promise((resolve) => setTimeout(resolve, 10));
     }
     this.renderImage();
     await this.backend.finish();
@@ -810,9 +809,7 @@ export class RenderContext {
     if (this.passes && this.precompiledFor === scene) return;
     this.precompiledFor = scene;
     const specs = this.resources.auxiliarySpecs();
-    const auxBindings = specs
-      .filter((a) => a.bind !== false)
-      .map((a) => ({ name: a.name, dimension: a.dimension }));
+    const auxBindings = specs.filter((a) => a.bind !== false).map((a) => ({ name: a.name, dimension: a.dimension }));
     const variant = this.variantOf(auxBindings, this.guidesActive && this._renderer.writesGuides === true);
     const descs: PassDescriptor[] = [
       ...this.resources.auxiliaryPassDescriptors(specs),
