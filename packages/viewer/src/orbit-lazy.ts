@@ -1,5 +1,5 @@
 /**
- * The orbit camera (orbit.ts) loaded on first attach: it is the one part of the viewer that
+ * The orbit camera (orbit.ts) loaded on first attach: it was the one part of the entry that
  * needs Three.js (OrbitControls and its math), the largest part of the one-file bundle,
  * and nobody drags before the first image. Until the module lands this holds the element and
  * the camera it was given and hands them over in the same order (attach, then set).
