@@ -60,7 +60,7 @@ import { gradientSamples, valueHistogram, type GradientSamples, type Histogram1D
 import type { ViewerLoadDetail, ViewerProgressDetail } from './loading/load-events.js';
 import type { LoadedVolumeLike, VolumeSource } from './loading/types.js';
 import { VolumeLoading, type DataLevel } from './loading/volume-loading.js';
-import { OrbitCamera } from './orbit.js';
+import { LazyOrbitCamera } from './orbit-lazy.js';
 import { PANEL_NAMES, type InternalProperty, type PanelHost, type PanelName, type PanelState } from './panel-host.js';
 import { DEFAULT_TRANSFER_FUNCTION, transferFunctionPreset } from './presets.js';
 import { createRenderer, rendererEntry } from './renderer-registry.js';
@@ -299,7 +299,7 @@ export class VptViewer extends LitElement implements PanelHost, SlotHolder {
   private autoTransferFunction: TransferFunction | null = null;
   /** The camera the default lights are placed for (the framing camera when the volume loaded). */
   private lightCamera: Camera | null = null;
-  private readonly orbit: OrbitCamera;
+  private readonly orbit: LazyOrbitCamera;
   private cameraIsAuto = true;
   private homeCamera: Camera | null = null;
   private internalChange = new Set<string>();
@@ -353,7 +353,7 @@ export class VptViewer extends LitElement implements PanelHost, SlotHolder {
     this._dragOver = false;
     this._parked = false;
     this.validator = new AttributeValidator(this as unknown as Record<CheckedProperty, unknown>);
-    this.orbit = new OrbitCamera({
+    this.orbit = new LazyOrbitCamera({
       start: () => {
         /* a click without movement must not drop resolution: see change */
       },
@@ -1410,6 +1410,7 @@ export class VptViewer extends LitElement implements PanelHost, SlotHolder {
     session.ctx.onWarning((w) => this.volumeLoading.onContextWarning(w));
     this.postKey = this.postKeyNow();
     this.orbit.attach(canvas);
+    this.track(this.orbit.ready);
     if (this.camera) this.orbit.set(this.camera as Camera);
     this.clearError('context');
     this.applySize();

@@ -1,5 +1,5 @@
 import { VptError } from '../errors.js';
-import type { GpuBackend, GpuPass, GpuTexture, RenderTarget } from '../gpu/backend.js';
+import type { GpuBackend, GpuPass, GpuTexture, PassDescriptor, RenderTarget } from '../gpu/backend.js';
 import type { PostStep } from '../post-step.js';
 import { GUIDE_TEXTURE_NAMES, type GuideBuffers } from './guide-buffers.js';
 
@@ -114,23 +114,30 @@ export class PostChain {
     this.passes = [];
   }
 
+  /** The steps' passes, for RenderContext.precompile: none once they are made. */
+  pendingPassDescriptors(): PassDescriptor[] {
+    return this.passes.length === this._steps.length ? [] : this.passDescriptors();
+  }
+
+  private passDescriptors(): PassDescriptor[] {
+    return this._steps.map((step, i) => ({
+      label: `post.${step.name}`,
+      glsl: step.glsl,
+      wgsl: step.wgsl,
+      uniforms: step.uniforms,
+      textures: [
+        { name: 'inputImage', dimension: '2d' },
+        ...(step.usesGuides ? GUIDE_TEXTURE_NAMES.map((name) => ({ name, dimension: '2d' as const })) : []),
+      ],
+      outputs: [i === this._steps.length - 1 ? 'rgba8unorm' : 'rgba32float'],
+      defines: step.defines?.() ?? {},
+    }));
+  }
+
   private prepare(width: number, height: number): void {
     if (this.passes.length !== this._steps.length || this.targets.length !== this._steps.length) {
       this.destroy();
-      this.passes = this._steps.map((step, i) =>
-        this.backend.createPass({
-          label: `post.${step.name}`,
-          glsl: step.glsl,
-          wgsl: step.wgsl,
-          uniforms: step.uniforms,
-          textures: [
-            { name: 'inputImage', dimension: '2d' },
-            ...(step.usesGuides ? GUIDE_TEXTURE_NAMES.map((name) => ({ name, dimension: '2d' as const })) : []),
-          ],
-          outputs: [i === this._steps.length - 1 ? 'rgba8unorm' : 'rgba32float'],
-          defines: step.defines?.() ?? {},
-        }),
-      );
+      this.passes = this.passDescriptors().map((d) => this.backend.createPass(d));
       this.targets = this._steps.map((_, i) =>
         this.backend.createRenderTarget(
           width,

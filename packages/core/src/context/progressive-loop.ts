@@ -4,6 +4,8 @@
  * submitting work is nearly free and says nothing about how long it takes to run.
  */
 export interface ProgressiveLoopHooks {
+  /** Work before a frame's iterations that may wait without blocking (compiling a new variant). */
+  ready?(): Promise<void>;
   step(iterations: number): void;
   finishFrame(): void;
   sync(): Promise<void>;
@@ -82,6 +84,12 @@ export class ProgressiveLoop {
       1,
       Math.min(remaining, this.msPerIteration > 0 ? Math.floor(budget / this.msPerIteration) : 1, 256),
     );
+    try {
+      await this.hooks.ready?.();
+    } catch {
+      return; // disposed or lost while compiling: the loss handler resumes us
+    }
+    if (!this.active || this.paused) return;
     const t0 = performance.now();
     try {
       this.hooks.step(n);

@@ -1,6 +1,6 @@
 import { VptError } from '../errors.js';
 import { createBackend } from '../gpu/create-backend.js';
-import type { GpuBackend, GpuPass, GpuTexture, RenderTarget } from '../gpu/backend.js';
+import type { GpuBackend, GpuPass, GpuTexture, PassDescriptor, RenderTarget } from '../gpu/backend.js';
 import type { PostStep } from '../post-step.js';
 import type { Renderer } from '../renderer.js';
 import type { Scene } from '../scene/scene.js';
@@ -107,6 +107,8 @@ export class RenderContext {
   private iteration = 0;
   private rendererVersion = -1;
   private variantKey = '';
+  /** The scene precompile() last ran for (it runs once per scene, renderer or restore). */
+  private precompiledFor: Scene | null = null;
   private hdrIteration = -1; // iteration count the HDR/LDR images were last rendered at
   private imageVersion = 0; // bumped whenever renderImage() produced a new LDR image
   private presentedVersion = -1;
@@ -140,6 +142,7 @@ export class RenderContext {
     this.height = opts.height;
     this.backend.resizeCanvas(this.width, this.height);
     this.loop = new ProgressiveLoop({
+      ready: () => this.precompile(),
       step: (n) => this.iterate(n),
       finishFrame: () => this.present(),
       sync: () => this.backend.finish(),
@@ -453,6 +456,7 @@ export class RenderContext {
   async renderIterations(n: number): Promise<void> {
     if (!Number.isInteger(n) || n < 1)
       throw new VptError('invalid-scene', `renderIterations needs a positive integer, got ${n}`);
+    await this.precompile();
     this.reset();
     const t0 = performance.now();
     this.iterate(n);
@@ -515,8 +519,10 @@ export class RenderContext {
       this.assertAlive();
       if (this.iteration >= n) break;
       // Not refining in the background (never started, stopped): do the rest here.
-      if (!this.loop.running && !this.backend.isLost) this.iterate(n - this.iteration);
-      else await new Promise((resolve) => setTimeout(resolve, 10));
+      if (!this.loop.running && !this.backend.isLost) {
+        await this.precompile();
+        if (!this.loop.running) this.iterate(n - this.iteration);
+      } else await new Promise((resolve) => setTimeout(resolve, 10));
     }
     this.renderImage();
     await this.backend.finish();
@@ -704,12 +710,15 @@ export class RenderContext {
     };
   }
 
-  /** Compile the renderer's variant for the current scene and allocate its targets. */
-  private prepare(): void {
+  /**
+   * The renderer's variant for the current scene: its key and, built only when asked, the
+   * descriptors of its three passes. `auxBindings` are the auxiliary textures the generate
+   * pass binds, in order; `writeGuides` whether it writes the denoiser's guides.
+   */
+  private variantOf(auxBindings: { name: string; dimension: '2d' | '3d' }[], writeGuides: boolean) {
     const r = this._renderer;
     const chunks = this.chunkOptions(this.scene!);
     // VPT_TF_2D / VPT_GRADIENT let a kernel branch at compile time on what the scene binds.
-    const writeGuides = this.guidesActive && r.writesGuides === true;
     const features = {
       ...r.features(this.scene!),
       VPT_TF_2D: chunks.tf2d,
@@ -718,32 +727,22 @@ export class RenderContext {
       VPT_CLIP: chunks.clip,
       VPT_DEPTH_LIMIT: this.depthLimit !== null,
     };
-    // VPT_CLIP cuts the kernels' #if lines but becomes a backend define only when set, so an
-    // unclipped variant's program is today's byte for byte.
-    const { VPT_CLIP: clipFlag, ...unclipped } = features;
-    const defines = clipFlag ? features : unclipped;
     const frameFormats = writeGuides ? [...r.frameFormats, ...GUIDE_FRAME_FORMATS] : r.frameFormats;
-    if (this.frame && this.frameHasGuides !== writeGuides) this.destroyRendererTargets();
-    if (r.version !== this.rendererVersion) {
-      this.rendererVersion = r.version;
-      this.reset();
-    }
-    this.resources.syncGradient();
-    this.resources.syncAuxiliaryTextures();
-    const auxBindings = [...this.resources.auxTextures]
-      .filter(([, a]) => a.bind)
-      .map(([name, a]) => ({ name, dimension: a.dimension }));
-    const gradientBindings = chunks.gradient
-      ? [
-          { name: 'gradientMagnitude', dimension: '2d' as const },
-          { name: 'gradientMax', dimension: '2d' as const },
-        ]
-      : [];
     const key = `${r.name}|${JSON.stringify(features)}|${auxBindings.map((b) => b.name).join(',')}|${chunks.hardwareFilter ? 'filtered' : 'exact'}${chunks.bricked ? '|bricked' : ''}`;
-    if (!this.passes || key !== this.variantKey) {
+    const descriptors = () => {
+      // VPT_CLIP cuts the kernels' #if lines but becomes a backend define only when set, so an
+      // unclipped variant's program is today's byte for byte.
+      const { VPT_CLIP: clipFlag, ...unclipped } = features;
+      const defines = clipFlag ? features : unclipped;
+      const gradientBindings = chunks.gradient
+        ? [
+            { name: 'gradientMagnitude', dimension: '2d' as const },
+            { name: 'gradientMax', dimension: '2d' as const },
+          ]
+        : [];
       // The clip uniforms, then the depth limit's, come last and only in variants that use them:
       // a layout without either is unchanged.
-      this.layout = new UniformLayout('Params', [
+      const layout = new UniformLayout('Params', [
         ...SCENE_UNIFORM_FIELDS,
         ...r.paramFields,
         ...(chunks.clip ? CLIP_UNIFORM_FIELDS : []),
@@ -757,24 +756,22 @@ export class RenderContext {
         : common;
       const mk = (
         stage: 'generate' | 'integrate' | 'render',
-        textures: { name: string; dimension: '2d' | '3d' }[],
+        textures: PassDescriptor['textures'],
         outputs: typeof r.frameFormats,
-      ) =>
-        this.backend.createPass({
-          label: `${r.name}.${stage}`,
-          // Kernels mark variants with #if lines on their feature flags; one preprocessor cuts both languages.
-          glsl:
-            (stage === 'generate' ? generateChunks : PASS_CHUNKS).glsl + preprocess(r.kernels[stage].glsl, features),
-          wgsl:
-            (stage === 'generate' ? generateChunks : PASS_CHUNKS).wgsl + preprocess(r.kernels[stage].wgsl, features),
-          uniforms: this.layout,
-          textures,
-          outputs,
-          defines,
-        });
+      ): PassDescriptor => ({
+        label: `${r.name}.${stage}`,
+        // Kernels mark variants with #if lines on their feature flags; one preprocessor cuts both languages.
+        glsl: (stage === 'generate' ? generateChunks : PASS_CHUNKS).glsl + preprocess(r.kernels[stage].glsl, features),
+        wgsl: (stage === 'generate' ? generateChunks : PASS_CHUNKS).wgsl + preprocess(r.kernels[stage].wgsl, features),
+        uniforms: layout,
+        textures,
+        outputs,
+        defines,
+      });
       const frameTex = r.frameFormats.map((_, i) => ({ name: `frame${i}`, dimension: '2d' as const }));
       const accTex = r.accumulationFormats.map((_, i) => ({ name: `accum${i}`, dimension: '2d' as const }));
-      this.passes = {
+      return {
+        layout,
         generate: mk(
           'generate',
           [
@@ -795,7 +792,60 @@ export class RenderContext {
         integrate: mk('integrate', [...frameTex, ...accTex], r.accumulationFormats),
         render: mk('render', accTex, ['rgba32float']),
       };
-      this.variantKey = key;
+    };
+    return { key, frameFormats, descriptors };
+  }
+
+  /**
+   * Compile what the next iteration and image need (the auxiliary passes, the renderer's
+   * variant, the post steps) all at once, without blocking (GpuBackend.compileAhead), so the
+   * driver overlaps them; iterate() then finds them compiled. The renderIterations, whenSamples
+   * and the progressive loop call it; images are the same, only the wait moves.
+   */
+  async precompile(): Promise<void> {
+    this.assertAlive();
+    if (!this.scene || this.backend.isLost) return;
+    const scene = this.scene;
+    if (this.passes && this.precompiledFor === scene) return;
+    this.precompiledFor = scene;
+    const specs = this.resources.auxiliarySpecs();
+    const auxBindings = specs.filter((a) => a.bind !== false).map((a) => ({ name: a.name, dimension: a.dimension }));
+    const variant = this.variantOf(auxBindings, this.guidesActive && this._renderer.writesGuides === true);
+    const descs: PassDescriptor[] = [
+      ...this.resources.auxiliaryPassDescriptors(specs),
+      ...(this.passes && variant.key === this.variantKey
+        ? []
+        : (({ generate, integrate, render }) => [generate, integrate, render])(variant.descriptors())),
+      ...this.postChain.pendingPassDescriptors(),
+    ];
+    if (descs.length) await this.backend.compileAhead(descs);
+  }
+
+  /** Compile the renderer's variant for the current scene and allocate its targets. */
+  private prepare(): void {
+    const r = this._renderer;
+    const writeGuides = this.guidesActive && r.writesGuides === true;
+    if (this.frame && this.frameHasGuides !== writeGuides) this.destroyRendererTargets();
+    if (r.version !== this.rendererVersion) {
+      this.rendererVersion = r.version;
+      this.reset();
+    }
+    this.resources.syncGradient();
+    this.resources.syncAuxiliaryTextures();
+    const auxBindings = [...this.resources.auxTextures]
+      .filter(([, a]) => a.bind)
+      .map(([name, a]) => ({ name, dimension: a.dimension }));
+    const variant = this.variantOf(auxBindings, writeGuides);
+    const frameFormats = variant.frameFormats;
+    if (!this.passes || variant.key !== this.variantKey) {
+      const d = variant.descriptors();
+      this.layout = d.layout;
+      this.passes = {
+        generate: this.backend.createPass(d.generate),
+        integrate: this.backend.createPass(d.integrate),
+        render: this.backend.createPass(d.render),
+      };
+      this.variantKey = variant.key;
     }
     if (!this.frame) {
       this.frame = this.backend.createRenderTarget(this.width, this.height, frameFormats, `${r.name} frame`);

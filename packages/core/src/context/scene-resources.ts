@@ -1,4 +1,4 @@
-import type { GpuBackend, GpuTexture, RenderTarget } from '../gpu/backend.js';
+import type { GpuBackend, GpuTexture, PassDescriptor, RenderTarget } from '../gpu/backend.js';
 import type { AuxiliaryPass, AuxiliaryTexture, Renderer, VolumeBinding } from '../renderer.js';
 import type { Scene } from '../scene/scene.js';
 import { rasterizeTransferFunction, TF_RESOLUTION, transferFunctionSize } from '../scene/transfer-function.js';
@@ -296,6 +296,18 @@ export class SceneResources {
     return this.gradient;
   }
 
+  /** The renderer's auxiliary textures for the current scene, as declared (nothing is built). */
+  auxiliarySpecs(): readonly AuxiliaryTexture[] {
+    return this._renderer.auxiliaryTextures?.(this.scene!, this.volumeBinding(this.scene!)) ?? [];
+  }
+
+  /** The passes syncAuxiliaryTextures would run for these specs (those not built with the same key). */
+  auxiliaryPassDescriptors(specs: readonly AuxiliaryTexture[]): PassDescriptor[] {
+    return specs
+      .filter((spec) => spec.render && spec.dimension === '2d' && this.auxTextures.get(spec.name)?.key !== spec.key)
+      .map((spec) => auxPassDescriptor(spec.render!));
+  }
+
   /** Build, reuse or free the renderer's auxiliary textures (only when scene or renderer changed). */
   syncAuxiliaryTextures(): void {
     const r = this._renderer;
@@ -365,14 +377,7 @@ export class SceneResources {
         );
       textures[b.name] = t;
     }
-    const pass = this.backend.createPass({
-      label: p.label,
-      glsl: p.glsl,
-      wgsl: p.wgsl,
-      uniforms: p.uniforms,
-      textures: p.inputs,
-      outputs: [p.format],
-    });
+    const pass = this.backend.createPass(auxPassDescriptor(p));
     const target = this.backend.createRenderTarget(p.width, p.height, [p.format], p.label);
     this.backend.draw(pass, { uniforms: p.uniforms.pack(p.values), textures, target });
     return { key: spec.key, texture: target.textures[0], dimension: '2d', target, bind: spec.bind !== false };
@@ -412,6 +417,10 @@ export class SceneResources {
     this.auxTextures.clear();
     this.auxFor = { scene: null, renderer: null, version: -1, volumeKey: '' };
   }
+}
+
+function auxPassDescriptor(p: AuxiliaryPass): PassDescriptor {
+  return { label: p.label, glsl: p.glsl, wgsl: p.wgsl, uniforms: p.uniforms, textures: p.inputs, outputs: [p.format] };
 }
 
 export interface AuxEntry {

@@ -239,6 +239,15 @@ export interface GpuBackend {
 
   /** Compile (or fetch from the cache) a pass. Throws VptError('shader-compile') with the log. */
   createPass(desc: PassDescriptor): GpuPass;
+  /**
+   * Start compiling these passes all at once and resolve when the driver has finished them,
+   * without blocking the thread: a later createPass of the same descriptor then finds the work
+   * done. WebGL 2 compiles every shader, then links every program, and waits on
+   * KHR_parallel_shader_compile's COMPLETION_STATUS_KHR; WebGPU creates the modules and
+   * awaits createRenderPipelineAsync. Never rejects: a pass that fails to compile fails in
+   * createPass, with the log, as before.
+   */
+  compileAhead(descs: readonly PassDescriptor[]): Promise<void>;
   /** Record and submit one full-screen draw. */
   draw(pass: GpuPass, call: DrawCall): void;
 

@@ -45,14 +45,29 @@ export function compileShader(gl: WebGL2RenderingContext, type: number, source: 
   return shader;
 }
 
-/** Link a program from a shared vertex shader and a freshly compiled fragment shader. */
-export function linkProgram(
+/** A program whose compile and link were issued but whose status was not asked yet. */
+export interface PendingProgram {
+  readonly program: WebGLProgram;
+  readonly fragment: WebGLShader;
+  readonly fragmentSource: string;
+  readonly label: string;
+}
+
+/**
+ * Issue the compile and link of a program without asking for its status, which would wait
+ * for the driver: with KHR_parallel_shader_compile the driver works on several at once.
+ */
+export function startProgram(
   gl: WebGL2RenderingContext,
   vertex: WebGLShader,
   fragmentSource: string,
   label: string,
-): WebGLProgram {
-  const fragment = compileShader(gl, gl.FRAGMENT_SHADER, fragmentSource, label);
+): PendingProgram {
+  const fragment = gl.createShader(gl.FRAGMENT_SHADER);
+  if (!fragment)
+    throw new VptError('shader-compile', `Pass "${label}": could not create a shader object (is the context lost?)`);
+  gl.shaderSource(fragment, fragmentSource);
+  gl.compileShader(fragment);
   const program = gl.createProgram();
   if (!program) {
     gl.deleteShader(fragment);
@@ -60,7 +75,26 @@ export function linkProgram(
   }
   gl.attachShader(program, vertex);
   gl.attachShader(program, fragment);
-  gl.linkProgram(program);
+  return { program, fragment, fragmentSource, label };
+}
+
+/** Link a started program (after every program of a batch was compiled: the driver overlaps them). */
+export function linkStarted(gl: WebGL2RenderingContext, p: PendingProgram): void {
+  gl.linkProgram(p.program);
+}
+
+/** The verdict on a started and linked program: the program, or the compile or link log as a VptError. */
+export function finishProgram(gl: WebGL2RenderingContext, p: PendingProgram): WebGLProgram {
+  const { program, fragment, fragmentSource, label } = p;
+  if (!gl.getShaderParameter(fragment, gl.COMPILE_STATUS) && !gl.isContextLost()) {
+    const log = (gl.getShaderInfoLog(fragment) ?? '').trim();
+    gl.deleteProgram(program);
+    gl.deleteShader(fragment);
+    throw new VptError(
+      'shader-compile',
+      `Pass "${label}": fragment shader failed to compile:\n${log}\n${excerptSource(fragmentSource, log)}`,
+    );
+  }
   // The program keeps what it needs; the fragment shader object is not reused.
   gl.detachShader(program, fragment);
   gl.deleteShader(fragment);
@@ -73,4 +107,16 @@ export function linkProgram(
     );
   }
   return program;
+}
+
+/** Link a program from a shared vertex shader and a freshly compiled fragment shader. */
+export function linkProgram(
+  gl: WebGL2RenderingContext,
+  vertex: WebGLShader,
+  fragmentSource: string,
+  label: string,
+): WebGLProgram {
+  const pending = startProgram(gl, vertex, fragmentSource, label);
+  linkStarted(gl, pending);
+  return finishProgram(gl, pending);
 }

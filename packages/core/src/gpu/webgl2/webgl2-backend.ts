@@ -288,6 +288,16 @@ class WebGL2Backend extends BackendBase implements GpuBackend {
     return new WebGL2Pass(desc, this.programs.get(desc), this.generation);
   }
 
+  async compileAhead(descs: readonly PassDescriptor[]): Promise<void> {
+    if (this.disposed || this.isLost) return;
+    this.enterShared();
+    try {
+      await this.programs.compileAhead(descs);
+    } catch {
+      // A shader or program object the driver would not make: createPass reports it.
+    }
+  }
+
   draw(pass: GpuPass, call: DrawCall): void {
     this.assertNotDisposed();
     this.enterShared();

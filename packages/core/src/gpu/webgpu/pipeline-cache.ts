@@ -63,18 +63,54 @@ export class PipelineCache {
     });
   }
 
-  /** The entry for a descriptor, compiling it on a miss. Throws a compile error already known. */
-  get(desc: PassDescriptor): PipelineEntry {
-    const source = buildWgslSource(desc);
+  /**
+   * Create the modules of these passes now and their pipelines with createRenderPipelineAsync
+   * (the driver compiles them together, off this thread); resolve once all are made. A pipeline
+   * the async call refuses is left to the synchronous path, whose error scope reports it.
+   */
+  async compileAhead(descs: readonly PassDescriptor[]): Promise<void> {
+    const made: Promise<unknown>[] = [];
+    for (const desc of descs) {
+      const key = this.keyOf(desc);
+      if (this.entries.has(key)) continue;
+      const entry = this.makeEntry(desc, key);
+      const formats = desc.outputs.join(',');
+      made.push(
+        this.device
+          .createRenderPipelineAsync(this.pipelineDescriptor(entry, desc.outputs))
+          .then((pipeline) => {
+            if (!entry.pipelines.has(formats)) entry.pipelines.set(formats, pipeline);
+          })
+          .catch(() => undefined),
+      );
+    }
+    await Promise.all(made);
+  }
+
+  private keyOf(desc: PassDescriptor): string {
     // The source holds the defines, uniform struct, texture declarations and output count;
     // the output formats are the one thing it does not spell out.
-    const key = `${source}\n// outputs: ${desc.outputs.join(',')}`;
+    return `${buildWgslSource(desc)}\n// outputs: ${desc.outputs.join(',')}`;
+  }
+
+  /** The entry for a descriptor, compiling it on a miss. Throws a compile error already known. */
+  get(desc: PassDescriptor): PipelineEntry {
+    const key = this.keyOf(desc);
     const hit = this.entries.get(key);
     if (hit) {
       if (hit.error) throw hit.error;
+      // Offscreen targets are the common case: their pipeline exists before the first draw.
+      this.pipeline(hit, desc.outputs);
       return hit;
     }
+    const entry = this.makeEntry(desc, key);
+    this.pipeline(entry, desc.outputs);
+    return entry;
+  }
 
+  /** Module, layouts and compile check of a descriptor, registered under `key`; no pipeline yet. */
+  private makeEntry(desc: PassDescriptor, key: string): PipelineEntry {
+    const source = buildWgslSource(desc);
     const device = this.device;
     device.pushErrorScope('validation');
     const module = device.createShaderModule({ label: desc.label, code: source });
@@ -132,9 +168,18 @@ export class PipelineCache {
     );
     this.errors.track(entry.checked);
     this.entries.set(key, entry);
-    // Offscreen targets are the common case: build their pipeline now rather than at the first draw.
-    this.pipeline(entry, desc.outputs);
     return entry;
+  }
+
+  private pipelineDescriptor(entry: PipelineEntry, formats: readonly GPUTextureFormat[]): GPURenderPipelineDescriptor {
+    return {
+      label: `${entry.label} → ${formats.join(',')}`,
+      layout: entry.pipelineLayout,
+      vertex: { module: this.vertexModule, entryPoint: VERTEX_ENTRY },
+      // No blending: passes overwrite every pixel with exact values.
+      fragment: { module: entry.module, entryPoint: FRAGMENT_ENTRY, targets: formats.map((format) => ({ format })) },
+      primitive: { topology: 'triangle-list' },
+    };
   }
 
   /** The entry's render pipeline for these colour formats, created on first use. */
@@ -144,14 +189,7 @@ export class PipelineCache {
     if (hit) return hit;
     const device = this.device;
     device.pushErrorScope('validation');
-    const pipeline = device.createRenderPipeline({
-      label: `${entry.label} → ${key}`,
-      layout: entry.pipelineLayout,
-      vertex: { module: this.vertexModule, entryPoint: VERTEX_ENTRY },
-      // No blending: passes overwrite every pixel with exact values.
-      fragment: { module: entry.module, entryPoint: FRAGMENT_ENTRY, targets: formats.map((format) => ({ format })) },
-      primitive: { topology: 'triangle-list' },
-    });
+    const pipeline = device.createRenderPipeline(this.pipelineDescriptor(entry, formats));
     const scope = device.popErrorScope().catch(() => null);
     // Chain onto `checked`, so whoever awaits it (a failed draw) sees this pipeline's verdict too.
     const previous = entry.checked;

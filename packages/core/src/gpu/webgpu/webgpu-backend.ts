@@ -289,6 +289,15 @@ class WebGPUBackend extends BackendBase implements GpuBackend {
     return new WebGPUPass(desc, this.state.pipelines.get(desc), this.generation);
   }
 
+  async compileAhead(descs: readonly PassDescriptor[]): Promise<void> {
+    if (this.disposed || this.lost) return;
+    try {
+      await this.state.pipelines.compileAhead(descs);
+    } catch {
+      // A module or layout the device would not make: createPass reports it.
+    }
+  }
+
   draw(pass: GpuPass, call: DrawCall): void {
     this.assertNotDisposed();
     if (this.lost) return; // nothing can be drawn; the owner redraws after onRestored
