@@ -34,4 +34,10 @@ export interface PostStep {
    * that set this.
    */
   readonly keepsRadiance?: boolean;
+  /**
+   * Each draw writes a second rgba32float output, its state, which the next draw of the step
+   * reads as the texture `inputState` (SVGF's filtered variance). The first draw's `inputState`
+   * is a placeholder it must not read (the guide moments with `usesGuides`, else its input image).
+   */
+  readonly stateOutput?: boolean;
 }

@@ -1,7 +1,8 @@
 /**
  * CPU twin of the denoise step (denoise.glsl.ts), in float64: the same edge-avoiding à-trous
- * levels (Dammertz et al. 2010, Sec. 3) with the same weights (SVGF, Schied et al. 2017, Sec. 4),
- * written from the formulas for tests that check the kernels within float tolerance.
+ * levels (Dammertz et al. 2010, Sec. 3) with the same weights and variance filtering (SVGF,
+ * Schied et al. 2017, Sec. 4.4) and the same fade, written from the formulas for tests that check
+ * the kernels within float tolerance.
  */
 import { DENOISE_DEFAULTS, type DenoiseParams } from './denoise.js';
 
@@ -26,16 +27,19 @@ const luminance = (a: ArrayLike<number>, i: number) =>
 export function denoiseRef(inputs: DenoiseInputs, params: DenoiseParams = {}): Float64Array {
   const p = { ...DENOISE_DEFAULTS, ...params };
   let image: ArrayLike<number> = inputs.image;
-  for (let level = 0; level < p.iterations; level++) image = denoiseLevelRef(inputs, image, level, p);
+  let variance: Float64Array | null = null;
+  for (let level = 0; level < p.iterations; level++)
+    ({ image, variance } = denoiseLevelRef(inputs, image, variance, level, p));
   return image as Float64Array;
 }
 
 function denoiseLevelRef(
   g: DenoiseInputs,
   image: ArrayLike<number>,
+  prevVariance: Float64Array | null,
   level: number,
   p: Required<DenoiseParams>,
-): Float64Array {
+): { image: Float64Array; variance: Float64Array } {
   const { width: W, height: H } = g;
   const out = new Float64Array(W * H * 4);
   const at = (x: number, y: number) => y * W + x;
@@ -45,25 +49,40 @@ function denoiseLevelRef(
   const momentVariance = (i: number) =>
     Math.max(g.moments[4 * i + 1] - g.moments[4 * i] ** 2, 0) / Math.max(g.moments[4 * i + 2] - 1, 1);
   const step = 2 ** level;
+  // The variance each tap filters: the moments' at level 0 (the 3x3 spatial variance of the luminance
+  // after one sample), then the previous level's filtered variance.
+  const levelVariance = new Float64Array(W * H);
+  for (let y = 0; y < H; y++)
+    for (let x = 0; x < W; x++) {
+      const i = at(x, y);
+      if (level > 0 && prevVariance) levelVariance[i] = prevVariance[i];
+      else if (g.moments[4 * i + 2] >= 2) levelVariance[i] = momentVariance(i);
+      else {
+        let s1 = 0,
+          s2 = 0;
+        for (let dy = -1; dy <= 1; dy++)
+          for (let dx = -1; dx <= 1; dx++) {
+            const l = luminance(image, at(clampX(x + dx), clampY(y + dy)));
+            s1 += l;
+            s2 += l * l;
+          }
+        levelVariance[i] = Math.max(s2 / 9 - (s1 / 9) ** 2, 0);
+      }
+    }
+  const variance = new Float64Array(W * H);
   for (let y = 0; y < H; y++) {
     for (let x = 0; x < W; x++) {
       const ip = at(x, y);
-      // The variance of the mean luminance: moments under a 3x3 binomial filter, or the 3x3 spatial variance after one sample.
+      // σ_l's variance: the level's under a 3x3 binomial filter.
       let v = 0,
-        vw = 0,
-        s1 = 0,
-        s2 = 0;
+        vw = 0;
       for (let dy = -1; dy <= 1; dy++)
         for (let dx = -1; dx <= 1; dx++) {
-          const iq = at(clampX(x + dx), clampY(y + dy));
           const w = (2 - Math.abs(dx)) * (2 - Math.abs(dy));
-          v += w * momentVariance(iq);
+          v += w * levelVariance[at(clampX(x + dx), clampY(y + dy))];
           vw += w;
-          const l = luminance(image, iq);
-          s1 += l;
-          s2 += l * l;
         }
-      v = g.moments[4 * ip + 2] >= 2 ? v / vw : Math.max(s2 / 9 - (s1 / 9) ** 2, 0);
+      v /= vw;
       const sigmaL = p.colorSigma * p.colorSigmaDecay ** level * Math.sqrt(v) + 1e-10;
       const lp = luminance(image, ip);
       const np = g.normalDepth.length
@@ -73,7 +92,8 @@ function denoiseLevelRef(
       const dzx = (depth(at(clampX(x + 1), y)) - depth(at(clampX(x - 1), y))) * 0.5;
       const dzy = (depth(at(x, clampY(y + 1))) - depth(at(x, clampY(y - 1)))) * 0.5;
       const sum = [0, 0, 0, 0];
-      let weights = 0;
+      let weights = 0,
+        varSum = 0;
       for (let ky = -2; ky <= 2; ky++)
         for (let kx = -2; kx <= 2; kx++) {
           const qx = x + kx * step,
@@ -99,9 +119,17 @@ function denoiseLevelRef(
           const w = h * wl * wz * wn * wa;
           for (let c = 0; c < 4; c++) sum[c] += w * image[4 * iq + c];
           weights += w;
+          varSum += w * w * levelVariance[iq];
         }
-      for (let c = 0; c < 4; c++) out[4 * ip + c] = sum[c] / weights;
+      // The fade: the change scaled by min(1, relative standard error of the mean / fadeError).
+      const m0 = g.moments[4 * ip];
+      const fade =
+        g.moments[4 * ip + 2] >= 2
+          ? Math.min(Math.sqrt(momentVariance(ip)) / (p.fadeError * Math.max(Math.abs(m0), 1e-6)), 1)
+          : 1;
+      for (let c = 0; c < 4; c++) out[4 * ip + c] = image[4 * ip + c] + (sum[c] / weights - image[4 * ip + c]) * fade;
+      variance[ip] = varSum / (weights * weights);
     }
   }
-  return out;
+  return { image: out, variance };
 }

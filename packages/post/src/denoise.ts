@@ -9,12 +9,14 @@ export interface DenoiseParams {
   /** σ_l: luminance differences are measured in this many standard deviations of the pixel's mean (SVGF: 4). */
   colorSigma?: number;
   /**
-   * σ_l is multiplied by this per level (level i: decay^i): each level averages away noise, so
-   * later, wider levels must stop at smaller luminance differences (SVGF tracks this by filtering
-   * the variance along; one factor does it here without a second output).
+   * σ_l is multiplied by this per level (level i: decay^i), on top of the variance filtered along
+   * the levels as in SVGF (1: SVGF's filter as published).
    */
   colorSigmaDecay?: number;
-  /** σ_n: exponent of the normal weight max(0, n_p·n_q)^σ_n (SVGF: 128; lower here, since volume guides are noisier than a G-buffer's). */
+  /**
+   * σ_n: exponent of the normal weight max(0, n_p·n_q)^σ_n (SVGF: 128; far lower here: a volume's
+   * normal guide is the gradient at a random first collision, so it is noisy where the image is).
+   */
   normalSigma?: number;
   /** σ_z: depth differences are measured against σ_z times the screen-space depth gradient (SVGF: 1). */
   depthSigma?: number;
@@ -22,16 +24,23 @@ export interface DenoiseParams {
   depthEpsilon?: number;
   /** σ_a of the Gaussian weight on the (albedo, hit fraction) difference. */
   albedoSigma?: number;
+  /**
+   * The relative standard error of a pixel's mean (√Var / mean luminance) below which the filter
+   * fades: each level's change is scaled by min(1, error / fadeError), so as samples accumulate
+   * (error ∝ 1/√n) the image tends to the plain estimate.
+   */
+  fadeError?: number;
 }
 
 export const DENOISE_DEFAULTS: Readonly<Required<DenoiseParams>> = {
   iterations: 5,
   colorSigma: 4,
-  colorSigmaDecay: 0.5,
-  normalSigma: 16,
+  colorSigmaDecay: 1,
+  normalSigma: 0,
   depthSigma: 1,
   depthEpsilon: 0.1,
-  albedoSigma: 0.5,
+  albedoSigma: 1,
+  fadeError: 0.1,
 };
 
 /** Allowed ranges; each bound is named in the error. */
@@ -43,6 +52,7 @@ const RANGES: Readonly<Record<keyof DenoiseParams, { min: number; max: number; i
   depthSigma: { min: 0, max: 1e6 },
   depthEpsilon: { min: 1e-9, max: 1e6 },
   albedoSigma: { min: 1e-3, max: 1e6 },
+  fadeError: { min: 1e-9, max: 1e6 },
 };
 
 export const DENOISE_PARAM_NAMES = Object.keys(RANGES) as (keyof DenoiseParams)[];
@@ -56,6 +66,7 @@ const DENOISE_UNIFORMS = /* @__PURE__ */ new UniformLayout('DenoiseParams', [
   { name: 'depthSigma', type: 'f32' },
   { name: 'depthEpsilon', type: 'f32' },
   { name: 'albedoSigma', type: 'f32' },
+  { name: 'fadeError', type: 'f32' },
 ]);
 
 /**
@@ -72,6 +83,8 @@ export class DenoiseStep implements PostStep {
   readonly uniforms = DENOISE_UNIFORMS;
   readonly usesGuides = true;
   readonly keepsRadiance = true;
+  /** Each level also writes its filtered luminance variance, which the next level reads as `inputState`. */
+  readonly stateOutput = true;
   /** When false the step copies its input. */
   enabled = true;
   private readonly params: Required<DenoiseParams>;
@@ -99,6 +112,7 @@ export class DenoiseStep implements PostStep {
       depthSigma: p.depthSigma,
       depthEpsilon: p.depthEpsilon,
       albedoSigma: p.albedoSigma,
+      fadeError: p.fadeError,
     };
   }
 }

@@ -1,5 +1,5 @@
 import { VptError } from '../errors.js';
-import type { GpuBackend, GpuPass, GpuTexture, PassDescriptor, RenderTarget } from '../gpu/backend.js';
+import type { GpuBackend, GpuPass, GpuTexture, PassDescriptor, RenderTarget, TextureFormat } from '../gpu/backend.js';
 import type { PostStep } from '../post-step.js';
 import { GUIDE_TEXTURE_NAMES, type GuideBuffers } from './guide-buffers.js';
 
@@ -11,8 +11,8 @@ import { GUIDE_TEXTURE_NAMES, type GuideBuffers } from './guide-buffers.js';
 export class PostChain {
   private passes: GpuPass[] = [];
   private targets: RenderTarget[] = [];
-  // Ping-pong targets for the draws of a repeated post step before its last one.
-  private scratch: RenderTarget[] = [];
+  // Ping-pong targets for the draws of a repeated post step before its last one, by output count.
+  private scratch: RenderTarget[][] = [[], []];
   private key = ''; // post-chain parameters the current LDR image was made with
 
   constructor(
@@ -55,17 +55,21 @@ export class PostChain {
     this.prepare(width, height);
     this._steps.forEach((step, i) => {
       const pass = this.passes[i];
-      const guideTextures = step.usesGuides && guides ? guides.textures() : {};
+      const guideTextures: Record<string, GpuTexture> = step.usesGuides && guides ? guides.textures() : {};
       const draws = postDraws(step);
+      const outputs = step.stateOutput ? 2 : 1;
+      // The first draw's state is a placeholder (bound, never read), a texture no draw writes.
+      let state: GpuTexture | null = step.stateOutput ? (guideTextures.guideMoments ?? input) : null;
       for (let d = 0; d < draws; d++) {
         // Draws before the last alternate between the two scratch targets; the last writes the step's own.
-        const target = d === draws - 1 ? this.targets[i] : this.scratchTarget(d % 2, width, height);
+        const target = d === draws - 1 ? this.targets[i] : this.scratchTarget(d % 2, outputs, width, height);
         this.backend.draw(pass, {
           uniforms: step.uniforms.pack(step.uniformValues(d)),
-          textures: { ...guideTextures, inputImage: input },
+          textures: { ...guideTextures, inputImage: input, ...(state ? { inputState: state } : {}) },
           target,
         });
         input = target.textures[0];
+        if (state) state = target.textures[1];
       }
     });
   }
@@ -98,19 +102,19 @@ export class PostChain {
 
   /** Every target the chain holds now (for the context's gpuBytes). */
   allTargets(): RenderTarget[] {
-    return [...this.targets, ...this.scratch];
+    return [...this.targets, ...this.scratch.flat()];
   }
 
   /** Free the targets (a new size, dispose); passes and targets are made again at the next run. */
   destroy(): void {
-    [...this.targets, ...this.scratch].forEach((t) => this.backend.destroyRenderTarget(t));
+    [...this.targets, ...this.scratch.flat()].forEach((t) => this.backend.destroyRenderTarget(t));
     this.forget();
   }
 
   /** After a context loss the handles belong to the lost context: drop them without destroying. */
   forget(): void {
     this.targets = [];
-    this.scratch = [];
+    this.scratch = [[], []];
     this.passes = [];
   }
 
@@ -128,8 +132,9 @@ export class PostChain {
       textures: [
         { name: 'inputImage', dimension: '2d' },
         ...(step.usesGuides ? GUIDE_TEXTURE_NAMES.map((name) => ({ name, dimension: '2d' as const })) : []),
+        ...(step.stateOutput ? [{ name: 'inputState', dimension: '2d' as const }] : []),
       ],
-      outputs: [i === this._steps.length - 1 ? 'rgba8unorm' : 'rgba32float'],
+      outputs: outputFormats(step, i === this._steps.length - 1),
       defines: step.defines?.() ?? {},
     }));
   }
@@ -138,25 +143,32 @@ export class PostChain {
     if (this.passes.length !== this._steps.length || this.targets.length !== this._steps.length) {
       this.destroy();
       this.passes = this.passDescriptors().map((d) => this.backend.createPass(d));
-      this.targets = this._steps.map((_, i) =>
-        this.backend.createRenderTarget(
-          width,
-          height,
-          [i === this._steps.length - 1 ? 'rgba8unorm' : 'rgba32float'],
-          `post ${i}`,
-        ),
+      this.targets = this._steps.map((step, i) =>
+        this.backend.createRenderTarget(width, height, outputFormats(step, i === this._steps.length - 1), `post ${i}`),
       );
     }
   }
 
-  /** Scratch target k (0 or 1) for the non-final draws of repeated post steps, made on first use. */
-  private scratchTarget(k: number, width: number, height: number): RenderTarget {
-    while (this.scratch.length <= k)
-      this.scratch.push(
-        this.backend.createRenderTarget(width, height, ['rgba32float'], `post scratch ${this.scratch.length}`),
+  /** Scratch target k (0 or 1) with `outputs` (1 or 2) rgba32float textures for the non-final draws of repeated post steps, made on first use. */
+  private scratchTarget(k: number, outputs: number, width: number, height: number): RenderTarget {
+    const set = this.scratch[outputs - 1];
+    while (set.length <= k)
+      set.push(
+        this.backend.createRenderTarget(
+          width,
+          height,
+          Array<TextureFormat>(outputs).fill('rgba32float'),
+          `post scratch ${outputs}.${set.length}`,
+        ),
       );
-    return this.scratch[k];
+    return set[k];
   }
+}
+
+/** A step's output formats: its image (rgba8unorm for the chain's last step), then its state if it has one. */
+function outputFormats(step: PostStep, last: boolean): TextureFormat[] {
+  const image: TextureFormat = last ? 'rgba8unorm' : 'rgba32float';
+  return step.stateOutput ? [image, 'rgba32float'] : [image];
 }
 
 /** Draws of a post step: its `repeat` (a positive integer), else 1. */
