@@ -182,7 +182,7 @@ export class VptVolume extends Object3D {
         this.viewKey = key;
         this.appliedVersion = this.sceneVersion;
       }
-      const limit = depth ? { texture: depth, a: view.p14 / view.scale, b: view.p10 } : null;
+      const limit = depth ? { texture: depth, a: view.p14 / view.scale, b: view.p10, depthGuide: true } : null;
       // A new depth texture restarts the estimate (the context resets itself).
       ctx.setDepthLimit(limit);
       const n = Math.min(this.iterationsPerFrame, this.maxSamples - ctx.stats.iterations);

@@ -66,6 +66,13 @@ export interface DepthLimit {
   /** Forward distance = a / (2d − 1 + b) for window depth d (three.js: a = P[14] / k, b = P[10]). */
   a: number;
   b: number;
+  /**
+   * Also accumulate the renderer's depth guide (the depth that stands for each pixel: MCRT's
+   * first real collision, EAM's mean termination depth, ISO's surface), read with
+   * `depthGuideGlTextures()`, so a compositor can write a representative depth rather than
+   * the box entry. Renderers without guides (MIP) accumulate none. Default false.
+   */
+  depthGuide?: boolean;
 }
 
 /** The uniforms of the depth limit, appended to the layout only while one is set. */
@@ -114,7 +121,8 @@ export class RenderContext {
   private disposed = false;
   private readonly loop: ProgressiveLoop;
   private readonly listeners = new Set<(stats: RenderStats) => void>();
-  private depthLimit: { handle: WebGLTexture; texture: GpuTexture; a: number; b: number } | null = null;
+  private depthLimit: { handle: WebGLTexture; texture: GpuTexture; a: number; b: number; depthGuide: boolean } | null =
+    null;
 
   private constructor(backend: GpuBackend, opts: RenderContextOptions) {
     this.backend = backend;
@@ -327,7 +335,7 @@ export class RenderContext {
     this.postChain.setSteps(steps);
     this.hdrIteration = -1;
     // Guides are means over every iteration since the reset: a chain that starts using them starts over.
-    if (!this.guidesActive && this.postChain.wantsGuides()) this.reset();
+    if (!this.guidesActive && this.wantsGuides()) this.reset();
   }
 
   setSize(width: number, height: number): void {
@@ -355,8 +363,9 @@ export class RenderContext {
   setDepthLimit(limit: DepthLimit | null): void {
     this.assertAlive();
     if (limit === null) {
-      if (this.depthLimit) this.reset();
+      const had = this.depthLimit !== null;
       this.depthLimit = null;
+      if (had) this.reset();
       return;
     }
     if (!this.backend.importTexture)
@@ -372,6 +381,7 @@ export class RenderContext {
       prev.handle === limit.texture &&
       prev.a === limit.a &&
       prev.b === limit.b &&
+      prev.depthGuide === (limit.depthGuide === true) &&
       prev.texture.width === this.width &&
       prev.texture.height === this.height;
     if (same) return;
@@ -380,8 +390,30 @@ export class RenderContext {
       texture: this.backend.importTexture(limit.texture, this.width, this.height, 'depth limit'),
       a: limit.a,
       b: limit.b,
+      depthGuide: limit.depthGuide === true,
     };
     this.reset();
+  }
+
+  /**
+   * The accumulated depth guide of a depth limit with `depthGuide` (WebGL 2 textures of this
+   * context, vpt's rows top-down): `normalDepth.a` is the mean over iterations of the guide
+   * distance along the camera ray (0 where a sample had no hit) and `albedoHit.a` the share
+   * of iterations with a hit, so their ratio is the mean distance of the hits. Null when none
+   * is accumulated (no such limit, a renderer without guides, no iteration yet).
+   */
+  depthGuideGlTextures(): { normalDepth: WebGLTexture; albedoHit: WebGLTexture } | null {
+    this.assertAlive();
+    if (!this.guides || !this.frameHasGuides || this.iteration === 0 || !this.backend.textureHandle) return null;
+    const t = this.guides.textures();
+    const normalDepth = this.backend.textureHandle(t.guideNormalDepth);
+    const albedoHit = this.backend.textureHandle(t.guideAlbedo);
+    return normalDepth && albedoHit ? { normalDepth, albedoHit } : null;
+  }
+
+  /** Whether guides are accumulated from the next reset: for a post step, or for a depth limit's depth guide. */
+  private wantsGuides(): boolean {
+    return this.postChain.wantsGuides() || this.depthLimit?.depthGuide === true;
   }
 
   /**
@@ -400,7 +432,7 @@ export class RenderContext {
   reset(): void {
     this.iteration = 0;
     this.hdrIteration = -1;
-    this.guidesActive = this.postChain.wantsGuides();
+    this.guidesActive = this.wantsGuides();
   }
 
   /** Run n iterations (generate + integrate each). Does not wait for the GPU. */
