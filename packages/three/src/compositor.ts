@@ -23,7 +23,6 @@ import {
   Vector2,
   WebGLRenderTarget,
   type Camera,
-  type Material,
   type Object3D,
   type Scene,
   type TextureDataType,
@@ -31,6 +30,7 @@ import {
 } from 'three';
 import { volumeBox } from '@vpt/core';
 import { VptVolume } from './vpt-volume.js';
+import { setVisible, splitMaterials } from './materials.js';
 
 export interface VptCompositorOptions {
   /** The colour type of the scene target: HalfFloatType (default) or FloatType. */
@@ -286,23 +286,4 @@ export class VptCompositor {
       this.programs = null;
     }
   }
-}
-
-/** Materials of the scene's renderables, split by three's own rule (transparent → the transparent list). */
-function splitMaterials(scene: Object3D): { opaque: Material[]; transparent: Material[] } {
-  const opaque = new Set<Material>();
-  const transparent = new Set<Material>();
-  scene.traverse((o) => {
-    const m = (o as { material?: Material | Material[] }).material;
-    if (!m) return;
-    for (const mat of Array.isArray(m) ? m : [m]) {
-      if (!mat.visible) continue;
-      (mat.transparent ? transparent : opaque).add(mat);
-    }
-  });
-  return { opaque: [...opaque], transparent: [...transparent] };
-}
-
-function setVisible(materials: readonly Material[], visible: boolean): void {
-  for (const m of materials) m.visible = visible;
 }

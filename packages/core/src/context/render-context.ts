@@ -61,8 +61,8 @@ type RendererPasses = { generate: GpuPass; integrate: GpuPass; render: GpuPass }
  */
 /** An opaque surface's depth that ends camera rays (RenderContext.setDepthLimit). */
 export interface DepthLimit {
-  /** A depth texture of the render size on the shared WebGL 2 context. */
-  texture: WebGLTexture;
+  /** A depth texture of the render size on the shared WebGL 2 context (WebGLTexture) or GPUDevice (GPUTexture, depth32float). */
+  texture: WebGLTexture | GPUTexture;
   /** Forward distance = a / (2d − 1 + b) for window depth d (three.js: a = P[14] / k, b = P[10]). */
   a: number;
   b: number;
@@ -121,8 +121,13 @@ export class RenderContext {
   private disposed = false;
   private readonly loop: ProgressiveLoop;
   private readonly listeners = new Set<(stats: RenderStats) => void>();
-  private depthLimit: { handle: WebGLTexture; texture: GpuTexture; a: number; b: number; depthGuide: boolean } | null =
-    null;
+  private depthLimit: {
+    handle: WebGLTexture | GPUTexture;
+    texture: GpuTexture;
+    a: number;
+    b: number;
+    depthGuide: boolean;
+  } | null = null;
 
   private constructor(backend: GpuBackend, opts: RenderContextOptions) {
     this.backend = backend;
@@ -169,6 +174,7 @@ export class RenderContext {
       backend: opts.backend ?? 'auto',
       canvas: opts.canvas,
       ...(opts.gl ? { gl: opts.gl } : {}),
+      ...(opts.device ? { device: opts.device } : {}),
     });
     try {
       return new RenderContext(backend, opts);
@@ -369,7 +375,7 @@ export class RenderContext {
       return;
     }
     if (!this.backend.importTexture)
-      throw new VptError('no-backend', 'setDepthLimit needs the WebGL 2 backend on a shared context');
+      throw new VptError('no-backend', 'setDepthLimit needs a shared WebGL 2 context or GPUDevice');
     for (const [name, v] of [
       ['a', limit.a],
       ['b', limit.b],
@@ -403,6 +409,19 @@ export class RenderContext {
    * is accumulated (no such limit, a renderer without guides, no iteration yet).
    */
   depthGuideGlTextures(): { normalDepth: WebGLTexture; albedoHit: WebGLTexture } | null {
+    return this.backend.kind === 'webgl2'
+      ? (this.depthGuideHandles() as { normalDepth: WebGLTexture; albedoHit: WebGLTexture } | null)
+      : null;
+  }
+
+  /** As depthGuideGlTextures, on WebGPU (GPUTextures, rgba32float). */
+  depthGuideGpuTextures(): { normalDepth: GPUTexture; albedoHit: GPUTexture } | null {
+    return this.backend.kind === 'webgpu'
+      ? (this.depthGuideHandles() as { normalDepth: GPUTexture; albedoHit: GPUTexture } | null)
+      : null;
+  }
+
+  private depthGuideHandles(): { normalDepth: WebGLTexture | GPUTexture; albedoHit: WebGLTexture | GPUTexture } | null {
     this.assertAlive();
     if (!this.guides || !this.frameHasGuides || this.iteration === 0 || !this.backend.textureHandle) return null;
     const t = this.guides.textures();
@@ -422,6 +441,15 @@ export class RenderContext {
    * for compositing on a shared context. Valid until the next iteration or resize.
    */
   hdrGlTexture(): WebGLTexture | null {
+    return this.backend.kind === 'webgl2' ? (this.hdrHandle() as WebGLTexture | null) : null;
+  }
+
+  /** As hdrGlTexture, on WebGPU: the HDR image's GPUTexture (rgba32float), for compositing on a shared device. */
+  hdrGpuTexture(): GPUTexture | null {
+    return this.backend.kind === 'webgpu' ? (this.hdrHandle() as GPUTexture | null) : null;
+  }
+
+  private hdrHandle(): WebGLTexture | GPUTexture | null {
     this.assertAlive();
     if (!this.scene || this.backend.isLost || this.iteration === 0 || !this.backend.textureHandle) return null;
     this.renderImage();

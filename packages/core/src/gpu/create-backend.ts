@@ -17,6 +17,10 @@ export async function createBackend(options: BackendOptions = {}): Promise<GpuBa
     return createWebGL2Backend(options.gl.canvas, options.gl);
   }
   const canvas = options.canvas ?? makeCanvas();
+  if (options.device) {
+    if (pref === 'webgl2') throw new VptError('no-backend', 'A shared GPUDevice (device) needs the WebGPU backend');
+    return createWebGPUBackend(canvas, options);
+  }
   if (pref === 'webgpu') return createWebGPUBackend(canvas, options);
   if (pref === 'webgl2') return createWebGL2Backend(canvas);
   if (await isWebGPUAvailable()) {
