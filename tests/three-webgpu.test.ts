@@ -74,7 +74,12 @@ describe('@vpt/three on WebGPURenderer (vpt on three’s GPUDevice)', () => {
           res.blob = await read(s);
           const camera = { position: [0, 0, 2], target: [0, 0, 0], up: [0, 1, 0], fovy: (40 * Math.PI) / 180 };
           res.core = Array.from(await h3.coreRender('eam', { ...vscene, camera }, n, 16));
+          // vpt's context is disposed, three's device lives on: three still draws and reads back.
           vol.dispose();
+          s.scene.remove(vol);
+          s.renderer.setClearColor(h3.linear([1, 0, 0]), 1);
+          s.compositor.render(s.scene, s.camera);
+          res.afterDispose = (await read(s)).slice(0, 4);
           s.renderer.dispose();
         }
         // 2. A plane through a homogeneous cube's centre.
@@ -141,7 +146,9 @@ describe('@vpt/three on WebGPURenderer (vpt on three’s GPUDevice)', () => {
       sigma,
     );
     const { info, res } = out;
-    for (const k of Object.keys(res)) savePng(k, res[k]);
+    for (const k of Object.keys(res)) if (res[k].length === N * N * 4) savePng(k, res[k]);
+    // Disposing of the volume left three's GPUDevice alive (a shared device is never destroyed).
+    expect(res.afterDispose).toEqual([1, 0, 0, 1]);
     expect(info.webgpu).toBe(true);
     // Half-float targets (without 'float32-blendable') round to 2^-11 relative.
     const tol = info.float32Blendable ? 2e-3 : 3e-3;
