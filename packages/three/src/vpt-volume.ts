@@ -2,7 +2,9 @@
  * A vpt volume as a three.js Object3D. It draws with vpt's WebGL 2 backend on the
  * WebGLRenderer's own context (RenderContextOptions.gl): GL state is set by vpt before each
  * use and three's state cache is reset after (renderer.resetState()), so the volume reads
- * three's depth texture directly (no read-back) and writes into three's render target.
+ * three's depth texture directly (no read-back) and writes into three's render target. With
+ * a WebGPURenderer it draws with vpt's WebGPU backend on the renderer's own GPUDevice
+ * (RenderContextOptions.device; connectDevice / refineDevice), which has no state to reset.
  */
 import { Matrix4, Object3D, Quaternion, Vector3, type Camera, type PerspectiveCamera, type WebGLRenderer } from 'three';
 import { RenderContext, VptError, type Renderer, type Scene } from '@vpt/core';
