@@ -56,8 +56,8 @@ if (fs.existsSync(path.join(viewerDist, 'loader-worker.js'))) {
   fs.cpSync(path.join(viewerDist, 'chunks'), path.join(dist, 'assets', 'chunks'), { recursive: true });
 }
 
-// The three.js page's script (three/three-scene.js), bundled with three.js, @vpt/three and
-// the two renderers it offers (the packages' dist/, built by `pnpm run build`).
+// The three.js page's script (three/three-scene.js), bundled with three.js, @vpt/three, the
+// two renderers it offers and the viewer's TF editor (the packages' dist/, built by `pnpm run build`).
 {
   const { rollup } = await import('rollup');
   const { nodeResolve } = await import('@rollup/plugin-node-resolve');
@@ -65,7 +65,8 @@ if (fs.existsSync(path.join(viewerDist, 'loader-worker.js'))) {
     input: path.join(here, 'three', 'three-scene.js'),
     plugins: [nodeResolve({ browser: true })],
   });
-  await bundle.write({ file: path.join(dist, 'assets', 'three-scene.js'), format: 'es' });
+  // One file: the viewer's lazily loaded parts (its element is defined, never instantiated here) go inline.
+  await bundle.write({ file: path.join(dist, 'assets', 'three-scene.js'), format: 'es', inlineDynamicImports: true });
   await bundle.close();
 }
 

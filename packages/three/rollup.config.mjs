@@ -1,2 +1,3 @@
 import { libraryConfig } from '../../rollup.lib.mjs';
-export default libraryConfig();
+// Two entries: the WebGLRenderer compositor, and the WebGPURenderer one (which imports three/webgpu).
+export default libraryConfig({ input: { index: 'src/index.ts', webgpu: 'src/webgpu.ts' } });

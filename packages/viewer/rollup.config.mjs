@@ -56,7 +56,9 @@ function optionalPackages(needBuilt) {
   };
 }
 
-const lib = libraryConfig({ input: { index: 'src/index.ts', bundle: 'src/bundle.ts' } });
+const lib = libraryConfig({
+  input: { index: 'src/index.ts', bundle: 'src/bundle.ts', 'tf-editor': 'src/tf-editor.ts' },
+});
 const libOptional = optionalPackages(false);
 const libExternal = lib.external;
 lib.external = (id, ...rest) =>

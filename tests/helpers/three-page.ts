@@ -111,12 +111,13 @@ export interface ThreePage {
   close(): Promise<void>;
 }
 
-export async function openThreePage(): Promise<ThreePage> {
+/** `page`: the test page (three.html: WebGLRenderer; three-webgpu.html: three/webgpu). */
+export async function openThreePage(pagePath = 'tests/pages/three.html'): Promise<ThreePage> {
   const server = await startStaticServer(ROOT);
   const browser = await launchChromium();
   const page = await browser.newPage();
   const errors = recordPageErrors(page);
-  await page.goto(new URL('tests/pages/three.html', server.url).href);
+  await page.goto(new URL(pagePath, server.url).href);
   await page.waitForFunction(() => (window as any).__ready === true, { timeout: 60_000 });
   await page.evaluate(installThreeHelpers);
   return {
@@ -141,10 +142,10 @@ export async function openThreePage(): Promise<ThreePage> {
 }
 
 /** One three.js page for a test file (opened in beforeAll, closed in afterAll). */
-export function useThreePage(): () => ThreePage {
+export function useThreePage(pagePath?: string): () => ThreePage {
   let p: ThreePage | undefined;
   beforeAll(async () => {
-    p = await openThreePage();
+    p = await openThreePage(pagePath);
   });
   afterAll(async () => {
     await p?.close();

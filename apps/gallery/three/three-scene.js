@@ -1,6 +1,7 @@
 // The gallery's three.js page: the bundled MRI head as a VptVolume (@vpt/three) in a
 // three.js scene with an opaque cylinder through it (a probe), a floor grid and a
-// transparent marker, orbited with OrbitControls. Bundled by build.mjs (Rollup) into
+// transparent marker, orbited with OrbitControls; the viewer's <vpt-tf-editor> (from
+// @vpt/viewer/tf-editor) edits the volume's transfer function. Bundled by build.mjs (Rollup) into
 // dist/assets/three-scene.js.
 import * as THREE from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
@@ -8,6 +9,8 @@ import { VptVolume, VptCompositor } from '@vpt/three';
 import { createVolume } from '@vpt/core';
 import { EamRenderer } from '@vpt/renderer-eam';
 import { McrtRenderer } from '@vpt/renderer-mcrt';
+// Defines <vpt-tf-editor> alone (not the viewer element); valueHistogram for its backdrop.
+import { valueHistogram } from '@vpt/viewer/tf-editor';
 
 const HEAD = 'data/mri_head_volpack_brainsmall_128x128x84_uint8';
 
@@ -92,12 +95,24 @@ async function main() {
   };
   let head = makeVolume('eam');
   scene.add(head);
+  // The viewer's TF editor on the head's histogram: each edit replaces the volume's scene
+  // (setScene), which restarts its accumulation.
+  const editor = document.getElementById('tf-editor');
+  editor.histogram = valueHistogram(volume);
+  editor.value = head.scene.transferFunction;
+  const applyTf = (e) => {
+    const tf = e.detail.transferFunction;
+    if (tf) head.setScene({ ...head.scene, transferFunction: tf });
+  };
+  editor.addEventListener('input', applyTf);
+  editor.addEventListener('change', applyTf);
   const compositor = new VptCompositor(renderer);
 
   document.getElementById('renderer').addEventListener('change', (e) => {
     scene.remove(head);
     head.dispose();
     head = makeVolume(e.target.value);
+    editor.value = head.scene.transferFunction;
     scene.add(head);
   });
   document.getElementById('probe').addEventListener('change', (e) => {
@@ -118,10 +133,12 @@ async function main() {
     scene,
     camera,
     compositor,
+    editor,
     get head() {
       return head;
     },
   };
+  window.__threeReady = true;
   renderer.setAnimationLoop(() => {
     controls.update();
     compositor.render(scene, camera);

@@ -3,8 +3,9 @@
  *   1. three's opaque pass into a render target with a depth texture;
  *   2. per volume: vpt's camera rays end at that depth (RenderContext.setDepthLimit), the
  *      volume's HDR image (radiance, a = 1 − transmittance) is composited over the target,
- *      rgb + (1 − a) · target, and where a ≥ 0.5 its depth (the box entry) is written, so
- *      what is drawn later behind an opaque part of the volume is hidden;
+ *      rgb + (1 − a) · target, and where a ≥ 0.5 a representative depth (the renderer's depth
+ *      guide, else the box entry) is written, so what is drawn later behind an opaque part of
+ *      the volume is hidden and what is in front of the medium shows;
  *   3. three's transparent pass over it, as three.js orders them;
  *   4. the target to the canvas (or the given target) with three's tone mapping and output
  *      colour space.
@@ -22,7 +23,6 @@ import {
   Vector2,
   WebGLRenderTarget,
   type Camera,
-  type Material,
   type Object3D,
   type Scene,
   type TextureDataType,
@@ -30,6 +30,7 @@ import {
 } from 'three';
 import { volumeBox } from '@vpt/core';
 import { VptVolume } from './vpt-volume.js';
+import { setVisible, splitMaterials } from './materials.js';
 
 export interface VptCompositorOptions {
   /** The colour type of the scene target: HalfFloatType (default) or FloatType. */
@@ -53,34 +54,46 @@ void main() {
   o = texelFetch(hdr, ivec2(p.x, size.y - 1 - p.y), 0);
 }`;
 
-// The depth of the box entry along the pixel's ray, where the volume is at least half opaque.
+// Where the volume is at least half opaque, the depth of the point that stands for the pixel:
+// the renderer's accumulated depth guide (mean distance of its hits along the ray: MCRT's first
+// real collisions, EAM's mean termination depth, ISO's surface), or the box entry for a renderer
+// without guides (MIP).
 const DEPTH = `#version 300 es
 precision highp float;
 uniform highp sampler2D hdr;
+uniform highp sampler2D guideDepth;
+uniform highp sampler2D guideHit;
+uniform bool useGuide;
 uniform mat4 clipToLocal;
 uniform mat4 localToClip;
+uniform vec3 eye;
 uniform vec3 boxMin;
 uniform vec3 boxMax;
 out vec4 o;
 void main() {
   ivec2 size = textureSize(hdr, 0);
   ivec2 p = ivec2(gl_FragCoord.xy);
-  vec4 c = texelFetch(hdr, ivec2(p.x, size.y - 1 - p.y), 0);
+  ivec2 q = ivec2(p.x, size.y - 1 - p.y);
+  vec4 c = texelFetch(hdr, q, 0);
   if (c.a < 0.5) discard;
   vec2 ndc = gl_FragCoord.xy / vec2(size) * 2.0 - 1.0;
-  vec4 n = clipToLocal * vec4(ndc, -1.0, 1.0);
   vec4 f = clipToLocal * vec4(ndc, 1.0, 1.0);
-  vec3 origin = n.xyz / n.w;
-  vec3 dir = f.xyz / f.w - origin;
-  vec3 inv = 1.0 / dir;
-  vec3 t0 = (boxMin - origin) * inv;
-  vec3 t1 = (boxMax - origin) * inv;
-  vec3 tmin = min(t0, t1);
-  vec3 tmax = max(t0, t1);
-  float tNear = max(max(tmin.x, tmin.y), max(tmin.z, 0.0));
-  float tFar = min(min(tmax.x, tmax.y), tmax.z);
-  if (tNear >= tFar) discard;
-  vec4 clip = localToClip * vec4(origin + dir * tNear, 1.0);
+  vec3 dir = normalize(f.xyz / f.w - eye);
+  float t;
+  if (useGuide) {
+    float hit = texelFetch(guideHit, q, 0).a;
+    if (!(hit > 0.0)) discard;
+    t = texelFetch(guideDepth, q, 0).a / hit;
+  } else {
+    vec3 inv = 1.0 / dir;
+    vec3 t0 = (boxMin - eye) * inv;
+    vec3 t1 = (boxMax - eye) * inv;
+    vec3 tmin = min(t0, t1);
+    vec3 tmax = max(t0, t1);
+    t = max(max(tmin.x, tmin.y), max(tmin.z, 0.0));
+    if (t >= min(min(tmax.x, tmax.y), tmax.z)) discard;
+  }
+  vec4 clip = localToClip * vec4(eye + dir * t, 1.0);
   gl_FragDepth = clamp(clip.z / clip.w * 0.5 + 0.5, 0.0, 1.0);
   o = c;
 }`;
@@ -237,6 +250,15 @@ export class VptCompositor {
     // Depth where the volume is at least half opaque, nearer than what is there.
     gl.useProgram(depth);
     gl.uniform1i(gl.getUniformLocation(depth, 'hdr'), 0);
+    const guide = v.context?.depthGuideGlTextures() ?? null;
+    gl.uniform1i(gl.getUniformLocation(depth, 'useGuide'), guide ? 1 : 0);
+    gl.activeTexture(gl.TEXTURE1);
+    gl.bindTexture(gl.TEXTURE_2D, guide ? guide.normalDepth : hdr);
+    gl.activeTexture(gl.TEXTURE2);
+    gl.bindTexture(gl.TEXTURE_2D, guide ? guide.albedoHit : hdr);
+    gl.uniform1i(gl.getUniformLocation(depth, 'guideDepth'), 1);
+    gl.uniform1i(gl.getUniformLocation(depth, 'guideHit'), 2);
+    gl.uniform3fv(gl.getUniformLocation(depth, 'eye'), view.scene.camera.position);
     gl.uniformMatrix4fv(gl.getUniformLocation(depth, 'clipToLocal'), false, clipToLocal.elements);
     gl.uniformMatrix4fv(gl.getUniformLocation(depth, 'localToClip'), false, localToClip.elements);
     gl.uniform3fv(gl.getUniformLocation(depth, 'boxMin'), box.min);
@@ -264,23 +286,4 @@ export class VptCompositor {
       this.programs = null;
     }
   }
-}
-
-/** Materials of the scene's renderables, split by three's own rule (transparent → the transparent list). */
-function splitMaterials(scene: Object3D): { opaque: Material[]; transparent: Material[] } {
-  const opaque = new Set<Material>();
-  const transparent = new Set<Material>();
-  scene.traverse((o) => {
-    const m = (o as { material?: Material | Material[] }).material;
-    if (!m) return;
-    for (const mat of Array.isArray(m) ? m : [m]) {
-      if (!mat.visible) continue;
-      (mat.transparent ? transparent : opaque).add(mat);
-    }
-  });
-  return { opaque: [...opaque], transparent: [...transparent] };
-}
-
-function setVisible(materials: readonly Material[], visible: boolean): void {
-  for (const m of materials) m.visible = visible;
 }

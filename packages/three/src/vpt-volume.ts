@@ -2,7 +2,9 @@
  * A vpt volume as a three.js Object3D. It draws with vpt's WebGL 2 backend on the
  * WebGLRenderer's own context (RenderContextOptions.gl): GL state is set by vpt before each
  * use and three's state cache is reset after (renderer.resetState()), so the volume reads
- * three's depth texture directly (no read-back) and writes into three's render target.
+ * three's depth texture directly (no read-back) and writes into three's render target. With
+ * a WebGPURenderer it draws with vpt's WebGPU backend on the renderer's own GPUDevice
+ * (RenderContextOptions.device; connectDevice / refineDevice), which has no state to reset.
  */
 import { Matrix4, Object3D, Quaternion, Vector3, type Camera, type PerspectiveCamera, type WebGLRenderer } from 'three';
 import { RenderContext, VptError, type Renderer, type Scene } from '@vpt/core';
@@ -97,6 +99,7 @@ export class VptVolume extends Object3D {
   private ctx: RenderContext | null = null;
   private creating: Promise<RenderContext> | null = null;
   private gl: WebGL2RenderingContext | null = null;
+  private device: GPUDevice | null = null;
   private viewKey = '';
   private sceneVersion = 0;
   private appliedVersion = -1;
@@ -143,7 +146,11 @@ export class VptVolume extends Object3D {
       throw new VptError('no-backend', 'VptVolume needs a WebGLRenderer on a WebGL 2 context');
     if (this.ctx && this.gl === gl) return this.ctx;
     if (this.creating && this.gl === gl) return this.creating;
+    this.ctx?.dispose();
+    this.ctx = null;
+    this.viewKey = '';
     this.gl = gl;
+    this.device = null;
     this.creating = RenderContext.create({ gl, backend: 'webgl2', width, height, renderer: this.renderer }).then(
       (ctx) => {
         renderer.resetState();
@@ -152,6 +159,40 @@ export class VptVolume extends Object3D {
       },
     );
     return this.creating;
+  }
+
+  /**
+   * Make the vpt context on a WebGPURenderer's GPUDevice (`renderer.backend.device`), once:
+   * vpt's WebGPU backend draws on that device (RenderContextOptions.device) and its images
+   * are GPUTextures of it. The WebGPU compositor (`@vpt/three/webgpu`) calls it.
+   */
+  async connectDevice(device: GPUDevice, width: number, height: number): Promise<RenderContext> {
+    if (this.ctx && this.device === device) return this.ctx;
+    if (this.creating && this.device === device) return this.creating;
+    this.ctx?.dispose();
+    this.ctx = null;
+    this.viewKey = '';
+    this.device = device;
+    this.gl = null;
+    this.creating = RenderContext.create({ device, backend: 'webgpu', width, height, renderer: this.renderer }).then(
+      (ctx) => {
+        this.ctx = ctx;
+        return ctx;
+      },
+    );
+    return this.creating;
+  }
+
+  /**
+   * Refine on a shared GPUDevice (connectDevice): camera rays end at `depth` (three's
+   * depth32float depth texture of the opaque pass, WebGPU's clip depth in [0, 1]); returns
+   * the HDR image's GPUTexture (null until the context exists).
+   */
+  refineDevice(camera: Camera, width: number, height: number, depth: GPUTexture | null): GPUTexture | null {
+    if (!this.ctx || !this.device) return null;
+    // WebGPU's clip depth d = P14 / f − P10 (forward distance f), written as vpt's a / (2d − 1 + b).
+    this.advance(camera, width, height, depth, (v) => ({ a: (2 * v.p14) / v.scale, b: 2 * v.p10 + 1 }));
+    return this.ctx.hdrGpuTexture();
   }
 
   /**
@@ -167,30 +208,41 @@ export class VptVolume extends Object3D {
     height: number,
     depth: WebGLTexture | null,
   ): WebGLTexture | null {
-    const ctx = this.ctx;
-    if (!ctx) {
+    if (!this.ctx || !this.gl) {
       void this.connect(renderer, width, height);
       return null;
     }
     try {
-      const view = vptViewOf(this, camera, this.base);
-      this.lastView = view;
-      if (ctx.size.width !== width || ctx.size.height !== height) ctx.setSize(width, height);
-      const key = JSON.stringify([view.scene.camera, view.scene.volume.spacing, width, height]);
-      if (key !== this.viewKey || this.appliedVersion !== this.sceneVersion) {
-        ctx.setScene(view.scene);
-        this.viewKey = key;
-        this.appliedVersion = this.sceneVersion;
-      }
-      const limit = depth ? { texture: depth, a: view.p14 / view.scale, b: view.p10 } : null;
-      // A new depth texture restarts the estimate (the context resets itself).
-      ctx.setDepthLimit(limit);
-      const n = Math.min(this.iterationsPerFrame, this.maxSamples - ctx.stats.iterations);
-      if (n > 0) ctx.iterate(n);
-      return ctx.hdrGlTexture();
+      this.advance(camera, width, height, depth, (v) => ({ a: v.p14 / v.scale, b: v.p10 }));
+      return this.ctx.hdrGlTexture();
     } finally {
       renderer.resetState();
     }
+  }
+
+  /** setScene when the view changed, the depth limit, then the frame's iterations. */
+  private advance(
+    camera: Camera,
+    width: number,
+    height: number,
+    depth: WebGLTexture | GPUTexture | null,
+    depthMap: (v: VptView) => { a: number; b: number },
+  ): void {
+    const ctx = this.ctx!;
+    const view = vptViewOf(this, camera, this.base);
+    this.lastView = view;
+    if (ctx.size.width !== width || ctx.size.height !== height) ctx.setSize(width, height);
+    const key = JSON.stringify([view.scene.camera, view.scene.volume.spacing, width, height]);
+    if (key !== this.viewKey || this.appliedVersion !== this.sceneVersion) {
+      ctx.setScene(view.scene);
+      this.viewKey = key;
+      this.appliedVersion = this.sceneVersion;
+    }
+    const limit = depth ? { texture: depth, ...depthMap(view), depthGuide: true } : null;
+    // A new depth texture restarts the estimate (the context resets itself).
+    ctx.setDepthLimit(limit);
+    const n = Math.min(this.iterationsPerFrame, this.maxSamples - ctx.stats.iterations);
+    if (n > 0) ctx.iterate(n);
   }
 
   /** Free the vpt context (three's context stays). */
@@ -198,5 +250,7 @@ export class VptVolume extends Object3D {
     this.ctx?.dispose();
     this.ctx = null;
     this.creating = null;
+    this.gl = null;
+    this.device = null;
   }
 }

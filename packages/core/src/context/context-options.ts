@@ -19,6 +19,12 @@ export interface RenderContextOptions {
    * (BackendOptions.gl). Default: vpt acquires its own context from `canvas`.
    */
   gl?: WebGL2RenderingContext;
+  /**
+   * Draw on an existing GPUDevice (shared with another renderer, such as three.js's
+   * WebGPURenderer: `renderer.backend.device`) instead of requesting one: the WebGPU backend
+   * is used and the device is never destroyed by vpt (BackendOptions.device).
+   */
+  device?: GPUDevice;
   /** Render resolution in pixels (the canvas drawing buffer is resized to it, except on a shared context). */
   width: number;
   height: number;

@@ -61,11 +61,18 @@ type RendererPasses = { generate: GpuPass; integrate: GpuPass; render: GpuPass }
  */
 /** An opaque surface's depth that ends camera rays (RenderContext.setDepthLimit). */
 export interface DepthLimit {
-  /** A depth texture of the render size on the shared WebGL 2 context. */
-  texture: WebGLTexture;
+  /** A depth texture of the render size on the shared WebGL 2 context (WebGLTexture) or GPUDevice (GPUTexture, depth32float). */
+  texture: WebGLTexture | GPUTexture;
   /** Forward distance = a / (2d − 1 + b) for window depth d (three.js: a = P[14] / k, b = P[10]). */
   a: number;
   b: number;
+  /**
+   * Also accumulate the renderer's depth guide (the depth that stands for each pixel: MCRT's
+   * first real collision, EAM's mean termination depth, ISO's surface), read with
+   * `depthGuideGlTextures()`, so a compositor can write a representative depth rather than
+   * the box entry. Renderers without guides (MIP) accumulate none. Default false.
+   */
+  depthGuide?: boolean;
 }
 
 /** The uniforms of the depth limit, appended to the layout only while one is set. */
@@ -116,7 +123,13 @@ export class RenderContext {
   private disposed = false;
   private readonly loop: ProgressiveLoop;
   private readonly listeners = new Set<(stats: RenderStats) => void>();
-  private depthLimit: { handle: WebGLTexture; texture: GpuTexture; a: number; b: number } | null = null;
+  private depthLimit: {
+    handle: WebGLTexture | GPUTexture;
+    texture: GpuTexture;
+    a: number;
+    b: number;
+    depthGuide: boolean;
+  } | null = null;
 
   private constructor(backend: GpuBackend, opts: RenderContextOptions) {
     this.backend = backend;
@@ -164,6 +177,7 @@ export class RenderContext {
       backend: opts.backend ?? 'auto',
       canvas: opts.canvas,
       ...(opts.gl ? { gl: opts.gl } : {}),
+      ...(opts.device ? { device: opts.device } : {}),
     });
     try {
       return new RenderContext(backend, opts);
@@ -330,7 +344,7 @@ export class RenderContext {
     this.postChain.setSteps(steps);
     this.hdrIteration = -1;
     // Guides are means over every iteration since the reset: a chain that starts using them starts over.
-    if (!this.guidesActive && this.postChain.wantsGuides()) this.reset();
+    if (!this.guidesActive && this.wantsGuides()) this.reset();
   }
 
   setSize(width: number, height: number): void {
@@ -358,12 +372,13 @@ export class RenderContext {
   setDepthLimit(limit: DepthLimit | null): void {
     this.assertAlive();
     if (limit === null) {
-      if (this.depthLimit) this.reset();
+      const had = this.depthLimit !== null;
       this.depthLimit = null;
+      if (had) this.reset();
       return;
     }
     if (!this.backend.importTexture)
-      throw new VptError('no-backend', 'setDepthLimit needs the WebGL 2 backend on a shared context');
+      throw new VptError('no-backend', 'setDepthLimit needs a shared WebGL 2 context or GPUDevice');
     for (const [name, v] of [
       ['a', limit.a],
       ['b', limit.b],
@@ -375,6 +390,7 @@ export class RenderContext {
       prev.handle === limit.texture &&
       prev.a === limit.a &&
       prev.b === limit.b &&
+      prev.depthGuide === (limit.depthGuide === true) &&
       prev.texture.width === this.width &&
       prev.texture.height === this.height;
     if (same) return;
@@ -383,8 +399,43 @@ export class RenderContext {
       texture: this.backend.importTexture(limit.texture, this.width, this.height, 'depth limit'),
       a: limit.a,
       b: limit.b,
+      depthGuide: limit.depthGuide === true,
     };
     this.reset();
+  }
+
+  /**
+   * The accumulated depth guide of a depth limit with `depthGuide` (WebGL 2 textures of this
+   * context, vpt's rows top-down): `normalDepth.a` is the mean over iterations of the guide
+   * distance along the camera ray (0 where a sample had no hit) and `albedoHit.a` the share
+   * of iterations with a hit, so their ratio is the mean distance of the hits. Null when none
+   * is accumulated (no such limit, a renderer without guides, no iteration yet).
+   */
+  depthGuideGlTextures(): { normalDepth: WebGLTexture; albedoHit: WebGLTexture } | null {
+    return this.backend.kind === 'webgl2'
+      ? (this.depthGuideHandles() as { normalDepth: WebGLTexture; albedoHit: WebGLTexture } | null)
+      : null;
+  }
+
+  /** As depthGuideGlTextures, on WebGPU (GPUTextures, rgba32float). */
+  depthGuideGpuTextures(): { normalDepth: GPUTexture; albedoHit: GPUTexture } | null {
+    return this.backend.kind === 'webgpu'
+      ? (this.depthGuideHandles() as { normalDepth: GPUTexture; albedoHit: GPUTexture } | null)
+      : null;
+  }
+
+  private depthGuideHandles(): { normalDepth: WebGLTexture | GPUTexture; albedoHit: WebGLTexture | GPUTexture } | null {
+    this.assertAlive();
+    if (!this.guides || !this.frameHasGuides || this.iteration === 0 || !this.backend.textureHandle) return null;
+    const t = this.guides.textures();
+    const normalDepth = this.backend.textureHandle(t.guideNormalDepth);
+    const albedoHit = this.backend.textureHandle(t.guideAlbedo);
+    return normalDepth && albedoHit ? { normalDepth, albedoHit } : null;
+  }
+
+  /** Whether guides are accumulated from the next reset: for a post step, or for a depth limit's depth guide. */
+  private wantsGuides(): boolean {
+    return this.postChain.wantsGuides() || this.depthLimit?.depthGuide === true;
   }
 
   /**
@@ -393,6 +444,15 @@ export class RenderContext {
    * for compositing on a shared context. Valid until the next iteration or resize.
    */
   hdrGlTexture(): WebGLTexture | null {
+    return this.backend.kind === 'webgl2' ? (this.hdrHandle() as WebGLTexture | null) : null;
+  }
+
+  /** As hdrGlTexture, on WebGPU: the HDR image's GPUTexture (rgba32float), for compositing on a shared device. */
+  hdrGpuTexture(): GPUTexture | null {
+    return this.backend.kind === 'webgpu' ? (this.hdrHandle() as GPUTexture | null) : null;
+  }
+
+  private hdrHandle(): WebGLTexture | GPUTexture | null {
     this.assertAlive();
     if (!this.scene || this.backend.isLost || this.iteration === 0 || !this.backend.textureHandle) return null;
     this.renderImage();
@@ -403,7 +463,7 @@ export class RenderContext {
   reset(): void {
     this.iteration = 0;
     this.hdrIteration = -1;
-    this.guidesActive = this.postChain.wantsGuides();
+    this.guidesActive = this.wantsGuides();
   }
 
   /** Run n iterations (generate + integrate each). Does not wait for the GPU. */

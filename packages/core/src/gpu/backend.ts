@@ -279,13 +279,14 @@ export interface GpuBackend {
   dispose(): void;
 
   /**
-   * WebGL 2 only (absent on WebGPU): a 2D texture made by someone else on the same context
-   * (a shared one, BackendOptions.gl), bound like this backend's own, never written or
-   * deleted by it. Read with texelFetch as a float sampler (a depth texture reads its depth).
+   * A 2D texture made by someone else on the same context or device (a shared one,
+   * BackendOptions.gl or .device): a WebGLTexture on WebGL 2, a GPUTexture on WebGPU. It is
+   * bound like this backend's own, read as an unfilterable float texture (a depth texture
+   * reads its depth), never written or destroyed by it.
    */
-  importTexture?(handle: WebGLTexture, width: number, height: number, label: string): GpuTexture;
-  /** WebGL 2 only: the GL texture behind one of this backend's textures. */
-  textureHandle?(texture: GpuTexture): WebGLTexture | null;
+  importTexture?(handle: WebGLTexture | GPUTexture, width: number, height: number, label: string): GpuTexture;
+  /** The native texture behind one of this backend's textures: WebGLTexture on WebGL 2, GPUTexture on WebGPU. */
+  textureHandle?(texture: GpuTexture): WebGLTexture | GPUTexture | null;
 }
 
 export interface BackendOptions {
@@ -301,4 +302,11 @@ export interface BackendOptions {
    * context on dispose; the other renderer must reset its own state cache afterwards.
    */
   gl?: WebGL2RenderingContext;
+  /**
+   * WebGPU only: draw on this existing GPUDevice (one shared with another renderer, such as
+   * three.js's WebGPURenderer) instead of requesting one. The backend never destroys it, and
+   * does not replace it after a loss (the owner does). Its limits are the owner's: vpt's MRT
+   * passes need maxColorAttachmentBytesPerSample of at least 48 (64 with denoiser guides).
+   */
+  device?: GPUDevice;
 }

@@ -12,11 +12,17 @@ export async function createBackend(options: BackendOptions = {}): Promise<GpuBa
   if (pref !== 'auto' && pref !== 'webgl2' && pref !== 'webgpu') {
     throw new VptError('no-backend', `Unknown backend "${pref}" (use 'auto', 'webgl2' or 'webgpu')`);
   }
+  if (options.gl && options.device)
+    throw new VptError('no-backend', 'Give a shared WebGL 2 context (gl) or a shared GPUDevice (device), not both');
   if (options.gl) {
     if (pref === 'webgpu') throw new VptError('no-backend', 'A shared WebGL 2 context (gl) needs the WebGL 2 backend');
     return createWebGL2Backend(options.gl.canvas, options.gl);
   }
   const canvas = options.canvas ?? makeCanvas();
+  if (options.device) {
+    if (pref === 'webgl2') throw new VptError('no-backend', 'A shared GPUDevice (device) needs the WebGPU backend');
+    return createWebGPUBackend(canvas, options);
+  }
   if (pref === 'webgpu') return createWebGPUBackend(canvas, options);
   if (pref === 'webgl2') return createWebGL2Backend(canvas);
   if (await isWebGPUAvailable()) {

@@ -195,11 +195,11 @@ class WebGL2Backend extends BackendBase implements GpuBackend {
     this.deleteTexture(tex);
   }
 
-  importTexture(handle: WebGLTexture, width: number, height: number, label: string): GpuTexture {
+  importTexture(handle: WebGLTexture | GPUTexture, width: number, height: number, label: string): GpuTexture {
     this.assertNotDisposed();
     checkTextureSize(label, '2d', width, height, 1, this.sizeLimits());
     // Its format is the owner's; the kernels read it as a float sampler with texelFetch.
-    const tex = new WebGL2Texture('2d', width, height, 1, 'r32float', label, handle, this.generation);
+    const tex = new WebGL2Texture('2d', width, height, 1, 'r32float', label, handle as WebGLTexture, this.generation);
     this.imported.add(tex);
     return tex;
   }

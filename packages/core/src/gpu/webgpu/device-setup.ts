@@ -6,7 +6,8 @@ import { VptError } from '../../errors.js';
 import type { BackendInfo, BackendOptions } from '../backend.js';
 
 export interface GpuDeviceHandle {
-  adapter: GPUAdapter;
+  /** Null for a device someone else requested (BackendOptions.device). */
+  adapter: GPUAdapter | null;
   device: GPUDevice;
   info: BackendInfo;
 }

@@ -55,7 +55,13 @@ export async function createWebGPUBackend(
   canvas: HTMLCanvasElement | OffscreenCanvas,
   options: BackendOptions = {},
 ): Promise<GpuBackend> {
-  const handle = await requestGpuDevice(options);
+  const handle: GpuDeviceHandle = options.device
+    ? {
+        adapter: null,
+        device: options.device,
+        info: { kind: 'webgpu', renderer: 'shared GPUDevice', vendor: 'unknown' },
+      }
+    : await requestGpuDevice(options);
   return new WebGPUBackend(canvas, options, handle);
 }
 
@@ -87,6 +93,10 @@ class WebGPUBackend extends BackendBase implements GpuBackend {
   /** Set by simulateLoss(): how long the lost handler waits before asking for a new device. */
   private restoreDelayMs: number | null = null;
   private readonly textures = new Set<WebGPUTexture>();
+  /** Textures of the device's owner (importTexture): bound, never destroyed. */
+  private readonly imported = new WeakSet<WebGPUTexture>();
+  /** Drawing on a GPUDevice someone else owns (BackendOptions.device): never destroyed or replaced here. */
+  private readonly shared: boolean;
   private readonly targets = new Set<WebGPURenderTarget>();
   /** Readback buffers awaiting mapAsync, destroyed by dispose() (which aborts the map). */
   private readonly readbacks = new Set<GPUBuffer>();
@@ -108,9 +118,10 @@ class WebGPUBackend extends BackendBase implements GpuBackend {
     handle: GpuDeviceHandle,
   ) {
     super({ backend: 'WebGPU', lossTarget: 'WebGPU device' });
+    this.shared = options.device !== undefined;
     const context = canvas.getContext('webgpu') as GPUCanvasContext | null;
     if (!context) {
-      handle.device.destroy();
+      if (!options.device) handle.device.destroy();
       throw new VptError(
         'no-backend',
         'This canvas cannot give a WebGPU context (it already has a WebGL or 2D context); use a fresh canvas',
@@ -234,9 +245,23 @@ class WebGPUBackend extends BackendBase implements GpuBackend {
   destroyTexture(texture: GpuTexture): void {
     if (this.disposed) return;
     const tex = this.own(texture, WebGPUTexture, 'texture');
+    if (this.imported.has(tex)) return; // its owner destroys it
     this.textures.delete(tex);
     // Destroying a texture of a lost device is harmless, so stale objects need no special case.
     tex.destroy();
+  }
+
+  importTexture(handle: WebGLTexture | GPUTexture, width: number, height: number, label: string): GpuTexture {
+    this.assertNotDisposed();
+    checkTextureSize(label, '2d', width, height, 1, this.sizeLimits());
+    // Bound as an unfilterable float texture (r32float's layout), which a depth32float texture allows.
+    const tex = new WebGPUTexture('2d', width, height, 1, 'r32float', label, handle as GPUTexture, this.generation);
+    this.imported.add(tex);
+    return tex;
+  }
+
+  textureHandle(texture: GpuTexture): GPUTexture | null {
+    return this.own(texture, WebGPUTexture, 'texture').handle;
   }
 
   // ——— render targets ———
@@ -468,6 +493,8 @@ class WebGPUBackend extends BackendBase implements GpuBackend {
     if (this.disposed || state !== this.state) return;
     this.lost = true;
     runCallbacks(this.lostCallbacks, 'device-loss');
+    // A shared device is its owner's to replace: vpt's context stays lost.
+    if (this.shared) return;
     const delay = this.restoreDelayMs ?? 0;
     this.restoreDelayMs = null;
     if (info.reason !== 'destroyed')
@@ -525,7 +552,7 @@ class WebGPUBackend extends BackendBase implements GpuBackend {
     this.restoreWaiters.forEach((w) => w.reject(new VptError('disposed', 'The WebGPU backend was disposed')));
     this.restoreWaiters = [];
     // Last, and after `disposed` is set, so the lost handler does not ask for a new device.
-    this.state.device.destroy();
+    if (!this.shared) this.state.device.destroy();
   }
 
   // ——— internals ———
