@@ -15,3 +15,4 @@ export { parseSidecar, rawFromName } from './formats/raw.js';
 export { axisCodes } from './formats/orientation.js';
 export * from './zarr/index.js';
 export type { ZarrLoadOptions } from './types.js';
+export { openTimeSeries, type LoadedTimeSeries } from './time-series.js';
