@@ -16,3 +16,4 @@ export { axisCodes } from './formats/orientation.js';
 export * from './zarr/index.js';
 export type { ZarrLoadOptions } from './types.js';
 export { openTimeSeries, type LoadedTimeSeries } from './time-series.js';
+export { TimeSeriesCache, isTimeSeriesSource, volumeBytes, type TimeSeriesCacheOptions } from './time-series-cache.js';

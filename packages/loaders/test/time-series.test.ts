@@ -2,8 +2,7 @@ import fs from 'node:fs';
 import path from 'node:path';
 import { gzipSync } from 'node:zlib';
 import { describe, expect, it } from 'vitest';
-import { TimeSeriesCache } from '@vpt/core';
-import { loadVolume, openTimeSeries } from '../src/index.js';
+import { TimeSeriesCache, loadVolume, openTimeSeries } from '../src/index.js';
 import { HERE, bytesIn, expectLoaderError, fileOf, niftiFile, sha256 } from './helpers.js';
 import { pattern, tempDir, writeZarrFolder } from './zarr-fixtures.js';
 

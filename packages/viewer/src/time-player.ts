@@ -1,15 +1,22 @@
 /**
  * The element's time series player, loaded on first use (a lazy chunk of the one-file
  * bundle): the steps of the volume on display (a 4D NIfTI `src`, an OME-Zarr `src` with a
- * `t` axis, or a TimeSeriesSource given to `load()`), held in a TimeSeriesCache that reads
- * the next steps ahead within a byte budget, and playback at `fps` steps per second. A step
+ * `t` axis), held in @vpt/loaders' TimeSeriesCache (every time series source needs that
+ * package), which reads the next steps ahead within a byte budget, and playback at `fps` steps per second. A step
  * is shown only once it is read: playback waits for a step that is not yet in memory
  * rather than skip it, so every step is seen.
  */
-import { TimeSeriesCache, type RequestPolicy, type TimeSeriesSource } from '@vpt/core';
+import type { RequestPolicy, TimeSeriesSource } from '@vpt/core';
 import type { LoadedVolumeLike, VolumeSource } from './loading/types.js';
 import { sourceAtLevel } from './loading/multiscale.js';
 import { loadVolumeSource } from './loading/volume-source.js';
+
+/** The part of @vpt/loaders' TimeSeriesCache the player uses (restated: the package is optional to the viewer). */
+interface StepCache {
+  get(index: number): Promise<LoadedVolumeLike>;
+  dispose(): void;
+}
+type CacheClass = new (source: TimeSeriesSource<LoadedVolumeLike>, options: { budgetBytes: number }) => StepCache;
 
 /** What the player reads and calls of the element. */
 export interface TimePlayerHost {
@@ -30,14 +37,16 @@ export interface TimePlayerHost {
  * The player for a volume just shown that is step 0 of `steps` (its `meta.timeSteps`): the
  * other steps are read from the same source with `time` (loaders' LoadOptions.time).
  */
-export function attachPlayer(
+export async function attachPlayer(
   host: TimePlayerHost,
   first: LoadedVolumeLike,
   source: VolumeSource,
   steps: number,
   budgetBytes: number,
   level?: number,
-): TimePlayer {
+): Promise<TimePlayer> {
+  // @ts-ignore -- optional package, may be absent when this is type-checked
+  const { TimeSeriesCache } = (await import('@vpt/loaders')) as { TimeSeriesCache: CacheClass };
   // A multiscale store's steps are read at the level on display.
   const at = level === undefined ? source : sourceAtLevel(String(source), level);
   let firstTaken = false;
@@ -51,14 +60,11 @@ export function attachPlayer(
       return loadVolumeSource(at, { time: i, request: host.requestPolicy, ...(signal ? { signal } : {}) });
     },
   };
-  const player = new TimePlayer(host, series, 0, budgetBytes);
-  player.update();
-  return player;
+  return new TimePlayer(host, new TimeSeriesCache(series, { budgetBytes }), steps, 0);
 }
 
 export class TimePlayer {
-  readonly cache: TimeSeriesCache<LoadedVolumeLike>;
-  private shown = -1;
+  private shown: number;
   private wanted = -1;
   private timer: ReturnType<typeof setTimeout> | null = null;
   private lastStepAt = 0;
@@ -66,16 +72,11 @@ export class TimePlayer {
 
   constructor(
     private readonly host: TimePlayerHost,
-    readonly source: TimeSeriesSource<LoadedVolumeLike>,
+    readonly cache: StepCache,
+    readonly steps: number,
     shownIndex: number,
-    budgetBytes: number,
   ) {
-    this.cache = new TimeSeriesCache(source, { budgetBytes });
     this.shown = shownIndex;
-  }
-
-  get steps(): number {
-    return this.source.steps;
   }
 
   /** The step on display (−1 before the first). */

@@ -1474,18 +1474,13 @@ export class VptViewer extends LitElement implements PanelHost, SlotHolder {
     const steps = volume.meta?.timeSteps as number;
     if (steps > 1 && !level?.bricked && (!level || level.final))
       this.track(
-        import('./time-player.js').then(
-          (m) =>
-            this.volume === volume &&
-            (this.player = m.attachPlayer(
-              this,
-              volume,
-              source,
-              steps,
-              this.session?.ctx.volumeBudgetBytes ?? 1 << 30,
-              level?.index,
-            )),
-        ),
+        import('./time-player.js').then(async (m) => {
+          const budget = this.session?.ctx.volumeBudgetBytes ?? 1 << 30;
+          const p = await m.attachPlayer(this, volume, source, steps, budget, level?.index);
+          // Another volume came meanwhile: this series is not shown any more.
+          if (this.volume !== volume) return p.dispose();
+          (this.player = p).update();
+        }),
       );
     this.volume = volume;
     this.loadedSource = source;

@@ -1,5 +1,6 @@
 import { describe, expect, it } from 'vitest';
-import { TimeSeriesCache, VptError, type TimeSeriesSource, type Volume } from '../src/index.js';
+import { VptError, type TimeSeriesSource, type Volume } from '@vpt/core';
+import { TimeSeriesCache } from '../src/index.js';
 
 /** A series of `steps` 4×4×4 float32 volumes whose voxels all hold the step index; counts reads. */
 function series(
