@@ -7,6 +7,7 @@ import { decodePNG, opaque } from '../packages/headless/src/image-io.js';
 import { openVptPage, renderScene } from '../packages/headless/src/render.js';
 import { runRender } from '../packages/headless/src/cli/render-main.js';
 import { BACKENDS, usePage } from './helpers/session.js';
+import { writeZarrFolder } from '../packages/loaders/test/zarr-fixtures.js';
 
 const page = usePage();
 
@@ -118,7 +119,7 @@ function nifti(volumes: Uint8Array[]): Uint8Array {
 }
 
 describe('vpt-render --time', () => {
-  it('--time 0:2 writes three numbered images, each the image of that step rendered alone', async () => {
+  it('--time 0:2 writes three numbered images, each the image of that step rendered alone (and of an OME-Zarr t step)', async () => {
     const steps = [0, 1, 2].map(stepVoxels);
     fs.writeFileSync(path.join(dir, 'four.nii'), nifti(steps));
     steps.forEach((s, k) => fs.writeFileSync(path.join(dir, `s${k}.raw`), s));
@@ -157,6 +158,13 @@ describe('vpt-render --time', () => {
         JSON.stringify({ dims: [D, D, D], voxel_type: 'uint8', spacing: [1, 1, 1], file: `s${k}.raw` }),
       ),
     );
+    // The same steps as an OME-Zarr store's t axis.
+    await writeZarrFolder(path.join(dir, 't.ome.zarr'), {
+      dims: [D, D, D],
+      type: 'uint8',
+      spacing: [1, 1, 1],
+      images: steps.map((s) => [s]),
+    });
     const session = await openVptPage({ root: null });
     try {
       const frames = [0, 1, 2].map((k) => decodePNG(fs.readFileSync(path.join(dir, 'out', `frame-00${k}.png`))).rgba);
@@ -171,6 +179,11 @@ describe('vpt-render --time', () => {
         );
         expect(Buffer.compare(Buffer.from(frames[k]), Buffer.from(opaque(alone.ldr!))), `step ${k}`).toBe(0);
         expect(Buffer.compare(Buffer.from(frames[k]), Buffer.from(opaque(listed.ldr!))), `listed step ${k}`).toBe(0);
+        const zarr = await renderScene({ ...common, time: k, volume: { zarr: 't.ome.zarr' } } as never, {
+          baseDir: dir,
+          session,
+        });
+        expect(Buffer.compare(Buffer.from(frames[k]), Buffer.from(opaque(zarr.ldr!))), `zarr step ${k}`).toBe(0);
       }
       expect(Buffer.compare(Buffer.from(frames[0]), Buffer.from(frames[1]))).not.toBe(0);
     } finally {
