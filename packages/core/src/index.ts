@@ -21,6 +21,7 @@ export * from './scene/clip.js';
 export * from './scene/procedural.js';
 export * from './scene/raw-sidecar.js';
 export * from './scene/axis-codes.js';
+export * from './scene/time-series.js';
 
 export {
   UniformLayout,

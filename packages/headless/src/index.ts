@@ -24,7 +24,9 @@ export { headlessPackageDir, findPackageDir, workspaceRoot, mountPagePackages, P
 export {
   SCENE_DEFAULTS,
   checkSceneDescription,
+  selectTimeStep,
   type SceneDescription,
+  type TimeSeriesVolumeDescription,
   type VolumeDescription,
   type RawVolumeDescription,
   type SidecarVolumeDescription,

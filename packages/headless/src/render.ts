@@ -267,6 +267,7 @@ export async function renderScene(desc: SceneDescription, options: RenderSceneOp
     if (options[key] !== undefined) (overrides as Record<string, unknown>)[key] = options[key];
   }
   // Bad fields, missing files and size mismatches fail here, before a browser is started.
+  // (A time series' step is picked there: its volume becomes one file or store.)
   const full = resolveSceneFiles(
     validateSceneDescription({ ...desc, ...overrides }),
     options.baseDir ?? process.cwd(),

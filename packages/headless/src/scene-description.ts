@@ -64,6 +64,18 @@ export interface FileVolumeDescription {
   file: string | string[];
   format?: VolumeFileFormat;
   valueRange?: [number, number];
+  /** The step of a file holding a time series (a 4D NIfTI's dim[4], an OME-Zarr `t`); default 0. */
+  time?: number;
+}
+
+/**
+ * A time series as a list of files of one grid, one per step (each entry as `file` takes
+ * it: a path, or a list of paths loaded together). The scene's `time` picks the step.
+ */
+export interface TimeSeriesVolumeDescription {
+  timeSeries: (string | string[])[];
+  format?: VolumeFileFormat;
+  valueRange?: [number, number];
 }
 
 /** A test volume generated in code (core `createProceduralVolume`). */
@@ -77,6 +89,7 @@ export type VolumeDescription =
   | SidecarVolumeDescription
   | ZarrVolumeDescription
   | FileVolumeDescription
+  | TimeSeriesVolumeDescription
   | ProceduralVolumeDescription;
 
 export interface TransferPointDescription {
@@ -116,6 +129,11 @@ export interface SceneDescription {
   post?: Record<string, unknown>[];
   iterations?: number;
   backend?: BackendName;
+  /**
+   * The time step to render (default 0) of a volume that is a time series: a `timeSeries`
+   * list, a 4D NIfTI `file`, an OME-Zarr `zarr` with a `t` axis (where it sets no `time`).
+   */
+  time?: number;
 }
 
 /** What an unset field means (an unset renderer is core's DEFAULT_RENDERER_NAME). */
@@ -141,6 +159,37 @@ export const DISPLAY_REFERRED_POST: Record<string, unknown>[] = [
 ];
 
 export const BACKEND_NAMES: readonly BackendName[] = ['auto', 'webgl2', 'webgpu'];
+
+/**
+ * The description of one time step: the scene's `time` moved into its volume (a list's
+ * entry becomes a `file`, a file or store gets `time`), so what loads is one volume. A
+ * description without `time` and without a `timeSeries` volume comes back as it is.
+ * Throws (naming the field) for a step past the end of a list, and for a `time` above 0 on
+ * a volume that cannot be a time series (raw, sidecar, procedural).
+ */
+export function selectTimeStep(d: SceneDescription): SceneDescription {
+  const v = d.volume as Record<string, unknown> | undefined;
+  const isList = !!v && Array.isArray(v.timeSeries);
+  if (d.time === undefined && !isList) return d;
+  const { time: step = 0, ...rest } = d;
+  if (!Number.isInteger(step) || step < 0)
+    throw new Error(`Scene description: "time" must be a whole number ≥ 0, got ${JSON.stringify(step)}`);
+  if (isList) {
+    const { timeSeries, ...others } = v as unknown as TimeSeriesVolumeDescription;
+    if (step >= timeSeries.length)
+      throw new Error(
+        `Scene description: "time" ${step} is past the end of volume.timeSeries (${timeSeries.length} steps, 0 to ${timeSeries.length - 1})`,
+      );
+    return { ...rest, volume: { ...others, file: timeSeries[step] } };
+  }
+  if (v && ('file' in v || 'zarr' in v))
+    return { ...rest, volume: { ...(v as object), time: (v.time as number) ?? step } as VolumeDescription };
+  if (step > 0)
+    throw new Error(
+      `Scene description: "time" ${step}: the volume is not a time series (use "timeSeries", a 4D NIfTI "file" or an OME-Zarr "zarr")`,
+    );
+  return rest;
+}
 
 /**
  * Catch the mistakes a person makes when writing a scene file by hand, with a message
@@ -193,9 +242,10 @@ export function checkSceneDescription(d: unknown, rendererNames?: readonly strin
       typeof v.procedural !== 'string' &&
       typeof v.zarr !== 'string' &&
       typeof v.file !== 'string' &&
-      !Array.isArray(v.file)
+      !Array.isArray(v.file) &&
+      !Array.isArray(v.timeSeries)
     ) {
-      bad('"volume" needs one of "file", "raw" (with dims and type), "sidecar", "zarr" or "procedural"');
+      bad('"volume" needs one of "file", "timeSeries", "raw" (with dims and type), "sidecar", "zarr" or "procedural"');
     }
   }
 }

@@ -8,6 +8,7 @@ import type {
   SceneDescription,
   VolumeDescription,
 } from './scene-description.js';
+import { selectTimeStep } from './scene-description.js';
 import type { StaticServer } from './server.js';
 import { validateSceneDescription } from './validate-description.js';
 import { isZarrFolder, servedPaths, volumeFileSet, type VolumeFileSet } from './volume-file-set.js';
@@ -67,7 +68,8 @@ function mapVolumeRefs(
   map: (ref: string, volume: VolumeDescription) => string,
 ): SceneDescription {
   const volume = desc.volume;
-  if (!volume || 'procedural' in volume || 'file' in volume) return desc;
+  // A timeSeries list is one `file` once selectTimeStep has picked the step.
+  if (!volume || 'procedural' in volume || 'file' in volume || 'timeSeries' in volume) return desc;
   const mapped: VolumeDescription =
     'zarr' in volume
       ? { ...volume, zarr: map(volume.zarr, volume) }
@@ -133,6 +135,12 @@ export function resolveSceneFiles(
   options: SceneFileOptions = {},
 ): SceneDescription {
   if (options.root !== undefined) checkRootFolder(options.root);
+  // The step of a time series: its one file or store is what is checked and served.
+  try {
+    desc = selectTimeStep(desc);
+  } catch (e) {
+    throw new VptError('invalid-scene', (e as Error).message, { cause: e });
+  }
   if (desc.volume && 'file' in desc.volume)
     return { ...desc, volume: resolveFileVolume(desc.volume, baseDir, options) };
   return mapVolumeRefs(desc, (ref, volume) => {

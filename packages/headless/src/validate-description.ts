@@ -57,6 +57,7 @@ const TOP_KEYS = [
   'post',
   'iterations',
   'backend',
+  'time',
 ];
 const VOXEL_TYPES = ['uint8', 'uint16', 'int16', 'float32'] as const;
 const PROCEDURAL_KINDS = ['sphere', 'cube', 'ramp', 'blob'] as const;
@@ -103,8 +104,23 @@ function checkVolume(v: unknown): void {
     }
     if (vol.missingChunks !== undefined)
       checkOneOf('volume.missingChunks', vol.missingChunks, ['error', 'fill'] as const);
+  } else if ('timeSeries' in vol) {
+    checkKnownKeys('volume', vol, ['timeSeries', 'format', 'valueRange']);
+    if (!Array.isArray(vol.timeSeries) || vol.timeSeries.length === 0)
+      throw new VptError('invalid-scene', 'volume.timeSeries: must be a non-empty list of files, one per time step');
+    vol.timeSeries.forEach((f, i) => {
+      if (Array.isArray(f)) f.forEach((g, j) => checkString(`volume.timeSeries[${i}][${j}]`, g));
+      else checkString(`volume.timeSeries[${i}]`, f);
+    });
+    if (vol.format !== undefined) checkOneOf('volume.format', vol.format, VOLUME_FILE_FORMATS);
+    if (vol.valueRange !== undefined) {
+      const [lo, hi] = checkNumbers('volume.valueRange', vol.valueRange, 2);
+      if (lo === hi)
+        throw new VptError('invalid-scene', `volume.valueRange: min and max are equal (${lo}), an empty range`);
+    }
   } else if ('file' in vol) {
-    checkKnownKeys('volume', vol, ['file', 'format', 'valueRange']);
+    checkKnownKeys('volume', vol, ['file', 'format', 'valueRange', 'time']);
+    if (vol.time !== undefined) checkNumber('volume.time', vol.time, { min: 0, max: 1e6, integer: true });
     if (Array.isArray(vol.file)) {
       if (!vol.file.length) throw new VptError('invalid-scene', 'volume.file: an empty list names no file');
       vol.file.forEach((f, i) => checkString(`volume.file[${i}]`, f));
@@ -123,7 +139,7 @@ function checkVolume(v: unknown): void {
   } else {
     throw new VptError(
       'invalid-scene',
-      'volume: needs one of "file", "raw" (with dims and type), "sidecar", "zarr" or "procedural"',
+      'volume: needs one of "file", "timeSeries", "raw" (with dims and type), "sidecar", "zarr" or "procedural"',
     );
   }
 }
@@ -177,6 +193,7 @@ export function validateSceneDescription(d: unknown): SceneDescription {
     for (const k of ['width', 'height'] as const)
       if (s[k] !== undefined) checkNumber(k, s[k], countUpTo(MAX_RENDER_SIDE, 'pixels'));
     if (s.iterations !== undefined) checkNumber('iterations', s.iterations, countUpTo(MAX_ITERATIONS));
+    if (s.time !== undefined) checkNumber('time', s.time, { min: 0, max: 1e6, integer: true });
     if (s.seed !== undefined) checkNumber('seed', s.seed, { min: 0, max: 0xffffffff, integer: true });
     if (s.densityScale !== undefined)
       checkNumber('densityScale', s.densityScale, {

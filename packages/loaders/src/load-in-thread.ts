@@ -48,7 +48,17 @@ export async function loadInThread(source: VolumeSource, options: LoadOptions = 
         `format "${String(options.format)}" is not one of auto, raw, nrrd, nifti, dicom, ome-zarr`,
       );
     }
-    return await dispatch(source, options, ctx);
+    const t = ctx.time;
+    if (!Number.isInteger(t) || t < 0)
+      throw new LoaderError('bad-header', `${name}: time step ${t} must be a whole number ≥ 0`);
+    const volume = await dispatch(source, options, ctx);
+    // Only a format that reads time steps sets meta.timeSteps; step 0 of any other is its one volume.
+    if (t > 0 && volume.meta?.timeSteps === undefined)
+      throw new LoaderError(
+        'unsupported',
+        `${name}: time step ${t} asked for, but this ${volume.format} source holds one volume (a time series is an OME-Zarr t axis, a 4D NIfTI file or a list of files)`,
+      );
+    return volume;
   } catch (e) {
     throw toLoaderError(e, name);
   }
@@ -61,7 +71,11 @@ async function dispatch(source: VolumeSource, options: LoadOptions, ctx: LoadCon
     if (wanted === 'ome-zarr' || (!wanted && isZarrLocation(location))) {
       // zarrita and the codecs load only when an OME-Zarr store is asked for.
       const { loadOmeZarr } = await import('./zarr/load-ome-zarr.js');
-      return loadOmeZarr(zarrPathOrUrl(location), options.zarr ?? {}, ctx);
+      const zarr =
+        options.zarr?.time === undefined && options.time !== undefined
+          ? { ...options.zarr, time: options.time }
+          : options.zarr;
+      return loadOmeZarr(zarrPathOrUrl(location), zarr ?? {}, ctx);
     }
     return loadUrl(String(source), wanted, options, ctx);
   }

@@ -62,6 +62,13 @@ export interface LoadOptions {
   /** OME-Zarr: level, channel, time and how to treat missing chunks. */
   zarr?: ZarrLoadOptions;
   /**
+   * The time step to read of a time series held in one source (default 0): a 4D NIfTI
+   * file's volume along dim[4], an OME-Zarr store's `t` index (where `zarr.time` is unset).
+   * A source that holds one volume refuses a step above 0. `meta.timeSteps` says how many
+   * there are (NIfTI, OME-Zarr).
+   */
+  time?: number;
+  /**
    * Bounds on every HTTP request of this load (core's RequestPolicy: stall timeout on
    * headers and body, total bound, retries); unset fields keep DEFAULT_REQUEST_POLICY.
    */

@@ -338,7 +338,9 @@ describe('NIfTI: what other writers produce', () => {
     );
     const v = await loadVolume(fileOf(gz, 'four.nii.gz'));
     expect(Array.from(v.data)).toEqual(Array.from(two.subarray(0, 24)));
-    expect(v.meta?.warnings).toEqual(['the file holds 2 volumes (4D or more); the first is loaded']);
+    expect(v.meta?.warnings).toEqual([
+      'the file holds 2 volumes (4D or more); volume 0 is loaded (LoadOptions.time picks the time step)',
+    ]);
     // Bytes past the whole declared 4D data are still said.
     const padded = new Uint8Array(
       zlib.gzipSync(

@@ -61,6 +61,7 @@ import type { ViewerLoadDetail, ViewerProgressDetail } from './loading/load-even
 import type { LoadedVolumeLike, VolumeSource } from './loading/types.js';
 import { VolumeLoading, type DataLevel } from './loading/volume-loading.js';
 import { LazyOrbitCamera } from './orbit-lazy.js';
+import type { TimePlayer } from './time-player.js';
 import { PANEL_NAMES, type InternalProperty, type PanelHost, type PanelName, type PanelState } from './panel-host.js';
 import { DEFAULT_TRANSFER_FUNCTION, transferFunctionPreset } from './presets.js';
 import { createRenderer, rendererEntry } from './renderer-registry.js';
@@ -105,6 +106,8 @@ export type ViewerChangeDetail =
   | { property: 'crosshair'; value: Voxel }
   /** The slice panes' window [center, width] in data units changed (right-drag). */
   | { property: 'window'; value: [number, number] }
+  /** The time step shown changed (the `time` property, or playback): its index. */
+  | { property: 'time'; value: number }
   | { property: Exclude<InternalProperty, 'clip'>; value: unknown };
 
 /** What the value probe reads under the pointer in a slice pane: the voxel and its raw value in data units. */
@@ -185,6 +188,9 @@ export class VptViewer extends LitElement implements PanelHost, SlotHolder {
     hideProgress: { attribute: 'hide-progress', type: Boolean, reflect: true },
     hideStats: { attribute: 'hide-stats', type: Boolean, reflect: true },
     layout: { type: String, reflect: true },
+    time: { type: Number, reflect: true },
+    fps: { type: Number, reflect: true },
+    playing: { type: Boolean, reflect: true },
     _crosshair: { state: true },
     _window: { state: true },
     _probe: { state: true },
@@ -244,6 +250,14 @@ export class VptViewer extends LitElement implements PanelHost, SlotHolder {
   declare hideStats: boolean;
   /** '3d' (default): the rendering alone; 'slices': axial, coronal and sagittal panes; 'quad': those and the 3D view. */
   declare layout: ViewerLayout;
+  /** The time step shown of a time series (a 4D NIfTI, an OME-Zarr `t` axis); ignored for one volume. */
+  declare time: number;
+  /** Time steps per second while `playing`. */
+  declare fps: number;
+  /** Play the time series, looping (`play()`, `pause()`). */
+  declare playing: boolean;
+  /** The time series player, loaded with the first series (time-player.ts, a lazy chunk). */
+  private player: TimePlayer | null = null;
   declare private _crosshair: Voxel | null;
   declare private _window: [number, number] | null;
   declare private _probe: ProbeReading | null;
@@ -336,6 +350,9 @@ export class VptViewer extends LitElement implements PanelHost, SlotHolder {
     this.hideProgress = false;
     this.hideStats = false;
     this.layout = '3d';
+    this.time = 0;
+    this.fps = 10;
+    this.playing = false;
     this._crosshair = null;
     this._window = null;
     this._probe = null;
@@ -449,6 +466,30 @@ export class VptViewer extends LitElement implements PanelHost, SlotHolder {
       return;
     }
     await this.track(this.volumeLoading.loadSource(source));
+  }
+
+  /** Time steps of the volume (1: not a time series). */
+  get timeSteps(): number {
+    return this.player?.steps ?? 1;
+  }
+
+  play(): void {
+    this.playing = true;
+  }
+
+  pause(): void {
+    this.playing = false;
+  }
+
+  /** The time player's step is read (or failed): it becomes the scene's volume, and `time` and `vpt-change` follow. */
+  showStep(volume: LoadedVolumeLike | null, index: number, error?: unknown): void {
+    if (!volume) return this.fail(error, 'src');
+    this.volume = volume;
+    this.time = index;
+    this.applySync();
+    this.dispatchEvent(
+      new CustomEvent<ViewerChangeDetail>('vpt-change', { detail: { property: 'time', value: index } }),
+    );
   }
 
   /** Frame the volume again (the camera attribute's value when one was given, else an automatic fit). */
@@ -643,6 +684,7 @@ export class VptViewer extends LitElement implements PanelHost, SlotHolder {
     else if (this.session && (changed.has('renderer') || changed.has('rendererParams')))
       this.track(this.switchRenderer());
     if (changed.has('src')) this.track(this.volumeLoading.loadSource(this.src));
+    if (changed.has('time') || changed.has('playing') || changed.has('fps')) this.player?.update();
     if (changed.has('environment')) this.track(this.resolveEnvironment());
     if (SYNC_FIELDS.some((f) => changed.has(f))) this.applySync();
     this.syncPanes(changed.has('backend') || changed.has('layout'));
@@ -1428,6 +1470,19 @@ export class VptViewer extends LitElement implements PanelHost, SlotHolder {
    */
   private applyVolume(volume: LoadedVolumeLike, source: VolumeSource, level: ViewerLoadDetail['level'] | null): void {
     const refinement = level !== null && this.loadedSource === source && this.volume !== null;
+    this.player?.dispose();
+    this.player = null;
+    const steps = volume.meta?.timeSteps as number;
+    if (steps > 1 && !level?.bricked && (!level || level.final))
+      this.track(
+        import('./time-player.js').then(async (m) => {
+          const budget = this.session?.ctx.volumeBudgetBytes ?? 1 << 30;
+          const p = await m.attachPlayer(this, volume, source, steps, budget, level?.index);
+          // Another volume came meanwhile: this series is not shown any more.
+          if (this.volume !== volume) return p.dispose();
+          (this.player = p).update();
+        }),
+      );
     this.volume = volume;
     this.loadedSource = source;
     this._status = '';

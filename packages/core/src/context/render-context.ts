@@ -50,6 +50,8 @@ export interface RenderStats {
   bricking: BrickingStats | null;
   /** The renderer's own choices for the current scene (Renderer.stats; empty when it has none). */
   renderer: Record<string, string>;
+  /** Volumes written into the texture of the previous one (same dims and format: a time series' next step) instead of a new one. */
+  volumeRewrites: number;
 }
 
 type RendererPasses = { generate: GpuPass; integrate: GpuPass; render: GpuPass };
@@ -205,6 +207,7 @@ export class RenderContext {
       gpuBytes: this.gpuBytes(),
       bricking: this.resources.bricked?.stats() ?? null,
       renderer: this._renderer.stats?.() ?? {},
+      volumeRewrites: this.resources.volumeRewrites,
     };
   }
 

@@ -44,6 +44,8 @@ export class SceneResources {
   private volumeSource: Scene['volume'] | null = null;
   volumeUpload: VolumeUpload | null = null;
   private volumeKey = 0; // bumped on every volume upload (VolumeBinding.key)
+  /** Volumes written into the texture of the one before (same dims and format) instead of a new texture. */
+  volumeRewrites = 0;
   private planMemo: { volume: Scene['volume']; sampling: VolumeSampling; plan: VolumeUpload } | null = null;
   private mappingMemo: {
     volume: Scene['volume'];
@@ -189,13 +191,23 @@ export class SceneResources {
     if (uploadsDataAsIs(upload) || width * height * depth <= SLAB_VOXELS)
       return this.backend.createTexture({ ...desc, data: volumeTextureData(volume, upload) });
     const texture = this.backend.createTexture(desc);
+    this.writeVolume(texture, volume, upload);
+    return texture;
+  }
+
+  /** Write a volume's texels into a volume texture of its dims and format, in slabs (see uploadVolume). */
+  private writeVolume(texture: GpuTexture, volume: Scene['volume'], upload: VolumeUpload): void {
+    const [width, height, depth] = volume.dims;
+    if (uploadsDataAsIs(upload) || width * height * depth <= SLAB_VOXELS) {
+      this.backend.writeTexture(texture, volumeTextureData(volume, upload));
+      return;
+    }
     const slabDepth = Math.max(1, Math.floor(SLAB_VOXELS / (width * height)));
     const scratch = new ArrayBuffer(slabDepth * width * height * 4); // one buffer for every slab
     for (let z = 0; z < depth; z += slabDepth) {
       const z1 = Math.min(depth, z + slabDepth);
       this.backend.writeTextureSlices(texture, z, volumeTextureSlab(volume, upload, z, z1, scratch));
     }
-    return texture;
   }
 
   /** Upload the volume and transfer function when they changed (by identity / content). */
@@ -204,7 +216,7 @@ export class SceneResources {
     const upload = this.planUpload(scene.volume, this.samplingOf(scene));
     if (this.brickPlan) this.syncBricked(scene.volume, upload);
     else if (this.bricked) this.dropVolume();
-    const same =
+    let same =
       this.volumeUpload &&
       this.volumeUpload.format === upload.format &&
       this.volumeUpload.filter === upload.filter &&
@@ -221,6 +233,27 @@ export class SceneResources {
       // the gradient volume and the majorant grid follow through their keys.
       this.volumeSource = scene.volume;
       this.dropGradient();
+    }
+    const t = this.volumeTexture;
+    if (
+      !this.bricked &&
+      t &&
+      this.volumeSource !== scene.volume &&
+      this.volumeUpload?.format === upload.format &&
+      this.volumeUpload.filter === upload.filter &&
+      t.width === scene.volume.dims[0] &&
+      t.height === scene.volume.dims[1] &&
+      t.depth === scene.volume.dims[2]
+    ) {
+      // Another volume of the same grid and format (the next step of a time series): its
+      // texels are written into the texture there is, with no new allocation.
+      this.writeVolume(t, scene.volume, upload);
+      this.dropGradient();
+      this.volumeSource = scene.volume;
+      this.volumeUpload = upload;
+      this.volumeKey++;
+      this.volumeRewrites++;
+      same = true;
     }
     if (!this.bricked && (this.volumeSource !== scene.volume || !this.volumeTexture || !same)) {
       this.dropVolume();

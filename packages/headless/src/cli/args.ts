@@ -42,6 +42,11 @@ export const RENDER_CLI = {
       valueName: 'SECONDS',
       description: 'stop the iterations after this long and write the image of those done',
     },
+    time: {
+      type: 'string',
+      valueName: 'A[:B]',
+      description: 'the time step A, or the steps A to B (both included) to numbered images (see below)',
+    },
     'keep-alpha': {
       type: 'boolean',
       description: 'write the coverage as PNG alpha (default: opaque over the background)',
@@ -58,11 +63,20 @@ before exposure and tone mapping.
 (the JSON line then says "timeLimited": true); runs longer than a few seconds print progress
 to stderr.
 
+--time A renders step A of a time series (overriding the scene's "time"); --time A:B renders
+steps A, A+1, ..., B, each to its own file: -o out/frame-%03d.png puts the step's number where
+%d or %0Nd stands (out/frame-007.png); a name without one gets -%03d before its extension when
+more than one step is rendered (-o out/frame.png gives out/frame-000.png, out/frame-001.png, ...).
+--pfm names its files the same way. The steps share one browser; the JSON line lists each
+step's timings in "steps".
+
 A scene file is one JSON object; every field is optional (defaults: a procedural sphere, EAM):
   renderer         eam, mip, mcrt or iso; rendererParams: that renderer's parameters
   volume           one of {"sidecar": "head.json"} (a JSON sidecar beside its .raw),
                    {"raw": "v.raw", "dims": [x, y, z], "type": "uint8|uint16|int16|float32"},
                    {"zarr": "cells.ome.zarr", "level": 0} (OME-Zarr folder or http(s) URL),
+                   {"file": "scan.nii.gz"} (NIfTI, NRRD, DICOM, raw + sidecar, OME-Zarr),
+                   {"timeSeries": ["t0.nrrd", "t1.nrrd", ...]} (one file per time step, one grid),
                    {"procedural": "sphere|cube|ramp|blob", "size": 32}; paths are relative to the scene file
   transferFunction {"points": [{"value", "color", "opacity"}, …]} or {"dimensions": "2d", "widgets": […]}
   camera           position, target, up, fovy (full vertical angle, radians)
@@ -71,6 +85,8 @@ A scene file is one JSON object; every field is optional (defaults: a procedural
   environment      {"type": "constant", "radiance": [r, g, b]} or a "latlong" map
   clip             {"planes": [{"normal": [x, y, z], "offset": d}], "box": {"min": [x, y, z], "max": [x, y, z]}}:
                    up to 6 planes, each removing dot(normal, p) > offset, and a crop box (world units of the box)
+  time             the time step (from 0) of a time series: a "timeSeries" list, a 4D NIfTI file,
+                   an OME-Zarr store with a t axis
   also             width, height, iterations, seed, densityScale, sampling (fast|exact),
                    maxGpuBytes, backend, post (the post chain as JSON)
 Every field is checked first, with an error naming it. The full description, field by field:
@@ -91,6 +107,8 @@ export interface RenderArgs {
   root?: string;
   /** --time-limit, in seconds. */
   timeLimit?: number;
+  /** --time A[:B]: the first and last time step (equal for one step). */
+  time?: { first: number; last: number };
   keepAlpha: boolean;
   verbose: boolean;
   help: boolean;
@@ -123,10 +141,39 @@ export function parseRenderArgs(argv: string[]): RenderArgs {
     seed: values.seed,
     root: values.root,
     ...(values['time-limit'] !== undefined ? { timeLimit: values['time-limit'] } : {}),
+    ...(values.time !== undefined ? { time: parseTimeRange(values.time) } : {}),
     keepAlpha: values['keep-alpha'],
     verbose: values.verbose,
     help: false,
   };
+}
+
+/** `--time A` or `--time A:B` (A ≤ B, whole numbers ≥ 0) as the first and last step. */
+export function parseTimeRange(text: string): { first: number; last: number } {
+  const m = /^(\d+)(?::(\d+))?$/.exec(text.trim());
+  if (!m)
+    throw new CliArgsError('bad-value', `--time: expected a step A or a range A:B of whole numbers, got "${text}"`);
+  const first = Number(m[1]);
+  const last = m[2] === undefined ? first : Number(m[2]);
+  if (last < first) throw new CliArgsError('bad-value', `--time: the range ${text} ends before it starts`);
+  if (last > 1e6) throw new CliArgsError('bad-value', `--time: step ${last} is above the limit of 1000000`);
+  return { first, last };
+}
+
+/**
+ * The file of time step `step`: `%d` / `%0Nd` in the name become the step's number; a name
+ * without one gets `-%03d` before its extension when several steps are written (`numbered`).
+ */
+export function stepFileName(pattern: string, step: number, numbered: boolean): string {
+  if (/%0?\d*d/.test(pattern))
+    return pattern.replace(/%(0?)(\d*)d/g, (_, zero: string, width: string) =>
+      String(step).padStart(Number(width || 0), zero ? '0' : ' '),
+    );
+  if (!numbered) return pattern;
+  const dot = pattern.lastIndexOf('.');
+  const slash = Math.max(pattern.lastIndexOf('/'), pattern.lastIndexOf('\\'));
+  const at = dot > slash + 1 ? dot : pattern.length;
+  return `${pattern.slice(0, at)}-${String(step).padStart(3, '0')}${pattern.slice(at)}`;
 }
 
 /** vpt-serve's option table. */

@@ -1,7 +1,7 @@
 import { encodePFM, encodePNG, opaque } from '../image-io.js';
-import { renderScene } from '../render.js';
+import { openVptPage, renderScene, type RenderResult, type VptPageSession } from '../render.js';
 import { readSceneFile } from '../scene-files.js';
-import { parseRenderArgs, RENDER_USAGE } from './args.js';
+import { parseRenderArgs, RENDER_USAGE, stepFileName } from './args.js';
 import { oneLine, processIO, type CliIO } from './io.js';
 import { checkOutputFile, writeOutputFile } from './output-file.js';
 
@@ -44,33 +44,66 @@ export async function runRender(argv: string[], io: CliIO = processIO): Promise<
       io.out(RENDER_USAGE);
       return 0;
     }
+    // One step (the scene's own, or --time A) or the steps A..B of --time A:B, each to its own files.
+    const steps = args.time
+      ? Array.from({ length: args.time.last - args.time.first + 1 }, (_, i) => args.time!.first + i)
+      : [undefined];
+    const numbered = steps.length > 1;
+    const outputs = steps.map((t) => ({
+      time: t,
+      png: args.output !== undefined && t !== undefined ? stepFileName(args.output, t, numbered) : args.output,
+      pfm: args.pfm !== undefined && t !== undefined ? stepFileName(args.pfm, t, numbered) : args.pfm,
+    }));
     // Output paths first: a folder or an unwritable file must not fail after the whole render.
-    if (args.output !== undefined) checkOutputFile(args.output, '-o');
-    if (args.pfm !== undefined) checkOutputFile(args.pfm, '--pfm');
+    for (const o of outputs) {
+      if (o.png !== undefined) checkOutputFile(o.png, '-o');
+      if (o.pfm !== undefined) checkOutputFile(o.pfm, '--pfm');
+    }
     const { description, baseDir } = readSceneFile(args.scene);
     if (args.output !== undefined && Array.isArray(description.post) && description.post.length === 0)
       throw new Error(EMPTY_CHAIN);
-    const result = await renderScene(description, {
-      baseDir,
-      backend: args.backend,
-      iterations: args.iterations,
-      width: args.width,
-      height: args.height,
-      seed: args.seed,
-      sceneRoot: args.root,
-      ...(args.timeLimit !== undefined ? { timeLimitMs: args.timeLimit * 1000 } : {}),
-      onProgress: progressPrinter(io),
-      onConsole: args.verbose ? (line) => io.err(line) : undefined,
-    });
-    if (args.output !== undefined) {
-      if (!result.ldr) throw new Error(EMPTY_CHAIN);
-      const png = encodePNG(args.keepAlpha ? result.ldr : opaque(result.ldr), result.width, result.height);
-      writeOutputFile(args.output, png, '-o');
+    // Several steps share one browser and page.
+    const session: VptPageSession | undefined = numbered
+      ? await openVptPage({ root: null, onConsole: args.verbose ? (line) => io.err(line) : undefined })
+      : undefined;
+    let result!: RenderResult;
+    const perStep: Record<string, unknown>[] = [];
+    try {
+      for (const o of outputs) {
+        result = await renderScene(o.time === undefined ? description : { ...description, time: o.time }, {
+          baseDir,
+          backend: args.backend,
+          iterations: args.iterations,
+          width: args.width,
+          height: args.height,
+          seed: args.seed,
+          sceneRoot: args.root,
+          ...(args.timeLimit !== undefined ? { timeLimitMs: args.timeLimit * 1000 } : {}),
+          ...(session ? { session } : {}),
+          onProgress: progressPrinter(io),
+          onConsole: args.verbose ? (line) => io.err(line) : undefined,
+        });
+        if (o.png !== undefined) {
+          if (!result.ldr) throw new Error(EMPTY_CHAIN);
+          const png = encodePNG(args.keepAlpha ? result.ldr : opaque(result.ldr), result.width, result.height);
+          writeOutputFile(o.png, png, '-o');
+        }
+        if (o.pfm !== undefined) writeOutputFile(o.pfm, encodePFM(result.hdr, result.width, result.height), '--pfm');
+        if (numbered)
+          perStep.push({
+            time: o.time,
+            ...(o.png !== undefined ? { output: o.png } : {}),
+            ...(o.pfm !== undefined ? { pfm: o.pfm } : {}),
+            ...result.timings,
+          });
+      }
+    } finally {
+      await session?.close();
     }
-    if (args.pfm !== undefined) writeOutputFile(args.pfm, encodePFM(result.hdr, result.width, result.height), '--pfm');
     io.out(
       JSON.stringify({
-        ...result.timings,
+        ...(numbered ? { steps: perStep } : result.timings),
+        ...(outputs[0].time !== undefined && !numbered ? { time: outputs[0].time } : {}),
         width: result.width,
         height: result.height,
         backend: result.backend.kind,

@@ -10,6 +10,7 @@ import {
   DISPLAY_REFERRED_POST,
   SCENE_DEFAULTS,
   checkSceneDescription,
+  selectTimeStep,
   type FileVolumeDescription,
   type SceneDescription,
   type VolumeDescription,
@@ -22,7 +23,7 @@ type CoreModule = VptPageApi['core'];
 interface LoadersModule {
   loadVolume(
     source: string | File[],
-    options: { format?: string; zarr?: Record<string, unknown>; request?: Partial<RequestPolicy> },
+    options: { format?: string; zarr?: Record<string, unknown>; request?: Partial<RequestPolicy>; time?: number },
   ): Promise<Volume & { meta?: Record<string, unknown> }>;
   openOmeZarr(url: string, options: Record<string, unknown>): Promise<MultiscaleSource>;
 }
@@ -53,6 +54,7 @@ async function loadVolume(
   if ('procedural' in desc) return core.createProceduralVolume(desc.procedural, desc.size ?? 32);
   if ('zarr' in desc) return loadZarr(desc, baseUrl, request);
   if ('file' in desc) return loadFile(desc, baseUrl, request);
+  if ('timeSeries' in desc) return loadFile({ ...desc, file: desc.timeSeries[0] }, baseUrl, request);
   if ('sidecar' in desc) {
     // core's raw reader parses the sidecar (as @vpt/loaders and the viewer's fallback do).
     const sidecarUrl = new URL(desc.sidecar, baseUrl).href;
@@ -136,7 +138,7 @@ async function loadFile(
           ),
         )
       : where;
-    loaded = await loaders.loadVolume(source, { ...format, request });
+    loaded = await loaders.loadVolume(source, { ...format, request, ...(desc.time ? { time: desc.time } : {}) });
   } catch (e) {
     throw new core.VptError('load-failed', `Could not load ${where}: ${(e as Error).message}`, { cause: e });
   }
@@ -205,7 +207,7 @@ function environmentOf(d: SceneDescription): Environment {
 /** Build the core Scene for a description (defaults filled in): the page API's entry, which checks it. */
 async function buildScene(d: SceneDescription, baseUrl?: string, request?: Partial<RequestPolicy>): Promise<Scene> {
   checkSceneDescription(d, [...rendererClasses.keys()]);
-  return sceneOf(d, baseUrl, request);
+  return sceneOf(selectTimeStep(d), baseUrl, request);
 }
 
 /** The Scene of a description that was checked where it entered the page (buildScene, renderDescription). */
@@ -255,11 +257,12 @@ function toBase64(a: ArrayBufferView): string {
  * reported in `setupMs`, with volume loading and upload).
  */
 async function renderDescription(
-  desc: SceneDescription,
+  input: SceneDescription,
   options: PageRenderCallOptions = {},
 ): Promise<PageRenderResult> {
   const t0 = performance.now();
-  checkSceneDescription(desc, [...rendererClasses.keys()]);
+  checkSceneDescription(input, [...rendererClasses.keys()]);
+  const desc = selectTimeStep(input);
   const width = desc.width ?? SCENE_DEFAULTS.width;
   const height = desc.height ?? SCENE_DEFAULTS.height;
   const iterations = desc.iterations ?? SCENE_DEFAULTS.iterations;

@@ -84,6 +84,8 @@ interface Plan {
   offset: number;
   count: number;
   extraVolumes: number;
+  /** Volumes along dim[4], the time axis (1 for a 3D file). */
+  timeSteps: number;
   /** A .hdr/.img pair (magic "ni1" / "ni2"): the data is in the .img file, from vox_offset. */
   pair: boolean;
   headerSize: number;
@@ -188,7 +190,13 @@ function readPlan(head: Uint8Array, ctx: LoadContext, nifti: NiftiModule): Plan 
   if (!pair && offset < standard)
     ctx.warnings.push(`vox_offset ${offset} is below the ${standard} the NIfTI-${version} standard requires`);
   const count = dims[0] * dims[1] * dims[2];
-  return { header, dims, source, offset, count, extraVolumes, pair, headerSize: size, version };
+  const timeSteps = d[0] >= 4 ? Math.max(1, d[4]) : 1;
+  if (ctx.time >= timeSteps)
+    throw new LoaderError(
+      'bad-header',
+      `${ctx.name}: time step ${ctx.time} does not exist (the file holds ${timeSteps} along dim[4], 0 to ${timeSteps - 1})`,
+    );
+  return { header, dims, source, offset, count, extraVolumes, timeSteps, pair, headerSize: size, version };
 }
 
 function scalingOf(h: NiftiHeader, ctx: LoadContext): Scaling {
@@ -269,6 +277,8 @@ function earlyFits(plan: Plan, ctx: LoadContext): void {
 }
 
 const SPATIAL_UNITS: Record<number, string> = { 1: 'm', 2: 'mm', 3: 'µm' };
+/** xyzt_units & 0x38: the time unit, as seconds per unit (NIfTI-1: 8 s, 16 ms, 24 µs). */
+const TIME_UNITS: Record<number, number> = { 8: 1, 16: 1e-3, 24: 1e-6 };
 
 /** Loads the .img beside a .hdr (by URL, or among the dropped files). */
 export type PairResolver = (name: string) => Promise<Uint8Array>;
@@ -287,7 +297,8 @@ export async function decodeNifti(input: Uint8Array, ctx: LoadContext, resolve?:
   let bytes = input;
   let plan: Plan | undefined;
   // Peak inflated memory: at most limits.maxBytes of voxel data plus the header and extensions (≤ 1 MiB).
-  const maxOutput = ctx.downsample ? Number.MAX_SAFE_INTEGER : ctx.limits.maxBytes + (1 << 20);
+  // Step t of a 4D file lies after t volumes, each within maxBytes (earlyFits), which are inflated on the way.
+  const maxOutput = ctx.downsample ? Number.MAX_SAFE_INTEGER : (ctx.limits.maxBytes + (1 << 20)) * (ctx.time + 1);
   if (isGzip(input)) {
     // Inflate in steps: once the header is out it is checked, so a lying or oversize file
     // stops before the rest is inflated, and the output is allocated once at its exact size.
@@ -304,15 +315,20 @@ export async function decodeNifti(input: Uint8Array, ctx: LoadContext, resolve?:
         plan = readPlan(head, ctx, nifti);
         earlyFits(plan, ctx);
         if (plan.pair) return plan.headerSize;
-        // Keep the first volume; the others are declared data, not "bytes past the data".
+        // Keep up to the time step asked for; the others are declared data, not "bytes past the data".
         const volumeBytes = plan.count * SOURCE_BYTES[plan.source];
-        return { keep: plan.offset + volumeBytes, declared: plan.offset + volumeBytes * plan.extraVolumes };
+        return {
+          keep: plan.offset + volumeBytes * (ctx.time + 1),
+          declared: plan.offset + volumeBytes * plan.extraVolumes,
+        };
       },
     });
   }
   plan ??= readPlan(bytes, ctx, nifti);
-  const { header, dims, source, offset, count } = plan;
+  const { header, dims, source, count } = plan;
   const volumeBytes = count * SOURCE_BYTES[source];
+  // The volume of time step ctx.time (volumes follow one another, dim[4] the slowest spatial-adjacent axis).
+  const offset = plan.offset + ctx.time * volumeBytes;
   const headerBytes = bytes;
   let inflated = bytes !== input;
   if (plan.pair) {
@@ -327,21 +343,25 @@ export async function decodeNifti(input: Uint8Array, ctx: LoadContext, resolve?:
     bytes = inflated
       ? await gunzip(img, ctx, {
           maxOutput,
-          onHead: () => ({ keep: offset + volumeBytes, declared: offset + volumeBytes * plan!.extraVolumes }),
+          onHead: () => ({ keep: offset + volumeBytes, declared: plan!.offset + volumeBytes * plan!.extraVolumes }),
           headBytes: 0,
         })
       : img;
   }
   if (plan.extraVolumes > 1)
-    ctx.warnings.push(`the file holds ${plan.extraVolumes} volumes (4D or more); the first is loaded`);
+    ctx.warnings.push(
+      `the file holds ${plan.extraVolumes} volumes (4D or more); volume ${ctx.time} is loaded (LoadOptions.time picks the time step)`,
+    );
   const scaling = scalingOf(header, ctx);
   checkAvailable(bytes.length - offset, volumeBytes, ctx);
-  const extra = bytes.length - offset - volumeBytes * Math.max(1, plan.extraVolumes);
+  const extra = bytes.length - plan.offset - volumeBytes * Math.max(1, plan.extraVolumes);
   if (!inflated && extra > 0)
     ctx.warnings.push(`${extra} bytes past the data the header declares are ignored; check the dims and datatype`);
   earlyFits(plan, ctx);
   ctx.progress('convert', 0, count);
-  const samples = readSamples(bytes, offset, count, source, header.littleEndian, ownsMemory(bytes, ctx.borrowed));
+  // A view would keep the other time steps' bytes alive beside it: one step of a 4D file is copied out.
+  const view = ownsMemory(bytes, ctx.borrowed) && plan.timeSteps === 1;
+  const samples = readSamples(bytes, offset, count, source, header.littleEndian, view);
   const type = chooseTypeOf(samples, source, scaling, ctx.warnings);
   const data = toVoxelArray(samples, type, scaling);
   ctx.progress('convert', count, count);
@@ -371,6 +391,10 @@ export async function decodeNifti(input: Uint8Array, ctx: LoadContext, resolve?:
     pixdim,
   };
   if (plan.pair) meta.pair = true;
+  meta.timeSteps = plan.timeSteps;
+  const secondsPerUnit = TIME_UNITS[header.xyzt_units & 0x38];
+  const dt = header.pixDims[4];
+  if (plan.timeSteps > 1 && secondsPerUnit && Number.isFinite(dt) && dt > 0) meta.stepSeconds = dt * secondsPerUnit;
   if (place.orientation) meta.axisCodes = axisCodes(place.orientation, 'RAS');
   const units = SPATIAL_UNITS[header.xyzt_units & 7];
   if (units) meta.spacingUnits = units;

@@ -68,6 +68,7 @@ export async function loadOmeZarr(location: string, options: ZarrLoadOptions, ct
   const volume = await source.readLevel(level, ctx.signal);
   ctx.warnings.push(...source.meta.warnings);
   const meta: Record<string, unknown> = {
+    timeSteps: source.meta.times,
     zarr: {
       ...source.meta,
       level,

@@ -28,6 +28,8 @@ export interface LoadOptions {
   request?: Partial<RequestPolicy>;
   /** How headerless raw data gets its dims and type, as the loader's errors say it. */
   rawHint?: string;
+  /** The time step of a source holding several (a 4D NIfTI, an OME-Zarr `t` axis). */
+  time?: number;
 }
 
 /** A core Volume plus the format it was read from (and, from @vpt/loaders, orientation and metadata). */

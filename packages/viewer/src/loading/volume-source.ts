@@ -122,7 +122,7 @@ export async function loadVolumeSource(source: VolumeSource, options: LoadOption
   // Only URLs are shared, with progress from the first viewer that asked (the others see the bar jump).
   const key =
     typeof source === 'string' || source instanceof URL
-      ? JSON.stringify([absolute(String(source)), opts.limits ?? null, opts.format ?? null])
+      ? JSON.stringify([absolute(String(source)), opts.limits ?? null, opts.format ?? null, opts.time ?? 0])
       : null;
   const volume = key
     ? await sharedLoad(key, opts, (signal) => loadVolume(source, { ...opts, signal }))
