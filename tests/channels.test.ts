@@ -363,7 +363,7 @@ describe('MCRT: the channels are one mixture (z-test against a scalar volume hol
   /** Float32 fields so the scalar twin can hold sums exactly enough; ramp TFs (opacity = value × gain). */
   async function mcrt(voxels: number[], channels: number, settings: ChannelSettings[] | null, tf: TransferFunction | null, seed: number) {
     return page.run(
-      async ({ core, mt, t }, voxels, channels, settings, tf, seed, n, camera, w, h) => {
+      async ({ core, mt, t }, voxels, channels, settings, tf, seed, n, camera, w, h, iterations) => {
         const volume = core.createVolume([n, n, n], 'float32', new Float32Array(voxels), [1, 1, 1], channels);
         volume.valueRange = [0, 1];
         const scene = {
@@ -378,7 +378,7 @@ describe('MCRT: the channels are one mixture (z-test against a scalar volume hol
           lights: [{ type: 'directional' as const, direction: [-0.5, 1, 0.4] as Vec3, irradiance: [2, 1.8, 1.5] as Vec3 }],
           ...(settings ? { channels: settings } : {}),
         };
-        const r = await mt.run({ backend: 'webgl2', width: w, height: h, iterations: MN, scene, params: { majorantCellSize: 4 } });
+        const r = await mt.run({ backend: 'webgl2', width: w, height: h, iterations, scene, params: { majorantCellSize: 4 } });
         return { mean: r.mean!, se: r.se!, nonFinite: r.nonFinite };
       },
       voxels,
@@ -390,6 +390,7 @@ describe('MCRT: the channels are one mixture (z-test against a scalar volume hol
       CAMERA,
       MW,
       MH,
+      MN,
     );
   }
   const f = (k: number) => Array.from(FIELDS[k], (x) => x / 255);

@@ -42,6 +42,8 @@ export interface ZarrVolumeDescription {
   zarr: string;
   level?: number;
   channel?: number;
+  /** Several channels along `c`, in this order: a multichannel volume (the scene then needs top-level `channels`). */
+  channels?: number[];
   time?: number;
   valueRange?: [number, number];
   /** A chunk the store lacks: 'fill' (default: the array's fill value, as the Zarr spec says) or 'error' (strict). */
@@ -72,12 +74,25 @@ export interface ProceduralVolumeDescription {
   size?: number;
 }
 
-export type VolumeDescription =
+/** Several volumes of one grid and voxel type, one per channel (interleaved into one multichannel volume). */
+export interface ChannelFilesVolumeDescription {
+  channels: SingleVolumeDescription[];
+}
+
+/** One volume (one channel, or a scalar volume). */
+export type SingleVolumeDescription =
   | RawVolumeDescription
   | SidecarVolumeDescription
   | ZarrVolumeDescription
   | FileVolumeDescription
   | ProceduralVolumeDescription;
+
+export type VolumeDescription = ChannelFilesVolumeDescription | SingleVolumeDescription;
+
+/** A list of volumes, one per channel (not an OME-Zarr store's `channels` indices). */
+export function isChannelFiles(v: VolumeDescription): v is ChannelFilesVolumeDescription {
+  return 'channels' in v && !('zarr' in v);
+}
 
 export interface TransferPointDescription {
   value: number;
@@ -116,6 +131,18 @@ export interface SceneDescription {
   post?: Record<string, unknown>[];
   iterations?: number;
   backend?: BackendName;
+  /**
+   * One entry per channel of a multichannel volume (core's ChannelSettings): a 1D transfer
+   * function, `enabled` (default true; at most 4 at once), an optional linear-RGB `color`
+   * replacing the TF's colours and an optional data `range`. The top-level `transferFunction`
+   * is then not drawn.
+   */
+  channels?: {
+    transferFunction: { dimensions?: '1d'; points: TransferPointDescription[] };
+    enabled?: boolean;
+    color?: Vec3;
+    range?: [number, number];
+  }[];
 }
 
 /** What an unset field means (an unset renderer is core's DEFAULT_RENDERER_NAME). */
