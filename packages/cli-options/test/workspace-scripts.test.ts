@@ -25,6 +25,7 @@ const SCRIPTS: Record<string, { notANumber?: { argv: string[]; names: string } }
   'tools/viewer-screenshots.mjs': {},
   'benchmarks/bricking.mjs': { notANumber: { argv: ['--size', 'abc'], names: '--size' } },
   'benchmarks/clip-cost.mjs': { notANumber: { argv: ['--rounds', 'many'], names: '--rounds' } },
+  'benchmarks/channel-cost.mjs': { notANumber: { argv: ['--rounds', 'many'], names: '--rounds' } },
   'benchmarks/bundle-size.mjs': { notANumber: { argv: ['--budget', 'small'], names: '--budget' } },
   'benchmarks/read-speed.mjs': { notANumber: { argv: ['--runs', 'many'], names: '--runs' } },
   'benchmarks/mcrt-fetches.mjs': { notANumber: { argv: ['--iterations', '1.5'], names: '--iterations' } },

@@ -42,6 +42,9 @@ export { createWebGPUBackend, isWebGPUAvailable } from './gpu/webgpu/webgpu-back
 export type { Renderer, KernelSource, AuxiliaryTexture, AuxiliaryPass, VolumeBinding } from './renderer.js';
 export {
   planVolumeUpload,
+  planChannelUpload,
+  channelTextureData,
+  channelComponents,
   uploadsDataAsIs,
   volumeTextureData,
   volumeTextureSlab,

@@ -211,7 +211,10 @@ export function checkSceneDescription(d: unknown, rendererNames?: readonly strin
   const v = s.volume as Record<string, unknown> | undefined;
   if (v !== undefined) {
     if (!v || typeof v !== 'object') bad('"volume" must be an object');
-    else if (typeof v.raw === 'string') {
+    else if (Array.isArray(v.channels) && typeof v.zarr !== 'string') {
+      // One volume per channel: each is checked as a volume (validateSceneDescription does it field by field).
+      if (!v.channels.length) bad('"volume.channels" names no channel');
+    } else if (typeof v.raw === 'string') {
       if (!Array.isArray(v.dims) || v.dims.length !== 3) bad('"volume.dims" must be [nx, ny, nz]');
       if (!['uint8', 'uint16', 'int16', 'float32'].includes(v.type as string))
         bad(`"volume.type" must be uint8, uint16, int16 or float32, got ${JSON.stringify(v.type)}`);
@@ -222,7 +225,7 @@ export function checkSceneDescription(d: unknown, rendererNames?: readonly strin
       typeof v.file !== 'string' &&
       !Array.isArray(v.file)
     ) {
-      bad('"volume" needs one of "file", "raw" (with dims and type), "sidecar", "zarr" or "procedural"');
+      bad('"volume" needs one of "file", "raw" (with dims and type), "sidecar", "zarr", "procedural" or "channels"');
     }
   }
 }

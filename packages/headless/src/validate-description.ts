@@ -154,7 +154,7 @@ function checkVolume(v: unknown, at = 'volume'): void {
   } else {
     throw new VptError(
       'invalid-scene',
-      'volume: needs one of "file", "raw" (with dims and type), "sidecar", "zarr" or "procedural"',
+      `${at}: needs one of "file", "raw" (with dims and type), "sidecar", "zarr", "procedural" or "channels" (one volume per channel)`,
     );
   }
 }
