@@ -15,7 +15,8 @@ import { parseCliOrExit } from '@vpt/cli-options';
 const { size, volume, rounds, batch, backend } = parseCliOrExit({
   name: 'node benchmarks/channel-cost.mjs',
   synopsis: '[--size N] [--volume N] [--rounds N] [--batch N] [--backend webgl2|webgpu]',
-  summary: 'ms per iteration and volume bytes with 1–4 channels against the scalar path, per renderer, interleaved (needs pnpm run build).',
+  summary:
+    'ms per iteration and volume bytes with 1–4 channels against the scalar path, per renderer, interleaved (needs pnpm run build).',
   options: {
     size: { type: 'integer', min: 1, default: 96, description: 'image side in pixels' },
     volume: { type: 'integer', min: 4, default: 64, description: 'volume side in voxels' },

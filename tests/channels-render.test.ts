@@ -27,7 +27,7 @@ function blob(cx: number, cy: number, cz: number, r: number): Uint8Array {
 const C0 = blob(0.4, 0.5, 0.5, 0.22),
   C1 = blob(0.62, 0.42, 0.55, 0.18);
 
-const tf = (color: number[], opacity: number) => ({
+const tf = (color: [number, number, number], opacity: number) => ({
   points: [
     { value: 0.1, color, opacity: 0 },
     { value: 1, color, opacity },
@@ -62,7 +62,14 @@ describe('vpt-render: multichannel scene files', () => {
     await writeZarrFolder(
       path.join(TMP, 'two.ome.zarr'),
       { dims: [N, N, N], type: 'uint8', spacing: [1, 1, 1], images: [[C0, C1]] },
-      { version: '0.4', codec: 'gzip', windows: [[0, 255], [0, 255]] },
+      {
+        version: '0.4',
+        codec: 'gzip',
+        windows: [
+          [0, 255],
+          [0, 255],
+        ],
+      },
     );
     fs.writeFileSync(path.join(TMP, 'c0.raw'), C0);
     fs.writeFileSync(path.join(TMP, 'c1.raw'), C1);
@@ -101,8 +108,7 @@ describe('vpt-render: multichannel scene files', () => {
       expect(bitsDiffer(zeroed.hdr, alone.hdr)).toBe(0);
       // The second channel is visible when its TF is not zero: the check can fail.
       let changed = 0;
-      for (let i = 0; i < both.hdr.length; i += 4)
-        if (Math.abs(both.hdr[i + 1] - zeroed.hdr[i + 1]) > 0.01) changed++;
+      for (let i = 0; i < both.hdr.length; i += 4) if (Math.abs(both.hdr[i + 1] - zeroed.hdr[i + 1]) > 0.01) changed++;
       expect(changed).toBeGreaterThan(10);
       expect(bitsDiffer(both.hdr, fromFiles.hdr)).toBe(0);
       // The GPU memory of the 2-channel texture: 2 × 4 bytes per voxel on the exact path (rg32float).
@@ -117,9 +123,9 @@ describe('vpt-render: multichannel scene files', () => {
     expect(bad({ volume: zarr, channels: [{ transferFunction: red }, { enabled: true }] })).toThrow(
       /channels\[1\]\.transferFunction: is required/,
     );
-    expect(bad({ volume: zarr, channels: [{ transferFunction: red }, { transferFunction: red, colour: [1, 0, 0] }] })).toThrow(
-      /channels\[1\]/,
-    );
+    expect(
+      bad({ volume: zarr, channels: [{ transferFunction: red }, { transferFunction: red, colour: [1, 0, 0] }] }),
+    ).toThrow(/channels\[1\]/);
     expect(
       bad({ volume: zarr, channels: [{ transferFunction: red }, { transferFunction: red, color: [2, 0, 0] }] }),
     ).toThrow(/channels\[1\]\.color/);

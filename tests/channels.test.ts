@@ -214,8 +214,7 @@ describe('one channel through the multichannel path gives the scalar path, bit f
   for (const backend of BACKENDS)
     for (const renderer of ['eam', 'iso', 'mcrt'])
       it(`${renderer} on ${backend}`, async () => {
-        const params =
-          renderer === 'iso' ? { surfaces: [{ value: 0.45, color: [0.9, 0.7, 0.5] }], jitter: false } : {};
+        const params = renderer === 'iso' ? { surfaces: [{ value: 0.45, color: [0.9, 0.7, 0.5] }], jitter: false } : {};
         const base = {
           backend,
           renderer,
@@ -361,7 +360,13 @@ describe('MCRT: the channels are one mixture (z-test against a scalar volume hol
     MH = 16,
     MN = 64;
   /** Float32 fields so the scalar twin can hold sums exactly enough; ramp TFs (opacity = value × gain). */
-  async function mcrt(voxels: number[], channels: number, settings: ChannelSettings[] | null, tf: TransferFunction | null, seed: number) {
+  async function mcrt(
+    voxels: number[],
+    channels: number,
+    settings: ChannelSettings[] | null,
+    tf: TransferFunction | null,
+    seed: number,
+  ) {
     return page.run(
       async ({ core, mt, t }, voxels, channels, settings, tf, seed, n, camera, w, h, iterations) => {
         const volume = core.createVolume([n, n, n], 'float32', new Float32Array(voxels), [1, 1, 1], channels);
@@ -375,10 +380,19 @@ describe('MCRT: the channels are one mixture (z-test against a scalar volume hol
             densityScale: 14,
             seed,
           }),
-          lights: [{ type: 'directional' as const, direction: [-0.5, 1, 0.4] as Vec3, irradiance: [2, 1.8, 1.5] as Vec3 }],
+          lights: [
+            { type: 'directional' as const, direction: [-0.5, 1, 0.4] as Vec3, irradiance: [2, 1.8, 1.5] as Vec3 },
+          ],
           ...(settings ? { channels: settings } : {}),
         };
-        const r = await mt.run({ backend: 'webgl2', width: w, height: h, iterations, scene, params: { majorantCellSize: 4 } });
+        const r = await mt.run({
+          backend: 'webgl2',
+          width: w,
+          height: h,
+          iterations,
+          scene,
+          params: { majorantCellSize: 4 },
+        });
         return { mean: r.mean!, se: r.se!, nonFinite: r.nonFinite };
       },
       voxels,

@@ -47,7 +47,10 @@ const caps = (norm16: boolean): BackendCapabilities => ({ norm16, float32Filtera
 
 describe('the multichannel volume model', () => {
   it('interleaves channels of one grid channel-fastest and takes them apart again', () => {
-    const v = interleaveChannels([createVolume([N, N, N], 'uint8', ramp(0)), createVolume([N, N, N], 'uint8', ramp(1))]);
+    const v = interleaveChannels([
+      createVolume([N, N, N], 'uint8', ramp(0)),
+      createVolume([N, N, N], 'uint8', ramp(1)),
+    ]);
     expect(v.channels).toBe(2);
     expect(v.data.length).toBe(2 * N ** 3);
     expect(v.data[2 * 5 + 1]).toBe(ramp(1)[5]);
@@ -74,10 +77,22 @@ describe('the multichannel volume model', () => {
     };
     expect(err(scene(2))).toMatch(/needs "channels"/);
     expect(err(scene(2, [{ transferFunction: tfs[0] }]))).toMatch(/1 entries for a volume of 2 channels/);
-    expect(err(scene(5, tfs.map((transferFunction) => ({ transferFunction }))))).toMatch(/MAX_ENABLED_CHANNELS/);
-    expect(err(scene(2, [{ transferFunction: tfs[0], enabled: false }, { transferFunction: tfs[1], enabled: false }]))).toMatch(
-      /no channel is enabled/,
-    );
+    expect(
+      err(
+        scene(
+          5,
+          tfs.map((transferFunction) => ({ transferFunction })),
+        ),
+      ),
+    ).toMatch(/MAX_ENABLED_CHANNELS/);
+    expect(
+      err(
+        scene(2, [
+          { transferFunction: tfs[0], enabled: false },
+          { transferFunction: tfs[1], enabled: false },
+        ]),
+      ),
+    ).toMatch(/no channel is enabled/);
     expect(err(scene(2, [{ transferFunction: tfs[0] }, { transferFunction: tfs[1], color: [0, 2, 0] }]))).toMatch(
       /channels\[1\]\.color\[1\]/,
     );
@@ -85,8 +100,17 @@ describe('the multichannel volume model', () => {
       /channels\[1\]\.range/,
     );
     // Five listed, four drawn: fine.
-    expect(err(scene(5, tfs.map((transferFunction, k) => ({ transferFunction, enabled: k !== 2 }))))).toBe('');
-    expect(enabledChannels(tfs.map((transferFunction, k) => ({ transferFunction, enabled: k !== 2 })))).toEqual([0, 1, 3, 4]);
+    expect(
+      err(
+        scene(
+          5,
+          tfs.map((transferFunction, k) => ({ transferFunction, enabled: k !== 2 })),
+        ),
+      ),
+    ).toBe('');
+    expect(enabledChannels(tfs.map((transferFunction, k) => ({ transferFunction, enabled: k !== 2 })))).toEqual([
+      0, 1, 3, 4,
+    ]);
   });
 });
 
@@ -96,7 +120,10 @@ describe('GPU storage of the drawn channels', () => {
       v3 = scene(3).volume;
     const fast = { sampling: 'fast' as const };
     expect(planChannelUpload(v2, caps(true), fast, [0, 1])).toMatchObject({ format: 'rg8unorm', bytesPerVoxel: 2 });
-    expect(planChannelUpload(v3, caps(true), fast, [0, 1, 2])).toMatchObject({ format: 'rgba8unorm', bytesPerVoxel: 4 });
+    expect(planChannelUpload(v3, caps(true), fast, [0, 1, 2])).toMatchObject({
+      format: 'rgba8unorm',
+      bytesPerVoxel: 4,
+    });
     expect(planChannelUpload(v2, caps(true), { sampling: 'exact' }, [0, 1]).format).toBe('rg32float');
     // One drawn channel is planned as the scalar volume holding it.
     expect(planChannelUpload(v2, caps(true), fast, [1]).format).toBe('r8unorm');
@@ -106,7 +133,10 @@ describe('GPU storage of the drawn channels', () => {
     ]);
     expect(planChannelUpload(u16, caps(true), fast, [0, 1]).format).toBe('rg16unorm');
     // Without 16-bit norm formats: half floats holding the integers, shifted when any drawn one reaches 65520.
-    expect(planChannelUpload(u16, caps(false), fast, [0, 1])).toMatchObject({ format: 'rg16float', decodeOffset: 32768 });
+    expect(planChannelUpload(u16, caps(false), fast, [0, 1])).toMatchObject({
+      format: 'rg16float',
+      decodeOffset: 32768,
+    });
     expect(planChannelUpload(u16, caps(false), fast, [1, 0])).toMatchObject({ decodeOffset: 32768 });
     expect(planChannelUpload(u16, caps(false), fast, [1])).toMatchObject({ format: 'r16float', decodeOffset: 0 });
   });
@@ -164,9 +194,16 @@ describe('the majorant grid of a channel scene bounds the sum of the channels', 
       expect(Math.abs(grid.data[c] - sum)).toBeLessThanOrEqual(1e-6 * sum);
       expect(grid.data[c]).toBeGreaterThanOrEqual(Math.max(...per.map((g) => g.data[c])));
     }
-    const one = scalarSceneOf(scene(2, [{ transferFunction: tfs[0], enabled: false }, { transferFunction: tfs[1], color: [0, 0, 1] }]))!;
+    const one = scalarSceneOf(
+      scene(2, [
+        { transferFunction: tfs[0], enabled: false },
+        { transferFunction: tfs[1], color: [0, 0, 1] },
+      ]),
+    )!;
     expect(one.channels).toBeUndefined();
     expect(Array.from(one.volume.data)).toEqual(Array.from(ramp(1)));
-    expect(one.transferFunction.dimensions === '1d' && one.transferFunction.points.every((p) => p.color[2] === 1)).toBe(true);
+    expect(one.transferFunction.dimensions === '1d' && one.transferFunction.points.every((p) => p.color[2] === 1)).toBe(
+      true,
+    );
   });
 });

@@ -223,7 +223,10 @@ function checkChannels(c: unknown, volume: unknown): void {
       throw new VptError('invalid-scene', `channels[${i}].transferFunction: a channel takes a 1D transfer function`);
     transferFunctionFromJSON({ dimensions: '1d', ...tf });
     if (o.enabled !== undefined && typeof o.enabled !== 'boolean')
-      throw new VptError('invalid-scene', `channels[${i}].enabled: must be true or false, got ${JSON.stringify(o.enabled)}`);
+      throw new VptError(
+        'invalid-scene',
+        `channels[${i}].enabled: must be true or false, got ${JSON.stringify(o.enabled)}`,
+      );
     if (o.color !== undefined) checkNumbers(`channels[${i}].color`, o.color, 3, { min: 0, max: 1 });
     if (o.range !== undefined) {
       const [lo, hi] = checkNumbers(`channels[${i}].range`, o.range, 2);

@@ -118,7 +118,8 @@ export function phasePeakRatio(g: number): number {
 /** Grid statistics from every `stride`-th voxel per axis (stride ≥ 1 so that at most ~2²¹ voxels are read). */
 export function gridStatistics(given: Scene, cellSize: number): GridStatistics {
   const scene = scalarSceneOf(given) ?? given;
-  if (scene.channels) return statisticsOf(channelMajorantGrid(scene.volume, scene.channels, scene.densityScale, cellSize));
+  if (scene.channels)
+    return statisticsOf(channelMajorantGrid(scene.volume, scene.channels, scene.densityScale, cellSize));
   const v = scene.volume;
   const [nx, ny, nz] = v.dims;
   const stride = Math.max(1, Math.ceil(Math.cbrt((nx * ny * nz) / MAX_SAMPLED_VOXELS)));

@@ -53,7 +53,9 @@ export class MipRenderer extends BaseRenderer<MipParams> {
 
   /** With skipping, each majorant-grid cell's range of volume texels, built on the GPU. */
   auxiliaryTextures(scene: Scene, volume: VolumeBinding): readonly AuxiliaryTexture[] {
-    return this.skipping && !scene.channels ? majorantGridTextures(scene, volume, DEFAULT_SKIP_CELL_SIZE, 'ranges') : [];
+    return this.skipping && !scene.channels
+      ? majorantGridTextures(scene, volume, DEFAULT_SKIP_CELL_SIZE, 'ranges')
+      : [];
   }
 
   private get skipping(): boolean {

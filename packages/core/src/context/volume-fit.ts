@@ -190,7 +190,11 @@ export class VolumeFit {
         `a multichannel scene cannot be bricked (bricking: '${source ? 'a streamed source' : bricking}'); bricked volumes hold one channel (MAX_BRICKED_CHANNELS = 1): render it unbricked, downsampled to fit maxGpuBytes`,
       );
     }
-    if (!channels && brickable && (source || bricking === 'force' || (bricking === 'auto' && factors.some((f) => f > 1)))) {
+    if (
+      !channels &&
+      brickable &&
+      (source || bricking === 'force' || (bricking === 'auto' && factors.some((f) => f > 1)))
+    ) {
       const bricks: BrickPlan = {
         capacityBytes: budget,
         brickSize: this.options.brickSize,

@@ -223,11 +223,7 @@ export function planChannelUpload(
   channels: readonly number[],
 ): VolumeUpload {
   if (channels.length === 1) return planVolumeUpload(channelVolume(volume, channels[0]), caps, opts);
-  const scalar = planVolumeUpload(
-    channelVolume(volume, channels[0]),
-    caps,
-    { ...opts, allowHalfFloat: false },
-  );
+  const scalar = planVolumeUpload(channelVolume(volume, channels[0]), caps, { ...opts, allowHalfFloat: false });
   let decodeOffset = scalar.decodeOffset;
   if (scalar.format === 'r16float' && volume.type === 'uint16') {
     // Half cannot hold uint16 values ≥ 65520: shift every channel when any drawn one holds them.

@@ -285,7 +285,11 @@ export function channelMajorantGrid(
       ranges = computeCellValueRanges(normalizedData(one), one.dims, gridCells(one.dims, cellSize));
       byKey!.set(key, ranges);
     }
-    const grid = buildMajorantGrid(ranges, tf.subarray(4 * TF_RESOLUTION * row, 4 * TF_RESOLUTION * (row + 1)), densityScale);
+    const grid = buildMajorantGrid(
+      ranges,
+      tf.subarray(4 * TF_RESOLUTION * row, 4 * TF_RESOLUTION * (row + 1)),
+      densityScale,
+    );
     cells = grid.cells;
     if (!sum) sum = grid.data;
     else for (let i = 0; i < sum.length; i++) sum[i] = Math.fround(sum[i] + grid.data[i]);

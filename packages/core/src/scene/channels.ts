@@ -56,7 +56,8 @@ export function validateChannels(channels: unknown, volume: Volume, densityScale
   if (!Array.isArray(channels)) bad(` must be an array of channel settings, got ${JSON.stringify(channels)}`);
   const list = channels as ChannelSettings[];
   const n = channelCount(volume);
-  if (list.length !== n) bad(`: ${list.length} entries for a volume of ${n} channel${n === 1 ? '' : 's'} (one per channel)`);
+  if (list.length !== n)
+    bad(`: ${list.length} entries for a volume of ${n} channel${n === 1 ? '' : 's'} (one per channel)`);
   let maxSum = 0;
   list.forEach((c, i) => {
     const at = (f: string) => `[${i}]${f}`;
@@ -80,7 +81,9 @@ export function validateChannels(channels: unknown, volume: Volume, densityScale
         !c.range.every((x) => typeof x === 'number' && Number.isFinite(x)) ||
         c.range[0] === c.range[1])
     )
-      bad(`${at('.range')} must be two different finite numbers [LO, HI] (LO > HI inverts), got ${JSON.stringify(c.range)}`);
+      bad(
+        `${at('.range')} must be two different finite numbers [LO, HI] (LO > HI inverts), got ${JSON.stringify(c.range)}`,
+      );
     const tf = c.transferFunction;
     if (c.enabled !== false && tf.dimensions !== '2d') maxSum += Math.max(...tf.points.map((p) => p.opacity));
   });
@@ -137,9 +140,9 @@ export function rasterizeChannelTransferFunctions(
  * choice must be the scalar path's for one channel (majorant grids, MCRT's estimator choice),
  * so one channel through the multichannel path renders the scalar path's bits.
  */
-export function scalarSceneOf<S extends { volume: Volume; transferFunction: TransferFunction; channels?: ChannelSettings[] }>(
-  scene: S,
-): S | null {
+export function scalarSceneOf<
+  S extends { volume: Volume; transferFunction: TransferFunction; channels?: ChannelSettings[] },
+>(scene: S): S | null {
   if (!scene.channels) return null;
   const memo = scalarScenes.get(scene);
   if (memo !== undefined) return memo as S | null;
@@ -151,9 +154,9 @@ export function scalarSceneOf<S extends { volume: Volume; transferFunction: Tran
 // Per scene object (kernels' parameter values ask every iteration; the volume object must stay the same).
 const scalarScenes = new WeakMap<object, object | null>();
 
-function makeScalarScene<S extends { volume: Volume; transferFunction: TransferFunction; channels?: ChannelSettings[] }>(
-  scene: S,
-): S | null {
+function makeScalarScene<
+  S extends { volume: Volume; transferFunction: TransferFunction; channels?: ChannelSettings[] },
+>(scene: S): S | null {
   if (!scene.channels) return null;
   const drawn = enabledChannels(scene.channels);
   if (drawn.length !== 1) return null;

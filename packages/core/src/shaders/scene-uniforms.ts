@@ -86,7 +86,8 @@ export function sceneUniformValues(
       ? scene.channels.filter((c) => c.enabled !== false).length
       : transferFunctionSize(scene.transferFunction, tfSize)[1],
     gradientAtlasColumns: sliceAtlasLayout(scene.volume.dims).columns,
-    tfGradientMax: !scene.channels && scene.transferFunction.dimensions === '2d' ? (scene.transferFunction.gradientMax ?? 0) : 0,
+    tfGradientMax:
+      !scene.channels && scene.transferFunction.dimensions === '2d' ? (scene.transferFunction.gradientMax ?? 0) : 0,
     valueScale: map.valueScale,
     valueOffset: map.valueOffset,
   };

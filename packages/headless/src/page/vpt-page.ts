@@ -95,7 +95,10 @@ async function loadChannels(
 ): Promise<Volume> {
   const parts = await Promise.all(descs.map((d) => loadVolume(d, baseUrl, request)));
   const volume = core.interleaveChannels(parts.map((p) => ({ ...p, valueRange: undefined })));
-  channelRanges.set(volume, parts.map((p) => p.valueRange));
+  channelRanges.set(
+    volume,
+    parts.map((p) => p.valueRange),
+  );
   volume.name = parts.map((p) => p.name ?? '').join(' + ');
   return volume;
 }
