@@ -235,6 +235,29 @@ describe('one channel through the multichannel path gives the scalar path, bit f
           expect(bitsDiffer(fastScalar, fastOne)).toBe(0);
         }
       });
+  for (const backend of BACKENDS)
+    it(`slice on ${backend}: a 2-channel scene shows its first drawn channel as the scalar scene of it`, async () => {
+      const scalar = await render({
+        backend,
+        renderer: 'slice',
+        voxels: Array.from(FIELDS[1]),
+        channels: 1,
+        transferFunction: TFS[1],
+        iterations: 1,
+      });
+      const two = await render({
+        backend,
+        renderer: 'slice',
+        voxels: interleave(FIELDS.slice(0, 3)),
+        channels: 3,
+        settings: settingsOf(3, [{ enabled: false }]),
+        iterations: 1,
+      });
+      expect(bitsDiffer(scalar, two)).toBe(0);
+      let lit = 0;
+      for (let i = 0; i < scalar.length; i += 4) if (scalar[i] > 0.05) lit++;
+      expect(lit).toBeGreaterThan(10);
+    });
   it('a 2-channel volume with channel 1 disabled renders channel 0 alone (EAM, WebGL 2)', async () => {
     const scalar = await render({
       backend: 'webgl2',
@@ -465,5 +488,30 @@ describe('MCRT: the channels are one mixture (z-test against a scalar volume hol
     expect(Math.abs(s.meanScaled), msg).toBeLessThan(4);
     expect(s.maxAbs, msg).toBeLessThan(5.5);
     expect(Math.abs(sEven.meanScaled), msg).toBeGreaterThan(8);
+  });
+});
+
+describe('bricking refuses a channel scene, naming the limit', () => {
+  it("bricking: 'force' with two channels throws limit-exceeded (MAX_BRICKED_CHANNELS)", async () => {
+    const r = await page.run(
+      async ({ core, t }, voxels, n, tf0, tf1) => {
+        const volume = core.createVolume([n, n, n], 'uint8', new Uint8Array(voxels), [1, 1, 1], 2);
+        const ctx = await t.context({ backend: 'webgl2', renderer: 'eam', width: 8, height: 8, bricking: 'force' });
+        try {
+          ctx.setScene({ ...t.scene({ volume }), channels: [{ transferFunction: tf0 }, { transferFunction: tf1 }] });
+          return { code: 'none', message: '' };
+        } catch (e) {
+          return { code: (e as { code?: string }).code ?? 'untyped', message: (e as Error).message };
+        } finally {
+          ctx.dispose();
+        }
+      },
+      interleave(FIELDS.slice(0, 2)),
+      N,
+      TFS[0],
+      TFS[1],
+    );
+    expect(r.code).toBe('limit-exceeded');
+    expect(r.message).toMatch(/MAX_BRICKED_CHANNELS = 1/);
   });
 });
