@@ -515,3 +515,24 @@ describe('bricking refuses a channel scene, naming the limit', () => {
     expect(r.message).toMatch(/MAX_BRICKED_CHANNELS = 1/);
   });
 });
+
+describe('the compact fast path (rg8unorm / rgba8unorm, hardware filter)', () => {
+  for (const count of [2, 4])
+    it(`EAM with ${count} channels agrees with the exact path and across backends`, async () => {
+      const spec = {
+        renderer: 'eam',
+        voxels: interleave(FIELDS.slice(0, count)),
+        channels: count,
+        settings: settingsOf(count),
+        params: { cutoff: 0, stepSize: 1 / 20 },
+        iterations: 3,
+      };
+      const exact = await render({ ...spec, backend: 'webgl2' });
+      const fast = await render({ ...spec, backend: 'webgl2', sampling: 'fast' });
+      const fastGpu = await render({ ...spec, backend: 'webgpu', sampling: 'fast' });
+      const d = maxAbsDiff(exact, fast);
+      // The texture unit's 8-bit filter weights against float64-exact ones.
+      expect(d, `max |fast − exact| ${d}`).toBeLessThan(0.02);
+      expect(maxAbsDiff(fast, fastGpu)).toBeLessThan(0.02);
+    });
+});
