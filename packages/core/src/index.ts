@@ -18,6 +18,7 @@ export * from './scene/transfer-function-json.js';
 export * from './scene/transfer-function-presets.js';
 export * from './scene/scene.js';
 export * from './scene/clip.js';
+export * from './scene/channels.js';
 export * from './scene/procedural.js';
 export * from './scene/raw-sidecar.js';
 export * from './scene/axis-codes.js';
@@ -42,6 +43,9 @@ export { createWebGPUBackend, isWebGPUAvailable } from './gpu/webgpu/webgpu-back
 export type { Renderer, KernelSource, AuxiliaryTexture, AuxiliaryPass, VolumeBinding } from './renderer.js';
 export {
   planVolumeUpload,
+  planChannelUpload,
+  channelTextureData,
+  channelComponents,
   uploadsDataAsIs,
   volumeTextureData,
   volumeTextureSlab,
@@ -59,7 +63,7 @@ export { DEFAULT_GPU_BYTES, type RenderContextOptions } from './context/context-
 export { RenderContext, type RenderStats, type GpuBytes, type DepthLimit } from './context/render-context.js';
 export type { RenderWarning, BrickLoadWarning, VolumeDownsampledWarning } from './context/volume-fit.js';
 
-export { SCENE_UNIFORM_FIELDS, sceneUniformValues } from './shaders/scene-uniforms.js';
+export { CHANNEL_UNIFORM_FIELDS, SCENE_UNIFORM_FIELDS, sceneUniformValues } from './shaders/scene-uniforms.js';
 // Shader chunks: each <name>.glsl.ts / <name>.wgsl.ts pair exports the same identifiers;
 // the public names carry the language as a prefix.
 export {

@@ -42,6 +42,8 @@ export interface ZarrVolumeDescription {
   zarr: string;
   level?: number;
   channel?: number;
+  /** Several channels along `c`, in this order: a multichannel volume (the scene then needs top-level `channels`). */
+  channels?: number[];
   time?: number;
   valueRange?: [number, number];
   /** A chunk the store lacks: 'fill' (default: the array's fill value, as the Zarr spec says) or 'error' (strict). */
@@ -84,13 +86,26 @@ export interface ProceduralVolumeDescription {
   size?: number;
 }
 
-export type VolumeDescription =
+/** Several volumes of one grid and voxel type, one per channel (interleaved into one multichannel volume). */
+export interface ChannelFilesVolumeDescription {
+  channels: SingleVolumeDescription[];
+}
+
+/** One volume (one channel, or a scalar volume). */
+export type SingleVolumeDescription =
   | RawVolumeDescription
   | SidecarVolumeDescription
   | ZarrVolumeDescription
   | FileVolumeDescription
   | TimeSeriesVolumeDescription
   | ProceduralVolumeDescription;
+
+export type VolumeDescription = ChannelFilesVolumeDescription | SingleVolumeDescription;
+
+/** A list of volumes, one per channel (not an OME-Zarr store's `channels` indices). */
+export function isChannelFiles(v: VolumeDescription): v is ChannelFilesVolumeDescription {
+  return 'channels' in v && !('zarr' in v);
+}
 
 export interface TransferPointDescription {
   value: number;
@@ -134,6 +149,18 @@ export interface SceneDescription {
    * list, a 4D NIfTI `file`, an OME-Zarr `zarr` with a `t` axis (where it sets no `time`).
    */
   time?: number;
+  /**
+   * One entry per channel of a multichannel volume (core's ChannelSettings): a 1D transfer
+   * function, `enabled` (default true; at most 4 at once), an optional linear-RGB `color`
+   * replacing the TF's colours and an optional data `range`. The top-level `transferFunction`
+   * is then not drawn.
+   */
+  channels?: {
+    transferFunction: { dimensions?: '1d'; points: TransferPointDescription[] };
+    enabled?: boolean;
+    color?: Vec3;
+    range?: [number, number];
+  }[];
 }
 
 /** What an unset field means (an unset renderer is core's DEFAULT_RENDERER_NAME). */
@@ -233,7 +260,10 @@ export function checkSceneDescription(d: unknown, rendererNames?: readonly strin
   const v = s.volume as Record<string, unknown> | undefined;
   if (v !== undefined) {
     if (!v || typeof v !== 'object') bad('"volume" must be an object');
-    else if (typeof v.raw === 'string') {
+    else if (Array.isArray(v.channels) && typeof v.zarr !== 'string') {
+      // One volume per channel: each is checked as a volume (validateSceneDescription does it field by field).
+      if (!v.channels.length) bad('"volume.channels" names no channel');
+    } else if (typeof v.raw === 'string') {
       if (!Array.isArray(v.dims) || v.dims.length !== 3) bad('"volume.dims" must be [nx, ny, nz]');
       if (!['uint8', 'uint16', 'int16', 'float32'].includes(v.type as string))
         bad(`"volume.type" must be uint8, uint16, int16 or float32, got ${JSON.stringify(v.type)}`);
@@ -245,7 +275,9 @@ export function checkSceneDescription(d: unknown, rendererNames?: readonly strin
       !Array.isArray(v.file) &&
       !Array.isArray(v.timeSeries)
     ) {
-      bad('"volume" needs one of "file", "timeSeries", "raw" (with dims and type), "sidecar", "zarr" or "procedural"');
+      bad(
+        '"volume" needs one of "file", "timeSeries", "raw" (with dims and type), "sidecar", "zarr", "procedural" or "channels"',
+      );
     }
   }
 }

@@ -2,11 +2,13 @@ import fs from 'node:fs';
 import path from 'node:path';
 import { pathToFileURL, fileURLToPath } from 'node:url';
 import { checkRawByteLength, parseRawSidecar, rawFileBeside, VptError } from '@vpt/core';
-import type {
-  FileVolumeDescription,
-  RawVolumeDescription,
-  SceneDescription,
-  VolumeDescription,
+import {
+  isChannelFiles,
+  type FileVolumeDescription,
+  type RawVolumeDescription,
+  type SceneDescription,
+  type SingleVolumeDescription,
+  type VolumeDescription,
 } from './scene-description.js';
 import { selectTimeStep } from './scene-description.js';
 import type { StaticServer } from './server.js';
@@ -69,7 +71,8 @@ function mapVolumeRefs(
 ): SceneDescription {
   const volume = desc.volume;
   // A timeSeries list is one `file` once selectTimeStep has picked the step.
-  if (!volume || 'procedural' in volume || 'file' in volume || 'timeSeries' in volume) return desc;
+  if (!volume || isChannelFiles(volume) || 'procedural' in volume || 'file' in volume || 'timeSeries' in volume)
+    return desc;
   const mapped: VolumeDescription =
     'zarr' in volume
       ? { ...volume, zarr: map(volume.zarr, volume) }
@@ -140,6 +143,13 @@ export function resolveSceneFiles(
     desc = selectTimeStep(desc);
   } catch (e) {
     throw new VptError('invalid-scene', (e as Error).message, { cause: e });
+  }
+  if (desc.volume && isChannelFiles(desc.volume)) {
+    // One volume per channel: each resolved as a volume of its own.
+    const channels = desc.volume.channels.map(
+      (v) => resolveSceneFiles({ ...desc, volume: v }, baseDir, options).volume as SingleVolumeDescription,
+    );
+    return { ...desc, volume: { channels } };
   }
   if (desc.volume && 'file' in desc.volume)
     return { ...desc, volume: resolveFileVolume(desc.volume, baseDir, options) };
@@ -222,6 +232,12 @@ export function mountSceneFiles(
   server: StaticServer,
   options: SceneFileOptions = {},
 ): SceneDescription {
+  if (desc.volume && isChannelFiles(desc.volume)) {
+    const channels = desc.volume.channels.map(
+      (v) => mountSceneFiles({ ...desc, volume: v }, baseDir, server, options).volume as SingleVolumeDescription,
+    );
+    return { ...desc, volume: { channels } };
+  }
   const resolved = resolveSceneFiles(desc, baseDir, options);
   if (resolved.volume && 'file' in resolved.volume)
     return { ...resolved, volume: mountFileVolume(resolved.volume, server) };

@@ -28,6 +28,7 @@ import {
   validateEnvironment,
   validateLights,
   DEFAULT_RENDERER_NAME,
+  MAX_VOLUME_CHANNELS,
   RENDERER_CATALOG,
   validateRendererParams,
   VptError,
@@ -58,7 +59,10 @@ const TOP_KEYS = [
   'iterations',
   'backend',
   'time',
+  'channels',
 ];
+/** Volumes a description may list as channels (core's MAX_VOLUME_CHANNELS). */
+const MAX_LISTED_CHANNELS = MAX_VOLUME_CHANNELS;
 const VOXEL_TYPES = ['uint8', 'uint16', 'int16', 'float32'] as const;
 const PROCEDURAL_KINDS = ['sphere', 'cube', 'ramp', 'blob'] as const;
 /** Largest volume side a description may name; the device's maxTextureDimension3D is checked at setScene. */
@@ -75,10 +79,26 @@ export const RENDERER_PARAM_CHECKS: Record<RendererName, (params: unknown) => vo
   }),
 );
 
-function checkVolume(v: unknown): void {
-  const vol = checkObject('volume', v);
+function checkVolume(v: unknown, at = 'volume'): void {
+  const vol = checkObject(at, v);
+  if ('channels' in vol && !('zarr' in vol)) {
+    // Several files of one grid, one per channel.
+    checkKnownKeys(at, vol, ['channels']);
+    const list = vol.channels;
+    if (!Array.isArray(list) || list.length < 1 || list.length > MAX_LISTED_CHANNELS)
+      throw new VptError(
+        'invalid-scene',
+        `${at}.channels: a list of 1 to ${MAX_LISTED_CHANNELS} volume descriptions (one per channel), got ${JSON.stringify(list)?.slice(0, 80)}`,
+      );
+    list.forEach((c, i) => {
+      if (c && typeof c === 'object' && 'channels' in c)
+        throw new VptError('invalid-scene', `${at}.channels[${i}]: a channel is one volume, not a list`);
+      checkVolume(c, `${at}.channels[${i}]`);
+    });
+    return;
+  }
   if ('raw' in vol) {
-    checkKnownKeys('volume', vol, ['raw', 'dims', 'type', 'spacing', 'valueRange', 'endianness']);
+    checkKnownKeys(at, vol, ['raw', 'dims', 'type', 'spacing', 'valueRange', 'endianness']);
     checkString('volume.raw', vol.raw);
     checkNumbers('volume.dims', vol.dims, 3, countUpTo(MAX_VOLUME_SIDE, 'voxels'));
     checkOneOf('volume.type', vol.type, VOXEL_TYPES);
@@ -90,10 +110,21 @@ function checkVolume(v: unknown): void {
     }
     if (vol.endianness !== undefined) checkOneOf('volume.endianness', vol.endianness, ['little', 'big'] as const);
   } else if ('sidecar' in vol) {
-    checkKnownKeys('volume', vol, ['sidecar']);
+    checkKnownKeys(at, vol, ['sidecar']);
     checkString('volume.sidecar', vol.sidecar);
   } else if ('zarr' in vol) {
-    checkKnownKeys('volume', vol, ['zarr', 'level', 'channel', 'time', 'valueRange', 'missingChunks']);
+    checkKnownKeys(at, vol, ['zarr', 'level', 'channel', 'channels', 'time', 'valueRange', 'missingChunks']);
+    if (vol.channels !== undefined) {
+      if (vol.channel !== undefined)
+        throw new VptError('invalid-scene', `${at}: give "channel" (one) or "channels" (several), not both`);
+      const list = vol.channels;
+      if (!Array.isArray(list) || list.length < 1 || list.length > MAX_LISTED_CHANNELS)
+        throw new VptError(
+          'invalid-scene',
+          `${at}.channels: a list of 1 to ${MAX_LISTED_CHANNELS} channel indices along the c axis, got ${JSON.stringify(list)?.slice(0, 80)}`,
+        );
+      list.forEach((c, i) => checkNumber(`${at}.channels[${i}]`, c, { min: 0, max: 1e6, integer: true }));
+    }
     checkString('volume.zarr', vol.zarr);
     for (const k of ['level', 'channel', 'time'] as const)
       if (vol[k] !== undefined) checkNumber(`volume.${k}`, vol[k], { min: 0, max: 1e6, integer: true });
@@ -119,7 +150,7 @@ function checkVolume(v: unknown): void {
         throw new VptError('invalid-scene', `volume.valueRange: min and max are equal (${lo}), an empty range`);
     }
   } else if ('file' in vol) {
-    checkKnownKeys('volume', vol, ['file', 'format', 'valueRange', 'time']);
+    checkKnownKeys(at, vol, ['file', 'format', 'valueRange', 'time']);
     if (vol.time !== undefined) checkNumber('volume.time', vol.time, { min: 0, max: 1e6, integer: true });
     if (Array.isArray(vol.file)) {
       if (!vol.file.length) throw new VptError('invalid-scene', 'volume.file: an empty list names no file');
@@ -132,14 +163,14 @@ function checkVolume(v: unknown): void {
         throw new VptError('invalid-scene', `volume.valueRange: min and max are equal (${lo}), an empty range`);
     }
   } else if ('procedural' in vol) {
-    checkKnownKeys('volume', vol, ['procedural', 'size']);
+    checkKnownKeys(at, vol, ['procedural', 'size']);
     checkOneOf('volume.procedural', vol.procedural, PROCEDURAL_KINDS);
     if (vol.size !== undefined)
       checkNumber('volume.size', vol.size, countUpTo(MAX_PROCEDURAL_SIZE, 'voxels per side', 2));
   } else {
     throw new VptError(
       'invalid-scene',
-      'volume: needs one of "file", "timeSeries", "raw" (with dims and type), "sidecar", "zarr" or "procedural"',
+      `${at}: needs one of "file", "timeSeries", "raw" (with dims and type), "sidecar", "zarr", "procedural" or "channels" (one volume per channel)`,
     );
   }
 }
@@ -179,6 +210,53 @@ function checkLights(l: unknown): Light[] {
       if (o[k] === undefined) throw new VptError('invalid-scene', `lights[${i}].${k}: is required`);
   });
   return l as Light[];
+}
+
+/**
+ * The scene's channel settings (core's ChannelSettings as JSON): one entry per channel of the
+ * volume, each a 1D transfer function, `enabled`, an optional `color` and `range`; the rules that
+ * need the loaded volume (entry count, at most 4 enabled) are core's validateChannels at setScene.
+ */
+function checkChannels(c: unknown, volume: unknown): void {
+  if (!Array.isArray(c) || c.length < 1 || c.length > MAX_VOLUME_CHANNELS)
+    throw new VptError(
+      'invalid-scene',
+      `channels: a list of 1 to ${MAX_VOLUME_CHANNELS} channel settings (transferFunction, enabled, color, range), got ${JSON.stringify(c)?.slice(0, 80)}`,
+    );
+  const listed = volumeChannelCount(volume);
+  if (listed !== null && listed !== c.length)
+    throw new VptError(
+      'invalid-scene',
+      `channels: ${c.length} entries for the ${listed} channels the volume lists (one entry per channel)`,
+    );
+  c.forEach((entry, i) => {
+    const o = checkObject(`channels[${i}]`, entry);
+    checkKnownKeys(`channels[${i}]`, o, ['transferFunction', 'enabled', 'color', 'range']);
+    if (o.transferFunction === undefined)
+      throw new VptError('invalid-scene', `channels[${i}].transferFunction: is required`);
+    const tf = checkObject(`channels[${i}].transferFunction`, o.transferFunction);
+    if (tf.dimensions !== undefined && tf.dimensions !== '1d')
+      throw new VptError('invalid-scene', `channels[${i}].transferFunction: a channel takes a 1D transfer function`);
+    transferFunctionFromJSON({ dimensions: '1d', ...tf });
+    if (o.enabled !== undefined && typeof o.enabled !== 'boolean')
+      throw new VptError(
+        'invalid-scene',
+        `channels[${i}].enabled: must be true or false, got ${JSON.stringify(o.enabled)}`,
+      );
+    if (o.color !== undefined) checkNumbers(`channels[${i}].color`, o.color, 3, { min: 0, max: 1 });
+    if (o.range !== undefined) {
+      const [lo, hi] = checkNumbers(`channels[${i}].range`, o.range, 2);
+      if (lo === hi)
+        throw new VptError('invalid-scene', `channels[${i}].range: min and max are equal (${lo}), an empty range`);
+    }
+  });
+}
+
+/** How many channels a volume description names (a zarr's `channels`, a list of channel files), or null when only the loaded data says. */
+function volumeChannelCount(v: unknown): number | null {
+  if (!v || typeof v !== 'object') return null;
+  const c = (v as { channels?: unknown }).channels;
+  return Array.isArray(c) ? c.length : null;
 }
 
 /**
@@ -231,6 +309,7 @@ export function validateSceneDescription(d: unknown): SceneDescription {
     if (s.lights !== undefined) validateLights(checkLights(s.lights));
     if (s.environment !== undefined) validateEnvironment(checkEnvironment(s.environment));
     if (s.post !== undefined) postChainFromJSON(s.post);
+    if (s.channels !== undefined) checkChannels(s.channels, s.volume);
   } catch (e) {
     if (e instanceof VptError) throw new VptError(e.code, `Scene description: ${e.message}`, { cause: e });
     throw new VptError('invalid-scene', `Scene description: ${(e as Error).message}`, { cause: e });

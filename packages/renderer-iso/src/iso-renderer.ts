@@ -108,8 +108,20 @@ export class IsoRenderer extends BaseRenderer<IsoParams> {
       ISO_SOFT_LIGHTS: p.lightAngularRadius > 0,
       ISO_JITTER: p.jitter,
       ISO_OUTPUT: OUTPUT_CODE[p.output],
-      SKIP_EMPTY: p.emptySpaceSkipping,
+      // A channel scene has no single value range per cell to skip by (majorant/grid-textures.ts).
+      SKIP_EMPTY: p.emptySpaceSkipping && !scene.channels,
     };
+  }
+
+  /** A channel scene: surface k lies on drawn channel k, so there are at most as many surfaces as drawn channels. */
+  validateScene(scene: Scene): void {
+    if (!scene.channels) return;
+    const drawn = scene.channels.filter((c) => c.enabled !== false).length;
+    if (this.resolved.surfaces.length > drawn)
+      throw new VptError(
+        'invalid-scene',
+        `IsoRenderer.surfaces: ${this.resolved.surfaces.length} surfaces for ${drawn} drawn channel${drawn === 1 ? '' : 's'}; surface k lies on drawn channel k`,
+      );
   }
 
   paramValues(scene: Scene): UniformValues {
@@ -151,7 +163,7 @@ export class IsoRenderer extends BaseRenderer<IsoParams> {
   auxiliaryTextures(scene: Scene, volume?: VolumeBinding): readonly AuxiliaryTexture[] {
     // With skipping (and a volume binding: inside a RenderContext), each grid cell's range of volume texels.
     const grid =
-      this.resolved.emptySpaceSkipping && volume
+      this.resolved.emptySpaceSkipping && volume && !scene.channels
         ? majorantGridTextures(scene, volume, DEFAULT_SKIP_CELL_SIZE, 'ranges')
         : [];
     const env = scene.environment;

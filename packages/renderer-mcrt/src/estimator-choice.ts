@@ -39,6 +39,9 @@
  * estimators, so approximate ranges suffice; the kernel's own grid is still the GPU-built one.
  */
 import {
+  channelMajorantGrid,
+  scalarSceneOf,
+  type MajorantGrid,
   normalizationRange,
   buildMajorantGrid,
   computeCellValueRanges,
@@ -113,7 +116,10 @@ export function phasePeakRatio(g: number): number {
 }
 
 /** Grid statistics from every `stride`-th voxel per axis (stride ≥ 1 so that at most ~2²¹ voxels are read). */
-export function gridStatistics(scene: Scene, cellSize: number): GridStatistics {
+export function gridStatistics(given: Scene, cellSize: number): GridStatistics {
+  const scene = scalarSceneOf(given) ?? given;
+  if (scene.channels)
+    return statisticsOf(channelMajorantGrid(scene.volume, scene.channels, scene.densityScale, cellSize));
   const v = scene.volume;
   const [nx, ny, nz] = v.dims;
   const stride = Math.max(1, Math.ceil(Math.cbrt((nx * ny * nz) / MAX_SAMPLED_VOXELS)));
@@ -134,6 +140,11 @@ export function gridStatistics(scene: Scene, cellSize: number): GridStatistics {
     rasterizeTransferFunction(scene.transferFunction, TF_RESOLUTION),
     scene.densityScale,
   );
+  return statisticsOf(grid);
+}
+
+/** Mean and global bounds of a majorant grid, and how much of the majorant the minorant covers. */
+function statisticsOf(grid: MajorantGrid): GridStatistics {
   let sumMaj = 0,
     sumMin = 0;
   const n = grid.data.length / 4;
@@ -267,7 +278,7 @@ export class GridStatisticsMemo {
   private volume: Volume | null = null;
   private value: GridStatistics | null = null;
   get(scene: Scene, cellSize: number): GridStatistics {
-    const key = `${cellSize}|${scene.densityScale}|${JSON.stringify(scene.transferFunction)}`;
+    const key = `${cellSize}|${scene.densityScale}|${JSON.stringify(scene.channels ?? scene.transferFunction)}`;
     if (!this.value || this.volume !== scene.volume || this.key !== key) {
       this.value = gridStatistics(scene, cellSize);
       this.volume = scene.volume;

@@ -20,6 +20,8 @@ import {
   volumeValueMapping,
   buildMajorantGrid,
   volumeCellRanges,
+  channelMajorantGrid,
+  scalarSceneOf,
   gridGeometry,
   majorantGridTextures,
   type MajorantGrid,
@@ -160,18 +162,19 @@ export class McrtRenderer extends BaseRenderer<McrtParams> {
   }
 
   /** The majorant grid of a scene computed on the CPU (cached by volume, TF, density scale and cell size): the reference the GPU build is tested against, and the global bounds without a grid. */
-  majorantGrid(scene: Scene): MajorantGrid {
-    const key = this.gridKey(scene);
-    if (this.gridMemo?.key !== key) {
-      const ranges = volumeCellRanges(scene.volume, this.cellSize(scene));
+  majorantGrid(given: Scene): MajorantGrid {
+    const cellSize = this.cellSize(given);
+    // One drawn channel: the scalar scene it draws (the same bound, bit for bit).
+    const scene = scalarSceneOf(given) ?? given;
+    const key = `${objectId(scene.volume as Volume)}|${cellSize}|${scene.densityScale}|${JSON.stringify(scene.channels ?? scene.transferFunction)}`;
+    if (this.gridMemo?.key !== key && scene.channels) {
+      this.gridMemo = { key, grid: channelMajorantGrid(scene.volume, scene.channels, scene.densityScale, cellSize) };
+    } else if (this.gridMemo?.key !== key) {
+      const ranges = volumeCellRanges(scene.volume, cellSize);
       const tf = rasterizeTransferFunction(scene.transferFunction, TF_RESOLUTION);
       this.gridMemo = { key, grid: buildMajorantGrid(ranges, tf, scene.densityScale) };
     }
     return this.gridMemo.grid;
-  }
-
-  private gridKey(scene: Scene): string {
-    return `${objectId(scene.volume as Volume)}|${this.cellSize(scene)}|${scene.densityScale}|${JSON.stringify(scene.transferFunction)}`;
   }
 
   /** The `gridCells` uniform: cells per axis and the slice atlas's column count. */

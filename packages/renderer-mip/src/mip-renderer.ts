@@ -39,8 +39,9 @@ export class MipRenderer extends BaseRenderer<MipParams> {
     super(params, MIP_PARAM_SPECS, MIP_DESCRIPTOR.owner);
   }
 
-  override features(_scene: Scene): Record<string, boolean | number> {
-    return { SKIP_EMPTY: this.skipping };
+  override features(scene: Scene): Record<string, boolean | number> {
+    // A channel scene has no single value range per cell to skip by (majorant/grid-textures.ts).
+    return { SKIP_EMPTY: this.skipping && !scene.channels };
   }
 
   paramValues(scene: Scene): UniformValues {
@@ -52,7 +53,9 @@ export class MipRenderer extends BaseRenderer<MipParams> {
 
   /** With skipping, each majorant-grid cell's range of volume texels, built on the GPU. */
   auxiliaryTextures(scene: Scene, volume: VolumeBinding): readonly AuxiliaryTexture[] {
-    return this.skipping ? majorantGridTextures(scene, volume, DEFAULT_SKIP_CELL_SIZE, 'ranges') : [];
+    return this.skipping && !scene.channels
+      ? majorantGridTextures(scene, volume, DEFAULT_SKIP_CELL_SIZE, 'ranges')
+      : [];
   }
 
   private get skipping(): boolean {

@@ -10,6 +10,8 @@ import {
   type UniformField,
   type UniformValues,
   type Volume,
+  channelNormalizationRange,
+  enabledChannels,
 } from '@vpt/core';
 import { colormapTable } from './colormaps.js';
 import * as glsl from './kernels/slice.glsl.js';
@@ -23,6 +25,19 @@ import {
 } from './descriptor.js';
 import { slicePlane } from './plane.js';
 import { checkedWindowCoefficients, volumeRange } from './window-mapping.js';
+
+const channelRanges = new WeakMap<object, [number, number]>();
+/** The data range of what the slice shows: the volume's, or a channel scene's first drawn channel's (memoized per channel list). */
+function shownRange(scene: Scene): [number, number] {
+  if (!scene.channels) return volumeRange(scene.volume);
+  let r = channelRanges.get(scene.channels);
+  if (!r) {
+    const first = enabledChannels(scene.channels)[0];
+    r = channelNormalizationRange(scene.volume, first, scene.channels[first]);
+    channelRanges.set(scene.channels, r);
+  }
+  return r;
+}
 
 /** The slice renderer's parameter specs (core's validateParams), from its descriptor. */
 export const SLICE_PARAM_SPECS: ParamSpecs = paramSpecsOf(SLICE_DESCRIPTOR);
@@ -122,7 +137,7 @@ export class SliceRenderer extends BaseRenderer<SliceParams> {
   paramValues(scene: Scene): UniformValues {
     try {
       const plane = slicePlane(this.resolved.plane, scene.volume);
-      const window = checkedWindowCoefficients(volumeRange(scene.volume), this.resolved.window);
+      const window = checkedWindowCoefficients(shownRange(scene), this.resolved.window);
       this.problem = null;
       return { planeOrigin: plane.origin, planeU: plane.u, planeV: plane.v, planeNormal: plane.normal, ...window };
     } catch (e) {

@@ -12,6 +12,8 @@ import { preprocess } from '../shaders/preprocess.js';
 import { validateGradientAtlasForDevice, validateSceneForDevice } from '../validation/device.js';
 import { SCENE_UNIFORM_FIELDS, sceneUniformValues } from '../shaders/scene-uniforms.js';
 import { CLIP_UNIFORM_FIELDS, clipUniformValues, hasClip } from '../scene/clip.js';
+import { CHANNEL_UNIFORM_FIELDS } from '../shaders/scene-uniforms.js';
+import { enabledChannels } from '../scene/channels.js';
 import { UniformLayout, type UniformField } from '../uniforms/layout.js';
 import { GUIDES } from '../shaders/guides.js';
 import { GUIDE_FRAME_FORMATS, GuideBuffers } from './guide-buffers.js';
@@ -542,6 +544,7 @@ export class RenderContext {
     this.accum![0].textures.forEach((t, i) => {
       accTextures[`accum${i}`] = t;
     });
+    if (this.scene.channels) accTextures.transferFunction = this.resources.tfTexture!;
     this.backend.draw(this.passes!.render, { uniforms, textures: accTextures, target: this.hdr! });
     this.postChain.run(this.hdr!.textures[0], this.guides, this.width, this.height);
     this.hdrIteration = this.iteration;
@@ -752,6 +755,7 @@ export class RenderContext {
       ...(bricked ? { volumeDims: [...bricked.geometry.levels[0].dims, bricked.geometry.brickSize] } : {}),
       ...this._renderer.paramValues(scene),
       ...(hasClip(scene.clip) ? clipUniformValues(scene.clip, scene.volume) : {}),
+      ...(scene.channels ? this.resources.channelMapping(scene) : {}),
       ...(this.depthLimit ? { depthA: this.depthLimit.a, depthB: this.depthLimit.b } : {}),
     });
   }
@@ -763,13 +767,14 @@ export class RenderContext {
 
   /** Which shared chunks (and defines) the generate pass needs for this scene. */
   private chunkOptions(scene: Scene): Required<CommonChunkOptions> {
-    const tf2d = scene.transferFunction.dimensions === '2d';
+    const tf2d = !scene.channels && scene.transferFunction.dimensions === '2d';
     return {
       tf2d,
       gradient: this.wantsGradient(scene),
       hardwareFilter: this.resources.volumeUpload?.filter === 'linear',
       bricked: this.resources.bricked !== null,
       clip: hasClip(scene.clip),
+      channels: scene.channels ? enabledChannels(scene.channels).length : 0,
     };
   }
 
@@ -789,14 +794,17 @@ export class RenderContext {
       VPT_GUIDES: writeGuides,
       VPT_CLIP: chunks.clip,
       VPT_DEPTH_LIMIT: this.depthLimit !== null,
+      // The number of drawn channels of a channel scene (scene/channels.ts), 0 for a scalar one.
+      VPT_CHANNELS: chunks.channels,
     };
     const frameFormats = writeGuides ? [...r.frameFormats, ...GUIDE_FRAME_FORMATS] : r.frameFormats;
     const key = `${r.name}|${JSON.stringify(features)}|${auxBindings.map((b) => b.name).join(',')}|${chunks.hardwareFilter ? 'filtered' : 'exact'}${chunks.bricked ? '|bricked' : ''}`;
     const descriptors = () => {
-      // VPT_CLIP cuts the kernels' #if lines but becomes a backend define only when set, so an
-      // unclipped variant's program is today's byte for byte.
-      const { VPT_CLIP: clipFlag, ...unclipped } = features;
-      const defines = clipFlag ? features : unclipped;
+      // VPT_CLIP and VPT_CHANNELS cut the kernels' #if lines but become backend defines only when
+      // set, so an unclipped scalar variant's program is today's byte for byte.
+      const defines = Object.fromEntries(
+        Object.entries(features).filter(([k, v]) => (k !== 'VPT_CLIP' && k !== 'VPT_CHANNELS') || v),
+      );
       const gradientBindings = chunks.gradient
         ? [
             { name: 'gradientMagnitude', dimension: '2d' as const },
@@ -809,6 +817,7 @@ export class RenderContext {
         ...SCENE_UNIFORM_FIELDS,
         ...r.paramFields,
         ...(chunks.clip ? CLIP_UNIFORM_FIELDS : []),
+        ...(chunks.channels ? CHANNEL_UNIFORM_FIELDS : []),
         ...(this.depthLimit ? DEPTH_LIMIT_FIELDS : []),
       ]);
       // The volume/TF chunks read the `volume` and `transferFunction` (and gradient) textures,
@@ -853,7 +862,13 @@ export class RenderContext {
           frameFormats,
         ),
         integrate: mk('integrate', [...frameTex, ...accTex], r.accumulationFormats),
-        render: mk('render', accTex, ['rgba32float']),
+        // A channel variant's render pass also reads the channels' transfer functions (MIP colours its
+        // per-channel maxima there).
+        render: mk(
+          'render',
+          chunks.channels ? [...accTex, { name: 'transferFunction', dimension: '2d' as const }] : accTex,
+          ['rgba32float'],
+        ),
       };
     };
     return { key, frameFormats, descriptors };

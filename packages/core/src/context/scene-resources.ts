@@ -3,6 +3,8 @@ import type { AuxiliaryPass, AuxiliaryTexture, Renderer, VolumeBinding } from '.
 import type { Scene } from '../scene/scene.js';
 import { rasterizeTransferFunction, TF_RESOLUTION, transferFunctionSize } from '../scene/transfer-function.js';
 import {
+  channelTextureData,
+  planChannelUpload,
   planVolumeUpload,
   uploadsDataAsIs,
   volumeTextureData,
@@ -14,7 +16,9 @@ import {
 import { buildGradientVolume, destroyGradientVolume, type GradientVolume } from '../gradient/gradient-volume.js';
 import { BrickedVolume, type BrickingOptions } from '../bricking/bricked-volume.js';
 import { inMemoryMultiscaleSource, type MultiscaleSource } from '../bricking/source.js';
-import { normalizationRange } from '../scene/volume.js';
+import { channelVolume, normalizationRange } from '../scene/volume.js';
+import { enabledChannels, rasterizeChannelTransferFunctions, type ChannelSettings } from '../scene/channels.js';
+import { VptError } from '../errors.js';
 
 /** How RenderContext wants the scene's volume bricked (null: one texture). */
 export interface BrickPlan extends BrickingOptions {
@@ -46,11 +50,15 @@ export class SceneResources {
   private volumeKey = 0; // bumped on every volume upload (VolumeBinding.key)
   /** Volumes written into the texture of the one before (same dims and format) instead of a new texture. */
   volumeRewrites = 0;
-  private planMemo: { volume: Scene['volume']; sampling: VolumeSampling; plan: VolumeUpload } | null = null;
+  private planMemo: { volume: Scene['volume']; sampling: VolumeSampling; channels: string; plan: VolumeUpload } | null =
+    null;
+  // The drawn channels of the uploaded texture ('' for a scalar scene): a new selection re-uploads.
+  private volumeChannels = '';
   private mappingMemo: {
     volume: Scene['volume'];
     upload: Pick<VolumeUpload, 'decodeScale' | 'decodeOffset'>;
     mapping: { valueScale: number; valueOffset: number };
+    channels: Scene['channels'];
   } | null = null;
   private readonly sampling: VolumeSampling;
   private readonly allowHalfFloat: boolean;
@@ -91,10 +99,25 @@ export class SceneResources {
     // Memoized: normalizationRange scans int16/float32 data without a valueRange, and this runs every iteration.
     const upload = this.volumeUpload ?? EXACT_DECODE;
     const m = this.mappingMemo;
-    if (m && m.volume === scene.volume && m.upload === upload) return m.mapping;
-    const mapping = volumeValueMapping(scene.volume, upload);
-    this.mappingMemo = { volume: scene.volume, upload, mapping };
+    if (m && m.volume === scene.volume && m.upload === upload && m.channels === scene.channels) return m.mapping;
+    // A channel scene's scalar mapping is its first drawn channel's (the slice and guides read that one).
+    const mapping = scene.channels
+      ? channelMappings(scene.volume, scene.channels, upload)[0]
+      : volumeValueMapping(scene.volume, upload);
+    this.mappingMemo = { volume: scene.volume, upload, mapping, channels: scene.channels };
     return mapping;
+  }
+
+  /** The drawn channels' texel → normalized value maps (CHANNEL_UNIFORM_FIELDS), unused components 0. */
+  channelMapping(scene: Scene): { channelScale: number[]; channelOffset: number[] } {
+    const maps = channelMappings(scene.volume, scene.channels ?? [], this.volumeUpload ?? EXACT_DECODE);
+    const channelScale = [0, 0, 0, 0],
+      channelOffset = [0, 0, 0, 0];
+    maps.forEach((m, k) => {
+      channelScale[k] = m.valueScale;
+      channelOffset[k] = m.valueOffset;
+    });
+    return { channelScale, channelOffset };
   }
 
   /** What auxiliary passes need to read the volume texture's texels (Renderer.auxiliaryTextures). */
@@ -158,13 +181,21 @@ export class SceneResources {
     this.dropGradient();
   }
 
-  /** The upload plan of a volume, kept per volume and sampling (a uint16 or half-float plan scans the data once). */
-  planUpload(volume: Scene['volume'], sampling: VolumeSampling): VolumeUpload {
+  /**
+   * The upload plan of a volume, kept per volume, sampling and drawn channels (a uint16 or
+   * half-float plan scans the data once); `channels`: the drawn channels of a channel scene.
+   */
+  planUpload(volume: Scene['volume'], sampling: VolumeSampling, channels?: readonly number[]): VolumeUpload {
     const memo = this.planMemo;
+    const key = channels ? channels.join(',') : '';
     // The plan depends on the voxels alone, not on the value range.
-    if (memo && sameVoxels(memo.volume, volume) && memo.sampling === sampling) return memo.plan;
-    const plan = planVolumeUpload(volume, this.backend.capabilities, { sampling, allowHalfFloat: this.allowHalfFloat });
-    this.planMemo = { volume, sampling, plan };
+    if (memo && sameVoxels(memo.volume, volume) && memo.sampling === sampling && memo.channels === key)
+      return memo.plan;
+    const opts = { sampling, allowHalfFloat: this.allowHalfFloat };
+    const plan = channels
+      ? planChannelUpload(volume, this.backend.capabilities, opts, channels)
+      : planVolumeUpload(volume, this.backend.capabilities, opts);
+    this.planMemo = { volume, sampling, channels: key, plan };
     return plan;
   }
 
@@ -177,7 +208,7 @@ export class SceneResources {
    * and written in slabs of about 16 M voxels, so a real-size volume never has a full-size
    * converted copy next to it in memory.
    */
-  private uploadVolume(volume: Scene['volume'], upload: VolumeUpload): GpuTexture {
+  private uploadVolume(volume: Scene['volume'], upload: VolumeUpload, channels: readonly number[] | null): GpuTexture {
     const [width, height, depth] = volume.dims;
     const desc = {
       dimension: '3d' as const,
@@ -188,6 +219,8 @@ export class SceneResources {
       filter: upload.filter,
       label: 'volume',
     };
+    // The drawn channels go up in one piece (interleaved into the texture's components).
+    if (channels) return this.backend.createTexture({ ...desc, data: channelTextureData(volume, upload, channels) });
     if (uploadsDataAsIs(upload) || width * height * depth <= SLAB_VOXELS)
       return this.backend.createTexture({ ...desc, data: volumeTextureData(volume, upload) });
     const texture = this.backend.createTexture(desc);
@@ -213,7 +246,11 @@ export class SceneResources {
   /** Upload the volume and transfer function when they changed (by identity / content). */
   sync(): void {
     const scene = this.scene!;
-    const upload = this.planUpload(scene.volume, this.samplingOf(scene));
+    const channels = scene.channels ? enabledChannels(scene.channels) : null;
+    const channelKey = channels ? channels.join(',') : '';
+    const upload = this.planUpload(scene.volume, this.samplingOf(scene), channels ?? undefined);
+    if (this.brickPlan && channels)
+      throw new VptError('limit-exceeded', 'a multichannel scene cannot be bricked (MAX_BRICKED_CHANNELS = 1)');
     if (this.brickPlan) this.syncBricked(scene.volume, upload);
     else if (this.bricked) this.dropVolume();
     let same =
@@ -226,6 +263,7 @@ export class SceneResources {
       !this.bricked &&
       this.volumeTexture &&
       same &&
+      this.volumeChannels === channelKey &&
       this.volumeSource !== scene.volume &&
       sameVoxels(this.volumeSource!, scene.volume)
     ) {
@@ -238,6 +276,9 @@ export class SceneResources {
     if (
       !this.bricked &&
       t &&
+      // Scalar volumes only: a channel texture is written from its drawn channels at upload.
+      channelKey === '' &&
+      this.volumeChannels === '' &&
       this.volumeSource !== scene.volume &&
       this.volumeUpload?.format === upload.format &&
       this.volumeUpload.filter === upload.filter &&
@@ -255,17 +296,26 @@ export class SceneResources {
       this.volumeRewrites++;
       same = true;
     }
-    if (!this.bricked && (this.volumeSource !== scene.volume || !this.volumeTexture || !same)) {
+    if (
+      !this.bricked &&
+      (this.volumeSource !== scene.volume || !this.volumeTexture || !same || this.volumeChannels !== channelKey)
+    ) {
       this.dropVolume();
-      this.volumeTexture = this.uploadVolume(scene.volume, upload);
+      this.volumeTexture = this.uploadVolume(scene.volume, upload, channels);
+      this.volumeChannels = channelKey;
       this.volumeSource = scene.volume;
       this.volumeUpload = upload;
       this.volumeKey++;
     }
-    const tfKey = JSON.stringify(scene.transferFunction);
+    const tfKey = JSON.stringify(scene.channels ?? scene.transferFunction);
     if (this.tfSource !== tfKey || !this.tfTexture) {
-      const data = rasterizeTransferFunction(scene.transferFunction, TF_RESOLUTION);
-      const [width, height] = transferFunctionSize(scene.transferFunction, TF_RESOLUTION);
+      // A channel scene: one row per drawn channel (scene/channels.ts).
+      const data = scene.channels
+        ? rasterizeChannelTransferFunctions(scene.channels, TF_RESOLUTION)
+        : rasterizeTransferFunction(scene.transferFunction, TF_RESOLUTION);
+      const [width, height] = scene.channels
+        ? [TF_RESOLUTION, channels!.length]
+        : transferFunctionSize(scene.transferFunction, TF_RESOLUTION);
       if (this.tfTexture && (this.tfTexture.width !== width || this.tfTexture.height !== height)) {
         this.backend.destroyTexture(this.tfTexture);
         this.tfTexture = null;
@@ -287,6 +337,8 @@ export class SceneResources {
 
   /** A 2D transfer function reads the gradient magnitude, and so does a renderer that asks for it. */
   wantsGradient(scene: Scene): boolean {
+    // A channel scene's TFs are 1D (scene.transferFunction is not drawn).
+    if (scene.channels) return this._renderer.needsGradient === true;
     return scene.transferFunction.dimensions === '2d' || this._renderer.needsGradient === true;
   }
 
@@ -446,6 +498,7 @@ export class SceneResources {
     this.gradientSource = null;
     this.gradientKey = '';
     this.volumeUpload = null;
+    this.volumeChannels = '';
     this.planMemo = null;
     this.auxTextures.clear();
     this.auxFor = { scene: null, renderer: null, version: -1, volumeKey: '' };
@@ -467,6 +520,15 @@ export interface AuxEntry {
 }
 
 const EXACT_DECODE = { decodeScale: 1, decodeOffset: 0 };
+
+/** Per drawn channel, its texel → normalized value map: its own range, else the volume's rule for its data. */
+export function channelMappings(
+  volume: Scene['volume'],
+  channels: readonly ChannelSettings[],
+  upload: Pick<VolumeUpload, 'decodeScale' | 'decodeOffset'>,
+): { valueScale: number; valueOffset: number }[] {
+  return enabledChannels(channels).map((c) => volumeValueMapping(channelVolume(volume, c, channels[c].range), upload));
+}
 /** Voxels per converted upload slab (32 MiB of r16float, 64 MiB of r32float). */
 const SLAB_VOXELS = 1 << 24;
 

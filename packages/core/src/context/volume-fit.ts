@@ -4,7 +4,8 @@ import type { Renderer } from '../renderer.js';
 import { downsampleVolume, fitFactors } from '../scene/downsample.js';
 import type { Scene } from '../scene/scene.js';
 import { TF_RESOLUTION } from '../scene/transfer-function.js';
-import { voxelCount } from '../scene/volume.js';
+import { enabledChannels } from '../scene/channels.js';
+import { channelCount, channelVolume, interleaveChannels, voxelCount } from '../scene/volume.js';
 import type { VolumeOptions } from './context-options.js';
 import { sameVoxels, type BrickPlan, type SceneResources } from './scene-resources.js';
 
@@ -149,7 +150,8 @@ export class VolumeFit {
     const { width, height } = host.size();
     const sampling = scene.sampling ?? this.options.sampling;
     const gradient = host.resources.wantsGradient(scene);
-    const key = `${sampling}|${gradient}|${width}x${height}`;
+    const channels = scene.channels ? enabledChannels(scene.channels) : undefined;
+    const key = `${sampling}|${gradient}|${width}x${height}${channels ? `|channels ${channels.join(',')}` : ''}`;
     const f = this.fitted;
     if (f && f.key === key && f.source === scene.volume) {
       return f.volume === scene.volume ? scene : { ...scene, volume: f.volume };
@@ -164,7 +166,8 @@ export class VolumeFit {
       this.fitted = { source: scene.volume, key, volume, bricks: null };
       return { ...scene, volume };
     }
-    const upload = host.resources.planUpload(scene.volume, sampling);
+    // With channels the texture holds every drawn channel, so the budget counts them all.
+    const upload = host.resources.planUpload(scene.volume, sampling, channels);
     const perVoxel = upload.bytesPerVoxel + (gradient ? (sampling === 'exact' ? 4 : 2) : 0);
     const budget = host.budgetBytes();
     const max3D = host.max3D();
@@ -180,7 +183,18 @@ export class VolumeFit {
     const brickable = scene.transferFunction.dimensions !== '2d' && !gradient;
     const source = this.volumeSources.get(scene.volume);
     const bricking = this.options.bricking;
-    if (brickable && (source || bricking === 'force' || (bricking === 'auto' && factors.some((f) => f > 1)))) {
+    if (channels && (source || bricking === 'force')) {
+      // The brick atlas, its aprons and the cache's per-brick ranges are single-component.
+      throw new VptError(
+        'limit-exceeded',
+        `a multichannel scene cannot be bricked (bricking: '${source ? 'a streamed source' : bricking}'); bricked volumes hold one channel (MAX_BRICKED_CHANNELS = 1): render it unbricked, downsampled to fit maxGpuBytes`,
+      );
+    }
+    if (
+      !channels &&
+      brickable &&
+      (source || bricking === 'force' || (bricking === 'auto' && factors.some((f) => f > 1)))
+    ) {
       const bricks: BrickPlan = {
         capacityBytes: budget,
         brickSize: this.options.brickSize,
@@ -195,11 +209,11 @@ export class VolumeFit {
     }
     let volume = scene.volume;
     if (factors.some((f) => f > 1)) {
-      volume = downsampleVolume(scene.volume, factors);
+      volume = channels ? downsampleChannels(scene.volume, factors) : downsampleVolume(scene.volume, factors);
       const over3D = from.some((d) => d > max3D);
       const why = over3D
         ? `a side exceeds this device's 3D texture limit of ${max3D} (maxTextureDimension3D)`
-        : `${voxelCount(from)} voxels x ${perVoxel} bytes exceed the GPU memory budget of ${host.maxGpuBytes} bytes (maxGpuBytes)`;
+        : `${voxelCount(from)} voxels x ${perVoxel} bytes${channels ? ` (${channels.length} channels)` : ''} exceed the GPU memory budget of ${host.maxGpuBytes} bytes (maxGpuBytes)`;
       host.warn({
         code: 'volume-downsampled',
         factors,
@@ -223,4 +237,11 @@ function standInWithLevel0Box(standIn: Scene['volume'], source: MultiscaleSource
   const spacing = [0, 1, 2].map((a) => (l0.dims[a] * l0.spacing[a]) / standIn.dims[a]) as [number, number, number];
   const valueRange = source.valueRange ?? standIn.valueRange;
   return { ...standIn, spacing, ...(valueRange ? { valueRange: [valueRange[0], valueRange[1]] } : {}) };
+}
+
+/** A multichannel volume downsampled channel by channel (the same box averages), interleaved again. */
+function downsampleChannels(v: Scene['volume'], factors: [number, number, number]): Scene['volume'] {
+  const parts = Array.from({ length: channelCount(v) }, (_, c) => downsampleVolume(channelVolume(v, c), factors));
+  const out = interleaveChannels(parts);
+  return { ...out, ...(v.valueRange ? { valueRange: v.valueRange } : {}), ...(v.name ? { name: v.name } : {}) };
 }

@@ -25,11 +25,27 @@ export type BackendPreference = BackendKind | 'auto';
  * BackendCapabilities.norm16) and r16float (everywhere; also a render target).
  */
 export type TextureFormat =
-  'r32float' | 'rgba32float' | 'rgba8unorm' | 'r8unorm' | 'r16unorm' | 'r16snorm' | 'r16float';
+  | 'r32float'
+  | 'rgba32float'
+  | 'rgba8unorm'
+  | 'r8unorm'
+  | 'r16unorm'
+  | 'r16snorm'
+  | 'r16float'
+  // Multichannel volumes (scene/channels.ts): 2 or 4 components of the scalar formats above.
+  | 'rg8unorm'
+  | 'rg16unorm'
+  | 'rgba16unorm'
+  | 'rg16snorm'
+  | 'rgba16snorm'
+  | 'rg16float'
+  | 'rgba16float'
+  | 'rg32float';
 
 /**
- * Texel data: Float32Array for r32float/rgba32float, Uint8Array for rgba8unorm/r8unorm,
- * Uint16Array for r16unorm and for r16float (IEEE half bits), Int16Array for r16snorm.
+ * Texel data: Float32Array for r32float/rg32float/rgba32float, Uint8Array for
+ * r8unorm/rg8unorm/rgba8unorm, Uint16Array for r16unorm/rg16unorm/rgba16unorm and for the
+ * 16-bit floats (IEEE half bits), Int16Array for the 16-bit snorm formats; components interleaved.
  */
 export type TextureData = Float32Array | Uint8Array | Uint16Array | Int16Array;
 
@@ -144,7 +160,7 @@ export interface BackendCapabilities {
 
 /** Whether a format can be read with a linear filter on a device with these capabilities. */
 export function isFilterable(format: TextureFormat, caps: BackendCapabilities): boolean {
-  if (format === 'r32float' || format === 'rgba32float') return caps.float32Filterable;
+  if (format === 'r32float' || format === 'rg32float' || format === 'rgba32float') return caps.float32Filterable;
   return true;
 }
 
@@ -198,6 +214,14 @@ export const BYTES_PER_TEXEL: Readonly<Record<TextureFormat, number>> = {
   r16unorm: 2,
   r16snorm: 2,
   r16float: 2,
+  rg8unorm: 2,
+  rg16unorm: 4,
+  rgba16unorm: 8,
+  rg16snorm: 4,
+  rgba16snorm: 8,
+  rg16float: 4,
+  rgba16float: 8,
+  rg32float: 8,
 };
 
 export interface BackendInfo {

@@ -74,7 +74,7 @@ export interface CapabilityNames {
 }
 
 /**
- * The optional capabilities a texture needs are present: r16unorm/r16snorm need norm16, a
+ * The optional capabilities a texture needs are present: the 16-bit unorm/snorm formats need norm16, a
  * `filter: 'linear'` float32 texture needs float32Filterable (VptError('missing-extension')).
  */
 export function checkTextureCapabilities(
@@ -83,7 +83,7 @@ export function checkTextureCapabilities(
   caps: BackendCapabilities,
   names: CapabilityNames,
 ): void {
-  if ((desc.format === 'r16unorm' || desc.format === 'r16snorm') && !caps.norm16) {
+  if (/^(r|rg|rgba)16(unorm|snorm)$/.test(desc.format) && !caps.norm16) {
     throw new VptError('missing-extension', `texture "${label}" is ${desc.format}, which needs ${names.norm16}`);
   }
   if (desc.filter === 'linear' && !isFilterable(desc.format, caps)) {

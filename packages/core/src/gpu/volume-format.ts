@@ -23,7 +23,7 @@
  * r16snorm maps −32768 to −1.0 like −32767 (GL/WebGPU snorm rule): one unit of error there.
  */
 import type { Volume } from '../scene/volume.js';
-import { normalizationRange } from '../scene/volume.js';
+import { channelCount, channelVolume, normalizationRange, voxelCount } from '../scene/volume.js';
 import type { BackendCapabilities, TextureData, TextureFormat } from './backend.js';
 import { BYTES_PER_TEXEL, isFilterable } from './backend.js';
 import { floatToHalf } from './half-float.js';
@@ -192,4 +192,93 @@ function finiteExtent(data: ArrayLike<number>): [number, number] {
   }
   if (!Number.isFinite(lo)) return [0, 1];
   return hi > lo ? [lo, hi] : [lo, lo + 1];
+}
+
+/** Texture components for N drawn channels: 1, 2, or 4 (three channels take an RGBA texture, its last component 0). */
+export function channelComponents(n: number): 1 | 2 | 4 {
+  return n <= 1 ? 1 : n === 2 ? 2 : 4;
+}
+
+const MULTI: Record<string, [TextureFormat, TextureFormat]> = {
+  r8unorm: ['rg8unorm', 'rgba8unorm'],
+  r16unorm: ['rg16unorm', 'rgba16unorm'],
+  r16snorm: ['rg16snorm', 'rgba16snorm'],
+  r16float: ['rg16float', 'rgba16float'],
+  r32float: ['rg32float', 'rgba32float'],
+};
+
+/**
+ * The upload of the drawn channels `channels` (indices into the volume's) as one texture of
+ * 1, 2 or 4 components (scene/channels.ts). One channel is planned exactly as a scalar volume
+ * holding it (so one channel through this path uploads what the scalar path does); more take
+ * the multi-component twin of that format, same bytes per component: rg8/rgba8 unorm,
+ * rg16/rgba16 unorm or snorm where the device has them, else half floats holding the integers
+ * (shifted for uint16 data ≥ 65520, as for one channel), and rg32/rgba32 float for float32 data
+ * (half-float storage of float32 data is for scalar volumes only).
+ */
+export function planChannelUpload(
+  volume: Volume,
+  caps: BackendCapabilities,
+  opts: VolumeFormatOptions,
+  channels: readonly number[],
+): VolumeUpload {
+  if (channels.length === 1) return planVolumeUpload(channelVolume(volume, channels[0]), caps, opts);
+  const scalar = planVolumeUpload(channelVolume(volume, channels[0]), caps, { ...opts, allowHalfFloat: false });
+  let decodeOffset = scalar.decodeOffset;
+  if (scalar.format === 'r16float' && volume.type === 'uint16') {
+    // Half cannot hold uint16 values ≥ 65520: shift every channel when any drawn one holds them.
+    const big = channels.some((c) => maxOf(channelVolume(volume, c).data) >= HALF_OVERFLOW);
+    decodeOffset = big ? 32768 : 0;
+  }
+  const format = MULTI[scalar.format][channels.length === 2 ? 0 : 1];
+  return {
+    format,
+    decodeScale: scalar.decodeScale,
+    decodeOffset,
+    bytesPerVoxel: BYTES_PER_TEXEL[format],
+    filter: scalar.filter === 'linear' && isFilterable(format, caps) ? 'linear' : 'nearest',
+  };
+}
+
+/**
+ * Texel data of the drawn channels for a planned upload: the volume's own interleaved array
+ * where it is exactly the texture (every channel drawn, 2 or 4 of them, in order, a format
+ * that takes the data as is), else the channels gathered (and converted) into the texture's
+ * components, unused ones 0. Non-finite float voxels read as the value that maps to 0 in
+ * their channel, as for a scalar volume.
+ */
+export function channelTextureData(volume: Volume, upload: VolumeUpload, channels: readonly number[]): TextureData {
+  if (channels.length === 1) return volumeTextureData(channelVolume(volume, channels[0]), upload);
+  const c = channelCount(volume);
+  const comps = channelComponents(channels.length);
+  const inOrder = channels.every((ch, k) => ch === k);
+  if (uploadsDataAsIs(upload) || isMultiAsIs(upload.format)) {
+    if (comps === c && channels.length === c && inOrder) return volume.data as TextureData;
+  }
+  const count = voxelCount(volume.dims);
+  const src = volume.data;
+  const n = count * comps;
+  const fills = channels.map((ch) => normalizationRange(channelVolume(volume, ch))[0]);
+  const gather = (out: TextureData, convert: (x: number, k: number) => number) => {
+    for (let i = 0; i < count; i++)
+      for (let k = 0; k < channels.length; k++) out[comps * i + k] = convert(src[channels[k] + c * i], k);
+    return out;
+  };
+  if (isMultiAsIs(upload.format)) {
+    const Arr = volume.type === 'uint8' ? Uint8Array : volume.type === 'int16' ? Int16Array : Uint16Array;
+    return gather(new Arr(n), (x) => x);
+  }
+  if (upload.format === 'rg16float' || upload.format === 'rgba16float') {
+    const inv = upload.decodeScale > 0 ? 1 / upload.decodeScale : 0;
+    return gather(new Uint16Array(n), (x, k) =>
+      floatToHalf(((Number.isFinite(x) ? x : fills[k]) - upload.decodeOffset) * inv),
+    );
+  }
+  if (upload.format === 'rg32float' || upload.format === 'rgba32float')
+    return gather(new Float32Array(n), (x, k) => (Number.isFinite(x) ? x : fills[k]));
+  throw new RangeError(`no channel data for format ${upload.format}`);
+}
+
+function isMultiAsIs(format: TextureFormat): boolean {
+  return /^(rg|rgba)(8unorm|16unorm|16snorm)$/.test(format);
 }

@@ -6,7 +6,7 @@ import { sliceAtlasLayout } from '../shaders/slice-atlas.js';
 import * as glslAtlas from '../shaders/slice-atlas.glsl.js';
 import * as wgslAtlas from '../shaders/slice-atlas.wgsl.js';
 import { UniformLayout, type UniformField } from '../uniforms/layout.js';
-import { buildMajorantGrid, gridCells } from './majorant-grid.js';
+import { buildMajorantGrid, channelMajorantGrid, gridCells } from './majorant-grid.js';
 import { rasterizeTransferFunction } from '../scene/transfer-function.js';
 import { atlasTexel } from '../shaders/slice-atlas.js';
 import * as glslBuild from './majorant-build.glsl.js';
@@ -57,6 +57,9 @@ export function majorantGridTextures(
   cellSize: number,
   output: MajorantGridOutput,
 ): AuxiliaryTexture[] {
+  // One drawn channel is an r-format texture and a one-row TF: the GPU build below reads it as a scalar volume.
+  if (scene.channels && scene.channels.filter((c) => c.enabled !== false).length > 1)
+    return [channelGridTexture(scene, cellSize, output)];
   if (volume.cellRanges) return [brickedGridTexture(scene, volume, cellSize, output, volume.cellRanges)];
   const map = { valueScale: volume.valueScale, valueOffset: volume.valueOffset };
   const geometry = gridGeometry(scene.volume.dims, cellSize);
@@ -80,7 +83,7 @@ export function majorantGridTextures(
     },
   };
   if (output === 'ranges') return [ranges];
-  const tfKey = JSON.stringify(scene.transferFunction);
+  const tfKey = JSON.stringify(scene.channels ?? scene.transferFunction);
   return [
     ranges,
     {
@@ -174,6 +177,41 @@ function brickedGridTexture(
         format: 'rgba32float',
         data,
         label: output === 'ranges' ? 'majorant grid value ranges (bricked)' : 'majorant grid (bricked)',
+      };
+    },
+  };
+}
+
+/**
+ * A channel scene's grid (majorant-grid.ts channelMajorantGrid: the sum of the drawn channels'
+ * bounds), built on the CPU and uploaded. Only `'majorants'`: the skipping of MIP and ISO reads
+ * one value range per cell, which a channel scene does not have, so they march it unskipped.
+ */
+function channelGridTexture(scene: Scene, cellSize: number, output: MajorantGridOutput): AuxiliaryTexture {
+  if (output !== 'majorants') throw new RangeError('a channel scene has a majorant grid, not one value range per cell');
+  const channels = scene.channels!;
+  const cells = gridCells(scene.volume.dims, cellSize);
+  const layout = sliceAtlasLayout(cells);
+  return {
+    name: 'majorantGrid',
+    dimension: '2d',
+    key: `channels|${objectId(scene.volume as Volume)}|${cellSize}|${scene.densityScale}|${JSON.stringify(channels)}`,
+    create: () => {
+      const texels = channelMajorantGrid(scene.volume, channels, scene.densityScale, cellSize).data;
+      const data = new Float32Array(4 * layout.width * layout.height);
+      for (let z = 0; z < cells[2]; z++)
+        for (let y = 0; y < cells[1]; y++) {
+          const [ax, ay] = atlasTexel(layout, cells, 0, y, z);
+          const from = 4 * cells[0] * (y + cells[1] * z);
+          data.set(texels.subarray(from, from + 4 * cells[0]), 4 * (ax + layout.width * ay));
+        }
+      return {
+        dimension: '2d',
+        width: layout.width,
+        height: layout.height,
+        format: 'rgba32float',
+        data,
+        label: 'majorant grid (channels)',
       };
     },
   };

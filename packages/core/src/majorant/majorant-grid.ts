@@ -24,6 +24,12 @@
  */
 import { TF_RESOLUTION } from '../scene/transfer-function.js';
 import { normalizedData, type Volume } from '../scene/volume.js';
+import {
+  enabledChannels,
+  rasterizeChannelTransferFunctions,
+  sceneChannelVolume,
+  type ChannelSettings,
+} from '../scene/channels.js';
 
 export const MAX_GRID_CELLS_PER_AXIS = 64;
 const PAD = 1e-5;
@@ -248,4 +254,52 @@ export function volumeCellRanges(volume: Volume, cellSize: number): CellValueRan
     byCell.set(cellSize, r);
   }
   return r;
+}
+
+const channelRangeCache = new WeakMap<object, Map<string, CellValueRanges>>();
+
+/**
+ * The majorant grid of a channel scene (scene/channels.ts): the kernel's extinction is the sum
+ * of the drawn channels' densityScale · opacity_k(value_k), so each cell's majorant is the sum
+ * of the channels' majorants over their own value ranges (each padded as for one channel) and
+ * its minorant the sum of their minorants. Built on the CPU (per-channel ranges cached per data
+ * array, channel, range and cell size; a TF change reruns only the per-cell bounds).
+ */
+export function channelMajorantGrid(
+  volume: Volume,
+  channels: readonly ChannelSettings[],
+  densityScale: number,
+  cellSize: number,
+): MajorantGrid {
+  const drawn = enabledChannels(channels);
+  const tf = rasterizeChannelTransferFunctions(channels, TF_RESOLUTION);
+  let byKey = channelRangeCache.get(volume.data);
+  if (!byKey) channelRangeCache.set(volume.data, (byKey = new Map()));
+  let sum: Float32Array | null = null;
+  let cells: [number, number, number] = [1, 1, 1];
+  drawn.forEach((c, row) => {
+    const one = sceneChannelVolume(volume, channels, c);
+    const key = `${c}|${one.valueRange}|${cellSize}|${volume.dims}`;
+    let ranges = byKey!.get(key);
+    if (!ranges) {
+      ranges = computeCellValueRanges(normalizedData(one), one.dims, gridCells(one.dims, cellSize));
+      byKey!.set(key, ranges);
+    }
+    const grid = buildMajorantGrid(
+      ranges,
+      tf.subarray(4 * TF_RESOLUTION * row, 4 * TF_RESOLUTION * (row + 1)),
+      densityScale,
+    );
+    cells = grid.cells;
+    if (!sum) sum = grid.data;
+    else for (let i = 0; i < sum.length; i++) sum[i] = Math.fround(sum[i] + grid.data[i]);
+  });
+  const data = sum!;
+  let gMax = 0,
+    gMin = Infinity;
+  for (let i = 0; i < data.length; i += 4) {
+    if (data[i] > gMax) gMax = data[i];
+    if (data[i + 1] < gMin) gMin = data[i + 1];
+  }
+  return { cells, data, globalMajorant: gMax, globalMinorant: Number.isFinite(gMin) ? gMin : 0 };
 }

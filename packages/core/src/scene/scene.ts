@@ -1,9 +1,10 @@
 import { VptError } from '../errors.js';
 import { validateCamera, type Camera } from './camera.js';
+import { validateChannels, type ChannelSettings } from './channels.js';
 import { validateClip, type Clip } from './clip.js';
 import { validateEnvironment, validateLights, type Environment, type Light } from './lights.js';
 import { validateTransferFunction, type TransferFunction } from './transfer-function.js';
-import { validateVolume, type Volume } from './volume.js';
+import { channelCount, validateVolume, type Volume } from './volume.js';
 import { checkNumber, checkObject } from '../validation/checks.js';
 import { MAX_DENSITY_SCALE, MAX_EXTINCTION } from '../validation/limits.js';
 
@@ -29,6 +30,13 @@ export interface Scene {
    * cut and the kernels compile no clipping code. Changing it resets accumulation only.
    */
   clip?: Clip;
+  /**
+   * One entry per channel of the volume (scene/channels.ts): required when the volume has
+   * more than one channel; given for a scalar volume it takes that volume through the
+   * multichannel path. With channels, `transferFunction` is not drawn (each channel has its
+   * own). Absent: the single-channel path, unchanged.
+   */
+  channels?: ChannelSettings[];
 }
 
 export function validateScene(s: Scene): void {
@@ -60,4 +68,10 @@ export function validateScene(s: Scene): void {
   if (s.sampling !== undefined && s.sampling !== 'fast' && s.sampling !== 'exact')
     throw new VptError('invalid-scene', `Scene: sampling must be 'fast' or 'exact', got ${JSON.stringify(s.sampling)}`);
   if (s.clip !== undefined) validateClip(s.clip);
+  if (s.channels !== undefined) validateChannels(s.channels, s.volume, s.densityScale);
+  else if (channelCount(s.volume) > 1)
+    throw new VptError(
+      'invalid-scene',
+      `Scene: the volume has ${channelCount(s.volume)} channels, so the scene needs "channels": one entry (transferFunction, enabled, color, range) per channel`,
+    );
 }

@@ -4,9 +4,15 @@ import { FLOAT32_MAX } from '../validation/limits.js';
 export type VoxelType = 'uint8' | 'uint16' | 'int16' | 'float32';
 export type VoxelArray = Uint8Array | Uint16Array | Int16Array | Float32Array;
 
+/** Channels a volume may hold (scene/channels.ts: at most MAX_ENABLED_CHANNELS of them are drawn at once). */
+export const MAX_VOLUME_CHANNELS = 16;
+
 /**
- * A scalar volume. Plain and serializable (the typed array aside).
- * Layout: x fastest, then y, then z: value(x,y,z) = data[x + NX*(y + NY*z)].
+ * A scalar volume, or a multichannel one (`channels` > 1). Plain and serializable (the typed
+ * array aside). Layout: x fastest, then y, then z: value(x,y,z) = data[x + NX*(y + NY*z)];
+ * with C channels they are interleaved, the channel fastest: value(c,x,y,z) =
+ * data[c + C*(x + NX*(y + NY*z))] (the order a multi-component texture takes, so 2 or 4
+ * channels of uint8/uint16/int16 upload as they are).
  */
 export interface Volume {
   dims: [number, number, number];
@@ -23,6 +29,8 @@ export interface Volume {
    */
   valueRange?: [number, number];
   name?: string;
+  /** Channels per voxel, interleaved (default 1). A scene with more than one gives each its settings (Scene.channels). */
+  channels?: number;
 }
 
 const ARRAY_OF: Record<VoxelType, new (n: number) => VoxelArray> = {
@@ -56,8 +64,16 @@ export function validateVolume(v: Volume): void {
   }
   if (!(v.type in ARRAY_OF)) bad(`unknown voxel type "${v.type}"`);
   if (!(v.data instanceof ARRAY_OF[v.type])) bad(`data must be a ${ARRAY_OF[v.type].name} for type ${v.type}`);
-  const n = voxelCount(v.dims);
-  if (v.data.length !== n) bad(`dims [${v.dims.join(', ')}] need ${n} voxels, data has ${v.data.length}`);
+  const c = v.channels ?? 1;
+  if (typeof c !== 'number' || !Number.isInteger(c) || c < 1 || c > MAX_VOLUME_CHANNELS)
+    bad(`channels must be an integer in [1, ${MAX_VOLUME_CHANNELS}] (MAX_VOLUME_CHANNELS), got ${v.channels}`);
+  const n = voxelCount(v.dims) * c;
+  if (v.data.length !== n)
+    bad(
+      c === 1
+        ? `dims [${v.dims.join(', ')}] need ${n} voxels, data has ${v.data.length}`
+        : `dims [${v.dims.join(', ')}] × ${c} channels need ${n} values, data has ${v.data.length}`,
+    );
   if (
     v.valueRange &&
     (!Array.isArray(v.valueRange) ||
@@ -124,13 +140,83 @@ export function volumeBox(v: Pick<Volume, 'dims' | 'spacing'>): {
   };
 }
 
+/** A volume; `channels` > 1 makes a multichannel one whose `data` is interleaved (see Volume). */
 export function createVolume(
   dims: [number, number, number],
   type: VoxelType,
   data?: VoxelArray,
   spacing: [number, number, number] = [1, 1, 1],
+  channels = 1,
 ): Volume {
-  const v: Volume = { dims, spacing, type, data: data ?? new ARRAY_OF[type](voxelCount(dims)) };
+  const v: Volume = { dims, spacing, type, data: data ?? new ARRAY_OF[type](voxelCount(dims) * channels) };
+  if (channels !== 1) v.channels = channels;
   validateVolume(v);
   return v;
+}
+
+/** Channels per voxel (1 for a scalar volume). */
+export function channelCount(v: Pick<Volume, 'channels'>): number {
+  return v.channels ?? 1;
+}
+
+const channelViews = new WeakMap<VoxelArray, Map<number, VoxelArray>>();
+
+/**
+ * Channel `c` as a scalar volume (its data de-interleaved once per array and channel, then
+ * cached), with `valueRange` as given: what the CPU twins, histograms and majorant bounds
+ * of one channel read. Channel 0 of a scalar volume is the volume's own data.
+ */
+export function channelVolume(v: Volume, c: number, valueRange?: [number, number]): Volume {
+  const n = channelCount(v);
+  if (!Number.isInteger(c) || c < 0 || c >= n)
+    throw new VptError('invalid-scene', `Volume: channel ${c} does not exist (the volume has ${n})`);
+  let data = v.data;
+  if (n > 1) {
+    let byChannel = channelViews.get(v.data);
+    if (!byChannel) channelViews.set(v.data, (byChannel = new Map()));
+    let d = byChannel.get(c);
+    if (!d) {
+      d = new ARRAY_OF[v.type](voxelCount(v.dims));
+      for (let i = 0; i < d.length; i++) d[i] = v.data[c + n * i];
+      byChannel.set(c, d);
+    }
+    data = d;
+  }
+  const out: Volume = { dims: v.dims, spacing: v.spacing, type: v.type, data };
+  if (valueRange) out.valueRange = valueRange;
+  else if (v.valueRange) out.valueRange = v.valueRange;
+  if (v.name) out.name = v.name;
+  return out;
+}
+
+/**
+ * One multichannel volume from scalar volumes of the same grid and voxel type (several files
+ * of one acquisition), interleaved; throws VptError('invalid-scene') naming the mismatch.
+ */
+export function interleaveChannels(volumes: readonly Volume[]): Volume {
+  if (volumes.length < 1 || volumes.length > MAX_VOLUME_CHANNELS)
+    throw new VptError(
+      'invalid-scene',
+      `Volume: ${volumes.length} channels given, 1 to ${MAX_VOLUME_CHANNELS} (MAX_VOLUME_CHANNELS) allowed`,
+    );
+  const first = volumes[0];
+  volumes.forEach((v, k) => {
+    validateVolume(v);
+    if (channelCount(v) !== 1) throw new VptError('invalid-scene', `Volume: channel ${k} is itself multichannel`);
+    if (v.type !== first.type)
+      throw new VptError('invalid-scene', `Volume: channel ${k} is ${v.type}, channel 0 is ${first.type}`);
+    if (v.dims.some((d, i) => d !== first.dims[i]))
+      throw new VptError(
+        'invalid-scene',
+        `Volume: channel ${k} has dims [${v.dims.join(', ')}], channel 0 [${first.dims.join(', ')}] (channels share one grid)`,
+      );
+  });
+  const n = volumes.length;
+  if (n === 1) return first;
+  const count = voxelCount(first.dims);
+  const data = new ARRAY_OF[first.type](count * n);
+  volumes.forEach((v, k) => {
+    for (let i = 0; i < count; i++) data[k + n * i] = v.data[i];
+  });
+  return createVolume([...first.dims], first.type, data, [...first.spacing], n);
 }

@@ -242,6 +242,95 @@ float sampleVolumeTexel(vec3 p) {
   return texture(volume, (x + vec3(b.shift)) / vec3(textureSize(volume, 0))).r;
 }
 `;
+/**
+ * A channel scene (scene/channels.ts; only in variants compiled with CHANNELS = the number of
+ * drawn channels): the volume texture holds the drawn channels as components (unused ones
+ * masked by a zero scale), `sampleChannels(p)` is each channel's value, mapped by its own
+ * u.channelScale / u.channelOffset, and the TF texture holds channel k's 1D transfer function
+ * in row k. `sampleVolume` / `sampleVolumeTexel` read the first drawn channel.
+ */
+export const CHANNEL_EXACT_FILTER = /* glsl */ `
+vec4 sampleChannelTexels(vec3 p) {
+  vec3 tc = (p - u.boxMin) / (u.boxMax - u.boxMin);
+  ivec3 dims = u.volumeDims.xyz;
+  vec3 g = tc * vec3(dims) - 0.5;
+  vec3 g0 = floor(g);
+  vec3 f = g - g0;
+  ivec3 i0 = clamp(ivec3(g0), ivec3(0), dims - 1);
+  ivec3 i1 = clamp(ivec3(g0) + 1, ivec3(0), dims - 1);
+  vec4 c000 = texelFetch(volume, ivec3(i0.x, i0.y, i0.z), 0);
+  vec4 c100 = texelFetch(volume, ivec3(i1.x, i0.y, i0.z), 0);
+  vec4 c010 = texelFetch(volume, ivec3(i0.x, i1.y, i0.z), 0);
+  vec4 c110 = texelFetch(volume, ivec3(i1.x, i1.y, i0.z), 0);
+  vec4 c001 = texelFetch(volume, ivec3(i0.x, i0.y, i1.z), 0);
+  vec4 c101 = texelFetch(volume, ivec3(i1.x, i0.y, i1.z), 0);
+  vec4 c011 = texelFetch(volume, ivec3(i0.x, i1.y, i1.z), 0);
+  vec4 c111 = texelFetch(volume, ivec3(i1.x, i1.y, i1.z), 0);
+  vec4 c00 = lerp4(c000, c100, f.x);
+  vec4 c10 = lerp4(c010, c110, f.x);
+  vec4 c01 = lerp4(c001, c101, f.x);
+  vec4 c11 = lerp4(c011, c111, f.x);
+  return lerp4(lerp4(c00, c10, f.y), lerp4(c01, c11, f.y), f.z);
+}
+`;
+export const CHANNEL_HARDWARE_FILTER = /* glsl */ `
+vec4 sampleChannelTexels(vec3 p) {
+  return texture(volume, (p - u.boxMin) / (u.boxMax - u.boxMin));
+}
+`;
+export const CHANNEL_SAMPLE = /* glsl */ `
+vec4 sampleChannels(vec3 p) {
+  return clamp(sampleChannelTexels(p) * u.channelScale + u.channelOffset, vec4(0.0), vec4(1.0));
+}
+float sampleVolumeTexel(vec3 p) { return sampleChannelTexels(p).x; }
+`;
+/**
+ * The channels as one medium: extinction is the sum of the channels' (sigma = sum of opacity_k),
+ * colour / albedo each channel's colour weighted by its share opacity_k / sigma, the mixture of
+ * participating media (Novák et al. 2018, "Monte Carlo Methods for Volumetric Light Transport
+ * Simulation", CGF 37(2), Sec. 2: sigma_t = sum sigma_t,i, albedo = sum sigma_s,i / sigma_t).
+ * Where sigma = 0 the colour is never seen; the channels' plain mean keeps it finite.
+ */
+export const CHANNEL_TRANSFER = /* glsl */ `
+// Row 'row' of the TF texture: that drawn channel's 1D transfer function, as transferLookup.
+vec4 channelLookup(float value, int row) {
+  float x = clamp(value, 0.0, 1.0) * float(u.tfSize - 1);
+  float x0 = floor(x);
+  int i0 = int(x0);
+  int i1 = min(i0 + 1, u.tfSize - 1);
+  return lerp4(texelFetch(transferFunction, ivec2(i0, row), 0), texelFetch(transferFunction, ivec2(i1, row), 0), x - x0);
+}
+vec4 transferAt(vec3 p) {
+  vec4 v = sampleChannels(p);
+  vec4 t0 = channelLookup(v.x, 0);
+  float sigma = t0.a;
+#if CHANNELS >= 2
+  vec4 t1 = channelLookup(v.y, 1);
+  sigma += t1.a;
+#endif
+#if CHANNELS >= 3
+  vec4 t2 = channelLookup(v.z, 2);
+  sigma += t2.a;
+#endif
+#if CHANNELS >= 4
+  vec4 t3 = channelLookup(v.w, 3);
+  sigma += t3.a;
+#endif
+  float even = 1.0 / float(u.tfHeight);
+  vec3 rgb = (sigma > 0.0 ? t0.a / sigma : even) * t0.rgb;
+#if CHANNELS >= 2
+  rgb += (sigma > 0.0 ? t1.a / sigma : even) * t1.rgb;
+#endif
+#if CHANNELS >= 3
+  rgb += (sigma > 0.0 ? t2.a / sigma : even) * t2.rgb;
+#endif
+#if CHANNELS >= 4
+  rgb += (sigma > 0.0 ? t3.a / sigma : even) * t3.rgb;
+#endif
+  return vec4(rgb, sigma);
+}
+`;
+
 /** sampleVolume() (the filtered texel, value-mapped) and the 1D TF lookup. */
 export const SAMPLE_AND_LOOKUP = /* glsl */ `
 float sampleVolume(vec3 p) { return volumeValue(sampleVolumeTexel(p)); }
@@ -341,7 +430,14 @@ export const GENERATE_CHUNKS = [
   '#endif',
   SLICE_ATLAS,
   LERP,
-  '#if BRICKED',
+  '#if CHANNELS',
+  '#if HARDWARE_FILTER',
+  CHANNEL_HARDWARE_FILTER,
+  '#else',
+  CHANNEL_EXACT_FILTER,
+  '#endif',
+  CHANNEL_SAMPLE,
+  '#elif BRICKED',
   BRICK_LOOKUP,
   '#if HARDWARE_FILTER',
   BRICKED_HARDWARE_FILTER,
@@ -357,7 +453,9 @@ export const GENERATE_CHUNKS = [
   '#if GRADIENT',
   GRADIENT,
   '#endif',
-  '#if TF_2D',
+  '#if CHANNELS',
+  CHANNEL_TRANSFER,
+  '#elif TF_2D',
   TRANSFER_2D,
   '#else',
   TRANSFER_1D,

@@ -15,6 +15,8 @@ export interface CommonChunkOptions {
   bricked?: boolean;
   /** The scene clips (scene/clip.ts): clipRayInterval() / isClipped() exist, reading the clip uniforms. */
   clip?: boolean;
+  /** A channel scene's drawn channels (1–4; scene/channels.ts): sampleChannels() and the mixture's transferAt(); 0 or absent: scalar. */
+  channels?: number;
 }
 
 /**
@@ -30,6 +32,7 @@ export function commonChunks(opts: CommonChunkOptions = {}): KernelSource {
     HARDWARE_FILTER: !!opts.hardwareFilter,
     BRICKED: !!opts.bricked,
     CLIP: !!opts.clip,
+    CHANNELS: opts.channels ?? 0,
   };
   return { glsl: preprocess(glsl.GENERATE_CHUNKS, flags), wgsl: preprocess(wgsl.GENERATE_CHUNKS, flags) };
 }

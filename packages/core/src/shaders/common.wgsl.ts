@@ -203,6 +203,81 @@ fn sampleVolumeTexel(p: vec3f) -> f32 {
   return textureSampleLevel(volume, vptLinearSampler, (x + vec3f(b.shift)) / vec3f(textureDimensions(volume)), 0.0).r;
 }
 `;
+/** A channel scene: twins of the CHANNEL_* chunks of common.glsl.ts (see there). */
+export const CHANNEL_EXACT_FILTER = /* wgsl */ `
+fn sampleChannelTexels(p: vec3f) -> vec4f {
+  let tc = (p - u.boxMin) / (u.boxMax - u.boxMin);
+  let dims = u.volumeDims.xyz;
+  let g = tc * vec3f(dims) - 0.5;
+  let g0 = floor(g);
+  let f = g - g0;
+  let i0 = clamp(vec3i(g0), vec3i(0), dims - 1);
+  let i1 = clamp(vec3i(g0) + 1, vec3i(0), dims - 1);
+  let c000 = textureLoad(volume, vec3i(i0.x, i0.y, i0.z), 0);
+  let c100 = textureLoad(volume, vec3i(i1.x, i0.y, i0.z), 0);
+  let c010 = textureLoad(volume, vec3i(i0.x, i1.y, i0.z), 0);
+  let c110 = textureLoad(volume, vec3i(i1.x, i1.y, i0.z), 0);
+  let c001 = textureLoad(volume, vec3i(i0.x, i0.y, i1.z), 0);
+  let c101 = textureLoad(volume, vec3i(i1.x, i0.y, i1.z), 0);
+  let c011 = textureLoad(volume, vec3i(i0.x, i1.y, i1.z), 0);
+  let c111 = textureLoad(volume, vec3i(i1.x, i1.y, i1.z), 0);
+  let c00 = lerp4(c000, c100, f.x);
+  let c10 = lerp4(c010, c110, f.x);
+  let c01 = lerp4(c001, c101, f.x);
+  let c11 = lerp4(c011, c111, f.x);
+  return lerp4(lerp4(c00, c10, f.y), lerp4(c01, c11, f.y), f.z);
+}
+`;
+export const CHANNEL_HARDWARE_FILTER = /* wgsl */ `
+fn sampleChannelTexels(p: vec3f) -> vec4f {
+  return textureSampleLevel(volume, vptLinearSampler, (p - u.boxMin) / (u.boxMax - u.boxMin), 0.0);
+}
+`;
+export const CHANNEL_SAMPLE = /* wgsl */ `
+fn sampleChannels(p: vec3f) -> vec4f {
+  return clamp(sampleChannelTexels(p) * u.channelScale + u.channelOffset, vec4f(0.0), vec4f(1.0));
+}
+fn sampleVolumeTexel(p: vec3f) -> f32 { return sampleChannelTexels(p).x; }
+`;
+// Novák et al. 2018, CGF 37(2), Sec. 2: a mixture's sigma_t is the sum, its albedo the sigma-weighted mean.
+export const CHANNEL_TRANSFER = /* wgsl */ `
+fn channelLookup(value: f32, row: i32) -> vec4f {
+  let x = clamp(value, 0.0, 1.0) * f32(u.tfSize - 1);
+  let x0 = floor(x);
+  let i0 = i32(x0);
+  let i1 = min(i0 + 1, u.tfSize - 1);
+  return lerp4(textureLoad(transferFunction, vec2i(i0, row), 0), textureLoad(transferFunction, vec2i(i1, row), 0), x - x0);
+}
+fn transferAt(p: vec3f) -> vec4f {
+  let v = sampleChannels(p);
+  let t0 = channelLookup(v.x, 0);
+  var sigma = t0.a;
+#if CHANNELS >= 2
+  let t1 = channelLookup(v.y, 1);
+  sigma += t1.a;
+#endif
+#if CHANNELS >= 3
+  let t2 = channelLookup(v.z, 2);
+  sigma += t2.a;
+#endif
+#if CHANNELS >= 4
+  let t3 = channelLookup(v.w, 3);
+  sigma += t3.a;
+#endif
+  let even = 1.0 / f32(u.tfHeight);
+  var rgb = select(even, t0.a / sigma, sigma > 0.0) * t0.rgb;
+#if CHANNELS >= 2
+  rgb += select(even, t1.a / sigma, sigma > 0.0) * t1.rgb;
+#endif
+#if CHANNELS >= 3
+  rgb += select(even, t2.a / sigma, sigma > 0.0) * t2.rgb;
+#endif
+#if CHANNELS >= 4
+  rgb += select(even, t3.a / sigma, sigma > 0.0) * t3.rgb;
+#endif
+  return vec4f(rgb, sigma);
+}
+`;
 export const SAMPLE_AND_LOOKUP = /* wgsl */ `
 fn sampleVolume(p: vec3f) -> f32 { return volumeValue(sampleVolumeTexel(p)); }
 fn transferLookup(value: f32) -> vec4f {
@@ -287,7 +362,14 @@ export const GENERATE_CHUNKS = [
   '#endif',
   SLICE_ATLAS,
   LERP,
-  '#if BRICKED',
+  '#if CHANNELS',
+  '#if HARDWARE_FILTER',
+  CHANNEL_HARDWARE_FILTER,
+  '#else',
+  CHANNEL_EXACT_FILTER,
+  '#endif',
+  CHANNEL_SAMPLE,
+  '#elif BRICKED',
   BRICK_LOOKUP,
   '#if HARDWARE_FILTER',
   BRICKED_HARDWARE_FILTER,
@@ -303,7 +385,9 @@ export const GENERATE_CHUNKS = [
   '#if GRADIENT',
   GRADIENT,
   '#endif',
-  '#if TF_2D',
+  '#if CHANNELS',
+  CHANNEL_TRANSFER,
+  '#elif TF_2D',
   TRANSFER_2D,
   '#else',
   TRANSFER_1D,

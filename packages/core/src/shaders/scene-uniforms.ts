@@ -39,6 +39,17 @@ export const SCENE_UNIFORM_FIELDS: readonly UniformField[] = [
 ];
 
 /**
+ * The channel variant's uniforms (VPT_CHANNELS; scene/channels.ts), appended after the
+ * renderer's and the clip fields only for a channel scene: per drawn channel (component k of
+ * the volume texture) its texel → normalized value map, as valueScale / valueOffset for one
+ * channel; unused components 0 (they read as value 0).
+ */
+export const CHANNEL_UNIFORM_FIELDS: readonly UniformField[] = [
+  { name: 'channelScale', type: 'vec4' },
+  { name: 'channelOffset', type: 'vec4' },
+];
+
+/**
  * Values of SCENE_UNIFORM_FIELDS for one iteration at a given image size. `mapping` is the
  * uploaded volume's texel → value map (volumeValueMapping); without it, texels are taken to
  * hold the data values (the exact path's r32float).
@@ -71,9 +82,12 @@ export function sceneUniformValues(
     tfSize,
     volumeDims: [...scene.volume.dims, 0],
     background: [bg[0], bg[1], bg[2], 1],
-    tfHeight: transferFunctionSize(scene.transferFunction, tfSize)[1],
+    tfHeight: scene.channels
+      ? scene.channels.filter((c) => c.enabled !== false).length
+      : transferFunctionSize(scene.transferFunction, tfSize)[1],
     gradientAtlasColumns: sliceAtlasLayout(scene.volume.dims).columns,
-    tfGradientMax: scene.transferFunction.dimensions === '2d' ? (scene.transferFunction.gradientMax ?? 0) : 0,
+    tfGradientMax:
+      !scene.channels && scene.transferFunction.dimensions === '2d' ? (scene.transferFunction.gradientMax ?? 0) : 0,
     valueScale: map.valueScale,
     valueOffset: map.valueOffset,
   };

@@ -11,6 +11,7 @@ import {
   SCENE_DEFAULTS,
   checkSceneDescription,
   selectTimeStep,
+  isChannelFiles,
   type FileVolumeDescription,
   type SceneDescription,
   type VolumeDescription,
@@ -52,6 +53,17 @@ async function loadVolume(
   request: Partial<RequestPolicy> = {},
 ): Promise<Volume> {
   if ('procedural' in desc) return core.createProceduralVolume(desc.procedural, desc.size ?? 32);
+  if ('zarr' in desc && desc.channels)
+    return loadChannels(
+      desc.channels.map((channel) => {
+        const { channels: _all, ...one } = desc;
+        void _all;
+        return { ...one, channel };
+      }),
+      baseUrl,
+      request,
+    );
+  if (isChannelFiles(desc)) return loadChannels(desc.channels, baseUrl, request);
   if ('zarr' in desc) return loadZarr(desc, baseUrl, request);
   if ('file' in desc) return loadFile(desc, baseUrl, request);
   if ('timeSeries' in desc) return loadFile({ ...desc, file: desc.timeSeries[0] }, baseUrl, request);
@@ -71,6 +83,25 @@ async function loadVolume(
   const volume = core.createVolume(desc.dims, desc.type, data, desc.spacing ?? [1, 1, 1]);
   if (desc.valueRange) volume.valueRange = desc.valueRange;
   volume.name = url.split('/').pop();
+  return volume;
+}
+
+/** Each channel's own value range (a sidecar's, an omero window) of a volume loaded from channels: the scene's default per-channel range. */
+const channelRanges = new WeakMap<Volume, ([number, number] | undefined)[]>();
+
+/** One multichannel volume from one description per channel (files of one grid, OME-Zarr channels along c). */
+async function loadChannels(
+  descs: VolumeDescription[],
+  baseUrl: string,
+  request: Partial<RequestPolicy>,
+): Promise<Volume> {
+  const parts = await Promise.all(descs.map((d) => loadVolume(d, baseUrl, request)));
+  const volume = core.interleaveChannels(parts.map((p) => ({ ...p, valueRange: undefined })));
+  channelRanges.set(
+    volume,
+    parts.map((p) => p.valueRange),
+  );
+  volume.name = parts.map((p) => p.name ?? '').join(' + ');
   return volume;
 }
 
@@ -166,7 +197,8 @@ async function zarrToStream(
   request: Partial<RequestPolicy>,
 ): Promise<{ source: MultiscaleSource; level: number } | null> {
   const v = d.volume;
-  if (!v || !('zarr' in v) || v.level !== undefined) return null;
+  // A multichannel store loads whole (bricked volumes hold one channel).
+  if (!v || !('zarr' in v) || v.level !== undefined || v.channels) return null;
   const url = new URL(v.zarr, baseUrl).href;
   const loaders = await load<LoadersModule>('@vpt/loaders');
   let source: MultiscaleSource;
@@ -213,8 +245,23 @@ async function buildScene(d: SceneDescription, baseUrl?: string, request?: Parti
 /** The Scene of a description that was checked where it entered the page (buildScene, renderDescription). */
 async function sceneOf(d: SceneDescription, baseUrl?: string, request?: Partial<RequestPolicy>): Promise<Scene> {
   const tf = d.transferFunction;
+  const volume = await loadVolume(d.volume ?? SCENE_DEFAULTS.volume, baseUrl, request);
+  const ranges = channelRanges.get(volume);
   return {
-    volume: await loadVolume(d.volume ?? SCENE_DEFAULTS.volume, baseUrl, request),
+    volume,
+    ...(d.channels
+      ? {
+          channels: d.channels.map((c, k) => {
+            const range = c.range ?? ranges?.[k];
+            return {
+              transferFunction: { dimensions: '1d' as const, points: c.transferFunction.points },
+              ...(c.enabled !== undefined ? { enabled: c.enabled } : {}),
+              ...(c.color ? { color: c.color } : {}),
+              ...(range ? { range: [range[0], range[1]] as [number, number] } : {}),
+            };
+          }),
+        }
+      : {}),
     transferFunction: !tf
       ? core.rampTransferFunction()
       : tf.dimensions === '2d'

@@ -32,6 +32,108 @@ fn isoNextSample(c: ptr<function, IsoCells>, t: f32, t0: f32, t1: f32, seg: f32,
 }
 #endif
 
+#if VPT_CHANNELS
+// A channel scene: surface k lies on drawn channel k.
+fn isoRefine(o: vec3f, d: vec3f, ta0: f32, fa0: f32, tb0: f32, iso: f32, ch: i32) -> f32 {
+  var ta = ta0;
+  var fa = fa0;
+  var tb = tb0;
+  for (var i = 0; i < ISO_REFINE_STEPS; i++) {
+    let tm = 0.5 * (ta + tb);
+    let fm = sampleChannels(o + d * tm)[ch] - iso;
+    if ((fm >= 0.0) == (fa >= 0.0)) { ta = tm; fa = fm; } else { tb = tm; }
+  }
+  return 0.5 * (ta + tb);
+}
+
+fn isoTrace(o: vec3f, d: vec3f, t0: f32, t1: f32, rng: ptr<function, u32>) -> vec4f {
+  let offset = rngNext(rng);
+  let n = max(1, i32(min(ceil((t1 - t0) / u.stepSize), ${MAX_MARCH_STEPS}.0)));
+  let seg = (t1 - t0) / f32(n);
+  var tPrev = t0;
+  var vPrev = sampleChannels(o + d * t0);
+  var r = vec4f(-1.0);
+#if SKIP_EMPTY
+  var cells = isoCellsStart(o, d, t0);
+#endif
+  for (var i = 0; i <= n; i++) {
+    let t = min(t0 + (f32(i) + offset) * seg, t1);
+    let v = sampleChannels(o + d * t);
+    for (var k = 0; k < ISO_COUNT; k++) {
+      let iso = u.isoValues[k];
+      let alpha = u.isoSurface[k].a;
+      if ((vPrev[k] >= iso) != (v[k] >= iso) && alpha > 0.0) {
+        let tc = isoRefine(o, d, tPrev, vPrev[k] - iso, t, iso, k);
+        if (r.z < 0.0 || tc < r.z) { r.z = tc; r.w = f32(k); }
+        var opaque = true;
+        if (alpha < 1.0) { opaque = rngNext(rng) < alpha; }
+        if (opaque && (r.x < 0.0 || tc < r.x)) { r.x = tc; r.y = f32(k); }
+      }
+    }
+    if (r.x >= 0.0) { return r; }
+    tPrev = t;
+    vPrev = v;
+#if SKIP_EMPTY
+    let next = isoNextSample(&cells, t, t0, t1, seg, offset, i, n);
+    if (next > i + 1 && next <= n) {
+      tPrev = min(t0 + (f32(next - 1) + offset) * seg, t1);
+      vPrev = sampleChannels(o + d * tPrev);
+    }
+    i = next - 1;
+#endif
+  }
+  return r;
+}
+
+fn isoVisibility(o: vec3f, d: vec3f, maxDist: f32, rng: ptr<function, u32>) -> f32 {
+#if VPT_CLIP
+  let tb = keptInterval(o, d);
+#else
+  let tb = intersectBox(o, d, u.boxMin, u.boxMax);
+#endif
+  let t1 = min(tb.y, maxDist);
+  if (!(tb.x < t1)) { return 1.0; }
+  let t0 = tb.x;
+  let offset = rngNext(rng);
+  let n = max(1, i32(min(ceil((t1 - t0) / u.stepSize), ${MAX_MARCH_STEPS}.0)));
+  let seg = (t1 - t0) / f32(n);
+  var vPrev = sampleChannels(o + d * t0);
+#if SKIP_EMPTY
+  var cells = isoCellsStart(o, d, t0);
+#endif
+  for (var i = 0; i <= n; i++) {
+    let t = min(t0 + (f32(i) + offset) * seg, t1);
+    let v = sampleChannels(o + d * t);
+    for (var k = 0; k < ISO_COUNT; k++) {
+      let iso = u.isoValues[k];
+      let alpha = u.isoSurface[k].a;
+      if ((vPrev[k] >= iso) != (v[k] >= iso) && alpha > 0.0) {
+        if (alpha >= 1.0) { return 0.0; }
+        if (rngNext(rng) < alpha) { return 0.0; }
+      }
+    }
+    vPrev = v;
+#if SKIP_EMPTY
+    let next = isoNextSample(&cells, t, t0, t1, seg, offset, i, n);
+    if (next > i + 1 && next <= n) { vPrev = sampleChannels(o + d * min(t0 + (f32(next - 1) + offset) * seg, t1)); }
+    i = next - 1;
+#endif
+  }
+  return 1.0;
+}
+
+fn isoNormal(p: vec3f, d: vec3f, ch: i32) -> vec3f {
+  let h = u.gradientStep;
+  let gx = (sampleChannels(p + vec3f(h.x, 0.0, 0.0))[ch] - sampleChannels(p - vec3f(h.x, 0.0, 0.0))[ch]) / (2.0 * h.x);
+  let gy = (sampleChannels(p + vec3f(0.0, h.y, 0.0))[ch] - sampleChannels(p - vec3f(0.0, h.y, 0.0))[ch]) / (2.0 * h.y);
+  let gz = (sampleChannels(p + vec3f(0.0, 0.0, h.z))[ch] - sampleChannels(p - vec3f(0.0, 0.0, h.z))[ch]) / (2.0 * h.z);
+  let g = vec3f(gx, gy, gz);
+  if (!(dot(g, g) > 1e-30)) { return -d; }
+  let n = normalize(g);
+  return select(n, -n, dot(n, d) > 0.0);
+}
+
+#else
 fn isoRefine(o: vec3f, d: vec3f, ta0: f32, fa0: f32, tb0: f32, iso: f32) -> f32 {
   var ta = ta0;
   var fa = fa0;
@@ -131,6 +233,7 @@ fn isoNormal(p: vec3f, d: vec3f) -> vec3f {
   return select(n, -n, dot(n, d) > 0.0);
 }
 
+#endif
 fn isoBrdf(n: vec3f, wi: vec3f, wo: vec3f, albedo: vec3f) -> vec3f {
   let hs = wi + wo;
   var lobe = 0.0;
@@ -245,12 +348,20 @@ export const generate =
 #endif
   var nearest = vec4f(-1.0, 0.0, 0.0, 0.0);
   if (hit.z >= 0.0) {
+#if VPT_CHANNELS
+    let nz = isoNormal(o + dir * hit.z, dir, i32(hit.w));
+#else
     let nz = isoNormal(o + dir * hit.z, dir);
+#endif
     nearest = vec4f(hit.z, nz);
     if (hit.x >= 0.0) {
       let k = i32(hit.y);
       var n = nz;
+#if VPT_CHANNELS
+      if (hit.x != hit.z || hit.y != hit.w) { n = isoNormal(o + dir * hit.x, dir, k); }
+#else
       if (hit.x != hit.z) { n = isoNormal(o + dir * hit.x, dir); }
+#endif
       color = vec4f(isoShade(o + dir * hit.x, n, -dir, u.isoSurface[k].rgb, &rng), 1.0);
     }
   }
@@ -259,7 +370,11 @@ export const generate =
   // Denoiser guides at the shaded surface: its normal, depth and diffuse colour.
   if (hit.x >= 0.0) {
     var ng = nearest.yzw;
+#if VPT_CHANNELS
+    if (hit.x != hit.z || hit.y != hit.w) { ng = isoNormal(o + dir * hit.x, dir, i32(hit.y)); }
+#else
     if (hit.x != hit.z) { ng = isoNormal(o + dir * hit.x, dir); }
+#endif
     res.out2 = vec4f(ng, hit.x);
     res.out3 = guideAlbedo(u.isoSurface[i32(hit.y)].rgb);
   }

@@ -7,6 +7,8 @@ import { GLSL_CELL_WALK, GLSL_DEPTH_LIMIT, MAX_MARCH_STEPS } from '@vpt/core';
 // SKIP_EMPTY (empty-space skipping through the majorant grid's value ranges, core's cell walk):
 // a cell whose largest value cannot exceed the running maximum is jumped over, and the march
 // ends once the maximum is 1 (the largest normalized value); the maximum keeps its bits.
+// VPT_CHANNELS (a channel scene): the maximum per channel (a miss is marked −1), each shown
+// through its transfer function in its colour, the channels added (as microscopy viewers do).
 
 export const generate = /* glsl */ `
 #if VPT_DEPTH_LIMIT
@@ -34,7 +36,11 @@ void main() {
 #if VPT_DEPTH_LIMIT
   t.y = min(t.y, depthLimitAlong(pixel, dir));
 #endif
+#if VPT_CHANNELS
+  vec4 maxValue = vec4(0.0);
+#else
   float maxValue = 0.0;
+#endif
   float coverage = 0.0;
   if (t.x < t.y) {
     coverage = 1.0;
@@ -61,14 +67,23 @@ void main() {
 #endif
     for (; k < n; k++) {
       float s = t.x + (float(k) + offset) * seg;
+#if VPT_CHANNELS
+      maxValue = max(maxValue, sampleChannels(u.cameraPosition + dir * s));
+#else
       maxValue = max(maxValue, sampleVolume(u.cameraPosition + dir * s));
+#endif
     }
   }
+#if VPT_CHANNELS
+  // The pixel-centre ray is the same every iteration, so a miss is the same too.
+  vpt_out0 = coverage > 0.0 ? maxValue : vec4(-1.0);
+#else
 #if VPT_DEPTH_LIMIT
   // Composited over a scene: the maximum is its own opacity, so what is behind shows where it is low.
   coverage = maxValue;
 #endif
   vpt_out0 = vec4(maxValue, 0.0, 0.0, coverage);
+#endif
 }
 `;
 
@@ -79,14 +94,41 @@ void main() {
   vec4 f = texelFetch(frame0, p, 0);
   if (u.iteration == 0u) { vpt_out0 = f; return; }
   vec4 a = texelFetch(accum0, p, 0);
+#if VPT_CHANNELS
+  vpt_out0 = max(a, f);
+#else
   float w = 1.0 / float(u.iteration + 1u);
   vpt_out0 = vec4(max(a.r, f.r), 0.0, 0.0, a.a + (f.a - a.a) * w);
+#endif
 }
 `;
 
 export const render = /* glsl */ `
+#if VPT_CHANNELS
+// Channel k's maximum through row k of the TF texture (as transferLookup): opacity-weighted colour.
+vec3 mipChannel(float value, int row) {
+  float x = clamp(value, 0.0, 1.0) * float(u.tfSize - 1);
+  float x0 = floor(x);
+  int i0 = int(x0);
+  int i1 = min(i0 + 1, u.tfSize - 1);
+  vec4 a = texelFetch(transferFunction, ivec2(i0, row), 0);
+  vec4 t = a + (texelFetch(transferFunction, ivec2(i1, row), 0) - a) * (x - x0);
+  return t.a * t.rgb;
+}
+#endif
 void main() {
   vec4 a = texelFetch(accum0, vptPixel(), 0);
+#if VPT_CHANNELS
+  if (a.x < 0.0) { vpt_out0 = vec4(0.0); return; }
+  vec3 rgb = vec3(0.0);
+  for (int k = 0; k < VPT_CHANNELS; k++) { rgb += mipChannel(a[k], k); }
+  float coverage = 1.0;
+#if VPT_DEPTH_LIMIT
+  coverage = clamp(max(max(a.x, a.y), max(a.z, a.w)), 0.0, 1.0);
+#endif
+  vpt_out0 = vec4(rgb, coverage);
+#else
   vpt_out0 = vec4(a.r, a.r, a.r, a.a);
+#endif
 }
 `;

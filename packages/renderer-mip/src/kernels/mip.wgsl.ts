@@ -28,7 +28,11 @@ fn cellMaxValue(walk: CellWalk) -> f32 {
 #if VPT_DEPTH_LIMIT
   t.y = min(t.y, depthLimitAlong(pixel, dir));
 #endif
+#if VPT_CHANNELS
+  var maxValue = vec4f(0.0);
+#else
   var maxValue = 0.0;
+#endif
   var coverage = 0.0;
   if (t.x < t.y) {
     coverage = 1.0;
@@ -55,14 +59,22 @@ fn cellMaxValue(walk: CellWalk) -> f32 {
 #endif
     for (; k < n; k++) {
       let s = t.x + (f32(k) + offset) * seg;
+#if VPT_CHANNELS
+      maxValue = max(maxValue, sampleChannels(u.cameraPosition + dir * s));
+#else
       maxValue = max(maxValue, sampleVolume(u.cameraPosition + dir * s));
+#endif
     }
   }
   var o: VptOut;
+#if VPT_CHANNELS
+  o.out0 = select(vec4f(-1.0), maxValue, coverage > 0.0);
+#else
 #if VPT_DEPTH_LIMIT
   coverage = maxValue;
 #endif
   o.out0 = vec4f(maxValue, 0.0, 0.0, coverage);
+#endif
   return o;
 }
 `;
@@ -74,17 +86,43 @@ export const integrate = /* wgsl */ `
   var o: VptOut;
   if (u.iteration == 0u) { o.out0 = f; return o; }
   let a = textureLoad(accum0, p, 0);
+#if VPT_CHANNELS
+  o.out0 = max(a, f);
+#else
   let w = 1.0 / f32(u.iteration + 1u);
   o.out0 = vec4f(max(a.r, f.r), 0.0, 0.0, a.a + (f.a - a.a) * w);
+#endif
   return o;
 }
 `;
 
 export const render = /* wgsl */ `
+#if VPT_CHANNELS
+fn mipChannel(value: f32, row: i32) -> vec3f {
+  let x = clamp(value, 0.0, 1.0) * f32(u.tfSize - 1);
+  let x0 = floor(x);
+  let i0 = i32(x0);
+  let i1 = min(i0 + 1, u.tfSize - 1);
+  let a = textureLoad(transferFunction, vec2i(i0, row), 0);
+  let t = a + (textureLoad(transferFunction, vec2i(i1, row), 0) - a) * (x - x0);
+  return t.a * t.rgb;
+}
+#endif
 @fragment fn fs_main(@builtin(position) fragCoord: vec4f) -> VptOut {
   let a = textureLoad(accum0, vptPixel(fragCoord), 0);
   var o: VptOut;
+#if VPT_CHANNELS
+  if (a.x < 0.0) { o.out0 = vec4f(0.0); return o; }
+  var rgb = vec3f(0.0);
+  for (var k = 0; k < VPT_CHANNELS; k++) { rgb += mipChannel(a[k], k); }
+  var coverage = 1.0;
+#if VPT_DEPTH_LIMIT
+  coverage = clamp(max(max(a.x, a.y), max(a.z, a.w)), 0.0, 1.0);
+#endif
+  o.out0 = vec4f(rgb, coverage);
+#else
   o.out0 = vec4f(a.r, a.r, a.r, a.a);
+#endif
   return o;
 }
 `;

@@ -15,6 +15,11 @@ export interface GlFormat {
 
 // WebGL 2 enum values (fixed by the spec), so this table needs no context to build.
 const GL_RED = 0x1903;
+const GL_RG = 0x8227;
+const GL_RG8 = 0x822b;
+const GL_RG16F = 0x822f;
+const GL_RG32F = 0x8230;
+const GL_RGBA16F = 0x881a;
 const GL_RGBA = 0x1908;
 const GL_FLOAT = 0x1406;
 const GL_HALF_FLOAT = 0x140b;
@@ -29,6 +34,10 @@ const GL_RGBA8 = 0x8058;
 // EXT_texture_norm16.
 const GL_R16_EXT = 0x822a;
 const GL_R16_SNORM_EXT = 0x8f98;
+const GL_RG16_EXT = 0x822c;
+const GL_RGBA16_EXT = 0x805b;
+const GL_RG16_SNORM_EXT = 0x8f99;
+const GL_RGBA16_SNORM_EXT = 0x8f9b;
 
 const FORMATS: Record<TextureFormat, GlFormat> = {
   r32float: {
@@ -85,6 +94,71 @@ const FORMATS: Record<TextureFormat, GlFormat> = {
     type: GL_SHORT,
     channels: 1,
     array: Int16Array,
+    readsAsFloat: true,
+  },
+  // Multichannel volumes: only uploaded and sampled, never read back.
+  rg8unorm: {
+    internalFormat: GL_RG8,
+    format: GL_RG,
+    type: GL_UNSIGNED_BYTE,
+    channels: 2,
+    array: Uint8Array,
+    readsAsFloat: true,
+  },
+  rg16unorm: {
+    internalFormat: GL_RG16_EXT,
+    format: GL_RG,
+    type: GL_UNSIGNED_SHORT,
+    channels: 2,
+    array: Uint16Array,
+    readsAsFloat: true,
+  },
+  rgba16unorm: {
+    internalFormat: GL_RGBA16_EXT,
+    format: GL_RGBA,
+    type: GL_UNSIGNED_SHORT,
+    channels: 4,
+    array: Uint16Array,
+    readsAsFloat: true,
+  },
+  rg16snorm: {
+    internalFormat: GL_RG16_SNORM_EXT,
+    format: GL_RG,
+    type: GL_SHORT,
+    channels: 2,
+    array: Int16Array,
+    readsAsFloat: true,
+  },
+  rgba16snorm: {
+    internalFormat: GL_RGBA16_SNORM_EXT,
+    format: GL_RGBA,
+    type: GL_SHORT,
+    channels: 4,
+    array: Int16Array,
+    readsAsFloat: true,
+  },
+  rg16float: {
+    internalFormat: GL_RG16F,
+    format: GL_RG,
+    type: GL_HALF_FLOAT,
+    channels: 2,
+    array: Uint16Array,
+    readsAsFloat: true,
+  },
+  rgba16float: {
+    internalFormat: GL_RGBA16F,
+    format: GL_RGBA,
+    type: GL_HALF_FLOAT,
+    channels: 4,
+    array: Uint16Array,
+    readsAsFloat: true,
+  },
+  rg32float: {
+    internalFormat: GL_RG32F,
+    format: GL_RG,
+    type: GL_FLOAT,
+    channels: 2,
+    array: Float32Array,
     readsAsFloat: true,
   },
 };

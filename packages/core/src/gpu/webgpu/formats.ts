@@ -48,6 +48,57 @@ const FORMATS: Record<TextureFormat, GpuFormatInfo> = {
   r16unorm: { bytesPerTexel: 2, channels: 1, array: Uint16Array, isFloat: true, renderByteCost: 2, renderByteAlign: 2 },
   r16snorm: { bytesPerTexel: 2, channels: 1, array: Int16Array, isFloat: true, renderByteCost: 2, renderByteAlign: 2 },
   r16float: { bytesPerTexel: 2, channels: 1, array: Uint16Array, isFloat: true, renderByteCost: 2, renderByteAlign: 2 },
+  // Multichannel volumes: only uploaded and sampled (the norm16 ones need 'texture-formats-tier1', as r16unorm).
+  rg8unorm: { bytesPerTexel: 2, channels: 2, array: Uint8Array, isFloat: true, renderByteCost: 2, renderByteAlign: 1 },
+  rg16unorm: {
+    bytesPerTexel: 4,
+    channels: 2,
+    array: Uint16Array,
+    isFloat: true,
+    renderByteCost: 4,
+    renderByteAlign: 2,
+  },
+  rgba16unorm: {
+    bytesPerTexel: 8,
+    channels: 4,
+    array: Uint16Array,
+    isFloat: true,
+    renderByteCost: 8,
+    renderByteAlign: 2,
+  },
+  rg16snorm: { bytesPerTexel: 4, channels: 2, array: Int16Array, isFloat: true, renderByteCost: 4, renderByteAlign: 2 },
+  rgba16snorm: {
+    bytesPerTexel: 8,
+    channels: 4,
+    array: Int16Array,
+    isFloat: true,
+    renderByteCost: 8,
+    renderByteAlign: 2,
+  },
+  rg16float: {
+    bytesPerTexel: 4,
+    channels: 2,
+    array: Uint16Array,
+    isFloat: true,
+    renderByteCost: 4,
+    renderByteAlign: 2,
+  },
+  rgba16float: {
+    bytesPerTexel: 8,
+    channels: 4,
+    array: Uint16Array,
+    isFloat: true,
+    renderByteCost: 8,
+    renderByteAlign: 2,
+  },
+  rg32float: {
+    bytesPerTexel: 8,
+    channels: 2,
+    array: Float32Array,
+    isFloat: true,
+    renderByteCost: 8,
+    renderByteAlign: 4,
+  },
 };
 
 export function formatInfo(format: TextureFormat): GpuFormatInfo {
