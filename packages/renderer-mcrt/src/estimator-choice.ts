@@ -49,6 +49,7 @@ import {
   type Scene,
   type Volume,
 } from '@vpt/core';
+import { extinctionCap } from './extinction-cap.js';
 import type { EnvironmentSampling, TrackingMode } from './params.js';
 
 export const ENV_PEAK_RATIO_FOR_MIS = 1.05;
@@ -134,16 +135,18 @@ export function gridStatistics(scene: Scene, cellSize: number): GridStatistics {
     rasterizeTransferFunction(scene.transferFunction, TF_RESOLUTION),
     scene.densityScale,
   );
+  // The kernel's bounds are capped at σ_max (extinction-cap.ts); so are the statistics that steer it.
+  const cap = extinctionCap(scene);
   let sumMaj = 0,
     sumMin = 0;
   const n = grid.data.length / 4;
   for (let c = 0; c < n; c++) {
-    sumMaj += grid.data[4 * c];
-    sumMin += grid.data[4 * c + 1];
+    sumMaj += Math.min(grid.data[4 * c], cap);
+    sumMin += Math.min(grid.data[4 * c + 1], cap);
   }
   return {
-    globalMajorant: grid.globalMajorant,
-    globalMinorant: grid.globalMinorant,
+    globalMajorant: Math.min(grid.globalMajorant, cap),
+    globalMinorant: Math.min(grid.globalMinorant, cap),
     meanMajorant: sumMaj / n,
     minorantFraction: sumMaj > 0 ? sumMin / sumMaj : 0,
   };
