@@ -8,6 +8,7 @@ import { fileURLToPath } from 'node:url';
 import { nodeResolve } from '@rollup/plugin-node-resolve';
 import terser from '@rollup/plugin-terser';
 import commonjs from '@rollup/plugin-commonjs';
+import typescript from '@rollup/plugin-typescript';
 import { libraryConfig } from '../../rollup.lib.mjs';
 
 // Packages that may not be installed (or built): every renderer package (this package's
@@ -130,6 +131,37 @@ function sharedCodecs() {
   };
 }
 
+// The environment decoder's module worker (src/loading/environment-worker.ts), self-contained
+// (a module worker gets no import map) at dist/loading/environment-worker.js, where the
+// library's environment-loader.js finds it (new URL('./environment-worker.js', import.meta.url)).
+const environmentWorker = {
+  input: { 'environment-worker': 'src/loading/environment-worker.ts' },
+  output: { dir: 'dist/loading', format: 'es', sourcemap: false, inlineDynamicImports: true },
+  plugins: [
+    nodeResolve({ browser: true, exportConditions: ['browser', 'import', 'default'] }),
+    typescript({ tsconfig: './tsconfig.worker.json' }),
+    ...(process.env.VPT_NO_MINIFY ? [] : [terser({ module: true, format: { comments: false } })]),
+  ],
+  onwarn(warning, warn) {
+    if (warning.code === 'THIS_IS_UNDEFINED' || warning.code === 'CIRCULAR_DEPENDENCY') return;
+    warn(warning);
+  },
+};
+
+// The one-file bundle's environment loader is a lazy chunk: put the worker beside it.
+function copyEnvironmentWorker() {
+  return {
+    name: 'vpt-copy-environment-worker',
+    writeBundle(options, bundle) {
+      const from = path.join(path.dirname(fileURLToPath(import.meta.url)), 'dist', 'loading', 'environment-worker.js');
+      if (!fs.existsSync(from)) return;
+      for (const c of Object.values(bundle))
+        if (c.type === 'chunk' && c.code.includes('environment-worker.js'))
+          fs.copyFileSync(from, path.join(path.dirname(path.join(options.dir, c.fileName)), 'environment-worker.js'));
+    },
+  };
+}
+
 fs.rmSync('dist/bundle-chunks', { recursive: true, force: true });
 const bundle = {
   input: { 'vpt-viewer.bundle': 'dist/bundle.js' },
@@ -158,6 +190,7 @@ const bundle = {
     commonjs(),
     ...(process.env.VPT_NO_MINIFY ? [] : [terser({ module: true, format: { comments: false } })]),
     copyLoaderWorker(),
+    copyEnvironmentWorker(),
   ],
   onwarn(warning, warn) {
     if (
@@ -169,4 +202,4 @@ const bundle = {
   },
 };
 
-export default [lib, bundle];
+export default [lib, environmentWorker, bundle];

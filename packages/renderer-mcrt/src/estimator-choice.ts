@@ -52,6 +52,7 @@ import {
   type Scene,
   type Volume,
 } from '@vpt/core';
+import { extinctionCap } from './extinction-cap.js';
 import type { EnvironmentSampling, TrackingMode } from './params.js';
 
 export const ENV_PEAK_RATIO_FOR_MIS = 1.05;
@@ -119,7 +120,10 @@ export function phasePeakRatio(g: number): number {
 export function gridStatistics(given: Scene, cellSize: number): GridStatistics {
   const scene = scalarSceneOf(given) ?? given;
   if (scene.channels)
-    return statisticsOf(channelMajorantGrid(scene.volume, scene.channels, scene.densityScale, cellSize));
+    return statisticsOf(
+      channelMajorantGrid(scene.volume, scene.channels, scene.densityScale, cellSize),
+      extinctionCap(scene),
+    );
   const v = scene.volume;
   const [nx, ny, nz] = v.dims;
   const stride = Math.max(1, Math.ceil(Math.cbrt((nx * ny * nz) / MAX_SAMPLED_VOXELS)));
@@ -140,21 +144,24 @@ export function gridStatistics(given: Scene, cellSize: number): GridStatistics {
     rasterizeTransferFunction(scene.transferFunction, TF_RESOLUTION),
     scene.densityScale,
   );
-  return statisticsOf(grid);
+  return statisticsOf(grid, extinctionCap(scene));
 }
 
-/** Mean and global bounds of a majorant grid, and how much of the majorant the minorant covers. */
-function statisticsOf(grid: MajorantGrid): GridStatistics {
+/**
+ * Mean and global bounds of a majorant grid, and how much of the majorant the minorant covers.
+ * The kernel's bounds are capped at σ_max (extinction-cap.ts); so are the statistics that steer it.
+ */
+function statisticsOf(grid: MajorantGrid, cap: number): GridStatistics {
   let sumMaj = 0,
     sumMin = 0;
   const n = grid.data.length / 4;
   for (let c = 0; c < n; c++) {
-    sumMaj += grid.data[4 * c];
-    sumMin += grid.data[4 * c + 1];
+    sumMaj += Math.min(grid.data[4 * c], cap);
+    sumMin += Math.min(grid.data[4 * c + 1], cap);
   }
   return {
-    globalMajorant: grid.globalMajorant,
-    globalMinorant: grid.globalMinorant,
+    globalMajorant: Math.min(grid.globalMajorant, cap),
+    globalMinorant: Math.min(grid.globalMinorant, cap),
     meanMajorant: sumMaj / n,
     minorantFraction: sumMaj > 0 ? sumMin / sumMaj : 0,
   };

@@ -25,6 +25,7 @@ export {
   type MajorantGrid,
   type CellValueRanges,
 } from '@vpt/core';
+export { extinctionCap, OPTICAL_DEPTH_PER_VOXEL_MAX } from './extinction-cap.js';
 export { generateKernel } from './kernel-sources.js';
 export {
   chooseEstimator,

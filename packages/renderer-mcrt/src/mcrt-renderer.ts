@@ -32,6 +32,7 @@ import { MCRT_DESCRIPTOR } from './descriptor.js';
 import { activeLights, computeFeatures, featureKey, MAX_LIGHTS, type McrtFeatures } from './features.js';
 import { generateKernel, INTEGRATE_HALVES } from './kernel-sources.js';
 import { MCRT_PARAM_SPECS, resolveParams, type McrtParams, type ResolvedMcrtParams } from './params.js';
+import { extinctionCap } from './extinction-cap.js';
 import { chooseEstimator, GridStatisticsMemo, type EstimatorChoice } from './estimator-choice.js';
 
 export const MCRT_PARAM_FIELDS: readonly UniformField[] = [
@@ -39,6 +40,8 @@ export const MCRT_PARAM_FIELDS: readonly UniformField[] = [
   ...paramUniformFields(MCRT_DESCRIPTOR),
   { name: 'globalMajorant', type: 'f32' },
   { name: 'globalMinorant', type: 'f32' },
+  /** σ_max: the medium's extinction and the grid's bounds are min(σ, σ_max) (extinction-cap.ts). */
+  { name: 'extinctionMax', type: 'f32' },
   /** Majorant-grid cells per axis and the slice atlas's column count (atlasTexel in tracking.*.ts). */
   { name: 'gridCells', type: 'ivec4' },
   /** Lights in use; read only by the generic kernel (specialised kernels loop to LIGHT_COUNT). */
@@ -119,6 +122,7 @@ export class McrtRenderer extends BaseRenderer<McrtParams> {
     // With the grid the bounds live on the GPU; one global bound is computed here only without it.
     const onGpu = computeFeatures(scene, p).MAJORANT_GRID;
     const grid = onGpu ? null : this.majorantGrid(scene);
+    const cap = extinctionCap(scene);
     const lights = activeLights(scene);
     const dirs = new Float32Array(4 * MAX_LIGHTS),
       irr = new Float32Array(4 * MAX_LIGHTS);
@@ -128,8 +132,9 @@ export class McrtRenderer extends BaseRenderer<McrtParams> {
     });
     return {
       ...paramUniformValues(MCRT_DESCRIPTOR, p),
-      globalMajorant: grid ? grid.globalMajorant : 0,
-      globalMinorant: grid ? grid.globalMinorant : 0,
+      globalMajorant: grid ? Math.min(grid.globalMajorant, cap) : 0,
+      globalMinorant: grid ? Math.min(grid.globalMinorant, cap) : 0,
+      extinctionMax: cap,
       gridCells: this.gridGeometry(scene),
       lightCount: lights.length,
       lightDirection: dirs,

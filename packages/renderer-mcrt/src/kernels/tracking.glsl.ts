@@ -15,11 +15,12 @@ int trackingSteps = 0;
 int mediumLookups = 0;
 int cellVisits = 0;
 
-// (albedo in [0, 1], extinction σ_t) at a world point: σ_t = densityScale · opacity (docs/design.md).
+// (albedo in [0, 1], extinction σ_t) at a world point: σ_t = densityScale · opacity (docs/design.md),
+// capped at σ_max, where one voxel's transmittance underflows float32 (extinction-cap.ts).
 vec4 mediumAt(vec3 p) {
   mediumLookups++;
   vec4 tf = transferAt(p);
-  return vec4(clamp(tf.rgb, 0.0, 1.0), u.densityScale * tf.a);
+  return vec4(clamp(tf.rgb, 0.0, 1.0), min(u.densityScale * tf.a, u.extinctionMax));
 }
 
 #if MAJORANT_GRID
@@ -37,7 +38,7 @@ Dda ddaStart(vec3 o, vec3 d, float t0) {
   s.tDelta = abs(cellSize * inv);
   return s;
 }
-// The current cell's (exit distance, majorant, minorant); then step into the next cell.
+// The current cell's (exit distance, majorant, minorant), capped as mediumAt; then step into the next cell.
 vec3 ddaNext(inout Dda s) {
   cellVisits++;
   vec4 m = texelFetch(majorantGrid, atlasTexel(clamp(s.cell, ivec3(0), s.cells - 1), s.cells, u.gridCells.w), 0);
@@ -49,7 +50,7 @@ vec3 ddaNext(inout Dda s) {
   } else {
     tExit = s.tNext.z; s.cell.z += s.stepDir.z; s.tNext.z += s.tDelta.z;
   }
-  return vec3(tExit, m.r, m.g);
+  return vec3(tExit, min(m.r, u.extinctionMax), min(m.g, u.extinctionMax));
 }
 #endif
 

@@ -12,7 +12,7 @@ var<private> cellVisits: i32 = 0;
 fn mediumAt(p: vec3f) -> vec4f {
   mediumLookups++;
   let tf = transferAt(p);
-  return vec4f(clamp(tf.rgb, vec3f(0.0), vec3f(1.0)), u.densityScale * tf.a);
+  return vec4f(clamp(tf.rgb, vec3f(0.0), vec3f(1.0)), min(u.densityScale * tf.a, u.extinctionMax));
 }
 
 #if MAJORANT_GRID
@@ -41,7 +41,7 @@ fn ddaNext(s: ptr<function, Dda>) -> vec3f {
   } else {
     tExit = (*s).tNext.z; (*s).cell.z += (*s).stepDir.z; (*s).tNext.z += (*s).tDelta.z;
   }
-  return vec3f(tExit, m.r, m.g);
+  return vec3f(tExit, min(m.r, u.extinctionMax), min(m.g, u.extinctionMax));
 }
 #endif
 

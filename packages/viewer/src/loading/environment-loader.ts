@@ -3,40 +3,68 @@
  * Three.js' loaders, converted to core's Environment (RGB floats, row 0 at the top).
  */
 import { RequestError, VptError, fetchWithPolicy, type Environment, type RequestPolicy } from '@vpt/core';
-import { FloatType } from 'three';
-import { EXRLoader } from 'three/addons/loaders/EXRLoader.js';
-import { HDRLoader } from 'three/addons/loaders/HDRLoader.js';
-import { checkExrHeader, checkHdrHeader, isExr } from './environment-header.js';
-
-interface Decoded {
-  width: number;
-  height: number;
-  data: ArrayLike<number>;
-  bottomUp: boolean;
-}
+import type { DecodedEnvironment } from './environment-decode.js';
 
 /**
- * Decode after the header checks of environment-header.ts (the decoders trust the header:
- * an unbounded loop or allocation otherwise). OpenEXR by its magic number or extension.
+ * Longest decode of an environment file, in ms (also bounded by the request policy's
+ * totalTimeoutMs when that is shorter): an 8k × 4k EXR decodes in seconds; a hostile file on
+ * which a decoder loops is stopped here, its worker terminated.
  */
-function decode(url: string, buffer: ArrayBuffer): Decoded {
-  const bytes = new Uint8Array(buffer);
-  if (isExr(bytes) || /\.exr(\?|#|$)/i.test(url)) {
-    checkExrHeader(bytes, url);
-    const r = new EXRLoader().setDataType(FloatType).parse(buffer) as {
-      width: number;
-      height: number;
-      data: Float32Array;
-    };
-    return { width: r.width, height: r.height, data: r.data, bottomUp: true };
+export const ENVIRONMENT_DECODE_TIMEOUT_MS = 60_000;
+
+/**
+ * Decode in a fresh module worker (environment-worker.ts), so the page's main thread stays
+ * responsive however long the decoder runs; terminated after its answer or at the time bound
+ * (VptError 'limit-exceeded'). Where no worker can start, decodes in this thread.
+ */
+async function decode(url: string, buffer: ArrayBuffer, timeoutMs: number): Promise<DecodedEnvironment> {
+  let worker: Worker | undefined;
+  try {
+    if (typeof Worker === 'function')
+      worker = new Worker(new URL('./environment-worker.js', import.meta.url), {
+        type: 'module',
+        name: 'vpt-environment',
+      });
+  } catch {
+    worker = undefined;
   }
-  checkHdrHeader(bytes, url);
-  const r = new HDRLoader().setDataType(FloatType).parse(buffer) as {
-    width: number;
-    height: number;
-    data: Float32Array;
-  };
-  return { width: r.width, height: r.height, data: r.data, bottomUp: false };
+  if (!worker) {
+    const { decodeEnvironment } = await import('./environment-decode.js');
+    return decodeEnvironment(url, buffer);
+  }
+  const w = worker;
+  return new Promise<DecodedEnvironment>((resolve, reject) => {
+    const timer = setTimeout(
+      () =>
+        finish(() =>
+          reject(
+            new VptError(
+              'limit-exceeded',
+              `environment: decoding ${url} took longer than ${timeoutMs} ms and was stopped (a damaged or hostile .hdr/.exr file?)`,
+            ),
+          ),
+        ),
+      timeoutMs,
+    );
+    function finish(f: () => void) {
+      clearTimeout(timer);
+      w.terminate();
+      f();
+    }
+    w.onmessage = (e: MessageEvent) => {
+      const m = e.data as
+        ({ type: 'result' } & DecodedEnvironment) | { type: 'error'; code: VptError['code'] | null; message: string };
+      if (m.type === 'result')
+        finish(() => resolve({ width: m.width, height: m.height, data: m.data, bottomUp: m.bottomUp }));
+      else if (m.code) finish(() => reject(new VptError(m.code!, m.message)));
+      else finish(() => reject(new Error(m.message)));
+    };
+    w.onerror = (e: ErrorEvent) => {
+      e.preventDefault();
+      finish(() => reject(new Error(`the environment decoder failed (${e.message || 'worker error'})`)));
+    };
+    w.postMessage({ url, buffer }, [buffer]);
+  });
 }
 
 /** Largest environment file fetched: an 8k × 4k float RGBA EXR, uncompressed. */
@@ -68,9 +96,11 @@ export async function loadEnvironment(
     const code = e instanceof RequestError ? e.code : 'load-failed';
     throw new VptError(code, `environment: could not fetch ${href} (${(e as Error).message})`, { cause: e });
   }
-  let d: Decoded;
+  let d: DecodedEnvironment;
+  const policyBound = options.request?.totalTimeoutMs;
+  const timeoutMs = Math.min(ENVIRONMENT_DECODE_TIMEOUT_MS, policyBound ?? Infinity);
   try {
-    d = decode(href, buffer);
+    d = await decode(href, buffer, timeoutMs);
   } catch (e) {
     if (e instanceof VptError) throw e; // the header checks' own, naming what is wrong
     throw new VptError(
