@@ -1,8 +1,12 @@
 import {
   BaseRenderer,
+  checkedWindowCoefficients,
+  colormapTable,
   COPY_ACCUMULATION_RENDER,
   RUNNING_MEAN_INTEGRATE,
   paramSpecsOf,
+  slicePlane,
+  volumeRange,
   VptError,
   type AuxiliaryTexture,
   type ParamSpecs,
@@ -11,7 +15,6 @@ import {
   type UniformValues,
   type Volume,
 } from '@vpt/core';
-import { colormapTable } from './colormaps.js';
 import * as glsl from './kernels/slice.glsl.js';
 import * as wgsl from './kernels/slice.wgsl.js';
 import {
@@ -21,13 +24,11 @@ import {
   type ResolvedSliceParams,
   type SliceParams,
 } from './descriptor.js';
-import { slicePlane } from './plane.js';
-import { checkedWindowCoefficients, volumeRange } from './window-mapping.js';
 
 /** The slice renderer's parameter specs (core's validateParams), from its descriptor. */
 export const SLICE_PARAM_SPECS: ParamSpecs = paramSpecsOf(SLICE_DESCRIPTOR);
 
-/** The slice's uniforms, after the scene's (SCENE_UNIFORM_FIELDS): the plane (plane.ts) and the window (window-mapping.ts). */
+/** The slice's uniforms, after the scene's (SCENE_UNIFORM_FIELDS): the plane (core's slice-geometry.ts) and the window (slice-window.ts). */
 export const SLICE_UNIFORM_FIELDS: readonly UniformField[] = [
   { name: 'planeOrigin', type: 'vec3' },
   { name: 'windowScale', type: 'f32' },
@@ -140,7 +141,7 @@ export class SliceRenderer extends BaseRenderer<SliceParams> {
     return this.problem ? { slice: `nothing drawn: ${this.problem}` } : {};
   }
 
-  /** The named colour map's table (colormaps.ts), uploaded once per map. */
+  /** The named colour map's table (core's colormaps.ts), uploaded once per map. */
   auxiliaryTextures(_scene: Scene): readonly AuxiliaryTexture[] {
     const c = this.resolved.colormap;
     if (c === 'grey' || c === 'transfer-function') return [];
@@ -176,7 +177,7 @@ function shapeOf(volume: Volume): VolumeShape {
   return { dims: [...volume.dims], spacing: [...volume.spacing], range: volumeRange(volume) };
 }
 
-/** The rules that need the volume: the plane (plane.ts) and the window's float32 range (window-mapping.ts). */
+/** The rules that need the volume: the plane (core's slice-geometry.ts) and the window's float32 range (slice-window.ts). */
 function checkForShape(p: ResolvedSliceParams, shape: VolumeShape): void {
   slicePlane(p.plane, shape);
   checkedWindowCoefficients(shape.range, p.window);

@@ -12,6 +12,7 @@ import { preprocess } from '../shaders/preprocess.js';
 import { validateGradientAtlasForDevice, validateSceneForDevice } from '../validation/device.js';
 import { SCENE_UNIFORM_FIELDS, sceneUniformValues } from '../shaders/scene-uniforms.js';
 import { CLIP_UNIFORM_FIELDS, clipUniformValues, hasClip } from '../scene/clip.js';
+import { SLICE_PLANE_UNIFORM_FIELDS, slicePlaneFlags, slicePlaneUniformValues } from '../scene/slice-plane.js';
 import { UniformLayout, type UniformField } from '../uniforms/layout.js';
 import { GUIDES } from '../shaders/guides.js';
 import { GUIDE_FRAME_FORMATS, GuideBuffers } from './guide-buffers.js';
@@ -683,6 +684,7 @@ export class RenderContext {
       ...(bricked ? { volumeDims: [...bricked.geometry.levels[0].dims, bricked.geometry.brickSize] } : {}),
       ...this._renderer.paramValues(scene),
       ...(hasClip(scene.clip) ? clipUniformValues(scene.clip, scene.volume) : {}),
+      ...(this.drawsSlicePlane(scene) ? slicePlaneUniformValues(scene.slicePlane!, scene.volume) : {}),
       ...(this.depthLimit ? { depthA: this.depthLimit.a, depthB: this.depthLimit.b } : {}),
     });
   }
@@ -692,15 +694,24 @@ export class RenderContext {
     return this.resources.wantsGradient(scene);
   }
 
+  /** A scene's slice plane is drawn only by a renderer that says so (Renderer.drawsSlicePlane). */
+  private drawsSlicePlane(scene: Scene): boolean {
+    return scene.slicePlane !== undefined && this._renderer.drawsSlicePlane === true;
+  }
+
   /** Which shared chunks (and defines) the generate pass needs for this scene. */
   private chunkOptions(scene: Scene): Required<CommonChunkOptions> {
     const tf2d = scene.transferFunction.dimensions === '2d';
+    const plane = this.drawsSlicePlane(scene) ? slicePlaneFlags(scene.slicePlane!) : null;
     return {
       tf2d,
       gradient: this.wantsGradient(scene),
       hardwareFilter: this.resources.volumeUpload?.filter === 'linear',
       bricked: this.resources.bricked !== null,
       clip: hasClip(scene.clip),
+      slicePlane: plane !== null,
+      slicePlaneNearest: plane?.nearest ?? false,
+      slicePlaneTable: plane?.table ?? false,
     };
   }
 
@@ -717,11 +728,13 @@ export class RenderContext {
       VPT_GUIDES: writeGuides,
       VPT_CLIP: chunks.clip,
       VPT_DEPTH_LIMIT: this.depthLimit !== null,
+      VPT_SLICE_PLANE: chunks.slicePlane,
     };
-    // VPT_CLIP cuts the kernels' #if lines but becomes a backend define only when set, so an
-    // unclipped variant's program is today's byte for byte.
-    const { VPT_CLIP: clipFlag, ...unclipped } = features;
-    const defines = clipFlag ? features : unclipped;
+    // VPT_CLIP and VPT_SLICE_PLANE cut the kernels' #if lines but become backend defines (and
+    // parts of the variant key) only when set, so a variant without them is today's byte for byte.
+    const defines = Object.fromEntries(
+      Object.entries(features).filter(([k, v]) => v || (k !== 'VPT_CLIP' && k !== 'VPT_SLICE_PLANE')),
+    );
     const frameFormats = writeGuides ? [...r.frameFormats, ...GUIDE_FRAME_FORMATS] : r.frameFormats;
     if (this.frame && this.frameHasGuides !== writeGuides) this.destroyRendererTargets();
     if (r.version !== this.rendererVersion) {
@@ -739,14 +752,15 @@ export class RenderContext {
           { name: 'gradientMax', dimension: '2d' as const },
         ]
       : [];
-    const key = `${r.name}|${JSON.stringify(features)}|${auxBindings.map((b) => b.name).join(',')}|${chunks.hardwareFilter ? 'filtered' : 'exact'}${chunks.bricked ? '|bricked' : ''}`;
+    const key = `${r.name}|${JSON.stringify(features)}|${chunks.slicePlaneNearest ? 'plane nearest|' : ''}${auxBindings.map((b) => b.name).join(',')}|${chunks.hardwareFilter ? 'filtered' : 'exact'}${chunks.bricked ? '|bricked' : ''}`;
     if (!this.passes || key !== this.variantKey) {
-      // The clip uniforms, then the depth limit's, come last and only in variants that use them:
+      // The clip uniforms, the slice plane's, then the depth limit's, come last and only in variants that use them:
       // a layout without either is unchanged.
       this.layout = new UniformLayout('Params', [
         ...SCENE_UNIFORM_FIELDS,
         ...r.paramFields,
         ...(chunks.clip ? CLIP_UNIFORM_FIELDS : []),
+        ...(chunks.slicePlane ? SLICE_PLANE_UNIFORM_FIELDS : []),
         ...(this.depthLimit ? DEPTH_LIMIT_FIELDS : []),
       ]);
       // The volume/TF chunks read the `volume` and `transferFunction` (and gradient) textures,

@@ -15,6 +15,7 @@ import { buildGradientVolume, destroyGradientVolume, type GradientVolume } from 
 import { BrickedVolume, type BrickingOptions } from '../bricking/bricked-volume.js';
 import { inMemoryMultiscaleSource, type MultiscaleSource } from '../bricking/source.js';
 import { normalizationRange } from '../scene/volume.js';
+import { slicePlaneTextures } from '../scene/slice-plane.js';
 
 /** How RenderContext wants the scene's volume bricked (null: one texture). */
 export interface BrickPlan extends BrickingOptions {
@@ -308,7 +309,12 @@ export class SceneResources {
       this.auxFor.volumeKey === binding.key
     )
       return;
-    const specs: readonly AuxiliaryTexture[] = r.auxiliaryTextures?.(this.scene!, binding) ?? [];
+    const scene = this.scene!;
+    const specs: readonly AuxiliaryTexture[] = [
+      ...(r.auxiliaryTextures?.(scene, binding) ?? []),
+      // A slice plane's colour map, for the renderers that draw one (Renderer.drawsSlicePlane).
+      ...(scene.slicePlane && r.drawsSlicePlane ? slicePlaneTextures(scene.slicePlane) : []),
+    ];
     const wanted = new Set(specs.map((a) => a.name));
     for (const [name, aux] of this.auxTextures) {
       if (!wanted.has(name)) {

@@ -1,6 +1,7 @@
 import { VptError } from '../errors.js';
 import { validateCamera, type Camera } from './camera.js';
 import { validateClip, type Clip } from './clip.js';
+import { validateSlicePlane, type SceneSlicePlane } from './slice-plane.js';
 import { validateEnvironment, validateLights, type Environment, type Light } from './lights.js';
 import { validateTransferFunction, type TransferFunction } from './transfer-function.js';
 import { validateVolume, type Volume } from './volume.js';
@@ -29,6 +30,11 @@ export interface Scene {
    * cut and the kernels compile no clipping code. Changing it resets accumulation only.
    */
   clip?: Clip;
+  /**
+   * A slice drawn as an opaque, unlit plane inside the volume by the renderers that say
+   * `drawsSlicePlane` (scene/slice-plane.ts); absent: no slice-plane code is compiled.
+   */
+  slicePlane?: SceneSlicePlane;
 }
 
 export function validateScene(s: Scene): void {
@@ -60,4 +66,5 @@ export function validateScene(s: Scene): void {
   if (s.sampling !== undefined && s.sampling !== 'fast' && s.sampling !== 'exact')
     throw new VptError('invalid-scene', `Scene: sampling must be 'fast' or 'exact', got ${JSON.stringify(s.sampling)}`);
   if (s.clip !== undefined) validateClip(s.clip);
+  if (s.slicePlane !== undefined) validateSlicePlane(s.slicePlane, s.volume);
 }

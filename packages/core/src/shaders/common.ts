@@ -15,6 +15,12 @@ export interface CommonChunkOptions {
   bricked?: boolean;
   /** The scene clips (scene/clip.ts): clipRayInterval() / isClipped() exist, reading the clip uniforms. */
   clip?: boolean;
+  /** The scene has a slice plane its renderer draws (scene/slice-plane.ts): slicePlaneHit() / slicePlaneColor() exist. */
+  slicePlane?: boolean;
+  /** The slice plane reads the voxel holding the point (else the shared trilinear filter). */
+  slicePlaneNearest?: boolean;
+  /** The slice plane's colour comes from the `slicePlaneColormap` texture (else grey). */
+  slicePlaneTable?: boolean;
 }
 
 /**
@@ -30,6 +36,9 @@ export function commonChunks(opts: CommonChunkOptions = {}): KernelSource {
     HARDWARE_FILTER: !!opts.hardwareFilter,
     BRICKED: !!opts.bricked,
     CLIP: !!opts.clip,
+    SLICE_PLANE: !!opts.slicePlane,
+    SLICE_PLANE_NEAREST: !!opts.slicePlaneNearest,
+    SLICE_PLANE_TABLE: !!opts.slicePlaneTable,
   };
   return { glsl: preprocess(glsl.GENERATE_CHUNKS, flags), wgsl: preprocess(wgsl.GENERATE_CHUNKS, flags) };
 }

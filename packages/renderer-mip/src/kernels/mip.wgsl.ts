@@ -28,6 +28,12 @@ fn cellMaxValue(walk: CellWalk) -> f32 {
 #if VPT_DEPTH_LIMIT
   t.y = min(t.y, depthLimitAlong(pixel, dir));
 #endif
+#if VPT_SLICE_PLANE
+  // The slice plane is opaque: the ray ends there (scene/slice-plane.ts).
+  let tPlane = slicePlaneHit(u.cameraPosition, dir);
+  let onPlane = tPlane > 0.0 && tPlane <= t.y;
+  if (onPlane) { t.y = tPlane; }
+#endif
   var maxValue = 0.0;
   var coverage = 0.0;
   if (t.x < t.y) {
@@ -63,6 +69,12 @@ fn cellMaxValue(walk: CellWalk) -> f32 {
   coverage = maxValue;
 #endif
   o.out0 = vec4f(maxValue, 0.0, 0.0, coverage);
+#if VPT_SLICE_PLANE
+  if (onPlane) {
+    let c = slicePlaneColor(u.cameraPosition + dir * tPlane);
+    o.out0 = vec4f(maxValue, c.r, c.g, -1.0 - c.b);
+  }
+#endif
   return o;
 }
 `;
@@ -74,6 +86,9 @@ export const integrate = /* wgsl */ `
   var o: VptOut;
   if (u.iteration == 0u) { o.out0 = f; return o; }
   let a = textureLoad(accum0, p, 0);
+#if VPT_SLICE_PLANE
+  if (f.a < 0.0) { o.out0 = vec4f(max(a.r, f.r), f.gba); return o; }
+#endif
   let w = 1.0 / f32(u.iteration + 1u);
   o.out0 = vec4f(max(a.r, f.r), 0.0, 0.0, a.a + (f.a - a.a) * w);
   return o;
@@ -85,6 +100,9 @@ export const render = /* wgsl */ `
   let a = textureLoad(accum0, vptPixel(fragCoord), 0);
   var o: VptOut;
   o.out0 = vec4f(a.r, a.r, a.r, a.a);
+#if VPT_SLICE_PLANE
+  if (a.a < 0.0) { o.out0 = vec4f(vec3f(a.r) + (1.0 - a.r) * vec3f(a.g, a.b, -1.0 - a.a), 1.0); }
+#endif
   return o;
 }
 `;
