@@ -342,7 +342,7 @@ describe('slice in 3D: a scene without the field is unchanged', () => {
           const read = async (s: object) => {
             ctx.setScene(s as never);
             await ctx.renderIterations(2);
-            return Array.from(await ctx.readHDR());
+            return Array.from(await ctx.readHDR()) as number[];
           };
           const before = await read(base);
           const withPlane = await read({ ...base, slicePlane: plane });
