@@ -8,6 +8,7 @@ import {
   type SceneSlicePlane,
   type Vec3,
 } from '../packages/core/src/index.js';
+import { validateSceneDescription } from '../packages/headless/src/validate-description.js';
 import { usePage } from './helpers/session.js';
 
 /**
@@ -320,6 +321,19 @@ describe('slice in 3D: colour maps, sampling, clip', () => {
     expect(messages[1]).toMatch(/^invalid-scene: Scene: slicePlane\.colormap/);
     expect(messages[2]).toMatch(/^invalid-scene: Scene: slicePlane\.window\[1\]/);
     expect(messages[3]).toMatch(/^invalid-scene: Scene: slicePlane\.axis: is for an axis-aligned plane/);
+  });
+});
+
+describe('slice in 3D: scene files', () => {
+  it('vpt-render checks a slicePlane before a browser starts, errors naming the field', () => {
+    expect(() => validateSceneDescription({ slicePlane: { axis: 'z', index: 3, window: [40, 400] } })).not.toThrow();
+    expect(() => validateSceneDescription({ slicePlane: { colormap: 'jet' } })).toThrow(
+      /^Scene description: slicePlane\.colormap/,
+    );
+    expect(() => validateSceneDescription({ slicePlane: { index: 1, position: 0 } })).toThrow(
+      /^Scene description: slicePlane\.position/,
+    );
+    expect(() => validateSceneDescription({ slicePlane: { sampling: 'cubic', extra: 1 } })).toThrow(/slicePlane/);
   });
 });
 
