@@ -252,6 +252,43 @@ describe('slice in 3D: colour maps, sampling, clip', () => {
     }
   });
 
+  it('a forced brick atlas gives the unbricked image (the nearest voxel read through the page table)', async () => {
+    const plain = await render('webgl2', 'eam', PLANE, 2);
+    const bricked = await page.run(
+      async ({ core, t }, voxels, n, range, camera, w, h, plane) => {
+        const volume = core.createVolume([n, n, n], 'uint8', new Uint8Array(voxels));
+        volume.valueRange = range;
+        const ctx = await t.context({
+          backend: 'webgl2',
+          renderer: 'eam',
+          width: w,
+          height: h,
+          sampling: 'exact',
+          bricking: 'force',
+          brickSize: 8,
+        });
+        const transferFunction = t.tf1d([0, [1, 1, 1], 0], [0.5, [0.2, 0.6, 1], 0.5], [1, [0.9, 0.5, 0.3], 1]);
+        const lights = [
+          { type: 'directional' as const, direction: [0.3, -1, 0.5] as Vec3, irradiance: [1, 1, 1] as Vec3 },
+        ];
+        ctx.setScene({ ...t.scene({ volume, camera, transferFunction, densityScale: 40 }), lights, slicePlane: plane });
+        const settled = await ctx.whenBricksSettled();
+        return { image: await t.finalHDR(ctx, 2), bricked: settled !== null };
+      },
+      voxels,
+      N,
+      RANGE,
+      CAMERA,
+      W,
+      H,
+      PLANE,
+    );
+    expect(bricked.bricked).toBe(true);
+    let worst = 0;
+    for (let i = 0; i < plain.length; i++) worst = Math.max(worst, Math.abs(plain[i] - bricked.image[i]));
+    expect(worst).toBeLessThan(1e-6);
+  });
+
   it('a clip plane removes the slice plane where it cuts (the volume is empty there, so the background shows)', async () => {
     const clipped = await page.run(
       async ({ core, t }, voxels, n, range, camera, w, h, plane) => {
