@@ -1,4 +1,4 @@
-import { readFileSync } from 'node:fs';
+import { readFileSync, writeFileSync } from 'node:fs';
 import { describe, expect, it } from 'vitest';
 import { HEAD_SIDECAR, ROOT, useViewerPage } from './helpers/viewer-page.js';
 
@@ -82,6 +82,7 @@ describe('<vpt-viewer layout="quad"> crosshair-3d', () => {
     const p = at(coronal, 0.5, 30.5 / 128);
     await vp.page.mouse.click(p.x, p.y);
     const after = await viewState();
+    writeFileSync('/tmp/viewer-crosshair-3d-slice.png', await vp.page.screenshot({ type: 'png' }));
     expect(after.crosshair[1]).toBe(30);
     expect(after.slicePlane).toEqual({ axis: 'y', index: 30, window: after.window });
     // The plane moved in the image.
