@@ -303,7 +303,6 @@ describe('<vpt-viewer layout>', () => {
         'width:100%;height:100vh',
       );
       (window as any).__el = el;
-      await el.updateComplete; // the first update applies src (unset) and would drop a load begun before it
       await el.load(new File([new Uint8Array(bytes)], 'probe.nii'));
       await vt.converged(el);
       for (let t = 0; t < 600; t++) {

@@ -32,6 +32,7 @@ const SCRIPTS: Record<string, { notANumber?: { argv: string[]; names: string } }
   'benchmarks/first-image.mjs': { notANumber: { argv: ['--rounds', 'few'], names: '--rounds' } },
   'benchmarks/read-speed.mjs': { notANumber: { argv: ['--runs', 'many'], names: '--runs' } },
   'benchmarks/mcrt-fetches.mjs': { notANumber: { argv: ['--iterations', '1.5'], names: '--iterations' } },
+  'benchmarks/slice-plane-cost.mjs': { notANumber: { argv: ['--rounds', 'many'], names: '--rounds' } },
   'benchmarks/single-variants.mjs': { notANumber: { argv: ['{}', 'five'], names: 'ROUNDS' } },
   'benchmarks/zarr-streaming.mjs': { notANumber: { argv: ['--mbit', 'fast'], names: '--mbit' } },
   'apps/gallery/build.mjs': {},

@@ -66,6 +66,13 @@ export interface Renderer {
    */
   readonly needsGradient?: boolean;
   /**
+   * Set when the generate kernel draws a scene's `slicePlane` (scene/slice-plane.ts) under
+   * `#if VPT_SLICE_PLANE`: the context then defines it for a scene that has one, includes the
+   * shared chunk's slicePlaneHit() / slicePlaneColor() and their uniforms, and binds the colour
+   * map as `slicePlaneColormap`. A renderer without it ignores the field.
+   */
+  readonly drawsSlicePlane?: boolean;
+  /**
    * Set when the generate kernel writes the denoiser guides (docs/architecture.md, "Denoising"):
    * while a post step uses them the context defines VPT_GUIDES, includes the helpers
    * `guideNormalDepth(p, t)` / `guideAlbedo(rgb)` and appends two rgba32float outputs after

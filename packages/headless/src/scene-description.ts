@@ -5,7 +5,7 @@
  * loaded by the in-browser page.
  */
 
-import type { Clip, TransferWidget } from '@vpt/core';
+import type { Clip, SceneSlicePlane, TransferWidget } from '@vpt/core';
 
 export type Vec3 = [number, number, number];
 export type VoxelTypeName = 'uint8' | 'uint16' | 'int16' | 'float32';
@@ -138,6 +138,11 @@ export interface SceneDescription {
   sampling?: 'fast' | 'exact';
   /** Clip planes and a crop box in world units of the volume box (core's scene/clip.ts). */
   clip?: Clip;
+  /**
+   * A slice drawn as an opaque, unlit plane inside the volume by MIP, EAM, ISO and MCRT (core's
+   * scene/slice-plane.ts): axis + index/position or normal + point, window [center, width] in data units, colormap.
+   */
+  slicePlane?: SceneSlicePlane;
   /** GPU memory budget in bytes (RenderContext's maxGpuBytes): a larger volume is downsampled, with a warning. */
   maxGpuBytes?: number;
   /** Post chain as JSON, for `postChainFromJSON` of @vpt/post (default SCENE_DEFAULTS.post, or DISPLAY_REFERRED_POST for a renderer whose descriptor is displayReferred). */

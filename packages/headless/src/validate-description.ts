@@ -25,6 +25,7 @@ import {
   transferFunctionFromJSON,
   validateCamera,
   validateClip,
+  resolveSlicePlane,
   validateEnvironment,
   validateLights,
   DEFAULT_RENDERER_NAME,
@@ -54,6 +55,7 @@ const TOP_KEYS = [
   'seed',
   'sampling',
   'clip',
+  'slicePlane',
   'maxGpuBytes',
   'post',
   'iterations',
@@ -284,6 +286,8 @@ export function validateSceneDescription(d: unknown): SceneDescription {
     if (s.backend !== undefined) checkOneOf('backend', s.backend, BACKEND_NAMES);
     if (s.sampling !== undefined) checkOneOf('sampling', s.sampling, ['fast', 'exact'] as const);
     if (s.clip !== undefined) validateClip(s.clip, 'clip');
+    // The rules that need the volume (the plane against its box, the window against its range) run in the page's setScene.
+    if (s.slicePlane !== undefined) resolveSlicePlane(s.slicePlane, 'slicePlane');
     if (s.maxGpuBytes !== undefined)
       checkNumber('maxGpuBytes', s.maxGpuBytes, { min: 0, exclusiveMin: true, unit: 'bytes' });
     if (s.rendererParams !== undefined) {

@@ -30,6 +30,8 @@ export class EamRenderer extends BaseRenderer<EamParams> {
   readonly frameFormats = ['rgba32float'] as const;
   readonly accumulationFormats = ['rgba32float'] as const;
   readonly writesGuides = EAM_DESCRIPTOR.writesGuides;
+  /** Draws a scene's slicePlane (core's scene/slice-plane.ts) under VPT_SLICE_PLANE. */
+  readonly drawsSlicePlane = true;
   readonly kernels = {
     generate: { glsl: glsl.generate, wgsl: wgsl.generate },
     integrate: RUNNING_MEAN_INTEGRATE,

@@ -62,6 +62,8 @@ export class IsoRenderer extends BaseRenderer<IsoParams> {
   readonly name = ISO_DESCRIPTOR.name;
   readonly frameFormats = ['rgba32float', 'rgba32float'] as const;
   readonly writesGuides = ISO_DESCRIPTOR.writesGuides;
+  /** Draws a scene's slicePlane (core's scene/slice-plane.ts) under VPT_SLICE_PLANE. */
+  readonly drawsSlicePlane = true;
   readonly accumulationFormats = ['rgba32float', 'rgba32float'] as const;
   readonly kernels = {
     generate: { glsl: glsl.generate, wgsl: wgsl.generate },

@@ -23,9 +23,10 @@ export function generateKernel(f: McrtFeatures): KernelSource {
   const flags = f as unknown as Flags;
   const glsl = GLSL_SAMPLING + (f.ENV_MAP ? GLSL_ENVIRONMENT_MAP : '') + glslTracking.tracking + glslPath.path;
   const wgsl = WGSL_SAMPLING + (f.ENV_MAP ? WGSL_ENVIRONMENT_MAP : '') + wgslTracking.tracking + wgslPath.path;
-  // VPT_GUIDES, VPT_CLIP and VPT_DEPTH_LIMIT are the context's flags (RenderContext defines them
-  // while a post step uses guides, for a clipped scene, and while a depth limit is set).
-  const defer = { defer: ['VPT_GUIDES', 'VPT_CLIP', 'VPT_DEPTH_LIMIT'] };
+  // VPT_GUIDES, VPT_CLIP, VPT_DEPTH_LIMIT and VPT_SLICE_PLANE are the context's flags (RenderContext
+  // defines them while a post step uses guides, for a clipped scene, while a depth limit is set and
+  // for a scene with a slice plane).
+  const defer = { defer: ['VPT_GUIDES', 'VPT_CLIP', 'VPT_DEPTH_LIMIT', 'VPT_SLICE_PLANE'] };
   return { glsl: preprocess(glsl, flags, defer), wgsl: preprocess(wgsl, flags, defer) };
 }
 

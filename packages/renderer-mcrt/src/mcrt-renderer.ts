@@ -66,6 +66,8 @@ export class McrtRenderer extends BaseRenderer<McrtParams> {
   readonly accumulationFormats = ['rgba32float', 'rgba32float', 'rgba32float'] as const;
   readonly halfAccumulations = [1, 2] as const;
   readonly writesGuides = MCRT_DESCRIPTOR.writesGuides;
+  /** Draws a scene's slicePlane (core's scene/slice-plane.ts) under VPT_SLICE_PLANE. */
+  readonly drawsSlicePlane = true;
   readonly paramFields = MCRT_PARAM_FIELDS;
   private resolved: ResolvedMcrtParams;
   private current: McrtFeatures | null = null;

@@ -28,6 +28,8 @@ export class MipRenderer extends BaseRenderer<MipParams> {
   readonly frameFormats = ['rgba32float'] as const;
   readonly accumulationFormats = ['rgba32float'] as const;
   readonly writesGuides = MIP_DESCRIPTOR.writesGuides;
+  /** Draws a scene's slicePlane (core's scene/slice-plane.ts) under VPT_SLICE_PLANE. */
+  readonly drawsSlicePlane = true;
   readonly kernels = {
     generate: { glsl: glsl.generate, wgsl: wgsl.generate },
     integrate: { glsl: glsl.integrate, wgsl: wgsl.integrate },

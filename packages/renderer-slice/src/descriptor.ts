@@ -4,26 +4,27 @@
  * interfaces import it alone (`@vpt/renderer-slice/descriptor`).
  *
  * The plane and the window are not one uniform per parameter: they become `planeOrigin`/
- * `planeU`/`planeV`/`planeNormal` (plane.ts) and `windowScale`/`windowOffset`
- * (window-mapping.ts) in slice-renderer.ts; the choices become kernel variants (`features()`).
+ * `planeU`/`planeV`/`planeNormal` (core's slice-geometry.ts) and `windowScale`/`windowOffset`
+ * (core's slice-window.ts) in slice-renderer.ts; the choices become kernel variants (`features()`).
  */
 import {
+  COLORMAP_NAMES,
   checkNumber,
   checkNumbers,
   defineRenderer,
   paramSpecsOf,
   validateParams,
   VptError,
+  type ColormapName,
   type NumberRule,
   type ParamsOf,
+  type SliceAxis,
+  type SlicePlaneSpec,
 } from '@vpt/core';
 
-/** The named colour maps (their tables: colormaps.ts); 'grey' is the windowed value itself. */
-export const COLORMAP_NAMES = ['grey', 'viridis', 'hot', 'coolwarm'] as const;
-export type ColormapName = (typeof COLORMAP_NAMES)[number];
+export type { SliceAxis };
 /** 'transfer-function': the scene's 1D transfer function's colour at the windowed value, instead of a named map. */
 export type SliceColormap = ColormapName | 'transfer-function';
-export type SliceAxis = 'x' | 'y' | 'z';
 export type SliceSampling = 'nearest' | 'linear';
 type Vec3 = [number, number, number];
 
@@ -90,9 +91,7 @@ export { SLICE_DESCRIPTOR as descriptor };
 
 /** The parameters with defaults filled in and the plane resolved to one of its two forms. */
 export interface ResolvedSliceParams {
-  plane:
-    | { kind: 'axis'; axis: SliceAxis; index: number | null; position: number | null }
-    | { kind: 'oblique'; normal: Vec3; point: Vec3 };
+  plane: SlicePlaneSpec;
   sampling: SliceSampling;
   window: [number, number] | null;
   colormap: SliceColormap;

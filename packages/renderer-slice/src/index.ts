@@ -11,12 +11,16 @@ export {
   type SliceSampling,
   type SliceColormap,
 } from './descriptor.js';
-export { slicePlane, type SlicePlane } from './plane.js';
+// The plane, the window and the colour maps are core's (shared with a scene's slicePlane).
 export {
+  slicePlane,
+  type SlicePlane,
   windowMapping,
   windowCoefficients,
   checkedWindowCoefficients,
   volumeRange,
   type WindowCoefficients,
-} from './window-mapping.js';
-export { COLORMAP_NAMES, colormapTable, type ColormapName } from './colormaps.js';
+  COLORMAP_NAMES,
+  colormapTable,
+  type ColormapName,
+} from '@vpt/core';

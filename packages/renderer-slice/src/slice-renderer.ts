@@ -1,8 +1,12 @@
 import {
   BaseRenderer,
+  checkedWindowCoefficients,
+  colormapTable,
   COPY_ACCUMULATION_RENDER,
   RUNNING_MEAN_INTEGRATE,
   paramSpecsOf,
+  slicePlane,
+  volumeRange,
   VptError,
   type AuxiliaryTexture,
   type ParamSpecs,
@@ -13,7 +17,6 @@ import {
   channelNormalizationRange,
   enabledChannels,
 } from '@vpt/core';
-import { colormapTable } from './colormaps.js';
 import * as glsl from './kernels/slice.glsl.js';
 import * as wgsl from './kernels/slice.wgsl.js';
 import {
@@ -23,8 +26,6 @@ import {
   type ResolvedSliceParams,
   type SliceParams,
 } from './descriptor.js';
-import { slicePlane } from './plane.js';
-import { checkedWindowCoefficients, volumeRange } from './window-mapping.js';
 
 const channelRanges = new WeakMap<object, [number, number]>();
 /** The data range of what the slice shows: the volume's, or a channel scene's first drawn channel's (memoized per channel list). */
@@ -42,7 +43,7 @@ function shownRange(scene: Scene): [number, number] {
 /** The slice renderer's parameter specs (core's validateParams), from its descriptor. */
 export const SLICE_PARAM_SPECS: ParamSpecs = paramSpecsOf(SLICE_DESCRIPTOR);
 
-/** The slice's uniforms, after the scene's (SCENE_UNIFORM_FIELDS): the plane (plane.ts) and the window (window-mapping.ts). */
+/** The slice's uniforms, after the scene's (SCENE_UNIFORM_FIELDS): the plane (core's slice-geometry.ts) and the window (slice-window.ts). */
 export const SLICE_UNIFORM_FIELDS: readonly UniformField[] = [
   { name: 'planeOrigin', type: 'vec3' },
   { name: 'windowScale', type: 'f32' },
@@ -155,7 +156,7 @@ export class SliceRenderer extends BaseRenderer<SliceParams> {
     return this.problem ? { slice: `nothing drawn: ${this.problem}` } : {};
   }
 
-  /** The named colour map's table (colormaps.ts), uploaded once per map. */
+  /** The named colour map's table (core's colormaps.ts), uploaded once per map. */
   auxiliaryTextures(_scene: Scene): readonly AuxiliaryTexture[] {
     const c = this.resolved.colormap;
     if (c === 'grey' || c === 'transfer-function') return [];
@@ -191,7 +192,7 @@ function shapeOf(volume: Volume): VolumeShape {
   return { dims: [...volume.dims], spacing: [...volume.spacing], range: volumeRange(volume) };
 }
 
-/** The rules that need the volume: the plane (plane.ts) and the window's float32 range (window-mapping.ts). */
+/** The rules that need the volume: the plane (core's slice-geometry.ts) and the window's float32 range (slice-window.ts). */
 function checkForShape(p: ResolvedSliceParams, shape: VolumeShape): void {
   slicePlane(p.plane, shape);
   checkedWindowCoefficients(shape.range, p.window);

@@ -9,6 +9,7 @@ import {
   VptError,
   validateCamera,
   validateClip,
+  resolveSlicePlane,
   validateEnvironment,
   validateLights,
   validateTransferFunction,
@@ -16,6 +17,7 @@ import {
   transferFunctionPreset as coreTransferFunctionPreset,
   type Camera,
   type Clip,
+  type SceneSlicePlane,
   type Environment,
   type Light,
   type TransferFunction,
@@ -175,6 +177,21 @@ export function parseClip(v: unknown): Clip {
   return copy;
 }
 
+/** The `slice-plane` attribute: the scene file's `slicePlane` JSON (core's scene/slice-plane.ts). */
+export function parseSlicePlane(v: unknown): SceneSlicePlane {
+  const attribute = 'slice-plane';
+  const c = typeof v === 'string' ? parseJson(attribute, v) : v;
+  if (!c || typeof c !== 'object' || Array.isArray(c))
+    return bad(attribute, 'expected JSON like {"axis":"z","index":40,"window":[40,400],"colormap":"grey"}');
+  const copy = structuredClone(c) as SceneSlicePlane;
+  withAttribute(attribute, () => resolveSlicePlane(copy, 'slice-plane'));
+  return copy;
+}
+
+/** Where a crosshair move in the slice panes goes in the 3D view: nowhere, its slice plane, or a clip plane. */
+export type Crosshair3D = 'none' | 'slice' | 'clip';
+export const CROSSHAIR_3D_MODES: readonly Crosshair3D[] = ['none', 'slice', 'clip'];
+
 export function parseRendererParams(v: unknown): Record<string, unknown> {
   const p = typeof v === 'string' ? (v.trim() === '' ? {} : parseJson('renderer-params', v)) : (v ?? {});
   if (!p || typeof p !== 'object' || Array.isArray(p))
@@ -186,6 +203,12 @@ export function parseBackend(v: unknown): BackendName {
   if (!BACKEND_NAMES.includes(v as BackendName))
     bad('backend', `must be one of ${BACKEND_NAMES.join(', ')}, got ${JSON.stringify(v)}`);
   return v as BackendName;
+}
+
+/** One of a list of names; the error names the attribute and the list. */
+export function parseChoice<T extends string>(attribute: string, v: unknown, choices: readonly T[]): T {
+  if (!choices.includes(v as T)) bad(attribute, `must be one of ${choices.join(', ')}, got ${JSON.stringify(v)}`);
+  return v as T;
 }
 
 export function parseToneMapper(v: unknown): ToneMapOperator {
@@ -290,6 +313,9 @@ export type CheckedProperty =
   | 'transferFunction'
   | 'camera'
   | 'clip'
+  | 'slicePlane'
+  | 'crosshair3d'
+  | 'crosshairPane'
   | 'lights'
   | 'environment'
   | 'rendererParams'
@@ -309,6 +335,9 @@ function propertyParsers(volume: Volume | undefined): Record<CheckedProperty, (v
     transferFunction: (v) => parseTransferFunction(v, volume),
     camera: parseCamera,
     clip: parseClip,
+    slicePlane: parseSlicePlane,
+    crosshair3d: (v) => parseChoice('crosshair-3d', v, CROSSHAIR_3D_MODES),
+    crosshairPane: (v) => parseChoice('crosshair-pane', v, ['axial', 'coronal', 'sagittal'] as const),
     lights: parseLights,
     environment: parseEnvironment,
     rendererParams: parseRendererParams,

@@ -199,7 +199,7 @@ export class RenderSession {
   }
 }
 
-/** Same image: same volume object, and equal transfer function, camera, lights, environment, clip, density and seed. */
+/** Same image: same volume object, and equal transfer function, camera, lights, environment, clip, slice plane, density and seed. */
 export function sameScene(a: Scene, b: Scene): boolean {
   return (
     a.volume === b.volume &&
@@ -209,6 +209,7 @@ export function sameScene(a: Scene, b: Scene): boolean {
     sameValue(a.camera, b.camera) &&
     sameValue(a.lights, b.lights) &&
     sameValue(a.environment, b.environment) &&
-    sameValue(a.clip ?? null, b.clip ?? null)
+    sameValue(a.clip ?? null, b.clip ?? null) &&
+    sameValue(a.slicePlane ?? null, b.slicePlane ?? null)
   );
 }

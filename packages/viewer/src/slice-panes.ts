@@ -6,9 +6,17 @@
  * anatomy reads as a radiologist expects, the orientation labels at its edges, and the
  * mapping from a pointer position to a voxel.
  */
-import { RenderContext, type BackendPreference, type Renderer, type Scene, type Volume } from '@vpt/core';
+import {
+  RenderContext,
+  type BackendPreference,
+  type MultiscaleSource,
+  type Renderer,
+  type Scene,
+  type Volume,
+} from '@vpt/core';
 import { defaultPostChain } from '@vpt/post';
 import { anatomicalFrame, type OrientedVolume } from './camera-fit.js';
+import { webglSlots, type SlotHolder } from './context-slots.js';
 import { createRenderer } from './renderer-registry.js';
 import { sameScene } from './session.js';
 
@@ -170,24 +178,54 @@ export function defaultWindow(extent: [number, number]): [number, number] {
   return [(extent[0] + extent[1]) / 2, width];
 }
 
+/** What a pane needs of its element: whether it is on screen, and a call when its context came back on a new canvas. */
+export interface PaneHost {
+  isVisible(): boolean;
+  reopened(pane: SlicePane): void;
+}
+
 /**
  * One slice pane's GPU side: a canvas and a RenderContext with its own slice renderer. A
  * pane's image is one sample (the slice renderer draws no random numbers), so drawing is a
  * reset, one iteration and a present, done synchronously whenever the plane, the window, the
- * size or the scene changes.
+ * size or the scene changes. A WebGL 2 pane holds one of the page's context slots
+ * (context-slots.ts) like a viewer: when another needs it the pane keeps a still of its image,
+ * gives its context up, and opens a new one (on a new canvas) when a slot is free.
  */
-export class SlicePane {
-  readonly canvas = document.createElement('canvas');
+export class SlicePane implements SlotHolder {
+  canvas: HTMLCanvasElement;
   private ctx: RenderContext | null = null;
   private renderer: (Renderer & { setParams(p: Record<string, unknown>): void }) | null = null;
   private disposed = false;
   private paramsKey = '';
   private scene: Scene | null = null;
+  private backendWanted: BackendPreference = 'auto';
+  private holdsSlot = false;
+  private still: HTMLCanvasElement | null = null;
+  private streamed: { standIn: Volume; source: MultiscaleSource } | null = null;
 
-  constructor(readonly name: PaneName) {
-    this.canvas.setAttribute('part', `slice-canvas ${name}-canvas`);
-    this.canvas.setAttribute('role', 'img');
-    this.canvas.setAttribute('aria-label', `${name} slice`);
+  constructor(
+    readonly name: PaneName,
+    private readonly host: PaneHost = { isVisible: () => true, reopened: () => {} },
+  ) {
+    this.canvas = SlicePane.newCanvas(name);
+  }
+
+  private static newCanvas(name: PaneName): HTMLCanvasElement {
+    const canvas = document.createElement('canvas');
+    canvas.setAttribute('part', `slice-canvas ${name}-canvas`);
+    canvas.setAttribute('role', 'img');
+    canvas.setAttribute('aria-label', `${name} slice`);
+    return canvas;
+  }
+
+  get visible(): boolean {
+    return this.host.isVisible();
+  }
+
+  /** Whether the pane gave its context up for another and waits for a slot. */
+  get parked(): boolean {
+    return this.ctx === null && webglSlots.isWaiting(this);
   }
 
   get context(): RenderContext | null {
@@ -200,8 +238,15 @@ export class SlicePane {
   }
 
   async open(backend: BackendPreference): Promise<void> {
+    this.backendWanted = backend;
     const renderer = (await createRenderer('slice', { fit: true })) as SlicePane['renderer'];
     if (this.disposed) return;
+    // WebGPU has no cap on contexts; anything that may become WebGL 2 takes a slot first.
+    if (backend !== 'webgpu') {
+      this.holdsSlot = true;
+      await webglSlots.acquire(this);
+      if (this.disposed) return;
+    }
     const ctx = await RenderContext.create({
       canvas: this.canvas,
       backend,
@@ -214,8 +259,75 @@ export class SlicePane {
       ctx.dispose();
       return;
     }
+    if (ctx.backend.kind !== 'webgl2' && this.holdsSlot) {
+      this.holdsSlot = false;
+      webglSlots.drop(this);
+    }
     this.ctx = ctx;
     this.renderer = renderer;
+    this.scene = null;
+    this.paramsKey = '';
+    if (this.streamed) ctx.setVolumeSource(this.streamed.standIn, this.streamed.source);
+  }
+
+  /**
+   * The scene's volume is the stand-in of a multiscale source streamed as bricks (the 3D view's
+   * RenderContext.setVolumeSource): the pane's context streams the same source, so the pane reads
+   * the finest level resident in each region rather than the stand-in alone.
+   */
+  useSource(standIn: Volume, source: MultiscaleSource): void {
+    if (this.streamed?.standIn === standIn && this.streamed.source === source) return;
+    this.streamed = { standIn, source };
+    this.ctx?.setVolumeSource(standIn, source);
+  }
+
+  /** Bricks of a streamed source are still arriving: the pane's image will change when they land. */
+  get refining(): boolean {
+    const b = this.ctx?.stats.bricking;
+    return !!b && !b.complete;
+  }
+
+  /** Another viewer or pane needs the slot: keep a still of the image, give the context up. */
+  async release(): Promise<void> {
+    const ctx = this.ctx;
+    this.holdsSlot = false;
+    if (!ctx) return;
+    let still: HTMLCanvasElement | null = null;
+    try {
+      if (ctx.getScene() && !ctx.backend.isLost) {
+        const { width, height } = ctx.size;
+        const ldr = await ctx.readLDR();
+        still = document.createElement('canvas');
+        still.width = width;
+        still.height = height;
+        still.setAttribute('part', 'still');
+        still.setAttribute('aria-hidden', 'true');
+        still.setAttribute('style', `position:absolute;left:0;top:0;${this.canvas.getAttribute('style') ?? ''}`);
+        still.getContext('2d')?.putImageData(new ImageData(new Uint8ClampedArray(ldr), width, height), 0, 0);
+      }
+    } catch {
+      still = null;
+    }
+    if (this.ctx !== ctx) return;
+    ctx.dispose();
+    this.ctx = null;
+    this.still?.remove();
+    this.still = still;
+    if (still) this.canvas.after(still);
+  }
+
+  /** A slot is free again: a new context on a new canvas (a canvas keeps its first context), then the host redraws. */
+  resume(): void {
+    if (this.disposed) return;
+    const old = this.canvas;
+    this.canvas = SlicePane.newCanvas(this.name);
+    this.canvas.setAttribute('style', old.getAttribute('style') ?? '');
+    old.replaceWith(this.canvas);
+    void this.open(this.backendWanted).then(() => {
+      this.still?.remove();
+      this.still = null;
+      if (!this.disposed) this.host.reopened(this);
+    });
   }
 
   /** Draw the plane through `index` along `axis` under `window`, at width × height pixels. */
@@ -236,11 +348,15 @@ export class SlicePane {
     ctx.reset();
     ctx.iterate(1);
     ctx.present();
+    if (this.holdsSlot) webglSlots.touch(this);
   }
 
   dispose(): void {
     this.disposed = true;
     this.ctx?.dispose();
     this.ctx = null;
+    this.still?.remove();
+    this.still = null;
+    webglSlots.drop(this);
   }
 }

@@ -24,9 +24,11 @@ import {
   type Clip,
   type Environment,
   type Light,
+  MAX_CLIP_PLANES,
   type Renderer,
   type RequestPolicy,
   type Scene,
+  type SceneSlicePlane,
   type TransferFunction,
   type Volume,
   volumeBox,
@@ -43,7 +45,9 @@ import {
   parseEnvironment,
   parseLights,
   parseRendererParams,
+  parseSlicePlane,
   parseTransferFunction,
+  type Crosshair3D,
   sameValue,
   type BackendName,
   type CheckedProperty,
@@ -141,6 +145,9 @@ const SYNC_FIELDS = [
   'transferFunction',
   'camera',
   'clip',
+  'slicePlane',
+  'crosshair3d',
+  'crosshairPane',
   'lights',
   'densityScale',
   'seed',
@@ -167,6 +174,9 @@ export class VptViewer extends LitElement implements PanelHost, SlotHolder {
     },
     camera: { reflect: true, converter: jsonConverter(parseCamera), hasChanged },
     clip: { reflect: true, converter: jsonConverter(parseClip), hasChanged },
+    slicePlane: { attribute: 'slice-plane', reflect: true, converter: jsonConverter(parseSlicePlane), hasChanged },
+    crosshair3d: { attribute: 'crosshair-3d', type: String, reflect: true },
+    crosshairPane: { attribute: 'crosshair-pane', type: String, reflect: true },
     lights: { reflect: true, converter: jsonConverter(parseLights), hasChanged },
     environment: { reflect: true, converter: jsonConverter(parseEnvironment), hasChanged },
     exposure: { type: Number, reflect: true },
@@ -223,6 +233,19 @@ export class VptViewer extends LitElement implements PanelHost, SlotHolder {
    * centred at 0, longest side 1); null: nothing is cut. The Clip panel edits it.
    */
   declare clip: Clip | string | null;
+  /**
+   * A slice shown in the 3D view as an opaque, unlit plane (the scene file's `slicePlane` JSON:
+   * axis + index/position or normal + point, window in data units, colormap); null: none.
+   */
+  declare slicePlane: SceneSlicePlane | string | null;
+  /**
+   * What a crosshair move in the slice panes does to the 3D view: 'none' (default), 'slice' (its
+   * slice plane follows the `crosshair-pane` pane's plane, windowed as the panes) or 'clip' (a clip
+   * plane there removes the side of higher index along that pane's axis).
+   */
+  declare crosshair3d: Crosshair3D;
+  /** The pane whose plane the 3D view follows under `crosshair-3d` (default 'axial'). */
+  declare crosshairPane: PaneName;
   declare lights: Light[] | string | null;
   declare environment: EnvironmentValue | string | null;
   /** Exposure in stops (applied before tone mapping). */
@@ -334,6 +357,9 @@ export class VptViewer extends LitElement implements PanelHost, SlotHolder {
     this.transferFunction = null;
     this.camera = null;
     this.clip = null;
+    this.slicePlane = null;
+    this.crosshair3d = 'none';
+    this.crosshairPane = 'axial';
     this.lights = null;
     this.environment = null;
     this.exposure = 0;
@@ -626,6 +652,7 @@ export class VptViewer extends LitElement implements PanelHost, SlotHolder {
       if (!entry || entry.isIntersecting === this.onScreen) return;
       this.onScreen = entry.isIntersecting;
       webglSlots.visibilityChanged(this);
+      for (const pane of this.slicePanes.values()) webglSlots.visibilityChanged(pane);
     });
     this.visibilityObserver.observe(this);
   }
@@ -683,10 +710,19 @@ export class VptViewer extends LitElement implements PanelHost, SlotHolder {
     if (changed.has('backend') || (!this.session && !this.opening && !this._parked)) this.track(this.openSession());
     else if (this.session && (changed.has('renderer') || changed.has('rendererParams')))
       this.track(this.switchRenderer());
-    if (changed.has('src')) this.track(this.volumeLoading.loadSource(this.src));
+    // The first update reports the constructor's null src as a change; loading null would cancel
+    // a load() called before it, so only a src that was set (or cleared after being set) loads.
+    if (changed.has('src') && (this.src || changed.get('src') !== undefined))
+      this.track(this.volumeLoading.loadSource(this.src));
     if (changed.has('time') || changed.has('playing') || changed.has('fps')) this.player?.update();
     if (changed.has('environment')) this.track(this.resolveEnvironment());
-    if (SYNC_FIELDS.some((f) => changed.has(f))) this.applySync();
+    // The crosshair and the panes' window reach the 3D scene only under crosshair-3d.
+    const followed =
+      this.crosshair3d !== 'none' &&
+      (changed.has('_crosshair' as keyof VptViewer) ||
+        changed.has('_window' as keyof VptViewer) ||
+        changed.has('layout'));
+    if (followed || SYNC_FIELDS.some((f) => changed.has(f))) this.applySync();
     this.syncPanes(changed.has('backend') || changed.has('layout'));
   }
 
@@ -899,7 +935,15 @@ export class VptViewer extends LitElement implements PanelHost, SlotHolder {
 
   private async openPanes(): Promise<void> {
     const token = ++this.paneToken;
-    const panes = ['axial', 'coronal', 'sagittal'].map((n) => new SlicePane(n as PaneName));
+    // The panes take the page's WebGL 2 slots as viewers do (context-slots.ts), on screen when the element is.
+    const host = {
+      isVisible: () => this.visible,
+      reopened: (pane: SlicePane) => {
+        this.paneDrawn.delete(pane.name);
+        this.requestUpdate();
+      },
+    };
+    const panes = ['axial', 'coronal', 'sagittal'].map((n) => new SlicePane(n as PaneName, host));
     panes.forEach((p) => this.slicePanes.set(p.name, p));
     try {
       await Promise.all(panes.map((p) => p.open(this.backend)));
@@ -926,12 +970,13 @@ export class VptViewer extends LitElement implements PanelHost, SlotHolder {
   }
 
   private drawPanes(): void {
-    const scene = this.sceneNow();
+    // The attributes' scene, clip included (the slice renderer cuts the plane as the clip cuts the volume).
+    const scene = this.sceneFromAttributes();
     const cross = this._crosshair;
     const window = this._window;
     if (!scene || !cross || !window) return;
-    const { clip: _clip, ...unclipped } = scene;
     const dpr = globalThis.devicePixelRatio || 1;
+    const streamed = this.volumeLoading.streamed;
     for (const g of this.paneGeometry()) {
       const pane = this.slicePanes.get(g.name);
       const size = this._paneSizes[g.name];
@@ -942,16 +987,32 @@ export class VptViewer extends LitElement implements PanelHost, SlotHolder {
       const [cw, ch] = g.transpose ? [stage.height, stage.width] : [stage.width, stage.height];
       const w = Math.min(max, Math.max(1, Math.round(cw * dpr)));
       const h = Math.min(max, Math.max(1, Math.round(ch * dpr)));
-      const key = `${cross[g.axis]}|${window.join()}|${w}x${h}`;
+      const key = `${cross[g.axis]}|${window.join()}|${w}x${h}|${JSON.stringify(scene.clip ?? null)}`;
       if (this.paneDrawn.get(g.name) === key && pane.volume === this.volume) continue;
       try {
-        pane.draw(unclipped, g.axis, cross[g.axis], window, w, h);
+        if (streamed && streamed.standIn === scene.volume) pane.useSource(streamed.standIn, streamed.source);
+        pane.draw(scene, g.axis, cross[g.axis], window, w, h);
         this.paneDrawn.set(g.name, key);
+        if (pane.refining) this.redrawPaneSoon(g.name);
       } catch (e) {
         this.paneDrawn.set(g.name, key);
         this.fail(e, 'attribute');
       }
     }
+  }
+
+  private paneRedraws = new Set<PaneName>();
+
+  /** A streamed pane whose bricks are still arriving draws again shortly (each draw uploads what arrived). */
+  private redrawPaneSoon(name: PaneName): void {
+    if (this.paneRedraws.has(name)) return;
+    this.paneRedraws.add(name);
+    setTimeout(() => {
+      this.paneRedraws.delete(name);
+      if (!this.slicePanes.has(name)) return;
+      this.paneDrawn.delete(name);
+      this.drawPanes();
+    }, 100);
   }
 
   private paneFraction(e: PointerEvent | WheelEvent): { fx: number; fy: number } {
@@ -1592,8 +1653,53 @@ export class VptViewer extends LitElement implements PanelHost, SlotHolder {
     return `${this.exposure}|${this.toneMapper}|${this.denoise}|${this.renderer}`;
   }
 
-  /** The scene from the current attributes, or null before a volume is loaded. */
+  /**
+   * The 3D view's scene: the panes' (sceneFromAttributes) plus the slice plane, and what the
+   * crosshair puts there under `crosshair-3d`: the followed pane's plane as the slice plane, or a
+   * clip plane at it.
+   */
   private sceneNow(): Scene | null {
+    const scene = this.sceneFromAttributes();
+    if (!scene) return null;
+    const attr = this.slicePlane && typeof this.slicePlane === 'object' ? this.slicePlane : null;
+    const follow = this.followedPlane();
+    if (follow && this.crosshair3d === 'slice') {
+      const { colormap, sampling } = attr ?? {};
+      const window = attr?.window ?? this._window ?? undefined;
+      scene.slicePlane = {
+        axis: follow.axis,
+        index: follow.index,
+        ...(window ? { window } : {}),
+        ...(colormap ? { colormap } : {}),
+        ...(sampling ? { sampling } : {}),
+      };
+    } else if (attr) scene.slicePlane = attr;
+    if (follow && this.crosshair3d === 'clip') {
+      const planes = scene.clip?.planes ?? [];
+      const normal: [number, number, number] = [0, 0, 0];
+      normal[follow.a] = 1;
+      if (planes.length < MAX_CLIP_PLANES)
+        scene.clip = { ...scene.clip, planes: [...planes, { normal, offset: follow.position }] };
+    }
+    return scene;
+  }
+
+  /** The plane of the `crosshair-pane` pane through the crosshair, while `crosshair-3d` asks for it in quad or slices layout. */
+  private followedPlane(): { a: 0 | 1 | 2; axis: 'x' | 'y' | 'z'; index: number; position: number } | null {
+    const v = this.volume;
+    if (this.crosshair3d === 'none' || this.layoutNow === '3d' || !v || !this._crosshair) return null;
+    const g = this.paneGeometry().find((p) => p.name === this.crosshairPane);
+    if (!g) return null;
+    const a = g.axis;
+    const index = this._crosshair[a];
+    const box = volumeBox(v);
+    // Through the centres of voxel layer `index` (cell-centred), as the slice renderer's index.
+    const position = box.min[a] + ((index + 0.5) * box.size[a]) / v.dims[a];
+    return { a, axis: (['x', 'y', 'z'] as const)[a], index, position };
+  }
+
+  /** The scene from the current attributes (the slice panes' scene), or null before a volume is loaded. */
+  private sceneFromAttributes(): Scene | null {
     if (!this.volume) return null;
     const camera = this.camera && typeof this.camera === 'object' ? this.camera : fitCamera(this.volume);
     const clip = this.clip && typeof this.clip === 'object' && hasClip(this.clip) ? this.clip : null;

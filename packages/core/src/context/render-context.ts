@@ -14,6 +14,7 @@ import { SCENE_UNIFORM_FIELDS, sceneUniformValues } from '../shaders/scene-unifo
 import { CLIP_UNIFORM_FIELDS, clipUniformValues, hasClip } from '../scene/clip.js';
 import { CHANNEL_UNIFORM_FIELDS } from '../shaders/scene-uniforms.js';
 import { enabledChannels } from '../scene/channels.js';
+import { SLICE_PLANE_UNIFORM_FIELDS, slicePlaneFlags, slicePlaneUniformValues } from '../scene/slice-plane.js';
 import { UniformLayout, type UniformField } from '../uniforms/layout.js';
 import { GUIDES } from '../shaders/guides.js';
 import { GUIDE_FRAME_FORMATS, GuideBuffers } from './guide-buffers.js';
@@ -80,6 +81,9 @@ export interface DepthLimit {
 }
 
 /** The uniforms of the depth limit, appended to the layout only while one is set. */
+/** Kernel flags that become backend defines only when set (an unset one leaves the program unchanged). */
+const OPTIONAL_DEFINES = new Set(['VPT_CLIP', 'VPT_CHANNELS', 'VPT_SLICE_PLANE']);
+
 const DEPTH_LIMIT_FIELDS: readonly UniformField[] = [
   { name: 'depthA', type: 'f32' },
   { name: 'depthB', type: 'f32' },
@@ -756,6 +760,7 @@ export class RenderContext {
       ...this._renderer.paramValues(scene),
       ...(hasClip(scene.clip) ? clipUniformValues(scene.clip, scene.volume) : {}),
       ...(scene.channels ? this.resources.channelMapping(scene) : {}),
+      ...(this.drawsSlicePlane(scene) ? slicePlaneUniformValues(scene.slicePlane!, scene.volume) : {}),
       ...(this.depthLimit ? { depthA: this.depthLimit.a, depthB: this.depthLimit.b } : {}),
     });
   }
@@ -765,9 +770,15 @@ export class RenderContext {
     return this.resources.wantsGradient(scene);
   }
 
+  /** A scene's slice plane is drawn only by a renderer that says so (Renderer.drawsSlicePlane). */
+  private drawsSlicePlane(scene: Scene): boolean {
+    return scene.slicePlane !== undefined && this._renderer.drawsSlicePlane === true;
+  }
+
   /** Which shared chunks (and defines) the generate pass needs for this scene. */
   private chunkOptions(scene: Scene): Required<CommonChunkOptions> {
     const tf2d = !scene.channels && scene.transferFunction.dimensions === '2d';
+    const plane = this.drawsSlicePlane(scene) ? slicePlaneFlags(scene.slicePlane!) : null;
     return {
       tf2d,
       gradient: this.wantsGradient(scene),
@@ -775,6 +786,9 @@ export class RenderContext {
       bricked: this.resources.bricked !== null,
       clip: hasClip(scene.clip),
       channels: scene.channels ? enabledChannels(scene.channels).length : 0,
+      slicePlane: plane !== null,
+      slicePlaneNearest: plane?.nearest ?? false,
+      slicePlaneTable: plane?.table ?? false,
     };
   }
 
@@ -796,28 +810,28 @@ export class RenderContext {
       VPT_DEPTH_LIMIT: this.depthLimit !== null,
       // The number of drawn channels of a channel scene (scene/channels.ts), 0 for a scalar one.
       VPT_CHANNELS: chunks.channels,
+      VPT_SLICE_PLANE: chunks.slicePlane,
     };
     const frameFormats = writeGuides ? [...r.frameFormats, ...GUIDE_FRAME_FORMATS] : r.frameFormats;
-    const key = `${r.name}|${JSON.stringify(features)}|${auxBindings.map((b) => b.name).join(',')}|${chunks.hardwareFilter ? 'filtered' : 'exact'}${chunks.bricked ? '|bricked' : ''}`;
+    const key = `${r.name}|${JSON.stringify(features)}|${chunks.slicePlaneNearest ? 'plane nearest|' : ''}${auxBindings.map((b) => b.name).join(',')}|${chunks.hardwareFilter ? 'filtered' : 'exact'}${chunks.bricked ? '|bricked' : ''}`;
     const descriptors = () => {
-      // VPT_CLIP and VPT_CHANNELS cut the kernels' #if lines but become backend defines only when
-      // set, so an unclipped scalar variant's program is today's byte for byte.
-      const defines = Object.fromEntries(
-        Object.entries(features).filter(([k, v]) => (k !== 'VPT_CLIP' && k !== 'VPT_CHANNELS') || v),
-      );
+      // VPT_CLIP, VPT_CHANNELS and VPT_SLICE_PLANE cut the kernels' #if lines but become backend
+      // defines only when set, so a variant without them is today's byte for byte.
+      const defines = Object.fromEntries(Object.entries(features).filter(([k, v]) => v || !OPTIONAL_DEFINES.has(k)));
       const gradientBindings = chunks.gradient
         ? [
             { name: 'gradientMagnitude', dimension: '2d' as const },
             { name: 'gradientMax', dimension: '2d' as const },
           ]
         : [];
-      // The clip uniforms, then the depth limit's, come last and only in variants that use them:
+      // The clip uniforms, the channels', the slice plane's, then the depth limit's, come last and only in variants that use them:
       // a layout without either is unchanged.
       const layout = new UniformLayout('Params', [
         ...SCENE_UNIFORM_FIELDS,
         ...r.paramFields,
         ...(chunks.clip ? CLIP_UNIFORM_FIELDS : []),
         ...(chunks.channels ? CHANNEL_UNIFORM_FIELDS : []),
+        ...(chunks.slicePlane ? SLICE_PLANE_UNIFORM_FIELDS : []),
         ...(this.depthLimit ? DEPTH_LIMIT_FIELDS : []),
       ]);
       // The volume/TF chunks read the `volume` and `transferFunction` (and gradient) textures,

@@ -19,6 +19,7 @@ import { inMemoryMultiscaleSource, type MultiscaleSource } from '../bricking/sou
 import { channelVolume, normalizationRange } from '../scene/volume.js';
 import { enabledChannels, rasterizeChannelTransferFunctions, type ChannelSettings } from '../scene/channels.js';
 import { VptError } from '../errors.js';
+import { slicePlaneTextures } from '../scene/slice-plane.js';
 
 /** How RenderContext wants the scene's volume bricked (null: one texture). */
 export interface BrickPlan extends BrickingOptions {
@@ -382,8 +383,14 @@ export class SceneResources {
   }
 
   /** The renderer's auxiliary textures for the current scene, as declared (nothing is built). */
-  auxiliarySpecs(): readonly AuxiliaryTexture[] {
-    return this._renderer.auxiliaryTextures?.(this.scene!, this.volumeBinding(this.scene!)) ?? [];
+  auxiliarySpecs(binding: VolumeBinding = this.volumeBinding(this.scene!)): readonly AuxiliaryTexture[] {
+    const scene = this.scene!;
+    const r = this._renderer;
+    return [
+      ...(r.auxiliaryTextures?.(scene, binding) ?? []),
+      // A slice plane's colour map, for the renderers that draw one (Renderer.drawsSlicePlane).
+      ...(scene.slicePlane && r.drawsSlicePlane ? slicePlaneTextures(scene.slicePlane) : []),
+    ];
   }
 
   /** The passes syncAuxiliaryTextures would run for these specs (those not built with the same key). */
@@ -405,7 +412,7 @@ export class SceneResources {
       this.auxFor.volumeKey === binding.key
     )
       return;
-    const specs: readonly AuxiliaryTexture[] = r.auxiliaryTextures?.(this.scene!, binding) ?? [];
+    const specs = this.auxiliarySpecs(binding);
     const wanted = new Set(specs.map((a) => a.name));
     for (const [name, aux] of this.auxTextures) {
       if (!wanted.has(name)) {

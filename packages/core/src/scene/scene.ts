@@ -2,6 +2,7 @@ import { VptError } from '../errors.js';
 import { validateCamera, type Camera } from './camera.js';
 import { validateChannels, type ChannelSettings } from './channels.js';
 import { validateClip, type Clip } from './clip.js';
+import { validateSlicePlane, type SceneSlicePlane } from './slice-plane.js';
 import { validateEnvironment, validateLights, type Environment, type Light } from './lights.js';
 import { validateTransferFunction, type TransferFunction } from './transfer-function.js';
 import { channelCount, validateVolume, type Volume } from './volume.js';
@@ -37,6 +38,11 @@ export interface Scene {
    * own). Absent: the single-channel path, unchanged.
    */
   channels?: ChannelSettings[];
+  /**
+   * A slice drawn as an opaque, unlit plane inside the volume by the renderers that say
+   * `drawsSlicePlane` (scene/slice-plane.ts); absent: no slice-plane code is compiled.
+   */
+  slicePlane?: SceneSlicePlane;
 }
 
 export function validateScene(s: Scene): void {
@@ -74,4 +80,5 @@ export function validateScene(s: Scene): void {
       'invalid-scene',
       `Scene: the volume has ${channelCount(s.volume)} channels, so the scene needs "channels": one entry (transferFunction, enabled, color, range) per channel`,
     );
+  if (s.slicePlane !== undefined) validateSlicePlane(s.slicePlane, s.volume);
 }

@@ -417,6 +417,56 @@ vec4 transferAt(vec3 p) {
 `;
 
 /**
+ * A scene's slice plane (scene/slice-plane.ts) as an opaque, unlit surface inside the volume:
+ * planar reformatting (multiplanar reconstruction) drawn where the camera ray meets the plane,
+ * t = (offset − n·o) / (n·d) (ray–plane intersection), the point inside the box and kept by the
+ * clip; -1 where the ray misses it. Its colour is the slice renderer's: the voxel (NEAREST) or
+ * the shared trilinear filter, the window in data units as an affine map of the normalized value,
+ * then grey or the colour map's table (entries at i / (N − 1), linear between them).
+ */
+export const SLICE_PLANE = /* glsl */ `
+float slicePlaneHit(vec3 o, vec3 d) {
+  float denom = dot(d, u.slicePlaneNormal);
+  float t = abs(denom) > 1e-12 ? (u.slicePlaneOffset - dot(o, u.slicePlaneNormal)) / denom : -1.0;
+  vec3 p = o + d * t;
+  bool hit = t > 0.0 && all(greaterThanEqual(p, u.boxMin)) && all(lessThanEqual(p, u.boxMax));
+#if CLIP
+  hit = hit && !isClipped(p);
+#endif
+  return hit ? t : -1.0;
+}
+float slicePlaneTexel(vec3 p) {
+#if SLICE_PLANE_NEAREST
+  ivec3 dims = u.volumeDims.xyz;
+  vec3 tc = (p - u.boxMin) / (u.boxMax - u.boxMin);
+  ivec3 i = clamp(ivec3(floor(tc * vec3(dims))), ivec3(0), dims - 1);
+#if BRICKED
+  // A brick atlas is read through the shared filter, at the voxel's centre.
+  return sampleVolumeTexel(u.boxMin + (vec3(i) + 0.5) / vec3(dims) * (u.boxMax - u.boxMin));
+#else
+  return texelFetch(volume, i, 0).r;
+#endif
+#else
+  return sampleVolumeTexel(p);
+#endif
+}
+vec3 slicePlaneColor(vec3 p) {
+  float n = slicePlaneTexel(p) * u.valueScale + u.valueOffset;
+  float w = clamp(n * u.slicePlaneWindow.x + u.slicePlaneWindow.y, 0.0, 1.0);
+#if SLICE_PLANE_TABLE
+  int count = textureSize(slicePlaneColormap, 0).x;
+  float x = w * float(count - 1);
+  float x0 = floor(x);
+  int i0 = int(x0);
+  int i1 = min(i0 + 1, count - 1);
+  return lerp4(texelFetch(slicePlaneColormap, ivec2(i0, 0), 0), texelFetch(slicePlaneColormap, ivec2(i1, 0), 0), x - x0).rgb;
+#else
+  return vec3(w);
+#endif
+}
+`;
+
+/**
  * The shared chunks of a generate pass, variants marked by `#if` lines that commonChunks()
  * (common.ts) resolves with the core preprocessor: the exact or hardware volume filter, the
  * gradient helpers only when the gradient textures are bound, and the transferAt() of a 1D
@@ -459,6 +509,9 @@ export const GENERATE_CHUNKS = [
   TRANSFER_2D,
   '#else',
   TRANSFER_1D,
+  '#endif',
+  '#if SLICE_PLANE',
+  SLICE_PLANE,
   '#endif',
 ].join('\n');
 

@@ -17,6 +17,12 @@ export interface CommonChunkOptions {
   clip?: boolean;
   /** A channel scene's drawn channels (1–4; scene/channels.ts): sampleChannels() and the mixture's transferAt(); 0 or absent: scalar. */
   channels?: number;
+  /** The scene has a slice plane its renderer draws (scene/slice-plane.ts): slicePlaneHit() / slicePlaneColor() exist. */
+  slicePlane?: boolean;
+  /** The slice plane reads the voxel holding the point (else the shared trilinear filter). */
+  slicePlaneNearest?: boolean;
+  /** The slice plane's colour comes from the `slicePlaneColormap` texture (else grey). */
+  slicePlaneTable?: boolean;
 }
 
 /**
@@ -33,6 +39,9 @@ export function commonChunks(opts: CommonChunkOptions = {}): KernelSource {
     BRICKED: !!opts.bricked,
     CLIP: !!opts.clip,
     CHANNELS: opts.channels ?? 0,
+    SLICE_PLANE: !!opts.slicePlane,
+    SLICE_PLANE_NEAREST: !!opts.slicePlaneNearest,
+    SLICE_PLANE_TABLE: !!opts.slicePlaneTable,
   };
   return { glsl: preprocess(glsl.GENERATE_CHUNKS, flags), wgsl: preprocess(wgsl.GENERATE_CHUNKS, flags) };
 }

@@ -349,6 +349,48 @@ fn transferAt(p: vec3f) -> vec4f {
 }
 `;
 
+/** Twin of SLICE_PLANE in common.glsl.ts (a scene's slice plane as an opaque unlit surface; see there). */
+export const SLICE_PLANE = /* wgsl */ `
+fn slicePlaneHit(o: vec3f, d: vec3f) -> f32 {
+  let denom = dot(d, u.slicePlaneNormal);
+  let t = select(-1.0, (u.slicePlaneOffset - dot(o, u.slicePlaneNormal)) / denom, abs(denom) > 1e-12);
+  let p = o + d * t;
+  var hit = t > 0.0 && all(p >= u.boxMin) && all(p <= u.boxMax);
+#if CLIP
+  hit = hit && !isClipped(p);
+#endif
+  return select(-1.0, t, hit);
+}
+fn slicePlaneTexel(p: vec3f) -> f32 {
+#if SLICE_PLANE_NEAREST
+  let dims = u.volumeDims.xyz;
+  let tc = (p - u.boxMin) / (u.boxMax - u.boxMin);
+  let i = clamp(vec3i(floor(tc * vec3f(dims))), vec3i(0), dims - 1);
+#if BRICKED
+  return sampleVolumeTexel(u.boxMin + (vec3f(i) + 0.5) / vec3f(dims) * (u.boxMax - u.boxMin));
+#else
+  return textureLoad(volume, i, 0).r;
+#endif
+#else
+  return sampleVolumeTexel(p);
+#endif
+}
+fn slicePlaneColor(p: vec3f) -> vec3f {
+  let n = slicePlaneTexel(p) * u.valueScale + u.valueOffset;
+  let w = clamp(n * u.slicePlaneWindow.x + u.slicePlaneWindow.y, 0.0, 1.0);
+#if SLICE_PLANE_TABLE
+  let count = i32(textureDimensions(slicePlaneColormap).x);
+  let x = w * f32(count - 1);
+  let x0 = floor(x);
+  let i0 = i32(x0);
+  let i1 = min(i0 + 1, count - 1);
+  return lerp4(textureLoad(slicePlaneColormap, vec2i(i0, 0), 0), textureLoad(slicePlaneColormap, vec2i(i1, 0), 0), x - x0).rgb;
+#else
+  return vec3f(w);
+#endif
+}
+`;
+
 /**
  * The shared chunks of a generate pass, variants marked by `#if` lines that commonChunks()
  * (common.ts) resolves with the core preprocessor: the gradient helpers only when the
@@ -391,6 +433,9 @@ export const GENERATE_CHUNKS = [
   TRANSFER_2D,
   '#else',
   TRANSFER_1D,
+  '#endif',
+  '#if SLICE_PLANE',
+  SLICE_PLANE,
   '#endif',
 ].join('\n');
 

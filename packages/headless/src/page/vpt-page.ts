@@ -274,6 +274,7 @@ async function sceneOf(d: SceneDescription, baseUrl?: string, request?: Partial<
     seed: d.seed ?? SCENE_DEFAULTS.seed,
     ...(d.sampling ? { sampling: d.sampling } : {}),
     ...(d.clip ? { clip: d.clip } : {}),
+    ...(d.slicePlane ? { slicePlane: d.slicePlane } : {}),
   };
 }
 

@@ -41,6 +41,12 @@ void main() {
 #if VPT_DEPTH_LIMIT
   t.y = min(t.y, depthLimitAlong(pixel, dir));
 #endif
+#if VPT_SLICE_PLANE
+  // The slice plane is opaque: the ray ends there (scene/slice-plane.ts).
+  float tPlane = slicePlaneHit(u.cameraPosition, dir);
+  bool onPlane = tPlane > 0.0 && tPlane <= t.y;
+  if (onPlane) t.y = tPlane;
+#endif
   vec3 color = vec3(0.0);
   float transmittance = 1.0;
   // Denoiser guides at the mean termination depth: segments weighted by T·alpha, their share of the pixel.
@@ -69,10 +75,19 @@ void main() {
 #endif
     for (; k < n && going; k++) going = eamSample(dir, t.x + (float(k) + offset) * seg, seg, color, transmittance, guide);
   }
+#if VPT_SLICE_PLANE
+  // The opaque, unlit plane behind what is in front: front radiance + transmittance × its colour.
+  if (onPlane) {
+    vpt_out0 = vec4(color + transmittance * slicePlaneColor(u.cameraPosition + dir * tPlane), 1.0);
+  } else {
+#endif
 #if VPT_DEPTH_LIMIT
   vpt_out0 = vec4(color, 1.0 - transmittance);
 #else
   vpt_out0 = vec4(color + transmittance * u.background.rgb, 1.0 - transmittance);
+#endif
+#if VPT_SLICE_PLANE
+  }
 #endif
 #if VPT_GUIDES
   vpt_out1 = vec4(0.0);

@@ -36,6 +36,12 @@ fn eamSample(
 #if VPT_DEPTH_LIMIT
   t.y = min(t.y, depthLimitAlong(pixel, dir));
 #endif
+#if VPT_SLICE_PLANE
+  // The slice plane is opaque: the ray ends there (scene/slice-plane.ts).
+  let tPlane = slicePlaneHit(u.cameraPosition, dir);
+  let onPlane = tPlane > 0.0 && tPlane <= t.y;
+  if (onPlane) { t.y = tPlane; }
+#endif
   var color = vec3f(0.0);
   var transmittance = 1.0;
   // Denoiser guides at the mean termination depth: segments weighted by T·alpha, their share of the pixel.
@@ -65,10 +71,18 @@ fn eamSample(
     for (; k < n && going; k++) { going = eamSample(dir, t.x + (f32(k) + offset) * seg, seg, &color, &transmittance, &guide); }
   }
   var o: VptOut;
+#if VPT_SLICE_PLANE
+  if (onPlane) {
+    o.out0 = vec4f(color + transmittance * slicePlaneColor(u.cameraPosition + dir * tPlane), 1.0);
+  } else {
+#endif
 #if VPT_DEPTH_LIMIT
   o.out0 = vec4f(color, 1.0 - transmittance);
 #else
   o.out0 = vec4f(color + transmittance * u.background.rgb, 1.0 - transmittance);
+#endif
+#if VPT_SLICE_PLANE
+  }
 #endif
 #if VPT_GUIDES
   if (guide.x > 0.0) {

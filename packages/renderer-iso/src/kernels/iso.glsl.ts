@@ -371,6 +371,12 @@ void main() {
 #if VPT_DEPTH_LIMIT
   tb.y = min(tb.y, depthLimitAlong(pixel, dir));
 #endif
+#if VPT_SLICE_PLANE
+  // The slice plane is opaque: the ray ends there (scene/slice-plane.ts).
+  float tPlane = slicePlaneHit(o, dir);
+  bool onPlane = tPlane > 0.0 && tPlane <= tb.y;
+  if (onPlane) tb.y = tPlane;
+#endif
   vec4 hit = vec4(-1.0);
   if (tb.x < tb.y) { hit = isoTrace(o, dir, tb.x, tb.y, rng); }
 #if VPT_DEPTH_LIMIT
@@ -378,6 +384,10 @@ void main() {
   vec4 color = vec4(0.0);
 #else
   vec4 color = vec4(isoEnvironment(dir), 0.0);
+#endif
+#if VPT_SLICE_PLANE
+  // Unlit: where no surface in front is shaded, the ray sees the plane's colour.
+  if (onPlane) color = vec4(slicePlaneColor(o + dir * tPlane), 1.0);
 #endif
   vec4 nearest = vec4(-1.0, 0.0, 0.0, 0.0);
   if (hit.z >= 0.0) {

@@ -339,12 +339,21 @@ export const generate =
 #if VPT_DEPTH_LIMIT
   tb.y = min(tb.y, depthLimitAlong(pixel, dir));
 #endif
+#if VPT_SLICE_PLANE
+  // The slice plane is opaque: the ray ends there (scene/slice-plane.ts).
+  let tPlane = slicePlaneHit(o, dir);
+  let onPlane = tPlane > 0.0 && tPlane <= tb.y;
+  if (onPlane) { tb.y = tPlane; }
+#endif
   var hit = vec4f(-1.0);
   if (tb.x < tb.y) { hit = isoTrace(o, dir, tb.x, tb.y, &rng); }
 #if VPT_DEPTH_LIMIT
   var color = vec4f(0.0);
 #else
   var color = vec4f(isoEnvironment(dir), 0.0);
+#endif
+#if VPT_SLICE_PLANE
+  if (onPlane) { color = vec4f(slicePlaneColor(o + dir * tPlane), 1.0); }
 #endif
   var nearest = vec4f(-1.0, 0.0, 0.0, 0.0);
   if (hit.z >= 0.0) {

@@ -114,6 +114,12 @@ void main() {
 #if VPT_DEPTH_LIMIT
   tb.y = min(tb.y, depthLimitAlong(pixel, dir));
 #endif
+#if VPT_SLICE_PLANE
+  // The slice plane is an opaque surface for camera rays (scene/slice-plane.ts): the flight ends there.
+  float tPlane = slicePlaneHit(pos, dir);
+  bool onPlane = tPlane > 0.0 && tPlane <= tb.y;
+  if (onPlane) tb.y = tPlane;
+#endif
 #if VPT_GUIDES
   // Denoiser guides at the first real collision (zeros where the camera ray has none).
   vec4 guide0 = vec4(0.0);
@@ -132,6 +138,10 @@ void main() {
     Collision c = Collision(false, 0.0, vec3(0.0));
     if (tb.x < tb.y) c = freeFlight(pos, dir, tb.x, tb.y, rng);
     if (!c.hit) {
+#if VPT_SLICE_PLANE
+      // A camera ray that reaches the plane sees its colour, emitted and unlit, and ends (alpha 1).
+      if (depth == 0 && onPlane) { L += slicePlaneColor(pos + dir * tPlane); alpha = 1.0; break; }
+#endif
 #if VPT_DEPTH_LIMIT
       if (depth == 0) break;
 #endif

@@ -102,6 +102,11 @@ fn directLight(x: vec3f, w: vec3f, rng: ptr<function, u32>) -> vec3f {
 #if VPT_DEPTH_LIMIT
   tb.y = min(tb.y, depthLimitAlong(pixel, dir));
 #endif
+#if VPT_SLICE_PLANE
+  let tPlane = slicePlaneHit(pos, dir);
+  let onPlane = tPlane > 0.0 && tPlane <= tb.y;
+  if (onPlane) { tb.y = tPlane; }
+#endif
   var o: VptOut;
 #if VPT_GUIDES
   // Denoiser guides at the first real collision (zeros where the camera ray has none).
@@ -122,6 +127,9 @@ fn directLight(x: vec3f, w: vec3f, rng: ptr<function, u32>) -> vec3f {
     var c = Collision(false, 0.0, vec3f(0.0));
     if (tb.x < tb.y) { c = freeFlight(pos, dir, tb.x, tb.y, &rng); }
     if (!c.hit) {
+#if VPT_SLICE_PLANE
+      if (depth == 0 && onPlane) { L += slicePlaneColor(pos + dir * tPlane); alpha = 1.0; break; }
+#endif
 #if VPT_DEPTH_LIMIT
       if (depth == 0) { break; }
 #endif

@@ -39,6 +39,12 @@ void main() {
 #if VPT_CHANNELS
   vec4 maxValue = vec4(0.0);
 #else
+#if VPT_SLICE_PLANE
+  // The slice plane is opaque: the ray ends there (scene/slice-plane.ts).
+  float tPlane = slicePlaneHit(u.cameraPosition, dir);
+  bool onPlane = tPlane > 0.0 && tPlane <= t.y;
+  if (onPlane) t.y = tPlane;
+#endif
   float maxValue = 0.0;
 #endif
   float coverage = 0.0;
@@ -83,6 +89,14 @@ void main() {
   coverage = maxValue;
 #endif
   vpt_out0 = vec4(maxValue, 0.0, 0.0, coverage);
+#if VPT_SLICE_PLANE
+  // On the plane: its colour, the same every iteration (centre ray), in gba with a < 0 marking it
+  // (b stored as -1 - b); coverage is 1 there.
+  if (onPlane) {
+    vec3 c = slicePlaneColor(u.cameraPosition + dir * tPlane);
+    vpt_out0 = vec4(maxValue, c.r, c.g, -1.0 - c.b);
+  }
+#endif
 #endif
 }
 `;
@@ -97,6 +111,10 @@ void main() {
 #if VPT_CHANNELS
   vpt_out0 = max(a, f);
 #else
+#if VPT_SLICE_PLANE
+  // A pixel on the slice plane keeps the plane's colour (gba) beside the running maximum.
+  if (f.a < 0.0) { vpt_out0 = vec4(max(a.r, f.r), f.gba); return; }
+#endif
   float w = 1.0 / float(u.iteration + 1u);
   vpt_out0 = vec4(max(a.r, f.r), 0.0, 0.0, a.a + (f.a - a.a) * w);
 #endif
@@ -129,6 +147,10 @@ void main() {
   vpt_out0 = vec4(rgb, coverage);
 #else
   vpt_out0 = vec4(a.r, a.r, a.r, a.a);
+#if VPT_SLICE_PLANE
+  // The plane behind the maximum, which is its own opacity (as over a depth-limit surface): m + (1 - m) · plane.
+  if (a.a < 0.0) vpt_out0 = vec4(vec3(a.r) + (1.0 - a.r) * vec3(a.g, a.b, -1.0 - a.a), 1.0);
+#endif
 #endif
 }
 `;

@@ -31,6 +31,12 @@ fn cellMaxValue(walk: CellWalk) -> f32 {
 #if VPT_CHANNELS
   var maxValue = vec4f(0.0);
 #else
+#if VPT_SLICE_PLANE
+  // The slice plane is opaque: the ray ends there (scene/slice-plane.ts).
+  let tPlane = slicePlaneHit(u.cameraPosition, dir);
+  let onPlane = tPlane > 0.0 && tPlane <= t.y;
+  if (onPlane) { t.y = tPlane; }
+#endif
   var maxValue = 0.0;
 #endif
   var coverage = 0.0;
@@ -74,6 +80,12 @@ fn cellMaxValue(walk: CellWalk) -> f32 {
   coverage = maxValue;
 #endif
   o.out0 = vec4f(maxValue, 0.0, 0.0, coverage);
+#if VPT_SLICE_PLANE
+  if (onPlane) {
+    let c = slicePlaneColor(u.cameraPosition + dir * tPlane);
+    o.out0 = vec4f(maxValue, c.r, c.g, -1.0 - c.b);
+  }
+#endif
 #endif
   return o;
 }
@@ -89,6 +101,9 @@ export const integrate = /* wgsl */ `
 #if VPT_CHANNELS
   o.out0 = max(a, f);
 #else
+#if VPT_SLICE_PLANE
+  if (f.a < 0.0) { o.out0 = vec4f(max(a.r, f.r), f.gba); return o; }
+#endif
   let w = 1.0 / f32(u.iteration + 1u);
   o.out0 = vec4f(max(a.r, f.r), 0.0, 0.0, a.a + (f.a - a.a) * w);
 #endif
@@ -122,6 +137,9 @@ fn mipChannel(value: f32, row: i32) -> vec3f {
   o.out0 = vec4f(rgb, coverage);
 #else
   o.out0 = vec4f(a.r, a.r, a.r, a.a);
+#if VPT_SLICE_PLANE
+  if (a.a < 0.0) { o.out0 = vec4f(vec3f(a.r) + (1.0 - a.r) * vec3f(a.g, a.b, -1.0 - a.a), 1.0); }
+#endif
 #endif
   return o;
 }

@@ -1,5 +1,17 @@
-import { VptError, volumeBox, type Vec3, type Volume } from '@vpt/core';
-import { SLICE_OWNER, type ResolvedSliceParams, type SliceAxis } from './descriptor.js';
+import { VptError } from '../errors.js';
+import type { Vec3 } from './camera.js';
+import { volumeBox, type Volume } from './volume.js';
+
+export type SliceAxis = 'x' | 'y' | 'z';
+
+/**
+ * A plane through the volume, resolved: axis-aligned (through the centres of voxel layer
+ * `index`, default the middle one, or at world coordinate `position` along the axis) or oblique
+ * (unit `normal` through `point`).
+ */
+export type SlicePlaneSpec =
+  | { kind: 'axis'; axis: SliceAxis; index: number | null; position: number | null }
+  | { kind: 'oblique'; normal: Vec3; point: Vec3 };
 
 /**
  * The slice's plane in world coordinates (the volume's box, centred at 0, longest side 1):
@@ -36,8 +48,8 @@ const normalize = (a: Vec3): Vec3 => {
   return [a[0] / l, a[1] / l, a[2] / l];
 };
 
-function fail(field: string, message: string): never {
-  throw new VptError('invalid-scene', `${SLICE_OWNER}.${field}: ${message}`);
+function fail(owner: string, field: string, message: string): never {
+  throw new VptError('invalid-scene', `${owner}.${field}: ${message}`);
 }
 
 /**
@@ -45,7 +57,11 @@ function fail(field: string, message: string): never {
  * field when it does not fit this volume (an index past its last layer, a position outside
  * its box, an oblique plane that misses the box or only touches it).
  */
-export function slicePlane(plane: ResolvedSliceParams['plane'], volume: Pick<Volume, 'dims' | 'spacing'>): SlicePlane {
+export function slicePlane(
+  plane: SlicePlaneSpec,
+  volume: Pick<Volume, 'dims' | 'spacing'>,
+  owner = 'SLICE',
+): SlicePlane {
   const box = volumeBox(volume);
   if (plane.kind === 'axis') {
     const a = AXIS_INDEX[plane.axis];
@@ -54,6 +70,7 @@ export function slicePlane(plane: ResolvedSliceParams['plane'], volume: Pick<Vol
     if (plane.position !== null) {
       if (!(plane.position >= box.min[a] && plane.position <= box.max[a]))
         fail(
+          owner,
           'position',
           `${plane.position} is outside the volume's box along ${plane.axis}: [${box.min[a]}, ${box.max[a]}] world units`,
         );
@@ -61,17 +78,21 @@ export function slicePlane(plane: ResolvedSliceParams['plane'], volume: Pick<Vol
     } else {
       const index = plane.index ?? Math.floor(n / 2);
       if (index > n - 1)
-        fail('index', `${index} is past the last of the volume's ${n} layers along ${plane.axis} (0 to ${n - 1})`);
+        fail(
+          owner,
+          'index',
+          `${index} is past the last of the volume's ${n} layers along ${plane.axis} (0 to ${n - 1})`,
+        );
       // Through the centres of voxel layer `index` (cell-centred: layer i spans [i, i + 1] voxels).
       c = box.min[a] + ((index + 0.5) * box.size[a]) / n;
     }
     const point: Vec3 = [0, 0, 0];
     point[a] = c;
-    return planeThroughBox(point, unit(a), a, box, 'position');
+    return planeThroughBox(point, unit(a), a, box, owner, 'position');
   }
   const n = plane.normal;
   const dominant = [0, 1, 2].reduce((m, i) => (Math.abs(n[i]) > Math.abs(n[m]) ? i : m), 0) as 0 | 1 | 2;
-  return planeThroughBox(plane.point, n, dominant, box, 'point');
+  return planeThroughBox(plane.point, n, dominant, box, owner, 'point');
 }
 
 /**
@@ -79,7 +100,14 @@ export function slicePlane(plane: ResolvedSliceParams['plane'], volume: Pick<Vol
  * Gram–Schmidt from the image axes of `dominant` (so an axis-aligned plane gets exactly those
  * axes), extent from the vertices where the box's 12 edges cross the plane.
  */
-function planeThroughBox(point: Vec3, normal: Vec3, dominant: 0 | 1 | 2, box: Box, field: string): SlicePlane {
+function planeThroughBox(
+  point: Vec3,
+  normal: Vec3,
+  dominant: 0 | 1 | 2,
+  box: Box,
+  owner: string,
+  field: string,
+): SlicePlane {
   const [col, row] = IMAGE_AXES[dominant];
   const ec = unit(col),
     er = unit(row);
@@ -108,6 +136,7 @@ function planeThroughBox(point: Vec3, normal: Vec3, dominant: 0 | 1 | 2, box: Bo
   const [u0, u1, v0, v1] = [Math.min(...su), Math.max(...su), Math.min(...sv), Math.max(...sv)];
   if (!(vertices.length >= 3 && u1 > u0 && v1 > v0))
     fail(
+      owner,
       field,
       `the plane through [${point.join(', ')}] with normal [${normal.map((x) => +x.toFixed(6)).join(', ')}] does not cut the volume's box [${box.min.join(', ')}]..[${box.max.join(', ')}]`,
     );

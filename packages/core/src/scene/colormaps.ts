@@ -1,14 +1,14 @@
 /**
- * Colour maps of the slice renderer: tables of sRGB-encoded RGB at N equally spaced points (entry i
+ * Colour maps of a slice (the slice renderer and a scene's slicePlane): tables of sRGB-encoded RGB at N equally spaced points (entry i
  * at i / (N − 1)), read with linear interpolation between entries like the 1D transfer function.
  * Values copied from matplotlib (matplotlib.org, _cm_listed.py and _cm.py): 'viridis' (van der Walt
  * & Smith 2015, CC0, its 256-entry table), 'hot' (matplotlib's piecewise-linear segments, sampled
  * at 256 points), 'coolwarm' (Moreland 2009, "Diverging Color Maps for Scientific Visualization",
  * ISVC, its 33-point table CoolWarmFloat33). 'grey' is the windowed value itself (no table).
  */
-import type { ColormapName } from './descriptor.js';
-
-export { COLORMAP_NAMES, type ColormapName } from './descriptor.js';
+/** The named colour maps; 'grey' is the windowed value itself (no table). */
+export const COLORMAP_NAMES = ['grey', 'viridis', 'hot', 'coolwarm'] as const;
+export type ColormapName = (typeof COLORMAP_NAMES)[number];
 
 // prettier-ignore
 const VIRIDIS = [

@@ -1,4 +1,6 @@
-import { FLOAT32_MAX, normalizationRange, VptError, type Volume } from '@vpt/core';
+import { VptError } from '../errors.js';
+import { FLOAT32_MAX } from '../validation/limits.js';
+import { normalizationRange, type Volume } from './volume.js';
 
 export interface WindowCoefficients {
   windowScale: number;
@@ -28,7 +30,7 @@ export function windowCoefficients(
 }
 
 /**
- * windowCoefficients, refused (VptError 'invalid-scene' naming SLICE.window) unless the scale
+ * windowCoefficients, refused (VptError 'invalid-scene' naming the field) unless the scale
  * is a normal float32 and the offset finite in float32: a window far narrower than the value
  * range would reach the kernel as Infinity (and Infinity − Infinity is NaN), a far wider one as a
  * scale of 0 (and 0 · Infinity is NaN). With a normal scale and a finite offset the windowed value
@@ -37,13 +39,14 @@ export function windowCoefficients(
 export function checkedWindowCoefficients(
   range: readonly [number, number],
   window: readonly [number, number] | null,
+  field = 'SLICE.window',
 ): WindowCoefficients {
   const m = windowCoefficients(range, window);
   const scale = Math.abs(m.windowScale);
   if (!(scale >= FLOAT32_MIN_NORMAL && scale <= FLOAT32_MAX && Math.abs(m.windowOffset) <= FLOAT32_MAX)) {
     throw new VptError(
       'invalid-scene',
-      `SLICE.window: [${window}] against the volume's value range [${range[0]}, ${range[1]}] needs a scale of ${m.windowScale} and an offset of ${m.windowOffset}, outside the float32 range (±${FLOAT32_MIN_NORMAL} to ±${FLOAT32_MAX}) the GPU computes in`,
+      `${field}: [${window}] against the volume's value range [${range[0]}, ${range[1]}] needs a scale of ${m.windowScale} and an offset of ${m.windowOffset}, outside the float32 range (±${FLOAT32_MIN_NORMAL} to ±${FLOAT32_MAX}) the GPU computes in`,
     );
   }
   return m;
