@@ -18,6 +18,8 @@ import type { PanelHost } from './panel-host.js';
 
 import { PANEL_NAMES, type PanelName } from './panel-host.js';
 export { PANEL_NAMES, type PanelName };
+// The clip handles on the image show only with the Clip panel, so their geometry rides in this chunk.
+export { axisPoint, draggedPosition, projectPoint } from './clip-handles.js';
 
 let uid = 0;
 const id = (name: string) => `vpt-${name}-${++uid}`;

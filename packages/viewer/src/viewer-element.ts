@@ -55,7 +55,6 @@ import {
   type EnvironmentValue,
 } from './attributes.js';
 import { fitCamera } from './camera-fit.js';
-import { axisPoint, draggedPosition, projectPoint } from './clip-handles.js';
 import { CLIP_AXES, clipControls, clipFromControls, type ClipAxis } from './clip-model.js';
 import { webglSlots, type SlotHolder } from './context-slots.js';
 import { autoTransferFunction, defaultRendererParams, rendererLook } from './defaults.js';
@@ -1101,17 +1100,19 @@ export class VptViewer extends LitElement implements PanelHost, SlotHolder {
 
   /**
    * The axis planes' handles over the image (clip-handles.ts), shown with the Clip panel: each
-   * at the centre of its cut face; dragging one moves its plane along the axis.
+   * at the centre of its cut face; dragging one moves its plane along the axis. Their geometry
+   * comes with the panels' module, which the Clip panel loads.
    */
   private renderClipHandles() {
     const ctx = this.session?.ctx;
-    if (!this.volume || !ctx) return nothing;
+    const m = panelsModule;
+    if (!this.volume || !ctx || !m) return nothing;
     const c = clipControls(this.clipNow());
     const camera = this.sceneNow()!.camera;
     const aspect = ctx.size.width / ctx.size.height;
     const handles = CLIP_AXES.flatMap((axis) => {
       const plane = c.axes[axis];
-      const p = plane ? projectPoint(camera, aspect, axisPoint(axis, plane.position)) : null;
+      const p = plane ? m.projectPoint(camera, aspect, m.axisPoint(axis, plane.position)) : null;
       return p && p.x >= 0 && p.x <= 1 && p.y >= 0 && p.y <= 1 ? [{ axis, p }] : [];
     });
     return handles.map(
@@ -1146,14 +1147,15 @@ export class VptViewer extends LitElement implements PanelHost, SlotHolder {
     const drag = this.clipDrag;
     const ctx = this.session?.ctx;
     const view = this.renderRoot.querySelector('.view') as HTMLElement | null;
-    if (!drag || !ctx || !view || !this.volume) return;
+    const m = panelsModule;
+    if (!drag || !ctx || !view || !this.volume || !m) return;
     const c = clipControls(this.clipNow());
     const plane = c.axes[drag.axis];
     if (!plane) return;
     const rect = view.getBoundingClientRect();
     const i = CLIP_AXES.indexOf(drag.axis);
     const box = volumeBox(this.volume);
-    const position = draggedPosition(
+    const position = m.draggedPosition(
       this.sceneNow()!.camera,
       ctx.size.width / ctx.size.height,
       drag.axis,
