@@ -116,6 +116,8 @@ describe('IsoRenderer parameters', () => {
         VPT_GUIDES: false,
         VPT_CLIP: false,
         VPT_DEPTH_LIMIT: false,
+        VPT_SLICE_PLANE: false,
+        VPT_CHANNELS: 0,
       });
       expect(constantVariant).not.toMatch(/envMap|envMarginal|envConditional/);
       expect(constantVariant).toMatch(/u\.background/);

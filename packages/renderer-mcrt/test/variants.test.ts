@@ -71,7 +71,7 @@ describe('MCRT feature variants', () => {
   const both = (f: McrtFeatures) => {
     const k = generateKernel(f);
     return [k.glsl, k.wgsl].map((src) =>
-      preprocess(src, { VPT_GUIDES: false, VPT_CLIP: false, VPT_DEPTH_LIMIT: false }),
+      preprocess(src, { VPT_GUIDES: false, VPT_CLIP: false, VPT_DEPTH_LIMIT: false, VPT_SLICE_PLANE: false }),
     );
   };
 
@@ -95,6 +95,7 @@ describe('MCRT feature variants', () => {
         VPT_GUIDES: false,
         VPT_CLIP: true,
         VPT_DEPTH_LIMIT: false,
+        VPT_SLICE_PLANE: false,
       });
       expect(clipped).toContain('keptInterval(');
       expect(clipped).not.toContain('intersectBox(');
