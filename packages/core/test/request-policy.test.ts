@@ -34,6 +34,23 @@ describe('fetchWithPolicy', () => {
     expect(Array.from(r.bytes!)).toEqual([1, 2, 3, 4, 5]);
   });
 
+  it('a large answer: the same bytes, with progress as they arrive up to the length', async () => {
+    // The bytes come from a native read, the progress from a clone read by script (request.ts).
+    const big = new Uint8Array(3 << 20).map((_, i) => (i * 2654435761) >>> 24);
+    server.files.set('/big.bin', big);
+    const seen: [number, number | undefined][] = [];
+    const got = await fetchWithPolicy(`${server.url}big.bin`, {
+      policy: POLICY,
+      onProgress: (loaded, total) => seen.push([loaded, total]),
+    });
+    expect(got.bytes.length).toBe(big.length);
+    expect(Buffer.compare(Buffer.from(got.bytes), Buffer.from(big))).toBe(0);
+    expect(seen.length).toBeGreaterThan(2);
+    expect(seen.every(([, total]) => total === big.length)).toBe(true);
+    expect(seen.every(([loaded], i) => i === 0 || loaded >= seen[i - 1][0])).toBe(true);
+    expect(seen.at(-1)).toEqual([big.length, big.length]);
+  });
+
   it.each([
     ['no-headers', /no answer within 300 ms/],
     ['stall-body', /stalled after 16 bytes/],

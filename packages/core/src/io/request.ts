@@ -171,6 +171,7 @@ async function attemptOnce(
   };
   const onAbort = () => controller.abort();
   signal?.addEventListener('abort', onAbort, { once: true });
+  let complete = false;
   const totalTimer = setTimeout(() => end('total'), Math.max(0, deadline - Date.now()));
   let stallTimer = setTimeout(() => end('stall-headers'), policy.stallTimeoutMs);
   const started = Date.now();
@@ -254,10 +255,17 @@ async function attemptOnce(
       options.onProgress?.(bytes.length, bytes.length);
       return { bytes, status, headers: response.headers };
     }
-    const reader = response.body.getReader();
+    // The bytes are read natively (arrayBuffer) and a clone of the body is read by script, only
+    // to count bytes for progress, the stall windows and the size bound. Chromium cancels the URL
+    // loader (logged as a failed request, net::ERR_ABORTED) when a body stream read by script
+    // ends before the network's completion message arrives, which happens in most loads; a
+    // native read waits for that message, and the clone's end cancels only its own tee branch.
+    const counted = response.clone().body;
+    const whole = response.arrayBuffer();
+    whole.catch(() => {}); // awaited below; a stop or a broken transfer is reported from there
+    if (!counted) throw new RequestError('network', `${url}: the answer's body cannot be read twice`);
+    const reader = counted.getReader();
     controller.signal.addEventListener('abort', () => void reader.cancel().catch(() => {}), { once: true });
-    let out = total !== undefined ? new Uint8Array(total) : undefined;
-    const chunks: Uint8Array[] = [];
     let loaded = 0;
     let windowStart = 0;
     const armStall = (): void => {
@@ -280,30 +288,33 @@ async function attemptOnce(
       }
       if (stop || signal?.aborted) throw fail(new Error('stopped'), loaded);
       if (chunk.done) break;
-      const value = chunk.value;
-      if (loaded + value.length > maxBytes) {
+      if (loaded + chunk.value.length > maxBytes) {
         end('limit');
         throw limitError(url, maxBytes, 'the body is longer');
       }
-      if (out && loaded + value.length <= out.length) out.set(value, loaded);
-      else {
-        // The body is longer than announced: collect chunks instead.
-        if (out) {
-          chunks.push(out.subarray(0, loaded));
-          out = undefined;
-        }
-        chunks.push(value);
-      }
-      loaded += value.length;
+      loaded += chunk.value.length;
       options.onProgress?.(loaded, total);
     }
-    if (out && loaded < out.length)
+    // The network is done (the clone has ended); the native read only has its copy left.
+    clearTimeout(stallTimer);
+    let bytes: Uint8Array;
+    try {
+      bytes = new Uint8Array(await whole);
+    } catch (e) {
+      throw fail(e, loaded);
+    }
+    if (stop || signal?.aborted) throw fail(new Error('stopped'), loaded);
+    if (total !== undefined && bytes.length < total)
       throw new RequestError(
         'truncated',
-        `${url}: the transfer ended after ${loaded} of ${out.length} bytes; try again or check the connection`,
+        `${url}: the transfer ended after ${bytes.length} of ${total} bytes; try again or check the connection`,
       );
-    return { bytes: out ?? concat(chunks, loaded), status, headers: response.headers };
+    if (bytes.length > maxBytes) throw limitError(url, maxBytes, `it holds ${bytes.length}`);
+    complete = true;
+    return { bytes, status, headers: response.headers };
   } finally {
+    // A failed attempt leaves nothing running (the native read of a refused body included).
+    if (!complete) controller.abort();
     clearTimeout(stallTimer);
     clearTimeout(totalTimer);
     signal?.removeEventListener('abort', onAbort);
@@ -312,15 +323,4 @@ async function attemptOnce(
 
 function limitError(url: string, maxBytes: number, what: string): RequestError {
   return new RequestError('limit', `${url}: larger than the ${maxBytes} bytes allowed for it (${what})`);
-}
-
-function concat(chunks: Uint8Array[], length: number): Uint8Array {
-  if (chunks.length === 1) return chunks[0];
-  const out = new Uint8Array(length);
-  let at = 0;
-  for (const c of chunks) {
-    out.set(c, at);
-    at += c.length;
-  }
-  return out;
 }
