@@ -8,7 +8,7 @@ import path from 'node:path';
 import zlib from 'node:zlib';
 import { describe, expect, it } from 'vitest';
 import { loadVolume, openTimeSeries, type LoadedVolume } from '../src/index.js';
-import { bytesIn, expectLoaderError, fileOf, FIXTURES, niftiFile, nrrdFile } from './helpers.js';
+import { bytesIn, expectLoaderError, fileOf, FIXTURES, niftiFile, nrrdFile, serve } from './helpers.js';
 
 const DIR = path.join(FIXTURES, 'multiaxis');
 interface Expected {
@@ -56,6 +56,60 @@ describe('multiaxis fixtures against the reference readers', () => {
       expect(series.steps, name).toBe(want.timeSteps);
       for (let t = 0; t < series.steps; t++) expectStep(await series.loadStep(t), want, t, name);
     }
+  });
+});
+
+describe('a one-file series is read once', () => {
+  /** A File whose every read (stream, arrayBuffer) is counted. */
+  function countedFile(name: string): { file: File; reads: () => number } {
+    let reads = 0;
+    class Counted extends File {
+      override stream() {
+        reads++;
+        return super.stream();
+      }
+      override arrayBuffer() {
+        reads++;
+        return super.arrayBuffer();
+      }
+    }
+    const file = new Counted([fs.readFileSync(path.join(DIR, name))], name);
+    return { file, reads: () => reads };
+  }
+
+  it('by URL: one request for every step (NIfTI gzip, NRRD gzip, a 5D NIfTI)', async () => {
+    const server = await serve(DIR);
+    try {
+      for (const name of ['time4d.nii.gz', 'time-last.nrrd', 'vector-time.nii']) {
+        const before = server.requests.length;
+        const series = await openTimeSeries(server.url + name);
+        const want = expected.files[name];
+        for (let t = series.steps - 1; t >= 0; t--) expectStep(await series.loadStep(t), want, t, name);
+        expect(server.requests.slice(before), name).toEqual([`/${name}`]);
+      }
+    } finally {
+      await server.close();
+    }
+  });
+
+  it('from a File: read once; past keepBytes it is read again per step, with the same voxels', async () => {
+    const name = 'time4d.nii.gz';
+    const want = expected.files[name];
+    const once = countedFile(name);
+    const series = await openTimeSeries(once.file);
+    for (let t = 0; t < series.steps; t++) expectStep(await series.loadStep(t), want, t, name);
+    expect(once.reads()).toBe(1);
+    // keepBytes below the compressed size: nothing is kept, each later step reads the file again.
+    const again = countedFile(name);
+    const small = await openTimeSeries(again.file, { keepBytes: 64 });
+    for (let t = 0; t < small.steps; t++) expectStep(await small.loadStep(t), want, t, name);
+    expect(again.reads()).toBe(small.steps);
+    // keepBytes above the compressed size but below the inflated one: the gzip bytes are kept.
+    const gz = countedFile(name);
+    const inflatedSize = 352 + 4 * 3 * 2 * 6 * 4;
+    const compressed = await openTimeSeries(gz.file, { keepBytes: inflatedSize - 1 });
+    for (let t = 0; t < compressed.steps; t++) expectStep(await compressed.loadStep(t), want, t, name);
+    expect(gz.reads()).toBe(1);
   });
 });
 
