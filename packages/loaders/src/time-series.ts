@@ -5,6 +5,8 @@ import { LoaderError, toLoaderError } from './errors.js';
 import { gunzip, isGzip } from './io/gzip.js';
 import { bytesOf, fetchBytes, readBlob } from './io/read-bytes.js';
 import { describeSource } from './load-in-thread.js';
+import { hasNrrdMagic, parseNrrdHeader } from './formats/nrrd.js';
+import type { LoadContext } from './context.js';
 import { loadVolume } from './load-volume.js';
 import { isZarrLocation } from './zarr/location.js';
 import type { LoadedVolume, LoadOptions, VolumeSource } from './types.js';
@@ -121,11 +123,51 @@ async function keptFile(source: VolumeSource, options: LoadOptions, keepBytes: n
         // Past keepBytes inflated: keep the compressed bytes (each step inflates up to itself).
         if (!(e instanceof LoaderError && e.reason === 'limit')) throw e;
       }
-    }
+    } else if (hasNrrdMagic(bytes)) bytes = (await inflatedNrrd(bytes, ctx, keepBytes)) ?? bytes;
     return new File([bytes as Uint8Array<ArrayBuffer>], keptName);
   } catch (e) {
     throw toLoaderError(e, name);
   }
+}
+
+/**
+ * A gzip-encoded NRRD with attached data as the same NRRD with raw encoding: the header's
+ * lines kept but "encoding" (now raw) and "line skip" (applied here, before inflating, as
+ * the decoder does), the data inflated once ("byte skip" keeps its meaning: bytes of the
+ * decoded data, -1 its last bytes). Null where nothing is to gain or it does not fit
+ * `keepBytes` (then each step inflates up to itself, as a lone load does).
+ */
+async function inflatedNrrd(bytes: Uint8Array, ctx: LoadContext, keepBytes: number): Promise<Uint8Array | null> {
+  const { fields, dataStart } = parseNrrdHeader(bytes, ctx);
+  const encoding = (fields.encoding ?? '').toLowerCase();
+  if ((encoding !== 'gzip' && encoding !== 'gz') || (fields['data file'] ?? fields.datafile) !== undefined) return null;
+  const lineSkip = Number(fields['line skip'] ?? fields.lineskip ?? 0);
+  if (!Number.isInteger(lineSkip) || lineSkip < 0) return null; // the decoder names the fault
+  let data = bytes.subarray(dataStart);
+  for (let l = 0; l < lineSkip; l++) {
+    const nl = data.indexOf(0x0a);
+    if (nl < 0) return null;
+    data = data.subarray(nl + 1);
+  }
+  let inflated: Uint8Array;
+  try {
+    inflated = await gunzip(data, ctx, { maxOutput: keepBytes });
+  } catch (e) {
+    if (e instanceof LoaderError && e.reason === 'limit') return null;
+    throw e;
+  }
+  const header = new TextDecoder('latin1')
+    .decode(bytes.subarray(0, dataStart))
+    .split(/\r?\n/)
+    .filter((line) => !/^(line ?skip|encoding)\s*:(?!=)/i.test(line));
+  while (header.length && header[header.length - 1] === '') header.pop();
+  header.push('encoding: raw', '', '');
+  const head = Uint8Array.from(header.join('\n'), (c) => c.charCodeAt(0) & 0xff);
+  if (head.length + inflated.length > keepBytes) return null;
+  const out = new Uint8Array(head.length + inflated.length);
+  out.set(head);
+  out.set(inflated, head.length);
+  return out;
 }
 
 function absolute(url: string): string {

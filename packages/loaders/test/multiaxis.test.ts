@@ -92,6 +92,40 @@ describe('a one-file series is read once', () => {
     }
   });
 
+  it('a gzip-encoded NRRD is inflated once (raw for every step), line skip and byte skip kept', async () => {
+    const name = 'time-last.nrrd';
+    const want = expected.files[name];
+    const series = await openTimeSeries(file(name));
+    for (let t = 0; t < series.steps; t++) {
+      const v = await series.loadStep(t);
+      expectStep(v, want, t, name);
+      expect(v.meta?.encoding).toBe('raw');
+    }
+    const small = await openTimeSeries(file(name), { keepBytes: 300 });
+    expect((await small.loadStep(1)).meta?.encoding).toBe('gzip');
+    // A text line before the gzip stream ("line skip: 1") and two bytes before the samples ("byte skip: 2").
+    const values = new Uint8Array(2 * 2 * 2 * 3).map((_, i) => 3 * i);
+    const gz = zlib.gzipSync(new Uint8Array([7, 7, ...values]));
+    const head = nrrdFile(
+      {
+        type: 'uint8',
+        dimension: '4',
+        sizes: '2 2 2 3',
+        kinds: 'domain domain domain time',
+        encoding: 'gzip',
+        'line skip': '1',
+        'byte skip': '2',
+      },
+      new Uint8Array([...new TextEncoder().encode('a line\n'), ...gz]),
+    );
+    const skipped = await openTimeSeries(fileOf(head, 'skip.nrrd'));
+    for (let t = 0; t < 3; t++) {
+      const v = await skipped.loadStep(t);
+      expect(v.meta?.encoding).toBe('raw');
+      expect(Array.from(v.data)).toEqual(Array.from(values.subarray(8 * t, 8 * t + 8)));
+    }
+  });
+
   it('from a File: read once; past keepBytes it is read again per step, with the same voxels', async () => {
     const name = 'time4d.nii.gz';
     const want = expected.files[name];
