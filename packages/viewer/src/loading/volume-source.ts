@@ -6,7 +6,6 @@
 import {
   MAX_PROCEDURAL_SIZE,
   VptError,
-  channelVolume,
   createProceduralVolume,
   type MultiscaleSource,
   type ProceduralKind,
@@ -131,7 +130,8 @@ export async function loadVolumeSource(source: VolumeSource, options: LoadOption
   // A file with a channel axis (an NRRD list/vector/colour axis, NIfTI dim[5] or RGB24): the
   // element has no Channels panel yet, so it shows the first channel, said in the warnings (a
   // multichannel volume without channel settings is no scene).
-  if ((volume.channels ?? 1) > 1) return firstChannel(volume);
+  // (A lazy chunk: the entry bundle stays within its budget.)
+  if ((volume.channels ?? 1) > 1) return (await import('./first-channel.js')).firstChannel(volume);
   // A sidecar's value_range maps to [0, 1] for every voxel type, as the headless renderer
   // (vpt-render) reads scene files; @vpt/loaders keeps it in meta only. Applying it here
   // makes the element show exactly what vpt-render renders for the same scene.
@@ -146,28 +146,6 @@ export async function loadVolumeSource(source: VolumeSource, options: LoadOption
     volume.valueRange = [range[0], range[1]];
   }
   return volume;
-}
-
-/** Channel 0 of a multichannel load as a scalar volume, keeping its placement and meta. */
-function firstChannel(volume: LoadedVolumeLike): LoadedVolumeLike {
-  const one = channelVolume(volume, 0);
-  // Every field but the data range (a getter over all channels' voxels): channel 0's own.
-  const meta: Record<string, unknown> = {};
-  for (const k of Object.keys(volume.meta ?? {})) if (k !== 'dataRange') meta[k] = volume.meta![k];
-  let min = Infinity,
-    max = -Infinity;
-  for (let i = 0; i < one.data.length; i++) {
-    const x = one.data[i];
-    if (x < min) min = x;
-    if (x > max) max = x;
-  }
-  if (min <= max) meta.dataRange = [min, max];
-  const warnings = Array.isArray(meta.warnings) ? [...(meta.warnings as string[])] : [];
-  warnings.push(`the file holds ${volume.channels} channels; the viewer shows channel 0`);
-  const { channels: _all, data: _data, ...rest } = volume;
-  void _all;
-  void _data;
-  return { ...rest, data: one.data, meta: { ...meta, warnings, channelCount: volume.channels } };
 }
 
 /**
