@@ -8,7 +8,17 @@ import path from 'node:path';
 import zlib from 'node:zlib';
 import { describe, expect, it } from 'vitest';
 import { loadVolume, openTimeSeries, type LoadedVolume } from '../src/index.js';
-import { bytesIn, expectLoaderError, fileOf, FIXTURES, niftiFile, nrrdFile, serve } from './helpers.js';
+import {
+  bytesIn,
+  checkOutcome,
+  expectLoaderError,
+  fileOf,
+  FIXTURES,
+  niftiFile,
+  nrrdFile,
+  rng,
+  serve,
+} from './helpers.js';
 
 const DIR = path.join(FIXTURES, 'multiaxis');
 interface Expected {
@@ -371,5 +381,59 @@ describe('channel and time axes: lying or cut headers are typed errors naming th
       'truncated',
     );
     expect(e.message).toMatch(/voxel data/);
+  });
+});
+
+describe('channel and time axes: fuzzed headers', () => {
+  it('400 random 4D/5D NRRD and NIfTI layouts give a valid volume or a typed error', async () => {
+    const kinds = ['domain', 'space', 'time', 'list', 'vector', 'RGB-color', '3D-symmetric-matrix', 'complex', '???'];
+    const outcomes: Record<string, number> = {};
+    for (let i = 0; i < 400; i++) {
+      const r = rng(24_000 + i);
+      const pick = <T>(a: readonly T[]) => a[Math.floor(r() * a.length)];
+      const n = 4 + Math.floor(r() * 2);
+      const sizes = Array.from({ length: n }, () => Math.floor(r() * 5));
+      const declared = sizes.reduce((a, b) => a * Math.max(1, b), 1);
+      const data = new Uint8Array(Math.floor(declared * (0.5 + r())));
+      const time = Math.floor(r() * 3);
+      let source: Uint8Array;
+      if (r() < 0.6) {
+        const fields: Record<string, string> = {
+          type: pick(['uint8', 'short', 'float']),
+          dimension: String(n),
+          sizes: sizes.join(' '),
+          encoding: pick(['raw', 'gzip']),
+          endian: 'little',
+        };
+        if (r() < 0.7) fields.kinds = sizes.map(() => pick(kinds)).join(' ');
+        if (r() < 0.3)
+          fields['space directions'] = sizes
+            .map((_, k) => (r() < 0.3 ? 'none' : `(${k === 0 ? 1 : 0},${k === 1 ? 1 : 0},${k === 2 ? 1 : 0})`))
+            .join(' ');
+        const payload = fields.encoding === 'gzip' ? new Uint8Array(zlib.gzipSync(data)) : data;
+        source = nrrdFile(fields, payload);
+      } else {
+        const dims = [n, ...sizes, 1, 1, 1].slice(0, 8);
+        const type = pick([
+          [2, 8],
+          [4, 16],
+          [128, 24],
+          [2304, 32],
+        ] as const);
+        source = niftiFile({ dims, datatype: type[0], bitpix: type[1], data });
+        if (r() < 0.3) source = new Uint8Array(zlib.gzipSync(source));
+      }
+      let outcome: { volume?: LoadedVolume; error?: unknown };
+      try {
+        outcome = { volume: await loadVolume(source, { time }) };
+      } catch (error) {
+        outcome = { error };
+      }
+      const kind = checkOutcome(outcome);
+      outcomes[kind] = (outcomes[kind] ?? 0) + 1;
+    }
+    // Both loads and refusals happen (the generator is not degenerate).
+    expect(outcomes.volume).toBeGreaterThan(10);
+    expect(Object.keys(outcomes).length).toBeGreaterThan(3);
   });
 });
