@@ -407,7 +407,14 @@ export async function openOmeZarr(location: string, options: OmeZarrOptions = {}
     if (signal?.aborted) throw new LoaderError('aborted', `Loading ${where} was aborted`);
     const size = max.map((m, i) => m - min[i]) as Vec3;
     if (!picked) return toVoxels(got, [x, y, z], mapped.type, size);
-    return toChannelVoxels(got, [x, y, z], c, picked.map((k) => k - lo), mapped.type, size);
+    return toChannelVoxels(
+      got,
+      [x, y, z],
+      c,
+      picked.map((k) => k - lo),
+      mapped.type,
+      size,
+    );
   }
 
   return {
