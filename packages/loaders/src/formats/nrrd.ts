@@ -163,7 +163,7 @@ function spaceDimension(fields: Record<string, string>, ctx: LoadContext): numbe
   if (named !== undefined && !(named in SPACES))
     throw new LoaderError(
       'unsupported',
-      `${ctx.name}: NRRD space "${fields.space}" is not supported; vpt reads 2D and 3D spaces (${Object.keys(SPACES).join(', ')})`,
+      `${ctx.name}: NRRD space "${fields.space}" is not supported; vpt reads 2D, 3D and 3D-with-time spaces (${Object.keys(SPACES).join(', ')})`,
     );
   const given = fields['space dimension'];
   if (named !== undefined && SPACE_TIME.has(named)) {
@@ -179,7 +179,7 @@ function spaceDimension(fields: Record<string, string>, ctx: LoadContext): numbe
   if (n !== 2 && n !== 3)
     throw new LoaderError(
       'unsupported',
-      `${ctx.name}: NRRD "space dimension: ${given}" is not supported; vpt reads 2D and 3D spaces`,
+      `${ctx.name}: NRRD "space dimension: ${given}" is not supported; vpt reads 2D and 3D spaces, and the named 3D-with-time ones (space dimension 4)`,
     );
   return n;
 }
