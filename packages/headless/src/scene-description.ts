@@ -218,7 +218,7 @@ export function selectTimeStep(d: SceneDescription): SceneDescription {
     return { ...rest, volume: { ...(v as object), time: (v.time as number) ?? step } as VolumeDescription };
   if (step > 0)
     throw new Error(
-      `Scene description: "time" ${step}: the volume is not a time series (use "timeSeries", a 4D NIfTI "file" or an OME-Zarr "zarr")`,
+      `Scene description: "time" ${step}: the volume is not a time series (use "timeSeries", a 4D NIfTI or NRRD "file" or an OME-Zarr "zarr")`,
     );
   return rest;
 }

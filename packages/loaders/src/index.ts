@@ -15,5 +15,5 @@ export { parseSidecar, rawFromName } from './formats/raw.js';
 export { axisCodes } from './formats/orientation.js';
 export * from './zarr/index.js';
 export type { ZarrLoadOptions } from './types.js';
-export { openTimeSeries, type LoadedTimeSeries } from './time-series.js';
+export { openTimeSeries, DEFAULT_KEEP_BYTES, type LoadedTimeSeries, type TimeSeriesOptions } from './time-series.js';
 export { TimeSeriesCache, isTimeSeriesSource, volumeBytes, type TimeSeriesCacheOptions } from './time-series-cache.js';

@@ -25,6 +25,12 @@ export interface ZarrLoadOptions {
   level?: number | 'coarsest';
   /** Index along the `c` axis (default 0). */
   channel?: number;
+  /**
+   * Several indices along `c`, read in one pass over the chunks into one multichannel volume
+   * (interleaved, channel fastest, in this order; `meta.channelRanges` holds their omero
+   * windows). Replaces `channel`.
+   */
+  channels?: number[];
   /** Index along the `t` axis (default 0). */
   time?: number;
   /** A chunk the store lacks: 'fill' (default: the array's fill value, as the Zarr spec says) or 'error' (strict, reason 'not-found'). */

@@ -140,7 +140,9 @@ describe('NRRD: bad input', () => {
     await expectLoaderError(load({ ...ok, type: 'int64' }), 'unsupported');
     await expectLoaderError(load({ ...ok, encoding: 'bzip2' }), 'unsupported');
     await expectLoaderError(load({ ...ok, encoding: 'zstd' }), 'bad-header');
-    await expectLoaderError(load({ ...ok, dimension: '4', sizes: '3 4 3 2' }), 'unsupported');
+    // Four axes without kinds or directions: x, y, z and time (2 steps), so 24 samples are too few.
+    await expectLoaderError(load({ ...ok, dimension: '4', sizes: '3 4 3 2' }), 'truncated');
+    await expectLoaderError(load({ ...ok, dimension: '5', sizes: '3 4 3 2 2' }), 'unsupported');
     const { type: _t, ...noType } = ok;
     const missing = await expectLoaderError(load(noType), 'bad-header');
     expect(missing.message).toContain('"type"');
@@ -249,23 +251,31 @@ describe('NRRD: files from pynrrd and layouts other writers use', () => {
         nrrdFile({ type: 'uint8', dimension: '4', sizes: '2 2 2 13', encoding: 'raw', ...fields }, values),
       );
       expect(v.dims).toEqual([2, 2, 2]);
+      expect(v.channels).toBeUndefined();
+      expect(v.meta?.timeSteps).toBe(13);
       expect(Array.from(v.data)).toEqual(Array.from(values.subarray(0, 8)));
       const warnings = String(v.meta?.warnings);
       expect(warnings).toMatch(/13 volumes/);
       expect(warnings).not.toMatch(/per voxel/);
     }
-    // Values per voxel (the fastest axis) stay refused, and the message says so.
-    const rgb = await expectLoaderError(
+    // Values per voxel of a tensor kind stay refused, and the message says so (colours are channels: nrrd-4d.test.ts).
+    const tensor = await expectLoaderError(
       loadVolume(
         nrrdFile(
-          { type: 'uint8', dimension: '4', sizes: '3 2 2 2', encoding: 'raw', kinds: 'RGB-color domain domain domain' },
-          new Uint8Array(24),
+          {
+            type: 'uint8',
+            dimension: '4',
+            sizes: '6 2 2 2',
+            encoding: 'raw',
+            kinds: '3D-symmetric-matrix domain domain domain',
+          },
+          new Uint8Array(48),
         ),
       ),
       'unsupported',
     );
-    expect(rgb.message).toMatch(/3 values per voxel/);
-    expect(rgb.message).toContain('RGB-color');
+    expect(tensor.message).toMatch(/6 values per voxel/);
+    expect(tensor.message).toContain('3D-symmetric-matrix');
   });
 
   it('a 2D NRRD in a 2D space ("space dimension: 2") places its pixels in the z = 0 plane', async () => {

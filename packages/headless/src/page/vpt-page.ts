@@ -53,16 +53,6 @@ async function loadVolume(
   request: Partial<RequestPolicy> = {},
 ): Promise<Volume> {
   if ('procedural' in desc) return core.createProceduralVolume(desc.procedural, desc.size ?? 32);
-  if ('zarr' in desc && desc.channels)
-    return loadChannels(
-      desc.channels.map((channel) => {
-        const { channels: _all, ...one } = desc;
-        void _all;
-        return { ...one, channel };
-      }),
-      baseUrl,
-      request,
-    );
   if (isChannelFiles(desc)) return loadChannels(desc.channels, baseUrl, request);
   if ('zarr' in desc) return loadZarr(desc, baseUrl, request);
   if ('file' in desc) return loadFile(desc, baseUrl, request);
@@ -124,6 +114,8 @@ async function loadZarr(
       zarr: {
         level: desc.level ?? 0,
         ...(desc.channel !== undefined ? { channel: desc.channel } : {}),
+        // Several channels along c: one read of the store, interleaved by the loaders.
+        ...(desc.channels ? { channels: desc.channels } : {}),
         ...(desc.time !== undefined ? { time: desc.time } : {}),
         ...(desc.missingChunks ? { missingChunks: desc.missingChunks } : {}),
       },
@@ -134,11 +126,23 @@ async function loadZarr(
     const code = (e as { code?: unknown }).code === 'limit-exceeded' ? 'limit-exceeded' : 'load-failed';
     throw new core.VptError(code, `Could not load OME-Zarr ${url}: ${(e as Error).message}`, { cause: e });
   }
+  const base = loaded.name ?? url.split('/').filter(Boolean).pop();
+  if (desc.channels) {
+    // Each channel's range: the description's (for every channel), else its omero window.
+    const windows = (loaded.meta?.channelRanges ?? []) as ([number, number] | null)[];
+    const volume = core.createVolume(loaded.dims, loaded.type, loaded.data, loaded.spacing, desc.channels.length);
+    channelRanges.set(
+      volume,
+      desc.channels.map((_, k) => desc.valueRange ?? windows[k] ?? undefined),
+    );
+    volume.name = desc.channels.map((c) => `${base} c${c}`).join(' + ');
+    return volume;
+  }
   const volume = core.createVolume(loaded.dims, loaded.type, loaded.data, loaded.spacing);
   const window = loaded.meta?.value_range as [number, number] | undefined;
   const range = desc.valueRange ?? window;
   if (range) volume.valueRange = [range[0], range[1]];
-  volume.name = loaded.name ?? url.split('/').filter(Boolean).pop();
+  volume.name = base;
   return volume;
 }
 
@@ -173,7 +177,8 @@ async function loadFile(
   } catch (e) {
     throw new core.VptError('load-failed', `Could not load ${where}: ${(e as Error).message}`, { cause: e });
   }
-  const volume = core.createVolume(loaded.dims, loaded.type, loaded.data, loaded.spacing);
+  // A file with a channel axis (NRRD list/vector/colour, NIfTI dim[5] or RGB) stays multichannel: the scene needs `channels`.
+  const volume = core.createVolume(loaded.dims, loaded.type, loaded.data, loaded.spacing, loaded.channels ?? 1);
   // As for a sidecar's or an OME-Zarr omero window: the description's range wins.
   const window = loaded.valueRange ?? (loaded.meta?.value_range as [number, number] | undefined);
   const range = desc.valueRange ?? window;

@@ -14,6 +14,8 @@ export interface DecodedVolume {
   orientation?: number[];
   origin?: [number, number, number];
   meta?: Record<string, unknown>;
+  /** Values per voxel, interleaved channel fastest (core's Volume.channels; default 1). */
+  channels?: number;
 }
 
 /**
@@ -24,9 +26,10 @@ export interface DecodedVolume {
 export function finishVolume(v: DecodedVolume, ctx: LoadContext): LoadedVolume {
   const meta: Record<string, unknown> = { ...(v.meta ?? {}) };
   let { dims, spacing, data, origin } = v;
-  if (checkFits(dims, OUTPUT_BYTES[v.type], ctx) === 'downsample') {
-    const factors = downsampleFactors(dims, OUTPUT_BYTES[v.type], ctx.limits);
-    const shrunk = downsample(data, dims, factors, v.type);
+  const C = v.channels ?? 1;
+  if (checkFits(dims, OUTPUT_BYTES[v.type] * C, ctx) === 'downsample') {
+    const factors = downsampleFactors(dims, OUTPUT_BYTES[v.type] * C, ctx.limits);
+    const shrunk = C > 1 ? downsampleChannels(data, dims, factors, v.type, C) : downsample(data, dims, factors, v.type);
     meta.downsampled = { factors, originalDims: dims, originalSpacing: spacing };
     if (origin && v.orientation) {
       // The first output voxel's centre is the centre of the first input block.
@@ -55,6 +58,7 @@ export function finishVolume(v: DecodedVolume, ctx: LoadContext): LoadedVolume {
   }
   if (ctx.warnings.length) meta.warnings = [...ctx.warnings];
   const out: LoadedVolume = { format: v.format, dims, spacing, type: v.type, data, meta, name: ctx.name };
+  if (C > 1) out.channels = C;
   if (v.orientation) out.orientation = v.orientation;
   if (origin) out.origin = origin;
   try {
@@ -79,6 +83,28 @@ function lazyDataRange(meta: Record<string, unknown>, data: VoxelArray): void {
       return value;
     },
   });
+}
+
+/** Each channel of interleaved data box-averaged as one scalar volume is, then interleaved again. */
+function downsampleChannels(
+  data: VoxelArray,
+  dims: readonly number[],
+  f: readonly number[],
+  type: VoxelType,
+  C: number,
+): { dims: [number, number, number]; data: VoxelArray } {
+  const n = data.length / C;
+  let out: VoxelArray | undefined;
+  let od: [number, number, number] = [1, 1, 1];
+  for (let c = 0; c < C; c++) {
+    const one = new OUTPUT_ARRAY[type](n);
+    for (let i = 0; i < n; i++) one[i] = data[c + C * i];
+    const shrunk = downsample(one, dims, f, type);
+    od = shrunk.dims;
+    out ??= new OUTPUT_ARRAY[type](shrunk.data.length * C);
+    for (let i = 0; i < shrunk.data.length; i++) out[c + C * i] = shrunk.data[i];
+  }
+  return { dims: od, data: out! };
 }
 
 /** Box-average `f`-sized blocks (partial blocks at the far edges average what they hold); NaN/±Inf are skipped. */

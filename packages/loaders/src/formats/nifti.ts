@@ -34,16 +34,21 @@ const DATATYPES: Record<number, SourceType> = {
   512: 'uint16',
   768: 'uint32',
 };
+/** Colour datatypes: each voxel's bytes (R, G, B[, A]) are its channels, uint8, interleaved as core's Volume holds them. */
+const COLOR_TYPES: Record<number, { name: string; channels: number }> = {
+  128: { name: 'RGB24', channels: 3 },
+  2304: { name: 'RGBA32', channels: 4 },
+};
+/** Most channels a Volume holds (core's MAX_VOLUME_CHANNELS). */
+const MAX_CHANNELS = 16;
 const UNSUPPORTED_TYPES: Record<number, string> = {
   1: 'binary (1 bit)',
   32: 'complex64',
-  128: 'RGB24',
   1024: 'int64',
   1280: 'uint64',
   1536: 'float128',
   1792: 'complex128',
   2048: 'complex256',
-  2304: 'RGBA32',
 };
 
 /** Is this a NIfTI-1 header (magic "n+1\0" / "ni1\0" at byte 344) or a NIfTI-2 one ("n+2\0" / "ni2\0" at byte 4)? */
@@ -86,6 +91,10 @@ interface Plan {
   extraVolumes: number;
   /** Volumes along dim[4], the time axis (1 for a 3D file). */
   timeSteps: number;
+  /** Values per voxel: dim[5] (vector components, stored as volumes after all time steps), or a colour datatype's bytes. */
+  channels: number;
+  /** RGB24 / RGBA32: the channels are each voxel's bytes (interleaved); else dim[5] volumes (planar). */
+  packed: boolean;
   /** A .hdr/.img pair (magic "ni1" / "ni2"): the data is in the .img file, from vox_offset. */
   pair: boolean;
   headerSize: number;
@@ -164,13 +173,14 @@ function readPlan(head: Uint8Array, ctx: LoadContext, nifti: NiftiModule): Plan 
     if (d[i] < 0) throw new LoaderError('bad-header', `${ctx.name}: dim[${i}] = ${d[i]} is negative`);
     extraVolumes *= Math.max(1, d[i]);
   }
-  const source = DATATYPES[header.datatypeCode];
+  const color = COLOR_TYPES[header.datatypeCode];
+  const source = color ? 'uint8' : DATATYPES[header.datatypeCode];
   if (!source) {
     const known = UNSUPPORTED_TYPES[header.datatypeCode];
     if (known)
       throw new LoaderError(
         'unsupported',
-        `${ctx.name}: NIfTI datatype ${header.datatypeCode} (${known}) is not supported; vpt reads scalar integer and float data`,
+        `${ctx.name}: NIfTI datatype ${header.datatypeCode} (${known}) is not supported; vpt reads integer, float, RGB24 and RGBA32 data`,
       );
     throw new LoaderError(
       'bad-header',
@@ -191,15 +201,49 @@ function readPlan(head: Uint8Array, ctx: LoadContext, nifti: NiftiModule): Plan 
     ctx.warnings.push(`vox_offset ${offset} is below the ${standard} the NIfTI-${version} standard requires`);
   const count = dims[0] * dims[1] * dims[2];
   const timeSteps = d[0] >= 4 ? Math.max(1, d[4]) : 1;
+  // dim[5]: values per voxel (vector components, NIFTI_INTENT_VECTOR and kin), each a run of dim[4] volumes.
+  const components = d[0] >= 5 ? Math.max(1, d[5]) : 1;
+  for (let i = 6; i <= d[0]; i++)
+    if (d[i] > 1)
+      throw new LoaderError(
+        'unsupported',
+        `${ctx.name}: dim[${i}] = ${d[i]}: vpt reads x, y, z, time (dim[4]) and vector components (dim[5]), not a 6th or 7th axis`,
+      );
+  if (color && components > 1)
+    throw new LoaderError(
+      'unsupported',
+      `${ctx.name}: dim[5] = ${components} components of ${color.name} colours; vpt reads a colour or vector components, not both`,
+    );
+  const channels = color ? color.channels : components;
+  if (channels > MAX_CHANNELS)
+    throw new LoaderError(
+      'unsupported',
+      `${ctx.name}: dim[5] = ${components} values per voxel; vpt reads at most ${MAX_CHANNELS} channels (MAX_VOLUME_CHANNELS)`,
+    );
   if (ctx.time >= timeSteps)
     throw new LoaderError(
       'bad-header',
       `${ctx.name}: time step ${ctx.time} does not exist (the file holds ${timeSteps} along dim[4], 0 to ${timeSteps - 1})`,
     );
-  return { header, dims, source, offset, count, extraVolumes, timeSteps, pair, headerSize: size, version };
+  return {
+    header,
+    dims,
+    source,
+    offset,
+    count,
+    extraVolumes: extraVolumes * (color ? color.channels : 1),
+    timeSteps,
+    channels,
+    packed: !!color,
+    pair,
+    headerSize: size,
+    version,
+  };
 }
 
 function scalingOf(h: NiftiHeader, ctx: LoadContext): Scaling {
+  // Colour bytes are not scaled (the standard: scl_slope does not apply to RGB24/RGBA32; nibabel does the same).
+  if (COLOR_TYPES[h.datatypeCode]) return IDENTITY;
   const { scl_slope: slope, scl_inter: inter } = h;
   // NIfTI-1: slope 0 means "no scaling"; a NaN/Inf pair is a broken header, ignored as nibabel does.
   if (slope === 0 || !Number.isFinite(slope)) {
@@ -273,7 +317,18 @@ function earlyFits(plan: Plan, ctx: LoadContext): void {
   const integral = integralScaling(scalingOf(plan.header, { ...ctx, warnings: [] }));
   const bytes =
     plan.source === 'uint8' && integral ? 1 : integral && SOURCE_BYTES[plan.source] <= 4 ? 2 : OUTPUT_BYTES.float32;
-  checkFits(plan.dims, bytes, ctx);
+  checkFits(plan.dims, bytes * plan.channels, ctx);
+}
+
+/** One volume's bytes (one component of one time step; a colour file's whole colours). */
+function volumeBytesOf(plan: Plan): number {
+  return plan.count * SOURCE_BYTES[plan.source] * (plan.packed ? plan.channels : 1);
+}
+
+/** The file bytes (from the data's start) up to the end of time step `t`'s last component. */
+function bytesThrough(plan: Plan, t: number): number {
+  const components = plan.packed ? 1 : plan.channels;
+  return volumeBytesOf(plan) * ((components - 1) * plan.timeSteps + t + 1);
 }
 
 const SPATIAL_UNITS: Record<number, string> = { 1: 'm', 2: 'mm', 3: 'µm' };
@@ -298,12 +353,30 @@ export async function decodeNifti(input: Uint8Array, ctx: LoadContext, resolve?:
   let plan: Plan | undefined;
   // Peak inflated memory: at most limits.maxBytes of voxel data plus the header and extensions (≤ 1 MiB).
   // Step t of a 4D file lies after t volumes, each within maxBytes (earlyFits), which are inflated on the way.
-  const maxOutput = ctx.downsample ? Number.MAX_SAFE_INTEGER : (ctx.limits.maxBytes + (1 << 20)) * (ctx.time + 1);
+  // With vector components (dim[5], stored after all time steps) the steps before the last component are inflated too.
+  const stepsInflated = (plan?: Plan) => (plan && !plan.packed && plan.channels > 1 ? plan.timeSteps : ctx.time + 1);
+  const maxOutputOf = (plan?: Plan) =>
+    ctx.downsample ? Number.MAX_SAFE_INTEGER : (ctx.limits.maxBytes + (1 << 20)) * stepsInflated(plan);
+  // The cap is checked against the header's announced size in onHead (it depends on dim[5]); before
+  // the header only its first bytes are inflated.
+  const capped = (p: Plan, keep: number): number => {
+    const cap = maxOutputOf(p);
+    if (keep > cap)
+      throw new LoaderError(
+        'limit',
+        `${ctx.name}: its header announces ${keep} bytes, more than the ${cap} allowed (limits.maxBytes is ${ctx.limits.maxBytes})`,
+      );
+    return keep;
+  };
+  const planOf = (p: Plan) => ({
+    keep: capped(p, p.offset + bytesThrough(p, ctx.time)),
+    declared: p.offset + p.count * SOURCE_BYTES[p.source] * p.extraVolumes,
+  });
   if (isGzip(input)) {
     // Inflate in steps: once the header is out it is checked, so a lying or oversize file
     // stops before the rest is inflated, and the output is allocated once at its exact size.
     bytes = await gunzip(input, ctx, {
-      maxOutput,
+      maxOutput: Number.MAX_SAFE_INTEGER,
       headBytes: MIN_OFFSET2, // enough for either version's header and extension flag
       onHead: (head) => {
         if (!hasNiftiMagic(head) && head.length >= HEADER && !isNifti2(head)) {
@@ -316,19 +389,17 @@ export async function decodeNifti(input: Uint8Array, ctx: LoadContext, resolve?:
         earlyFits(plan, ctx);
         if (plan.pair) return plan.headerSize;
         // Keep up to the time step asked for; the others are declared data, not "bytes past the data".
-        const volumeBytes = plan.count * SOURCE_BYTES[plan.source];
-        return {
-          keep: plan.offset + volumeBytes * (ctx.time + 1),
-          declared: plan.offset + volumeBytes * plan.extraVolumes,
-        };
+        return planOf(plan);
       },
     });
   }
   plan ??= readPlan(bytes, ctx, nifti);
   const { header, dims, source, count } = plan;
-  const volumeBytes = count * SOURCE_BYTES[source];
-  // The volume of time step ctx.time (volumes follow one another, dim[4] the slowest spatial-adjacent axis).
-  const offset = plan.offset + ctx.time * volumeBytes;
+  const C = plan.channels;
+  const volumeBytes = volumeBytesOf(plan);
+  // Time step t of component c starts (c·T + t) volumes into the data (x, y, z, then dim[4], then dim[5]).
+  const components = plan.packed ? 1 : C;
+  const offsetOf = (c: number) => plan!.offset + (c * plan!.timeSteps + ctx.time) * volumeBytes;
   const headerBytes = bytes;
   let inflated = bytes !== input;
   if (plan.pair) {
@@ -342,29 +413,38 @@ export async function decodeNifti(input: Uint8Array, ctx: LoadContext, resolve?:
     inflated = isGzip(img);
     bytes = inflated
       ? await gunzip(img, ctx, {
-          maxOutput,
-          onHead: () => ({ keep: offset + volumeBytes, declared: plan!.offset + volumeBytes * plan!.extraVolumes }),
+          maxOutput: Number.MAX_SAFE_INTEGER,
+          onHead: () => planOf(plan!),
           headBytes: 0,
         })
       : img;
   }
-  if (plan.extraVolumes > 1)
+  if (plan.timeSteps > 1)
     ctx.warnings.push(
-      `the file holds ${plan.extraVolumes} volumes (4D or more); volume ${ctx.time} is loaded (LoadOptions.time picks the time step)`,
+      `the file holds ${plan.timeSteps} volumes along dim[4] (time); volume ${ctx.time} is loaded (LoadOptions.time picks the time step)`,
     );
   const scaling = scalingOf(header, ctx);
-  checkAvailable(bytes.length - offset, volumeBytes, ctx);
-  const extra = bytes.length - plan.offset - volumeBytes * Math.max(1, plan.extraVolumes);
+  checkAvailable(bytes.length - offsetOf(components - 1), volumeBytes, ctx);
+  const extra = bytes.length - plan.offset - count * SOURCE_BYTES[source] * Math.max(1, plan.extraVolumes);
   if (!inflated && extra > 0)
     ctx.warnings.push(`${extra} bytes past the data the header declares are ignored; check the dims and datatype`);
   earlyFits(plan, ctx);
-  ctx.progress('convert', 0, count);
+  ctx.progress('convert', 0, count * C);
   // A view would keep the other time steps' bytes alive beside it: one step of a 4D file is copied out.
-  const view = ownsMemory(bytes, ctx.borrowed) && plan.timeSteps === 1;
-  const samples = readSamples(bytes, offset, count, source, header.littleEndian, view);
+  const view = ownsMemory(bytes, ctx.borrowed) && plan.timeSteps === 1 && components === 1;
+  let samples = readSamples(bytes, offsetOf(0), count * (plan.packed ? C : 1), source, header.littleEndian, view);
+  if (components > 1) {
+    // dim[5] components are stored one volume after another: interleave them, channel fastest.
+    const out = new (samples.constructor as new (n: number) => typeof samples)(count * C);
+    for (let c = 0; c < C; c++) {
+      const part = c === 0 ? samples : readSamples(bytes, offsetOf(c), count, source, header.littleEndian, true);
+      for (let i = 0; i < count; i++) out[c + C * i] = part[i];
+    }
+    samples = out;
+  }
   const type = chooseTypeOf(samples, source, scaling, ctx.warnings);
   const data = toVoxelArray(samples, type, scaling);
-  ctx.progress('convert', count, count);
+  ctx.progress('convert', count * C, count * C);
   // The header's xform is the placement (nibabel's affine): its column lengths are the voxel
   // sizes, even where pixdim says otherwise; pixdim only when there is no xform.
   const place = placement(header, headerBytes, ctx);
@@ -392,6 +472,9 @@ export async function decodeNifti(input: Uint8Array, ctx: LoadContext, resolve?:
   };
   if (plan.pair) meta.pair = true;
   meta.timeSteps = plan.timeSteps;
+  const intent = (header as { intent_code?: number }).intent_code ?? 0;
+  if (intent) meta.intentCode = intent;
+  if (C > 1) meta.channelSource = plan.packed ? COLOR_TYPES[header.datatypeCode].name : 'dim[5]';
   const secondsPerUnit = TIME_UNITS[header.xyzt_units & 0x38];
   const dt = header.pixDims[4];
   if (plan.timeSteps > 1 && secondsPerUnit && Number.isFinite(dt) && dt > 0) meta.stepSeconds = dt * secondsPerUnit;
@@ -402,7 +485,17 @@ export async function decodeNifti(input: Uint8Array, ctx: LoadContext, resolve?:
   if (Number.isFinite(header.cal_min) && Number.isFinite(header.cal_max) && header.cal_max > header.cal_min)
     meta.calRange = [header.cal_min, header.cal_max];
   return finishVolume(
-    { format: 'nifti', dims, spacing, type, data, orientation: place.orientation, origin: place.origin, meta },
+    {
+      format: 'nifti',
+      dims,
+      spacing,
+      type,
+      data,
+      orientation: place.orientation,
+      origin: place.origin,
+      meta,
+      ...(C > 1 ? { channels: C } : {}),
+    },
     ctx,
   );
 }

@@ -132,8 +132,8 @@ function numbers(text: string | undefined): number[] {
   return text === undefined ? [] : text.trim().split(/\s+/).map(Number);
 }
 
-/** `(1,0,0) (0,1,0) none …` → vectors (null for "none"). */
-function vectors(text: string, ctx: LoadContext, field: string, spaceDim = 3): (number[] | null)[] {
+/** `(1,0,0) (0,1,0) none …` → vectors of `spaceDim` numbers (null for "none"); a 2D space's gain z = 0. */
+function rawVectors(text: string, ctx: LoadContext, field: string, spaceDim = 3): (number[] | null)[] {
   const out: (number[] | null)[] = [];
   const re = /\(([^)]*)\)|none/g;
   let m: RegExpExecArray | null;
@@ -148,96 +148,195 @@ function vectors(text: string, ctx: LoadContext, field: string, spaceDim = 3): (
   return out.map((v) => (v && v.length < 3 ? [...v, 0, 0].slice(0, 3) : v));
 }
 
+/** The spatial part (x, y, z) of each vector: a space-time space's vectors drop their time part. */
+function vectors(text: string, ctx: LoadContext, field: string, spaceDim = 3): (number[] | null)[] {
+  return rawVectors(text, ctx, field, spaceDim).map((v) => (v ? v.slice(0, 3) : v));
+}
+
 /**
- * The space's dimension: "space dimension" (2 or 3), or 3 for a named space (every named
- * space vpt knows is 3D). A 4D space (e.g. "3D-right-handed-time") is refused by name.
+ * The space's dimension: "space dimension" (2 or 3), or 3 for a named space, 4 for a named
+ * space-time one ("right-anterior-superior-time"…: x, y, z and time), whose vectors have a
+ * fourth, time, component. An unnamed 4D space is refused.
  */
 function spaceDimension(fields: Record<string, string>, ctx: LoadContext): number {
   const named = fields.space?.toLowerCase();
   if (named !== undefined && !(named in SPACES))
     throw new LoaderError(
       'unsupported',
-      `${ctx.name}: NRRD space "${fields.space}" is not supported; vpt reads 2D and 3D spaces (${Object.keys(SPACES).join(', ')})`,
+      `${ctx.name}: NRRD space "${fields.space}" is not supported; vpt reads 2D, 3D and 3D-with-time spaces (${Object.keys(SPACES).join(', ')})`,
     );
   const given = fields['space dimension'];
+  if (named !== undefined && SPACE_TIME.has(named)) {
+    if (given !== undefined && Number(given) !== 4)
+      throw new LoaderError(
+        'bad-header',
+        `${ctx.name}: NRRD space "${fields.space}" is a space-time (4D) but "space dimension" is ${given}`,
+      );
+    return 4;
+  }
   if (given === undefined) return 3;
   const n = Number(given);
   if (n !== 2 && n !== 3)
     throw new LoaderError(
       'unsupported',
-      `${ctx.name}: NRRD "space dimension: ${given}" is not supported; vpt reads 2D and 3D spaces`,
+      `${ctx.name}: NRRD "space dimension: ${given}" is not supported; vpt reads 2D and 3D spaces, and the named 3D-with-time ones (space dimension 4)`,
     );
   return n;
 }
 
 /** NRRD axis kinds that are positions in space (teem's nrrdKindDomain / nrrdKindSpace). */
 const SPATIAL_KINDS = new Set(['domain', 'space']);
+/** Kinds of an axis along which the file holds several volumes in time (teem's nrrdKindTime). */
+const TIME_KINDS = new Set(['time']);
+/**
+ * Kinds of an axis that holds several values per voxel which vpt reads as channels
+ * (teem's list, point, vector and colour kinds): a multichannel volume, channel fastest.
+ */
+const CHANNEL_KINDS = new Set([
+  'list',
+  'point',
+  'vector',
+  'covariant-vector',
+  'normal',
+  '2-vector',
+  '3-color',
+  'rgb-color',
+  'hsv-color',
+  'xyz-color',
+  '4-color',
+  'rgba-color',
+  '3-vector',
+  '3-gradient',
+  '3-normal',
+  '4-vector',
+]);
+/** Most channels a Volume holds (core's MAX_VOLUME_CHANNELS). */
+const MAX_CHANNELS = 16;
+
+/** Which file axes are x, y, z, the channel axis and the time axis (at most one each). */
+export interface NrrdLayout {
+  spatial: number[];
+  /** The axis of the values per voxel (channels), if any longer than 1. */
+  channelAxis?: number;
+  /** The axis of the time steps, if any longer than 1. */
+  timeAxis?: number;
+  channels: number;
+  timeSteps: number;
+}
 
 /**
- * Which axes are the volume's x, y, z, and how many volumes the others hold. An axis is
- * spatial when its space direction is a vector (not "none"), else when its kind is domain or
- * space, else (no directions, no kinds) when the file has at most 3 axes or the axis is not a
- * length-1 one that can be dropped. Non-spatial axes of length 1 are dropped wherever they
- * are; those longer than 1 are allowed only after every spatial axis (a time series: the
- * first volume is the file's first `count` samples), never before one (values per voxel:
- * vectors, colours, tensors, which are not a scalar volume).
+ * Which axes are the volume's x, y, z, which one (if any) holds channels and which one time
+ * steps. An axis is spatial when its space direction is a spatial vector (not "none"), else
+ * when its kind is domain or space (the first three; a fourth domain axis is time), else (no
+ * directions, no kinds) the first three axes longer than 1. Of the other axes, length-1 ones
+ * are dropped wherever they are; a longer one is time when its kind is time or domain (or,
+ * in a space-time space, its direction has only a time part), channels when its kind is a
+ * list, point, vector or colour kind; an axis of no (or an unknown) kind is channels before
+ * the last spatial axis (values per voxel, NRRD's usual order) and time after it.
  */
-function volumeAxes(
-  fields: Record<string, string>,
-  sizes: number[],
-  spaceDim: number,
-  ctx: LoadContext,
-): { spatial: number[]; volumes: number; volumeKind: string } {
+function volumeAxes(fields: Record<string, string>, sizes: number[], spaceDim: number, ctx: LoadContext): NrrdLayout {
   const n = sizes.length;
   const kinds = fields.kinds?.trim().split(/\s+/);
+  const kindAt = (i: number) => (kinds && kinds.length === n ? kinds[i].toLowerCase() : '');
+  // Axes the header itself says are time (a space-time direction with only its time part).
+  const timeByDirection = new Set<number>();
   let spatial: boolean[];
   if (fields['space directions']) {
-    spatial = vectors(fields['space directions'], ctx, 'space directions', spaceDim).map((v) => v !== null);
-    if (spatial.length !== n)
+    const dirs = rawVectors(fields['space directions'], ctx, 'space directions', spaceDim);
+    if (dirs.length !== n)
       throw new LoaderError(
         'bad-header',
-        `${ctx.name}: NRRD space directions has ${spatial.length} entries for ${n} axes`,
+        `${ctx.name}: NRRD space directions has ${dirs.length} entries for ${n} axes`,
       );
+    spatial = dirs.map((v, i) => {
+      if (!v) return false;
+      if (spaceDim === 4 && v[0] === 0 && v[1] === 0 && v[2] === 0) {
+        timeByDirection.add(i);
+        return false;
+      }
+      return true;
+    });
   } else if (kinds && kinds.length === n) {
     spatial = kinds.map((k) => SPATIAL_KINDS.has(k.toLowerCase()));
-  } else if (n <= 3) {
-    spatial = sizes.map(() => true);
+    if (spatial.filter(Boolean).length > 3) {
+      // "domain domain domain domain" (x, y, z, t): "space" axes first, else the first three.
+      const space = kinds.map((k) => k.toLowerCase() === 'space');
+      const nSpace = space.filter(Boolean).length;
+      if (nSpace >= 1 && nSpace <= 3) spatial = space;
+      else {
+        let left = 3;
+        spatial = spatial.map((s) => s && left-- > 0);
+      }
+    }
   } else {
-    // No geometry at all: drop length-1 axes, leading first, until three are left.
-    spatial = sizes.map(() => true);
-    for (let i = 0, left = n; i < n && left > 3; i++)
-      if (sizes[i] === 1) {
-        spatial[i] = false;
-        left--;
-      }
-    for (let i = n - 1, left = spatial.filter(Boolean).length; i >= 0 && left > 3; i--)
-      if (sizes[i] === 1 && spatial[i]) {
-        spatial[i] = false;
-        left--;
-      }
+    // No geometry at all: the first three axes longer than 1 (all of them when there are fewer).
+    const long = sizes.filter((s) => s > 1).length;
+    if (n <= 3) spatial = sizes.map(() => true);
+    else if (long <= 3) {
+      // Drop length-1 axes, leading first, until three are left (as before).
+      spatial = sizes.map(() => true);
+      for (let i = 0, left = n; i < n && left > 3; i++)
+        if (sizes[i] === 1) {
+          spatial[i] = false;
+          left--;
+        }
+      for (let i = n - 1, left = spatial.filter(Boolean).length; i >= 0 && left > 3; i--)
+        if (sizes[i] === 1 && spatial[i]) {
+          spatial[i] = false;
+          left--;
+        }
+    } else {
+      let left = 3;
+      spatial = sizes.map((s) => s > 1 && left-- > 0);
+    }
   }
-  const kindOf = (i: number) => (kinds && kinds[i] ? `"${kinds[i]}"` : `${i}th`);
+  const kindOf = (i: number) => (kindAt(i) ? `"${kinds![i]}"` : `${i}th`);
   const idx = spatial.flatMap((s, i) => (s ? [i] : []));
   if (idx.length > 3)
     throw new LoaderError(
       'unsupported',
-      `${ctx.name}: a NRRD with ${idx.length} spatial axes (sizes ${sizes.join(' ')}) is not supported; vpt reads 1D to 3D scalar data`,
+      `${ctx.name}: a NRRD with ${idx.length} spatial axes (sizes ${sizes.join(' ')}) is not supported; vpt reads 1D to 3D volumes`,
     );
   if (idx.length === 0)
     throw new LoaderError('bad-header', `${ctx.name}: no NRRD axis is spatial (space directions or kinds)`);
-  let volumes = 1;
-  const extra: number[] = [];
+  const layout: NrrdLayout = { spatial: idx, channels: 1, timeSteps: 1 };
   for (let i = 0; i < n; i++) {
     if (spatial[i] || sizes[i] === 1) continue;
-    if (i < idx[idx.length - 1])
+    const kind = kindAt(i);
+    const role: 'time' | 'channel' | 'refused' =
+      timeByDirection.has(i) || TIME_KINDS.has(kind) || SPATIAL_KINDS.has(kind)
+        ? 'time'
+        : CHANNEL_KINDS.has(kind)
+          ? 'channel'
+          : kind === '' || kind === '???' || kind === 'none'
+            ? i < idx[idx.length - 1]
+              ? 'channel'
+              : 'time'
+            : 'refused';
+    if (role === 'refused')
       throw new LoaderError(
         'unsupported',
-        `${ctx.name}: NRRD axis ${i} (kind ${kindOf(i)}, size ${sizes[i]}) holds ${sizes[i]} values per voxel; vpt reads scalar volumes`,
+        `${ctx.name}: NRRD axis ${i} (kind ${kindOf(i)}, size ${sizes[i]}) holds ${sizes[i]} values per voxel of a kind vpt does not read (tensors, complex numbers…); vpt reads scalars, channels (list, vector, colour kinds) and time steps`,
       );
-    volumes *= sizes[i];
-    extra.push(i);
+    const field = role === 'time' ? 'timeAxis' : 'channelAxis';
+    const other = layout[field];
+    if (other !== undefined)
+      throw new LoaderError(
+        'unsupported',
+        `${ctx.name}: NRRD axes ${other} (kind ${kindOf(other)}, size ${sizes[other]}) and ${i} (kind ${kindOf(i)}, size ${sizes[i]}) are both ${role === 'time' ? 'time axes' : 'values per voxel'}; vpt reads one channel axis and one time axis`,
+      );
+    layout[field] = i;
+    if (role === 'time') layout.timeSteps = sizes[i];
+    else {
+      if (sizes[i] > MAX_CHANNELS)
+        throw new LoaderError(
+          'unsupported',
+          `${ctx.name}: NRRD axis ${i} (kind ${kindOf(i)}) holds ${sizes[i]} values per voxel; vpt reads at most ${MAX_CHANNELS} channels (MAX_VOLUME_CHANNELS)`,
+        );
+      layout.channels = sizes[i];
+    }
   }
-  return { spatial: idx, volumes, volumeKind: extra.map(kindOf).join(' × ') || 'none' };
+  return layout;
 }
 
 /** ISIZE, the last 4 bytes of a gzip member: its inflated length mod 2^32 (RFC 1952 §2.3.1). */
@@ -257,7 +356,28 @@ const SPACES: Record<string, string> = {
   'scanner-xyz': 'scanner-xyz',
   '3d-right-handed': '3D-right-handed',
   '3d-left-handed': '3D-left-handed',
+  'right-anterior-superior-time': 'RAS',
+  rast: 'RAS',
+  'left-anterior-superior-time': 'LAS',
+  last: 'LAS',
+  'left-posterior-superior-time': 'LPS',
+  lpst: 'LPS',
+  'scanner-xyz-time': 'scanner-xyz',
+  '3d-right-handed-time': '3D-right-handed',
+  '3d-left-handed-time': '3D-left-handed',
 };
+/** The named spaces with a time axis (space dimension 4). */
+const SPACE_TIME = new Set([
+  'right-anterior-superior-time',
+  'rast',
+  'left-anterior-superior-time',
+  'last',
+  'left-posterior-superior-time',
+  'lpst',
+  'scanner-xyz-time',
+  '3d-right-handed-time',
+  '3d-left-handed-time',
+]);
 
 export interface DetachedResolver {
   /** Bytes of a file named relative to the header (a URL next to it, or one of the dropped files). */
@@ -295,14 +415,26 @@ export async function decodeNrrd(
     );
   }
   const spaceDim = spaceDimension(fields, ctx);
+  if (!sizes.every((s) => Number.isInteger(s) && s >= 0))
+    throw new LoaderError('bad-header', `${ctx.name}: NRRD sizes "${fields.sizes}" must be whole numbers`);
   const layout = volumeAxes(fields, sizes, spaceDim, ctx);
   const axes = layout.spatial;
   const dims = [0, 1, 2].map((i) => (i < axes.length ? sizes[axes[i]] : 1));
   checkDims(dims, ctx, 'NRRD header');
+  if (sizes.includes(0))
+    throw new LoaderError('empty', `${ctx.name}: NRRD sizes "${fields.sizes}" hold no samples (an axis of size 0)`);
   const count = dims[0] * dims[1] * dims[2];
-  if (layout.volumes > 1)
+  const C = layout.channels;
+  const T = layout.timeSteps;
+  // Without a time axis a step above 0 is refused by loadVolume (no meta.timeSteps): one volume.
+  if (layout.timeAxis !== undefined && ctx.time >= T)
+    throw new LoaderError(
+      'bad-header',
+      `${ctx.name}: time step ${ctx.time} does not exist (the NRRD holds ${T} along its time axis (axis ${layout.timeAxis}), 0 to ${T - 1})`,
+    );
+  if (T > 1)
     ctx.warnings.push(
-      `the file holds ${layout.volumes} volumes along its ${layout.volumeKind} axis; the first is loaded`,
+      `the file holds ${T} volumes along its time axis (axis ${layout.timeAxis}); volume ${ctx.time} is loaded (LoadOptions.time picks the time step)`,
     );
   const size = SOURCE_BYTES[source];
   const endian = (fields.endian ?? 'little').toLowerCase();
@@ -313,7 +445,22 @@ export async function decodeNrrd(
 
   const encoding = (fields.encoding ?? '').toLowerCase();
   const outBytes = source === 'uint8' ? 1 : SOURCE_BYTES[source] <= 2 ? 2 : 4;
-  checkFits(dims, Math.min(outBytes, OUTPUT_BYTES.float32), ctx);
+  checkFits(dims, Math.min(outBytes, OUTPUT_BYTES.float32) * C, ctx);
+
+  // Samples in the file: axis a's stride is the product of the sizes before it (axis 0 fastest).
+  const strides: number[] = [];
+  let total = 1;
+  for (const s of sizes) {
+    strides.push(total);
+    total *= s;
+  }
+  // The samples of time step ctx.time span [lo, hi): one contiguous run when time is the slowest axis.
+  const lo = layout.timeAxis === undefined ? 0 : ctx.time * strides[layout.timeAxis];
+  const hi = lo + 1 + sizes.reduce((n, s, a) => (a === layout.timeAxis ? n : n + (s - 1) * strides[a]), 0);
+  const values = count * C;
+  // Steps inflated to reach this one: those before it when time is the slowest axis, else all.
+  const timeSlowest = layout.timeAxis === undefined || sizes.every((s, a) => a <= layout.timeAxis! || s === 1);
+  const stepsInflated = timeSlowest ? ctx.time + 1 : T;
 
   // Where the data is: after the header, or a detached file.
   const dataFile = fields['data file'] ?? fields.datafile;
@@ -351,9 +498,11 @@ export async function decodeNrrd(
     data = data.subarray(nl + 1);
   }
 
-  const dataBytes = count * size;
+  const dataBytes = total * size;
+  // One step of several, or channels not already interleaved, are copied out of the file's bytes.
+  const whole = T === 1 && isInterleaved(layout, sizes, strides, dims) && hi - lo === values;
   let samples: SourceArray;
-  ctx.progress('convert', 0, count);
+  ctx.progress('convert', 0, values);
   if (encoding === 'raw') {
     if (byteSkip === -1) {
       checkAvailable(data.length, dataBytes, ctx);
@@ -363,25 +512,36 @@ export async function decodeNrrd(
       warnExtra(data.length - byteSkip - dataBytes, ctx);
       data = data.subarray(byteSkip);
     }
-    samples = readSamples(data, 0, count, source, endian === 'little', ownsMemory(data, ctx.borrowed));
+    samples = readSamples(
+      data,
+      lo * size,
+      hi - lo,
+      source,
+      endian === 'little',
+      whole && ownsMemory(data, ctx.borrowed),
+    );
   } else if (encoding === 'gzip' || encoding === 'gz') {
+    const skip = Math.max(0, byteSkip);
     const inflated = await gunzip(data, ctx, {
-      // Peak inflated memory is bounded by limits.maxBytes (plus the skipped bytes), whatever the stream holds.
-      maxOutput: ctx.downsample ? Number.MAX_SAFE_INTEGER : ctx.limits.maxBytes + Math.max(0, byteSkip),
-      // The header already says the size: allocate once, and stop at it.
+      // Peak inflated memory is bounded by limits.maxBytes per step up to the one asked for (plus the skipped bytes).
+      maxOutput: ctx.downsample ? Number.MAX_SAFE_INTEGER : skip + ctx.limits.maxBytes * stepsInflated,
+      // The header already says the size: allocate once, and stop at it (the end of the step asked for).
       // "byte skip: -1" means the data is the *last* dataBytes of the inflated stream, so the
       // whole stream is kept: its length is the gzip trailer's ISIZE (checked after inflating).
       headBytes: 0,
-      onHead: () => (byteSkip === -1 ? Math.max(dataBytes, gzipTrailerSize(data)) : byteSkip + dataBytes),
+      onHead: () =>
+        byteSkip === -1
+          ? Math.max(dataBytes, gzipTrailerSize(data))
+          : { keep: byteSkip + hi * size, declared: byteSkip + dataBytes },
     });
     const from = byteSkip === -1 ? Math.max(0, inflated.length - dataBytes) : byteSkip;
-    if (byteSkip !== -1) warnExtra(inflated.length - from - dataBytes, ctx);
-    checkAvailable(inflated.length - from, dataBytes, ctx);
-    samples = readSamples(inflated, from, count, source, endian === 'little', true);
+    if (byteSkip !== -1 && inflated.length >= from + dataBytes) warnExtra(inflated.length - from - dataBytes, ctx);
+    checkAvailable(inflated.length - from, byteSkip === -1 ? dataBytes : hi * size, ctx);
+    samples = readSamples(inflated, from + lo * size, hi - lo, source, endian === 'little', whole);
   } else if (encoding === 'ascii' || encoding === 'text' || encoding === 'txt') {
-    samples = parseAscii(data, count, source, ctx);
+    samples = parseAscii(data, hi, source, ctx).subarray(lo);
   } else if (encoding === 'hex') {
-    samples = readSamples(parseHex(data, dataBytes, ctx), 0, count, source, endian === 'little');
+    samples = readSamples(parseHex(data, hi * size, ctx), lo * size, hi - lo, source, endian === 'little');
   } else if (encoding === 'bzip2' || encoding === 'bz2') {
     throw new LoaderError(
       'unsupported',
@@ -393,16 +553,29 @@ export async function decodeNrrd(
       `${ctx.name}: NRRD encoding "${fields.encoding ?? ''}" is not raw, gzip, ascii, hex or bzip2`,
     );
   }
+  if (!(hi - lo === values && isInterleaved(layout, sizes, strides, dims)))
+    samples = gather(samples, layout, strides, dims);
 
   const type = chooseTypeOf(samples, source, IDENTITY, ctx.warnings);
   const voxels = toVoxelArray(samples, type, IDENTITY);
-  ctx.progress('convert', count, count);
+  ctx.progress('convert', values, values);
 
   // Geometry: space directions (columns of the index→world matrix) or spacings.
   let spacing: [number, number, number] = [1, 1, 1];
   let orientation: number[] | undefined;
   let origin: [number, number, number] | undefined;
   const meta: Record<string, unknown> = { encoding, datatype: source, endianness: endian };
+  if (layout.timeAxis !== undefined) {
+    meta.timeSteps = T;
+    meta.timeAxis = layout.timeAxis;
+    const stepSeconds = timeStep(fields, layout.timeAxis);
+    if (stepSeconds !== undefined) meta.stepSeconds = stepSeconds;
+  }
+  if (layout.channelAxis !== undefined) {
+    meta.channelAxis = layout.channelAxis;
+    const kind = fields.kinds?.trim().split(/\s+/)[layout.channelAxis];
+    if (kind) meta.channelKind = kind;
+  }
   if (fields['space directions']) {
     const dirs = vectors(fields['space directions'], ctx, 'space directions', spaceDim);
     const spatial = axes.map((a) => dirs[a]!);
@@ -445,9 +618,77 @@ export async function decodeNrrd(
   if (fields['space units']) meta.spaceUnits = fields['space units'];
   if (Object.keys(keyValues).length) meta.keyValues = keyValues;
   return finishVolume(
-    { format: 'nrrd', dims: dims as [number, number, number], spacing, type, data: voxels, orientation, origin, meta },
+    {
+      format: 'nrrd',
+      dims: dims as [number, number, number],
+      spacing,
+      type,
+      data: voxels,
+      orientation,
+      origin,
+      meta,
+      ...(C > 1 ? { channels: C } : {}),
+    },
     ctx,
   );
+}
+
+/** Are the step's samples already value(c, x, y, z) = src[c + C·(x + NX·(y + NY·z))] (channel fastest, x, y, z)? */
+function isInterleaved(layout: NrrdLayout, sizes: number[], strides: number[], dims: number[]): boolean {
+  const want = outputStrides(layout, dims);
+  const axes = [layout.channelAxis, ...layout.spatial];
+  return axes.every((a, k) => a === undefined || sizes[a] === 1 || strides[a] === want[k]);
+}
+
+/** Strides of channel, x, y, z in the interleaved output. */
+function outputStrides(layout: NrrdLayout, dims: number[]): number[] {
+  const C = layout.channels;
+  return [1, C, C * dims[0], C * dims[0] * dims[1]];
+}
+
+/**
+ * The step's samples (starting at its first one) reordered to channel fastest, then x, y, z:
+ * the order core's multichannel Volume holds (a channel axis last, or a time axis between
+ * the others, is a strided read).
+ */
+function gather(src: SourceArray, layout: NrrdLayout, strides: number[], dims: number[]): SourceArray {
+  const C = layout.channels;
+  const sc = layout.channelAxis === undefined ? 0 : strides[layout.channelAxis];
+  const [sx, sy, sz] = [0, 1, 2].map((i) => (i < layout.spatial.length ? strides[layout.spatial[i]] : 0));
+  const [nx, ny, nz] = dims;
+  const out = new (src.constructor as new (n: number) => SourceArray)(C * nx * ny * nz);
+  let i = 0;
+  for (let z = 0; z < nz; z++)
+    for (let y = 0; y < ny; y++) {
+      const row = y * sy + z * sz;
+      for (let x = 0; x < nx; x++) {
+        const at = row + x * sx;
+        for (let c = 0; c < C; c++) out[i++] = src[at + c * sc];
+      }
+    }
+  return out;
+}
+
+/** Seconds per time step: the time axis's spacing in a time unit the header names ("units"), else none. */
+function timeStep(fields: Record<string, string>, axis: number): number | undefined {
+  const spacing = Number(fields.spacings?.trim().split(/\s+/)[axis]);
+  const unit = fields.units
+    ?.match(/"([^"]*)"/g)
+    ?.[axis]?.replace(/"/g, '')
+    .trim()
+    .toLowerCase();
+  const perUnit: Record<string, number> = {
+    s: 1,
+    sec: 1,
+    second: 1,
+    seconds: 1,
+    ms: 1e-3,
+    msec: 1e-3,
+    us: 1e-6,
+    µs: 1e-6,
+  };
+  const k = unit === undefined ? undefined : perUnit[unit];
+  return k !== undefined && Number.isFinite(spacing) && spacing > 0 ? spacing * k : undefined;
 }
 
 function cross(a: number[], b: number[]): number[] {

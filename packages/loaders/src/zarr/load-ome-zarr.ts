@@ -48,7 +48,14 @@ export async function loadOmeZarr(location: string, options: ZarrLoadOptions, ct
   let level = wanted.level === 'coarsest' ? last : (wanted.level ?? 0);
   if (!Number.isInteger(level) || level < 0 || level > last)
     throw new LoaderError('bad-header', `${ctx.name}: level ${level} does not exist (0 to ${last})`);
-  const per = OUTPUT_BYTES[source.type];
+  const picked = options.channels;
+  if (picked !== undefined && (!Array.isArray(picked) || picked.length < 1 || picked.length > 16))
+    throw new LoaderError(
+      'bad-header',
+      `${ctx.name}: zarr.channels must list 1 to 16 channel indices along c, got ${JSON.stringify(picked)}`,
+    );
+  const K = picked?.length ?? 1;
+  const per = OUTPUT_BYTES[source.type] * K;
   const why = whyNotWhole(source.levels[level], per, ctx);
   if (why && wanted.level === undefined) {
     // No level asked for and the finest does not fit: the finest stored level that does.
@@ -65,7 +72,13 @@ export async function loadOmeZarr(location: string, options: ZarrLoadOptions, ct
     throw new LoaderError('limit', `${ctx.name}: level ${level} has ${why}; choose a coarser level`);
   }
   const L = source.levels[level];
-  const volume = await source.readLevel(level, ctx.signal);
+  // Several channels: one read over the level's chunks, interleaved channel fastest.
+  const volume = picked
+    ? {
+        type: source.type,
+        data: await source.readChannelsRegion!(level, picked, [0, 0, 0], L.dims, ctx.signal),
+      }
+    : await source.readLevel(level, ctx.signal);
   ctx.warnings.push(...source.meta.warnings);
   const meta: Record<string, unknown> = {
     timeSteps: source.meta.times,
@@ -77,7 +90,12 @@ export async function loadOmeZarr(location: string, options: ZarrLoadOptions, ct
     },
   };
   // As a sidecar's value_range: the viewer and the headless page apply it as the normalization range.
-  if (source.valueRange) meta.value_range = source.valueRange;
+  if (picked) {
+    // Each channel's omero window: the default ranges of a channel scene.
+    (meta.zarr as Record<string, unknown>).channelsRead = [...picked];
+    meta.channelRanges = picked.map((k) => source.channelWindows?.[k] ?? null);
+    if (K === 1 && source.channelWindows?.[picked[0]]) meta.value_range = source.channelWindows[picked[0]];
+  } else if (source.valueRange) meta.value_range = source.valueRange;
   return finishVolume(
     {
       format: 'ome-zarr',
@@ -88,6 +106,7 @@ export async function loadOmeZarr(location: string, options: ZarrLoadOptions, ct
       // No orientation: NGFF's space axes carry no anatomical direction.
       origin: [...L.origin],
       meta,
+      ...(K > 1 ? { channels: K } : {}),
     },
     ctx,
   );

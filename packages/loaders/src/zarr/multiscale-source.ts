@@ -29,6 +29,20 @@ export interface MultiscaleSource {
   readRegion(level: number, min: Vec3, max: Vec3, signal?: AbortSignal): Promise<VoxelArray>;
   /** A whole level as a core Volume (spacing from the metadata; valueRange when known). */
   readLevel(level: number, signal?: AbortSignal): Promise<Volume>;
+  /**
+   * Several channels along `c` of the box [min, max) at a level in one read (one pass over
+   * the chunks, each fetched once), interleaved channel fastest in the order given:
+   * value(k, x, y, z) = data[k + K·(x + NX·(y + NY·z))], K = channels.length.
+   */
+  readChannelsRegion?(
+    level: number,
+    channels: readonly number[],
+    min: Vec3,
+    max: Vec3,
+    signal?: AbortSignal,
+  ): Promise<VoxelArray>;
+  /** Every channel's omero display window (by channel index), where the metadata gives one. */
+  channelWindows?: readonly ([number, number] | undefined)[];
   /** Where the store is, the NGFF version, axes, unit, channel and time chosen, warnings. */
   readonly meta: OmeZarrMeta;
   /** Bytes read from the store so far (metadata and chunks, as stored: compressed). */
@@ -323,6 +337,17 @@ export async function openOmeZarr(location: string, options: OmeZarrOptions = {}
   const concurrency = Math.max(1, options.concurrency ?? 8);
 
   async function readRegion(level: number, min: Vec3, max: Vec3, signal?: AbortSignal): Promise<VoxelArray> {
+    return read(level, min, max, null, signal);
+  }
+
+  /** The box at a level: at `channel` (picked: null), or along c over `picked` (interleaved in that order). */
+  async function read(
+    level: number,
+    min: Vec3,
+    max: Vec3,
+    picked: readonly number[] | null,
+    signal?: AbortSignal,
+  ): Promise<VoxelArray> {
     const a = arrays[level];
     if (!a) throw new LoaderError('bad-header', `${where}: level ${level} does not exist (0 to ${arrays.length - 1})`);
     const dims = levels[level].dims;
@@ -341,12 +366,25 @@ export async function openOmeZarr(location: string, options: OmeZarrOptions = {}
     }
     const selection: (number | zarr.Slice)[] = new Array(ndim).fill(0);
     [x, y, z].forEach((axis, i) => (selection[axis] = zarr.slice(min[i], max[i])));
-    if (c !== undefined) selection[c] = channel;
+    // Several channels: the run of c from the lowest to the highest asked for, in one zarr.get.
+    const lo = picked ? Math.min(...picked) : 0;
+    const hi = picked ? Math.max(...picked) + 1 : 1;
+    if (picked) {
+      if (!picked.length || picked.some((k) => !Number.isInteger(k) || k < 0 || k >= channels))
+        throw new LoaderError(
+          'bad-header',
+          `${where}: channels [${picked.join(', ')}] must be channel indices 0 to ${channels - 1} (the image has ${channels})`,
+        );
+      if (c !== undefined) selection[c] = zarr.slice(lo, hi);
+    } else if (c !== undefined) selection[c] = channel;
     if (t !== undefined) selection[t] = time;
     let got: zarr.Chunk<zarr.DataType>;
     const chunk = levels[level].chunk;
-    const total = [0, 1, 2].reduce((n, i) => n * (Math.ceil(max[i] / chunk[i]) - Math.floor(min[i] / chunk[i])), 1);
-    const voxels = (max[0] - min[0]) * (max[1] - min[1]) * (max[2] - min[2]);
+    const cChunk = c !== undefined && picked ? a.chunks[c] : 1;
+    const cChunks = picked && c !== undefined ? Math.ceil(hi / cChunk) - Math.floor(lo / cChunk) : 1;
+    const total =
+      cChunks * [0, 1, 2].reduce((n, i) => n * (Math.ceil(max[i] / chunk[i]) - Math.floor(min[i] / chunk[i])), 1);
+    const voxels = (max[0] - min[0]) * (max[1] - min[1]) * (max[2] - min[2]) * (picked ? hi - lo : 1);
     if (voxels > MAX_ZARR_READ_VOXELS)
       throw new LoaderError(
         'limit',
@@ -367,7 +405,16 @@ export async function openOmeZarr(location: string, options: OmeZarrOptions = {}
       chunkListener = null;
     }
     if (signal?.aborted) throw new LoaderError('aborted', `Loading ${where} was aborted`);
-    return toVoxels(got, [x, y, z], mapped.type, max.map((m, i) => m - min[i]) as Vec3);
+    const size = max.map((m, i) => m - min[i]) as Vec3;
+    if (!picked) return toVoxels(got, [x, y, z], mapped.type, size);
+    return toChannelVoxels(
+      got,
+      [x, y, z],
+      c,
+      picked.map((k) => k - lo),
+      mapped.type,
+      size,
+    );
   }
 
   return {
@@ -376,6 +423,8 @@ export async function openOmeZarr(location: string, options: OmeZarrOptions = {}
     ...(valueRange ? { valueRange } : {}),
     meta,
     readRegion,
+    readChannelsRegion: (level, picked, min, max, signal) => read(level, min, max, picked, signal),
+    channelWindows: Array.from({ length: channels }, (_, k) => ms.windows[k]),
     bytesRead: () => store.bytesRead,
     async readLevel(level, signal) {
       const L = levels[level];
@@ -415,6 +464,39 @@ function toVoxels(got: zarr.Chunk<zarr.DataType>, xyz: readonly number[], type: 
     for (let j = 0; j < ny; j++) {
       const row = j * stride[1] + k * stride[2];
       for (let q = 0; q < nx; q++) out[i++] = src[row + q * stride[0]];
+    }
+  return out;
+}
+
+/**
+ * zarrita's result over space axes and a run of c (C order over the kept axes, in array
+ * order) → a fresh array of `type`, channel fastest in the order of `picked` (offsets into the
+ * run), then x, y, z. Without a c axis the one channel is offset 0.
+ */
+function toChannelVoxels(
+  got: zarr.Chunk<zarr.DataType>,
+  xyz: readonly number[],
+  c: number | undefined,
+  picked: readonly number[],
+  type: VoxelType,
+  size: Vec3,
+): VoxelArray {
+  const src = got.data as ArrayLike<number>;
+  const axes = c === undefined ? [...xyz] : [...xyz, c];
+  const kept = [...axes].sort((p, q) => p - q);
+  const stride = axes.map((axis) => got.stride[kept.indexOf(axis)]);
+  const sc = c === undefined ? 0 : stride[3];
+  const K = picked.length;
+  const [nx, ny, nz] = size;
+  const out = new OUTPUT_ARRAY[type](K * nx * ny * nz);
+  let i = 0;
+  for (let k = 0; k < nz; k++)
+    for (let j = 0; j < ny; j++) {
+      const row = j * stride[1] + k * stride[2];
+      for (let q = 0; q < nx; q++) {
+        const at = row + q * stride[0];
+        for (let p = 0; p < K; p++) out[i++] = src[at + picked[p] * sc];
+      }
     }
   return out;
 }

@@ -42,8 +42,10 @@ fractional rescale in float64 before rounding to float32, as numpy does here.
   direction those columns over their lengths (row-major 3×3), origin the affine's offset.
 - NRRD: pynrrd's nrrd.read() (index order F: axis 0 fastest, as in the file). Spatial axes:
   those whose space direction is a vector, else those of kind domain/space, else all (up to
-  3). A non-spatial axis longer than 1 before a spatial one (values per voxel: a list, vector
-  or colour) is a refusal; one after them all is a series whose first volume is taken.
+  3). A non-spatial axis longer than 1 of a list, vector or colour kind (or of no kind, before
+  a spatial one) is channels: the values are listed channel fastest ("channels" in the
+  reference); one of kind time/domain (or no kind, after them all) is a series whose first
+  volume is taken; any other kind (tensors) is a refusal.
   Spacing is the lengths of the spatial axes' space directions (else |spacings|), direction
   those vectors over their lengths as columns (row-major 3×3, in the file's space, as vpt
   keeps it), origin the space origin.
@@ -289,13 +291,26 @@ def nrrd_file(path, rel):
     axes = [i for i in range(n) if spatial[i]]
     if len(axes) > 3:
         return refused(['unsupported'], f'{len(axes)} spatial axes', reader)
+    # A non-spatial axis longer than 1: channels when its kind is a list, vector or colour one (or it has
+    # no kind and comes before a spatial axis), else a series (time, domain) whose first volume is taken.
+    channel = None
     for i in range(n):
-        if not spatial[i] and sizes[i] > 1 and i < axes[-1]:
-            kind = kinds[i] if kinds is not None else '?'
-            return refused(['unsupported'], f'axis {i} (kind {kind}, size {sizes[i]}) holds values per voxel, before the spatial axes', reader)
-    # The first volume of any series axis after the spatial ones; length-1 axes dropped.
-    index = tuple(slice(None) if spatial[i] else 0 for i in range(n))
+        if spatial[i] or sizes[i] == 1:
+            continue
+        kind = (kinds[i] if kinds is not None and len(kinds) == n else '').lower()
+        unknown = kind in ('', '???', 'none')
+        if kind in CHANNEL_KINDS or (unknown and i < axes[-1]):
+            if channel is not None or sizes[i] > 16:
+                return refused(['unsupported'], f'axis {i} (kind {kind}, size {sizes[i]}): a second channel axis or over 16 channels', reader)
+            channel = i
+        elif not (unknown or kind in ('time', 'domain', 'space')):
+            return refused(['unsupported'], f'axis {i} (kind {kind}, size {sizes[i]}) holds values per voxel vpt does not read', reader)
+    # The first volume of any series axis; length-1 axes dropped; the channel axis kept, moved first (channel fastest).
+    index = tuple(slice(None) if spatial[i] or i == channel else 0 for i in range(n))
     values = np.asarray(data[index], dtype=np.float64)
+    if channel is not None:
+        kept = [i for i in range(n) if spatial[i] or i == channel]
+        values = np.moveaxis(values, kept.index(channel), 0)
     dims = [sizes[a] for a in axes] + [1] * (3 - len(axes))
     extra = {}
     if dirs is not None:
@@ -309,7 +324,14 @@ def nrrd_file(path, rel):
     if 'space origin' in header:
         o = [float(x) for x in header['space origin']]
         extra['origin'] = (o + [0.0, 0.0])[:3]
-    return loaded(values.ravel(order='F'), dims, reader, **extra)
+    ref = loaded(values.ravel(order='F'), dims, reader, **extra)
+    if channel is not None:
+        ref['load']['channels'] = int(sizes[channel])
+    return ref
+
+
+CHANNEL_KINDS = {'list', 'point', 'vector', 'covariant-vector', 'normal', '2-vector', '3-color', 'rgb-color',
+                 'hsv-color', 'xyz-color', '4-color', 'rgba-color', '3-vector', '3-gradient', '3-normal', '4-vector'}
 
 
 def series_folder(folder, names):

@@ -1,0 +1,27 @@
+import fs from 'node:fs';
+import path from 'node:path';
+import { fileURLToPath } from 'node:url';
+import { describe, expect, it } from 'vitest';
+import { loadVolumeSource } from '../src/loading/volume-source.js';
+
+// The element has no Channels panel yet: a file with a channel axis shows its first channel,
+// as a scalar volume, and says so (before the loaders read channels it loaded the first too).
+const DIR = path.join(path.dirname(fileURLToPath(import.meta.url)), '../../loaders/test/fixtures/multiaxis');
+const expected = JSON.parse(fs.readFileSync(path.join(DIR, 'expected.json'), 'utf8')).files;
+
+describe('viewer: a file with a channel axis', () => {
+  it('loads channel 0 as a scalar volume (the reference reader’s channel 0), with a warning', async () => {
+    for (const name of ['rgba-last.nrrd', 'vector5d.nii.gz']) {
+      const want = expected[name];
+      const file = new File([fs.readFileSync(path.join(DIR, name))], name);
+      const v = await loadVolumeSource(file, { worker: false } as never);
+      expect(v.channels, name).toBeUndefined();
+      expect(v.dims).toEqual(want.dims);
+      const channel0 = (want.steps[0] as number[]).filter((_, i) => i % want.channels === 0);
+      expect(Array.from(v.data), name).toEqual(Array.from(Float32Array.from(channel0)));
+      expect(String(v.meta?.warnings)).toMatch(new RegExp(`holds ${want.channels} channels`));
+      const range = v.meta?.dataRange as number[];
+      expect(range).toEqual([Math.min(...channel0), Math.max(...channel0)].map((x) => Math.fround(x)));
+    }
+  });
+});
