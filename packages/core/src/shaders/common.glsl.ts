@@ -278,6 +278,49 @@ vec4 sampleChannelTexels(vec3 p) {
   return texture(volume, (p - u.boxMin) / (u.boxMax - u.boxMin));
 }
 `;
+/**
+ * A bricked channel scene: the brick atlas holds the drawn channels as components (the channel
+ * texture's format), the aprons every component, so `sampleChannelTexels` is the bricked filter
+ * of BRICKED_EXACT_FILTER / BRICKED_HARDWARE_FILTER on vec4 texels (Beyer, Hadwiger, Pfister
+ * 2015, CGF 34(8), §5); a constant brick holds one value in every component.
+ */
+export const CHANNEL_BRICKED_EXACT_FILTER = /* glsl */ `
+vec4 brickTexels(VptBrick b, ivec3 i) {
+  ivec3 c = clamp(clamp(i, ivec3(0), b.dims - 1), b.first, b.first + b.size + 1);
+  return texelFetch(volume, c + b.shift, 0);
+}
+vec4 sampleChannelTexels(vec3 p) {
+  VptBrick b = brickAt(p);
+  if (b.isConstant) return vec4(b.constant);
+  vec3 g = b.x - 0.5;
+  vec3 g0 = floor(g);
+  vec3 f = g - g0;
+  ivec3 i0 = ivec3(g0);
+  ivec3 i1 = ivec3(g0) + 1;
+  vec4 c000 = brickTexels(b, ivec3(i0.x, i0.y, i0.z));
+  vec4 c100 = brickTexels(b, ivec3(i1.x, i0.y, i0.z));
+  vec4 c010 = brickTexels(b, ivec3(i0.x, i1.y, i0.z));
+  vec4 c110 = brickTexels(b, ivec3(i1.x, i1.y, i0.z));
+  vec4 c001 = brickTexels(b, ivec3(i0.x, i0.y, i1.z));
+  vec4 c101 = brickTexels(b, ivec3(i1.x, i0.y, i1.z));
+  vec4 c011 = brickTexels(b, ivec3(i0.x, i1.y, i1.z));
+  vec4 c111 = brickTexels(b, ivec3(i1.x, i1.y, i1.z));
+  vec4 c00 = lerp4(c000, c100, f.x);
+  vec4 c10 = lerp4(c010, c110, f.x);
+  vec4 c01 = lerp4(c001, c101, f.x);
+  vec4 c11 = lerp4(c011, c111, f.x);
+  return lerp4(lerp4(c00, c10, f.y), lerp4(c01, c11, f.y), f.z);
+}
+`;
+export const CHANNEL_BRICKED_HARDWARE_FILTER = /* glsl */ `
+vec4 sampleChannelTexels(vec3 p) {
+  VptBrick b = brickAt(p);
+  if (b.isConstant) return vec4(b.constant);
+  vec3 lo = vec3(b.first) + 0.5;
+  vec3 x = clamp(b.x, lo, lo + float(b.size + 1));
+  return texture(volume, (x + vec3(b.shift)) / vec3(textureSize(volume, 0)));
+}
+`;
 export const CHANNEL_SAMPLE = /* glsl */ `
 vec4 sampleChannels(vec3 p) {
   return clamp(sampleChannelTexels(p) * u.channelScale + u.channelOffset, vec4(0.0), vec4(1.0));
@@ -481,7 +524,14 @@ export const GENERATE_CHUNKS = [
   SLICE_ATLAS,
   LERP,
   '#if CHANNELS',
+  '#if BRICKED',
+  BRICK_LOOKUP,
   '#if HARDWARE_FILTER',
+  CHANNEL_BRICKED_HARDWARE_FILTER,
+  '#else',
+  CHANNEL_BRICKED_EXACT_FILTER,
+  '#endif',
+  '#elif HARDWARE_FILTER',
   CHANNEL_HARDWARE_FILTER,
   '#else',
   CHANNEL_EXACT_FILTER,
