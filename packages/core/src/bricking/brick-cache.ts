@@ -113,10 +113,7 @@ export class BrickCache {
       lastUsed: frame,
       min,
       max,
-      sub:
-        level === 0
-          ? Array.from({ length: C }, (_, k) => subBlockRanges(v, this.geometry.brickSize, C, k))
-          : null,
+      sub: level === 0 ? Array.from({ length: C }, (_, k) => subBlockRanges(v, this.geometry.brickSize, C, k)) : null,
     });
     this.uploads++;
     return target;

@@ -14,7 +14,12 @@ import {
   type VolumeUpload,
 } from '../gpu/volume-format.js';
 import { buildGradientVolume, destroyGradientVolume, type GradientVolume } from '../gradient/gradient-volume.js';
-import { BrickedVolume, MAX_BRICKED_CHANNELS, type BrickChannels, type BrickingOptions } from '../bricking/bricked-volume.js';
+import {
+  BrickedVolume,
+  MAX_BRICKED_CHANNELS,
+  type BrickChannels,
+  type BrickingOptions,
+} from '../bricking/bricked-volume.js';
 import { inMemoryMultiscaleSource, type MultiscaleSource } from '../bricking/source.js';
 import { channelVolume, interleaveChannels, normalizationRange } from '../scene/volume.js';
 import {

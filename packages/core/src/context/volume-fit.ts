@@ -240,4 +240,3 @@ function standInWithLevel0Box(standIn: Scene['volume'], source: MultiscaleSource
   const valueRange = source.valueRange ?? standIn.valueRange;
   return { ...standIn, spacing, ...(valueRange ? { valueRange: [valueRange[0], valueRange[1]] } : {}) };
 }
-

@@ -241,7 +241,11 @@ function summedChannelGrid(
   const tf = rasterizeChannelTransferFunctions(channels, TF_RESOLUTION);
   let sum: Float32Array | null = null;
   ranges.forEach((r, row) => {
-    const grid = buildMajorantGrid(r, tf.subarray(4 * TF_RESOLUTION * row, 4 * TF_RESOLUTION * (row + 1)), densityScale);
+    const grid = buildMajorantGrid(
+      r,
+      tf.subarray(4 * TF_RESOLUTION * row, 4 * TF_RESOLUTION * (row + 1)),
+      densityScale,
+    );
     if (!sum) sum = grid.data;
     else for (let i = 0; i < sum.length; i++) sum[i] = Math.fround(sum[i] + grid.data[i]);
   });

@@ -6,7 +6,14 @@
  * its shape. Integer types round to the nearest integer; non-finite float voxels are left
  * out of their block's mean.
  */
-import { channelCount, channelVolume, createVolume, interleaveChannels, type Volume, type VoxelArray } from './volume.js';
+import {
+  channelCount,
+  channelVolume,
+  createVolume,
+  interleaveChannels,
+  type Volume,
+  type VoxelArray,
+} from './volume.js';
 
 export function downsampleVolume(volume: Volume, factors: readonly [number, number, number]): Volume {
   const [fx, fy, fz] = factors;
