@@ -123,21 +123,14 @@ export function fillSlot<T extends ArrayLike<number> & { [i: number]: number }>(
   const src = [0, 1, 2].map((a) =>
     Int32Array.from({ length: S }, (_, k) => Math.min(dims[a] - 1, Math.max(0, b[a] * B - 1 + k)) - min[a]),
   );
+  const P = pick.length;
   let o = 0;
-  if (components === 1 && pick.length === 1 && pick[0] === 0) {
-    for (let z = 0; z < S; z++)
-      for (let y = 0; y < S; y++) {
-        const row = sx * (src[1][y] + sy * src[2][z]);
-        for (let x = 0; x < S; x++) out[o++] = region[row + src[0][x]];
-      }
-    return out;
-  }
   for (let z = 0; z < S; z++)
     for (let y = 0; y < S; y++) {
       const row = sx * (src[1][y] + sy * src[2][z]);
       for (let x = 0; x < S; x++) {
         const at = components * (row + src[0][x]);
-        for (const k of pick) out[o++] = region[at + k];
+        for (let k = 0; k < P; k++) out[o++] = region[at + pick[k]];
       }
     }
   return out;

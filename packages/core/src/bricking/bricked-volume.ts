@@ -310,14 +310,11 @@ export class BrickedVolume {
 
   /** Put an arrived brick into the cache (and its slot); false when nothing changed. */
   private store(key: number, values: VoxelArray): boolean {
-    const [lo] = this.range;
     const ch = this.channels;
-    if (values instanceof Float32Array && ch) {
-      // As the unbricked channel upload: a non-finite voxel reads as the value mapping to 0 in its channel.
-      const C = ch.pick.length;
-      for (let i = 0; i < values.length; i++) if (!Number.isFinite(values[i])) values[i] = ch.ranges[i % C][0];
-    } else if (values instanceof Float32Array)
-      for (let i = 0; i < values.length; i++) if (!Number.isFinite(values[i])) values[i] = lo; // as the unbricked upload
+    // As the unbricked upload: a non-finite voxel reads as the value mapping to 0 (in its channel).
+    const fills = ch ? ch.ranges.map((r) => r[0]) : [this.range[0]];
+    if (values instanceof Float32Array)
+      for (let i = 0; i < values.length; i++) if (!Number.isFinite(values[i])) values[i] = fills[i % fills.length];
     const slot = this.cache.insert(key, { values }, this.frame);
     if (slot === null) {
       this.full = true; // every slot holds a brick wanted now: finer bricks stay served by coarser ones

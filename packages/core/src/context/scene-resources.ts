@@ -14,12 +14,7 @@ import {
   type VolumeUpload,
 } from '../gpu/volume-format.js';
 import { buildGradientVolume, destroyGradientVolume, type GradientVolume } from '../gradient/gradient-volume.js';
-import {
-  BrickedVolume,
-  MAX_BRICKED_CHANNELS,
-  type BrickChannels,
-  type BrickingOptions,
-} from '../bricking/bricked-volume.js';
+import { BrickedVolume, type BrickChannels, type BrickingOptions } from '../bricking/bricked-volume.js';
 import { inMemoryMultiscaleSource, type MultiscaleSource } from '../bricking/source.js';
 import { channelVolume, interleaveChannels, normalizationRange } from '../scene/volume.js';
 import {
@@ -29,7 +24,6 @@ import {
   sceneChannelVolume,
   type ChannelSettings,
 } from '../scene/channels.js';
-import { VptError } from '../errors.js';
 import { slicePlaneTextures } from '../scene/slice-plane.js';
 
 /** How RenderContext wants the scene's volume bricked (null: one texture). */
@@ -182,35 +176,24 @@ export class SceneResources {
       return;
     }
     const drawn = settings ? enabledChannels(settings) : null;
-    let range: [number, number];
-    let source: MultiscaleSource;
-    let channels: BrickChannels | null = null;
-    const coarsestSide = plan.brickSize;
-    if (drawn && drawn.length > 1) {
-      const ranges = drawn.map((c) => channelNormalizationRange(volume, c, settings![c]));
-      range = ranges[0];
-      if (plan.source) {
-        // A streamed multichannel source: its regions hold every channel; the bricks keep the drawn ones.
-        source = plan.source;
-        channels = { pick: drawn, ranges };
-      } else {
-        // In memory: the levels of the drawn channels alone (channel by channel box averages).
-        const parts = drawn.map((c) => channelVolume(volume, c));
-        source = inMemoryMultiscaleSource(interleaveChannels(parts), { coarsestSide });
-        channels = { pick: drawn.map((_, k) => k), ranges };
-      }
-    } else if (drawn) {
-      // One drawn channel: the scalar volume holding it (its range), so its bits are the scalar path's.
-      const one = sceneChannelVolume(volume, settings!, drawn[0]);
-      range = normalizationRange(one);
-      if (plan.source) {
-        source = plan.source;
-        if ((plan.source.channels ?? 1) > 1) channels = { pick: drawn, ranges: [range] };
-      } else source = inMemoryMultiscaleSource(one, { coarsestSide });
-    } else {
-      range = normalizationRange(volume);
-      source = plan.source ?? inMemoryMultiscaleSource(volume, { coarsestSide });
+    // Each drawn channel's data range mapped to [0, 1] (one drawn channel: the scalar volume holding it).
+    const ranges = drawn
+      ? drawn.map((c) => channelNormalizationRange(volume, c, settings![c]))
+      : [normalizationRange(volume)];
+    const range = ranges[0];
+    let source = plan.source;
+    if (!source) {
+      // In memory: the levels of the drawn channels alone (channel by channel box averages).
+      const v = !drawn
+        ? volume
+        : drawn.length === 1
+          ? sceneChannelVolume(volume, settings!, drawn[0])
+          : interleaveChannels(drawn.map((c) => channelVolume(volume, c)));
+      source = inMemoryMultiscaleSource(v, { coarsestSide: plan.brickSize });
     }
+    // A multichannel source: the bricks keep the drawn channels (a streamed one holds every channel).
+    const channels: BrickChannels | null =
+      (source.channels ?? 1) > 1 ? { pick: plan.source ? drawn! : drawn!.map((_, k) => k), ranges } : null;
     // Made before the old volume goes: a VptError here (no room for the coarsest level) changes nothing.
     const bricked = new BrickedVolume(
       this.backend,
@@ -308,11 +291,6 @@ export class SceneResources {
     const channels = scene.channels ? enabledChannels(scene.channels) : null;
     const channelKey = channels ? channels.join(',') : '';
     const upload = this.planUpload(scene.volume, this.samplingOf(scene), channels ?? undefined);
-    if (this.brickPlan && channels && channels.length > MAX_BRICKED_CHANNELS)
-      throw new VptError(
-        'limit-exceeded',
-        `a bricked scene draws at most ${MAX_BRICKED_CHANNELS} channels (MAX_BRICKED_CHANNELS), this one ${channels.length}`,
-      );
     if (this.brickPlan) this.syncBricked(scene.volume, upload, scene.channels);
     else if (this.bricked) this.dropVolume();
     let same =

@@ -6,7 +6,6 @@ import type { Scene } from '../scene/scene.js';
 import { TF_RESOLUTION } from '../scene/transfer-function.js';
 import { enabledChannels } from '../scene/channels.js';
 import { channelCount, voxelCount } from '../scene/volume.js';
-import { MAX_BRICKED_CHANNELS } from '../bricking/bricked-volume.js';
 import type { VolumeOptions } from './context-options.js';
 import { sameVoxels, type BrickPlan, type SceneResources } from './scene-resources.js';
 
@@ -182,15 +181,11 @@ export class VolumeFit {
     }
     // Bricks instead of a downsampled copy: the full data stays available to the view.
     // A channel scene's TFs are 1D (scene.transferFunction is not drawn); its atlas holds the
-    // drawn channels as components (the channel texture's format), so the budget counts them all.
+    // drawn channels as components (the channel texture's format), so the budget counts them all
+    // (at most MAX_BRICKED_CHANNELS = MAX_ENABLED_CHANNELS: validateChannels refuses more).
     const brickable = (channels !== undefined || scene.transferFunction.dimensions !== '2d') && !gradient;
     const source = this.volumeSources.get(scene.volume);
     const bricking = this.options.bricking;
-    if (channels && channels.length > MAX_BRICKED_CHANNELS && (source || bricking !== 'off'))
-      throw new VptError(
-        'limit-exceeded',
-        `a bricked scene draws at most ${MAX_BRICKED_CHANNELS} channels (MAX_BRICKED_CHANNELS), this one ${channels.length}`,
-      );
     if (source && (source.channels ?? 1) !== channelCount(scene.volume))
       throw new VptError(
         'invalid-scene',

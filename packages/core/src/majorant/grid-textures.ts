@@ -6,8 +6,8 @@ import { sliceAtlasLayout } from '../shaders/slice-atlas.js';
 import * as glslAtlas from '../shaders/slice-atlas.glsl.js';
 import * as wgslAtlas from '../shaders/slice-atlas.wgsl.js';
 import { UniformLayout, type UniformField } from '../uniforms/layout.js';
-import { buildMajorantGrid, channelMajorantGrid, gridCells, type CellValueRanges } from './majorant-grid.js';
-import { rasterizeChannelTransferFunctions, scalarSceneOf, type ChannelSettings } from '../scene/channels.js';
+import { buildMajorantGrid, channelMajorantGrid, gridCells, summedChannelGrid } from './majorant-grid.js';
+import { scalarSceneOf } from '../scene/channels.js';
 import { rasterizeTransferFunction } from '../scene/transfer-function.js';
 import { atlasTexel } from '../shaders/slice-atlas.js';
 import * as glslBuild from './majorant-build.glsl.js';
@@ -211,7 +211,7 @@ function channelGridTexture(
       : `channels|${objectId(scene.volume as Volume)}|${cellSize}|${scene.densityScale}|${JSON.stringify(channels)}`,
     create: () => {
       const texels = bricked
-        ? summedChannelGrid(bricked.channelCellRanges!(cells), channels, scene.densityScale)
+        ? summedChannelGrid(bricked.channelCellRanges!(cells), channels, scene.densityScale).data
         : channelMajorantGrid(scene.volume, channels, scene.densityScale, cellSize).data;
       const data = new Float32Array(4 * layout.width * layout.height);
       for (let z = 0; z < cells[2]; z++)
@@ -230,26 +230,6 @@ function channelGridTexture(
       };
     },
   };
-}
-
-/** The sum of the drawn channels' majorant grids over their cell ranges (as channelMajorantGrid sums them). */
-function summedChannelGrid(
-  ranges: readonly CellValueRanges[],
-  channels: readonly ChannelSettings[],
-  densityScale: number,
-): Float32Array {
-  const tf = rasterizeChannelTransferFunctions(channels, TF_RESOLUTION);
-  let sum: Float32Array | null = null;
-  ranges.forEach((r, row) => {
-    const grid = buildMajorantGrid(
-      r,
-      tf.subarray(4 * TF_RESOLUTION * row, 4 * TF_RESOLUTION * (row + 1)),
-      densityScale,
-    );
-    if (!sum) sum = grid.data;
-    else for (let i = 0; i < sum.length; i++) sum[i] = Math.fround(sum[i] + grid.data[i]);
-  });
-  return sum!;
 }
 
 const BUILD_UNIFORMS = new UniformLayout('MajorantBuild', [
