@@ -491,31 +491,6 @@ describe('MCRT: the channels are one mixture (z-test against a scalar volume hol
   });
 });
 
-describe('bricking refuses a channel scene, naming the limit', () => {
-  it("bricking: 'force' with two channels throws limit-exceeded (MAX_BRICKED_CHANNELS)", async () => {
-    const r = await page.run(
-      async ({ core, t }, voxels, n, tf0, tf1) => {
-        const volume = core.createVolume([n, n, n], 'uint8', new Uint8Array(voxels), [1, 1, 1], 2);
-        const ctx = await t.context({ backend: 'webgl2', renderer: 'eam', width: 8, height: 8, bricking: 'force' });
-        try {
-          ctx.setScene({ ...t.scene({ volume }), channels: [{ transferFunction: tf0 }, { transferFunction: tf1 }] });
-          return { code: 'none', message: '' };
-        } catch (e) {
-          return { code: (e as { code?: string }).code ?? 'untyped', message: (e as Error).message };
-        } finally {
-          ctx.dispose();
-        }
-      },
-      interleave(FIELDS.slice(0, 2)),
-      N,
-      TFS[0],
-      TFS[1],
-    );
-    expect(r.code).toBe('limit-exceeded');
-    expect(r.message).toMatch(/MAX_BRICKED_CHANNELS = 1/);
-  });
-});
-
 describe('the compact fast path (rg8unorm / rgba8unorm, hardware filter)', () => {
   for (const count of [2, 4])
     it(`EAM with ${count} channels agrees with the exact path and across backends`, async () => {

@@ -137,6 +137,15 @@ export interface VolumeBinding {
     vmin: Float32Array;
     vmax: Float32Array;
   };
+  /**
+   * With `cellRanges`, for a channel scene: the same ranges per drawn channel (in order), each
+   * normalized by that channel's range (a multichannel brick atlas keeps them per component).
+   */
+  channelCellRanges?: (cells: readonly [number, number, number]) => {
+    cells: [number, number, number];
+    vmin: Float32Array;
+    vmax: Float32Array;
+  }[];
 }
 
 /**

@@ -7,6 +7,7 @@ import {
   createVolume,
   fillSlot,
   inMemoryMultiscaleSource,
+  interleaveChannels,
   type Volume,
 } from '../src/index.js';
 
@@ -366,5 +367,91 @@ describe('brick priority (what the view needs, in load order)', () => {
     expect(lod.slice(0, 9).map((k) => g.brickOf(k).level)).toEqual([2, 1, 1, 1, 1, 1, 1, 1, 1]);
     expect(lod.slice(9).every((k) => !central(k))).toBe(true); // no visible level-0 brick is wanted
     expect(lod).toHaveLength(9 + 48);
+  });
+});
+
+describe('multichannel bricks (BrickChannels: one component per drawn channel)', () => {
+  // Channel 0: the test volume (0 in the corner x, y < 20); channel 1: another field, also 0 in that corner.
+  const c0 = testVolume(DIMS);
+  const d1 = new Uint8Array(c0.data.length);
+  let i = 0;
+  for (let z = 0; z < DIMS[2]; z++)
+    for (let y = 0; y < DIMS[1]; y++)
+      for (let x = 0; x < DIMS[0]; x++, i++)
+        d1[i] = x < 20 && y < 20 ? 0 : Math.round(120 + 90 * Math.cos(x / 5 + y / 7 - z / 3));
+  const c1 = createVolume(DIMS, 'uint8', d1, [1, 1, 1.5]);
+  const both = interleaveChannels([c0, c1]);
+  const multi = inMemoryMultiscaleSource(both, { coarsestSide: 16 });
+  const scalar = [c0, c1].map((v) => inMemoryMultiscaleSource(v, { coarsestSide: 16 }));
+  const g = new BrickGeometry(multi.levels, 16);
+  const keys = Array.from({ length: g.brickCount }, (_, k) => g.brickCount - 1 - k);
+
+  it('the source halves every channel as the scalar sources do, and a slot holds each picked channel with its apron', () => {
+    expect(multi.channels).toBe(2);
+    expect(multi.levels).toEqual(scalar[0].levels);
+    for (const key of keys) {
+      const { level, brick } = g.brickOf(key);
+      const { min, max } = g.readRegion(level, brick);
+      const region = multi.readRegionNow(level, min, max);
+      const S3 = g.slotSize ** 3;
+      const pair = fillSlot(g, level, brick, region, new Uint8Array(2 * S3), 2, [0, 1]);
+      const swapped = fillSlot(g, level, brick, region, new Uint8Array(2 * S3), 2, [1, 0]);
+      const one = fillSlot(g, level, brick, region, new Uint8Array(S3), 2, [1]);
+      const ref = scalar.map((s) => fillSlot(g, level, brick, s.readRegionNow(level, min, max), new Uint8Array(S3)));
+      for (let t = 0; t < S3; t++) {
+        if (pair[2 * t] !== ref[0][t] || pair[2 * t + 1] !== ref[1][t] || swapped[2 * t] !== ref[1][t])
+          throw new Error(`key ${key} texel ${t}: ${pair[2 * t]},${pair[2 * t + 1]} vs ${ref[0][t]},${ref[1][t]}`);
+        if (one[t] !== ref[1][t]) throw new Error(`key ${key} texel ${t}: picked channel 1`);
+      }
+    }
+  });
+
+  it('per channel, the cell ranges of a 2-component cache are those of the scalar cache of that channel; a brick is constant only when every channel is one value', () => {
+    const loadMulti = (cache: BrickCache, ks: number[]) => {
+      for (const key of ks) {
+        const { level, brick } = g.brickOf(key);
+        const { min, max } = g.readRegion(level, brick);
+        const values = fillSlot(
+          g,
+          level,
+          brick,
+          multi.readRegionNow(level, min, max),
+          new Uint8Array(2 * g.slotSize ** 3),
+          2,
+          [0, 1],
+        );
+        cache.insert(key, { values }, 1);
+      }
+    };
+    // Partial residency: the coarse levels and the level-0 bricks of x < 48.
+    const partial = keys.filter((k) => g.brickOf(k).level > 0 || g.brickOf(k).brick[0] < 3);
+    const cache = new BrickCache(g, g.brickCount, 2);
+    loadMulti(cache, partial);
+    const caches = scalar.map((s) => {
+      const c = new BrickCache(g, g.brickCount);
+      load(g, s, c, partial);
+      return c;
+    });
+    // The corner brick [0, 0, 0] is 0 in both channels: constant in every cache.
+    expect([...caches, cache].map((c) => c.lookup([0, 0, 0]).kind)).toEqual(['constant', 'constant', 'constant']);
+    for (const cells of [
+      [9, 5, 3],
+      [7, 6, 5],
+    ] as [number, number, number][])
+      for (const k of [0, 1]) {
+        const want = caches[k].cellRanges(cells, (v) => v / 255, 0);
+        const got = cache.cellRanges(cells, (v) => v / 255, 0, k);
+        expect(Array.from(got.vmin)).toEqual(Array.from(want.vmin));
+        expect(Array.from(got.vmax)).toEqual(Array.from(want.vmax));
+      }
+    // Both channels one value: constant (no slot); channel 0 at 0 and channel 1 at 7: a slot (the page entry holds one value).
+    const small = new BrickCache(g, 4, 2);
+    const n = 2 * g.slotSize ** 3;
+    expect(small.insert(keys[keys.length - 1], { values: new Uint8Array(n) }, 1)).toBe(-1);
+    const apart = new Uint8Array(n).map((_, t) => (t % 2 ? 7 : 0));
+    expect(small.insert(keys[keys.length - 2], { values: apart }, 1)).toBe(0);
+    expect(small.counts()).toEqual({ slots: 1, constant: 1 });
+    const r = small.cellRanges([9, 5, 3], (v) => v, 0, 1);
+    expect(Math.max(...r.vmax)).toBe(7); // channel 1's range is its own
   });
 });

@@ -12,22 +12,25 @@ import type { BrickGeometry } from './brick-geometry.js';
 export const SUB_BLOCK = 8;
 
 export interface BrickContent {
-  /** The slot's values, (B+2)³ data values (not texels), x fastest. */
+  /**
+   * The slot's values, (B+2)³ data values (not texels), x fastest; for a multichannel cache
+   * `components` values per texel, interleaved (the drawn channels, the channel fastest).
+   */
   values: ArrayLike<number>;
 }
 
 interface Entry {
   /** Atlas slot, or −1 for a constant brick (no slot). */
   slot: number;
-  /** The value of a constant brick (data units). */
+  /** The value of a constant brick (data units; every component holds it). */
   constant: number;
   /** Frame the brick was last wanted. */
   lastUsed: number;
-  /** [min, max] over the whole slot (data units). */
-  min: number;
-  max: number;
-  /** Per sub-block [min, max] of what trilinear reads for points in it (level-0 bricks only), 2 per sub-block. */
-  sub: Float32Array | null;
+  /** Per component, [min, max] over the whole slot (data units). */
+  min: number[];
+  max: number[];
+  /** Per component, per sub-block [min, max] of what trilinear reads for points in it (level-0 bricks only), 2 per sub-block. */
+  sub: Float32Array[] | null;
 }
 
 /** A page-table entry: where the kernels read level-0 brick b0 from. */
@@ -45,6 +48,8 @@ export class BrickCache {
   constructor(
     readonly geometry: BrickGeometry,
     readonly capacity: number,
+    /** Values per slot texel (the drawn channels of a multichannel volume; 1 for a scalar one). */
+    readonly components = 1,
   ) {
     this.owner = new Int32Array(capacity).fill(-1);
   }
@@ -76,22 +81,25 @@ export class BrickCache {
   }
 
   /**
-   * Store a brick that arrived. A constant brick is kept without a slot. Otherwise it takes a
+   * Store a brick that arrived. A constant brick (one value in every texel and, for a
+   * multichannel cache, every component) is kept without a slot. Otherwise it takes a
    * free slot or the slot of the least recently used brick not wanted in `frame`; returns the
    * slot to upload to, −1 for a constant brick, or null when every slot holds a brick wanted
    * in this frame (the brick is dropped; its region stays served by a coarser level).
    */
   insert(key: number, content: BrickContent, frame: number): number | null {
     const v = content.values;
-    let min = Infinity,
-      max = -Infinity;
-    for (let i = 0; i < v.length; i++) {
-      if (v[i] < min) min = v[i];
-      if (v[i] > max) max = v[i];
+    const C = this.components;
+    const min = new Array<number>(C).fill(Infinity),
+      max = new Array<number>(C).fill(-Infinity);
+    for (let i = 0, k = 0; i < v.length; i++, k = k + 1 === C ? 0 : k + 1) {
+      if (v[i] < min[k]) min[k] = v[i];
+      if (v[i] > max[k]) max[k] = v[i];
     }
-    if (min === max) {
+    const lo = Math.min(...min);
+    if (min.every((m, k) => m === lo && max[k] === lo)) {
       this.evictKey(key);
-      this.entries.set(key, { slot: -1, constant: min, lastUsed: frame, min, max, sub: null });
+      this.entries.set(key, { slot: -1, constant: lo, lastUsed: frame, min, max, sub: null });
       return -1;
     }
     const slot = this.entries.get(key)?.slot ?? -1;
@@ -105,7 +113,7 @@ export class BrickCache {
       lastUsed: frame,
       min,
       max,
-      sub: level === 0 ? subBlockRanges(v, this.geometry.brickSize) : null,
+      sub: level === 0 ? Array.from({ length: C }, (_, k) => subBlockRanges(v, this.geometry.brickSize, C, k)) : null,
     });
     this.uploads++;
     return target;
@@ -175,12 +183,14 @@ export class BrickCache {
    * kernels can read at its points (majorant-grid ranges): the union over the level-0
    * sub-blocks the cell touches of what serves them: a resident level-0 brick's sub-block
    * ranges, else the whole slot of the coarser brick that serves it, or its constant.
-   * `normalize` is the monotone data → [0, 1] map; `emptyValue` what an unserved brick reads.
+   * `normalize` is the monotone data → [0, 1] map; `emptyValue` what an unserved brick reads;
+   * `component` the channel of a multichannel cache (each drawn channel has its own ranges).
    */
   cellRanges(
     cells: readonly [number, number, number],
     normalize: (v: number) => number,
     emptyValue: number,
+    component = 0,
   ): { cells: [number, number, number]; vmin: Float32Array; vmax: Float32Array } {
     const g = this.geometry;
     const dims = g.levels[0].dims;
@@ -208,12 +218,12 @@ export class BrickCache {
                 const i = sx + nsub[0] * (sy + nsub[1] * sz);
                 if (entry?.sub && e.kind === 'slot' && e.level === 0) {
                   const k = 2 * (kx + per * (ky + per * kz));
-                  smin[i] = entry.sub[k];
-                  smax[i] = entry.sub[k + 1];
+                  smin[i] = entry.sub[component][k];
+                  smax[i] = entry.sub[component][k + 1];
                   fine[i] = 1;
                 } else if (entry) {
-                  smin[i] = entry.min;
-                  smax[i] = entry.max;
+                  smin[i] = entry.min[component];
+                  smax[i] = entry.max[component];
                 } else {
                   smin[i] = smax[i] = e.kind === 'constant' ? e.value : emptyValue;
                 }
@@ -277,9 +287,9 @@ export class BrickCache {
  * Per sub-block of a level-0 brick's slot, the [min, max] of the texels trilinear filtering
  * reads for points inside it: points of sub-block k span level-0 voxels [k·s, (k+1)·s] of the
  * brick, which read slot texels k·s … (k+1)·s + 1; one more texel each side is margin against
- * the rounding of positions.
+ * the rounding of positions. `C` values per texel, component `c` read.
  */
-function subBlockRanges(v: ArrayLike<number>, B: number): Float32Array {
+function subBlockRanges(v: ArrayLike<number>, B: number, C = 1, c = 0): Float32Array {
   const S = B + 2;
   const s = Math.min(SUB_BLOCK, B);
   const per = B / s;
@@ -295,7 +305,7 @@ function subBlockRanges(v: ArrayLike<number>, B: number): Float32Array {
           for (let y = lo(ky); y <= hi(ky); y++) {
             const row = S * (y + S * z);
             for (let x = lo(kx); x <= hi(kx); x++) {
-              const val = v[row + x];
+              const val = v[C * (row + x) + c];
               if (val < mn) mn = val;
               if (val > mx) mx = val;
             }

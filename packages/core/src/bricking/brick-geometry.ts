@@ -100,7 +100,10 @@ export class BrickGeometry {
 /**
  * A brick's slot content, (B+2)³ values x fastest, from its read region: slot texel k holds
  * voxel clamp(b·B − 1 + k, 0, N − 1) on each axis (clamp-to-edge at the faces, so the
- * bricked filter equals the unbricked one there).
+ * bricked filter equals the unbricked one there). A multichannel region (`components` values
+ * per voxel, interleaved, the channel fastest) fills `pick.length` values per slot texel: the
+ * region's components `pick`, in that order (the drawn channels), so every component gets
+ * the same apron.
  */
 export function fillSlot<T extends ArrayLike<number> & { [i: number]: number }>(
   geometry: BrickGeometry,
@@ -108,6 +111,8 @@ export function fillSlot<T extends ArrayLike<number> & { [i: number]: number }>(
   b: readonly number[],
   region: ArrayLike<number>,
   out: T,
+  components = 1,
+  pick: readonly number[] = [0],
 ): T {
   const { min, max } = geometry.readRegion(level, b);
   const dims = geometry.levels[level].dims;
@@ -118,11 +123,15 @@ export function fillSlot<T extends ArrayLike<number> & { [i: number]: number }>(
   const src = [0, 1, 2].map((a) =>
     Int32Array.from({ length: S }, (_, k) => Math.min(dims[a] - 1, Math.max(0, b[a] * B - 1 + k)) - min[a]),
   );
+  const P = pick.length;
   let o = 0;
   for (let z = 0; z < S; z++)
     for (let y = 0; y < S; y++) {
       const row = sx * (src[1][y] + sy * src[2][z]);
-      for (let x = 0; x < S; x++) out[o++] = region[row + src[0][x]];
+      for (let x = 0; x < S; x++) {
+        const at = components * (row + src[0][x]);
+        for (let k = 0; k < P; k++) out[o++] = region[at + pick[k]];
+      }
     }
   return out;
 }

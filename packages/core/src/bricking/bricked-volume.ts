@@ -14,12 +14,16 @@
 import { VptError } from '../errors.js';
 import type { GpuBackend, GpuTexture } from '../gpu/backend.js';
 import { BYTES_PER_TEXEL } from '../gpu/backend.js';
-import { volumeTextureData, type VolumeUpload } from '../gpu/volume-format.js';
+import { channelTextureData, volumeTextureData, type VolumeUpload } from '../gpu/volume-format.js';
 import type { Volume, VoxelArray } from '../scene/volume.js';
+import { MAX_ENABLED_CHANNELS } from '../scene/channels.js';
 import { BrickCache } from './brick-cache.js';
 import { BrickGeometry, fillSlot, type Vec3i } from './brick-geometry.js';
 import { brickPriority, type BrickView } from './brick-priority.js';
 import type { MultiscaleSource } from './source.js';
+
+/** The most drawn channels a bricked volume holds: every channel a scene may draw (MAX_ENABLED_CHANNELS). */
+export const MAX_BRICKED_CHANNELS = MAX_ENABLED_CHANNELS;
 
 export interface BrickingOptions {
   /** Data voxels per brick side (a power of two; default 32). */
@@ -28,6 +32,18 @@ export interface BrickingOptions {
   uploadsPerFrame: number;
   /** Level of detail: load no brick finer than the view's pixels need (brick-priority.ts). */
   lod: boolean;
+}
+
+/**
+ * The drawn channels of a multichannel bricked volume: the atlas is the channel texture's
+ * format (rg / rgba of the source type, planChannelUpload), each slot texel holding the drawn
+ * channels in order, aprons copied for every component.
+ */
+export interface BrickChannels {
+  /** The source's components drawn, in order (2–4 of them). */
+  pick: readonly number[];
+  /** Per drawn channel, the data range mapped to [0, 1] (its normalization range). */
+  ranges: readonly [number, number][];
 }
 
 export interface BrickingStats {
@@ -82,6 +98,8 @@ export class BrickedVolume {
     range: [number, number],
     /** Called once per brick whose read fails (the brick stays served by a coarser level). */
     private readonly onFailure: (message: string) => void = () => {},
+    /** A multichannel volume's drawn channels (null: a scalar volume, one component). */
+    private readonly channels: BrickChannels | null = null,
   ) {
     this.range = range;
     this.geometry = new BrickGeometry(source.levels, opts.brickSize);
@@ -100,7 +118,7 @@ export class BrickedVolume {
         'limit-exceeded',
         `maxGpuBytes leaves ${Math.max(0, capacityBytes)} bytes for the volume: not enough for the ${coarsest.join(' x ')} bricks of its coarsest level (${slotBytes} bytes each, ${S}³ voxels with the apron)`,
       );
-    this.cache = new BrickCache(g, slots);
+    this.cache = new BrickCache(g, slots, channels ? channels.pick.length : 1);
     const [sx, sy, sz] = this.slotsPerAxis;
     this.atlas = backend.createTexture({
       dimension: '3d',
@@ -199,6 +217,15 @@ export class BrickedVolume {
     return this.cache.cellRanges(cells, (v) => Math.min(1, Math.max(0, (v - lo) * inv)), lo);
   }
 
+  /** A multichannel volume's cell ranges, one per drawn channel, each normalized with that channel's range. */
+  channelCellRanges(cells: readonly [number, number, number]) {
+    const ranges = this.channels?.ranges ?? [this.range];
+    return ranges.map(([lo, hi], k) => {
+      const inv = 1 / (hi - lo);
+      return this.cache.cellRanges(cells, (v) => Math.min(1, Math.max(0, (v - lo) * inv)), ranges[0][0], k);
+    });
+  }
+
   /** Free the textures and stop reading (dispose, or a new volume). */
   release(destroy = true): void {
     this.abort.abort();
@@ -247,12 +274,15 @@ export class BrickedVolume {
         (region) => {
           this.inFlight.delete(key);
           if (this.abort.signal.aborted) return;
+          const pick = this.channels?.pick ?? [0];
           const values = fillSlot(
             this.geometry,
             level,
             brick,
             region,
-            new (region.constructor as new (n: number) => VoxelArray)(this.geometry.slotSize ** 3),
+            new (region.constructor as new (n: number) => VoxelArray)(pick.length * this.geometry.slotSize ** 3),
+            this.source.channels ?? 1,
+            pick,
           );
           this.arrived.push({ key, values });
           this.wake();
@@ -280,9 +310,11 @@ export class BrickedVolume {
 
   /** Put an arrived brick into the cache (and its slot); false when nothing changed. */
   private store(key: number, values: VoxelArray): boolean {
-    const [lo] = this.range;
+    const ch = this.channels;
+    // As the unbricked upload: a non-finite voxel reads as the value mapping to 0 (in its channel).
+    const fills = ch ? ch.ranges.map((r) => r[0]) : [this.range[0]];
     if (values instanceof Float32Array)
-      for (let i = 0; i < values.length; i++) if (!Number.isFinite(values[i])) values[i] = lo; // as the unbricked upload
+      for (let i = 0; i < values.length; i++) if (!Number.isFinite(values[i])) values[i] = fills[i % fills.length];
     const slot = this.cache.insert(key, { values }, this.frame);
     if (slot === null) {
       this.full = true; // every slot holds a brick wanted now: finer bricks stay served by coarser ones
@@ -296,12 +328,19 @@ export class BrickedVolume {
         type: this.source.type,
         data: values,
         valueRange: this.range,
+        ...(ch ? { channels: ch.pick.length } : {}),
       };
       this.backend.writeTextureRegion(
         this.atlas,
         this.slotOrigin(slot),
         [S, S, S],
-        volumeTextureData(brick, this.upload),
+        ch
+          ? channelTextureData(
+              brick,
+              this.upload,
+              ch.pick.map((_, k) => k),
+            )
+          : volumeTextureData(brick, this.upload),
       );
     }
     return true;

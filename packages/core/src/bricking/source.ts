@@ -4,8 +4,8 @@
  * of core needed there); `inMemoryMultiscaleSource` builds one from a core `Volume`, with
  * coarser levels made by 2× box averages (scene/downsample.ts).
  */
-import { downsampleVolume } from '../scene/downsample.js';
-import type { Volume, VoxelArray, VoxelType } from '../scene/volume.js';
+import { downsampleChannels, downsampleVolume } from '../scene/downsample.js';
+import { channelCount, type Volume, type VoxelArray, type VoxelType } from '../scene/volume.js';
 
 export interface MultiscaleLevel {
   /** Voxels per axis, x fastest. */
@@ -24,7 +24,12 @@ export interface MultiscaleSource {
   levels: MultiscaleLevel[];
   /** The data range mapped to [0, 1] (Volume.valueRange); without it the type's convention. */
   valueRange?: [number, number];
-  /** The voxels of [min, max) (max exclusive) of a level, x fastest. */
+  /**
+   * Channels per voxel (Volume.channels; default 1): a multichannel source's regions hold
+   * this many values per voxel, interleaved, the channel fastest (the bricks keep the drawn ones).
+   */
+  channels?: number;
+  /** The voxels of [min, max) (max exclusive) of a level, x fastest (channel fastest within a voxel). */
   readRegion(
     level: number,
     min: [number, number, number],
@@ -51,16 +56,20 @@ export class InMemoryMultiscaleSource implements MultiscaleSource {
   readonly type: VoxelType;
   readonly levels: MultiscaleLevel[];
   readonly valueRange?: [number, number];
+  readonly channels: number;
   /** The level volumes, level 0 = the given volume. */
   readonly volumes: Volume[];
 
   constructor(volume: Volume, coarsestSide: number) {
     this.type = volume.type;
+    this.channels = channelCount(volume);
     if (volume.valueRange) this.valueRange = [volume.valueRange[0], volume.valueRange[1]];
     this.volumes = [volume];
     let v = volume;
     while (Math.max(...v.dims) > Math.max(1, coarsestSide)) {
-      v = downsampleVolume(v, v.dims.map((d) => (d > 1 ? 2 : 1)) as [number, number, number]);
+      const f = v.dims.map((d) => (d > 1 ? 2 : 1)) as [number, number, number];
+      // A multichannel volume: every channel by the same box averages (scene/downsample.ts).
+      v = this.channels > 1 ? downsampleChannels(v, f) : downsampleVolume(v, f);
       this.volumes.push(v);
     }
     this.levels = this.volumes.map((l) => ({
@@ -74,14 +83,15 @@ export class InMemoryMultiscaleSource implements MultiscaleSource {
   readRegionNow(level: number, min: readonly number[], max: readonly number[]): VoxelArray {
     const v = this.volumes[level];
     const [nx, ny] = v.dims;
+    const C = this.channels;
     const sx = max[0] - min[0],
       sy = max[1] - min[1],
       sz = max[2] - min[2];
-    const out = new (v.data.constructor as new (n: number) => VoxelArray)(sx * sy * sz);
+    const out = new (v.data.constructor as new (n: number) => VoxelArray)(sx * sy * sz * C);
     for (let z = 0; z < sz; z++)
       for (let y = 0; y < sy; y++) {
-        const from = min[0] + nx * (min[1] + y + ny * (min[2] + z));
-        out.set(v.data.subarray(from, from + sx), sx * (y + sy * z));
+        const from = C * (min[0] + nx * (min[1] + y + ny * (min[2] + z)));
+        out.set(v.data.subarray(from, from + C * sx), C * sx * (y + sy * z));
       }
     return out;
   }

@@ -14,11 +14,16 @@ import {
   type VolumeUpload,
 } from '../gpu/volume-format.js';
 import { buildGradientVolume, destroyGradientVolume, type GradientVolume } from '../gradient/gradient-volume.js';
-import { BrickedVolume, type BrickingOptions } from '../bricking/bricked-volume.js';
+import { BrickedVolume, type BrickChannels, type BrickingOptions } from '../bricking/bricked-volume.js';
 import { inMemoryMultiscaleSource, type MultiscaleSource } from '../bricking/source.js';
-import { channelVolume, normalizationRange } from '../scene/volume.js';
-import { enabledChannels, rasterizeChannelTransferFunctions, type ChannelSettings } from '../scene/channels.js';
-import { VptError } from '../errors.js';
+import { channelVolume, interleaveChannels, normalizationRange } from '../scene/volume.js';
+import {
+  channelNormalizationRange,
+  enabledChannels,
+  rasterizeChannelTransferFunctions,
+  sceneChannelVolume,
+  type ChannelSettings,
+} from '../scene/channels.js';
 import { slicePlaneTextures } from '../scene/slice-plane.js';
 
 /** How RenderContext wants the scene's volume bricked (null: one texture). */
@@ -129,7 +134,12 @@ export class SceneResources {
       ...m,
       format: this.volumeUpload?.format ?? 'r32float',
       key: `${this.volumeKey}|${m.valueScale}|${m.valueOffset}${bricked ? `|bricks ${bricked.generation}` : ''}`,
-      ...(bricked ? { cellRanges: (cells: readonly [number, number, number]) => bricked.cellRanges(cells) } : {}),
+      ...(bricked
+        ? {
+            cellRanges: (cells: readonly [number, number, number]) => bricked.cellRanges(cells),
+            channelCellRanges: (cells: readonly [number, number, number]) => bricked.channelCellRanges(cells),
+          }
+        : {}),
     };
   }
 
@@ -142,8 +152,12 @@ export class SceneResources {
     this.brickPlan = plan;
   }
 
-  /** The brick cache for the scene's volume: kept while the voxels, format and plan stay, else rebuilt empty. */
-  private syncBricked(volume: Scene['volume'], upload: VolumeUpload): void {
+  /**
+   * The brick cache for the scene's volume: kept while the voxels, format, drawn channels and
+   * plan stay, else rebuilt empty. A channel scene's bricks hold its drawn channels (the atlas
+   * in the channel texture's format); one drawn channel is bricked as the scalar volume holding it.
+   */
+  private syncBricked(volume: Scene['volume'], upload: VolumeUpload, settings?: readonly ChannelSettings[]): void {
     const plan = this.brickPlan!;
     const key = [
       upload.format,
@@ -155,15 +169,42 @@ export class SceneResources {
       plan.uploadsPerFrame,
       plan.lod,
       plan.source ? sourceId(plan.source) : 0,
+      settings ? JSON.stringify(settings.map((c) => [c.enabled !== false, c.range ?? null])) : '',
     ].join('|');
     if (this.bricked && this.brickKey === key && this.volumeSource && sameVoxels(this.volumeSource, volume)) {
       this.volumeSource = volume;
       return;
     }
-    const range = normalizationRange(volume);
-    const source = plan.source ?? inMemoryMultiscaleSource(volume, { coarsestSide: plan.brickSize });
+    const drawn = settings ? enabledChannels(settings) : null;
+    // Each drawn channel's data range mapped to [0, 1] (one drawn channel: the scalar volume holding it).
+    const ranges = drawn
+      ? drawn.map((c) => channelNormalizationRange(volume, c, settings![c]))
+      : [normalizationRange(volume)];
+    const range = ranges[0];
+    let source = plan.source;
+    if (!source) {
+      // In memory: the levels of the drawn channels alone (channel by channel box averages).
+      const v = !drawn
+        ? volume
+        : drawn.length === 1
+          ? sceneChannelVolume(volume, settings!, drawn[0])
+          : interleaveChannels(drawn.map((c) => channelVolume(volume, c)));
+      source = inMemoryMultiscaleSource(v, { coarsestSide: plan.brickSize });
+    }
+    // A multichannel source: the bricks keep the drawn channels (a streamed one holds every channel).
+    const channels: BrickChannels | null =
+      (source.channels ?? 1) > 1 ? { pick: plan.source ? drawn! : drawn!.map((_, k) => k), ranges } : null;
     // Made before the old volume goes: a VptError here (no room for the coarsest level) changes nothing.
-    const bricked = new BrickedVolume(this.backend, source, upload, plan.capacityBytes, plan, range, plan.onFailure);
+    const bricked = new BrickedVolume(
+      this.backend,
+      source,
+      upload,
+      plan.capacityBytes,
+      plan,
+      range,
+      plan.onFailure,
+      channels,
+    );
     this.dropVolume();
     this.bricked = bricked;
     this.brickKey = key;
@@ -250,9 +291,7 @@ export class SceneResources {
     const channels = scene.channels ? enabledChannels(scene.channels) : null;
     const channelKey = channels ? channels.join(',') : '';
     const upload = this.planUpload(scene.volume, this.samplingOf(scene), channels ?? undefined);
-    if (this.brickPlan && channels)
-      throw new VptError('limit-exceeded', 'a multichannel scene cannot be bricked (MAX_BRICKED_CHANNELS = 1)');
-    if (this.brickPlan) this.syncBricked(scene.volume, upload);
+    if (this.brickPlan) this.syncBricked(scene.volume, upload, scene.channels);
     else if (this.bricked) this.dropVolume();
     let same =
       this.volumeUpload &&

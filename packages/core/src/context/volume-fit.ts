@@ -1,11 +1,11 @@
 import type { MultiscaleSource } from '../bricking/source.js';
 import { VptError } from '../errors.js';
 import type { Renderer } from '../renderer.js';
-import { downsampleVolume, fitFactors } from '../scene/downsample.js';
+import { downsampleChannels, downsampleVolume, fitFactors } from '../scene/downsample.js';
 import type { Scene } from '../scene/scene.js';
 import { TF_RESOLUTION } from '../scene/transfer-function.js';
 import { enabledChannels } from '../scene/channels.js';
-import { channelCount, channelVolume, interleaveChannels, voxelCount } from '../scene/volume.js';
+import { channelCount, voxelCount } from '../scene/volume.js';
 import type { VolumeOptions } from './context-options.js';
 import { sameVoxels, type BrickPlan, type SceneResources } from './scene-resources.js';
 
@@ -180,21 +180,18 @@ export class VolumeFit {
       );
     }
     // Bricks instead of a downsampled copy: the full data stays available to the view.
-    const brickable = scene.transferFunction.dimensions !== '2d' && !gradient;
+    // A channel scene's TFs are 1D (scene.transferFunction is not drawn); its atlas holds the
+    // drawn channels as components (the channel texture's format), so the budget counts them all
+    // (at most MAX_BRICKED_CHANNELS = MAX_ENABLED_CHANNELS: validateChannels refuses more).
+    const brickable = (channels !== undefined || scene.transferFunction.dimensions !== '2d') && !gradient;
     const source = this.volumeSources.get(scene.volume);
     const bricking = this.options.bricking;
-    if (channels && (source || bricking === 'force')) {
-      // The brick atlas, its aprons and the cache's per-brick ranges are single-component.
+    if (source && (source.channels ?? 1) !== channelCount(scene.volume))
       throw new VptError(
-        'limit-exceeded',
-        `a multichannel scene cannot be bricked (bricking: '${source ? 'a streamed source' : bricking}'); bricked volumes hold one channel (MAX_BRICKED_CHANNELS = 1): render it unbricked, downsampled to fit maxGpuBytes`,
+        'invalid-scene',
+        `setVolumeSource: the source has ${source.channels ?? 1} channel(s) per voxel (MultiscaleSource.channels), the stand-in volume ${channelCount(scene.volume)}; they must match`,
       );
-    }
-    if (
-      !channels &&
-      brickable &&
-      (source || bricking === 'force' || (bricking === 'auto' && factors.some((f) => f > 1)))
-    ) {
+    if (brickable && (source || bricking === 'force' || (bricking === 'auto' && factors.some((f) => f > 1)))) {
       const bricks: BrickPlan = {
         capacityBytes: budget,
         brickSize: this.options.brickSize,
@@ -237,11 +234,4 @@ function standInWithLevel0Box(standIn: Scene['volume'], source: MultiscaleSource
   const spacing = [0, 1, 2].map((a) => (l0.dims[a] * l0.spacing[a]) / standIn.dims[a]) as [number, number, number];
   const valueRange = source.valueRange ?? standIn.valueRange;
   return { ...standIn, spacing, ...(valueRange ? { valueRange: [valueRange[0], valueRange[1]] } : {}) };
-}
-
-/** A multichannel volume downsampled channel by channel (the same box averages), interleaved again. */
-function downsampleChannels(v: Scene['volume'], factors: [number, number, number]): Scene['volume'] {
-  const parts = Array.from({ length: channelCount(v) }, (_, c) => downsampleVolume(channelVolume(v, c), factors));
-  const out = interleaveChannels(parts);
-  return { ...out, ...(v.valueRange ? { valueRange: v.valueRange } : {}), ...(v.name ? { name: v.name } : {}) };
 }

@@ -6,7 +6,8 @@ import { sliceAtlasLayout } from '../shaders/slice-atlas.js';
 import * as glslAtlas from '../shaders/slice-atlas.glsl.js';
 import * as wgslAtlas from '../shaders/slice-atlas.wgsl.js';
 import { UniformLayout, type UniformField } from '../uniforms/layout.js';
-import { buildMajorantGrid, channelMajorantGrid, gridCells } from './majorant-grid.js';
+import { buildMajorantGrid, channelMajorantGrid, gridCells, summedChannelGrid } from './majorant-grid.js';
+import { scalarSceneOf } from '../scene/channels.js';
 import { rasterizeTransferFunction } from '../scene/transfer-function.js';
 import { atlasTexel } from '../shaders/slice-atlas.js';
 import * as glslBuild from './majorant-build.glsl.js';
@@ -59,8 +60,10 @@ export function majorantGridTextures(
 ): AuxiliaryTexture[] {
   // One drawn channel is an r-format texture and a one-row TF: the GPU build below reads it as a scalar volume.
   if (scene.channels && scene.channels.filter((c) => c.enabled !== false).length > 1)
-    return [channelGridTexture(scene, cellSize, output)];
-  if (volume.cellRanges) return [brickedGridTexture(scene, volume, cellSize, output, volume.cellRanges)];
+    return [channelGridTexture(scene, cellSize, output, volume.channelCellRanges ? volume : null)];
+  // A bricked channel scene of one drawn channel: its grid is the scalar scene's it draws.
+  if (volume.cellRanges)
+    return [brickedGridTexture(scalarSceneOf(scene) ?? scene, volume, cellSize, output, volume.cellRanges)];
   const map = { valueScale: volume.valueScale, valueOffset: volume.valueOffset };
   const geometry = gridGeometry(scene.volume.dims, cellSize);
   const layout = sliceAtlasLayout(geometry.slice(0, 3));
@@ -186,8 +189,16 @@ function brickedGridTexture(
  * A channel scene's grid (majorant-grid.ts channelMajorantGrid: the sum of the drawn channels'
  * bounds), built on the CPU and uploaded. Only `'majorants'`: the skipping of MIP and ISO reads
  * one value range per cell, which a channel scene does not have, so they march it unskipped.
+ * Bricked (`bricked` given): the sum over the drawn channels of the grids made of the brick
+ * cache's per-channel cell ranges (what the resident bricks, or coarser levels, serve), keyed
+ * on the binding's key, which changes with the residency.
  */
-function channelGridTexture(scene: Scene, cellSize: number, output: MajorantGridOutput): AuxiliaryTexture {
+function channelGridTexture(
+  scene: Scene,
+  cellSize: number,
+  output: MajorantGridOutput,
+  bricked: VolumeBinding | null,
+): AuxiliaryTexture {
   if (output !== 'majorants') throw new RangeError('a channel scene has a majorant grid, not one value range per cell');
   const channels = scene.channels!;
   const cells = gridCells(scene.volume.dims, cellSize);
@@ -195,9 +206,13 @@ function channelGridTexture(scene: Scene, cellSize: number, output: MajorantGrid
   return {
     name: 'majorantGrid',
     dimension: '2d',
-    key: `channels|${objectId(scene.volume as Volume)}|${cellSize}|${scene.densityScale}|${JSON.stringify(channels)}`,
+    key: bricked
+      ? `channels bricked|${cellSize}|${scene.densityScale}|${JSON.stringify(channels)}|${bricked.key}`
+      : `channels|${objectId(scene.volume as Volume)}|${cellSize}|${scene.densityScale}|${JSON.stringify(channels)}`,
     create: () => {
-      const texels = channelMajorantGrid(scene.volume, channels, scene.densityScale, cellSize).data;
+      const texels = bricked
+        ? summedChannelGrid(bricked.channelCellRanges!(cells), channels, scene.densityScale).data
+        : channelMajorantGrid(scene.volume, channels, scene.densityScale, cellSize).data;
       const data = new Float32Array(4 * layout.width * layout.height);
       for (let z = 0; z < cells[2]; z++)
         for (let y = 0; y < cells[1]; y++) {

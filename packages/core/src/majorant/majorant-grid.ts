@@ -272,25 +272,36 @@ export function channelMajorantGrid(
   cellSize: number,
 ): MajorantGrid {
   const drawn = enabledChannels(channels);
-  const tf = rasterizeChannelTransferFunctions(channels, TF_RESOLUTION);
   let byKey = channelRangeCache.get(volume.data);
   if (!byKey) channelRangeCache.set(volume.data, (byKey = new Map()));
-  let sum: Float32Array | null = null;
-  let cells: [number, number, number] = [1, 1, 1];
-  drawn.forEach((c, row) => {
+  const ranges = drawn.map((c) => {
     const one = sceneChannelVolume(volume, channels, c);
     const key = `${c}|${one.valueRange}|${cellSize}|${volume.dims}`;
-    let ranges = byKey!.get(key);
-    if (!ranges) {
-      ranges = computeCellValueRanges(normalizedData(one), one.dims, gridCells(one.dims, cellSize));
-      byKey!.set(key, ranges);
-    }
+    let r = byKey!.get(key);
+    if (!r) byKey!.set(key, (r = computeCellValueRanges(normalizedData(one), one.dims, gridCells(one.dims, cellSize))));
+    return r;
+  });
+  return summedChannelGrid(ranges, channels, densityScale);
+}
+
+/**
+ * The sum over the drawn channels of the majorant grids over their cell ranges (one per drawn
+ * channel, in order; each padded as for one channel): channelMajorantGrid's sum, and a bricked
+ * channel scene's over the brick cache's per-channel ranges (grid-textures.ts).
+ */
+export function summedChannelGrid(
+  ranges: readonly CellValueRanges[],
+  channels: readonly ChannelSettings[],
+  densityScale: number,
+): MajorantGrid {
+  const tf = rasterizeChannelTransferFunctions(channels, TF_RESOLUTION);
+  let sum: Float32Array | null = null;
+  ranges.forEach((r, row) => {
     const grid = buildMajorantGrid(
-      ranges,
+      r,
       tf.subarray(4 * TF_RESOLUTION * row, 4 * TF_RESOLUTION * (row + 1)),
       densityScale,
     );
-    cells = grid.cells;
     if (!sum) sum = grid.data;
     else for (let i = 0; i < sum.length; i++) sum[i] = Math.fround(sum[i] + grid.data[i]);
   });
@@ -301,5 +312,5 @@ export function channelMajorantGrid(
     if (data[i] > gMax) gMax = data[i];
     if (data[i + 1] < gMin) gMin = data[i + 1];
   }
-  return { cells, data, globalMajorant: gMax, globalMinorant: Number.isFinite(gMin) ? gMin : 0 };
+  return { cells: ranges[0].cells, data, globalMajorant: gMax, globalMinorant: Number.isFinite(gMin) ? gMin : 0 };
 }

@@ -6,7 +6,14 @@
  * its shape. Integer types round to the nearest integer; non-finite float voxels are left
  * out of their block's mean.
  */
-import { createVolume, type Volume, type VoxelArray } from './volume.js';
+import {
+  channelCount,
+  channelVolume,
+  createVolume,
+  interleaveChannels,
+  type Volume,
+  type VoxelArray,
+} from './volume.js';
 
 export function downsampleVolume(volume: Volume, factors: readonly [number, number, number]): Volume {
   const [fx, fy, fz] = factors;
@@ -74,4 +81,11 @@ export function fitFactors(
     while (out(axis) === side) f[axis]++;
   }
   return f;
+}
+
+/** A multichannel volume downsampled channel by channel (the same box averages), interleaved again. */
+export function downsampleChannels(v: Volume, factors: readonly [number, number, number]): Volume {
+  const parts = Array.from({ length: channelCount(v) }, (_, c) => downsampleVolume(channelVolume(v, c), factors));
+  const out = interleaveChannels(parts);
+  return { ...out, ...(v.valueRange ? { valueRange: v.valueRange } : {}), ...(v.name ? { name: v.name } : {}) };
 }

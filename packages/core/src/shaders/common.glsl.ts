@@ -203,44 +203,54 @@ VptBrick brickAt(vec3 p) {
   return r;
 }
 `;
+// The bricked filters read vec4 texels: a channel scene's drawn channels are the atlas's
+// components (BRICKED_CHANNELS), a scalar volume its .x (BRICKED_SCALAR); the same loads,
+// weights and arithmetic per component.
 export const BRICKED_EXACT_FILTER = /* glsl */ `
-float brickTexel(VptBrick b, ivec3 i) {
+vec4 brickTexels(VptBrick b, ivec3 i) {
   ivec3 c = clamp(clamp(i, ivec3(0), b.dims - 1), b.first, b.first + b.size + 1);
-  return texelFetch(volume, c + b.shift, 0).r;
+  return texelFetch(volume, c + b.shift, 0);
 }
-float sampleVolumeTexel(vec3 p) {
+vec4 sampleBrickTexels(vec3 p) {
   VptBrick b = brickAt(p);
-  if (b.isConstant) return b.constant;
+  if (b.isConstant) return vec4(b.constant);
   vec3 g = b.x - 0.5;
   vec3 g0 = floor(g);
   vec3 f = g - g0;
   ivec3 i0 = ivec3(g0);
   ivec3 i1 = ivec3(g0) + 1;
-  float c000 = brickTexel(b, ivec3(i0.x, i0.y, i0.z));
-  float c100 = brickTexel(b, ivec3(i1.x, i0.y, i0.z));
-  float c010 = brickTexel(b, ivec3(i0.x, i1.y, i0.z));
-  float c110 = brickTexel(b, ivec3(i1.x, i1.y, i0.z));
-  float c001 = brickTexel(b, ivec3(i0.x, i0.y, i1.z));
-  float c101 = brickTexel(b, ivec3(i1.x, i0.y, i1.z));
-  float c011 = brickTexel(b, ivec3(i0.x, i1.y, i1.z));
-  float c111 = brickTexel(b, ivec3(i1.x, i1.y, i1.z));
-  float c00 = lerp1(c000, c100, f.x);
-  float c10 = lerp1(c010, c110, f.x);
-  float c01 = lerp1(c001, c101, f.x);
-  float c11 = lerp1(c011, c111, f.x);
-  return lerp1(lerp1(c00, c10, f.y), lerp1(c01, c11, f.y), f.z);
+  vec4 c000 = brickTexels(b, ivec3(i0.x, i0.y, i0.z));
+  vec4 c100 = brickTexels(b, ivec3(i1.x, i0.y, i0.z));
+  vec4 c010 = brickTexels(b, ivec3(i0.x, i1.y, i0.z));
+  vec4 c110 = brickTexels(b, ivec3(i1.x, i1.y, i0.z));
+  vec4 c001 = brickTexels(b, ivec3(i0.x, i0.y, i1.z));
+  vec4 c101 = brickTexels(b, ivec3(i1.x, i0.y, i1.z));
+  vec4 c011 = brickTexels(b, ivec3(i0.x, i1.y, i1.z));
+  vec4 c111 = brickTexels(b, ivec3(i1.x, i1.y, i1.z));
+  vec4 c00 = lerp4(c000, c100, f.x);
+  vec4 c10 = lerp4(c010, c110, f.x);
+  vec4 c01 = lerp4(c001, c101, f.x);
+  vec4 c11 = lerp4(c011, c111, f.x);
+  return lerp4(lerp4(c00, c10, f.y), lerp4(c01, c11, f.y), f.z);
 }
 `;
 // One filtered fetch inside the slot: the coordinate is kept between the slot's first and last
 // texel centres, so the filter never blends a neighbouring slot.
 export const BRICKED_HARDWARE_FILTER = /* glsl */ `
-float sampleVolumeTexel(vec3 p) {
+vec4 sampleBrickTexels(vec3 p) {
   VptBrick b = brickAt(p);
-  if (b.isConstant) return b.constant;
+  if (b.isConstant) return vec4(b.constant);
   vec3 lo = vec3(b.first) + 0.5;
   vec3 x = clamp(b.x, lo, lo + float(b.size + 1));
-  return texture(volume, (x + vec3(b.shift)) / vec3(textureSize(volume, 0))).r;
+  return texture(volume, (x + vec3(b.shift)) / vec3(textureSize(volume, 0)));
 }
+`;
+export const BRICKED_SCALAR = /* glsl */ `
+float sampleVolumeTexel(vec3 p) { return sampleBrickTexels(p).x; }
+`;
+// A constant brick holds one value in every component (the page entry has room for one).
+export const BRICKED_CHANNELS = /* glsl */ `
+vec4 sampleChannelTexels(vec3 p) { return sampleBrickTexels(p); }
 `;
 /**
  * A channel scene (scene/channels.ts; only in variants compiled with CHANNELS = the number of
@@ -481,7 +491,15 @@ export const GENERATE_CHUNKS = [
   SLICE_ATLAS,
   LERP,
   '#if CHANNELS',
+  '#if BRICKED',
+  BRICK_LOOKUP,
   '#if HARDWARE_FILTER',
+  BRICKED_HARDWARE_FILTER,
+  '#else',
+  BRICKED_EXACT_FILTER,
+  '#endif',
+  BRICKED_CHANNELS,
+  '#elif HARDWARE_FILTER',
   CHANNEL_HARDWARE_FILTER,
   '#else',
   CHANNEL_EXACT_FILTER,
@@ -494,6 +512,7 @@ export const GENERATE_CHUNKS = [
   '#else',
   BRICKED_EXACT_FILTER,
   '#endif',
+  BRICKED_SCALAR,
   '#elif HARDWARE_FILTER',
   HARDWARE_FILTER,
   '#else',

@@ -167,41 +167,47 @@ fn brickAt(p: vec3f) -> VptBrick {
 }
 `;
 export const BRICKED_EXACT_FILTER = /* wgsl */ `
-fn brickTexel(b: VptBrick, i: vec3i) -> f32 {
+fn brickTexels(b: VptBrick, i: vec3i) -> vec4f {
   let c = clamp(clamp(i, vec3i(0), b.dims - 1), b.first, b.first + b.size + 1);
-  return textureLoad(volume, c + b.shift, 0).r;
+  return textureLoad(volume, c + b.shift, 0);
 }
-fn sampleVolumeTexel(p: vec3f) -> f32 {
+fn sampleBrickTexels(p: vec3f) -> vec4f {
   let b = brickAt(p);
-  if (b.isConstant) { return b.constant; }
+  if (b.isConstant) { return vec4f(b.constant); }
   let g = b.x - 0.5;
   let g0 = floor(g);
   let f = g - g0;
   let i0 = vec3i(g0);
   let i1 = vec3i(g0) + 1;
-  let c000 = brickTexel(b, vec3i(i0.x, i0.y, i0.z));
-  let c100 = brickTexel(b, vec3i(i1.x, i0.y, i0.z));
-  let c010 = brickTexel(b, vec3i(i0.x, i1.y, i0.z));
-  let c110 = brickTexel(b, vec3i(i1.x, i1.y, i0.z));
-  let c001 = brickTexel(b, vec3i(i0.x, i0.y, i1.z));
-  let c101 = brickTexel(b, vec3i(i1.x, i0.y, i1.z));
-  let c011 = brickTexel(b, vec3i(i0.x, i1.y, i1.z));
-  let c111 = brickTexel(b, vec3i(i1.x, i1.y, i1.z));
-  let c00 = lerp1(c000, c100, f.x);
-  let c10 = lerp1(c010, c110, f.x);
-  let c01 = lerp1(c001, c101, f.x);
-  let c11 = lerp1(c011, c111, f.x);
-  return lerp1(lerp1(c00, c10, f.y), lerp1(c01, c11, f.y), f.z);
+  let c000 = brickTexels(b, vec3i(i0.x, i0.y, i0.z));
+  let c100 = brickTexels(b, vec3i(i1.x, i0.y, i0.z));
+  let c010 = brickTexels(b, vec3i(i0.x, i1.y, i0.z));
+  let c110 = brickTexels(b, vec3i(i1.x, i1.y, i0.z));
+  let c001 = brickTexels(b, vec3i(i0.x, i0.y, i1.z));
+  let c101 = brickTexels(b, vec3i(i1.x, i0.y, i1.z));
+  let c011 = brickTexels(b, vec3i(i0.x, i1.y, i1.z));
+  let c111 = brickTexels(b, vec3i(i1.x, i1.y, i1.z));
+  let c00 = lerp4(c000, c100, f.x);
+  let c10 = lerp4(c010, c110, f.x);
+  let c01 = lerp4(c001, c101, f.x);
+  let c11 = lerp4(c011, c111, f.x);
+  return lerp4(lerp4(c00, c10, f.y), lerp4(c01, c11, f.y), f.z);
 }
 `;
 export const BRICKED_HARDWARE_FILTER = /* wgsl */ `
-fn sampleVolumeTexel(p: vec3f) -> f32 {
+fn sampleBrickTexels(p: vec3f) -> vec4f {
   let b = brickAt(p);
-  if (b.isConstant) { return b.constant; }
+  if (b.isConstant) { return vec4f(b.constant); }
   let lo = vec3f(b.first) + 0.5;
   let x = clamp(b.x, lo, lo + f32(b.size + 1));
-  return textureSampleLevel(volume, vptLinearSampler, (x + vec3f(b.shift)) / vec3f(textureDimensions(volume)), 0.0).r;
+  return textureSampleLevel(volume, vptLinearSampler, (x + vec3f(b.shift)) / vec3f(textureDimensions(volume)), 0.0);
 }
+`;
+export const BRICKED_SCALAR = /* wgsl */ `
+fn sampleVolumeTexel(p: vec3f) -> f32 { return sampleBrickTexels(p).x; }
+`;
+export const BRICKED_CHANNELS = /* wgsl */ `
+fn sampleChannelTexels(p: vec3f) -> vec4f { return sampleBrickTexels(p); }
 `;
 /** A channel scene: twins of the CHANNEL_* chunks of common.glsl.ts (see there). */
 export const CHANNEL_EXACT_FILTER = /* wgsl */ `
@@ -405,7 +411,15 @@ export const GENERATE_CHUNKS = [
   SLICE_ATLAS,
   LERP,
   '#if CHANNELS',
+  '#if BRICKED',
+  BRICK_LOOKUP,
   '#if HARDWARE_FILTER',
+  BRICKED_HARDWARE_FILTER,
+  '#else',
+  BRICKED_EXACT_FILTER,
+  '#endif',
+  BRICKED_CHANNELS,
+  '#elif HARDWARE_FILTER',
   CHANNEL_HARDWARE_FILTER,
   '#else',
   CHANNEL_EXACT_FILTER,
@@ -418,6 +432,7 @@ export const GENERATE_CHUNKS = [
   '#else',
   BRICKED_EXACT_FILTER,
   '#endif',
+  BRICKED_SCALAR,
   '#elif HARDWARE_FILTER',
   HARDWARE_FILTER,
   '#else',

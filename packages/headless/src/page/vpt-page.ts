@@ -193,7 +193,10 @@ const BYTES_PER_VOXEL = { uint8: 1, uint16: 2, int16: 2, float32: 4 } as const;
  * An OME-Zarr volume without a `level` whose level 0 does not fit the context's budget
  * (volumeBudgetBytes) or 3D texture limit as it is: the source, opened in this thread for
  * the brick cache, and the finest level that fits, which stands in for it (the coarsest
- * when none does). Null when level 0 fits: it loads whole, as before.
+ * when none does). Null when level 0 fits: it loads whole, as before. A multichannel volume
+ * (`channels` along c) opens one source per channel and streams them as one interleaved
+ * source (MultiscaleSource.channels); the budget counts the drawn channels' bytes (the
+ * atlas is rg / rgba of the source type, planChannelUpload).
  */
 async function zarrToStream(
   d: SceneDescription,
@@ -202,27 +205,34 @@ async function zarrToStream(
   request: Partial<RequestPolicy>,
 ): Promise<{ source: MultiscaleSource; level: number } | null> {
   const v = d.volume;
-  // A multichannel store loads whole (bricked volumes hold one channel).
-  if (!v || !('zarr' in v) || v.level !== undefined || v.channels) return null;
+  if (!v || !('zarr' in v) || v.level !== undefined) return null;
   const url = new URL(v.zarr, baseUrl).href;
   const loaders = await load<LoadersModule>('@vpt/loaders');
-  let source: MultiscaleSource;
-  try {
-    source = await loaders.openOmeZarr(url, {
-      ...(v.channel !== undefined ? { channel: v.channel } : {}),
+  const open = (channel: number | undefined) =>
+    loaders.openOmeZarr(url, {
+      ...(channel !== undefined ? { channel } : {}),
       ...(v.time !== undefined ? { time: v.time } : {}),
       ...(v.missingChunks ? { missingChunks: v.missingChunks } : {}),
       request,
     });
+  let parts: MultiscaleSource[];
+  try {
+    parts = await Promise.all((v.channels ?? [v.channel]).map(open));
   } catch (e) {
     throw new core.VptError('load-failed', `Could not load OME-Zarr ${url}: ${(e as Error).message}`, { cause: e });
   }
-  const perVoxel = (d.sampling ?? 'fast') === 'exact' ? 4 : BYTES_PER_VOXEL[source.type];
+  const source = parts[0];
+  // Texel components of the texture: the drawn channels (2 → rg, 3 or 4 → rgba), 1 for a scalar volume.
+  const drawn = v.channels ? (d.channels ?? []).filter((c) => c.enabled !== false).length : 1;
+  const components = drawn <= 1 ? 1 : drawn === 2 ? 2 : 4;
+  const perVoxel = components * ((d.sampling ?? 'fast') === 'exact' ? 4 : BYTES_PER_VOXEL[source.type]);
   const budget = ctx.volumeBudgetBytes;
   const max3D = ctx.backend.limits.maxTextureDimension3D;
   const fits = (k: number) => core.fitFactors(source.levels[k].dims, perVoxel, budget, max3D)?.every((f) => f === 1);
   if (fits(0)) return null;
   const level = source.levels.findIndex((_, k) => fits(k));
+  const pick = { level: level < 0 ? source.levels.length - 1 : level };
+  if (v.channels) return { source: interleavedSource(parts), ...pick };
   // The description's valueRange wins over the omero window, as for a loaded level.
   const range = v.valueRange ?? source.valueRange;
   const streamed: MultiscaleSource = {
@@ -232,7 +242,44 @@ async function zarrToStream(
     readRegion: (l, min, max, signal) => source.readRegion(l, min, max, signal),
     readLevel: (l, signal) => source.readLevel(l, signal),
   };
-  return { source: streamed, level: level < 0 ? source.levels.length - 1 : level };
+  return { source: streamed, ...pick };
+}
+
+/**
+ * One multiscale source of several channel sources of one store (the same levels and type):
+ * each region read from every channel, interleaved (the channel fastest, Volume.channels).
+ * The channels' value ranges are the scene's (channel settings, the omero windows).
+ */
+function interleavedSource(parts: MultiscaleSource[]): MultiscaleSource {
+  const first = parts[0];
+  parts.forEach((p, k) => {
+    const same = p.type === first.type && p.levels.length === first.levels.length;
+    if (!same || p.levels.some((l, i) => l.dims.some((n, a) => n !== first.levels[i].dims[a])))
+      throw new core.VptError(
+        'invalid-scene',
+        `volume.channels: channel ${k} of the store has other levels or type than channel 0`,
+      );
+  });
+  const C = parts.length;
+  return {
+    type: first.type,
+    levels: first.levels,
+    channels: C,
+    async readRegion(l, min, max, signal) {
+      const regions = await Promise.all(parts.map((p) => p.readRegion(l, min, max, signal)));
+      const n = regions[0].length;
+      const out = new (regions[0].constructor as new (n: number) => (typeof regions)[0])(n * C);
+      for (let k = 0; k < C; k++) {
+        const r = regions[k];
+        for (let i = 0; i < n; i++) out[k + C * i] = r[i];
+      }
+      return out;
+    },
+    async readLevel(l, signal) {
+      const levels = await Promise.all(parts.map((p) => p.readLevel(l, signal)));
+      return core.interleaveChannels(levels.map((p) => ({ ...p, valueRange: undefined })));
+    },
+  };
 }
 
 function environmentOf(d: SceneDescription): Environment {
