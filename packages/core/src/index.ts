@@ -19,6 +19,7 @@ export * from './scene/transfer-function-presets.js';
 export * from './scene/scene.js';
 export * from './scene/clip.js';
 export * from './scene/channels.js';
+export * from './scene/labels.js';
 export * from './scene/colormaps.js';
 export * from './scene/slice-geometry.js';
 export * from './scene/slice-window.js';

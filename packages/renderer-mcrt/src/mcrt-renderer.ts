@@ -20,7 +20,7 @@ import {
   volumeValueMapping,
   buildMajorantGrid,
   volumeCellRanges,
-  channelMajorantGrid,
+  sceneMajorantGrid,
   scalarSceneOf,
   gridGeometry,
   majorantGridTextures,
@@ -68,6 +68,8 @@ export class McrtRenderer extends BaseRenderer<McrtParams> {
   readonly writesGuides = MCRT_DESCRIPTOR.writesGuides;
   /** Draws a scene's slicePlane (core's scene/slice-plane.ts) under VPT_SLICE_PLANE. */
   readonly drawsSlicePlane = true;
+  /** Draws a scene's labels (core's scene/labels.ts) under VPT_LABELS: their opacity joins the medium (transferAt). */
+  readonly drawsLabels = true;
   readonly paramFields = MCRT_PARAM_FIELDS;
   private resolved: ResolvedMcrtParams;
   private current: McrtFeatures | null = null;
@@ -173,9 +175,11 @@ export class McrtRenderer extends BaseRenderer<McrtParams> {
     const cellSize = this.cellSize(given);
     // One drawn channel: the scalar scene it draws (the same bound, bit for bit).
     const scene = scalarSceneOf(given) ?? given;
-    const key = `${objectId(scene.volume as Volume)}|${cellSize}|${scene.densityScale}|${JSON.stringify(scene.channels ?? scene.transferFunction)}`;
-    if (this.gridMemo?.key !== key && scene.channels) {
-      this.gridMemo = { key, grid: channelMajorantGrid(scene.volume, scene.channels, scene.densityScale, cellSize) };
+    const labels = scene.labels ? `|${objectId(scene.labels.volume)}|${JSON.stringify(scene.labels.table)}` : '';
+    const key = `${objectId(scene.volume as Volume)}|${cellSize}|${scene.densityScale}|${JSON.stringify(scene.channels ?? scene.transferFunction)}${labels}`;
+    if (this.gridMemo?.key !== key && (scene.channels || scene.labels)) {
+      // Channels and labels: the CPU grid of what the kernel draws (the sum of the channels', plus the labels').
+      this.gridMemo = { key, grid: sceneMajorantGrid(scene, cellSize) };
     } else if (this.gridMemo?.key !== key) {
       const ranges = volumeCellRanges(scene.volume, cellSize);
       const tf = rasterizeTransferFunction(scene.transferFunction, TF_RESOLUTION);

@@ -6,7 +6,13 @@ import { sliceAtlasLayout } from '../shaders/slice-atlas.js';
 import * as glslAtlas from '../shaders/slice-atlas.glsl.js';
 import * as wgslAtlas from '../shaders/slice-atlas.wgsl.js';
 import { UniformLayout, type UniformField } from '../uniforms/layout.js';
-import { buildMajorantGrid, channelMajorantGrid, gridCells } from './majorant-grid.js';
+import {
+  buildMajorantGrid,
+  channelMajorantGrid,
+  gridCells,
+  sceneMajorantGrid,
+  withLabelMajorants,
+} from './majorant-grid.js';
 import { rasterizeTransferFunction } from '../scene/transfer-function.js';
 import { atlasTexel } from '../shaders/slice-atlas.js';
 import * as glslBuild from './majorant-build.glsl.js';
@@ -57,6 +63,8 @@ export function majorantGridTextures(
   cellSize: number,
   output: MajorantGridOutput,
 ): AuxiliaryTexture[] {
+  // Labels add their extinction: the grid is built on the CPU (labelGridTexture).
+  if (scene.labels && output === 'majorants') return [labelGridTexture(scene, volume, cellSize)];
   // One drawn channel is an r-format texture and a one-row TF: the GPU build below reads it as a scalar volume.
   if (scene.channels && scene.channels.filter((c) => c.enabled !== false).length > 1)
     return [channelGridTexture(scene, cellSize, output)];
@@ -191,29 +199,65 @@ function channelGridTexture(scene: Scene, cellSize: number, output: MajorantGrid
   if (output !== 'majorants') throw new RangeError('a channel scene has a majorant grid, not one value range per cell');
   const channels = scene.channels!;
   const cells = gridCells(scene.volume.dims, cellSize);
-  const layout = sliceAtlasLayout(cells);
   return {
     name: 'majorantGrid',
     dimension: '2d',
     key: `channels|${objectId(scene.volume as Volume)}|${cellSize}|${scene.densityScale}|${JSON.stringify(channels)}`,
+    create: () =>
+      atlasTexture(
+        cells,
+        channelMajorantGrid(scene.volume, channels, scene.densityScale, cellSize).data,
+        'majorant grid (channels)',
+      ),
+  };
+}
+
+/**
+ * A label scene's grid (scene/labels.ts): the image's (the channels' sum, the scalar grid, or a
+ * bricked volume's from its cell ranges) plus each cell's largest visible label opacity
+ * (majorant-grid.ts withLabelMajorants), built on the CPU and uploaded: a table change rebuilds it.
+ */
+function labelGridTexture(scene: Scene, volume: VolumeBinding, cellSize: number): AuxiliaryTexture {
+  const labels = scene.labels!;
+  const cells = gridCells(scene.volume.dims, cellSize);
+  return {
+    name: 'majorantGrid',
+    dimension: '2d',
+    key: `labels|${objectId(scene.volume as Volume)}|${objectId(labels.volume)}|${cellSize}|${scene.densityScale}|${JSON.stringify(scene.channels ?? scene.transferFunction)}|${JSON.stringify(labels.table)}|${volume.cellRanges ? volume.key : ''}`,
     create: () => {
-      const texels = channelMajorantGrid(scene.volume, channels, scene.densityScale, cellSize).data;
-      const data = new Float32Array(4 * layout.width * layout.height);
-      for (let z = 0; z < cells[2]; z++)
-        for (let y = 0; y < cells[1]; y++) {
-          const [ax, ay] = atlasTexel(layout, cells, 0, y, z);
-          const from = 4 * cells[0] * (y + cells[1] * z);
-          data.set(texels.subarray(from, from + 4 * cells[0]), 4 * (ax + layout.width * ay));
-        }
-      return {
-        dimension: '2d',
-        width: layout.width,
-        height: layout.height,
-        format: 'rgba32float',
-        data,
-        label: 'majorant grid (channels)',
-      };
+      const grid = volume.cellRanges
+        ? withLabelMajorants(
+            buildMajorantGrid(
+              volume.cellRanges(cells),
+              rasterizeTransferFunction(scene.transferFunction, TF_RESOLUTION),
+              scene.densityScale,
+            ),
+            labels,
+            scene.densityScale,
+          )
+        : sceneMajorantGrid(scene, cellSize);
+      return atlasTexture(cells, grid.data, 'majorant grid (labels)');
     },
+  };
+}
+
+/** A grid's RGBA texels (x fastest) laid out in the slice atlas of its cell counts, as the GPU build writes it. */
+function atlasTexture(cells: [number, number, number], texels: Float32Array, label: string) {
+  const layout = sliceAtlasLayout(cells);
+  const data = new Float32Array(4 * layout.width * layout.height);
+  for (let z = 0; z < cells[2]; z++)
+    for (let y = 0; y < cells[1]; y++) {
+      const [ax, ay] = atlasTexel(layout, cells, 0, y, z);
+      const from = 4 * cells[0] * (y + cells[1] * z);
+      data.set(texels.subarray(from, from + 4 * cells[0]), 4 * (ax + layout.width * ay));
+    }
+  return {
+    dimension: '2d' as const,
+    width: layout.width,
+    height: layout.height,
+    format: 'rgba32float' as const,
+    data,
+    label,
   };
 }
 

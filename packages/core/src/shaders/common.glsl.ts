@@ -300,7 +300,11 @@ vec4 channelLookup(float value, int row) {
   int i1 = min(i0 + 1, u.tfSize - 1);
   return lerp4(texelFetch(transferFunction, ivec2(i0, row), 0), texelFetch(transferFunction, ivec2(i1, row), 0), x - x0);
 }
+#if LABELS
+vec4 imageTransferAt(vec3 p) {
+#else
 vec4 transferAt(vec3 p) {
+#endif
   vec4 v = sampleChannels(p);
   vec4 t0 = channelLookup(v.x, 0);
   float sigma = t0.a;
@@ -349,7 +353,11 @@ export const TRANSFER_1D = /* glsl */ `
 // The transfer function at a world point: (linear RGB albedo/emission, opacity).
 // Renderers call this, not sampleVolume + transferLookup, so a 2D (value x gradient)
 // transfer function can change what it reads without touching any renderer.
+#if LABELS
+vec4 imageTransferAt(vec3 p) {
+#else
 vec4 transferAt(vec3 p) {
+#endif
   return transferLookup(sampleVolume(p));
 }
 `;
@@ -411,8 +419,44 @@ vec4 transferLookup2D(float value, float gradient) {
   vec4 b = lerp4(texelFetch(transferFunction, ivec2(i0, j1), 0), texelFetch(transferFunction, ivec2(i1, j1), 0), x - x0);
   return lerp4(a, b, y - y0);
 }
+#if LABELS
+vec4 imageTransferAt(vec3 p) {
+#else
 vec4 transferAt(vec3 p) {
+#endif
   return transferLookup2D(sampleVolume(p), normalizedGradientAt(p));
+}
+`;
+
+/**
+ * A scene's label volume (scene/labels.ts; only in variants compiled with LABELS): `labelVolume`
+ * holds the ids (r8unorm / r16unorm / r32float, id = round(texel · u.labelScale)), read with
+ * texelFetch at the voxel holding the point, never filtered between ids (nearest-neighbour lookup
+ * of a segmentation); `labelTable` holds per id (linear rgb, opacity) at (id mod W, id / W), 0 for
+ * the background and hidden labels. The labels and the image are one medium: extinctions add,
+ * colour / albedo is share-weighted (Novák et al. 2018, CGF 37(2), Sec. 2, as the channels' mixture).
+ */
+export const LABELS = /* glsl */ `
+int labelIdAt(vec3 p) {
+  ivec3 dims = textureSize(labelVolume, 0);
+  vec3 tc = (p - u.boxMin) / (u.boxMax - u.boxMin);
+  ivec3 i = clamp(ivec3(floor(tc * vec3(dims))), ivec3(0), dims - 1);
+  return int(floor(texelFetch(labelVolume, i, 0).r * u.labelScale + 0.5));
+}
+vec4 labelEntry(int id) {
+  ivec2 size = textureSize(labelTable, 0);
+  if (id <= 0 || id >= size.x * size.y) return vec4(0.0);
+  return texelFetch(labelTable, ivec2(id % size.x, id / size.x), 0);
+}
+vec4 labelAt(vec3 p) {
+  return labelEntry(labelIdAt(p));
+}
+vec4 transferAt(vec3 p) {
+  vec4 t = imageTransferAt(p);
+  vec4 l = labelAt(p);
+  float sigma = t.a + l.a;
+  vec3 rgb = sigma > 0.0 ? (t.a / sigma) * t.rgb + (l.a / sigma) * l.rgb : t.rgb;
+  return vec4(rgb, sigma);
 }
 `;
 
@@ -450,7 +494,11 @@ float slicePlaneTexel(vec3 p) {
   return sampleVolumeTexel(p);
 #endif
 }
+#if LABELS
+vec3 slicePlaneImageColor(vec3 p) {
+#else
 vec3 slicePlaneColor(vec3 p) {
+#endif
   float n = slicePlaneTexel(p) * u.valueScale + u.valueOffset;
   float w = clamp(n * u.slicePlaneWindow.x + u.slicePlaneWindow.y, 0.0, 1.0);
 #if SLICE_PLANE_TABLE
@@ -464,6 +512,14 @@ vec3 slicePlaneColor(vec3 p) {
   return vec3(w);
 #endif
 }
+#if LABELS
+// The label colour over the slice with its opacity (clamped to 1): the segmentation overlay of a viewer.
+vec3 slicePlaneColor(vec3 p) {
+  vec3 c = slicePlaneImageColor(p);
+  vec4 l = labelAt(p);
+  return c + (l.rgb - c) * clamp(l.a, 0.0, 1.0);
+}
+#endif
 `;
 
 /**
@@ -509,6 +565,9 @@ export const GENERATE_CHUNKS = [
   TRANSFER_2D,
   '#else',
   TRANSFER_1D,
+  '#endif',
+  '#if LABELS',
+  LABELS,
   '#endif',
   '#if SLICE_PLANE',
   SLICE_PLANE,

@@ -17,6 +17,8 @@ export interface CommonChunkOptions {
   clip?: boolean;
   /** A channel scene's drawn channels (1–4; scene/channels.ts): sampleChannels() and the mixture's transferAt(); 0 or absent: scalar. */
   channels?: number;
+  /** The scene has a label volume its renderer draws (scene/labels.ts): labelIdAt() / labelAt() and the image + labels transferAt() exist. */
+  labels?: boolean;
   /** The scene has a slice plane its renderer draws (scene/slice-plane.ts): slicePlaneHit() / slicePlaneColor() exist. */
   slicePlane?: boolean;
   /** The slice plane reads the voxel holding the point (else the shared trilinear filter). */
@@ -39,6 +41,7 @@ export function commonChunks(opts: CommonChunkOptions = {}): KernelSource {
     BRICKED: !!opts.bricked,
     CLIP: !!opts.clip,
     CHANNELS: opts.channels ?? 0,
+    LABELS: !!opts.labels,
     SLICE_PLANE: !!opts.slicePlane,
     SLICE_PLANE_NEAREST: !!opts.slicePlaneNearest,
     SLICE_PLANE_TABLE: !!opts.slicePlaneTable,

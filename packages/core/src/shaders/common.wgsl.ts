@@ -248,7 +248,11 @@ fn channelLookup(value: f32, row: i32) -> vec4f {
   let i1 = min(i0 + 1, u.tfSize - 1);
   return lerp4(textureLoad(transferFunction, vec2i(i0, row), 0), textureLoad(transferFunction, vec2i(i1, row), 0), x - x0);
 }
+#if LABELS
+fn imageTransferAt(p: vec3f) -> vec4f {
+#else
 fn transferAt(p: vec3f) -> vec4f {
+#endif
   let v = sampleChannels(p);
   let t0 = channelLookup(v.x, 0);
   var sigma = t0.a;
@@ -291,7 +295,11 @@ fn transferLookup(value: f32) -> vec4f {
 
 /** transferAt for a 1D transfer function (see common.glsl.ts). */
 export const TRANSFER_1D = /* wgsl */ `
+#if LABELS
+fn imageTransferAt(p: vec3f) -> vec4f {
+#else
 fn transferAt(p: vec3f) -> vec4f {
+#endif
   return transferLookup(sampleVolume(p));
 }
 `;
@@ -344,8 +352,37 @@ fn transferLookup2D(value: f32, gradient: f32) -> vec4f {
   let b = lerp4(textureLoad(transferFunction, vec2i(i0, j1), 0), textureLoad(transferFunction, vec2i(i1, j1), 0), x - x0);
   return lerp4(a, b, y - y0);
 }
+#if LABELS
+fn imageTransferAt(p: vec3f) -> vec4f {
+#else
 fn transferAt(p: vec3f) -> vec4f {
+#endif
   return transferLookup2D(sampleVolume(p), normalizedGradientAt(p));
+}
+`;
+
+/** Twin of LABELS in common.glsl.ts (a scene's label volume, read nearest, and the image + labels mixture; see there). */
+export const LABELS = /* wgsl */ `
+fn labelIdAt(p: vec3f) -> i32 {
+  let dims = vec3i(textureDimensions(labelVolume, 0));
+  let tc = (p - u.boxMin) / (u.boxMax - u.boxMin);
+  let i = clamp(vec3i(floor(tc * vec3f(dims))), vec3i(0), dims - 1);
+  return i32(floor(textureLoad(labelVolume, i, 0).r * u.labelScale + 0.5));
+}
+fn labelEntry(id: i32) -> vec4f {
+  let size = vec2i(textureDimensions(labelTable, 0));
+  if (id <= 0 || id >= size.x * size.y) { return vec4f(0.0); }
+  return textureLoad(labelTable, vec2i(id % size.x, id / size.x), 0);
+}
+fn labelAt(p: vec3f) -> vec4f {
+  return labelEntry(labelIdAt(p));
+}
+fn transferAt(p: vec3f) -> vec4f {
+  let t = imageTransferAt(p);
+  let l = labelAt(p);
+  let sigma = t.a + l.a;
+  let rgb = select(t.rgb, (t.a / sigma) * t.rgb + (l.a / sigma) * l.rgb, sigma > 0.0);
+  return vec4f(rgb, sigma);
 }
 `;
 
@@ -375,7 +412,11 @@ fn slicePlaneTexel(p: vec3f) -> f32 {
   return sampleVolumeTexel(p);
 #endif
 }
+#if LABELS
+fn slicePlaneImageColor(p: vec3f) -> vec3f {
+#else
 fn slicePlaneColor(p: vec3f) -> vec3f {
+#endif
   let n = slicePlaneTexel(p) * u.valueScale + u.valueOffset;
   let w = clamp(n * u.slicePlaneWindow.x + u.slicePlaneWindow.y, 0.0, 1.0);
 #if SLICE_PLANE_TABLE
@@ -389,6 +430,13 @@ fn slicePlaneColor(p: vec3f) -> vec3f {
   return vec3f(w);
 #endif
 }
+#if LABELS
+fn slicePlaneColor(p: vec3f) -> vec3f {
+  let c = slicePlaneImageColor(p);
+  let l = labelAt(p);
+  return c + (l.rgb - c) * clamp(l.a, 0.0, 1.0);
+}
+#endif
 `;
 
 /**
@@ -433,6 +481,9 @@ export const GENERATE_CHUNKS = [
   TRANSFER_2D,
   '#else',
   TRANSFER_1D,
+  '#endif',
+  '#if LABELS',
+  LABELS,
   '#endif',
   '#if SLICE_PLANE',
   SLICE_PLANE,
