@@ -81,6 +81,14 @@ export interface LoadOptions {
    * that cannot reach `raw` (an element attribute) names what it can: a sidecar, a file name.
    */
   rawHint?: string;
+  /**
+   * The source is a label volume (a segmentation: integer ids, 0 = background; core's
+   * scene/labels.ts): its ids are kept, never averaged or normalized. The result is uint8 or
+   * uint16 (the narrowest that holds the ids; any other stored type converts when every value
+   * is an integer in [0, 65535], else LoaderError 'invalid-data'); a downsample takes each
+   * block's first voxel instead of the block's mean.
+   */
+  labels?: boolean;
 }
 
 /** The errors' advice for headerless raw data without dims (LoadOptions.rawHint). */

@@ -332,3 +332,31 @@ export function labelTextures(
     },
   ];
 }
+
+/**
+ * A loaded volume as a label volume: uint8 / uint16 as they are; any other type (a NIfTI
+ * segmentation stored as int16, int32 or float, a scaled one) converted to the smallest of
+ * uint8 / uint16 that holds its values, which must all be integers in [0, 65535] (no
+ * normalization, no rounding). Throws VptError('invalid-scene') naming `field` otherwise.
+ * The value range is dropped: ids are never mapped.
+ */
+export function toLabelVolume(v: Volume, field = 'labels.volume'): Volume {
+  const { valueRange: _drop, ...rest } = v;
+  void _drop;
+  if ((v.channels ?? 1) !== 1)
+    throw new VptError('invalid-scene', `${field}: a label volume has one id per voxel, got ${v.channels} channels`);
+  if (v.type === 'uint8' || v.type === 'uint16') return rest;
+  let max = 0;
+  for (let i = 0; i < v.data.length; i++) {
+    const x = v.data[i];
+    if (!(Number.isInteger(x) && x >= 0 && x <= 65535))
+      throw new VptError(
+        'invalid-scene',
+        `${field}: voxel ${i} holds ${x}, not a label id (an integer in [0, 65535]); a ${v.type} volume is a label volume only when every value is one`,
+      );
+    if (x > max) max = x;
+  }
+  return max <= 255
+    ? { ...rest, type: 'uint8', data: Uint8Array.from(v.data) }
+    : { ...rest, type: 'uint16', data: Uint16Array.from(v.data) };
+}

@@ -24,7 +24,13 @@ type CoreModule = VptPageApi['core'];
 interface LoadersModule {
   loadVolume(
     source: string | File[],
-    options: { format?: string; zarr?: Record<string, unknown>; request?: Partial<RequestPolicy>; time?: number },
+    options: {
+      format?: string;
+      zarr?: Record<string, unknown>;
+      request?: Partial<RequestPolicy>;
+      time?: number;
+      labels?: boolean;
+    },
   ): Promise<Volume & { meta?: Record<string, unknown> }>;
   openOmeZarr(url: string, options: Record<string, unknown>): Promise<MultiscaleSource>;
 }
@@ -51,6 +57,7 @@ async function loadVolume(
   desc: VolumeDescription,
   baseUrl: string = document.baseURI,
   request: Partial<RequestPolicy> = {},
+  labels = false,
 ): Promise<Volume> {
   if ('procedural' in desc) return core.createProceduralVolume(desc.procedural, desc.size ?? 32);
   if ('zarr' in desc && desc.channels)
@@ -64,9 +71,9 @@ async function loadVolume(
       request,
     );
   if (isChannelFiles(desc)) return loadChannels(desc.channels, baseUrl, request);
-  if ('zarr' in desc) return loadZarr(desc, baseUrl, request);
-  if ('file' in desc) return loadFile(desc, baseUrl, request);
-  if ('timeSeries' in desc) return loadFile({ ...desc, file: desc.timeSeries[0] }, baseUrl, request);
+  if ('zarr' in desc) return loadZarr(desc, baseUrl, request, labels);
+  if ('file' in desc) return loadFile(desc, baseUrl, request, labels);
+  if ('timeSeries' in desc) return loadFile({ ...desc, file: desc.timeSeries[0] }, baseUrl, request, labels);
   if ('sidecar' in desc) {
     // core's raw reader parses the sidecar (as @vpt/loaders and the viewer's fallback do).
     const sidecarUrl = new URL(desc.sidecar, baseUrl).href;
@@ -74,7 +81,7 @@ async function loadVolume(
     const sidecar = core.parseRawSidecar(text, sidecarUrl);
     // Without the sidecar's `file` (its raw file's name, now in `raw`): `file` is the loaders' volume kind.
     const { file: _rawName, ...header } = sidecar;
-    return loadVolume({ raw: core.rawFileBeside(sidecarUrl, sidecar), ...header }, sidecarUrl, request);
+    return loadVolume({ raw: core.rawFileBeside(sidecarUrl, sidecar), ...header }, sidecarUrl, request, labels);
   }
   const url = new URL(desc.raw, baseUrl).href;
   // A raw file holds exactly dims × type bytes (rawVoxels checks it): nothing longer is read.
@@ -114,6 +121,7 @@ async function loadZarr(
   desc: ZarrVolumeDescription,
   baseUrl: string,
   request: Partial<RequestPolicy>,
+  labels = false,
 ): Promise<Volume> {
   const url = new URL(desc.zarr, baseUrl).href;
   const loaders = await load<LoadersModule>('@vpt/loaders');
@@ -128,6 +136,7 @@ async function loadZarr(
         ...(desc.missingChunks ? { missingChunks: desc.missingChunks } : {}),
       },
       request,
+      ...(labels ? { labels } : {}),
     });
   } catch (e) {
     // A store beyond a bound (too many chunk requests, a bomb) stays limit-exceeded.
@@ -151,6 +160,7 @@ async function loadFile(
   desc: FileVolumeDescription,
   baseUrl: string,
   request: Partial<RequestPolicy>,
+  labels = false,
 ): Promise<Volume> {
   const loaders = await load<LoadersModule>('@vpt/loaders');
   const format = desc.format && desc.format !== 'auto' ? { format: desc.format } : {};
@@ -169,7 +179,12 @@ async function loadFile(
           ),
         )
       : where;
-    loaded = await loaders.loadVolume(source, { ...format, request, ...(desc.time ? { time: desc.time } : {}) });
+    loaded = await loaders.loadVolume(source, {
+      ...format,
+      request,
+      ...(desc.time ? { time: desc.time } : {}),
+      ...(labels ? { labels } : {}),
+    });
   } catch (e) {
     throw new core.VptError('load-failed', `Could not load ${where}: ${(e as Error).message}`, { cause: e });
   }
@@ -245,10 +260,26 @@ async function buildScene(d: SceneDescription, baseUrl?: string, request?: Parti
 /** The Scene of a description that was checked where it entered the page (buildScene, renderDescription). */
 async function sceneOf(d: SceneDescription, baseUrl?: string, request?: Partial<RequestPolicy>): Promise<Scene> {
   const tf = d.transferFunction;
-  const volume = await loadVolume(d.volume ?? SCENE_DEFAULTS.volume, baseUrl, request);
+  // Label ids are kept as loaded (integers, no value range): core's toLabelVolume refuses anything else.
+  const labelVolume = d.labels
+    ? core.toLabelVolume(await loadVolume(d.labels.volume, baseUrl, request, true), 'labels.volume')
+    : null;
+  // Labels alone: an empty image on their grid.
+  const volume =
+    labelVolume && !d.volume
+      ? core.createVolume(labelVolume.dims, 'uint8', new Uint8Array(labelVolume.data.length), labelVolume.spacing)
+      : await loadVolume(d.volume ?? SCENE_DEFAULTS.volume, baseUrl, request);
   const ranges = channelRanges.get(volume);
   return {
     volume,
+    ...(labelVolume
+      ? {
+          labels: {
+            volume: labelVolume,
+            table: d.labels!.table ? d.labels!.table.map((e) => ({ ...e })) : core.defaultLabelTable(labelVolume),
+          },
+        }
+      : {}),
     ...(d.channels
       ? {
           channels: d.channels.map((c, k) => {
