@@ -2,7 +2,7 @@ import fs from 'node:fs';
 import path from 'node:path';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { validateSceneDescription, type SceneDescription } from '../packages/headless/src/index.js';
-import { tempDir } from '../packages/loaders/test/zarr-fixtures.js';
+import { tempDir, writeZarrFolder } from '../packages/loaders/test/zarr-fixtures.js';
 import { bytesIn, niftiFile } from '../packages/loaders/test/helpers.js';
 import { usePage } from './helpers/session.js';
 
@@ -100,6 +100,42 @@ describe('vpt-render: label scene files', () => {
     expect(colours.size).toBe(3);
     const palette = await page().render(scene('mip', { volume: undefined, labels: { volume: raw } }), opts);
     expect(bitsDiffer(palette.hdr, alone.hdr)).toBeGreaterThan(10);
+  });
+
+  it('an OME-Zarr label group (labels/<name>) brings its image-label colours as the default table', async () => {
+    const dir = path.join(TMP, 'ct.ome.zarr', 'labels', 'organs');
+    await writeZarrFolder(dir, { dims: [N, N, N], type: 'uint8', spacing: [1, 1, 1], images: [[ids]] });
+    const attrsFile = path.join(dir, '.zattrs');
+    const attrs = JSON.parse(fs.readFileSync(attrsFile, 'utf8'));
+    // sRGB bytes whose linear values are exact in float32: 0 and 255 (1).
+    attrs['image-label'] = {
+      colors: [
+        { 'label-value': 1, rgba: [255, 0, 0, 255] },
+        { 'label-value': 2, rgba: [0, 0, 255, 255] },
+      ],
+      properties: [{ 'label-value': 1, name: 'liver' }],
+    };
+    fs.writeFileSync(attrsFile, JSON.stringify(attrs));
+    const fromZarr = await page().render(
+      scene('mip', { volume: undefined, labels: { volume: { zarr: 'ct.ome.zarr/labels/organs' } } }),
+      opts,
+    );
+    const given = await page().render(
+      scene('mip', {
+        volume: undefined,
+        labels: {
+          volume: raw,
+          table: [
+            { id: 1, name: 'liver', color: [1, 0, 0], opacity: 1, visible: true },
+            { id: 2, color: [0, 0, 1], opacity: 1, visible: true },
+          ],
+        },
+      }),
+      opts,
+    );
+    expect(bitsDiffer(fromZarr.hdr, given.hdr)).toBe(0);
+    const palette = await page().render(scene('mip', { volume: undefined, labels: { volume: raw } }), opts);
+    expect(bitsDiffer(fromZarr.hdr, palette.hdr)).toBeGreaterThan(10);
   });
 
   it('bad label descriptions fail before a browser starts, naming the field', () => {

@@ -15,6 +15,7 @@ import {
   validateScene,
   volumeBox,
   VptError,
+  withLabelColors,
   type LabelEntry,
   type Scene,
 } from '../src/index.js';
@@ -116,6 +117,18 @@ describe('label model', () => {
     expect(t.map((e) => [e.id, e.name, e.visible, e.opacity])).toEqual([
       [1, 'liver', true, 1],
       [7, undefined, true, 1],
+    ]);
+  });
+
+  it("a file's label colours (OME-Zarr image-label): sRGB bytes to linear, alpha to opacity, names", () => {
+    const t = withLabelColors(defaultLabelTable(lv), [
+      { id: 7, rgba: [255, 0, 0, 0], name: 'spleen' },
+      { id: 9, rgba: [0, 255, 0, 255] },
+    ]);
+    expect(t.map((e) => [e.id, e.name, e.color, e.opacity, e.visible])).toEqual([
+      [1, undefined, defaultLabelColor(1), 1, true],
+      [7, 'spleen', [1, 0, 0], 0, false],
+      [9, undefined, [0, 1, 0], 1, true],
     ]);
   });
 

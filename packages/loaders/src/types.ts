@@ -83,9 +83,10 @@ export interface LoadOptions {
   rawHint?: string;
   /**
    * The source is a label volume (a segmentation: integer ids, 0 = background; core's
-   * scene/labels.ts): its ids are kept, never averaged or normalized. The result is uint8 or
-   * uint16 (the narrowest that holds the ids; any other stored type converts when every value
-   * is an integer in [0, 65535], else LoaderError 'invalid-data'); a downsample takes each
+   * scene/labels.ts): its ids are kept, never averaged or normalized. uint8 and uint16 stay as
+   * they are; any other type converts to the narrowest of the two when every value is an integer
+   * in [0, 65535] (else LoaderError 'invalid-data'); OME-Zarr's `image-label` colours and names
+   * come in `meta.zarr.imageLabel`; a downsample takes each
    * block's first voxel instead of the block's mean.
    */
   labels?: boolean;

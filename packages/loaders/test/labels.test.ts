@@ -1,6 +1,9 @@
-import { describe, expect, it } from 'vitest';
-import { loadVolume, LoaderError } from '../src/index.js';
+import { afterAll, describe, expect, it } from 'vitest';
+import fs from 'node:fs';
+import path from 'node:path';
+import { loadVolume, LoaderError, parseOmeMultiscales } from '../src/index.js';
 import { bytesIn, fileOf, niftiFile, nrrdFile } from './helpers.js';
+import { tempDir, writeZarrFolder } from './zarr-fixtures.js';
 
 // Segmentations load as label volumes with `labels: true`: ids kept (uint8 / uint16, the narrowest
 // that holds them), never normalized or averaged; values that are not ids fail typed.
@@ -62,5 +65,54 @@ describe('label volumes from NIfTI and NRRD', () => {
     const picked = await loadVolume(fileOf(file, 'seg.nii'), { ...opts, labels: true });
     expect(picked.dims).toEqual([4, 4, 4]);
     expect(new Set(picked.data)).toEqual(new Set([1]));
+  });
+});
+
+describe('OME-Zarr label groups (labels/<name>)', () => {
+  const TMP = tempDir('vpt-zarr-labels-');
+  afterAll(() => fs.rmSync(TMP, { recursive: true, force: true }));
+
+  it('image-label colours and names come with the ids', async () => {
+    const dir = path.join(TMP, 'image.ome.zarr', 'labels', 'organs');
+    await writeZarrFolder(dir, {
+      dims: [N, N, N],
+      type: 'uint16',
+      spacing: [1, 1, 1],
+      images: [[Uint16Array.from(ids)]],
+    });
+    const attrsFile = path.join(dir, '.zattrs');
+    const attrs = JSON.parse(fs.readFileSync(attrsFile, 'utf8'));
+    attrs['image-label'] = {
+      version: '0.4',
+      colors: [
+        { 'label-value': 1, rgba: [255, 0, 0, 255] },
+        { 'label-value': 2, rgba: [0, 128, 255, 0] },
+        { 'label-value': 3, rgba: [1, 2] },
+      ],
+      properties: [{ 'label-value': 1, name: 'liver' }],
+    };
+    fs.writeFileSync(attrsFile, JSON.stringify(attrs));
+    const v = await loadVolume(dir, { worker: false, format: 'ome-zarr', labels: true });
+    // uint16 ids stay uint16 (only other types are narrowed).
+    expect(v.type).toBe('uint16');
+    expect(Array.from(v.data)).toEqual(ids);
+    const meta = v.meta?.zarr as { imageLabel?: unknown; warnings: string[] };
+    expect(meta.imageLabel).toEqual([
+      { id: 1, rgba: [255, 0, 0, 255], name: 'liver' },
+      { id: 2, rgba: [0, 128, 255, 0] },
+    ]);
+    expect(meta.warnings.join(' ')).toMatch(/1 "image-label" entries are not a label value/);
+    // v0.5 keeps it under "ome".
+    const ms = parseOmeMultiscales(
+      {
+        ome: {
+          version: '0.5',
+          multiscales: attrs.multiscales,
+          'image-label': { colors: [{ 'label-value': 4, rgba: [1, 2, 3, 4] }] },
+        },
+      },
+      'v05',
+    );
+    expect(ms.imageLabel).toEqual([{ id: 4, rgba: [1, 2, 3, 4] }]);
   });
 });

@@ -360,3 +360,28 @@ export function toLabelVolume(v: Volume, field = 'labels.volume'): Volume {
     ? { ...rest, type: 'uint8', data: Uint8Array.from(v.data) }
     : { ...rest, type: 'uint16', data: Uint16Array.from(v.data) };
 }
+
+/**
+ * A table with a file's label colours applied (OME-Zarr's `image-label`: per id RGBA bytes,
+ * display sRGB, and a name): the colour converted to linear RGB, the opacity alpha / 255 (an
+ * alpha of 0 hides the label), the name where given. Ids the file lists but the table lacks are
+ * added; the others keep their entries.
+ */
+export function withLabelColors(
+  table: readonly LabelEntry[],
+  colors: readonly { id: number; rgba?: readonly number[]; name?: string }[],
+): LabelEntry[] {
+  const out = new Map(table.map((e) => [e.id, { ...e }]));
+  for (const c of colors) {
+    if (c.id < 1 || c.id > 65535) continue;
+    const e: LabelEntry = out.get(c.id) ?? { id: c.id, color: defaultLabelColor(c.id), opacity: 1, visible: true };
+    if (c.rgba) {
+      e.color = [srgbToLinear(c.rgba[0]), srgbToLinear(c.rgba[1]), srgbToLinear(c.rgba[2])];
+      e.opacity = c.rgba[3] / 255;
+      e.visible = c.rgba[3] > 0;
+    }
+    if (c.name) e.name = c.name;
+    out.set(c.id, e);
+  }
+  return [...out.values()].sort((a, b) => a.id - b.id);
+}

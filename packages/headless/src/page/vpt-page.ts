@@ -93,6 +93,9 @@ async function loadVolume(
   return volume;
 }
 
+/** A label image's own colours and names (OME-Zarr `image-label`), by the loaded volume: the scene's default table. */
+const fileLabelColors = new WeakMap<Volume, { id: number; rgba?: number[]; name?: string }[]>();
+
 /** Each channel's own value range (a sidecar's, an omero window) of a volume loaded from channels: the scene's default per-channel range. */
 const channelRanges = new WeakMap<Volume, ([number, number] | undefined)[]>();
 
@@ -144,6 +147,10 @@ async function loadZarr(
     throw new core.VptError(code, `Could not load OME-Zarr ${url}: ${(e as Error).message}`, { cause: e });
   }
   const volume = core.createVolume(loaded.dims, loaded.type, loaded.data, loaded.spacing);
+  const imageLabel = (
+    loaded.meta?.zarr as { imageLabel?: { id: number; rgba?: number[]; name?: string }[] } | undefined
+  )?.imageLabel;
+  if (labels && imageLabel) fileLabelColors.set(volume, imageLabel);
   const window = loaded.meta?.value_range as [number, number] | undefined;
   const range = desc.valueRange ?? window;
   if (range) volume.valueRange = [range[0], range[1]];
@@ -261,9 +268,10 @@ async function buildScene(d: SceneDescription, baseUrl?: string, request?: Parti
 async function sceneOf(d: SceneDescription, baseUrl?: string, request?: Partial<RequestPolicy>): Promise<Scene> {
   const tf = d.transferFunction;
   // Label ids are kept as loaded (integers, no value range): core's toLabelVolume refuses anything else.
-  const labelVolume = d.labels
-    ? core.toLabelVolume(await loadVolume(d.labels.volume, baseUrl, request, true), 'labels.volume')
-    : null;
+  const loadedLabels = d.labels ? await loadVolume(d.labels.volume, baseUrl, request, true) : null;
+  const labelVolume = loadedLabels ? core.toLabelVolume(loadedLabels, 'labels.volume') : null;
+  // The default table: every id present, in the file's own colours where it has them (OME-Zarr image-label).
+  const fileColors = loadedLabels ? fileLabelColors.get(loadedLabels) : undefined;
   // Labels alone: an empty image on their grid.
   const volume =
     labelVolume && !d.volume
@@ -276,7 +284,11 @@ async function sceneOf(d: SceneDescription, baseUrl?: string, request?: Partial<
       ? {
           labels: {
             volume: labelVolume,
-            table: d.labels!.table ? d.labels!.table.map((e) => ({ ...e })) : core.defaultLabelTable(labelVolume),
+            table: d.labels!.table
+              ? d.labels!.table.map((e) => ({ ...e }))
+              : fileColors
+                ? core.withLabelColors(core.defaultLabelTable(labelVolume), fileColors)
+                : core.defaultLabelTable(labelVolume),
           },
         }
       : {}),
