@@ -478,3 +478,66 @@ describe('label errors are typed and name the field', () => {
       expect(r.message).toMatch(re);
     });
 });
+
+describe('ISO: the surface between the visible labels and the rest', () => {
+  // A ball of id 1 (colour c): its surface is the 0.5 level of the trilinear mask, so it is the
+  // isosurface at 0.5 of a float volume holding the same binary mask, bit for bit.
+  const c: [number, number, number] = [0.9, 0.5, 0.2];
+  const ball = ORGANS.map((id) => (id === 1 ? 1 : 0));
+  async function iso(backend: string, withLabels: boolean, surfaceOpacity: number, visible = true) {
+    return page.run(
+      async ({ core, t }, ball, n, camera, w, h, backend, withLabels, surfaceOpacity, visible, c) => {
+        const volume = core.createVolume([n, n, n], 'float32', new Float32Array(ball));
+        volume.valueRange = [0, 1];
+        const ctx = await t.context({
+          backend: backend as 'webgl2',
+          renderer: 'iso',
+          width: w,
+          height: h,
+          params: { surfaces: [{ value: 0.5, color: c, opacity: surfaceOpacity }], jitter: false },
+          sampling: 'exact',
+        });
+        const scene = {
+          ...t.scene({ volume, camera, environment: { type: 'constant', radiance: [0.3, 0.35, 0.4] } }),
+          lights: [
+            { type: 'directional' as const, direction: [-0.5, 1, 0.4] as Vec3, irradiance: [2, 1.8, 1.5] as Vec3 },
+          ],
+          ...(withLabels
+            ? {
+                labels: {
+                  volume: core.createVolume([n, n, n], 'uint8', Uint8Array.from(ball)),
+                  table: [{ id: 1, color: c, opacity: 1, visible }],
+                },
+              }
+            : {}),
+        };
+        ctx.setScene(scene);
+        const out = await t.finalHDR(ctx, 3);
+        ctx.dispose();
+        return out;
+      },
+      ball,
+      N,
+      CAMERA,
+      W,
+      H,
+      backend,
+      withLabels,
+      surfaceOpacity,
+      visible,
+      c,
+    );
+  }
+  it('= the 0.5 isosurface of the mask as a scalar volume; hidden = absent; WebGL 2 = WebGPU', async () => {
+    // The image's own surface at opacity 0 is never drawn: only the label surface shows.
+    const labelled = await iso('webgl2', true, 0);
+    const scalar = await iso('webgl2', false, 1);
+    const hidden = await iso('webgl2', true, 0, false);
+    const none = await iso('webgl2', false, 0);
+    expect(bitsDiffer(labelled, scalar)).toBe(0);
+    expect(bitsDiffer(hidden, none)).toBe(0);
+    // Counter-check: the label surface is there (it differs from nothing drawn).
+    expect(bitsDiffer(labelled, none)).toBeGreaterThan(20);
+    if (BACKENDS.includes('webgpu')) expect(bitsDiffer(await iso('webgpu', true, 0), labelled)).toBe(0);
+  });
+});

@@ -451,6 +451,35 @@ vec4 labelEntry(int id) {
 vec4 labelAt(vec3 p) {
   return labelEntry(labelIdAt(p));
 }
+// 1 where the voxel holds a visible label, else 0.
+float labelVisibleAt(ivec3 i) {
+  int id = int(floor(texelFetch(labelVolume, i, 0).r * u.labelScale + 0.5));
+  return labelEntry(id).a > 0.0 ? 1.0 : 0.0;
+}
+// The visible labels' binary mask, trilinear (cell-centred, clamped, as the exact volume filter)
+// from nearest reads of the 8 neighbours: a smooth inside / outside field, never a blend of ids.
+float labelMask(vec3 p) {
+  vec3 tc = (p - u.boxMin) / (u.boxMax - u.boxMin);
+  ivec3 dims = textureSize(labelVolume, 0);
+  vec3 g = tc * vec3(dims) - 0.5;
+  vec3 g0 = floor(g);
+  vec3 f = g - g0;
+  ivec3 i0 = clamp(ivec3(g0), ivec3(0), dims - 1);
+  ivec3 i1 = clamp(ivec3(g0) + 1, ivec3(0), dims - 1);
+  float c000 = labelVisibleAt(ivec3(i0.x, i0.y, i0.z));
+  float c100 = labelVisibleAt(ivec3(i1.x, i0.y, i0.z));
+  float c010 = labelVisibleAt(ivec3(i0.x, i1.y, i0.z));
+  float c110 = labelVisibleAt(ivec3(i1.x, i1.y, i0.z));
+  float c001 = labelVisibleAt(ivec3(i0.x, i0.y, i1.z));
+  float c101 = labelVisibleAt(ivec3(i1.x, i0.y, i1.z));
+  float c011 = labelVisibleAt(ivec3(i0.x, i1.y, i1.z));
+  float c111 = labelVisibleAt(ivec3(i1.x, i1.y, i1.z));
+  float c00 = lerp1(c000, c100, f.x);
+  float c10 = lerp1(c010, c110, f.x);
+  float c01 = lerp1(c001, c101, f.x);
+  float c11 = lerp1(c011, c111, f.x);
+  return lerp1(lerp1(c00, c10, f.y), lerp1(c01, c11, f.y), f.z);
+}
 vec4 transferAt(vec3 p) {
   vec4 t = imageTransferAt(p);
   vec4 l = labelAt(p);

@@ -377,6 +377,32 @@ fn labelEntry(id: i32) -> vec4f {
 fn labelAt(p: vec3f) -> vec4f {
   return labelEntry(labelIdAt(p));
 }
+fn labelVisibleAt(i: vec3i) -> f32 {
+  let id = i32(floor(textureLoad(labelVolume, i, 0).r * u.labelScale + 0.5));
+  return select(0.0, 1.0, labelEntry(id).a > 0.0);
+}
+fn labelMask(p: vec3f) -> f32 {
+  let tc = (p - u.boxMin) / (u.boxMax - u.boxMin);
+  let dims = vec3i(textureDimensions(labelVolume, 0));
+  let g = tc * vec3f(dims) - 0.5;
+  let g0 = floor(g);
+  let f = g - g0;
+  let i0 = clamp(vec3i(g0), vec3i(0), dims - 1);
+  let i1 = clamp(vec3i(g0) + 1, vec3i(0), dims - 1);
+  let c000 = labelVisibleAt(vec3i(i0.x, i0.y, i0.z));
+  let c100 = labelVisibleAt(vec3i(i1.x, i0.y, i0.z));
+  let c010 = labelVisibleAt(vec3i(i0.x, i1.y, i0.z));
+  let c110 = labelVisibleAt(vec3i(i1.x, i1.y, i0.z));
+  let c001 = labelVisibleAt(vec3i(i0.x, i0.y, i1.z));
+  let c101 = labelVisibleAt(vec3i(i1.x, i0.y, i1.z));
+  let c011 = labelVisibleAt(vec3i(i0.x, i1.y, i1.z));
+  let c111 = labelVisibleAt(vec3i(i1.x, i1.y, i1.z));
+  let c00 = lerp1(c000, c100, f.x);
+  let c10 = lerp1(c010, c110, f.x);
+  let c01 = lerp1(c001, c101, f.x);
+  let c11 = lerp1(c011, c111, f.x);
+  return lerp1(lerp1(c00, c10, f.y), lerp1(c01, c11, f.y), f.z);
+}
 fn transferAt(p: vec3f) -> vec4f {
   let t = imageTransferAt(p);
   let l = labelAt(p);
