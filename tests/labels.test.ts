@@ -541,3 +541,121 @@ describe('ISO: the surface between the visible labels and the rest', () => {
     if (BACKENDS.includes('webgpu')) expect(bitsDiffer(await iso('webgpu', true, 0), labelled)).toBe(0);
   });
 });
+
+describe('labels on the slice plane, the fast path, and a scene without labels afterwards', () => {
+  const table: LabelEntry[] = [
+    { id: 1, color: [1, 0, 0], opacity: 1 },
+    { id: 3, color: [0, 0, 1], opacity: 1 },
+  ];
+  it('MIP with a slice plane: the plane shows the label colours (a hidden label shows the grey slice)', async () => {
+    const run = (tbl: LabelEntry[], plane: boolean) =>
+      page.run(
+        async ({ core, t }, ids, n, camera, w, h, tbl, plane) => {
+          const volume = core.createVolume([n, n, n], 'uint8', new Uint8Array(n * n * n));
+          const ctx = await t.context({ backend: 'webgl2', renderer: 'mip', width: w, height: h, sampling: 'exact' });
+          ctx.setScene({
+            ...t.scene({ volume, camera }),
+            labels: { volume: core.createVolume([n, n, n], 'uint8', Uint8Array.from(ids)), table: tbl },
+            ...(plane ? { slicePlane: { axis: 'z' as const, index: 8, sampling: 'nearest' as const } } : {}),
+          });
+          const out = await t.finalHDR(ctx, 2);
+          ctx.dispose();
+          return out;
+        },
+        checkerboard(),
+        N,
+        CAMERA,
+        W,
+        H,
+        tbl,
+        plane,
+      );
+    const shown = await run(table, true);
+    const hidden = await run([table[0], { ...table[1], visible: false }], true);
+    const noPlane = await run(table, false);
+    const colours = (img: Image) => {
+      const s = new Set<string>();
+      for (let i = 0; i < img.length; i += 4) s.add(img.slice(i, i + 3).join(','));
+      return s;
+    };
+    // The empty image's slice is black (window over its zero range): every pixel is a table colour or black.
+    for (const c of colours(shown)) expect(['1,0,0', '0,0,1', '0,0,0']).toContain(c);
+    expect(colours(shown).has('0,0,1')).toBe(true);
+    expect(colours(hidden).has('0,0,1')).toBe(false);
+    // The plane is drawn: it ends the rays, so the image differs from the plane-less one.
+    expect(bitsDiffer(shown, noPlane)).toBeGreaterThan(10);
+  });
+
+  it('EAM on the fast path (hardware filter) draws labels as the exact path does (within 0.02)', async () => {
+    const step = 1 / N / 1.5;
+    const spec = {
+      backend: 'webgl2',
+      renderer: 'eam',
+      image: BLOB,
+      labels: ORGANS,
+      table: TABLE,
+      transferFunction: IMAGE_TF,
+      params: { stepSize: step, cutoff: 0 },
+      iterations: 2,
+    };
+    const exact = await render(spec);
+    const fast = await page.run(
+      async ({ core, t }, spec, n, camera, w, h) => {
+        const ctx = await t.context({ backend: 'webgl2', renderer: 'eam', width: w, height: h, params: spec.params });
+        ctx.setScene({
+          ...t.scene({
+            volume: core.createVolume([n, n, n], 'uint8', new Uint8Array(spec.image)),
+            camera,
+            densityScale: 10,
+            transferFunction: spec.transferFunction,
+            environment: { type: 'constant', radiance: [0.1, 0.12, 0.15] },
+          }),
+          labels: { volume: core.createVolume([n, n, n], 'uint8', new Uint8Array(spec.labels)), table: spec.table },
+        });
+        const out = await t.finalHDR(ctx, spec.iterations);
+        ctx.dispose();
+        return out;
+      },
+      spec,
+      N,
+      CAMERA,
+      W,
+      H,
+    );
+    expect(maxAbsDiff(fast, exact)).toBeLessThan(0.02);
+    expect(maxAbsDiff(fast, cpuEam(new Array(N * N * N).fill(0), TABLE, IMAGE_TF, 2, step))).toBeGreaterThan(0.05);
+  });
+
+  for (const renderer of ['eam', 'mip', 'mcrt', 'iso'])
+    it(`${renderer}: the same bits before and after a render with labels, on one context`, async () => {
+      const r = await page.run(
+        async ({ core, t }, renderer, image, labels, table, n, camera, w, h) => {
+          const ctx = await t.context({ backend: 'webgl2', renderer, width: w, height: h, sampling: 'exact' });
+          const scene = t.scene({ volume: core.createVolume([n, n, n], 'uint8', new Uint8Array(image)), camera });
+          const read = async (s: object) => {
+            ctx.setScene(s as never);
+            await ctx.renderIterations(2);
+            return Array.from(await ctx.readHDR()) as number[];
+          };
+          const before = await read(scene);
+          const withLabels = await read({
+            ...scene,
+            labels: { volume: core.createVolume([n, n, n], 'uint8', new Uint8Array(labels)), table },
+          });
+          const after = await read(scene);
+          ctx.dispose();
+          return { before, withLabels, after };
+        },
+        renderer,
+        BLOB,
+        ORGANS,
+        TABLE,
+        N,
+        CAMERA,
+        W,
+        H,
+      );
+      expect(bitsDiffer(r.before, r.after)).toBe(0);
+      expect(bitsDiffer(r.before, r.withLabels)).toBeGreaterThan(0);
+    });
+});
