@@ -1,8 +1,7 @@
 import { describe, expect, it } from 'vitest';
+import { labelEntryOf, labelIdAt } from '../packages/core/src/scene/labels.js';
 import {
   createVolume,
-  labelEntryOf,
-  labelIdAt,
   rasterizeTransferFunction,
   reference,
   TF_RESOLUTION,

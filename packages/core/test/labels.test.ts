@@ -1,9 +1,20 @@
 import { describe, expect, it } from 'vitest';
 import {
   createVolume,
+  gridCells,
+  labelSupport,
+  registerLabelSupport,
+  sceneMajorantGrid,
+  validateScene,
+  volumeBox,
+  VptError,
+  type LabelEntry,
+  type Scene,
+} from '../src/index.js';
+import {
   defaultLabelColor,
   defaultLabelTable,
-  gridCells,
+  enableLabels,
   labelCellMajorants,
   labelEntryOf,
   labelIdAt,
@@ -11,16 +22,11 @@ import {
   labelTableData,
   labelVolumeTexture,
   LABEL_PALETTE_SRGB,
-  sceneMajorantGrid,
-  validateScene,
-  volumeBox,
-  VptError,
   withLabelColors,
-  type LabelEntry,
-  type Scene,
-} from '../src/index.js';
+} from '../src/scene/labels.js';
 import { tf1d } from '../../../tests/helpers/test-scene.js';
 
+enableLabels();
 const N = 8;
 const image = createVolume([N, N, N], 'uint8', new Uint8Array(N * N * N).fill(40));
 const ids = (f: (x: number, y: number, z: number) => number) => {
@@ -51,6 +57,18 @@ function message(f: () => void): string {
 }
 
 describe('label model', () => {
+  it('without enableLabels() a scene with labels fails typed, naming the call', () => {
+    registerLabelSupport(null);
+    try {
+      expect(message(() => validateScene(scene({ volume: lv, table })))).toMatch(
+        /call enableLabels\(\) from @vpt\/core\/labels/,
+      );
+    } finally {
+      enableLabels();
+    }
+    expect(() => labelSupport()).not.toThrow();
+  });
+
   const lv = createVolume(
     [N, N, N],
     'uint8',

@@ -13,7 +13,7 @@ import { validateGradientAtlasForDevice, validateSceneForDevice } from '../valid
 import { SCENE_UNIFORM_FIELDS, sceneUniformValues } from '../shaders/scene-uniforms.js';
 import { CLIP_UNIFORM_FIELDS, clipUniformValues, hasClip } from '../scene/clip.js';
 import { CHANNEL_UNIFORM_FIELDS, LABEL_UNIFORM_FIELDS } from '../shaders/scene-uniforms.js';
-import { labelScaleOf } from '../scene/labels.js';
+import { labelSupport } from '../scene/label-support.js';
 import { enabledChannels } from '../scene/channels.js';
 import { SLICE_PLANE_UNIFORM_FIELDS, slicePlaneFlags, slicePlaneUniformValues } from '../scene/slice-plane.js';
 import { UniformLayout, type UniformField } from '../uniforms/layout.js';
@@ -762,7 +762,9 @@ export class RenderContext {
       ...this._renderer.paramValues(scene),
       ...(hasClip(scene.clip) ? clipUniformValues(scene.clip, scene.volume) : {}),
       ...(scene.channels ? this.resources.channelMapping(scene) : {}),
-      ...(this.drawsLabels(scene) ? { labelScale: labelScaleOf(scene.labels!.volume, this.backend.capabilities) } : {}),
+      ...(this.drawsLabels(scene)
+        ? { labelScale: labelSupport().labelScaleOf(scene.labels!.volume, this.backend.capabilities) }
+        : {}),
       ...(this.drawsSlicePlane(scene) ? slicePlaneUniformValues(scene.slicePlane!, scene.volume) : {}),
       ...(this.depthLimit ? { depthA: this.depthLimit.a, depthB: this.depthLimit.b } : {}),
     });

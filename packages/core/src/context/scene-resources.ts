@@ -20,7 +20,7 @@ import { channelVolume, normalizationRange } from '../scene/volume.js';
 import { enabledChannels, rasterizeChannelTransferFunctions, type ChannelSettings } from '../scene/channels.js';
 import { VptError } from '../errors.js';
 import { slicePlaneTextures } from '../scene/slice-plane.js';
-import { labelTextures } from '../scene/labels.js';
+import { labelSupport } from '../scene/label-support.js';
 
 /** How RenderContext wants the scene's volume bricked (null: one texture). */
 export interface BrickPlan extends BrickingOptions {
@@ -392,7 +392,7 @@ export class SceneResources {
       // A slice plane's colour map, for the renderers that draw one (Renderer.drawsSlicePlane).
       ...(scene.slicePlane && r.drawsSlicePlane ? slicePlaneTextures(scene.slicePlane) : []),
       // A label volume and its table, for the renderers that draw labels (Renderer.drawsLabels).
-      ...(scene.labels && r.drawsLabels ? labelTextures(scene.labels, this.backend.capabilities) : []),
+      ...(scene.labels && r.drawsLabels ? labelSupport().labelTextures(scene.labels, this.backend.capabilities) : []),
     ];
   }
 

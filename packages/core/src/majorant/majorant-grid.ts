@@ -23,7 +23,8 @@
  * tests and gives the one global bound of `majorantGrid: false` (cached per Volume object).
  */
 import { rasterizeTransferFunction, TF_RESOLUTION, type TransferFunction } from '../scene/transfer-function.js';
-import { labelCellMajorants, type SceneLabels } from '../scene/labels.js';
+import type { SceneLabels } from '../scene/labels.js';
+import { labelSupport } from '../scene/label-support.js';
 import { normalizedData, type Volume } from '../scene/volume.js';
 import {
   enabledChannels,
@@ -313,7 +314,7 @@ export function channelMajorantGrid(
  * by a voxel); the minorant stays the image's (a label adds extinction, never removes it).
  */
 export function withLabelMajorants(grid: MajorantGrid, labels: SceneLabels, densityScale: number): MajorantGrid {
-  const add = labelCellMajorants(labels, grid.cells, densityScale);
+  const add = labelSupport().labelCellMajorants(labels, grid.cells, densityScale);
   const data = grid.data.slice();
   let gMax = 0;
   for (let c = 0; c < add.length; c++) {

@@ -15,6 +15,23 @@ import type { BackendCapabilities, TextureDescriptor } from '../gpu/backend.js';
 import { checkNumber } from '../validation/checks.js';
 import { MAX_EXTINCTION, MAX_OPACITY } from '../validation/limits.js';
 import { volumeBox, type Volume } from './volume.js';
+import { registerLabelSupport } from './label-support.js';
+import * as glslLabels from '../shaders/labels.glsl.js';
+import * as wgslLabels from '../shaders/labels.wgsl.js';
+
+/**
+ * Enable label volumes (scene/label-support.ts): call once before setting a scene with `labels`
+ * (the headless page does at load). Kept out of bundles that never call it.
+ */
+export function enableLabels(): void {
+  registerLabelSupport({
+    validateLabels,
+    labelTextures,
+    labelScaleOf,
+    labelCellMajorants,
+    chunks: { glsl: glslLabels.LABELS, wgsl: wgslLabels.LABELS },
+  });
+}
 
 export interface LabelEntry {
   /** The label id in the volume (1 … 255 for uint8, 1 … 65535 for uint16); 0 is the background. */

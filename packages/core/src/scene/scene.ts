@@ -2,7 +2,8 @@ import { VptError } from '../errors.js';
 import { validateCamera, type Camera } from './camera.js';
 import { validateChannels, type ChannelSettings } from './channels.js';
 import { validateClip, type Clip } from './clip.js';
-import { validateLabels, type SceneLabels } from './labels.js';
+import type { SceneLabels } from './labels.js';
+import { labelSupport } from './label-support.js';
 import { validateSlicePlane, type SceneSlicePlane } from './slice-plane.js';
 import { validateEnvironment, validateLights, type Environment, type Light } from './lights.js';
 import { validateTransferFunction, type TransferFunction } from './transfer-function.js';
@@ -98,6 +99,6 @@ export function validateScene(s: Scene): void {
             0,
           )
       : maxOpacity;
-    validateLabels(s.labels, s.volume, s.densityScale, imageMax);
+    labelSupport().validateLabels(s.labels, s.volume, s.densityScale, imageMax);
   }
 }

@@ -2,6 +2,7 @@ import type { KernelSource } from '../renderer.js';
 import * as glsl from './common.glsl.js';
 import * as wgsl from './common.wgsl.js';
 import { preprocess } from './preprocess.js';
+import { labelSupport } from '../scene/label-support.js';
 
 /** Options of the generate pass's shared chunks, derived from the scene by RenderContext. */
 export interface CommonChunkOptions {
@@ -46,7 +47,18 @@ export function commonChunks(opts: CommonChunkOptions = {}): KernelSource {
     SLICE_PLANE_NEAREST: !!opts.slicePlaneNearest,
     SLICE_PLANE_TABLE: !!opts.slicePlaneTable,
   };
-  return { glsl: preprocess(glsl.GENERATE_CHUNKS, flags), wgsl: preprocess(wgsl.GENERATE_CHUNKS, flags) };
+  // The label chunk is registered by enableLabels() (scene/label-support.ts), so bundles without labels do not carry it.
+  const chunks = opts.labels ? labelSupport().chunks : null;
+  return {
+    glsl: preprocess(
+      chunks ? glsl.GENERATE_CHUNKS.replace(glsl.LABELS_PLACEHOLDER, chunks.glsl) : glsl.GENERATE_CHUNKS,
+      flags,
+    ),
+    wgsl: preprocess(
+      chunks ? wgsl.GENERATE_CHUNKS.replace(wgsl.LABELS_PLACEHOLDER, chunks.wgsl) : wgsl.GENERATE_CHUNKS,
+      flags,
+    ),
+  };
 }
 
 /** The integrate and render passes' shared chunks (texture-free RNG and rays). */

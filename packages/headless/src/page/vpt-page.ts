@@ -36,6 +36,9 @@ interface LoadersModule {
 }
 
 let core!: CoreModule;
+/** @vpt/core/labels: label volumes (enabled at load). */
+type LabelsModule = typeof import('@vpt/core/labels');
+let labelsModule!: LabelsModule;
 let post!: PostModule;
 /** The renderer classes of the catalog, by renderer name. */
 const rendererClasses = new Map<string, new (params?: Record<string, unknown>) => Renderer>();
@@ -269,7 +272,7 @@ async function sceneOf(d: SceneDescription, baseUrl?: string, request?: Partial<
   const tf = d.transferFunction;
   // Label ids are kept as loaded (integers, no value range): core's toLabelVolume refuses anything else.
   const loadedLabels = d.labels ? await loadVolume(d.labels.volume, baseUrl, request, true) : null;
-  const labelVolume = loadedLabels ? core.toLabelVolume(loadedLabels, 'labels.volume') : null;
+  const labelVolume = loadedLabels ? labelsModule.toLabelVolume(loadedLabels, 'labels.volume') : null;
   // The default table: every id present, in the file's own colours where it has them (OME-Zarr image-label).
   const fileColors = loadedLabels ? fileLabelColors.get(loadedLabels) : undefined;
   // Labels alone: an empty image on their grid.
@@ -287,8 +290,8 @@ async function sceneOf(d: SceneDescription, baseUrl?: string, request?: Partial<
             table: d.labels!.table
               ? d.labels!.table.map((e) => ({ ...e }))
               : fileColors
-                ? core.withLabelColors(core.defaultLabelTable(labelVolume), fileColors)
-                : core.defaultLabelTable(labelVolume),
+                ? labelsModule.withLabelColors(labelsModule.defaultLabelTable(labelVolume), fileColors)
+                : labelsModule.defaultLabelTable(labelVolume),
           },
         }
       : {}),
@@ -489,6 +492,9 @@ async function load<T>(name: string): Promise<T> {
 
 try {
   [core, post] = await Promise.all([load<CoreModule>('@vpt/core'), load<PostModule>('@vpt/post')]);
+  // Scene files may carry label volumes (core's scene/labels.ts): opt-in, so bundles without them stay small.
+  labelsModule = await load<LabelsModule>('@vpt/core/labels');
+  labelsModule.enableLabels();
   // Every renderer of the catalog, imported by its package name (the import map resolves it).
   const modules = await Promise.all(core.RENDERER_CATALOG.map((e) => load<Record<string, unknown>>(e.packageName)));
   const renderers: Record<string, Record<string, unknown>> = {};

@@ -1,4 +1,5 @@
-import { toLabelVolume, validateVolume, type VoxelArray, type VoxelType } from '@vpt/core';
+import { validateVolume, type VoxelArray, type VoxelType } from '@vpt/core';
+import { toLabelVolume } from '@vpt/core/labels';
 import { LoaderError } from '../errors.js';
 import type { LoadContext } from '../context.js';
 import type { LoadedVolume } from '../types.js';
