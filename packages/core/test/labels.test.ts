@@ -4,7 +4,6 @@ import {
   gridCells,
   labelSupport,
   registerLabelSupport,
-  sceneMajorantGrid,
   validateScene,
   volumeBox,
   VptError,
@@ -22,6 +21,7 @@ import {
   labelTableData,
   labelVolumeTexture,
   LABEL_PALETTE_SRGB,
+  sceneMajorantGrid,
   withLabelColors,
 } from '../src/scene/labels.js';
 import { tf1d } from '../../../tests/helpers/test-scene.js';

@@ -39,7 +39,6 @@
  * estimators, so approximate ranges suffice; the kernel's own grid is still the GPU-built one.
  */
 import {
-  sceneMajorantGrid,
   scalarSceneOf,
   type MajorantGrid,
   normalizationRange,
@@ -52,6 +51,8 @@ import {
   type Scene,
   type Volume,
 } from '@vpt/core';
+// The CPU grid of what the kernel draws: the channels' sum, plus the labels' (label volumes' subpath).
+import { sceneMajorantGrid } from '@vpt/core/labels';
 import { extinctionCap } from './extinction-cap.js';
 import type { EnvironmentSampling, TrackingMode } from './params.js';
 

@@ -20,7 +20,6 @@ import {
   volumeValueMapping,
   buildMajorantGrid,
   volumeCellRanges,
-  sceneMajorantGrid,
   scalarSceneOf,
   gridGeometry,
   majorantGridTextures,
@@ -28,6 +27,8 @@ import {
   paramUniformFields,
   paramUniformValues,
 } from '@vpt/core';
+// The CPU grid of what the kernel draws: the channels' sum, plus the labels' (label volumes' subpath).
+import { sceneMajorantGrid } from '@vpt/core/labels';
 import { MCRT_DESCRIPTOR } from './descriptor.js';
 import { activeLights, computeFeatures, featureKey, MAX_LIGHTS, type McrtFeatures } from './features.js';
 import { generateKernel, INTEGRATE_HALVES } from './kernel-sources.js';

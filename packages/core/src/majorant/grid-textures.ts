@@ -6,13 +6,8 @@ import { sliceAtlasLayout } from '../shaders/slice-atlas.js';
 import * as glslAtlas from '../shaders/slice-atlas.glsl.js';
 import * as wgslAtlas from '../shaders/slice-atlas.wgsl.js';
 import { UniformLayout, type UniformField } from '../uniforms/layout.js';
-import {
-  buildMajorantGrid,
-  channelMajorantGrid,
-  gridCells,
-  sceneMajorantGrid,
-  withLabelMajorants,
-} from './majorant-grid.js';
+import { buildMajorantGrid, channelMajorantGrid, gridCells } from './majorant-grid.js';
+import { labelSupport } from '../scene/label-support.js';
 import { rasterizeTransferFunction } from '../scene/transfer-function.js';
 import { atlasTexel } from '../shaders/slice-atlas.js';
 import * as glslBuild from './majorant-build.glsl.js';
@@ -64,7 +59,7 @@ export function majorantGridTextures(
   output: MajorantGridOutput,
 ): AuxiliaryTexture[] {
   // Labels add their extinction: the grid is built on the CPU (labelGridTexture).
-  if (scene.labels && output === 'majorants') return [labelGridTexture(scene, volume, cellSize)];
+  if (scene.labels && output === 'majorants') return [labelSupport().majorantGridTexture(scene, volume, cellSize)];
   // One drawn channel is an r-format texture and a one-row TF: the GPU build below reads it as a scalar volume.
   if (scene.channels && scene.channels.filter((c) => c.enabled !== false).length > 1)
     return [channelGridTexture(scene, cellSize, output)];
@@ -212,37 +207,8 @@ function channelGridTexture(scene: Scene, cellSize: number, output: MajorantGrid
   };
 }
 
-/**
- * A label scene's grid (scene/labels.ts): the image's (the channels' sum, the scalar grid, or a
- * bricked volume's from its cell ranges) plus each cell's largest visible label opacity
- * (majorant-grid.ts withLabelMajorants), built on the CPU and uploaded: a table change rebuilds it.
- */
-function labelGridTexture(scene: Scene, volume: VolumeBinding, cellSize: number): AuxiliaryTexture {
-  const labels = scene.labels!;
-  const cells = gridCells(scene.volume.dims, cellSize);
-  return {
-    name: 'majorantGrid',
-    dimension: '2d',
-    key: `labels|${objectId(scene.volume as Volume)}|${objectId(labels.volume)}|${cellSize}|${scene.densityScale}|${JSON.stringify(scene.channels ?? scene.transferFunction)}|${JSON.stringify(labels.table)}|${volume.cellRanges ? volume.key : ''}`,
-    create: () => {
-      const grid = volume.cellRanges
-        ? withLabelMajorants(
-            buildMajorantGrid(
-              volume.cellRanges(cells),
-              rasterizeTransferFunction(scene.transferFunction, TF_RESOLUTION),
-              scene.densityScale,
-            ),
-            labels,
-            scene.densityScale,
-          )
-        : sceneMajorantGrid(scene, cellSize);
-      return atlasTexture(cells, grid.data, 'majorant grid (labels)');
-    },
-  };
-}
-
 /** A grid's RGBA texels (x fastest) laid out in the slice atlas of its cell counts, as the GPU build writes it. */
-function atlasTexture(cells: [number, number, number], texels: Float32Array, label: string) {
+export function atlasTexture(cells: [number, number, number], texels: Float32Array, label: string) {
   const layout = sliceAtlasLayout(cells);
   const data = new Float32Array(4 * layout.width * layout.height);
   for (let z = 0; z < cells[2]; z++)

@@ -22,14 +22,11 @@
  * on every transfer-function or density change. This CPU build is its reference in the
  * tests and gives the one global bound of `majorantGrid: false` (cached per Volume object).
  */
-import { rasterizeTransferFunction, TF_RESOLUTION, type TransferFunction } from '../scene/transfer-function.js';
-import type { SceneLabels } from '../scene/labels.js';
-import { labelSupport } from '../scene/label-support.js';
+import { TF_RESOLUTION } from '../scene/transfer-function.js';
 import { normalizedData, type Volume } from '../scene/volume.js';
 import {
   enabledChannels,
   rasterizeChannelTransferFunctions,
-  scalarSceneOf,
   sceneChannelVolume,
   type ChannelSettings,
 } from '../scene/channels.js';
@@ -305,46 +302,4 @@ export function channelMajorantGrid(
     if (data[i + 1] < gMin) gMin = data[i + 1];
   }
   return { cells, data, globalMajorant: gMax, globalMinorant: Number.isFinite(gMin) ? gMin : 0 };
-}
-
-/**
- * A grid with a scene's labels added (scene/labels.ts): the kernels' extinction is the image's
- * plus densityScale · opacity of the visible label at the point, so each cell's majorant is the
- * image's plus the largest label opacity its points can read (labelCellMajorants: nearest, padded
- * by a voxel); the minorant stays the image's (a label adds extinction, never removes it).
- */
-export function withLabelMajorants(grid: MajorantGrid, labels: SceneLabels, densityScale: number): MajorantGrid {
-  const add = labelSupport().labelCellMajorants(labels, grid.cells, densityScale);
-  const data = grid.data.slice();
-  let gMax = 0;
-  for (let c = 0; c < add.length; c++) {
-    data[4 * c] = Math.fround(data[4 * c] + add[c]);
-    if (data[4 * c] > gMax) gMax = data[4 * c];
-  }
-  return { cells: grid.cells, data, globalMajorant: gMax, globalMinorant: grid.globalMinorant };
-}
-
-/**
- * A scene's majorant grid on the CPU, whatever it draws: a channel scene's summed grid, else the
- * scalar one (one drawn channel: the scalar scene it draws), plus its labels when it has them.
- */
-export function sceneMajorantGrid(
-  given: {
-    volume: Volume;
-    transferFunction: TransferFunction;
-    densityScale: number;
-    channels?: ChannelSettings[];
-    labels?: SceneLabels;
-  },
-  cellSize: number,
-): MajorantGrid {
-  const scene = scalarSceneOf(given) ?? given;
-  const base = scene.channels
-    ? channelMajorantGrid(scene.volume, scene.channels, scene.densityScale, cellSize)
-    : buildMajorantGrid(
-        volumeCellRanges(scene.volume, cellSize),
-        rasterizeTransferFunction(scene.transferFunction, TF_RESOLUTION),
-        scene.densityScale,
-      );
-  return scene.labels ? withLabelMajorants(base, scene.labels, scene.densityScale) : base;
 }

@@ -6,17 +6,21 @@
  */
 import { VptError } from '../errors.js';
 import type { BackendCapabilities, TextureDescriptor } from '../gpu/backend.js';
+import type { AuxiliaryTexture, VolumeBinding } from '../renderer.js';
 import type { SceneLabels } from './labels.js';
+import type { Scene } from './scene.js';
 import type { Volume } from './volume.js';
 
 export interface LabelSupport {
-  validateLabels(labels: unknown, image: Volume, densityScale: number, imageMaxOpacity: number): void;
+  /** Scene.labels against the scene (validateScene). */
+  validateSceneLabels(scene: Scene): void;
   labelTextures(
     labels: SceneLabels,
     caps: BackendCapabilities,
   ): { name: string; dimension: '2d' | '3d'; key: string; create: () => TextureDescriptor }[];
   labelScaleOf(volume: Pick<Volume, 'type'>, caps: BackendCapabilities): number;
-  labelCellMajorants(labels: SceneLabels, cells: readonly [number, number, number], densityScale: number): Float32Array;
+  /** The `'majorants'` grid of a label scene (majorant/grid-textures.ts): the image's plus the labels'. */
+  majorantGridTexture(scene: Scene, volume: VolumeBinding, cellSize: number): AuxiliaryTexture;
   /** The shared LABELS shader chunk (shaders/labels.*.ts). */
   chunks: { glsl: string; wgsl: string };
 }

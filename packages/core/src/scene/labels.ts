@@ -15,6 +15,18 @@ import type { BackendCapabilities, TextureDescriptor } from '../gpu/backend.js';
 import { checkNumber } from '../validation/checks.js';
 import { MAX_EXTINCTION, MAX_OPACITY } from '../validation/limits.js';
 import { volumeBox, type Volume } from './volume.js';
+import type { AuxiliaryTexture, VolumeBinding } from '../renderer.js';
+import type { Scene } from './scene.js';
+import { rasterizeTransferFunction, TF_RESOLUTION, type TransferFunction } from './transfer-function.js';
+import { scalarSceneOf, type ChannelSettings } from './channels.js';
+import {
+  buildMajorantGrid,
+  channelMajorantGrid,
+  gridCells,
+  volumeCellRanges,
+  type MajorantGrid,
+} from '../majorant/majorant-grid.js';
+import { atlasTexture } from '../majorant/grid-textures.js';
 import { registerLabelSupport } from './label-support.js';
 import * as glslLabels from '../shaders/labels.glsl.js';
 import * as wgslLabels from '../shaders/labels.wgsl.js';
@@ -25,10 +37,10 @@ import * as wgslLabels from '../shaders/labels.wgsl.js';
  */
 export function enableLabels(): void {
   registerLabelSupport({
-    validateLabels,
+    validateSceneLabels,
     labelTextures,
     labelScaleOf,
-    labelCellMajorants,
+    majorantGridTexture: labelMajorantGridTexture,
     chunks: { glsl: glslLabels.LABELS, wgsl: wgslLabels.LABELS },
   });
 }
@@ -204,6 +216,23 @@ export function validateLabels(labels: unknown, image: Volume, densityScale: num
     );
 }
 
+/** A scene's labels against its image: the mixture's extinction bound counts the image's largest drawn opacity. */
+export function validateSceneLabels(s: Scene): void {
+  const tf = s.transferFunction;
+  const imageMax = s.channels
+    ? s.channels
+        .filter((c) => c.enabled !== false && c.transferFunction.dimensions !== '2d')
+        .reduce(
+          (m, c) =>
+            m + Math.max(...(c.transferFunction as { points: { opacity: number }[] }).points.map((p) => p.opacity)),
+          0,
+        )
+    : tf.dimensions === '2d'
+      ? Math.max(...tf.widgets.map((w) => w.opacity))
+      : Math.max(...tf.points.map((p) => p.opacity));
+  validateLabels(s.labels, s.volume, s.densityScale, imageMax);
+}
+
 /** The label-table texture's texels: RGBA float (rgb, opacity) per id at (id mod 256, id / 256); hidden ids and 0 are 0. */
 export function labelTableData(labels: SceneLabels): { width: number; height: number; data: Float32Array } {
   const top = labels.table.reduce((m, e) => Math.max(m, e.id), 0);
@@ -309,9 +338,14 @@ export function labelCellMajorants(
   return out;
 }
 
-// Stable ids for the label volume objects whose identity keys their texture.
+// Stable ids for the volume objects whose identity keys the label textures and grid.
 const ids = new WeakMap<object, number>();
 let nextId = 1;
+function objectId(o: object): number {
+  let i = ids.get(o);
+  if (i === undefined) ids.set(o, (i = nextId++));
+  return i;
+}
 
 /**
  * The label textures a scene binds when its renderer draws labels (RenderContext adds them as
@@ -322,8 +356,7 @@ export function labelTextures(
   labels: SceneLabels,
   caps: BackendCapabilities,
 ): { name: string; dimension: '2d' | '3d'; key: string; create: () => TextureDescriptor }[] {
-  let id = ids.get(labels.volume);
-  if (id === undefined) ids.set(labels.volume, (id = nextId++));
+  const id = objectId(labels.volume);
   return [
     {
       name: 'labelVolume',
@@ -401,4 +434,75 @@ export function withLabelColors(
     out.set(c.id, e);
   }
   return [...out.values()].sort((a, b) => a.id - b.id);
+}
+
+/**
+ * A grid with a scene's labels added (scene/labels.ts): the kernels' extinction is the image's
+ * plus densityScale · opacity of the visible label at the point, so each cell's majorant is the
+ * image's plus the largest label opacity its points can read (labelCellMajorants: nearest, padded
+ * by a voxel); the minorant stays the image's (a label adds extinction, never removes it).
+ */
+export function withLabelMajorants(grid: MajorantGrid, labels: SceneLabels, densityScale: number): MajorantGrid {
+  const add = labelCellMajorants(labels, grid.cells, densityScale);
+  const data = grid.data.slice();
+  let gMax = 0;
+  for (let c = 0; c < add.length; c++) {
+    data[4 * c] = Math.fround(data[4 * c] + add[c]);
+    if (data[4 * c] > gMax) gMax = data[4 * c];
+  }
+  return { cells: grid.cells, data, globalMajorant: gMax, globalMinorant: grid.globalMinorant };
+}
+
+/**
+ * A scene's majorant grid on the CPU, whatever it draws: a channel scene's summed grid, else the
+ * scalar one (one drawn channel: the scalar scene it draws), plus its labels when it has them.
+ */
+export function sceneMajorantGrid(
+  given: {
+    volume: Volume;
+    transferFunction: TransferFunction;
+    densityScale: number;
+    channels?: ChannelSettings[];
+    labels?: SceneLabels;
+  },
+  cellSize: number,
+): MajorantGrid {
+  const scene = scalarSceneOf(given) ?? given;
+  const base = scene.channels
+    ? channelMajorantGrid(scene.volume, scene.channels, scene.densityScale, cellSize)
+    : buildMajorantGrid(
+        volumeCellRanges(scene.volume, cellSize),
+        rasterizeTransferFunction(scene.transferFunction, TF_RESOLUTION),
+        scene.densityScale,
+      );
+  return scene.labels ? withLabelMajorants(base, scene.labels, scene.densityScale) : base;
+}
+
+/**
+ * A label scene's grid (scene/labels.ts): the image's (the channels' sum, the scalar grid, or a
+ * bricked volume's from its cell ranges) plus each cell's largest visible label opacity
+ * (majorant-grid.ts withLabelMajorants), built on the CPU and uploaded: a table change rebuilds it.
+ */
+export function labelMajorantGridTexture(scene: Scene, volume: VolumeBinding, cellSize: number): AuxiliaryTexture {
+  const labels = scene.labels!;
+  const cells = gridCells(scene.volume.dims, cellSize);
+  return {
+    name: 'majorantGrid',
+    dimension: '2d',
+    key: `labels|${objectId(scene.volume)}|${objectId(labels.volume)}|${cellSize}|${scene.densityScale}|${JSON.stringify(scene.channels ?? scene.transferFunction)}|${JSON.stringify(labels.table)}|${volume.cellRanges ? volume.key : ''}`,
+    create: () => {
+      const grid = volume.cellRanges
+        ? withLabelMajorants(
+            buildMajorantGrid(
+              volume.cellRanges(cells),
+              rasterizeTransferFunction(scene.transferFunction, TF_RESOLUTION),
+              scene.densityScale,
+            ),
+            labels,
+            scene.densityScale,
+          )
+        : sceneMajorantGrid(scene, cellSize);
+      return atlasTexture(cells, grid.data, 'majorant grid (labels)');
+    },
+  };
 }

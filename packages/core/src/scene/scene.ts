@@ -88,17 +88,6 @@ export function validateScene(s: Scene): void {
       `Scene: the volume has ${channelCount(s.volume)} channels, so the scene needs "channels": one entry (transferFunction, enabled, color, range) per channel`,
     );
   if (s.slicePlane !== undefined) validateSlicePlane(s.slicePlane, s.volume);
-  if (s.labels !== undefined) {
-    // The mixture's extinction is the image's plus the labels': bound the sum.
-    const imageMax = s.channels
-      ? s.channels
-          .filter((c) => c.enabled !== false && c.transferFunction.dimensions !== '2d')
-          .reduce(
-            (m, c) =>
-              m + Math.max(...(c.transferFunction as { points: { opacity: number }[] }).points.map((p) => p.opacity)),
-            0,
-          )
-      : maxOpacity;
-    labelSupport().validateLabels(s.labels, s.volume, s.densityScale, imageMax);
-  }
+  // The mixture's extinction is the image's plus the labels': scene/labels.ts bounds the sum.
+  if (s.labels !== undefined) labelSupport().validateSceneLabels(s);
 }
