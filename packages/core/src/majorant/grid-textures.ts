@@ -58,7 +58,7 @@ export function majorantGridTextures(
   cellSize: number,
   output: MajorantGridOutput,
 ): AuxiliaryTexture[] {
-  // Labels add their extinction: the grid is built on the CPU (labelGridTexture).
+  // Labels add their extinction: the grid is built on the CPU (labels.ts labelMajorantGridTexture, registered by enableLabels).
   if (scene.labels && output === 'majorants') return [labelSupport().majorantGridTexture(scene, volume, cellSize)];
   // One drawn channel is an r-format texture and a one-row TF: the GPU build below reads it as a scalar volume.
   if (scene.channels && scene.channels.filter((c) => c.enabled !== false).length > 1)
