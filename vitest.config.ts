@@ -13,6 +13,11 @@ export default defineConfig({
         find: /^@vpt\/(core|post|loaders|renderer-[a-z0-9-]+)$/,
         replacement: `${fileURLToPath(new URL('./packages/', import.meta.url))}$1/src/index.ts`,
       },
+      // Core's label volumes subpath (@vpt/core/labels).
+      {
+        find: /^@vpt\/core\/labels$/,
+        replacement: `${fileURLToPath(new URL('./packages/', import.meta.url))}core/src/scene/labels.ts`,
+      },
       // A renderer package's descriptor subpath (@vpt/renderer-<name>/descriptor).
       {
         find: /^@vpt\/(renderer-[a-z0-9-]+)\/descriptor$/,

@@ -28,6 +28,7 @@ const SCRIPTS: Record<string, { notANumber?: { argv: string[]; names: string } }
   'benchmarks/denoise-error.mjs': { notANumber: { argv: ['--seeds', 'few'], names: '--seeds' } },
   'benchmarks/three-cost.mjs': { notANumber: { argv: ['--batch', 'many'], names: '--batch' } },
   'benchmarks/channel-cost.mjs': { notANumber: { argv: ['--rounds', 'many'], names: '--rounds' } },
+  'benchmarks/label-cost.mjs': { notANumber: { argv: ['--rounds', 'many'], names: '--rounds' } },
   'benchmarks/bundle-size.mjs': { notANumber: { argv: ['--budget', 'small'], names: '--budget' } },
   'benchmarks/first-image.mjs': { notANumber: { argv: ['--rounds', 'few'], names: '--rounds' } },
   'benchmarks/read-speed.mjs': { notANumber: { argv: ['--runs', 'many'], names: '--runs' } },

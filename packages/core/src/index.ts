@@ -19,6 +19,10 @@ export * from './scene/transfer-function-presets.js';
 export * from './scene/scene.js';
 export * from './scene/clip.js';
 export * from './scene/channels.js';
+// Label volumes are opt-in: their code is the subpath @vpt/core/labels (scene/labels.ts: enableLabels()
+// and the model's functions), kept out of this entry (the viewer's one-file bundle re-exports it whole).
+export type { LabelEntry, SceneLabels } from './scene/labels.js';
+export { labelSupport, registerLabelSupport, type LabelSupport } from './scene/label-support.js';
 export * from './scene/colormaps.js';
 export * from './scene/slice-geometry.js';
 export * from './scene/slice-window.js';

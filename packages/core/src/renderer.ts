@@ -73,6 +73,13 @@ export interface Renderer {
    */
   readonly drawsSlicePlane?: boolean;
   /**
+   * Draws a scene's `labels` (scene/labels.ts) under `#if VPT_LABELS`: the context then defines
+   * it for a scene that has labels, includes the shared chunk's labelIdAt() / labelAt() and the
+   * image + labels transferAt(), the `labelScale` uniform, and binds `labelVolume` and
+   * `labelTable` (the render pass binds `labelTable` too). A renderer without it ignores the field.
+   */
+  readonly drawsLabels?: boolean;
+  /**
    * Set when the generate kernel writes the denoiser guides (docs/architecture.md, "Denoising"):
    * while a post step uses them the context defines VPT_GUIDES, includes the helpers
    * `guideNormalDepth(p, t)` / `guideAlbedo(rgb)` and appends two rgba32float outputs after

@@ -166,6 +166,17 @@ export interface SceneDescription {
     color?: Vec3;
     range?: [number, number];
   }[];
+  /**
+   * A label volume (segmentation) on the image's grid and its table (core's SceneLabels): the
+   * ids (uint8 / uint16 kept as they are; other types converted when every value is an integer
+   * id; never normalized) and per id a linear-RGB `color`, `opacity`, `visible` and `name`;
+   * without `table`, every id present with the default palette. Without `volume`, the labels are
+   * drawn alone (an empty uint8 image of their grid).
+   */
+  labels?: {
+    volume: SingleVolumeDescription;
+    table?: { id: number; name?: string; color?: Vec3; opacity?: number; visible?: boolean }[];
+  };
 }
 
 /** What an unset field means (an unset renderer is core's DEFAULT_RENDERER_NAME). */
@@ -262,6 +273,12 @@ export function checkSceneDescription(d: unknown, rendererNames?: readonly strin
     bad(`"backend" must be one of ${BACKEND_NAMES.join(', ')}, got ${JSON.stringify(s.backend)}`);
   if (s.post !== undefined && !Array.isArray(s.post)) bad('"post" must be an array of steps');
   if (s.lights !== undefined && !Array.isArray(s.lights)) bad('"lights" must be an array');
+  if (s.labels !== undefined) {
+    const l = s.labels as Record<string, unknown>;
+    if (!l || typeof l !== 'object' || Array.isArray(l)) bad('"labels" must be an object { volume, table }');
+    if (!l.volume || typeof l.volume !== 'object') bad('"labels.volume" must be a volume description');
+    if (l.table !== undefined && !Array.isArray(l.table)) bad('"labels.table" must be an array');
+  }
   const v = s.volume as Record<string, unknown> | undefined;
   if (v !== undefined) {
     if (!v || typeof v !== 'object') bad('"volume" must be an object');

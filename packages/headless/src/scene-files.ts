@@ -138,6 +138,15 @@ export function resolveSceneFiles(
   options: SceneFileOptions = {},
 ): SceneDescription {
   if (options.root !== undefined) checkRootFolder(options.root);
+  // A label volume's files are resolved as a volume of their own.
+  if (desc.labels) {
+    const { labels, ...rest } = desc;
+    const volume = resolveSceneFiles({ ...rest, volume: labels.volume }, baseDir, options).volume;
+    return {
+      ...resolveSceneFiles(rest, baseDir, options),
+      labels: { ...labels, volume: volume as SingleVolumeDescription },
+    };
+  }
   // The step of a time series: its one file or store is what is checked and served.
   try {
     desc = selectTimeStep(desc);
@@ -232,6 +241,14 @@ export function mountSceneFiles(
   server: StaticServer,
   options: SceneFileOptions = {},
 ): SceneDescription {
+  if (desc.labels) {
+    const { labels, ...rest } = desc;
+    const volume = mountSceneFiles({ ...rest, volume: labels.volume }, baseDir, server, options).volume;
+    return {
+      ...mountSceneFiles(rest, baseDir, server, options),
+      labels: { ...labels, volume: volume as SingleVolumeDescription },
+    };
+  }
   if (desc.volume && isChannelFiles(desc.volume)) {
     const channels = desc.volume.channels.map(
       (v) => mountSceneFiles({ ...desc, volume: v }, baseDir, server, options).volume as SingleVolumeDescription,

@@ -30,6 +30,7 @@ import {
   validateLights,
   DEFAULT_RENDERER_NAME,
   MAX_VOLUME_CHANNELS,
+  MAX_OPACITY,
   RENDERER_CATALOG,
   validateRendererParams,
   VptError,
@@ -62,6 +63,7 @@ const TOP_KEYS = [
   'backend',
   'time',
   'channels',
+  'labels',
 ];
 /** Volumes a description may list as channels (core's MAX_VOLUME_CHANNELS). */
 const MAX_LISTED_CHANNELS = MAX_VOLUME_CHANNELS;
@@ -254,6 +256,54 @@ function checkChannels(c: unknown, volume: unknown): void {
   });
 }
 
+/**
+ * The scene's label volume (core's SceneLabels as JSON): `volume`, one volume description of
+ * integer ids (a raw file of uint8 / uint16, or any file or store whose values are integers in
+ * [0, 65535]), and an optional `table` (default: every id present, palette colours); each entry
+ * { id, name?, color?, opacity?, visible? }. The rules that need the loaded volumes (its dims
+ * against the image's, ids against its type) are core's validateLabels at setScene.
+ */
+function checkLabels(l: unknown): void {
+  const o = checkObject('labels', l);
+  checkKnownKeys('labels', o, ['volume', 'table']);
+  if (o.volume === undefined) throw new VptError('invalid-scene', 'labels.volume: is required (the label ids)');
+  const v = checkObject('labels.volume', o.volume);
+  if ('channels' in v) throw new VptError('invalid-scene', 'labels.volume.channels: a label volume has one channel');
+  if ('procedural' in v)
+    throw new VptError(
+      'invalid-scene',
+      'labels.volume: a label volume is a file, raw, sidecar or zarr, not procedural',
+    );
+  checkVolume(v, 'labels.volume');
+  if (v.type !== undefined && v.type !== 'uint8' && v.type !== 'uint16')
+    throw new VptError(
+      'invalid-scene',
+      `labels.volume.type: must be "uint8" or "uint16" (integer label ids), got ${JSON.stringify(v.type)}`,
+    );
+  if (o.table === undefined) return;
+  if (!Array.isArray(o.table))
+    throw new VptError(
+      'invalid-scene',
+      `labels.table: must be an array of label entries, got ${JSON.stringify(o.table)?.slice(0, 80)}`,
+    );
+  const ids = new Set<number>();
+  o.table.forEach((entry, i) => {
+    const at = `labels.table[${i}]`;
+    const e = checkObject(at, entry);
+    checkKnownKeys(at, e, ['id', 'name', 'color', 'opacity', 'visible']);
+    if (e.id === undefined) throw new VptError('invalid-scene', `${at}.id: is required`);
+    const id = checkNumber(`${at}.id`, e.id, { min: 1, max: 65535, integer: true, unit: '0 is the background' });
+    if (ids.has(id)) throw new VptError('invalid-scene', `${at}.id: ${id} is listed twice`);
+    ids.add(id);
+    if (e.name !== undefined) checkString(`${at}.name`, e.name);
+    if (e.color !== undefined) checkNumbers(`${at}.color`, e.color, 3, { min: 0, max: 1 });
+    if (e.opacity !== undefined)
+      checkNumber(`${at}.opacity`, e.opacity, { min: 0, max: MAX_OPACITY, unit: 'MAX_OPACITY' });
+    if (e.visible !== undefined && typeof e.visible !== 'boolean')
+      throw new VptError('invalid-scene', `${at}.visible: must be true or false, got ${JSON.stringify(e.visible)}`);
+  });
+}
+
 /** How many channels a volume description names (a zarr's `channels`, a list of channel files), or null when only the loaded data says. */
 function volumeChannelCount(v: unknown): number | null {
   if (!v || typeof v !== 'object') return null;
@@ -314,6 +364,7 @@ export function validateSceneDescription(d: unknown): SceneDescription {
     if (s.environment !== undefined) validateEnvironment(checkEnvironment(s.environment));
     if (s.post !== undefined) postChainFromJSON(s.post);
     if (s.channels !== undefined) checkChannels(s.channels, s.volume);
+    if (s.labels !== undefined) checkLabels(s.labels);
   } catch (e) {
     if (e instanceof VptError) throw new VptError(e.code, `Scene description: ${e.message}`, { cause: e });
     throw new VptError('invalid-scene', `Scene description: ${(e as Error).message}`, { cause: e });

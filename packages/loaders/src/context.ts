@@ -13,6 +13,8 @@ export interface LoadContext {
   downsample: boolean;
   progress(stage: LoadProgress['stage'], loaded: number, total?: number): void;
   checkAborted(): void;
+  /** A label volume (LoadOptions.labels): ids kept, downsampled by picking, never averaged. */
+  labels: boolean;
   /** The time step to read (LoadOptions.time; 0 by default). */
   time: number;
   /** Human-readable notes collected along the way (meta.warnings). */
@@ -35,6 +37,7 @@ export function createContext(name: string, options: LoadOptions): LoadContext {
     request: options.request ?? {},
     downsample: options.downsample === true,
     time: options.time ?? 0,
+    labels: options.labels === true,
     warnings: [],
     // At most ~100 events per stage: a 64 KiB network chunk or a decoded slab would
     // otherwise flood a worker's message channel for a large file.

@@ -87,6 +87,15 @@ export interface LoadOptions {
    * that cannot reach `raw` (an element attribute) names what it can: a sidecar, a file name.
    */
   rawHint?: string;
+  /**
+   * The source is a label volume (a segmentation: integer ids, 0 = background; core's
+   * scene/labels.ts): its ids are kept, never averaged or normalized. uint8 and uint16 stay as
+   * they are; any other type converts to the narrowest of the two when every value is an integer
+   * in [0, 65535] (else LoaderError 'invalid-data'); OME-Zarr's `image-label` colours and names
+   * come in `meta.zarr.imageLabel`; a downsample takes each
+   * block's first voxel instead of the block's mean.
+   */
+  labels?: boolean;
 }
 
 /** The errors' advice for headerless raw data without dims (LoadOptions.rawHint). */

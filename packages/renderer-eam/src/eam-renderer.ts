@@ -32,6 +32,8 @@ export class EamRenderer extends BaseRenderer<EamParams> {
   readonly writesGuides = EAM_DESCRIPTOR.writesGuides;
   /** Draws a scene's slicePlane (core's scene/slice-plane.ts) under VPT_SLICE_PLANE. */
   readonly drawsSlicePlane = true;
+  /** Draws a scene's labels (core's scene/labels.ts) under VPT_LABELS: their opacity and colour join the medium (transferAt). */
+  readonly drawsLabels = true;
   readonly kernels = {
     generate: { glsl: glsl.generate, wgsl: wgsl.generate },
     integrate: RUNNING_MEAN_INTEGRATE,

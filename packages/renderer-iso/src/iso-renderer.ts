@@ -64,6 +64,8 @@ export class IsoRenderer extends BaseRenderer<IsoParams> {
   readonly writesGuides = ISO_DESCRIPTOR.writesGuides;
   /** Draws a scene's slicePlane (core's scene/slice-plane.ts) under VPT_SLICE_PLANE. */
   readonly drawsSlicePlane = true;
+  /** Draws a scene's labels (core's scene/labels.ts) under VPT_LABELS: the 0.5 level of the visible labels' mask, in the label's colour. */
+  readonly drawsLabels = true;
   readonly accumulationFormats = ['rgba32float', 'rgba32float'] as const;
   readonly kernels = {
     generate: { glsl: glsl.generate, wgsl: wgsl.generate },
@@ -110,8 +112,9 @@ export class IsoRenderer extends BaseRenderer<IsoParams> {
       ISO_SOFT_LIGHTS: p.lightAngularRadius > 0,
       ISO_JITTER: p.jitter,
       ISO_OUTPUT: OUTPUT_CODE[p.output],
-      // A channel scene has no single value range per cell to skip by (majorant/grid-textures.ts).
-      SKIP_EMPTY: p.emptySpaceSkipping && !scene.channels,
+      // A channel scene has no single value range per cell to skip by (majorant/grid-textures.ts);
+      // a label scene's label surface is not in the value ranges either.
+      SKIP_EMPTY: p.emptySpaceSkipping && !scene.channels && !scene.labels,
     };
   }
 
@@ -165,7 +168,7 @@ export class IsoRenderer extends BaseRenderer<IsoParams> {
   auxiliaryTextures(scene: Scene, volume?: VolumeBinding): readonly AuxiliaryTexture[] {
     // With skipping (and a volume binding: inside a RenderContext), each grid cell's range of volume texels.
     const grid =
-      this.resolved.emptySpaceSkipping && volume && !scene.channels
+      this.resolved.emptySpaceSkipping && volume && !scene.channels && !scene.labels
         ? majorantGridTextures(scene, volume, DEFAULT_SKIP_CELL_SIZE, 'ranges')
         : [];
     const env = scene.environment;

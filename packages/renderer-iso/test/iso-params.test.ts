@@ -118,6 +118,7 @@ describe('IsoRenderer parameters', () => {
         VPT_DEPTH_LIMIT: false,
         VPT_SLICE_PLANE: false,
         VPT_CHANNELS: 0,
+        VPT_LABELS: false,
       });
       expect(constantVariant).not.toMatch(/envMap|envMarginal|envConditional/);
       expect(constantVariant).toMatch(/u\.background/);

@@ -39,7 +39,6 @@
  * estimators, so approximate ranges suffice; the kernel's own grid is still the GPU-built one.
  */
 import {
-  channelMajorantGrid,
   scalarSceneOf,
   type MajorantGrid,
   normalizationRange,
@@ -52,6 +51,8 @@ import {
   type Scene,
   type Volume,
 } from '@vpt/core';
+// The CPU grid of what the kernel draws: the channels' sum, plus the labels' (label volumes' subpath).
+import { sceneMajorantGrid } from '@vpt/core/labels';
 import { extinctionCap } from './extinction-cap.js';
 import type { EnvironmentSampling, TrackingMode } from './params.js';
 
@@ -119,11 +120,7 @@ export function phasePeakRatio(g: number): number {
 /** Grid statistics from every `stride`-th voxel per axis (stride ≥ 1 so that at most ~2²¹ voxels are read). */
 export function gridStatistics(given: Scene, cellSize: number): GridStatistics {
   const scene = scalarSceneOf(given) ?? given;
-  if (scene.channels)
-    return statisticsOf(
-      channelMajorantGrid(scene.volume, scene.channels, scene.densityScale, cellSize),
-      extinctionCap(scene),
-    );
+  if (scene.channels || scene.labels) return statisticsOf(sceneMajorantGrid(scene, cellSize), extinctionCap(scene));
   const v = scene.volume;
   const [nx, ny, nz] = v.dims;
   const stride = Math.max(1, Math.ceil(Math.cbrt((nx * ny * nz) / MAX_SAMPLED_VOXELS)));
@@ -283,10 +280,12 @@ export function chooseLightSamples(
 export class GridStatisticsMemo {
   private key = '';
   private volume: Volume | null = null;
+  private labels: Volume | undefined = undefined;
   private value: GridStatistics | null = null;
   get(scene: Scene, cellSize: number): GridStatistics {
-    const key = `${cellSize}|${scene.densityScale}|${JSON.stringify(scene.channels ?? scene.transferFunction)}`;
-    if (!this.value || this.volume !== scene.volume || this.key !== key) {
+    const key = `${cellSize}|${scene.densityScale}|${JSON.stringify(scene.channels ?? scene.transferFunction)}|${JSON.stringify(scene.labels?.table ?? null)}`;
+    if (!this.value || this.volume !== scene.volume || this.labels !== scene.labels?.volume || this.key !== key) {
+      this.labels = scene.labels?.volume;
       this.value = gridStatistics(scene, cellSize);
       this.volume = scene.volume;
       this.key = key;

@@ -20,7 +20,6 @@ import {
   volumeValueMapping,
   buildMajorantGrid,
   volumeCellRanges,
-  channelMajorantGrid,
   scalarSceneOf,
   gridGeometry,
   majorantGridTextures,
@@ -28,6 +27,8 @@ import {
   paramUniformFields,
   paramUniformValues,
 } from '@vpt/core';
+// The CPU grid of what the kernel draws: the channels' sum, plus the labels' (label volumes' subpath).
+import { sceneMajorantGrid } from '@vpt/core/labels';
 import { MCRT_DESCRIPTOR } from './descriptor.js';
 import { activeLights, computeFeatures, featureKey, MAX_LIGHTS, type McrtFeatures } from './features.js';
 import { generateKernel, INTEGRATE_HALVES } from './kernel-sources.js';
@@ -68,6 +69,8 @@ export class McrtRenderer extends BaseRenderer<McrtParams> {
   readonly writesGuides = MCRT_DESCRIPTOR.writesGuides;
   /** Draws a scene's slicePlane (core's scene/slice-plane.ts) under VPT_SLICE_PLANE. */
   readonly drawsSlicePlane = true;
+  /** Draws a scene's labels (core's scene/labels.ts) under VPT_LABELS: their opacity joins the medium (transferAt). */
+  readonly drawsLabels = true;
   readonly paramFields = MCRT_PARAM_FIELDS;
   private resolved: ResolvedMcrtParams;
   private current: McrtFeatures | null = null;
@@ -173,9 +176,11 @@ export class McrtRenderer extends BaseRenderer<McrtParams> {
     const cellSize = this.cellSize(given);
     // One drawn channel: the scalar scene it draws (the same bound, bit for bit).
     const scene = scalarSceneOf(given) ?? given;
-    const key = `${objectId(scene.volume as Volume)}|${cellSize}|${scene.densityScale}|${JSON.stringify(scene.channels ?? scene.transferFunction)}`;
-    if (this.gridMemo?.key !== key && scene.channels) {
-      this.gridMemo = { key, grid: channelMajorantGrid(scene.volume, scene.channels, scene.densityScale, cellSize) };
+    const labels = scene.labels ? `|${objectId(scene.labels.volume)}|${JSON.stringify(scene.labels.table)}` : '';
+    const key = `${objectId(scene.volume as Volume)}|${cellSize}|${scene.densityScale}|${JSON.stringify(scene.channels ?? scene.transferFunction)}${labels}`;
+    if (this.gridMemo?.key !== key && (scene.channels || scene.labels)) {
+      // Channels and labels: the CPU grid of what the kernel draws (the sum of the channels', plus the labels').
+      this.gridMemo = { key, grid: sceneMajorantGrid(scene, cellSize) };
     } else if (this.gridMemo?.key !== key) {
       const ranges = volumeCellRanges(scene.volume, cellSize);
       const tf = rasterizeTransferFunction(scene.transferFunction, TF_RESOLUTION);

@@ -71,7 +71,13 @@ describe('MCRT feature variants', () => {
   const both = (f: McrtFeatures) => {
     const k = generateKernel(f);
     return [k.glsl, k.wgsl].map((src) =>
-      preprocess(src, { VPT_GUIDES: false, VPT_CLIP: false, VPT_DEPTH_LIMIT: false, VPT_SLICE_PLANE: false }),
+      preprocess(src, {
+        VPT_GUIDES: false,
+        VPT_CLIP: false,
+        VPT_DEPTH_LIMIT: false,
+        VPT_SLICE_PLANE: false,
+        VPT_LABELS: false,
+      }),
     );
   };
 
@@ -96,6 +102,7 @@ describe('MCRT feature variants', () => {
         VPT_CLIP: true,
         VPT_DEPTH_LIMIT: false,
         VPT_SLICE_PLANE: false,
+        VPT_LABELS: false,
       });
       expect(clipped).toContain('keptInterval(');
       expect(clipped).not.toContain('intersectBox(');

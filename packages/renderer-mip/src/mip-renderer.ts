@@ -14,6 +14,7 @@ import {
   type UniformField,
   type UniformValues,
   type VolumeBinding,
+  VptError,
 } from '@vpt/core';
 import * as glsl from './kernels/mip.glsl.js';
 import * as wgsl from './kernels/mip.wgsl.js';
@@ -30,6 +31,8 @@ export class MipRenderer extends BaseRenderer<MipParams> {
   readonly writesGuides = MIP_DESCRIPTOR.writesGuides;
   /** Draws a scene's slicePlane (core's scene/slice-plane.ts) under VPT_SLICE_PLANE. */
   readonly drawsSlicePlane = true;
+  /** Draws a scene's labels (core's scene/labels.ts) under VPT_LABELS: the most opaque visible label's colour over the maximum. */
+  readonly drawsLabels = true;
   readonly kernels = {
     generate: { glsl: glsl.generate, wgsl: wgsl.generate },
     integrate: { glsl: glsl.integrate, wgsl: wgsl.integrate },
@@ -42,8 +45,9 @@ export class MipRenderer extends BaseRenderer<MipParams> {
   }
 
   override features(scene: Scene): Record<string, boolean | number> {
-    // A channel scene has no single value range per cell to skip by (majorant/grid-textures.ts).
-    return { SKIP_EMPTY: this.skipping && !scene.channels };
+    // A channel scene has no single value range per cell to skip by (majorant/grid-textures.ts);
+    // a label scene marches every sample (a skipped cell could hold a label).
+    return { SKIP_EMPTY: this.skipping && !scene.channels && !scene.labels };
   }
 
   paramValues(scene: Scene): UniformValues {
@@ -55,9 +59,18 @@ export class MipRenderer extends BaseRenderer<MipParams> {
 
   /** With skipping, each majorant-grid cell's range of volume texels, built on the GPU. */
   auxiliaryTextures(scene: Scene, volume: VolumeBinding): readonly AuxiliaryTexture[] {
-    return this.skipping && !scene.channels
+    return this.skipping && !scene.channels && !scene.labels
       ? majorantGridTextures(scene, volume, DEFAULT_SKIP_CELL_SIZE, 'ranges')
       : [];
+  }
+
+  /** Labels are drawn over a scalar volume: the frame's free components hold the label, a channel scene's hold channels. */
+  validateScene(scene: Scene): void {
+    if (scene.labels && scene.channels)
+      throw new VptError(
+        'invalid-scene',
+        'MIP: labels are drawn over a single-channel volume (a channel scene fills the frame with channel maxima); drop "labels" or "channels"',
+      );
   }
 
   private get skipping(): boolean {

@@ -73,6 +73,8 @@ const NOTHING_DRAWN: UniformValues = {
 export class SliceRenderer extends BaseRenderer<SliceParams> {
   readonly name = SLICE_DESCRIPTOR.name;
   readonly writesGuides = SLICE_DESCRIPTOR.writesGuides;
+  /** Lays a scene's label colours over the slice (core's scene/labels.ts) under VPT_LABELS. */
+  readonly drawsLabels = true;
   readonly frameFormats = ['rgba32float'] as const;
   readonly accumulationFormats = ['rgba32float'] as const;
   readonly kernels = {

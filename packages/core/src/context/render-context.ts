@@ -12,7 +12,8 @@ import { preprocess } from '../shaders/preprocess.js';
 import { validateGradientAtlasForDevice, validateSceneForDevice } from '../validation/device.js';
 import { SCENE_UNIFORM_FIELDS, sceneUniformValues } from '../shaders/scene-uniforms.js';
 import { CLIP_UNIFORM_FIELDS, clipUniformValues, hasClip } from '../scene/clip.js';
-import { CHANNEL_UNIFORM_FIELDS } from '../shaders/scene-uniforms.js';
+import { CHANNEL_UNIFORM_FIELDS, LABEL_UNIFORM_FIELDS } from '../shaders/scene-uniforms.js';
+import { labelSupport } from '../scene/label-support.js';
 import { enabledChannels } from '../scene/channels.js';
 import { SLICE_PLANE_UNIFORM_FIELDS, slicePlaneFlags, slicePlaneUniformValues } from '../scene/slice-plane.js';
 import { UniformLayout, type UniformField } from '../uniforms/layout.js';
@@ -82,7 +83,7 @@ export interface DepthLimit {
 
 /** The uniforms of the depth limit, appended to the layout only while one is set. */
 /** Kernel flags that become backend defines only when set (an unset one leaves the program unchanged). */
-const OPTIONAL_DEFINES = new Set(['VPT_CLIP', 'VPT_CHANNELS', 'VPT_SLICE_PLANE']);
+const OPTIONAL_DEFINES = new Set(['VPT_CLIP', 'VPT_CHANNELS', 'VPT_SLICE_PLANE', 'VPT_LABELS']);
 
 const DEPTH_LIMIT_FIELDS: readonly UniformField[] = [
   { name: 'depthA', type: 'f32' },
@@ -549,6 +550,7 @@ export class RenderContext {
       accTextures[`accum${i}`] = t;
     });
     if (this.scene.channels) accTextures.transferFunction = this.resources.tfTexture!;
+    if (this.drawsLabels(this.scene)) accTextures.labelTable = this.resources.auxTextures.get('labelTable')!.texture;
     this.backend.draw(this.passes!.render, { uniforms, textures: accTextures, target: this.hdr! });
     this.postChain.run(this.hdr!.textures[0], this.guides, this.width, this.height);
     this.hdrIteration = this.iteration;
@@ -760,6 +762,9 @@ export class RenderContext {
       ...this._renderer.paramValues(scene),
       ...(hasClip(scene.clip) ? clipUniformValues(scene.clip, scene.volume) : {}),
       ...(scene.channels ? this.resources.channelMapping(scene) : {}),
+      ...(this.drawsLabels(scene)
+        ? { labelScale: labelSupport().labelScaleOf(scene.labels!.volume, this.backend.capabilities) }
+        : {}),
       ...(this.drawsSlicePlane(scene) ? slicePlaneUniformValues(scene.slicePlane!, scene.volume) : {}),
       ...(this.depthLimit ? { depthA: this.depthLimit.a, depthB: this.depthLimit.b } : {}),
     });
@@ -775,6 +780,11 @@ export class RenderContext {
     return scene.slicePlane !== undefined && this._renderer.drawsSlicePlane === true;
   }
 
+  /** A scene's labels are drawn only by a renderer that says so (Renderer.drawsLabels). */
+  private drawsLabels(scene: Scene): boolean {
+    return scene.labels !== undefined && this._renderer.drawsLabels === true;
+  }
+
   /** Which shared chunks (and defines) the generate pass needs for this scene. */
   private chunkOptions(scene: Scene): Required<CommonChunkOptions> {
     const tf2d = !scene.channels && scene.transferFunction.dimensions === '2d';
@@ -786,6 +796,7 @@ export class RenderContext {
       bricked: this.resources.bricked !== null,
       clip: hasClip(scene.clip),
       channels: scene.channels ? enabledChannels(scene.channels).length : 0,
+      labels: this.drawsLabels(scene),
       slicePlane: plane !== null,
       slicePlaneNearest: plane?.nearest ?? false,
       slicePlaneTable: plane?.table ?? false,
@@ -811,6 +822,8 @@ export class RenderContext {
       // The number of drawn channels of a channel scene (scene/channels.ts), 0 for a scalar one.
       VPT_CHANNELS: chunks.channels,
       VPT_SLICE_PLANE: chunks.slicePlane,
+      // A label volume drawn by the renderer (scene/labels.ts).
+      VPT_LABELS: chunks.labels,
     };
     const frameFormats = writeGuides ? [...r.frameFormats, ...GUIDE_FRAME_FORMATS] : r.frameFormats;
     const key = `${r.name}|${JSON.stringify(features)}|${chunks.slicePlaneNearest ? 'plane nearest|' : ''}${auxBindings.map((b) => b.name).join(',')}|${chunks.hardwareFilter ? 'filtered' : 'exact'}${chunks.bricked ? '|bricked' : ''}`;
@@ -831,6 +844,7 @@ export class RenderContext {
         ...r.paramFields,
         ...(chunks.clip ? CLIP_UNIFORM_FIELDS : []),
         ...(chunks.channels ? CHANNEL_UNIFORM_FIELDS : []),
+        ...(chunks.labels ? LABEL_UNIFORM_FIELDS : []),
         ...(chunks.slicePlane ? SLICE_PLANE_UNIFORM_FIELDS : []),
         ...(this.depthLimit ? DEPTH_LIMIT_FIELDS : []),
       ]);
@@ -880,7 +894,12 @@ export class RenderContext {
         // per-channel maxima there).
         render: mk(
           'render',
-          chunks.channels ? [...accTex, { name: 'transferFunction', dimension: '2d' as const }] : accTex,
+          [
+            ...accTex,
+            ...(chunks.channels ? [{ name: 'transferFunction', dimension: '2d' as const }] : []),
+            // A label variant's render pass reads the label table (MIP colours its label there).
+            ...(chunks.labels ? [{ name: 'labelTable', dimension: '2d' as const }] : []),
+          ],
           ['rgba32float'],
         ),
       };

@@ -25,6 +25,7 @@ import {
   type ChannelSettings,
 } from '../scene/channels.js';
 import { slicePlaneTextures } from '../scene/slice-plane.js';
+import { labelSupport } from '../scene/label-support.js';
 
 /** How RenderContext wants the scene's volume bricked (null: one texture). */
 export interface BrickPlan extends BrickingOptions {
@@ -429,6 +430,8 @@ export class SceneResources {
       ...(r.auxiliaryTextures?.(scene, binding) ?? []),
       // A slice plane's colour map, for the renderers that draw one (Renderer.drawsSlicePlane).
       ...(scene.slicePlane && r.drawsSlicePlane ? slicePlaneTextures(scene.slicePlane) : []),
+      // A label volume and its table, for the renderers that draw labels (Renderer.drawsLabels).
+      ...(scene.labels && r.drawsLabels ? labelSupport().labelTextures(scene.labels, this.backend.capabilities) : []),
     ];
   }
 

@@ -8,6 +8,7 @@ import * as wgslAtlas from '../shaders/slice-atlas.wgsl.js';
 import { UniformLayout, type UniformField } from '../uniforms/layout.js';
 import { buildMajorantGrid, channelMajorantGrid, gridCells, summedChannelGrid } from './majorant-grid.js';
 import { scalarSceneOf } from '../scene/channels.js';
+import { labelSupport } from '../scene/label-support.js';
 import { rasterizeTransferFunction } from '../scene/transfer-function.js';
 import { atlasTexel } from '../shaders/slice-atlas.js';
 import * as glslBuild from './majorant-build.glsl.js';
@@ -58,6 +59,8 @@ export function majorantGridTextures(
   cellSize: number,
   output: MajorantGridOutput,
 ): AuxiliaryTexture[] {
+  // Labels add their extinction: the grid is built on the CPU (labels.ts labelMajorantGridTexture, registered by enableLabels).
+  if (scene.labels && output === 'majorants') return [labelSupport().majorantGridTexture(scene, volume, cellSize)];
   // One drawn channel is an r-format texture and a one-row TF: the GPU build below reads it as a scalar volume.
   if (scene.channels && scene.channels.filter((c) => c.enabled !== false).length > 1)
     return [channelGridTexture(scene, cellSize, output, volume.channelCellRanges ? volume : null)];
@@ -202,33 +205,40 @@ function channelGridTexture(
   if (output !== 'majorants') throw new RangeError('a channel scene has a majorant grid, not one value range per cell');
   const channels = scene.channels!;
   const cells = gridCells(scene.volume.dims, cellSize);
-  const layout = sliceAtlasLayout(cells);
   return {
     name: 'majorantGrid',
     dimension: '2d',
     key: bricked
       ? `channels bricked|${cellSize}|${scene.densityScale}|${JSON.stringify(channels)}|${bricked.key}`
       : `channels|${objectId(scene.volume as Volume)}|${cellSize}|${scene.densityScale}|${JSON.stringify(channels)}`,
-    create: () => {
-      const texels = bricked
-        ? summedChannelGrid(bricked.channelCellRanges!(cells), channels, scene.densityScale).data
-        : channelMajorantGrid(scene.volume, channels, scene.densityScale, cellSize).data;
-      const data = new Float32Array(4 * layout.width * layout.height);
-      for (let z = 0; z < cells[2]; z++)
-        for (let y = 0; y < cells[1]; y++) {
-          const [ax, ay] = atlasTexel(layout, cells, 0, y, z);
-          const from = 4 * cells[0] * (y + cells[1] * z);
-          data.set(texels.subarray(from, from + 4 * cells[0]), 4 * (ax + layout.width * ay));
-        }
-      return {
-        dimension: '2d',
-        width: layout.width,
-        height: layout.height,
-        format: 'rgba32float',
-        data,
-        label: 'majorant grid (channels)',
-      };
-    },
+    create: () =>
+      atlasTexture(
+        cells,
+        bricked
+          ? summedChannelGrid(bricked.channelCellRanges!(cells), channels, scene.densityScale).data
+          : channelMajorantGrid(scene.volume, channels, scene.densityScale, cellSize).data,
+        'majorant grid (channels)',
+      ),
+  };
+}
+
+/** A grid's RGBA texels (x fastest) laid out in the slice atlas of its cell counts, as the GPU build writes it. */
+export function atlasTexture(cells: [number, number, number], texels: Float32Array, label: string) {
+  const layout = sliceAtlasLayout(cells);
+  const data = new Float32Array(4 * layout.width * layout.height);
+  for (let z = 0; z < cells[2]; z++)
+    for (let y = 0; y < cells[1]; y++) {
+      const [ax, ay] = atlasTexel(layout, cells, 0, y, z);
+      const from = 4 * cells[0] * (y + cells[1] * z);
+      data.set(texels.subarray(from, from + 4 * cells[0]), 4 * (ax + layout.width * ay));
+    }
+  return {
+    dimension: '2d' as const,
+    width: layout.width,
+    height: layout.height,
+    format: 'rgba32float' as const,
+    data,
+    label,
   };
 }
 

@@ -2,6 +2,8 @@ import { VptError } from '../errors.js';
 import { validateCamera, type Camera } from './camera.js';
 import { validateChannels, type ChannelSettings } from './channels.js';
 import { validateClip, type Clip } from './clip.js';
+import type { SceneLabels } from './labels.js';
+import { labelSupport } from './label-support.js';
 import { validateSlicePlane, type SceneSlicePlane } from './slice-plane.js';
 import { validateEnvironment, validateLights, type Environment, type Light } from './lights.js';
 import { validateTransferFunction, type TransferFunction } from './transfer-function.js';
@@ -43,6 +45,11 @@ export interface Scene {
    * `drawsSlicePlane` (scene/slice-plane.ts); absent: no slice-plane code is compiled.
    */
   slicePlane?: SceneSlicePlane;
+  /**
+   * A label volume (segmentation) and its table (scene/labels.ts), drawn by the renderers that
+   * say `drawsLabels`; absent: no label code is compiled.
+   */
+  labels?: SceneLabels;
 }
 
 export function validateScene(s: Scene): void {
@@ -81,4 +88,6 @@ export function validateScene(s: Scene): void {
       `Scene: the volume has ${channelCount(s.volume)} channels, so the scene needs "channels": one entry (transferFunction, enabled, color, range) per channel`,
     );
   if (s.slicePlane !== undefined) validateSlicePlane(s.slicePlane, s.volume);
+  // The mixture's extinction is the image's plus the labels': scene/labels.ts bounds the sum.
+  if (s.labels !== undefined) labelSupport().validateSceneLabels(s);
 }

@@ -310,7 +310,11 @@ vec4 channelLookup(float value, int row) {
   int i1 = min(i0 + 1, u.tfSize - 1);
   return lerp4(texelFetch(transferFunction, ivec2(i0, row), 0), texelFetch(transferFunction, ivec2(i1, row), 0), x - x0);
 }
+#if LABELS
+vec4 imageTransferAt(vec3 p) {
+#else
 vec4 transferAt(vec3 p) {
+#endif
   vec4 v = sampleChannels(p);
   vec4 t0 = channelLookup(v.x, 0);
   float sigma = t0.a;
@@ -359,7 +363,11 @@ export const TRANSFER_1D = /* glsl */ `
 // The transfer function at a world point: (linear RGB albedo/emission, opacity).
 // Renderers call this, not sampleVolume + transferLookup, so a 2D (value x gradient)
 // transfer function can change what it reads without touching any renderer.
+#if LABELS
+vec4 imageTransferAt(vec3 p) {
+#else
 vec4 transferAt(vec3 p) {
+#endif
   return transferLookup(sampleVolume(p));
 }
 `;
@@ -421,7 +429,11 @@ vec4 transferLookup2D(float value, float gradient) {
   vec4 b = lerp4(texelFetch(transferFunction, ivec2(i0, j1), 0), texelFetch(transferFunction, ivec2(i1, j1), 0), x - x0);
   return lerp4(a, b, y - y0);
 }
+#if LABELS
+vec4 imageTransferAt(vec3 p) {
+#else
 vec4 transferAt(vec3 p) {
+#endif
   return transferLookup2D(sampleVolume(p), normalizedGradientAt(p));
 }
 `;
@@ -460,7 +472,11 @@ float slicePlaneTexel(vec3 p) {
   return sampleVolumeTexel(p);
 #endif
 }
+#if LABELS
+vec3 slicePlaneImageColor(vec3 p) {
+#else
 vec3 slicePlaneColor(vec3 p) {
+#endif
   float n = slicePlaneTexel(p) * u.valueScale + u.valueOffset;
   float w = clamp(n * u.slicePlaneWindow.x + u.slicePlaneWindow.y, 0.0, 1.0);
 #if SLICE_PLANE_TABLE
@@ -475,6 +491,9 @@ vec3 slicePlaneColor(vec3 p) {
 #endif
 }
 `;
+
+/** Where commonChunks puts the label chunk (a line the preprocessor cuts when LABELS is off). */
+export const LABELS_PLACEHOLDER = '// VPT_LABELS_CHUNK';
 
 /**
  * The shared chunks of a generate pass, variants marked by `#if` lines that commonChunks()
@@ -531,6 +550,10 @@ export const GENERATE_CHUNKS = [
   '#endif',
   '#if SLICE_PLANE',
   SLICE_PLANE,
+  '#endif',
+  '#if LABELS',
+  // The label chunk (shaders/labels.*.ts) is put here by commonChunks when labels are enabled (scene/label-support.ts).
+  LABELS_PLACEHOLDER,
   '#endif',
 ].join('\n');
 

@@ -2,6 +2,7 @@ import type { KernelSource } from '../renderer.js';
 import * as glsl from './common.glsl.js';
 import * as wgsl from './common.wgsl.js';
 import { preprocess } from './preprocess.js';
+import { labelSupport } from '../scene/label-support.js';
 
 /** Options of the generate pass's shared chunks, derived from the scene by RenderContext. */
 export interface CommonChunkOptions {
@@ -17,6 +18,8 @@ export interface CommonChunkOptions {
   clip?: boolean;
   /** A channel scene's drawn channels (1–4; scene/channels.ts): sampleChannels() and the mixture's transferAt(); 0 or absent: scalar. */
   channels?: number;
+  /** The scene has a label volume its renderer draws (scene/labels.ts): labelIdAt() / labelAt() and the image + labels transferAt() exist. */
+  labels?: boolean;
   /** The scene has a slice plane its renderer draws (scene/slice-plane.ts): slicePlaneHit() / slicePlaneColor() exist. */
   slicePlane?: boolean;
   /** The slice plane reads the voxel holding the point (else the shared trilinear filter). */
@@ -39,11 +42,23 @@ export function commonChunks(opts: CommonChunkOptions = {}): KernelSource {
     BRICKED: !!opts.bricked,
     CLIP: !!opts.clip,
     CHANNELS: opts.channels ?? 0,
+    LABELS: !!opts.labels,
     SLICE_PLANE: !!opts.slicePlane,
     SLICE_PLANE_NEAREST: !!opts.slicePlaneNearest,
     SLICE_PLANE_TABLE: !!opts.slicePlaneTable,
   };
-  return { glsl: preprocess(glsl.GENERATE_CHUNKS, flags), wgsl: preprocess(wgsl.GENERATE_CHUNKS, flags) };
+  // The label chunk is registered by enableLabels() (scene/label-support.ts), so bundles without labels do not carry it.
+  const chunks = opts.labels ? labelSupport().chunks : null;
+  return {
+    glsl: preprocess(
+      chunks ? glsl.GENERATE_CHUNKS.replace(glsl.LABELS_PLACEHOLDER, chunks.glsl) : glsl.GENERATE_CHUNKS,
+      flags,
+    ),
+    wgsl: preprocess(
+      chunks ? wgsl.GENERATE_CHUNKS.replace(wgsl.LABELS_PLACEHOLDER, chunks.wgsl) : wgsl.GENERATE_CHUNKS,
+      flags,
+    ),
+  };
 }
 
 /** The integrate and render passes' shared chunks (texture-free RNG and rays). */

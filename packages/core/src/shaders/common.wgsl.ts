@@ -254,7 +254,11 @@ fn channelLookup(value: f32, row: i32) -> vec4f {
   let i1 = min(i0 + 1, u.tfSize - 1);
   return lerp4(textureLoad(transferFunction, vec2i(i0, row), 0), textureLoad(transferFunction, vec2i(i1, row), 0), x - x0);
 }
+#if LABELS
+fn imageTransferAt(p: vec3f) -> vec4f {
+#else
 fn transferAt(p: vec3f) -> vec4f {
+#endif
   let v = sampleChannels(p);
   let t0 = channelLookup(v.x, 0);
   var sigma = t0.a;
@@ -297,7 +301,11 @@ fn transferLookup(value: f32) -> vec4f {
 
 /** transferAt for a 1D transfer function (see common.glsl.ts). */
 export const TRANSFER_1D = /* wgsl */ `
+#if LABELS
+fn imageTransferAt(p: vec3f) -> vec4f {
+#else
 fn transferAt(p: vec3f) -> vec4f {
+#endif
   return transferLookup(sampleVolume(p));
 }
 `;
@@ -350,7 +358,11 @@ fn transferLookup2D(value: f32, gradient: f32) -> vec4f {
   let b = lerp4(textureLoad(transferFunction, vec2i(i0, j1), 0), textureLoad(transferFunction, vec2i(i1, j1), 0), x - x0);
   return lerp4(a, b, y - y0);
 }
+#if LABELS
+fn imageTransferAt(p: vec3f) -> vec4f {
+#else
 fn transferAt(p: vec3f) -> vec4f {
+#endif
   return transferLookup2D(sampleVolume(p), normalizedGradientAt(p));
 }
 `;
@@ -381,7 +393,11 @@ fn slicePlaneTexel(p: vec3f) -> f32 {
   return sampleVolumeTexel(p);
 #endif
 }
+#if LABELS
+fn slicePlaneImageColor(p: vec3f) -> vec3f {
+#else
 fn slicePlaneColor(p: vec3f) -> vec3f {
+#endif
   let n = slicePlaneTexel(p) * u.valueScale + u.valueOffset;
   let w = clamp(n * u.slicePlaneWindow.x + u.slicePlaneWindow.y, 0.0, 1.0);
 #if SLICE_PLANE_TABLE
@@ -396,6 +412,9 @@ fn slicePlaneColor(p: vec3f) -> vec3f {
 #endif
 }
 `;
+
+/** Where commonChunks puts the label chunk (a line the preprocessor cuts when LABELS is off). */
+export const LABELS_PLACEHOLDER = '// VPT_LABELS_CHUNK';
 
 /**
  * The shared chunks of a generate pass, variants marked by `#if` lines that commonChunks()
@@ -451,6 +470,10 @@ export const GENERATE_CHUNKS = [
   '#endif',
   '#if SLICE_PLANE',
   SLICE_PLANE,
+  '#endif',
+  '#if LABELS',
+  // The label chunk (shaders/labels.*.ts) is put here by commonChunks when labels are enabled (scene/label-support.ts).
+  LABELS_PLACEHOLDER,
   '#endif',
 ].join('\n');
 

@@ -92,3 +92,9 @@ export function sceneUniformValues(
     valueOffset: map.valueOffset,
   };
 }
+
+/**
+ * A label scene's uniform (scene/labels.ts), after the channels' and only in variants that draw
+ * labels: the label texture's texel → id factor (255 for r8unorm, 65535 for r16unorm, 1 for r32float).
+ */
+export const LABEL_UNIFORM_FIELDS: readonly UniformField[] = [{ name: 'labelScale', type: 'f32' }];

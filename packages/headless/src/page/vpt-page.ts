@@ -24,12 +24,21 @@ type CoreModule = VptPageApi['core'];
 interface LoadersModule {
   loadVolume(
     source: string | File[],
-    options: { format?: string; zarr?: Record<string, unknown>; request?: Partial<RequestPolicy>; time?: number },
+    options: {
+      format?: string;
+      zarr?: Record<string, unknown>;
+      request?: Partial<RequestPolicy>;
+      time?: number;
+      labels?: boolean;
+    },
   ): Promise<Volume & { meta?: Record<string, unknown> }>;
   openOmeZarr(url: string, options: Record<string, unknown>): Promise<MultiscaleSource>;
 }
 
 let core!: CoreModule;
+/** @vpt/core/labels: label volumes (enabled at load). */
+type LabelsModule = typeof import('@vpt/core/labels');
+let labelsModule: LabelsModule | null = null;
 let post!: PostModule;
 /** The renderer classes of the catalog, by renderer name. */
 const rendererClasses = new Map<string, new (params?: Record<string, unknown>) => Renderer>();
@@ -51,12 +60,13 @@ async function loadVolume(
   desc: VolumeDescription,
   baseUrl: string = document.baseURI,
   request: Partial<RequestPolicy> = {},
+  labels = false,
 ): Promise<Volume> {
   if ('procedural' in desc) return core.createProceduralVolume(desc.procedural, desc.size ?? 32);
   if (isChannelFiles(desc)) return loadChannels(desc.channels, baseUrl, request);
-  if ('zarr' in desc) return loadZarr(desc, baseUrl, request);
-  if ('file' in desc) return loadFile(desc, baseUrl, request);
-  if ('timeSeries' in desc) return loadFile({ ...desc, file: desc.timeSeries[0] }, baseUrl, request);
+  if ('zarr' in desc) return loadZarr(desc, baseUrl, request, labels);
+  if ('file' in desc) return loadFile(desc, baseUrl, request, labels);
+  if ('timeSeries' in desc) return loadFile({ ...desc, file: desc.timeSeries[0] }, baseUrl, request, labels);
   if ('sidecar' in desc) {
     // core's raw reader parses the sidecar (as @vpt/loaders and the viewer's fallback do).
     const sidecarUrl = new URL(desc.sidecar, baseUrl).href;
@@ -64,7 +74,7 @@ async function loadVolume(
     const sidecar = core.parseRawSidecar(text, sidecarUrl);
     // Without the sidecar's `file` (its raw file's name, now in `raw`): `file` is the loaders' volume kind.
     const { file: _rawName, ...header } = sidecar;
-    return loadVolume({ raw: core.rawFileBeside(sidecarUrl, sidecar), ...header }, sidecarUrl, request);
+    return loadVolume({ raw: core.rawFileBeside(sidecarUrl, sidecar), ...header }, sidecarUrl, request, labels);
   }
   const url = new URL(desc.raw, baseUrl).href;
   // A raw file holds exactly dims × type bytes (rawVoxels checks it): nothing longer is read.
@@ -75,6 +85,9 @@ async function loadVolume(
   volume.name = url.split('/').pop();
   return volume;
 }
+
+/** A label image's own colours and names (OME-Zarr `image-label`), by the loaded volume: the scene's default table. */
+const fileLabelColors = new WeakMap<Volume, { id: number; rgba?: number[]; name?: string }[]>();
 
 /** Each channel's own value range (a sidecar's, an omero window) of a volume loaded from channels: the scene's default per-channel range. */
 const channelRanges = new WeakMap<Volume, ([number, number] | undefined)[]>();
@@ -104,6 +117,7 @@ async function loadZarr(
   desc: ZarrVolumeDescription,
   baseUrl: string,
   request: Partial<RequestPolicy>,
+  labels = false,
 ): Promise<Volume> {
   const url = new URL(desc.zarr, baseUrl).href;
   const loaders = await load<LoadersModule>('@vpt/loaders');
@@ -120,6 +134,7 @@ async function loadZarr(
         ...(desc.missingChunks ? { missingChunks: desc.missingChunks } : {}),
       },
       request,
+      ...(labels ? { labels } : {}),
     });
   } catch (e) {
     // A store beyond a bound (too many chunk requests, a bomb) stays limit-exceeded.
@@ -139,6 +154,10 @@ async function loadZarr(
     return volume;
   }
   const volume = core.createVolume(loaded.dims, loaded.type, loaded.data, loaded.spacing);
+  const imageLabel = (
+    loaded.meta?.zarr as { imageLabel?: { id: number; rgba?: number[]; name?: string }[] } | undefined
+  )?.imageLabel;
+  if (labels && imageLabel) fileLabelColors.set(volume, imageLabel);
   const window = loaded.meta?.value_range as [number, number] | undefined;
   const range = desc.valueRange ?? window;
   if (range) volume.valueRange = [range[0], range[1]];
@@ -155,6 +174,7 @@ async function loadFile(
   desc: FileVolumeDescription,
   baseUrl: string,
   request: Partial<RequestPolicy>,
+  labels = false,
 ): Promise<Volume> {
   const loaders = await load<LoadersModule>('@vpt/loaders');
   const format = desc.format && desc.format !== 'auto' ? { format: desc.format } : {};
@@ -173,7 +193,12 @@ async function loadFile(
           ),
         )
       : where;
-    loaded = await loaders.loadVolume(source, { ...format, request, ...(desc.time ? { time: desc.time } : {}) });
+    loaded = await loaders.loadVolume(source, {
+      ...format,
+      request,
+      ...(desc.time ? { time: desc.time } : {}),
+      ...(labels ? { labels } : {}),
+    });
   } catch (e) {
     throw new core.VptError('load-failed', `Could not load ${where}: ${(e as Error).message}`, { cause: e });
   }
@@ -297,10 +322,34 @@ async function buildScene(d: SceneDescription, baseUrl?: string, request?: Parti
 /** The Scene of a description that was checked where it entered the page (buildScene, renderDescription). */
 async function sceneOf(d: SceneDescription, baseUrl?: string, request?: Partial<RequestPolicy>): Promise<Scene> {
   const tf = d.transferFunction;
-  const volume = await loadVolume(d.volume ?? SCENE_DEFAULTS.volume, baseUrl, request);
+  // Label ids are kept as loaded (integers, no value range): core's toLabelVolume refuses anything else.
+  const lm = labelsModule;
+  if (d.labels && !lm)
+    throw new core.VptError('invalid-scene', 'labels: this page could not load @vpt/core/labels (label volumes)');
+  const loadedLabels = d.labels ? await loadVolume(d.labels.volume, baseUrl, request, true) : null;
+  const labelVolume = loadedLabels && lm ? lm.toLabelVolume(loadedLabels, 'labels.volume') : null;
+  // The default table: every id present, in the file's own colours where it has them (OME-Zarr image-label).
+  const fileColors = loadedLabels ? fileLabelColors.get(loadedLabels) : undefined;
+  // Labels alone: an empty image on their grid.
+  const volume =
+    labelVolume && !d.volume
+      ? core.createVolume(labelVolume.dims, 'uint8', new Uint8Array(labelVolume.data.length), labelVolume.spacing)
+      : await loadVolume(d.volume ?? SCENE_DEFAULTS.volume, baseUrl, request);
   const ranges = channelRanges.get(volume);
   return {
     volume,
+    ...(labelVolume
+      ? {
+          labels: {
+            volume: labelVolume,
+            table: d.labels!.table
+              ? d.labels!.table.map((e) => ({ ...e }))
+              : fileColors
+                ? lm!.withLabelColors(lm!.defaultLabelTable(labelVolume), fileColors)
+                : lm!.defaultLabelTable(labelVolume),
+          },
+        }
+      : {}),
     ...(d.channels
       ? {
           channels: d.channels.map((c, k) => {
@@ -498,6 +547,13 @@ async function load<T>(name: string): Promise<T> {
 
 try {
   [core, post] = await Promise.all([load<CoreModule>('@vpt/core'), load<PostModule>('@vpt/post')]);
+  // Scene files may carry label volumes (core's scene/labels.ts): opt-in, so bundles without them stay small.
+  try {
+    labelsModule = await load<LabelsModule>('@vpt/core/labels');
+    labelsModule.enableLabels();
+  } catch {
+    // A core without the subpath (the page test's stub packages): a scene with labels is then refused, typed.
+  }
   // Every renderer of the catalog, imported by its package name (the import map resolves it).
   const modules = await Promise.all(core.RENDERER_CATALOG.map((e) => load<Record<string, unknown>>(e.packageName)));
   const renderers: Record<string, Record<string, unknown>> = {};

@@ -1,4 +1,5 @@
 import { validateVolume, type VoxelArray, type VoxelType } from '@vpt/core';
+import { toLabelVolume } from '@vpt/core/labels';
 import { LoaderError } from '../errors.js';
 import type { LoadContext } from '../context.js';
 import type { LoadedVolume } from '../types.js';
@@ -29,7 +30,11 @@ export function finishVolume(v: DecodedVolume, ctx: LoadContext): LoadedVolume {
   const C = v.channels ?? 1;
   if (checkFits(dims, OUTPUT_BYTES[v.type] * C, ctx) === 'downsample') {
     const factors = downsampleFactors(dims, OUTPUT_BYTES[v.type] * C, ctx.limits);
-    const shrunk = C > 1 ? downsampleChannels(data, dims, factors, v.type, C) : downsample(data, dims, factors, v.type);
+    const shrunk = ctx.labels
+      ? subsample(data, dims, factors)
+      : C > 1
+        ? downsampleChannels(data, dims, factors, v.type, C)
+        : downsample(data, dims, factors, v.type);
     meta.downsampled = { factors, originalDims: dims, originalSpacing: spacing };
     if (origin && v.orientation) {
       // The first output voxel's centre is the centre of the first input block.
@@ -44,7 +49,17 @@ export function finishVolume(v: DecodedVolume, ctx: LoadContext): LoadedVolume {
     data = shrunk.data;
     ctx.warnings.push(`downsampled by [${factors.join(', ')}] to fit the limits`);
   }
-  if (v.type === 'float32') {
+  let type = v.type;
+  if (ctx.labels) {
+    // Label ids: core's rule (integers in [0, 65535], the narrowest of uint8 / uint16), no value range.
+    try {
+      ({ type, data } = toLabelVolume({ dims, spacing, type, data }, `${ctx.name} (a label volume)`));
+    } catch (e) {
+      throw new LoaderError('invalid-data', (e as Error).message, { cause: e });
+    }
+    meta.labels = true;
+  }
+  if (type === 'float32') {
     // Documented behaviour: NaN/±Inf voxels load as they are (core's normalizedData
     // turns them into 0, and the normalization range ignores them); the count says how many.
     const range = scanRange(data);
@@ -57,7 +72,7 @@ export function finishVolume(v: DecodedVolume, ctx: LoadContext): LoadedVolume {
     lazyDataRange(meta, data);
   }
   if (ctx.warnings.length) meta.warnings = [...ctx.warnings];
-  const out: LoadedVolume = { format: v.format, dims, spacing, type: v.type, data, meta, name: ctx.name };
+  const out: LoadedVolume = { format: v.format, dims, spacing, type, data, meta, name: ctx.name };
   if (C > 1) out.channels = C;
   if (v.orientation) out.orientation = v.orientation;
   if (origin) out.origin = origin;
@@ -105,6 +120,22 @@ function downsampleChannels(
     for (let i = 0; i < shrunk.data.length; i++) out[c + C * i] = shrunk.data[i];
   }
   return { dims: od, data: out! };
+}
+
+/** Each `f`-sized block's first voxel (a label volume's downsample: ids are never averaged). */
+export function subsample(
+  data: VoxelArray,
+  dims: readonly number[],
+  f: readonly number[],
+): { dims: [number, number, number]; data: VoxelArray } {
+  const [nx, ny] = dims;
+  const od = [0, 1, 2].map((i) => Math.ceil(dims[i] / f[i])) as [number, number, number];
+  const out = new (data.constructor as new (n: number) => VoxelArray)(od[0] * od[1] * od[2]);
+  let j = 0;
+  for (let z = 0; z < od[2]; z++)
+    for (let y = 0; y < od[1]; y++)
+      for (let x = 0; x < od[0]; x++) out[j++] = data[x * f[0] + nx * (y * f[1] + ny * z * f[2])];
+  return { dims: od, data: out };
 }
 
 /** Box-average `f`-sized blocks (partial blocks at the far edges average what they hold); NaN/±Inf are skipped. */

@@ -5,7 +5,13 @@
 import type { MultiscaleSource, OmeZarrOptions } from './multiscale-source.js';
 
 export type { MultiscaleSource, MultiscaleLevel, OmeZarrMeta, OmeZarrOptions } from './multiscale-source.js';
-export { parseOmeMultiscales, type OmeMultiscale, type OmeDataset, type OmeAxis } from './ome-metadata.js';
+export {
+  parseOmeMultiscales,
+  type ImageLabelEntry,
+  type OmeMultiscale,
+  type OmeDataset,
+  type OmeAxis,
+} from './ome-metadata.js';
 export { isZarrLocation, splitZarrLocation, type ZarrSelection } from './location.js';
 export {
   writeOmeZarr,

@@ -8,7 +8,7 @@
 import * as zarr from 'zarrita';
 import { createVolume, type Volume, type VoxelArray, type VoxelType } from '@vpt/core';
 import { LoaderError, isAbort } from '../errors.js';
-import { parseOmeMultiscales, type OmeMultiscale, type Vec3 } from './ome-metadata.js';
+import { parseOmeMultiscales, type ImageLabelEntry, type OmeMultiscale, type Vec3 } from './ome-metadata.js';
 import { openZarrStore, type CountingStore, type ZarrStoreOptions } from './store.js';
 
 export interface MultiscaleLevel {
@@ -60,6 +60,8 @@ export interface OmeZarrMeta {
   channels: number;
   time: number;
   times: number;
+  /** A label image's `image-label` colours and names (ome-metadata.ts), when present. */
+  imageLabel?: ImageLabelEntry[];
   warnings: string[];
 }
 
@@ -331,6 +333,7 @@ export async function openOmeZarr(location: string, options: OmeZarrOptions = {}
     channels,
     time,
     times,
+    ...(ms.imageLabel ? { imageLabel: ms.imageLabel } : {}),
     warnings,
   };
   const valueRange = ms.windows[channel];

@@ -39,7 +39,19 @@ export interface OmeMultiscale {
   unit?: string;
   /** omero channel display windows, by channel index, when present: [start, end]. */
   windows: ([number, number] | undefined)[];
+  /**
+   * A label image's `image-label` metadata (NGFF "labels"), when the group has it: per label
+   * value its display colour (RGBA bytes) and name (from `properties`). Entries that are not an
+   * integer value in [0, 65535] with four bytes are skipped with a warning.
+   */
+  imageLabel?: ImageLabelEntry[];
   warnings: string[];
+}
+
+export interface ImageLabelEntry {
+  id: number;
+  rgba?: [number, number, number, number];
+  name?: string;
 }
 
 /** Metres per unit for the NGFF spatial units vpt converts between (UDUNITS-2 names). */
@@ -153,8 +165,49 @@ export function parseOmeMultiscales(attributes: unknown, name: string): OmeMulti
     datasets,
     unit,
     windows: omeroWindows(ome.omero ?? attrs.omero),
+    ...(ome['image-label'] !== undefined ? { imageLabel: imageLabelOf(ome['image-label'], warnings) } : {}),
     warnings,
   };
+}
+
+/** NGFF `image-label`: `colors` [{ "label-value", "rgba" }] and `properties` [{ "label-value", "name"? }]. */
+function imageLabelOf(json: unknown, warnings: string[]): ImageLabelEntry[] {
+  if (!isObject(json)) {
+    warnings.push('"image-label" is not an object; its colours are ignored');
+    return [];
+  }
+  const byId = new Map<number, ImageLabelEntry>();
+  const id = (e: unknown): number | null => {
+    const v = isObject(e) ? e['label-value'] : undefined;
+    return typeof v === 'number' && Number.isInteger(v) && v >= 0 && v <= 65535 ? v : null;
+  };
+  const entry = (k: number) => byId.get(k) ?? byId.set(k, { id: k }).get(k)!;
+  let skipped = 0;
+  for (const c of Array.isArray(json.colors) ? json.colors : []) {
+    const k = id(c);
+    const rgba = isObject(c) ? c.rgba : undefined;
+    if (
+      k === null ||
+      !Array.isArray(rgba) ||
+      rgba.length !== 4 ||
+      !rgba.every((x) => typeof x === 'number' && Number.isInteger(x) && x >= 0 && x <= 255)
+    ) {
+      skipped++;
+      continue;
+    }
+    entry(k).rgba = rgba as [number, number, number, number];
+  }
+  for (const p of Array.isArray(json.properties) ? json.properties : []) {
+    const k = id(p);
+    const name = isObject(p) ? p.name : undefined;
+    if (k === null) {
+      skipped++;
+      continue;
+    }
+    if (typeof name === 'string' && name) entry(k).name = name;
+  }
+  if (skipped) warnings.push(`${skipped} "image-label" entries are not a label value with four RGBA bytes; skipped`);
+  return [...byId.values()].sort((a, b) => a.id - b.id);
 }
 
 function parseAxes(json: unknown, _levels: number, bad: (m: string) => never): OmeAxis[] {

@@ -9,6 +9,8 @@ import { GLSL_CELL_WALK, GLSL_DEPTH_LIMIT, GLSL_ENVIRONMENT_MAP, GLSL_SAMPLING, 
 // image converges to soft shadows. Surfaces with opacity < 1 use stochastic transparency
 // (Enderton et al. 2010): every crossing, by camera and shadow rays alike, is opaque with
 // probability alpha_k, independently, so the mean is alpha-compositing in depth order.
+// One march for scalar and channel scenes (isoValuesAt: surface k reads component k); VPT_LABELS
+// adds the visible labels' mask as one more opaque surface at its 0.5 level (core's scene/labels.ts).
 
 /** Helpers shared by the generate kernel (twin of iso.wgsl.ts). */
 const ISO_COMMON = /* glsl */ `
@@ -44,13 +46,33 @@ int isoNextSample(inout IsoCells c, float t, float t0, float t1, float seg, floa
 }
 #endif
 
+// The values the surfaces lie on at p: surface k reads component k (a channel scene: drawn
+// channel k; a scalar one: the volume's value in every component). One march serves both.
+vec4 isoValuesAt(vec3 p) {
 #if VPT_CHANNELS
-// A channel scene: surface k is the iso surface of drawn channel k (the same march, channel k's value).
-// Bisection on f(t) = sample(o + t d) - iso between ta (f = fa) and tb, which bracket a crossing.
-float isoRefine(vec3 o, vec3 d, float ta, float fa, float tb, float iso, int ch) {
+  return sampleChannels(p);
+#else
+  return vec4(sampleVolume(p));
+#endif
+}
+#if VPT_LABELS
+// A scene's labels (core's scene/labels.ts) as one more surface, ISO_LABEL_SURFACE: the 0.5
+// level of the trilinear filter of the visible labels' binary mask (labelMask: nearest reads of
+// the 8 neighbours, so ids are never blended, only inside/outside), opaque, in the label's colour.
+const int ISO_LABEL_SURFACE = 4;
+#endif
+// Surface k's field at p.
+float isoFieldAt(vec3 p, int k) {
+#if VPT_LABELS
+  if (k == ISO_LABEL_SURFACE) { return labelMask(p); }
+#endif
+  return isoValuesAt(p)[k];
+}
+// Bisection on f(t) = field_k(o + t d) - iso between ta (f = fa) and tb, which bracket a crossing.
+float isoRefine(vec3 o, vec3 d, float ta, float fa, float tb, float iso, int k) {
   for (int i = 0; i < ISO_REFINE_STEPS; i++) {
     float tm = 0.5 * (ta + tb);
-    float fm = sampleChannels(o + d * tm)[ch] - iso;
+    float fm = isoFieldAt(o + d * tm, k) - iso;
     if ((fm >= 0.0) == (fa >= 0.0)) { ta = tm; fa = fm; } else { tb = tm; }
   }
   return 0.5 * (ta + tb);
@@ -64,14 +86,17 @@ vec4 isoTrace(vec3 o, vec3 d, float t0, float t1, inout uint rng) {
   int n = max(1, int(min(ceil((t1 - t0) / u.stepSize), ${MAX_MARCH_STEPS}.0)));
   float seg = (t1 - t0) / float(n);
   float tPrev = t0;
-  vec4 vPrev = sampleChannels(o + d * t0);
+  vec4 vPrev = isoValuesAt(o + d * t0);
+#if VPT_LABELS
+  float mPrev = labelMask(o + d * t0);
+#endif
   vec4 r = vec4(-1.0);
 #if SKIP_EMPTY
   IsoCells cells = isoCellsStart(o, d, t0);
 #endif
   for (int i = 0; i <= n; i++) {
     float t = min(t0 + (float(i) + offset) * seg, t1);
-    vec4 v = sampleChannels(o + d * t);
+    vec4 v = isoValuesAt(o + d * t);
     for (int k = 0; k < ISO_COUNT; k++) {
       float iso = u.isoValues[k];
       float alpha = u.isoSurface[k].a;
@@ -83,6 +108,15 @@ vec4 isoTrace(vec3 o, vec3 d, float t0, float t1, inout uint rng) {
         if (opaque && (r.x < 0.0 || tc < r.x)) { r.x = tc; r.y = float(k); }
       }
     }
+#if VPT_LABELS
+    float m = labelMask(o + d * t);
+    if ((mPrev >= 0.5) != (m >= 0.5)) {
+      float tc = isoRefine(o, d, tPrev, mPrev - 0.5, t, 0.5, ISO_LABEL_SURFACE);
+      if (r.z < 0.0 || tc < r.z) { r.z = tc; r.w = float(ISO_LABEL_SURFACE); }
+      if (r.x < 0.0 || tc < r.x) { r.x = tc; r.y = float(ISO_LABEL_SURFACE); }
+    }
+    mPrev = m;
+#endif
     if (r.x >= 0.0) { return r; }
     tPrev = t;
     vPrev = v;
@@ -90,7 +124,7 @@ vec4 isoTrace(vec3 o, vec3 d, float t0, float t1, inout uint rng) {
     int next = isoNextSample(cells, t, t0, t1, seg, offset, i, n);
     if (next > i + 1 && next <= n) {
       tPrev = min(t0 + (float(next - 1) + offset) * seg, t1);
-      vPrev = sampleChannels(o + d * tPrev);
+      vPrev = isoValuesAt(o + d * tPrev);
     }
     i = next - 1;
 #endif
@@ -112,13 +146,16 @@ float isoVisibility(vec3 o, vec3 d, float maxDist, inout uint rng) {
   float offset = rngNext(rng);
   int n = max(1, int(min(ceil((t1 - t0) / u.stepSize), ${MAX_MARCH_STEPS}.0)));
   float seg = (t1 - t0) / float(n);
-  vec4 vPrev = sampleChannels(o + d * t0);
+  vec4 vPrev = isoValuesAt(o + d * t0);
+#if VPT_LABELS
+  float mPrev = labelMask(o + d * t0);
+#endif
 #if SKIP_EMPTY
   IsoCells cells = isoCellsStart(o, d, t0);
 #endif
   for (int i = 0; i <= n; i++) {
     float t = min(t0 + (float(i) + offset) * seg, t1);
-    vec4 v = sampleChannels(o + d * t);
+    vec4 v = isoValuesAt(o + d * t);
     for (int k = 0; k < ISO_COUNT; k++) {
       float iso = u.isoValues[k];
       float alpha = u.isoSurface[k].a;
@@ -127,135 +164,46 @@ float isoVisibility(vec3 o, vec3 d, float maxDist, inout uint rng) {
         if (rngNext(rng) < alpha) { return 0.0; }
       }
     }
+#if VPT_LABELS
+    float m = labelMask(o + d * t);
+    if ((mPrev >= 0.5) != (m >= 0.5)) { return 0.0; }
+    mPrev = m;
+#endif
     vPrev = v;
 #if SKIP_EMPTY
     int next = isoNextSample(cells, t, t0, t1, seg, offset, i, n);
-    if (next > i + 1 && next <= n) { vPrev = sampleChannels(o + d * min(t0 + (float(next - 1) + offset) * seg, t1)); }
+    if (next > i + 1 && next <= n) { vPrev = isoValuesAt(o + d * min(t0 + (float(next - 1) + offset) * seg, t1)); }
     i = next - 1;
 #endif
   }
   return 1.0;
 }
 
-// Unit normal from central differences of the trilinear field (one voxel apart), turned
+// Unit normal from central differences of surface k's trilinear field (one voxel apart), turned
 // toward the viewer (surfaces are two-sided); -d where the gradient vanishes.
-vec3 isoNormal(vec3 p, vec3 d, int ch) {
+vec3 isoNormal(vec3 p, vec3 d, int k) {
   vec3 h = u.gradientStep;
-  float gx = (sampleChannels(p + vec3(h.x, 0.0, 0.0))[ch] - sampleChannels(p - vec3(h.x, 0.0, 0.0))[ch]) / (2.0 * h.x);
-  float gy = (sampleChannels(p + vec3(0.0, h.y, 0.0))[ch] - sampleChannels(p - vec3(0.0, h.y, 0.0))[ch]) / (2.0 * h.y);
-  float gz = (sampleChannels(p + vec3(0.0, 0.0, h.z))[ch] - sampleChannels(p - vec3(0.0, 0.0, h.z))[ch]) / (2.0 * h.z);
+  float gx = (isoFieldAt(p + vec3(h.x, 0.0, 0.0), k) - isoFieldAt(p - vec3(h.x, 0.0, 0.0), k)) / (2.0 * h.x);
+  float gy = (isoFieldAt(p + vec3(0.0, h.y, 0.0), k) - isoFieldAt(p - vec3(0.0, h.y, 0.0), k)) / (2.0 * h.y);
+  float gz = (isoFieldAt(p + vec3(0.0, 0.0, h.z), k) - isoFieldAt(p - vec3(0.0, 0.0, h.z), k)) / (2.0 * h.z);
   vec3 g = vec3(gx, gy, gz);
   if (!(dot(g, g) > 1e-30)) { return -d; }
   vec3 n = normalize(g);
   return dot(n, d) > 0.0 ? -n : n;
 }
 
-#else
-// Bisection on f(t) = sample(o + t d) - iso between ta (f = fa) and tb, which bracket a crossing.
-float isoRefine(vec3 o, vec3 d, float ta, float fa, float tb, float iso) {
-  for (int i = 0; i < ISO_REFINE_STEPS; i++) {
-    float tm = 0.5 * (ta + tb);
-    float fm = sampleVolume(o + d * tm) - iso;
-    if ((fm >= 0.0) == (fa >= 0.0)) { ta = tm; fa = fm; } else { tb = tm; }
+// Surface k's colour at p (normal n, toward the viewer): the label surface takes the label of the
+// voxel one step inside (n points out of the label where the camera is outside), else the one at p.
+vec3 isoAlbedo(int k, vec3 p, vec3 n) {
+#if VPT_LABELS
+  if (k == ISO_LABEL_SURFACE) {
+    vec4 inner = labelAt(p - n * u.gradientStep);
+    return inner.a > 0.0 ? inner.rgb : labelAt(p).rgb;
   }
-  return 0.5 * (ta + tb);
+#endif
+  return u.isoSurface[k].rgb;
 }
 
-// March the camera ray over [t0, t1] (randomly offset steps). x: t of the first crossing made
-// opaque by stochastic transparency (-1: none), y: its surface; z, w: the first crossing of
-// any visible surface, whatever the coin said (the depth buffer).
-vec4 isoTrace(vec3 o, vec3 d, float t0, float t1, inout uint rng) {
-  float offset = rngNext(rng);
-  int n = max(1, int(min(ceil((t1 - t0) / u.stepSize), ${MAX_MARCH_STEPS}.0)));
-  float seg = (t1 - t0) / float(n);
-  float tPrev = t0;
-  float vPrev = sampleVolume(o + d * t0);
-  vec4 r = vec4(-1.0);
-#if SKIP_EMPTY
-  IsoCells cells = isoCellsStart(o, d, t0);
-#endif
-  for (int i = 0; i <= n; i++) {
-    float t = min(t0 + (float(i) + offset) * seg, t1);
-    float v = sampleVolume(o + d * t);
-    for (int k = 0; k < ISO_COUNT; k++) {
-      float iso = u.isoValues[k];
-      float alpha = u.isoSurface[k].a;
-      if ((vPrev >= iso) != (v >= iso) && alpha > 0.0) {
-        float tc = isoRefine(o, d, tPrev, vPrev - iso, t, iso);
-        if (r.z < 0.0 || tc < r.z) { r.z = tc; r.w = float(k); }
-        bool opaque = true;
-        if (alpha < 1.0) { opaque = rngNext(rng) < alpha; }
-        if (opaque && (r.x < 0.0 || tc < r.x)) { r.x = tc; r.y = float(k); }
-      }
-    }
-    if (r.x >= 0.0) { return r; }
-    tPrev = t;
-    vPrev = v;
-#if SKIP_EMPTY
-    int next = isoNextSample(cells, t, t0, t1, seg, offset, i, n);
-    if (next > i + 1 && next <= n) {
-      tPrev = min(t0 + (float(next - 1) + offset) * seg, t1);
-      vPrev = sampleVolume(o + d * tPrev);
-    }
-    i = next - 1;
-#endif
-  }
-  return r;
-}
-
-// 1 when the ray o + s d, 0 < s <= maxDist, crosses no surface that stochastic transparency
-// makes opaque, else 0 (a shadow or ambient-occlusion ray).
-float isoVisibility(vec3 o, vec3 d, float maxDist, inout uint rng) {
-#if VPT_CLIP
-  vec2 tb = keptInterval(o, d);
-#else
-  vec2 tb = intersectBox(o, d, u.boxMin, u.boxMax);
-#endif
-  float t1 = min(tb.y, maxDist);
-  if (!(tb.x < t1)) { return 1.0; }
-  float t0 = tb.x;
-  float offset = rngNext(rng);
-  int n = max(1, int(min(ceil((t1 - t0) / u.stepSize), ${MAX_MARCH_STEPS}.0)));
-  float seg = (t1 - t0) / float(n);
-  float vPrev = sampleVolume(o + d * t0);
-#if SKIP_EMPTY
-  IsoCells cells = isoCellsStart(o, d, t0);
-#endif
-  for (int i = 0; i <= n; i++) {
-    float t = min(t0 + (float(i) + offset) * seg, t1);
-    float v = sampleVolume(o + d * t);
-    for (int k = 0; k < ISO_COUNT; k++) {
-      float iso = u.isoValues[k];
-      float alpha = u.isoSurface[k].a;
-      if ((vPrev >= iso) != (v >= iso) && alpha > 0.0) {
-        if (alpha >= 1.0) { return 0.0; }
-        if (rngNext(rng) < alpha) { return 0.0; }
-      }
-    }
-    vPrev = v;
-#if SKIP_EMPTY
-    int next = isoNextSample(cells, t, t0, t1, seg, offset, i, n);
-    if (next > i + 1 && next <= n) { vPrev = sampleVolume(o + d * min(t0 + (float(next - 1) + offset) * seg, t1)); }
-    i = next - 1;
-#endif
-  }
-  return 1.0;
-}
-
-// Unit normal from central differences of the trilinear field (one voxel apart), turned
-// toward the viewer (surfaces are two-sided); -d where the gradient vanishes.
-vec3 isoNormal(vec3 p, vec3 d) {
-  vec3 h = u.gradientStep;
-  float gx = (sampleVolume(p + vec3(h.x, 0.0, 0.0)) - sampleVolume(p - vec3(h.x, 0.0, 0.0))) / (2.0 * h.x);
-  float gy = (sampleVolume(p + vec3(0.0, h.y, 0.0)) - sampleVolume(p - vec3(0.0, h.y, 0.0))) / (2.0 * h.y);
-  float gz = (sampleVolume(p + vec3(0.0, 0.0, h.z)) - sampleVolume(p - vec3(0.0, 0.0, h.z))) / (2.0 * h.z);
-  vec3 g = vec3(gx, gy, gz);
-  if (!(dot(g, g) > 1e-30)) { return -d; }
-  vec3 n = normalize(g);
-  return dot(n, d) > 0.0 ? -n : n;
-}
-
-#endif
 // Lambert plus the energy-normalized Blinn-Phong lobe (s + 8)/(8 pi) (n.h)^s (Akenine-Moller,
 // Haines & Hoffman, Real-Time Rendering 3rd ed., 2008, ch. 7 "Advanced Shading"), mixed by u.specular.
 vec3 isoBrdf(vec3 n, vec3 wi, vec3 wo, vec3 albedo) {
@@ -391,24 +339,17 @@ void main() {
 #endif
   vec4 nearest = vec4(-1.0, 0.0, 0.0, 0.0);
   if (hit.z >= 0.0) {
-#if VPT_CHANNELS
     vec3 nz = isoNormal(o + dir * hit.z, dir, int(hit.w));
-#else
-    vec3 nz = isoNormal(o + dir * hit.z, dir);
-#endif
     nearest = vec4(hit.z, nz);
     if (hit.x >= 0.0) {
       int k = int(hit.y);
-#if VPT_CHANNELS
       vec3 n = hit.x == hit.z && hit.y == hit.w ? nz : isoNormal(o + dir * hit.x, dir, k);
-#else
-      vec3 n = hit.x == hit.z ? nz : isoNormal(o + dir * hit.x, dir);
-#endif
-      color = vec4(isoShade(o + dir * hit.x, n, -dir, u.isoSurface[k].rgb, rng), 1.0);
+      vec3 albedo = isoAlbedo(k, o + dir * hit.x, n);
+      color = vec4(isoShade(o + dir * hit.x, n, -dir, albedo, rng), 1.0);
 #if VPT_GUIDES
       // Denoiser guides at the shaded surface: its normal, depth and diffuse colour.
       vpt_out2 = vec4(n, hit.x);
-      vpt_out3 = guideAlbedo(u.isoSurface[k].rgb);
+      vpt_out3 = guideAlbedo(albedo);
 #endif
     }
   }

@@ -32,15 +32,29 @@ fn isoNextSample(c: ptr<function, IsoCells>, t: f32, t0: f32, t1: f32, seg: f32,
 }
 #endif
 
+fn isoValuesAt(p: vec3f) -> vec4f {
 #if VPT_CHANNELS
-// A channel scene: surface k lies on drawn channel k.
-fn isoRefine(o: vec3f, d: vec3f, ta0: f32, fa0: f32, tb0: f32, iso: f32, ch: i32) -> f32 {
+  return sampleChannels(p);
+#else
+  return vec4f(sampleVolume(p));
+#endif
+}
+#if VPT_LABELS
+const ISO_LABEL_SURFACE = 4;
+#endif
+fn isoFieldAt(p: vec3f, k: i32) -> f32 {
+#if VPT_LABELS
+  if (k == ISO_LABEL_SURFACE) { return labelMask(p); }
+#endif
+  return isoValuesAt(p)[k];
+}
+fn isoRefine(o: vec3f, d: vec3f, ta0: f32, fa0: f32, tb0: f32, iso: f32, k: i32) -> f32 {
   var ta = ta0;
   var fa = fa0;
   var tb = tb0;
   for (var i = 0; i < ISO_REFINE_STEPS; i++) {
     let tm = 0.5 * (ta + tb);
-    let fm = sampleChannels(o + d * tm)[ch] - iso;
+    let fm = isoFieldAt(o + d * tm, k) - iso;
     if ((fm >= 0.0) == (fa >= 0.0)) { ta = tm; fa = fm; } else { tb = tm; }
   }
   return 0.5 * (ta + tb);
@@ -51,14 +65,17 @@ fn isoTrace(o: vec3f, d: vec3f, t0: f32, t1: f32, rng: ptr<function, u32>) -> ve
   let n = max(1, i32(min(ceil((t1 - t0) / u.stepSize), ${MAX_MARCH_STEPS}.0)));
   let seg = (t1 - t0) / f32(n);
   var tPrev = t0;
-  var vPrev = sampleChannels(o + d * t0);
+  var vPrev = isoValuesAt(o + d * t0);
+#if VPT_LABELS
+  var mPrev = labelMask(o + d * t0);
+#endif
   var r = vec4f(-1.0);
 #if SKIP_EMPTY
   var cells = isoCellsStart(o, d, t0);
 #endif
   for (var i = 0; i <= n; i++) {
     let t = min(t0 + (f32(i) + offset) * seg, t1);
-    let v = sampleChannels(o + d * t);
+    let v = isoValuesAt(o + d * t);
     for (var k = 0; k < ISO_COUNT; k++) {
       let iso = u.isoValues[k];
       let alpha = u.isoSurface[k].a;
@@ -70,6 +87,15 @@ fn isoTrace(o: vec3f, d: vec3f, t0: f32, t1: f32, rng: ptr<function, u32>) -> ve
         if (opaque && (r.x < 0.0 || tc < r.x)) { r.x = tc; r.y = f32(k); }
       }
     }
+#if VPT_LABELS
+    let m = labelMask(o + d * t);
+    if ((mPrev >= 0.5) != (m >= 0.5)) {
+      let tc = isoRefine(o, d, tPrev, mPrev - 0.5, t, 0.5, ISO_LABEL_SURFACE);
+      if (r.z < 0.0 || tc < r.z) { r.z = tc; r.w = f32(ISO_LABEL_SURFACE); }
+      if (r.x < 0.0 || tc < r.x) { r.x = tc; r.y = f32(ISO_LABEL_SURFACE); }
+    }
+    mPrev = m;
+#endif
     if (r.x >= 0.0) { return r; }
     tPrev = t;
     vPrev = v;
@@ -77,7 +103,7 @@ fn isoTrace(o: vec3f, d: vec3f, t0: f32, t1: f32, rng: ptr<function, u32>) -> ve
     let next = isoNextSample(&cells, t, t0, t1, seg, offset, i, n);
     if (next > i + 1 && next <= n) {
       tPrev = min(t0 + (f32(next - 1) + offset) * seg, t1);
-      vPrev = sampleChannels(o + d * tPrev);
+      vPrev = isoValuesAt(o + d * tPrev);
     }
     i = next - 1;
 #endif
@@ -97,13 +123,16 @@ fn isoVisibility(o: vec3f, d: vec3f, maxDist: f32, rng: ptr<function, u32>) -> f
   let offset = rngNext(rng);
   let n = max(1, i32(min(ceil((t1 - t0) / u.stepSize), ${MAX_MARCH_STEPS}.0)));
   let seg = (t1 - t0) / f32(n);
-  var vPrev = sampleChannels(o + d * t0);
+  var vPrev = isoValuesAt(o + d * t0);
+#if VPT_LABELS
+  var mPrev = labelMask(o + d * t0);
+#endif
 #if SKIP_EMPTY
   var cells = isoCellsStart(o, d, t0);
 #endif
   for (var i = 0; i <= n; i++) {
     let t = min(t0 + (f32(i) + offset) * seg, t1);
-    let v = sampleChannels(o + d * t);
+    let v = isoValuesAt(o + d * t);
     for (var k = 0; k < ISO_COUNT; k++) {
       let iso = u.isoValues[k];
       let alpha = u.isoSurface[k].a;
@@ -112,128 +141,42 @@ fn isoVisibility(o: vec3f, d: vec3f, maxDist: f32, rng: ptr<function, u32>) -> f
         if (rngNext(rng) < alpha) { return 0.0; }
       }
     }
+#if VPT_LABELS
+    let m = labelMask(o + d * t);
+    if ((mPrev >= 0.5) != (m >= 0.5)) { return 0.0; }
+    mPrev = m;
+#endif
     vPrev = v;
 #if SKIP_EMPTY
     let next = isoNextSample(&cells, t, t0, t1, seg, offset, i, n);
-    if (next > i + 1 && next <= n) { vPrev = sampleChannels(o + d * min(t0 + (f32(next - 1) + offset) * seg, t1)); }
+    if (next > i + 1 && next <= n) { vPrev = isoValuesAt(o + d * min(t0 + (f32(next - 1) + offset) * seg, t1)); }
     i = next - 1;
 #endif
   }
   return 1.0;
 }
 
-fn isoNormal(p: vec3f, d: vec3f, ch: i32) -> vec3f {
+fn isoNormal(p: vec3f, d: vec3f, k: i32) -> vec3f {
   let h = u.gradientStep;
-  let gx = (sampleChannels(p + vec3f(h.x, 0.0, 0.0))[ch] - sampleChannels(p - vec3f(h.x, 0.0, 0.0))[ch]) / (2.0 * h.x);
-  let gy = (sampleChannels(p + vec3f(0.0, h.y, 0.0))[ch] - sampleChannels(p - vec3f(0.0, h.y, 0.0))[ch]) / (2.0 * h.y);
-  let gz = (sampleChannels(p + vec3f(0.0, 0.0, h.z))[ch] - sampleChannels(p - vec3f(0.0, 0.0, h.z))[ch]) / (2.0 * h.z);
+  let gx = (isoFieldAt(p + vec3f(h.x, 0.0, 0.0), k) - isoFieldAt(p - vec3f(h.x, 0.0, 0.0), k)) / (2.0 * h.x);
+  let gy = (isoFieldAt(p + vec3f(0.0, h.y, 0.0), k) - isoFieldAt(p - vec3f(0.0, h.y, 0.0), k)) / (2.0 * h.y);
+  let gz = (isoFieldAt(p + vec3f(0.0, 0.0, h.z), k) - isoFieldAt(p - vec3f(0.0, 0.0, h.z), k)) / (2.0 * h.z);
   let g = vec3f(gx, gy, gz);
   if (!(dot(g, g) > 1e-30)) { return -d; }
   let n = normalize(g);
   return select(n, -n, dot(n, d) > 0.0);
 }
 
-#else
-fn isoRefine(o: vec3f, d: vec3f, ta0: f32, fa0: f32, tb0: f32, iso: f32) -> f32 {
-  var ta = ta0;
-  var fa = fa0;
-  var tb = tb0;
-  for (var i = 0; i < ISO_REFINE_STEPS; i++) {
-    let tm = 0.5 * (ta + tb);
-    let fm = sampleVolume(o + d * tm) - iso;
-    if ((fm >= 0.0) == (fa >= 0.0)) { ta = tm; fa = fm; } else { tb = tm; }
+fn isoAlbedo(k: i32, p: vec3f, n: vec3f) -> vec3f {
+#if VPT_LABELS
+  if (k == ISO_LABEL_SURFACE) {
+    let inner = labelAt(p - n * u.gradientStep);
+    return select(labelAt(p).rgb, inner.rgb, inner.a > 0.0);
   }
-  return 0.5 * (ta + tb);
+#endif
+  return u.isoSurface[k].rgb;
 }
 
-fn isoTrace(o: vec3f, d: vec3f, t0: f32, t1: f32, rng: ptr<function, u32>) -> vec4f {
-  let offset = rngNext(rng);
-  let n = max(1, i32(min(ceil((t1 - t0) / u.stepSize), ${MAX_MARCH_STEPS}.0)));
-  let seg = (t1 - t0) / f32(n);
-  var tPrev = t0;
-  var vPrev = sampleVolume(o + d * t0);
-  var r = vec4f(-1.0);
-#if SKIP_EMPTY
-  var cells = isoCellsStart(o, d, t0);
-#endif
-  for (var i = 0; i <= n; i++) {
-    let t = min(t0 + (f32(i) + offset) * seg, t1);
-    let v = sampleVolume(o + d * t);
-    for (var k = 0; k < ISO_COUNT; k++) {
-      let iso = u.isoValues[k];
-      let alpha = u.isoSurface[k].a;
-      if ((vPrev >= iso) != (v >= iso) && alpha > 0.0) {
-        let tc = isoRefine(o, d, tPrev, vPrev - iso, t, iso);
-        if (r.z < 0.0 || tc < r.z) { r.z = tc; r.w = f32(k); }
-        var opaque = true;
-        if (alpha < 1.0) { opaque = rngNext(rng) < alpha; }
-        if (opaque && (r.x < 0.0 || tc < r.x)) { r.x = tc; r.y = f32(k); }
-      }
-    }
-    if (r.x >= 0.0) { return r; }
-    tPrev = t;
-    vPrev = v;
-#if SKIP_EMPTY
-    let next = isoNextSample(&cells, t, t0, t1, seg, offset, i, n);
-    if (next > i + 1 && next <= n) {
-      tPrev = min(t0 + (f32(next - 1) + offset) * seg, t1);
-      vPrev = sampleVolume(o + d * tPrev);
-    }
-    i = next - 1;
-#endif
-  }
-  return r;
-}
-
-fn isoVisibility(o: vec3f, d: vec3f, maxDist: f32, rng: ptr<function, u32>) -> f32 {
-#if VPT_CLIP
-  let tb = keptInterval(o, d);
-#else
-  let tb = intersectBox(o, d, u.boxMin, u.boxMax);
-#endif
-  let t1 = min(tb.y, maxDist);
-  if (!(tb.x < t1)) { return 1.0; }
-  let t0 = tb.x;
-  let offset = rngNext(rng);
-  let n = max(1, i32(min(ceil((t1 - t0) / u.stepSize), ${MAX_MARCH_STEPS}.0)));
-  let seg = (t1 - t0) / f32(n);
-  var vPrev = sampleVolume(o + d * t0);
-#if SKIP_EMPTY
-  var cells = isoCellsStart(o, d, t0);
-#endif
-  for (var i = 0; i <= n; i++) {
-    let t = min(t0 + (f32(i) + offset) * seg, t1);
-    let v = sampleVolume(o + d * t);
-    for (var k = 0; k < ISO_COUNT; k++) {
-      let iso = u.isoValues[k];
-      let alpha = u.isoSurface[k].a;
-      if ((vPrev >= iso) != (v >= iso) && alpha > 0.0) {
-        if (alpha >= 1.0) { return 0.0; }
-        if (rngNext(rng) < alpha) { return 0.0; }
-      }
-    }
-    vPrev = v;
-#if SKIP_EMPTY
-    let next = isoNextSample(&cells, t, t0, t1, seg, offset, i, n);
-    if (next > i + 1 && next <= n) { vPrev = sampleVolume(o + d * min(t0 + (f32(next - 1) + offset) * seg, t1)); }
-    i = next - 1;
-#endif
-  }
-  return 1.0;
-}
-
-fn isoNormal(p: vec3f, d: vec3f) -> vec3f {
-  let h = u.gradientStep;
-  let gx = (sampleVolume(p + vec3f(h.x, 0.0, 0.0)) - sampleVolume(p - vec3f(h.x, 0.0, 0.0))) / (2.0 * h.x);
-  let gy = (sampleVolume(p + vec3f(0.0, h.y, 0.0)) - sampleVolume(p - vec3f(0.0, h.y, 0.0))) / (2.0 * h.y);
-  let gz = (sampleVolume(p + vec3f(0.0, 0.0, h.z)) - sampleVolume(p - vec3f(0.0, 0.0, h.z))) / (2.0 * h.z);
-  let g = vec3f(gx, gy, gz);
-  if (!(dot(g, g) > 1e-30)) { return -d; }
-  let n = normalize(g);
-  return select(n, -n, dot(n, d) > 0.0);
-}
-
-#endif
 fn isoBrdf(n: vec3f, wi: vec3f, wo: vec3f, albedo: vec3f) -> vec3f {
   let hs = wi + wo;
   var lobe = 0.0;
@@ -357,21 +300,13 @@ export const generate =
 #endif
   var nearest = vec4f(-1.0, 0.0, 0.0, 0.0);
   if (hit.z >= 0.0) {
-#if VPT_CHANNELS
     let nz = isoNormal(o + dir * hit.z, dir, i32(hit.w));
-#else
-    let nz = isoNormal(o + dir * hit.z, dir);
-#endif
     nearest = vec4f(hit.z, nz);
     if (hit.x >= 0.0) {
       let k = i32(hit.y);
       var n = nz;
-#if VPT_CHANNELS
       if (hit.x != hit.z || hit.y != hit.w) { n = isoNormal(o + dir * hit.x, dir, k); }
-#else
-      if (hit.x != hit.z) { n = isoNormal(o + dir * hit.x, dir); }
-#endif
-      color = vec4f(isoShade(o + dir * hit.x, n, -dir, u.isoSurface[k].rgb, &rng), 1.0);
+      color = vec4f(isoShade(o + dir * hit.x, n, -dir, isoAlbedo(k, o + dir * hit.x, n), &rng), 1.0);
     }
   }
   var res: VptOut;
@@ -379,13 +314,9 @@ export const generate =
   // Denoiser guides at the shaded surface: its normal, depth and diffuse colour.
   if (hit.x >= 0.0) {
     var ng = nearest.yzw;
-#if VPT_CHANNELS
     if (hit.x != hit.z || hit.y != hit.w) { ng = isoNormal(o + dir * hit.x, dir, i32(hit.y)); }
-#else
-    if (hit.x != hit.z) { ng = isoNormal(o + dir * hit.x, dir); }
-#endif
     res.out2 = vec4f(ng, hit.x);
-    res.out3 = guideAlbedo(u.isoSurface[i32(hit.y)].rgb);
+    res.out3 = guideAlbedo(isoAlbedo(i32(hit.y), o + dir * hit.x, ng));
   }
 #endif
   res.out0 = color;

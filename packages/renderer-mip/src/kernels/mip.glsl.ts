@@ -7,6 +7,8 @@ import { GLSL_CELL_WALK, GLSL_DEPTH_LIMIT, MAX_MARCH_STEPS } from '@vpt/core';
 // SKIP_EMPTY (empty-space skipping through the majorant grid's value ranges, core's cell walk):
 // a cell whose largest value cannot exceed the running maximum is jumped over, and the march
 // ends once the maximum is 1 (the largest normalized value); the maximum keeps its bits.
+// VPT_LABELS (a label volume, core's scene/labels.ts): the most opaque visible label on the samples is kept
+// beside the maximum and its colour laid over the grey maximum with its opacity.
 // VPT_CHANNELS (a channel scene): the maximum per channel (a miss is marked −1), each shown
 // through its transfer function in its colour, the channels added (as microscopy viewers do).
 
@@ -47,6 +49,11 @@ void main() {
 #endif
   float maxValue = 0.0;
 #endif
+#if VPT_LABELS
+  // The most opaque visible label the samples meet (ties: the smaller id, so the order of samples does not matter).
+  float labelA = 0.0;
+  int labelId = 0;
+#endif
   float coverage = 0.0;
   if (t.x < t.y) {
     coverage = 1.0;
@@ -78,6 +85,14 @@ void main() {
 #else
       maxValue = max(maxValue, sampleVolume(u.cameraPosition + dir * s));
 #endif
+#if VPT_LABELS
+      int id = labelIdAt(u.cameraPosition + dir * s);
+      float la = labelEntry(id).a;
+      if (la > labelA || (la == labelA && la > 0.0 && id < labelId)) {
+        labelA = la;
+        labelId = id;
+      }
+#endif
     }
   }
 #if VPT_CHANNELS
@@ -89,6 +104,10 @@ void main() {
   coverage = maxValue;
 #endif
   vpt_out0 = vec4(maxValue, 0.0, 0.0, coverage);
+#if VPT_LABELS
+  // The label's opacity and id in g, b (exact in float32 up to 2^24).
+  vpt_out0 = vec4(maxValue, labelA, float(labelId), coverage);
+#endif
 #if VPT_SLICE_PLANE
   // On the plane: its colour, the same every iteration (centre ray), in gba with a < 0 marking it
   // (b stored as -1 - b); coverage is 1 there.
@@ -117,6 +136,11 @@ void main() {
 #endif
   float w = 1.0 / float(u.iteration + 1u);
   vpt_out0 = vec4(max(a.r, f.r), 0.0, 0.0, a.a + (f.a - a.a) * w);
+#if VPT_LABELS
+  // The more opaque label of the two (ties: the smaller id).
+  bool take = f.g > a.g || (f.g == a.g && f.g > 0.0 && f.b < a.b);
+  vpt_out0 = vec4(max(a.r, f.r), take ? f.g : a.g, take ? f.b : a.b, a.a + (f.a - a.a) * w);
+#endif
 #endif
 }
 `;
@@ -147,6 +171,16 @@ void main() {
   vpt_out0 = vec4(rgb, coverage);
 #else
   vpt_out0 = vec4(a.r, a.r, a.r, a.a);
+#if VPT_LABELS
+  // The label's colour over the grey maximum with its opacity (clamped to 1), from the label table.
+  if (a.a >= 0.0 && a.g > 0.0) {
+    int id = int(a.b + 0.5);
+    ivec2 size = textureSize(labelTable, 0);
+    vec3 c = texelFetch(labelTable, ivec2(id % size.x, id / size.x), 0).rgb;
+    float w = clamp(a.g, 0.0, 1.0);
+    vpt_out0 = vec4(vec3(a.r) + (c - vec3(a.r)) * w, max(a.a, w));
+  }
+#endif
 #if VPT_SLICE_PLANE
   // The plane behind the maximum, which is its own opacity (as over a depth-limit surface): m + (1 - m) · plane.
   if (a.a < 0.0) vpt_out0 = vec4(vec3(a.r) + (1.0 - a.r) * vec3(a.g, a.b, -1.0 - a.a), 1.0);

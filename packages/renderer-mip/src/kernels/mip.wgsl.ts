@@ -39,6 +39,10 @@ fn cellMaxValue(walk: CellWalk) -> f32 {
 #endif
   var maxValue = 0.0;
 #endif
+#if VPT_LABELS
+  var labelA = 0.0;
+  var labelId = 0;
+#endif
   var coverage = 0.0;
   if (t.x < t.y) {
     coverage = 1.0;
@@ -70,6 +74,14 @@ fn cellMaxValue(walk: CellWalk) -> f32 {
 #else
       maxValue = max(maxValue, sampleVolume(u.cameraPosition + dir * s));
 #endif
+#if VPT_LABELS
+      let id = labelIdAt(u.cameraPosition + dir * s);
+      let la = labelEntry(id).a;
+      if (la > labelA || (la == labelA && la > 0.0 && id < labelId)) {
+        labelA = la;
+        labelId = id;
+      }
+#endif
     }
   }
   var o: VptOut;
@@ -80,6 +92,9 @@ fn cellMaxValue(walk: CellWalk) -> f32 {
   coverage = maxValue;
 #endif
   o.out0 = vec4f(maxValue, 0.0, 0.0, coverage);
+#if VPT_LABELS
+  o.out0 = vec4f(maxValue, labelA, f32(labelId), coverage);
+#endif
 #if VPT_SLICE_PLANE
   if (onPlane) {
     let c = slicePlaneColor(u.cameraPosition + dir * tPlane);
@@ -106,6 +121,10 @@ export const integrate = /* wgsl */ `
 #endif
   let w = 1.0 / f32(u.iteration + 1u);
   o.out0 = vec4f(max(a.r, f.r), 0.0, 0.0, a.a + (f.a - a.a) * w);
+#if VPT_LABELS
+  let take = f.g > a.g || (f.g == a.g && f.g > 0.0 && f.b < a.b);
+  o.out0 = vec4f(max(a.r, f.r), select(a.g, f.g, take), select(a.b, f.b, take), a.a + (f.a - a.a) * w);
+#endif
 #endif
   return o;
 }
@@ -137,6 +156,15 @@ fn mipChannel(value: f32, row: i32) -> vec3f {
   o.out0 = vec4f(rgb, coverage);
 #else
   o.out0 = vec4f(a.r, a.r, a.r, a.a);
+#if VPT_LABELS
+  if (a.a >= 0.0 && a.g > 0.0) {
+    let id = i32(a.b + 0.5);
+    let size = vec2i(textureDimensions(labelTable, 0));
+    let c = textureLoad(labelTable, vec2i(id % size.x, id / size.x), 0).rgb;
+    let w = clamp(a.g, 0.0, 1.0);
+    o.out0 = vec4f(vec3f(a.r) + (c - vec3f(a.r)) * w, max(a.a, w));
+  }
+#endif
 #if VPT_SLICE_PLANE
   if (a.a < 0.0) { o.out0 = vec4f(vec3f(a.r) + (1.0 - a.r) * vec3f(a.g, a.b, -1.0 - a.a), 1.0); }
 #endif

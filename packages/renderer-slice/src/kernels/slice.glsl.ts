@@ -3,7 +3,8 @@
 // (no random numbers), so the shared running mean holds it exactly from the first sample.
 // Variants: FIT (the plane's rectangle over the image) or the plane under the camera (the
 // pixel-centre ray meets the plane); NEAREST (the voxel holding the point) or the shared
-// trilinear filter; COLOR_TABLE (the `colormap` texture), COLOR_TF (the 1D transfer function) or grey.
+// trilinear filter; COLOR_TABLE (the `colormap` texture), COLOR_TF (the 1D transfer function) or grey;
+// VPT_LABELS: a scene's label colours laid over it (core's scene/labels.ts).
 
 export const generate = /* glsl */ `
 #if COLOR_TABLE
@@ -60,6 +61,11 @@ void main() {
     vec3 rgb = colormapLookup(w);
 #else
     vec3 rgb = vec3(w);
+#endif
+#if VPT_LABELS
+    // The label of the voxel holding p over the slice, with its opacity (clamped to 1): a segmentation overlay.
+    vec4 l = labelAt(p);
+    rgb = rgb + (l.rgb - rgb) * clamp(l.a, 0.0, 1.0);
 #endif
     result = vec4(rgb, 1.0);
   }

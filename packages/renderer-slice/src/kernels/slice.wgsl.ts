@@ -47,11 +47,15 @@ fn sliceTexel(p: vec3f) -> f32 {
     let n = sliceTexel(p) * u.valueScale + u.valueOffset;
     let w = clamp(n * u.windowScale + u.windowOffset, 0.0, 1.0);
 #if COLOR_TF
-    let rgb = clamp(transferLookup(w).rgb, vec3f(0.0), vec3f(1.0));
+    var rgb = clamp(transferLookup(w).rgb, vec3f(0.0), vec3f(1.0));
 #elif COLOR_TABLE
-    let rgb = colormapLookup(w);
+    var rgb = colormapLookup(w);
 #else
-    let rgb = vec3f(w);
+    var rgb = vec3f(w);
+#endif
+#if VPT_LABELS
+    let l = labelAt(p);
+    rgb = rgb + (l.rgb - rgb) * clamp(l.a, 0.0, 1.0);
 #endif
     result = vec4f(rgb, 1.0);
   }
