@@ -468,6 +468,28 @@ export class RenderContext {
     return normalDepth && albedoHit ? { normalDepth, albedoHit } : null;
   }
 
+  /**
+   * The temporal state of the image shown (for tests and tools): per pixel (hit share, samples
+   * it stands for, 0, 0), where samples − the iteration count is the history's weight (0 where
+   * a pixel took none). Null while temporal reuse is off or not resolving.
+   */
+  readTemporalState(): Promise<Float32Array | null> {
+    return this.readTemporalOutput(2);
+  }
+
+  /** The guide the next view reprojects through: per pixel (normal, hit depth along the camera ray), as readTemporalState. */
+  readTemporalGuide(): Promise<Float32Array | null> {
+    return this.readTemporalOutput(1);
+  }
+
+  private async readTemporalOutput(index: number): Promise<Float32Array | null> {
+    this.assertAlive();
+    if (!this.resolving() || this.iteration === 0) return null;
+    this.renderHdr();
+    const out = this.temporal!.output;
+    return out ? ((await this.backend.readTexture(out.textures[index])) as Float32Array) : null;
+  }
+
   /** Whether guides are accumulated from the next reset: for a post step, or for a depth limit's depth guide. */
   private wantsGuides(): boolean {
     return (
@@ -508,19 +530,6 @@ export class RenderContext {
     if (!this.temporal || !this.scene) return;
     if (this.iteration > 0 && this.resolving() && !this.backend.isLost) this.renderHdr();
     this.temporal.keep(this.scene.camera, this.width / this.height);
-  }
-
-  /**
-   * The temporal state of the image shown (for tests and tools): per pixel (hit share, samples
-   * it stands for, 0, 0), where samples − the iteration count is the history's weight (0 where
-   * a pixel took none). Null while temporal reuse is off or not resolving.
-   */
-  async readTemporalState(): Promise<Float32Array | null> {
-    this.assertAlive();
-    if (!this.resolving() || this.iteration === 0) return null;
-    this.renderHdr();
-    const out = this.temporal!.output;
-    return out ? ((await this.backend.readTexture(out.textures[2])) as Float32Array) : null;
   }
 
   /**
