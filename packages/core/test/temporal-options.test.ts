@@ -1,15 +1,11 @@
 import { describe, expect, it } from 'vitest';
+import { VptError, createProceduralVolume, defaultCamera, rampTransferFunction, type Scene } from '../src/index.js';
 import {
   TEMPORAL_DEFAULTS,
-  VptError,
   checkTemporalOptions,
-  createProceduralVolume,
-  defaultCamera,
-  rampTransferFunction,
   sameSceneButCamera,
   viewChange,
-  type Scene,
-} from '../src/index.js';
+} from '../src/context/temporal-reuse.js';
 
 describe('temporal reuse options', () => {
   it('fills in the defaults and refuses bad values naming the field', () => {

@@ -22,7 +22,7 @@ import { PostChain } from './post-chain.js';
 import { PRESENT_PASS } from './present-pass.js';
 import { checkGpuBudget, checkRenderSize, checkVolumeOptions, type RenderContextOptions } from './context-options.js';
 import { ProgressiveLoop } from './progressive-loop.js';
-import { TemporalReuse, checkTemporalOptions, sameSceneButCamera, type TemporalOptions } from './temporal-reuse.js';
+import type { TemporalOptions, TemporalReuse } from './temporal-reuse.js';
 import { SceneResources } from './scene-resources.js';
 import { VolumeFit, maxRenderPixels, volumeBudgetBytes, type RenderWarning } from './volume-fit.js';
 import type { BrickingStats } from '../bricking/bricked-volume.js';
@@ -121,6 +121,8 @@ export class RenderContext {
   private guidesActive = false;
   // Temporal reuse across camera changes (null: off), see "Temporal reuse".
   private temporal: TemporalReuse | null = null;
+  private temporalGeneration = 0;
+  private temporalWanted = false;
   // The HDR image shown: the render pass's, or the temporal resolve's.
   private displayed: GpuTexture | null = null;
   private hdrRenderedAt = -1; // iteration count the render (and resolve) pass last ran at
@@ -149,8 +151,6 @@ export class RenderContext {
     this.backend = backend;
     this._renderer = opts.renderer;
     this.postChain = new PostChain(backend, opts.post ?? []);
-    const temporal = checkTemporalOptions(opts.temporal);
-    if (temporal) this.temporal = new TemporalReuse(backend, temporal);
     const volumeOptions = checkVolumeOptions(opts);
     this.resources = new SceneResources(backend, () => ({ scene: this.scene, renderer: this._renderer }), {
       sampling: volumeOptions.sampling,
@@ -196,7 +196,9 @@ export class RenderContext {
       ...(opts.device ? { device: opts.device } : {}),
     });
     try {
-      return new RenderContext(backend, opts);
+      const ctx = new RenderContext(backend, opts);
+      if (opts.temporal !== undefined) await ctx.setTemporal(opts.temporal);
+      return ctx;
     } catch (e) {
       backend.dispose();
       throw e;
@@ -271,7 +273,7 @@ export class RenderContext {
     const previous = { scene: this.scene, plan: this.resources.brickPlanNow() };
     // A camera change alone keeps the current image as temporal history; anything else drops it.
     if (this.temporal) {
-      if (this.scene && this.input && scene.volume === this.scene.volume && sameSceneButCamera(this.input, input))
+      if (this.scene && this.input && scene.volume === this.scene.volume && this.temporal.cameraOnly(this.input, input))
         this.keepHistory();
       else this.temporal.invalidate();
     }
@@ -502,22 +504,39 @@ export class RenderContext {
   /**
    * Temporal reuse across camera changes (see docs/architecture.md, "Temporal reuse"): true or
    * options turn it on (for renderers that write guides: MCRT, EAM, ISO), false off. Turning it
-   * on starts a new estimate (it needs the depth guide from the first sample); options are
-   * checked (VptError naming the field) before anything changes.
+   * on starts a new estimate (it needs the depth guide from the first sample). Its module is
+   * loaded on first use (a lazy chunk of the viewer's bundle): reuse starts when the returned
+   * promise resolves, which rejects with a VptError naming the field for bad options (off
+   * takes effect at once).
    */
-  setTemporal(options: boolean | TemporalOptions): void {
+  async setTemporal(options: boolean | TemporalOptions): Promise<void> {
     this.assertAlive();
-    const checked = checkTemporalOptions(options);
+    const generation = ++this.temporalGeneration;
+    this.temporalWanted = options !== false;
     this.temporal?.destroy();
-    this.temporal = checked ? new TemporalReuse(this.backend, checked) : null;
+    this.temporal = null;
     this.hdrRenderedAt = -1;
     this.hdrIteration = -1;
-    if (checked && !this.guidesActive && this.wantsGuides()) this.reset();
+    if (options === false) return;
+    const module = await import('./temporal-reuse.js');
+    let checked;
+    try {
+      checked = module.checkTemporalOptions(options);
+    } catch (e) {
+      if (generation === this.temporalGeneration) this.temporalWanted = false;
+      throw e;
+    }
+    // A later call decided otherwise while the module loaded.
+    if (generation !== this.temporalGeneration || this.disposed || !checked) return;
+    this.temporal = new module.TemporalReuse(this.backend, checked);
+    this.hdrRenderedAt = -1;
+    this.hdrIteration = -1;
+    if (!this.guidesActive && this.wantsGuides()) this.reset();
   }
 
-  /** Whether temporal reuse is on (it acts only for renderers that write guides). */
+  /** Whether temporal reuse is on or being turned on (it acts only for renderers that write guides). */
   get temporalReuse(): boolean {
-    return this.temporal !== null;
+    return this.temporal !== null || this.temporalWanted;
   }
 
   /** Whether this estimate's images go through the temporal resolve (guides accumulated). */

@@ -1,8 +1,11 @@
 import type { GpuBackend, GpuPass, GpuTexture, RenderTarget, TextureFormat } from '../gpu/backend.js';
 import { cameraBasis, dot, sub, type Camera } from '../scene/camera.js';
-import type { Scene } from '../scene/scene.js';
 import { TEMPORAL_RESOLVE, TEMPORAL_UNIFORMS } from '../shaders/temporal.js';
+import type { Scene } from '../scene/scene.js';
 import { checkKnownKeys, checkNumber, checkObject } from '../validation/checks.js';
+
+// RenderContext imports this module only when temporal reuse is turned on (a lazy chunk in the
+// viewer's bundle): the options' checks, the scene comparison and the resolve pass with its targets.
 
 /**
  * Temporal reuse (docs/architecture.md, "Temporal reuse"): on a camera change the previous
@@ -47,19 +50,6 @@ export function checkTemporalOptions(x: unknown): Required<TemporalOptions> | nu
   };
 }
 
-/**
- * The view change between two cameras in radians: the angle between their view directions
- * plus the eye's displacement over its distance to the new target (an orbit by φ gives ≈ 2φ).
- */
-export function viewChange(a: Camera, b: Camera): number {
-  const fa = cameraBasis(a).forward,
-    fb = cameraBasis(b).forward;
-  const angle = Math.acos(Math.min(1, Math.max(-1, dot(fa, fb))));
-  const d = sub(b.position, a.position);
-  const dist = Math.hypot(...sub(b.target, b.position));
-  return angle + Math.hypot(...d) / Math.max(dist, 1e-6);
-}
-
 /** Whether two scenes differ in the camera alone (the volume by identity, everything else by value). */
 export function sameSceneButCamera(a: Scene, b: Scene): boolean {
   if (a.volume !== b.volume) return false;
@@ -92,6 +82,19 @@ function sameValue(a: unknown, b: unknown): boolean {
   return true;
 }
 
+/**
+ * The view change between two cameras in radians: the angle between their view directions
+ * plus the eye's displacement over its distance to the new target (an orbit by φ gives ≈ 2φ).
+ */
+export function viewChange(a: Camera, b: Camera): number {
+  const fa = cameraBasis(a).forward,
+    fb = cameraBasis(b).forward;
+  const angle = Math.acos(Math.min(1, Math.max(-1, dot(fa, fb))));
+  const d = sub(b.position, a.position);
+  const dist = Math.hypot(...sub(b.target, b.position));
+  return angle + Math.hypot(...d) / Math.max(dist, 1e-6);
+}
+
 const FORMATS: TextureFormat[] = ['rgba32float', 'rgba32float', 'rgba32float'];
 
 /** The guide textures the resolve pass reads (GuideBuffers.textures()). */
@@ -115,6 +118,11 @@ export class TemporalReuse {
     private readonly backend: GpuBackend,
     readonly options: Required<TemporalOptions>,
   ) {}
+
+  /** Whether a scene change is a camera change alone (sameSceneButCamera), which keeps the history. */
+  cameraOnly(a: Scene, b: Scene): boolean {
+    return sameSceneButCamera(a, b);
+  }
 
   /** Whether a history is kept for the next images. */
   get hasHistory(): boolean {
