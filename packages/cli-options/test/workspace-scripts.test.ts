@@ -31,6 +31,7 @@ const SCRIPTS: Record<string, { notANumber?: { argv: string[]; names: string } }
   'benchmarks/label-cost.mjs': { notANumber: { argv: ['--rounds', 'many'], names: '--rounds' } },
   'benchmarks/bundle-size.mjs': { notANumber: { argv: ['--budget', 'small'], names: '--budget' } },
   'benchmarks/first-image.mjs': { notANumber: { argv: ['--rounds', 'few'], names: '--rounds' } },
+  'benchmarks/orbit.mjs': { notANumber: { argv: ['--rounds', 'few'], names: '--rounds' } },
   'benchmarks/read-speed.mjs': { notANumber: { argv: ['--runs', 'many'], names: '--runs' } },
   'benchmarks/mcrt-fetches.mjs': { notANumber: { argv: ['--iterations', '1.5'], names: '--iterations' } },
   'benchmarks/slice-plane-cost.mjs': { notANumber: { argv: ['--rounds', 'many'], names: '--rounds' } },

@@ -69,6 +69,7 @@ export { RUNNING_MEAN_INTEGRATE, HALF_MEANS_INTEGRATE, COPY_ACCUMULATION_RENDER 
 export type { PostStep } from './post-step.js';
 export { DEFAULT_GPU_BYTES, type RenderContextOptions } from './context/context-options.js';
 export { RenderContext, type RenderStats, type GpuBytes, type DepthLimit } from './context/render-context.js';
+export type { TemporalOptions } from './context/temporal-reuse.js';
 export type { RenderWarning, BrickLoadWarning, VolumeDownsampledWarning } from './context/volume-fit.js';
 
 export { CHANNEL_UNIFORM_FIELDS, SCENE_UNIFORM_FIELDS, sceneUniformValues } from './shaders/scene-uniforms.js';

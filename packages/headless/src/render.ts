@@ -67,6 +67,8 @@ export interface PageRenderOptions {
   request?: Partial<RequestPolicy>;
   /** Stop the iterations after this many ms; the result then holds those done (`timings.timeLimited`). */
   timeLimitMs?: number;
+  /** The render context's temporal reuse (RenderContextOptions.temporal; `vpt-render --temporal`); default off. */
+  temporal?: boolean;
   /** Iterations done of the total and ms since they began, after each batch (the render then runs in batches). */
   onProgress?: (done: number, total: number, ms: number) => void;
 }
@@ -188,6 +190,7 @@ async function renderInPage(
       warmup: options.warmup ?? true,
       request: options.request ?? requestPolicyFromEnv(),
       ...(options.timeLimitMs !== undefined ? { timeLimitMs: options.timeLimitMs } : {}),
+      ...(options.temporal ? { temporal: true } : {}),
       ...(options.onProgress ? { progress: true } : {}),
     },
   );

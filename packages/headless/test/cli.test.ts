@@ -56,6 +56,9 @@ describe('vpt-render arguments', () => {
     expect(parseRenderArgs(['--pfm=x.pfm', 's.json']).pfm).toBe('x.pfm');
     expect(parseRenderArgs(['--help']).help).toBe(true);
     expect(parseRenderArgs(['s.json', '-o', 'o.png', '--keep-alpha']).keepAlpha).toBe(true);
+    // Temporal reuse is off unless --temporal is given.
+    expect(parseRenderArgs(['s.json', '-o', 'o.png']).temporal).toBeUndefined();
+    expect(parseRenderArgs(['s.json', '-o', 'o.png', '--temporal']).temporal).toBe(true);
   });
 
   it('rejects bad input with a clear message', () => {

@@ -227,6 +227,10 @@ export function parseDenoiseMode(v: unknown): DenoiseMode {
   return v as DenoiseMode;
 }
 
+/** The temporal attribute: 'on' (default) reuses the image across camera moves, 'off' restarts from nothing. */
+export const TEMPORAL_MODES = ['on', 'off'] as const;
+export type TemporalMode = (typeof TEMPORAL_MODES)[number];
+
 export function parseNumber(
   attribute: string,
   v: unknown,
@@ -322,6 +326,7 @@ export type CheckedProperty =
   | 'backend'
   | 'toneMapper'
   | 'denoise'
+  | 'temporal'
   | 'exposure'
   | 'maxSamples'
   | 'targetError'
@@ -344,6 +349,7 @@ function propertyParsers(volume: Volume | undefined): Record<CheckedProperty, (v
     backend: parseBackend,
     toneMapper: parseToneMapper,
     denoise: parseDenoiseMode,
+    temporal: (v) => parseChoice('temporal', v, TEMPORAL_MODES),
     exposure: (v) => parseNumber('exposure', v, { min: -64, max: 64 }),
     maxSamples: (v) => parseNumber('max-samples', v, { min: 1, integer: true }),
     targetError: (v) => parseNumber('target-error', v, { min: 0 }),

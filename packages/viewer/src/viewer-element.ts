@@ -2,7 +2,7 @@
  * `<vpt-viewer>`: a progressive volume renderer as one HTML element.
  *
  * Attributes (all reflected, all also properties): src, renderer, backend,
- * transfer-function, camera, clip, lights, environment, exposure, tone-mapper, denoise,
+ * transfer-function, camera, clip, lights, environment, exposure, tone-mapper, denoise, temporal,
  * max-samples, target-error, density-scale, seed, renderer-params, resolution-scale, panels,
  * collapsed, hide-progress, hide-stats, layout.
  * Events (typed through HTMLElementEventMap, prefixed so none collides with a native
@@ -52,6 +52,7 @@ import {
   type BackendName,
   type CheckedProperty,
   type DenoiseMode,
+  type TemporalMode,
   type EnvironmentValue,
 } from './attributes.js';
 import { fitCamera } from './camera-fit.js';
@@ -153,6 +154,7 @@ const SYNC_FIELDS = [
   'exposure',
   'toneMapper',
   'denoise',
+  'temporal',
   'maxSamples',
   'targetError',
   'resolutionScale',
@@ -181,6 +183,7 @@ export class VptViewer extends LitElement implements PanelHost, SlotHolder {
     exposure: { type: Number, reflect: true },
     toneMapper: { attribute: 'tone-mapper', type: String, reflect: true },
     denoise: { type: String, reflect: true },
+    temporal: { type: String, reflect: true },
     maxSamples: { attribute: 'max-samples', type: Number, reflect: true },
     targetError: { attribute: 'target-error', type: Number, reflect: true },
     densityScale: { attribute: 'density-scale', type: Number, reflect: true },
@@ -252,6 +255,11 @@ export class VptViewer extends LitElement implements PanelHost, SlotHolder {
   declare toneMapper: ToneMapOperator;
   /** 'auto' (default): denoise while refining, show the plain estimate once converged; 'on'; 'off'. */
   declare denoise: DenoiseMode;
+  /**
+   * 'on' (default): on a camera move the image is reprojected into the new view and blended with
+   * the new samples as a fading history (RenderContext temporal reuse); 'off': every move restarts.
+   */
+  declare temporal: TemporalMode;
   /** Refinement stops at this many samples per pixel. */
   declare maxSamples: number;
   /** Refinement stops when the estimated relative RMSE falls below this (0: off; needs a renderer with half accumulations). */
@@ -364,6 +372,7 @@ export class VptViewer extends LitElement implements PanelHost, SlotHolder {
     this.exposure = 0;
     this.toneMapper = 'aces';
     this.denoise = 'auto';
+    this.temporal = 'on';
     this.maxSamples = 1024;
     this.targetError = 0;
     this.densityScale = null;
@@ -1729,6 +1738,9 @@ export class VptViewer extends LitElement implements PanelHost, SlotHolder {
         this.fail(e, 'attribute');
       }
     }
+    // Turned on after the context opens (its pass is a lazy chunk), so the first image does not wait for it.
+    if (s.ctx.temporalReuse !== (this.temporal !== 'off'))
+      s.ctx.setTemporal(this.temporal !== 'off').catch((e: unknown) => this.fail(e, 'context'));
     this.applySize();
     s.setStopping(this.maxSamples, this.targetError);
     const scene = this.sceneNow();

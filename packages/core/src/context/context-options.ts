@@ -2,6 +2,7 @@ import type { BackendLimits, BackendPreference } from '../gpu/backend.js';
 import type { VolumeSampling } from '../gpu/volume-format.js';
 import type { PostStep } from '../post-step.js';
 import type { Renderer } from '../renderer.js';
+import type { TemporalOptions } from './temporal-reuse.js';
 import { checkNumber, checkOneOf, fail } from '../validation/checks.js';
 
 /**
@@ -30,6 +31,12 @@ export interface RenderContextOptions {
   height: number;
   renderer: Renderer;
   post?: PostStep[];
+  /**
+   * Temporal reuse across camera changes (docs/architecture.md, "Temporal reuse"): the image
+   * shown is reprojected into the new view and blended with the new samples as a fading
+   * history. true or options: on (renderers that write guides); default off.
+   */
+  temporal?: boolean | TemporalOptions;
   /**
    * Volume sampling when the scene does not say (Scene.sampling): 'fast' (default; compact
    * texture, one hardware-filtered fetch) or 'exact' (r32float, manual trilinear).

@@ -23,6 +23,7 @@ import { PostChain } from './post-chain.js';
 import { PRESENT_PASS } from './present-pass.js';
 import { checkGpuBudget, checkRenderSize, checkVolumeOptions, type RenderContextOptions } from './context-options.js';
 import { ProgressiveLoop } from './progressive-loop.js';
+import type { TemporalOptions, TemporalReuse } from './temporal-reuse.js';
 import { SceneResources } from './scene-resources.js';
 import { VolumeFit, maxRenderPixels, volumeBudgetBytes, type RenderWarning } from './volume-fit.js';
 import type { BrickingStats } from '../bricking/bricked-volume.js';
@@ -119,6 +120,13 @@ export class RenderContext {
   // Whether this estimate accumulates guides: decided at each reset (guides are means over every
   // iteration since it), so removing the denoiser keeps the samples and adding it starts over.
   private guidesActive = false;
+  // Temporal reuse across camera changes (null: off), see "Temporal reuse".
+  private temporal: TemporalReuse | null = null;
+  private temporalGeneration = 0;
+  private temporalWanted = false;
+  // The HDR image shown: the render pass's, or the temporal resolve's.
+  private displayed: GpuTexture | null = null;
+  private hdrRenderedAt = -1; // iteration count the render (and resolve) pass last ran at
 
   private iteration = 0;
   private rendererVersion = -1;
@@ -189,7 +197,9 @@ export class RenderContext {
       ...(opts.device ? { device: opts.device } : {}),
     });
     try {
-      return new RenderContext(backend, opts);
+      const ctx = new RenderContext(backend, opts);
+      if (opts.temporal !== undefined) await ctx.setTemporal(opts.temporal);
+      return ctx;
     } catch (e) {
       backend.dispose();
       throw e;
@@ -236,7 +246,12 @@ export class RenderContext {
     for (const a of res.auxTextures.values()) auxiliary += tex(a.texture);
     let targets =
       target(this.frame) + target(this.hdr) + (this.accum ? target(this.accum[0]) + target(this.accum[1]) : 0);
-    for (const t of [...this.postChain.allTargets(), ...(this.guides?.targets ?? [])]) targets += target(t);
+    for (const t of [
+      ...this.postChain.allTargets(),
+      ...(this.guides?.targets ?? []),
+      ...(this.temporal?.targets ?? []),
+    ])
+      targets += target(t);
     return { volume, gradient, auxiliary, targets, total: volume + gradient + auxiliary + targets };
   }
 
@@ -257,6 +272,12 @@ export class RenderContext {
     const scene = this.volumeFit.fitScene(input);
     if (this.wantsGradient(scene)) validateGradientAtlasForDevice(scene.volume.dims, this.backend.limits);
     const previous = { scene: this.scene, plan: this.resources.brickPlanNow() };
+    // A camera change alone keeps the current image as temporal history; anything else drops it.
+    if (this.temporal) {
+      if (this.scene && this.input && scene.volume === this.scene.volume && this.temporal.cameraOnly(this.input, input))
+        this.keepHistory();
+      else this.temporal.invalidate();
+    }
     this.scene = scene;
     this.resources.setBrickPlan(this.volumeFit.bricks);
     try {
@@ -344,6 +365,7 @@ export class RenderContext {
   }
 
   setRenderer(renderer: Renderer): void {
+    this.temporal?.invalidate();
     this._renderer = renderer;
     this.passes = null;
     this.destroyRendererTargets();
@@ -360,6 +382,8 @@ export class RenderContext {
   setSize(width: number, height: number): void {
     checkRenderSize(width, height, this.backend.limits);
     if (width === this.width && height === this.height) return;
+    // The reprojection works in film coordinates: the image at the old size is history for the new one.
+    this.keepHistory();
     this.width = width;
     this.height = height;
     this.backend.resizeCanvas(width, height);
@@ -384,7 +408,10 @@ export class RenderContext {
     if (limit === null) {
       const had = this.depthLimit !== null;
       this.depthLimit = null;
-      if (had) this.reset();
+      if (had) {
+        this.temporal?.invalidate();
+        this.reset();
+      }
       return;
     }
     if (!this.backend.importTexture)
@@ -411,6 +438,7 @@ export class RenderContext {
       b: limit.b,
       depthGuide: limit.depthGuide === true,
     };
+    this.temporal?.invalidate();
     this.reset();
   }
 
@@ -443,9 +471,85 @@ export class RenderContext {
     return normalDepth && albedoHit ? { normalDepth, albedoHit } : null;
   }
 
+  /**
+   * The temporal state of the image shown (for tests and tools): per pixel (hit share, samples
+   * it stands for, 0, 0), where samples − the iteration count is the history's weight (0 where
+   * a pixel took none). Null while temporal reuse is off or not resolving.
+   */
+  readTemporalState(): Promise<Float32Array | null> {
+    return this.readTemporalOutput(2);
+  }
+
+  /** The guide the next view reprojects through: per pixel (normal, hit depth along the camera ray), as readTemporalState. */
+  readTemporalGuide(): Promise<Float32Array | null> {
+    return this.readTemporalOutput(1);
+  }
+
+  private async readTemporalOutput(index: number): Promise<Float32Array | null> {
+    this.assertAlive();
+    if (!this.resolving() || this.iteration === 0) return null;
+    this.renderHdr();
+    const out = this.temporal!.output;
+    return out ? ((await this.backend.readTexture(out.textures[index])) as Float32Array) : null;
+  }
+
   /** Whether guides are accumulated from the next reset: for a post step, or for a depth limit's depth guide. */
   private wantsGuides(): boolean {
-    return this.postChain.wantsGuides() || this.depthLimit?.depthGuide === true;
+    return (
+      this.postChain.wantsGuides() ||
+      this.depthLimit?.depthGuide === true ||
+      (this.temporal !== null && this._renderer.writesGuides === true)
+    );
+  }
+
+  /**
+   * Temporal reuse across camera changes (see docs/architecture.md, "Temporal reuse"): true or
+   * options turn it on (for renderers that write guides: MCRT, EAM, ISO), false off. Turning it
+   * on starts a new estimate (it needs the depth guide from the first sample). Its module is
+   * loaded on first use (a lazy chunk of the viewer's bundle): reuse starts when the returned
+   * promise resolves, which rejects with a VptError naming the field for bad options (off
+   * takes effect at once).
+   */
+  async setTemporal(options: boolean | TemporalOptions): Promise<void> {
+    this.assertAlive();
+    const generation = ++this.temporalGeneration;
+    this.temporalWanted = options !== false;
+    this.temporal?.destroy();
+    this.temporal = null;
+    this.hdrRenderedAt = -1;
+    this.hdrIteration = -1;
+    if (options === false) return;
+    const module = await import('./temporal-reuse.js');
+    let checked;
+    try {
+      checked = module.checkTemporalOptions(options);
+    } catch (e) {
+      if (generation === this.temporalGeneration) this.temporalWanted = false;
+      throw e;
+    }
+    // A later call decided otherwise while the module loaded.
+    if (generation !== this.temporalGeneration || this.disposed || !checked) return;
+    this.temporal = new module.TemporalReuse(this.backend, checked);
+    this.hdrRenderedAt = -1;
+    this.hdrIteration = -1;
+    if (!this.guidesActive && this.wantsGuides()) this.reset();
+  }
+
+  /** Whether temporal reuse is on or being turned on (it acts only for renderers that write guides). */
+  get temporalReuse(): boolean {
+    return this.temporal !== null || this.temporalWanted;
+  }
+
+  /** Whether this estimate's images go through the temporal resolve (guides accumulated). */
+  private resolving(): boolean {
+    return this.temporal !== null && this.guides !== null && this.frameHasGuides;
+  }
+
+  /** The view changes: keep the image shown now (resolved to the current iteration) as history. */
+  private keepHistory(): void {
+    if (!this.temporal || !this.scene) return;
+    if (this.iteration > 0 && this.resolving() && !this.backend.isLost) this.renderHdr();
+    this.temporal.keep(this.scene.camera, this.width / this.height);
   }
 
   /**
@@ -466,13 +570,14 @@ export class RenderContext {
     this.assertAlive();
     if (!this.scene || this.backend.isLost || this.iteration === 0 || !this.backend.textureHandle) return null;
     this.renderImage();
-    return this.hdr ? this.backend.textureHandle(this.hdr.textures[0]) : null;
+    return this.displayed ? this.backend.textureHandle(this.displayed) : null;
   }
 
   /** Drop accumulated samples: the next iteration starts a new estimate. */
   reset(): void {
     this.iteration = 0;
     this.hdrIteration = -1;
+    this.hdrRenderedAt = -1;
     this.guidesActive = this.wantsGuides();
   }
 
@@ -543,18 +648,36 @@ export class RenderContext {
     const postKey = this.postChain.parameterKey();
     if (this.hdrIteration === this.iteration && this.postChain.madeWith(postKey)) return;
     this.postChain.remember(postKey);
+    this.renderHdr();
+    this.postChain.run(this.displayed!, this.guides, this.width, this.height);
+    this.hdrIteration = this.iteration;
+    this.imageVersion++;
+  }
+
+  /** The render pass (accumulation → HDR) and, with temporal reuse, the resolve; once per iteration count. */
+  private renderHdr(): void {
+    const scene = this.scene!;
     this.prepare();
-    const uniforms = this.uniforms(this.scene, this.iteration - 1);
+    if (this.hdrRenderedAt === this.iteration && this.displayed) return;
+    const uniforms = this.uniforms(scene, this.iteration - 1);
     const accTextures: Record<string, GpuTexture> = {};
     this.accum![0].textures.forEach((t, i) => {
       accTextures[`accum${i}`] = t;
     });
-    if (this.scene.channels) accTextures.transferFunction = this.resources.tfTexture!;
-    if (this.drawsLabels(this.scene)) accTextures.labelTable = this.resources.auxTextures.get('labelTable')!.texture;
+    if (scene.channels) accTextures.transferFunction = this.resources.tfTexture!;
+    if (this.drawsLabels(scene)) accTextures.labelTable = this.resources.auxTextures.get('labelTable')!.texture;
     this.backend.draw(this.passes!.render, { uniforms, textures: accTextures, target: this.hdr! });
-    this.postChain.run(this.hdr!.textures[0], this.guides, this.width, this.height);
-    this.hdrIteration = this.iteration;
-    this.imageVersion++;
+    this.displayed = this.resolving()
+      ? this.temporal!.resolve(
+          this.hdr!.textures[0],
+          this.guides!.textures(),
+          scene.camera,
+          this.width,
+          this.height,
+          this.iteration,
+        )
+      : this.hdr!.textures[0];
+    this.hdrRenderedAt = this.iteration;
   }
 
   /** Draw the current LDR image to the canvas. */
@@ -610,8 +733,8 @@ export class RenderContext {
     this.renderImage();
     if (!this.hdr) throw new VptError('invalid-scene', 'Nothing rendered yet: call setScene() and iterate first');
     const steps = options.afterPost ? this.radianceStepCount() : 0;
-    const image = steps > 0 ? this.postChain.output(steps - 1) : this.hdr;
-    return (await this.backend.readTexture(image.textures[0])) as Float32Array;
+    const image = steps > 0 ? this.postChain.output(steps - 1).textures[0] : this.displayed!;
+    return (await this.backend.readTexture(image)) as Float32Array;
   }
 
   /**
@@ -939,6 +1062,7 @@ export class RenderContext {
     if (this.frame && this.frameHasGuides !== writeGuides) this.destroyRendererTargets();
     if (r.version !== this.rendererVersion) {
       this.rendererVersion = r.version;
+      this.temporal?.invalidate();
       this.reset();
     }
     this.resources.syncGradient();
@@ -984,10 +1108,13 @@ export class RenderContext {
     this.accum = null;
     this.hdr = null;
     this.guides = null;
+    this.displayed = null;
+    this.hdrRenderedAt = -1;
   }
 
   private releaseGpuResources(): void {
     this.destroyRendererTargets();
+    this.temporal?.destroy();
     this.postChain.destroy();
     this.resources.release();
   }
@@ -1000,6 +1127,8 @@ export class RenderContext {
     this.accum = null;
     this.hdr = null;
     this.guides = null;
+    this.displayed = null;
+    this.temporal?.forget();
     this.postChain.forget();
     this.presentPass = null;
     this.resources.forget();

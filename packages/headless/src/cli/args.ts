@@ -47,6 +47,10 @@ export const RENDER_CLI = {
       valueName: 'A[:B]',
       description: 'the time step A, or the steps A to B (both included) to numbered images (see below)',
     },
+    temporal: {
+      type: 'boolean',
+      description: 'turn on temporal reuse across camera changes (off by default; see below)',
+    },
     'keep-alpha': {
       type: 'boolean',
       description: 'write the coverage as PNG alpha (default: opaque over the background)',
@@ -62,6 +66,11 @@ before exposure and tone mapping.
 --time-limit SECONDS stops the iterations after that long and writes the image of those done
 (the JSON line then says "timeLimited": true); runs longer than a few seconds print progress
 to stderr.
+
+--temporal turns on the render context's temporal reuse (the image reprojected into a new view
+through the depth guide and blended with the new samples as a fading history; the viewer has it
+on by default). A scene file renders one view, so a still's image is the same with it; the JSON
+line then says "temporal": true.
 
 --time A renders step A of a time series (overriding the scene's "time"); --time A:B renders
 steps A, A+1, ..., B, each to its own file: -o out/frame-%03d.png puts the step's number where
@@ -110,6 +119,8 @@ export interface RenderArgs {
   /** --time A[:B]: the first and last time step (equal for one step). */
   time?: { first: number; last: number };
   keepAlpha: boolean;
+  /** --temporal: the context's temporal reuse on. */
+  temporal?: boolean;
   verbose: boolean;
   help: boolean;
 }
@@ -143,6 +154,7 @@ export function parseRenderArgs(argv: string[]): RenderArgs {
     ...(values['time-limit'] !== undefined ? { timeLimit: values['time-limit'] } : {}),
     ...(values.time !== undefined ? { time: parseTimeRange(values.time) } : {}),
     keepAlpha: values['keep-alpha'],
+    ...(values.temporal ? { temporal: true } : {}),
     verbose: values.verbose,
     help: false,
   };

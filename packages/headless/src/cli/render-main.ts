@@ -79,6 +79,7 @@ export async function runRender(argv: string[], io: CliIO = processIO): Promise<
           seed: args.seed,
           sceneRoot: args.root,
           ...(args.timeLimit !== undefined ? { timeLimitMs: args.timeLimit * 1000 } : {}),
+          ...(args.temporal ? { temporal: true } : {}),
           ...(session ? { session } : {}),
           onProgress: progressPrinter(io),
           onConsole: args.verbose ? (line) => io.err(line) : undefined,
@@ -115,6 +116,7 @@ export async function runRender(argv: string[], io: CliIO = processIO): Promise<
         ...(Object.keys(result.rendererStats ?? {}).length ? { rendererStats: result.rendererStats } : {}),
         // What the PFM holds: the estimate after these post steps (['denoise'] when it was denoised).
         ...(args.pfm !== undefined ? { hdrPostSteps: result.hdrPostSteps } : {}),
+        ...(args.temporal ? { temporal: true } : {}),
         ...(result.warnings.length > 0 ? { warnings: result.warnings } : {}),
       }),
     );

@@ -35,6 +35,8 @@ export interface PageRenderCallOptions {
   request?: Partial<CoreModule.RequestPolicy>;
   /** Stop the iterations after this many ms (the image then holds those done); default: none. */
   timeLimitMs?: number;
+  /** The render context's temporal reuse (RenderContextOptions.temporal); default off. */
+  temporal?: boolean;
   /** Run the iterations in batches and call `window.__vptRenderProgress(done, total, ms)` after each. */
   progress?: boolean;
 }

@@ -427,6 +427,7 @@ async function renderDescription(
     renderer: makeRenderer(desc),
     post: steps,
     ...(desc.maxGpuBytes ? { maxGpuBytes: desc.maxGpuBytes } : {}),
+    ...(options.temporal ? { temporal: true } : {}),
   });
   const warnings: string[] = [];
   ctx.onWarning((w) => warnings.push(w.message));
