@@ -1,5 +1,6 @@
 import {
   BaseRenderer,
+  blueNoiseTexture,
   buildEnvironmentSampling,
   DEFAULT_SKIP_CELL_SIZE,
   environmentEmits,
@@ -112,6 +113,7 @@ export class IsoRenderer extends BaseRenderer<IsoParams> {
       ISO_OUTPUT: OUTPUT_CODE[p.output],
       // A channel scene has no single value range per cell to skip by (majorant/grid-textures.ts).
       SKIP_EMPTY: p.emptySpaceSkipping && !scene.channels,
+      BLUE_NOISE: p.sampler === 'blue-noise',
     };
   }
 
@@ -164,10 +166,12 @@ export class IsoRenderer extends BaseRenderer<IsoParams> {
    */
   auxiliaryTextures(scene: Scene, volume?: VolumeBinding): readonly AuxiliaryTexture[] {
     // With skipping (and a volume binding: inside a RenderContext), each grid cell's range of volume texels.
-    const grid =
-      this.resolved.emptySpaceSkipping && volume && !scene.channels
+    const grid = [
+      ...(this.resolved.emptySpaceSkipping && volume && !scene.channels
         ? majorantGridTextures(scene, volume, DEFAULT_SKIP_CELL_SIZE, 'ranges')
-        : [];
+        : []),
+      ...(this.resolved.sampler === 'blue-noise' ? [blueNoiseTexture()] : []),
+    ];
     const env = scene.environment;
     if (env.type === 'latlong' && environmentEmits(env)) {
       const e = env as LatLongEnvironment;

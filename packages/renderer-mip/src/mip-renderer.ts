@@ -1,5 +1,6 @@
 import {
   BaseRenderer,
+  blueNoiseTexture,
   DEFAULT_SKIP_CELL_SIZE,
   GRID_CELLS_FIELD,
   gridGeometry,
@@ -43,7 +44,7 @@ export class MipRenderer extends BaseRenderer<MipParams> {
 
   override features(scene: Scene): Record<string, boolean | number> {
     // A channel scene has no single value range per cell to skip by (majorant/grid-textures.ts).
-    return { SKIP_EMPTY: this.skipping && !scene.channels };
+    return { SKIP_EMPTY: this.skipping && !scene.channels, BLUE_NOISE: this.blueNoise };
   }
 
   paramValues(scene: Scene): UniformValues {
@@ -55,9 +56,13 @@ export class MipRenderer extends BaseRenderer<MipParams> {
 
   /** With skipping, each majorant-grid cell's range of volume texels, built on the GPU. */
   auxiliaryTextures(scene: Scene, volume: VolumeBinding): readonly AuxiliaryTexture[] {
-    return this.skipping && !scene.channels
-      ? majorantGridTextures(scene, volume, DEFAULT_SKIP_CELL_SIZE, 'ranges')
-      : [];
+    const grid =
+      this.skipping && !scene.channels ? majorantGridTextures(scene, volume, DEFAULT_SKIP_CELL_SIZE, 'ranges') : [];
+    return this.blueNoise ? [...grid, blueNoiseTexture()] : grid;
+  }
+
+  private get blueNoise(): boolean {
+    return (this.getParams().sampler ?? MIP_DESCRIPTOR.params.sampler.default) === 'blue-noise';
   }
 
   private get skipping(): boolean {
