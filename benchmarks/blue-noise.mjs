@@ -2,7 +2,7 @@
 /**
  * Blue-noise sampling against the PCG stream (docs/benchmarks.md, "Blue-noise sampling"): per
  * renderer (EAM, MIP, ISO, MCRT single and multiple) on the VPT side-by-side anchor scene and
- * the bundled head, iterations and wall time to HDR 30 / 35 dB PSNR against one converged PCG
+ * the bundled head, iterations and wall time to HDR 30 / 35 dB PSNR (and iterations to 40 dB) against one converged PCG
  * reference (independent seed), for `sampler: 'pcg'` and `'blue-noise'`, interleaved over
  * rounds (A B, B A, …; each round its own seed), on the benchmark page's own errorCurve (the
  * same clock and error as `pnpm bench`'s error suite, where MCRT's reference noise is
@@ -108,6 +108,7 @@ try {
           res[sampler].push({
             it30: timeToPsnr(its, 30),
             it35: timeToPsnr(its, 35),
+            it40: timeToPsnr(its, 40),
             ms30: timeToPsnr(points, 30),
             ms35: timeToPsnr(points, 35),
             finalDb: points[points.length - 1].psnr,
@@ -121,12 +122,13 @@ try {
       };
       const row = { scene: sceneName, renderer: label, load: load() };
       for (const s of ['pcg', 'blue-noise'])
-        for (const k of ['it30', 'it35', 'ms30', 'ms35', 'finalDb', 'msPerIt']) row[`${s} ${k}`] = med(s, k);
+        for (const k of ['it30', 'it35', 'it40', 'ms30', 'ms35', 'finalDb', 'msPerIt']) row[`${s} ${k}`] = med(s, k);
       const ratio = (k) =>
         row[`pcg ${k}`] !== null && row[`blue-noise ${k}`] !== null ? row[`pcg ${k}`] / row[`blue-noise ${k}`] : null;
       console.log(
         `${sceneName.padEnd(6)} ${label.padEnd(13)} it→30 dB pcg ${fmt(row['pcg it30'])} bn ${fmt(row['blue-noise it30'])} (×${fmt(ratio('it30'))})` +
           `  it→35 dB pcg ${fmt(row['pcg it35'])} bn ${fmt(row['blue-noise it35'])} (×${fmt(ratio('it35'))})` +
+          `  it→40 dB pcg ${fmt(row['pcg it40'])} bn ${fmt(row['blue-noise it40'])} (×${fmt(ratio('it40'))})` +
           `  ms→35 dB pcg ${fmt(row['pcg ms35'])} bn ${fmt(row['blue-noise ms35'])}` +
           `  ms/it pcg ${row['pcg msPerIt'].toFixed(2)} bn ${row['blue-noise msPerIt'].toFixed(2)}` +
           `  dB@${opts.max} pcg ${row['pcg finalDb'].toFixed(1)} bn ${row['blue-noise finalDb'].toFixed(1)}; load ${row.load}`,
