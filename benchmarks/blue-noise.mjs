@@ -44,8 +44,9 @@ const CONFIGS = {
   'mcrt single': { renderer: 'mcrt', params: { scattering: 'single' }, halves: true },
   'mcrt multiple': { renderer: 'mcrt', params: { scattering: 'multiple' }, halves: true },
 };
-// The anchor scene of the skipping suite (VPT's volume and ramp TF); MCRT also gets VPT's sky
-// (radiance by height, vpt-side/anchor-scene.ts) as a lat-long map, as in the side-by-side suite.
+// The anchor scene of the skipping suite (VPT's volume and ramp TF); MCRT and ISO (which reflect
+// light, so would be black under its black sky) get VPT's sky (radiance by height,
+// vpt-side/anchor-scene.ts) as a lat-long map, as in the side-by-side suite.
 const SKY_W = 16,
   SKY_H = 64;
 const sky = [];
@@ -56,7 +57,7 @@ for (let j = 0; j < SKY_H; j++)
   }
 const SCENE_SPECS = {
   anchor: (label) =>
-    label.startsWith('mcrt')
+    label.startsWith('mcrt') || label === 'iso'
       ? { ...ANCHOR_SCENE, environment: { type: 'latlong', width: SKY_W, height: SKY_H, data: sky } }
       : ANCHOR_SCENE,
   head: () => scenes(128).head,
@@ -70,6 +71,7 @@ const load = () =>
 const ROOT = fileURLToPath(new URL('..', import.meta.url));
 const session = await openVptPage({ root: ROOT });
 const fmt = (x) => (x === null ? '—' : x.toFixed(x < 10 ? 1 : 0));
+const fix = (x) => (x === null ? '—' : x.toFixed(1));
 try {
   const dist = session.mount(fileURLToPath(new URL('./dist/', import.meta.url)));
   await session.page.evaluate(async (url) => (await import(url)).installBenchPage(), `${dist}page-code.js`);
@@ -130,8 +132,8 @@ try {
           `  it→35 dB pcg ${fmt(row['pcg it35'])} bn ${fmt(row['blue-noise it35'])} (×${fmt(ratio('it35'))})` +
           `  it→40 dB pcg ${fmt(row['pcg it40'])} bn ${fmt(row['blue-noise it40'])} (×${fmt(ratio('it40'))})` +
           `  ms→35 dB pcg ${fmt(row['pcg ms35'])} bn ${fmt(row['blue-noise ms35'])}` +
-          `  ms/it pcg ${row['pcg msPerIt'].toFixed(2)} bn ${row['blue-noise msPerIt'].toFixed(2)}` +
-          `  dB@${opts.max} pcg ${row['pcg finalDb'].toFixed(1)} bn ${row['blue-noise finalDb'].toFixed(1)}; load ${row.load}`,
+          `  ms/it pcg ${fix(row['pcg msPerIt'])} bn ${fix(row['blue-noise msPerIt'])}` +
+          `  dB@${opts.max} pcg ${fix(row['pcg finalDb'])} bn ${fix(row['blue-noise finalDb'])}; load ${row.load}`,
       );
       rows.push({ ...row, rounds: res });
     }
