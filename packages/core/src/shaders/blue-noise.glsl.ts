@@ -11,11 +11,13 @@ void sampleDimsInit(ivec2 pixel) {
   vptDimPixel = pixel;
 }
 #if BLUE_NOISE
-// Rank-1 sequence (Roberts 2018: R2 pairs, golden ratio) Cranley-Patterson rotated per pixel by a
+// Kronecker sequence (R2 jitter, Roberts 2018; golden ratio; frac(sqrt 2, sqrt 3), Richtmyer) Cranley-Patterson rotated per pixel by a
 // void-and-cluster mask (Georgiev & Fajardo 2016), x = frac(m(p + o_d) + i*alpha_d + U_d) in 0.32 fixed point.
 uint sampleDimAlpha(int dim) {
   if (dim == 2) return 2654435769u;
-  return (dim == 0 || dim == 3) ? 3242174889u : 2447445413u;
+  if (dim == 3) return 1779033704u;
+  if (dim == 4) return 3144134278u;
+  return dim == 0 ? 3242174889u : 2447445413u;
 }
 float blueNoiseDim(ivec2 pixel, int dim) {
   uint h = pcgHash(u.seed + pcgHash(uint(dim) + 2654435769u));

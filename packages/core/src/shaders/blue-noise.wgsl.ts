@@ -6,11 +6,13 @@ fn sampleDimsInit(pixel: vec2i) {
   vptDimPixel = pixel;
 }
 #if BLUE_NOISE
-// Rank-1 sequence (Roberts 2018: R2 pairs, golden ratio) Cranley-Patterson rotated per pixel by a
+// Kronecker sequence (R2 jitter, Roberts 2018; golden ratio; frac(sqrt 2, sqrt 3), Richtmyer) Cranley-Patterson rotated per pixel by a
 // void-and-cluster mask (Georgiev & Fajardo 2016), x = frac(m(p + o_d) + i*alpha_d + U_d) in 0.32 fixed point.
 fn sampleDimAlpha(dim: i32) -> u32 {
   if (dim == 2) { return 2654435769u; }
-  return select(2447445413u, 3242174889u, dim == 0 || dim == 3);
+  if (dim == 3) { return 1779033704u; }
+  if (dim == 4) { return 3144134278u; }
+  return select(2447445413u, 3242174889u, dim == 0);
 }
 fn blueNoiseDim(pixel: vec2i, dim: i32) -> f32 {
   let h = pcgHash(u.seed + pcgHash(u32(dim) + 2654435769u));
