@@ -1,6 +1,5 @@
 import {
   BaseRenderer,
-  blueNoiseTexture,
   COPY_ACCUMULATION_RENDER,
   DEFAULT_SKIP_CELL_SIZE,
   GRID_CELLS_FIELD,
@@ -47,7 +46,7 @@ export class EamRenderer extends BaseRenderer<EamParams> {
   }
 
   override features(_scene: Scene): Record<string, boolean | number> {
-    return { SKIP_EMPTY: this.skipping, BLUE_NOISE: this.blueNoise };
+    return { SKIP_EMPTY: this.skipping };
   }
 
   paramValues(scene: Scene): UniformValues {
@@ -59,12 +58,7 @@ export class EamRenderer extends BaseRenderer<EamParams> {
 
   /** With skipping, the majorant grid (max of densityScale·opacity per cell; 0 = empty), built on the GPU. */
   auxiliaryTextures(scene: Scene, volume: VolumeBinding): readonly AuxiliaryTexture[] {
-    const grid = this.skipping ? majorantGridTextures(scene, volume, DEFAULT_SKIP_CELL_SIZE, 'majorants') : [];
-    return this.blueNoise ? [...grid, blueNoiseTexture()] : grid;
-  }
-
-  private get blueNoise(): boolean {
-    return (this.getParams().sampler ?? EAM_DESCRIPTOR.params.sampler.default) === 'blue-noise';
+    return this.skipping ? majorantGridTextures(scene, volume, DEFAULT_SKIP_CELL_SIZE, 'majorants') : [];
   }
 
   private get skipping(): boolean {

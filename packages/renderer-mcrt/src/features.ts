@@ -31,8 +31,6 @@ export interface McrtFeatures {
   DEBUG_OUTPUT: number;
   /** The unspecialised kernel (`specialize: false`): scene features are runtime data (see McrtParams.specialize). */
   GENERIC: boolean;
-  /** `sampler: 'blue-noise'`: the path's first dimensions from core's SAMPLE_DIMS (texture blueNoise bound). */
-  BLUE_NOISE: boolean;
 }
 
 export interface ActiveLight {
@@ -69,7 +67,6 @@ export function computeFeatures(scene: Scene, p: ResolvedMcrtParams): McrtFeatur
     MIS_POWER: envSampling === 2 && p.misHeuristic === 'power',
     DEBUG_OUTPUT: p.debugOutput === 'transmittance' ? 1 : p.debugOutput === 'fetches' ? 2 : 0,
     GENERIC: false,
-    BLUE_NOISE: p.sampler === 'blue-noise',
   };
 }
 
@@ -94,7 +91,6 @@ function genericFeatures(p: ResolvedMcrtParams): McrtFeatures {
     MIS_POWER: envSampling === 2 && p.misHeuristic === 'power',
     DEBUG_OUTPUT: p.debugOutput === 'transmittance' ? 1 : p.debugOutput === 'fetches' ? 2 : 0,
     GENERIC: true,
-    BLUE_NOISE: p.sampler === 'blue-noise',
   };
 }
 
