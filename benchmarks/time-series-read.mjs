@@ -12,18 +12,26 @@ import os from 'node:os';
 import path from 'node:path';
 import { fileURLToPath, pathToFileURL } from 'node:url';
 import zlib from 'node:zlib';
+import { parseCliOrExit } from '@vpt/cli-options';
+
+const {
+  size: N,
+  steps: T,
+  rounds: ROUNDS,
+} = parseCliOrExit({
+  name: 'node benchmarks/time-series-read.mjs',
+  synopsis: '[--size N] [--steps N] [--rounds N]',
+  summary: 'openTimeSeries over one 4D file: read once vs read per step (needs pnpm run build).',
+  options: {
+    size: { type: 'integer', min: 1, default: 64, description: 'volume side in voxels' },
+    steps: { type: 'integer', min: 1, default: 12, description: 'time steps' },
+    rounds: { type: 'integer', min: 1, default: 5, description: 'A B rounds' },
+  },
+});
 
 // The built package (pnpm --filter @vpt/loaders run build), as read-speed.mjs loads it.
 const here = path.dirname(fileURLToPath(import.meta.url));
 const { openTimeSeries } = await import(pathToFileURL(path.join(here, '../packages/loaders/dist/index.js')).href);
-
-const arg = (name, d) => {
-  const i = process.argv.indexOf(`--${name}`);
-  return i > 0 ? Number(process.argv[i + 1]) : d;
-};
-const N = arg('size', 64),
-  T = arg('steps', 12),
-  ROUNDS = arg('rounds', 5);
 
 const count = N * N * N;
 const voxels = new Float32Array(count * T);

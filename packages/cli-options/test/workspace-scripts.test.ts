@@ -24,6 +24,8 @@ const SCRIPTS: Record<string, { notANumber?: { argv: string[]; names: string } }
   'tools/screenshot.mjs': { notANumber: { argv: ['http://x/', 'o.png', 'NaN'], names: 'WAIT_MS' } },
   'tools/viewer-screenshots.mjs': {},
   'benchmarks/bricking.mjs': { notANumber: { argv: ['--size', 'abc'], names: '--size' } },
+  'benchmarks/bricking-channels.mjs': { notANumber: { argv: ['--size', 'abc'], names: '--size' } },
+  'benchmarks/time-series-read.mjs': { notANumber: { argv: ['--steps', 'many'], names: '--steps' } },
   'benchmarks/clip-cost.mjs': { notANumber: { argv: ['--rounds', 'many'], names: '--rounds' } },
   'benchmarks/denoise-error.mjs': { notANumber: { argv: ['--seeds', 'few'], names: '--seeds' } },
   'benchmarks/three-cost.mjs': { notANumber: { argv: ['--batch', 'many'], names: '--batch' } },
