@@ -118,7 +118,12 @@ export async function openThreePage(pagePath = 'tests/pages/three.html'): Promis
   const page = await browser.newPage();
   const errors = recordPageErrors(page);
   await page.goto(new URL(pagePath, server.url).href);
-  await page.waitForFunction(() => (window as any).__ready === true, { timeout: 60_000 });
+  // A module that fails to resolve (an import-map entry missing) never sets __ready: say why.
+  await page
+    .waitForFunction(() => (window as any).__ready === true, { timeout: 60_000 })
+    .catch((e: Error) => {
+      throw new Error(`${pagePath} did not become ready: ${errors.join('; ') || e.message}`);
+    });
   await page.evaluate(installThreeHelpers);
   return {
     browser,
