@@ -3,8 +3,9 @@
  *   <script type="module" src=".../vpt-viewer.bundle.js"></script>
  *   <vpt-viewer src="head.json" renderer="eam"></vpt-viewer>
  * It contains Lit, the used parts of Three.js, core, post and every installed renderer,
- * and re-exports core and post for pages that build scenes in code.
+ * and re-exports core and post for pages that build scenes in code (less their CPU reference
+ * twins: bundle-core.ts, bundle-post.ts).
  */
 export * from './index.js';
-export * as core from '@vpt/core';
-export * as post from '@vpt/post';
+export * as core from './bundle-core.js';
+export * as post from './bundle-post.js';
