@@ -127,11 +127,10 @@ export async function loadVolumeSource(source: VolumeSource, options: LoadOption
   const volume = key
     ? await sharedLoad(key, opts, (signal) => loadVolume(source, { ...opts, signal }))
     : await loadVolume(source, opts);
-  // A file with a channel axis (an NRRD list/vector/colour axis, NIfTI dim[5] or RGB24): the
-  // element has no Channels panel yet, so it shows the first channel, said in the warnings (a
-  // multichannel volume without channel settings is no scene).
-  // (A lazy chunk: the entry bundle stays within its budget.)
-  if ((volume.channels ?? 1) > 1) return (await import('./first-channel.js')).firstChannel(volume);
+  // A file with a channel axis (an NRRD list/vector/colour axis, NIfTI dim[5] or RGB24): channel
+  // 0's scalar view carrying the channels' defaults and panel (a lazy chunk: the entry bundle
+  // stays within its budget).
+  if ((volume.channels ?? 1) > 1) return (await import('../channels.js')).withChannels(volume);
   // A sidecar's value_range maps to [0, 1] for every voxel type, as the headless renderer
   // (vpt-render) reads scene files; @vpt/loaders keeps it in meta only. Applying it here
   // makes the element show exactly what vpt-render renders for the same scene.
