@@ -2,6 +2,7 @@ import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
 import { afterAll, describe, expect, it } from 'vitest';
+import { writeZarrFolder } from '../packages/loaders/test/zarr-fixtures.js';
 import { useViewerPage } from './helpers/viewer-page.js';
 
 // <vpt-viewer> on a 2-channel NIfTI (dim[5] = 2): every channel is drawn, each through its own
@@ -180,6 +181,47 @@ describe('<vpt-viewer> channels', () => {
       expect(r[renderer], renderer).toEqual({ drawn: [false, true], errors: [], lit: true, changed: true });
   });
 
+  it('an OME-Zarr store with a c axis shows every channel (unless its fragment picks one)', async () => {
+    await writeZarrFolder(path.join(dir, 'two.ome.zarr'), {
+      dims: [D, D, D],
+      type: 'uint8',
+      spacing: [1, 1, 1],
+      images: [[c0, c1]],
+    });
+    const base = viewer().server.mount(dir);
+    const r = await viewer().run(async (vt, base: string) => {
+      const attrs = { renderer: 'mip', backend: 'webgl2', panels: 'none', 'max-samples': '1' };
+      const open = async (src: string) => {
+        const el = vt.create({ ...attrs, src }, 'width:24px;height:24px');
+        await vt.next(el, 'load');
+        await vt.converged(el);
+        const img = Array.from((await el.context.readHDR()) as Float32Array);
+        const scene = el.context.getScene();
+        const out = {
+          channels: el.channels,
+          drawn: scene.channels?.length ?? 0,
+          volumeChannels: scene.volume.channels ?? 1,
+          errors: el.__events.filter((e: any) => e.type === 'error').map((e: any) => e.message),
+          green: img.some((x, i) => i % 4 === 1 && x > 0.05 && img[i - 1] === 0),
+          magenta: img.some((x, i) => i % 4 === 0 && x > 0.05 && img[i + 1] === 0),
+        };
+        el.remove();
+        return out;
+      };
+      return {
+        zarr: await open(`${base}two.ome.zarr`),
+        nifti: await open(`${base}two.nii`),
+        picked: await open(`${base}two.ome.zarr#channel=1`),
+      };
+    }, base);
+    expect(r.zarr.errors).toEqual([]);
+    expect([r.zarr.drawn, r.zarr.volumeChannels]).toEqual([2, 2]);
+    // The same voxels as the NIfTI's channels: the same fitted defaults.
+    expect(r.zarr.channels).toEqual(r.nifti.channels);
+    expect([r.zarr.green, r.zarr.magenta]).toEqual([true, true]);
+    expect([r.picked.channels, r.picked.drawn, r.picked.volumeChannels]).toEqual([null, 0, 1]);
+  });
+
   it('the Channels panel lists the channels; its enable toggle changes the image and fires vpt-change', async () => {
     const base = viewer().server.mount(dir);
     const r = await viewer().run(async (vt, base: string) => {
@@ -206,6 +248,8 @@ describe('<vpt-viewer> channels', () => {
       const tfEditorsOutsideChannels = el.shadowRoot.querySelectorAll(
         'details:not(:has([data-channel])) vpt-tf-editor',
       ).length;
+      // The panels' rules came with their chunk (panel-styles.ts, adopted into the shadow root).
+      const panelDisplay = getComputedStyle(q('.panel')).display;
       const before = Array.from((await el.context.readHDR()) as Float32Array);
       const changes: any[] = [];
       el.addEventListener('vpt-change', (e: CustomEvent) => changes.push(e.detail));
@@ -238,6 +282,7 @@ describe('<vpt-viewer> channels', () => {
       one.remove();
       return {
         rows,
+        panelDisplay,
         tfEditorsOutsideChannels,
         changes,
         enabled,
@@ -248,6 +293,7 @@ describe('<vpt-viewer> channels', () => {
       };
     }, base);
     expect(r.rows.map((x: any) => x.channel)).toEqual(['0', '1']);
+    expect(r.panelDisplay).toBe('grid');
     expect(r.rows.every((x: any) => x.enabled && x.editor)).toBe(true);
     expect(r.rows[0].colour).not.toBe(r.rows[1].colour);
     // The Transfer function panel's editor is not drawn for channels: only theirs are shown.

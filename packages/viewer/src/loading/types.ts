@@ -30,6 +30,8 @@ export interface LoadOptions {
   rawHint?: string;
   /** The time step of a source holding several (a 4D NIfTI, an OME-Zarr `t` axis). */
   time?: number;
+  /** OME-Zarr: the indices along `c` read into one multichannel volume. */
+  zarr?: { channels?: number[] };
 }
 
 /**

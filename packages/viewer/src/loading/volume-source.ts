@@ -122,11 +122,16 @@ export async function loadVolumeSource(source: VolumeSource, options: LoadOption
   // Only URLs are shared, with progress from the first viewer that asked (the others see the bar jump).
   const key =
     typeof source === 'string' || source instanceof URL
-      ? JSON.stringify([absolute(String(source)), opts.limits ?? null, opts.format ?? null, opts.time ?? 0])
+      ? JSON.stringify([absolute(String(source)), opts.limits ?? null, opts.format ?? null, opts.time ?? 0, opts.zarr])
       : null;
   const volume = key
     ? await sharedLoad(key, opts, (signal) => loadVolume(source, { ...opts, signal }))
     : await loadVolume(source, opts);
+  // An OME-Zarr store with a `c` axis whose fragment picks no channel: every channel (up to 16)
+  // in one read, once the first read said how many there are.
+  const c = (volume.meta?.zarr as { channels?: number } | undefined)?.channels ?? 1;
+  if (c > 1 && !opts.zarr && typeof source === 'string' && !/[#&]channel=/.test(source))
+    return loadVolumeSource(source, { ...options, zarr: { channels: [...Array(Math.min(c, 16)).keys()] } });
   // A file with a channel axis (an NRRD list/vector/colour axis, NIfTI dim[5] or RGB24): channel
   // 0's scalar view carrying the channels' defaults and panel (a lazy chunk: the entry bundle
   // stays within its budget).
