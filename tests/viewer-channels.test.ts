@@ -222,6 +222,97 @@ describe('<vpt-viewer> channels', () => {
     expect([r.picked.channels, r.picked.drawn, r.picked.volumeChannels]).toEqual([null, 0, 1]);
   });
 
+  it("an OME-Zarr store's levels are planned for all its channels' bytes", async () => {
+    // 64³ uint8: level 0 is 256 KiB a channel, level 1 32 KiB. The volume budget is maxGpuBytes
+    // less 1 MiB (transfer function) and the render targets: about 340 kB fits one channel of
+    // level 0 but not two, so the store must stop at level 1.
+    const N = 64;
+    const blob = (cx: number) => {
+      const v = new Uint8Array(N ** 3);
+      for (let z = 0; z < N; z++)
+        for (let y = 0; y < N; y++)
+          for (let x = 0; x < N; x++)
+            v[x + N * (y + N * z)] = Math.max(0, Math.round(250 * (1 - Math.hypot(x - cx, y - 32, z - 32) / 20)));
+      return v;
+    };
+    await writeZarrFolder(
+      path.join(dir, 'levels.ome.zarr'),
+      { dims: [N, N, N], type: 'uint8', spacing: [1, 1, 1], images: [[blob(24), blob(40)]] },
+      { levels: 3, chunk: [32, 32, 32] },
+    );
+    const base = viewer().server.mount(dir);
+    const r = await viewer().run(async (vt, base: string) => {
+      const el = vt.create(
+        { src: `${base}levels.ome.zarr`, renderer: 'mip', backend: 'webgl2', panels: 'none', 'max-samples': '1' },
+        'width:24px;height:24px',
+      );
+      el.maxGpuBytes = (1 << 20) + 384 * 1024;
+      const loads: any[] = [];
+      el.addEventListener('vpt-load', (e: CustomEvent) => loads.push(e.detail.level));
+      await el.whenSettled();
+      await vt.converged(el);
+      const scene = el.context.getScene();
+      const out = {
+        budget: el.context.volumeBudgetBytes,
+        last: loads[loads.length - 1],
+        dims: scene.volume.dims,
+        channels: scene.volume.channels,
+        errors: el.__events.filter((e: any) => e.type === 'error').map((e: any) => e.message),
+      };
+      el.remove();
+      return out;
+    }, base);
+    // The premise: one channel of level 0 fits, two do not.
+    expect(r.budget).toBeGreaterThan(N ** 3);
+    expect(r.budget).toBeLessThan(2 * N ** 3);
+    expect(r.errors).toEqual([]);
+    expect(r.last).toMatchObject({ index: 1, final: true });
+    expect(r.last.bricked).toBeUndefined();
+    expect([r.dims, r.channels]).toEqual([[32, 32, 32], 2]);
+  });
+
+  it('a time series of channels keeps the channel settings from step to step', async () => {
+    // NIfTI dim[4] = 2 steps, dim[5] = 2 channels, stored component after component, each a run of the steps.
+    const steps = [
+      [c0, c1],
+      [ball(6, 4.5, 120), ball(7, 3, 250)],
+    ];
+    const out = new Uint8Array(352 + 4 * D ** 3);
+    const v = new DataView(out.buffer);
+    v.setInt32(0, 348, true);
+    [5, D, D, D, 2, 2, 1, 1].forEach((d, i) => v.setInt16(40 + 2 * i, d, true));
+    v.setInt16(70, 2, true);
+    v.setInt16(72, 8, true);
+    [1, 1, 1, 1, 1, 1, 1, 1].forEach((p, i) => v.setFloat32(76 + 4 * i, p, true));
+    v.setFloat32(108, 352, true);
+    out[123] = 2 | 8;
+    out.set([0x6e, 0x2b, 0x31, 0], 344);
+    for (let k = 0; k < 2; k++) for (let t = 0; t < 2; t++) out.set(steps[t][k], 352 + (2 * k + t) * D ** 3);
+    fs.writeFileSync(path.join(dir, 'series.nii'), out);
+    const base = viewer().server.mount(dir);
+    const r = await viewer().run(async (vt, base: string) => {
+      const el = vt.create(
+        { src: `${base}series.nii`, renderer: 'mip', backend: 'webgl2', panels: 'none', 'max-samples': '1' },
+        'width:24px;height:24px',
+      );
+      await vt.next(el, 'load');
+      await vt.converged(el);
+      el.channels = [{}, { enabled: false }];
+      await vt.converged(el);
+      const before = { channels: el.channels, img: await vt.ldr(el), steps: el.timeSteps };
+      el.setAttribute('time', '1');
+      await vt.next(el, 'change');
+      await vt.converged(el);
+      const after = { channels: el.channels, img: await vt.ldr(el), drawn: el.context.getScene().channels.length };
+      el.remove();
+      return { before, after };
+    }, base);
+    expect(r.before.steps).toBe(2);
+    expect(r.after.drawn).toBe(2);
+    expect(r.after.channels).toEqual(r.before.channels);
+    expect(r.after.img).not.toEqual(r.before.img);
+  });
+
   it('the Channels panel lists the channels; its enable toggle changes the image and fires vpt-change', async () => {
     const base = viewer().server.mount(dir);
     const r = await viewer().run(async (vt, base: string) => {

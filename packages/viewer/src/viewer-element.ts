@@ -539,6 +539,8 @@ export class VptViewer extends LitElement implements PanelHost, SlotHolder {
   /** The time player's step is read (or failed): it becomes the scene's volume, and `time` and `vpt-change` follow. */
   showStep(volume: LoadedVolumeLike | null, index: number, error?: unknown): void {
     if (!volume) return this.fail(error, 'src');
+    // The channels' settings stay from step to step, as the transfer function does (not refitted).
+    if (volume.multichannel) this.userChannels = this.channels;
     this.volume = volume;
     this.time = index;
     this.applySync();
