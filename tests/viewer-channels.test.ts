@@ -2,7 +2,7 @@ import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
 import { afterAll, describe, expect, it } from 'vitest';
-import { writeZarrFolder } from '../packages/loaders/test/zarr-fixtures.js';
+import { startFaultServer, writeZarrFolder } from '../packages/loaders/test/zarr-fixtures.js';
 import { useViewerPage } from './helpers/viewer-page.js';
 
 // <vpt-viewer> on a 2-channel NIfTI (dim[5] = 2): every channel is drawn, each through its own
@@ -222,7 +222,7 @@ describe('<vpt-viewer> channels', () => {
     expect([r.picked.channels, r.picked.drawn, r.picked.volumeChannels]).toEqual([null, 0, 1]);
   });
 
-  it("an OME-Zarr store's levels are planned for all its channels' bytes", async () => {
+  it("an OME-Zarr store's levels are planned for all its channels' bytes, each level read once", async () => {
     // 64³ uint8: level 0 is 256 KiB a channel, level 1 32 KiB. The volume budget is maxGpuBytes
     // less 1 MiB (transfer function) and the render targets: about 340 kB fits one channel of
     // level 0 but not two, so the store must stop at level 1.
@@ -240,7 +240,9 @@ describe('<vpt-viewer> channels', () => {
       { dims: [N, N, N], type: 'uint8', spacing: [1, 1, 1], images: [[blob(24), blob(40)]] },
       { levels: 3, chunk: [32, 32, 32] },
     );
-    const base = viewer().server.mount(dir);
+    // Served with a request log: after the first level, the store's channel count is known, so
+    // level 1 is one read of both channels (2 chunks), not a channel-0 read first (3).
+    const server = await startFaultServer(dir);
     const r = await viewer().run(async (vt, base: string) => {
       const el = vt.create(
         { src: `${base}levels.ome.zarr`, renderer: 'mip', backend: 'webgl2', panels: 'none', 'max-samples': '1' },
@@ -261,7 +263,12 @@ describe('<vpt-viewer> channels', () => {
       };
       el.remove();
       return out;
-    }, base);
+    }, server.url);
+    const level1 = server.log.filter(
+      (p) => /levels\.ome\.zarr\/1\//.test(p) && !/\.z(array|attrs|group)$|zarr\.json$/.test(p),
+    );
+    await server.close();
+    expect(level1.length, level1.join(' ')).toBe(2);
     // The premise: one channel of level 0 fits, two do not.
     expect(r.budget).toBeGreaterThan(N ** 3);
     expect(r.budget).toBeLessThan(2 * N ** 3);

@@ -1,11 +1,30 @@
 import { css } from 'lit';
 
 /**
- * The side panels' rules (panels.ts, channels.ts), in the panels' lazy chunk: the element adopts
- * them beside its own (styles.ts) when it first shows panels, so a page without panels does not
- * carry them.
+ * The side panels' rules (panels.ts, channels.ts) and the clip handles' (drawn only with the
+ * Clip panel), in the panels' lazy chunk: the element adopts them beside its own (styles.ts)
+ * once that chunk is loaded, so a page without panels does not carry them.
  */
 export const panelStyles = css`
+  .clip-handle {
+    position: absolute;
+    width: 18px;
+    height: 18px;
+    margin: -9px 0 0 -9px;
+    border-radius: 50%;
+    border: 2px solid #fff;
+    background: var(--vpt-accent);
+    color: #fff;
+    font:
+      600 10px/14px system-ui,
+      sans-serif;
+    text-align: center;
+    cursor: grab;
+    touch-action: none;
+    user-select: none;
+    box-sizing: border-box;
+    z-index: 1;
+  }
   details {
     border-bottom: 1px solid #2c2c32;
   }

@@ -154,25 +154,6 @@ export const viewerStyles = css`
     touch-action: none;
     outline: none;
   }
-  .clip-handle {
-    position: absolute;
-    width: 18px;
-    height: 18px;
-    margin: -9px 0 0 -9px;
-    border-radius: 50%;
-    border: 2px solid #fff;
-    background: var(--vpt-accent);
-    color: #fff;
-    font:
-      600 10px/14px system-ui,
-      sans-serif;
-    text-align: center;
-    cursor: grab;
-    touch-action: none;
-    user-select: none;
-    box-sizing: border-box;
-    z-index: 1;
-  }
   .view canvas.still {
     pointer-events: none;
   }

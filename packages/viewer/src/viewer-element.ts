@@ -768,6 +768,11 @@ export class VptViewer extends LitElement implements PanelHost, SlotHolder {
 
   protected override render() {
     const panels = this.panelSet;
+    // The panels' and clip handles' rules come with the panels' chunk, adopted beside the element's once.
+    if (panelsModule && !this.panelStyled) {
+      adoptStyles(this.renderRoot as ShadowRoot, [viewerStyles, panelsModule.panelStyles]);
+      this.panelStyled = true;
+    }
     // Wide: a sidebar beside the image (the collapsed attribute closes it). Narrow: an
     // overlay over the image, closed at rest and opened by the toolbar button.
     const showAside = panels.size > 0 && (this._narrow ? this._overlayOpen : !this.collapsed);
@@ -1209,13 +1214,7 @@ export class VptViewer extends LitElement implements PanelHost, SlotHolder {
 
   /** The panels' templates, or nothing while their module loads (tracked: whenSettled waits for it). */
   private panelsNow(panels: Set<PanelName>) {
-    const m = panelsModule;
-    if (m) {
-      // The panels' rules come with their chunk, adopted beside the element's once.
-      if (!this.panelStyled) adoptStyles(this.renderRoot as ShadowRoot, [viewerStyles, m.panelStyles]);
-      this.panelStyled = true;
-      return m.renderPanels(this, panels);
-    }
+    if (panelsModule) return panelsModule.renderPanels(this, panels);
     this.track(loadPanels().then(() => this.requestUpdate()));
     return nothing;
   }

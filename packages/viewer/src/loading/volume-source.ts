@@ -114,10 +114,19 @@ function sharedLoad(
   });
 }
 
+/** The channel count of the OME-Zarr stores read so far (by URL without fragment): later levels and steps read them all at once. */
+const zarrChannels = new Map<string, number>();
+
 export async function loadVolumeSource(source: VolumeSource, options: LoadOptions): Promise<LoadedVolumeLike> {
   const procedural = proceduralVolume(source);
   if (procedural) return procedural;
   const { loadVolume } = await volumeLoader();
+  // An OME-Zarr store with a `c` axis whose fragment picks no channel: every channel (up to 16)
+  // in one read, once a first read (or an earlier level) said how many there are.
+  const store = typeof source === 'string' && !/[#&]channel=/.test(source) ? source.split('#')[0] : '';
+  const all = (n: number) => ({ ...options, zarr: { channels: [...Array(Math.min(n, 16)).keys()] } });
+  const known = options.zarr ? 0 : (zarrChannels.get(store) ?? 0);
+  if (known > 1) return loadVolumeSource(source, all(known));
   const opts: LoadOptions = { rawHint: ELEMENT_RAW_HINT, ...options };
   // Only URLs are shared, with progress from the first viewer that asked (the others see the bar jump).
   const key =
@@ -127,11 +136,11 @@ export async function loadVolumeSource(source: VolumeSource, options: LoadOption
   const volume = key
     ? await sharedLoad(key, opts, (signal) => loadVolume(source, { ...opts, signal }))
     : await loadVolume(source, opts);
-  // An OME-Zarr store with a `c` axis whose fragment picks no channel: every channel (up to 16)
-  // in one read, once the first read said how many there are.
   const c = (volume.meta?.zarr as { channels?: number } | undefined)?.channels ?? 1;
-  if (c > 1 && !opts.zarr && typeof source === 'string' && !/[#&]channel=/.test(source))
-    return loadVolumeSource(source, { ...options, zarr: { channels: [...Array(Math.min(c, 16)).keys()] } });
+  if (c > 1 && store && !opts.zarr) {
+    zarrChannels.set(store, c);
+    return loadVolumeSource(source, all(c));
+  }
   // A file with a channel axis (an NRRD list/vector/colour axis, NIfTI dim[5] or RGB24): channel
   // 0's scalar view carrying the channels' defaults and panel (a lazy chunk: the entry bundle
   // stays within its budget).
