@@ -320,6 +320,46 @@ describe('<vpt-viewer> channels', () => {
     expect(r.after.img).not.toEqual(r.before.img);
   });
 
+  it('five channels: four drawn by default, the panel will not enable a fifth, nor will the property', async () => {
+    fs.writeFileSync(path.join(dir, 'five.nii'), nifti([2, 4, 6, 8, 10].map((cx) => ball(cx, 3, 200))));
+    const base = viewer().server.mount(dir);
+    const r = await viewer().run(async (vt, base: string) => {
+      const el = vt.create(
+        {
+          src: `${base}five.nii`,
+          renderer: 'mip',
+          backend: 'webgl2',
+          panels: 'channels',
+          'max-samples': '1',
+          'resolution-scale': '0.07',
+        },
+        'width:660px;height:160px',
+      );
+      await vt.next(el, 'load');
+      await vt.converged(el);
+      await el.updateComplete;
+      const toggles = [...el.shadowRoot.querySelectorAll('[data-enable]')].map((t: any) => [t.checked, t.disabled]);
+      const before = el.channels.map((c: any) => c.enabled);
+      el.channels = [{}, {}, {}, {}, { enabled: true }];
+      const after = el.channels.map((c: any) => c.enabled);
+      const errors = el.__events.filter((e: any) => e.type === 'error').map((e: any) => e.message);
+      const colours = new Set(el.channels.map((c: any) => c.color.join())).size;
+      el.remove();
+      return { toggles, before, after, errors, colours };
+    }, base);
+    expect(r.before).toEqual([true, true, true, true, false]);
+    expect(r.toggles).toEqual([
+      [true, false],
+      [true, false],
+      [true, false],
+      [true, false],
+      [false, true],
+    ]);
+    expect(r.after).toEqual(r.before);
+    expect(r.errors).toEqual([expect.stringMatching(/5 channels enabled, at most 4/)]);
+    expect(r.colours).toBe(5);
+  });
+
   it('the Channels panel lists the channels; its enable toggle changes the image and fires vpt-change', async () => {
     const base = viewer().server.mount(dir);
     const r = await viewer().run(async (vt, base: string) => {
