@@ -52,74 +52,83 @@ fs.writeFileSync(path.join(dir, 'two.nii'), nifti([c0, c1]));
 fs.writeFileSync(path.join(dir, 'c0.nii'), nifti([c0]));
 
 describe('<vpt-viewer> channels', () => {
-  it('MIP draws both channels, each in its default colour, added; opacity 0 or disabled draws the others alone', async () => {
-    const base = viewer().server.mount(dir);
-    const r = await viewer().run(async (vt, base: string) => {
-      const el = vt.create(
-        { src: `${base}two.nii`, renderer: 'mip', backend: 'webgl2', panels: 'none', 'max-samples': '1' },
-        'width:32px;height:32px',
+  it.each(['webgl2', 'webgpu'])(
+    'MIP on %s draws both channels, each in its default colour, added; opacity 0 or disabled draws the others alone',
+    async (backend) => {
+      const base = viewer().server.mount(dir);
+      const r = await viewer().run(
+        async (vt, base: string, backend: string) => {
+          const el = vt.create(
+            { src: `${base}two.nii`, renderer: 'mip', backend, panels: 'none', 'max-samples': '1' },
+            'width:32px;height:32px',
+          );
+          await vt.next(el, 'load');
+          await vt.converged(el);
+          const hdr = async () => Array.from((await el.context.readHDR()) as Float32Array);
+          const show = async (channels: unknown) => {
+            el.channels = channels;
+            await vt.converged(el);
+            return hdr();
+          };
+          const defaults = el.channels;
+          const both = await hdr();
+          const scene = el.context.getScene();
+          const sceneInfo = { channels: scene.volume.channels, entries: scene.channels.length };
+          const only0 = await show([{ enabled: true }, { enabled: false }]);
+          const only1 = await show([{ enabled: false }, { enabled: true }]);
+          const tf = defaults[1].transferFunction;
+          const clear1 = await show([
+            {},
+            { transferFunction: { ...tf, points: tf.points.map((p: any) => ({ ...p, opacity: 0 })) } },
+          ]);
+          const read = el.channels;
+          // An entry core refuses: vpt-error, and the settings stay.
+          el.channels = [{ color: [2, 0, 0] }];
+          const afterBad = el.channels;
+          const errors = el.__events.filter((e: any) => e.type === 'error').map((e: any) => [e.source, e.message]);
+          const changes = el.__events.filter((e: any) => e.type === 'change').length;
+          const kind = el.context.backend.kind;
+          el.remove();
+          return { defaults, both, only0, only1, clear1, read, afterBad, errors, changes, sceneInfo, kind };
+        },
+        base,
+        backend,
       );
-      await vt.next(el, 'load');
-      await vt.converged(el);
-      const hdr = async () => Array.from((await el.context.readHDR()) as Float32Array);
-      const show = async (channels: unknown) => {
-        el.channels = channels;
-        await vt.converged(el);
-        return hdr();
-      };
-      const defaults = el.channels;
-      const both = await hdr();
-      const scene = el.context.getScene();
-      const sceneInfo = { channels: scene.volume.channels, entries: scene.channels.length };
-      const only0 = await show([{ enabled: true }, { enabled: false }]);
-      const only1 = await show([{ enabled: false }, { enabled: true }]);
-      const tf = defaults[1].transferFunction;
-      const clear1 = await show([
-        {},
-        { transferFunction: { ...tf, points: tf.points.map((p: any) => ({ ...p, opacity: 0 })) } },
+      expect(r.kind).toBe(backend);
+      expect(r.sceneInfo).toEqual({ channels: 2, entries: 2 });
+      expect(r.defaults.map((c: any) => c.enabled)).toEqual([true, true]);
+      expect(r.defaults[0].color).not.toEqual(r.defaults[1].color);
+      // Each channel's function is fitted to its own histogram: the peaks differ, so do the functions.
+      expect(r.defaults[0].transferFunction).not.toEqual(r.defaults[1].transferFunction);
+      const lit = (img: number[]) => img.filter((_, i) => i % 4 < 3).some((x) => x > 0.05);
+      expect(lit(r.only0) && lit(r.only1)).toBe(true);
+      // Alone, each channel is purely its colour (green: r = b = 0; magenta: g = 0, r = b).
+      const [g, m] = [r.defaults[0].color, r.defaults[1].color];
+      expect([g, m]).toEqual([
+        [0, 1, 0],
+        [1, 0, 1],
       ]);
-      const read = el.channels;
-      // An entry core refuses: vpt-error, and the settings stay.
-      el.channels = [{ color: [2, 0, 0] }];
-      const afterBad = el.channels;
-      const errors = el.__events.filter((e: any) => e.type === 'error').map((e: any) => [e.source, e.message]);
-      const changes = el.__events.filter((e: any) => e.type === 'change').length;
-      el.remove();
-      return { defaults, both, only0, only1, clear1, read, afterBad, errors, changes, sceneInfo };
-    }, base);
-    expect(r.sceneInfo).toEqual({ channels: 2, entries: 2 });
-    expect(r.defaults.map((c: any) => c.enabled)).toEqual([true, true]);
-    expect(r.defaults[0].color).not.toEqual(r.defaults[1].color);
-    // Each channel's function is fitted to its own histogram: the peaks differ, so do the functions.
-    expect(r.defaults[0].transferFunction).not.toEqual(r.defaults[1].transferFunction);
-    const lit = (img: number[]) => img.filter((_, i) => i % 4 < 3).some((x) => x > 0.05);
-    expect(lit(r.only0) && lit(r.only1)).toBe(true);
-    // Alone, each channel is purely its colour (green: r = b = 0; magenta: g = 0, r = b).
-    const [g, m] = [r.defaults[0].color, r.defaults[1].color];
-    expect([g, m]).toEqual([
-      [0, 1, 0],
-      [1, 0, 1],
-    ]);
-    for (let i = 0; i < r.only0.length; i += 4) {
-      expect(r.only0[i]).toBe(0);
-      expect(r.only0[i + 2]).toBe(0);
-      expect(r.only1[i + 1]).toBe(0);
-      expect(r.only1[i]).toBe(r.only1[i + 2]);
-    }
-    // Additive: both = channel 0 alone + channel 1 alone, pixel by pixel.
-    let maxDiff = 0;
-    for (let i = 0; i < r.both.length; i++)
-      if (i % 4 < 3) maxDiff = Math.max(maxDiff, Math.abs(r.both[i] - (r.only0[i] + r.only1[i])));
-    expect(maxDiff).toBeLessThan(1e-5);
-    expect(r.both).not.toEqual(r.only0);
-    // A channel whose function has opacity 0 renders what the other renders alone.
-    expect(r.clear1).toEqual(r.only0);
-    expect(r.read[1].transferFunction.points.every((p: any) => p.opacity === 0)).toBe(true);
-    expect(r.afterBad).toEqual(r.read);
-    expect(r.errors).toEqual([['attribute', expect.stringMatching(/color/)]]);
-    // Set from outside: no vpt-change (that is for the user's edits).
-    expect(r.changes).toBe(0);
-  });
+      for (let i = 0; i < r.only0.length; i += 4) {
+        expect(r.only0[i]).toBe(0);
+        expect(r.only0[i + 2]).toBe(0);
+        expect(r.only1[i + 1]).toBe(0);
+        expect(r.only1[i]).toBe(r.only1[i + 2]);
+      }
+      // Additive: both = channel 0 alone + channel 1 alone, pixel by pixel.
+      let maxDiff = 0;
+      for (let i = 0; i < r.both.length; i++)
+        if (i % 4 < 3) maxDiff = Math.max(maxDiff, Math.abs(r.both[i] - (r.only0[i] + r.only1[i])));
+      expect(maxDiff).toBeLessThan(1e-5);
+      expect(r.both).not.toEqual(r.only0);
+      // A channel whose function has opacity 0 renders what the other renders alone.
+      expect(r.clear1).toEqual(r.only0);
+      expect(r.read[1].transferFunction.points.every((p: any) => p.opacity === 0)).toBe(true);
+      expect(r.afterBad).toEqual(r.read);
+      expect(r.errors).toEqual([['attribute', expect.stringMatching(/color/)]]);
+      // Set from outside: no vpt-change (that is for the user's edits).
+      expect(r.changes).toBe(0);
+    },
+  );
 
   it('EAM of channel 0 alone is the image of a single-channel file of that channel with its function and colour', async () => {
     const base = viewer().server.mount(dir);
