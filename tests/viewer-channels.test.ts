@@ -190,13 +190,23 @@ describe('<vpt-viewer> channels', () => {
       expect(r[renderer], renderer).toEqual({ drawn: [false, true], errors: [], lit: true, changed: true });
   });
 
-  it('an OME-Zarr store with a c axis shows every channel (unless its fragment picks one)', async () => {
+  it('an OME-Zarr store with a c axis shows every channel (unless its fragment picks one), with its omero names and colours', async () => {
     await writeZarrFolder(path.join(dir, 'two.ome.zarr'), {
       dims: [D, D, D],
       type: 'uint8',
       spacing: [1, 1, 1],
       images: [[c0, c1]],
     });
+    await writeZarrFolder(
+      path.join(dir, 'named.ome.zarr'),
+      { dims: [D, D, D], type: 'uint8', spacing: [1, 1, 1], images: [[c0, c1]] },
+      {
+        channelInfo: [
+          { label: 'nuclei', color: '0000FF' },
+          { label: 'membrane <b>', color: 'FF8000' },
+        ],
+      },
+    );
     const base = viewer().server.mount(dir);
     const r = await viewer().run(async (vt, base: string) => {
       const attrs = { renderer: 'mip', backend: 'webgl2', panels: 'none', 'max-samples': '1' };
@@ -217,12 +227,33 @@ describe('<vpt-viewer> channels', () => {
         el.remove();
         return out;
       };
+      const named = vt.create(
+        { ...attrs, src: `${base}named.ome.zarr`, panels: 'channels', 'resolution-scale': '0.07' },
+        'width:660px;height:160px',
+      );
+      await vt.next(named, 'load');
+      await vt.converged(named);
+      await named.updateComplete;
+      const names = [...named.shadowRoot.querySelectorAll('[data-channel] label')].map((l: any) =>
+        l.textContent.trim(),
+      );
+      const namedColors = named.channels.map((c: any) => c.color);
+      named.remove();
       return {
         zarr: await open(`${base}two.ome.zarr`),
         nifti: await open(`${base}two.nii`),
         picked: await open(`${base}two.ome.zarr#channel=1`),
+        names,
+        namedColors,
       };
     }, base);
+    expect(r.names).toEqual(['nuclei', 'membrane <b>']);
+    // sRGB FF8000 in linear RGB: 1, (128/255) through the sRGB curve, 0.
+    const g = ((128 / 255 + 0.055) / 1.055) ** 2.4;
+    expect(r.namedColors[0]).toEqual([0, 0, 1]);
+    expect(r.namedColors[1][0]).toBe(1);
+    expect(r.namedColors[1][1]).toBeCloseTo(g, 3);
+    expect(r.namedColors[1][2]).toBe(0);
     expect(r.zarr.errors).toEqual([]);
     expect([r.zarr.drawn, r.zarr.volumeChannels]).toEqual([2, 2]);
     // The same voxels as the NIfTI's channels: the same fitted defaults.

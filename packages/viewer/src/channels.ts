@@ -56,11 +56,17 @@ export function recolor(tf: TransferFunction, color: readonly number[]): Transfe
 export function defaultChannels(
   volume: Volume,
   ranges?: readonly (readonly number[] | null | undefined)[],
+  colors?: readonly unknown[],
 ): ViewerChannel[] {
   return Array.from({ length: channelCount(volume) }, (_, k) => {
     const r = ranges?.[k];
     const range = r && r.length === 2 && r[0] !== r[1] ? ([r[0], r[1]] as [number, number]) : undefined;
-    const color = [...CHANNEL_COLORS[k % CHANNEL_COLORS.length]] as Rgb;
+    // The file's display colour (OME-Zarr omero `RRGGBB`, sRGB) where it gives one, as napari takes it.
+    const hex = colors?.[k];
+    const color =
+      typeof hex === 'string' && /^[0-9a-f]{6}$/i.test(hex)
+        ? hexToLinear(hex)
+        : ([...CHANNEL_COLORS[k % CHANNEL_COLORS.length]] as Rgb);
     return {
       color,
       enabled: k < MAX_ENABLED_CHANNELS,
@@ -80,11 +86,18 @@ function over(d: ViewerChannel, u: Partial<ViewerChannel> | undefined): ViewerCh
 /** A multichannel volume as the element shows it (see the module comment). */
 export class Channels implements ChannelView {
   readonly defaults: ViewerChannel[];
+  /** Each channel's name in the panel: the file's label (omero), else its index. */
+  readonly names: string[];
   private readonly histograms = new Map<string, Histogram1D>();
 
   constructor(readonly volume: LoadedVolumeLike) {
-    const ranges = volume.meta?.channelRanges;
-    this.defaults = defaultChannels(volume, Array.isArray(ranges) ? ranges : undefined);
+    const { channelRanges: ranges, channelColors: colors, channelLabels: labels } = volume.meta ?? {};
+    const list = (x: unknown) => (Array.isArray(x) ? x : undefined);
+    this.defaults = defaultChannels(volume, list(ranges), list(colors));
+    this.names = this.defaults.map((_, k) => {
+      const label = list(labels)?.[k];
+      return typeof label === 'string' && label ? label : `Channel ${k}`;
+    });
   }
 
   resolve(user: readonly Partial<ViewerChannel>[] | null): ViewerChannel[] {
@@ -123,7 +136,7 @@ export class Channels implements ChannelView {
       <summary>Channels</summary>
       <div class="panel">
         ${list.map((c, k) => {
-          const name = `Channel ${k}`;
+          const name = this.names[k];
           const onTf = (e: CustomEvent<{ transferFunction: TransferFunction }>) =>
             set(k, { transferFunction: e.detail.transferFunction });
           return html`<div class="channel" part="channel" data-channel=${k}>

@@ -33,6 +33,12 @@ describe('viewer channels: defaults', () => {
     expect(chans.filter((c) => c.enabled).length).toBe(MAX_ENABLED_CHANNELS);
     expect(() => validateChannels(chans, v, 20)).not.toThrow();
     expect(CHANNEL_COLORS.length).toBeGreaterThanOrEqual(MAX_ENABLED_CHANNELS);
+    // A file's own display colours (OME-Zarr omero, sRGB hex) win where they are valid.
+    const given = defaultChannels(spread([1, 1], [255, 255]), undefined, ['FF0000', 'red']);
+    expect(given.map((c) => c.color)).toEqual([
+      [1, 0, 0],
+      [1, 0, 1],
+    ]);
   });
 
   it("fits each channel's transfer function to that channel's own values, in its colour", () => {
