@@ -29,6 +29,24 @@ function interleaved(t: number, picked: number[]): number[] {
 }
 
 describe('OME-Zarr: several channels in one read', () => {
+  it('carries the omero labels and colours of the channels read, in their order (bad ones left out)', async () => {
+    for (const version of ['0.4', '0.5'] as const) {
+      const dir = await writeZarrFolder(
+        path.join(TMP, `info-${version}.ome.zarr`),
+        { dims, type: 'uint16', spacing: [1, 1, 1], images },
+        {
+          version,
+          windows,
+          channelInfo: [{ label: 'DAPI', color: '0000FF' }, { color: 'red' }, { label: 'GFP', color: '00ff00' }],
+        },
+      );
+      const v = await loadVolume(dir, { zarr: { channels: [2, 0, 1] } });
+      expect(v.meta?.channelLabels, version).toEqual(['GFP', 'DAPI', null]);
+      // 'red' is no RRGGBB hex: no colour for that channel.
+      expect(v.meta?.channelColors, version).toEqual(['00ff00', '0000FF', null]);
+    }
+  });
+
   it('any channels in any order, at any time point, equal the channels read one by one', async () => {
     for (const version of ['0.4', '0.5'] as const) {
       const dir = await writeZarrFolder(

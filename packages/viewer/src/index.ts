@@ -68,7 +68,7 @@ export {
   type Palette,
 } from './defaults.js';
 export { volumeLoader } from './loading/volume-source.js';
-export type { VolumeSource, LoadOptions, LoadedVolumeLike } from './loading/types.js';
+export type { VolumeSource, LoadOptions, LoadedVolumeLike, ViewerChannel } from './loading/types.js';
 
 /** Define the custom elements once (a second copy of the package on the page is ignored, not an error). */
 function define(name: string, ctor: CustomElementConstructor): void {

@@ -8,11 +8,11 @@ import type { Clip, Light, Renderer, TransferFunction } from '@vpt/core';
 import type { ToneMapOperator } from '@vpt/post';
 import type { BackendName, EnvironmentValue } from './attributes.js';
 import type { GradientSamples, Histogram1D } from './histogram.js';
-import type { LoadedVolumeLike, VolumeSource } from './loading/types.js';
+import type { LoadedVolumeLike, ViewerChannel, VolumeSource } from './loading/types.js';
 import type { RefinementStats } from './session.js';
 
 /** The panels, in their order (the `panels` attribute names a subset). */
-export const PANEL_NAMES = ['tf', 'lights', 'clip', 'quality', 'stats', 'export'] as const;
+export const PANEL_NAMES = ['tf', 'channels', 'lights', 'clip', 'quality', 'stats', 'export'] as const;
 export type PanelName = (typeof PANEL_NAMES)[number];
 
 /** The properties a panel control may set, each through PanelHost.setInternal. */
@@ -31,7 +31,8 @@ export type InternalProperty =
   | 'densityScale'
   | 'seed'
   | 'rendererParams'
-  | 'resolutionScale';
+  | 'resolutionScale'
+  | 'channels';
 
 /** The state the panels display, with the defaults of unset attributes filled in. */
 export interface PanelState {
@@ -58,6 +59,8 @@ export interface PanelHost {
   readonly seed: number;
   /** The clip planes and crop box (null: nothing cut); the Clip panel edits it. */
   readonly clip: Clip | string | null;
+  /** Each channel's settings of a multichannel volume (null: one channel); the Channels panel edits them. */
+  readonly channels: ViewerChannel[] | null;
   readonly converged: boolean;
   readonly panelState: PanelState;
   /** The core 2D preset the transfer function was fitted from, if any. */

@@ -14,6 +14,7 @@ import { hexToLinear, intensityOf, linearToHex, round4 } from './color.js';
 import { TRANSFER_FUNCTION_PRESETS, transferFunctionPreset } from './presets.js';
 import { rendererEntries, rendererEntry, type RendererParamSpec } from './renderer-registry.js';
 import { clipPanel } from './clip-panel.js';
+export { panelStyles } from './panel-styles.js';
 import type { PanelHost } from './panel-host.js';
 
 import { PANEL_NAMES, type PanelName } from './panel-host.js';
@@ -28,9 +29,12 @@ const num = (e: Event) => Number((e.target as HTMLInputElement).value);
 const str = (e: Event) => (e.target as HTMLInputElement | HTMLSelectElement).value;
 
 export function renderPanels(v: PanelHost, panels: Set<PanelName>) {
-  return html` ${panels.has('tf') ? tfPanel(v) : nothing} ${panels.has('lights') ? lightsPanel(v) : nothing}
-  ${panels.has('clip') ? clipPanel(v) : nothing} ${panels.has('quality') ? qualityPanel(v) : nothing}
-  ${panels.has('stats') ? statsPanel(v) : nothing} ${panels.has('export') ? exportPanel(v) : nothing}`;
+  // The Channels panel's template comes with the multichannel volume (channels.ts, its own lazy chunk).
+  const mc = v.panelState.volume?.multichannel;
+  return html` ${panels.has('tf') ? tfPanel(v) : nothing} ${panels.has('channels') && mc ? mc.panel(v) : nothing}
+  ${panels.has('lights') ? lightsPanel(v) : nothing} ${panels.has('clip') ? clipPanel(v) : nothing}
+  ${panels.has('quality') ? qualityPanel(v) : nothing} ${panels.has('stats') ? statsPanel(v) : nothing}
+  ${panels.has('export') ? exportPanel(v) : nothing}`;
 }
 
 function presetOf(tf: TransferFunction): string {
@@ -49,6 +53,12 @@ function tfPanel(v: PanelHost) {
   const preset = v.fittedPresetName ?? presetOf(tf);
   const onTf = (e: CustomEvent<{ transferFunction: TransferFunction }>) =>
     v.setInternal('transferFunction', e.detail.transferFunction);
+  // A multichannel volume draws each channel's own function (the Channels panel): only the density stays here.
+  if (v.channels)
+    return html`<details open>
+      <summary>Density</summary>
+      <div class="panel">${densityRow(v, densityId)}</div>
+    </details>`;
   return html`<details open>
     <summary>Transfer function</summary>
     <div class="panel">
@@ -87,19 +97,23 @@ function tfPanel(v: PanelHost) {
               @change=${onTf}
             ></vpt-tf2d-editor>`
       }
-      <div class="row">
-        <label for=${densityId}>Density scale</label>
-        <input
-          id=${densityId}
-          type="number"
-          min="0"
-          step="1"
-          .value=${String(v.panelState.densityScale)}
-          @change=${(e: Event) => v.setInternal('densityScale', num(e))}
-        />
-      </div>
+      ${densityRow(v, densityId)}
     </div>
   </details>`;
+}
+
+function densityRow(v: PanelHost, densityId: string) {
+  return html`<div class="row">
+    <label for=${densityId}>Density scale</label>
+    <input
+      id=${densityId}
+      type="number"
+      min="0"
+      step="1"
+      .value=${String(v.panelState.densityScale)}
+      @change=${(e: Event) => v.setInternal('densityScale', num(e))}
+    />
+  </div>`;
 }
 
 /** Direction from azimuth/elevation in degrees (y up): the direction TOWARD the light. */

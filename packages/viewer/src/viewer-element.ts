@@ -14,7 +14,7 @@
  * completes, so attributes can be set in any order at any time. Everything else applies
  * synchronously after Lit's update, and only a change of the image resets accumulation.
  */
-import { LitElement, html, nothing, type PropertyValues } from 'lit';
+import { LitElement, adoptStyles, html, nothing, type PropertyValues } from 'lit';
 import {
   DEFAULT_RENDERER_NAME,
   hasClip,
@@ -62,7 +62,7 @@ import { autoTransferFunction, defaultRendererParams, rendererLook } from './def
 import { download, encodeExr, encodePfm, encodePngBlob } from './export.js';
 import { gradientSamples, valueHistogram, type GradientSamples, type Histogram1D } from './histogram.js';
 import type { ViewerLoadDetail, ViewerProgressDetail } from './loading/load-events.js';
-import type { LoadedVolumeLike, VolumeSource } from './loading/types.js';
+import type { LoadedVolumeLike, ViewerChannel, VolumeSource } from './loading/types.js';
 import { VolumeLoading, type DataLevel } from './loading/volume-loading.js';
 import { LazyOrbitCamera } from './orbit-lazy.js';
 import type { TimePlayer } from './time-player.js';
@@ -270,7 +270,7 @@ export class VptViewer extends LitElement implements PanelHost, SlotHolder {
   declare rendererParams: Record<string, unknown> | string | null;
   /** Render resolution relative to the element's device pixels (1 = full). */
   declare resolutionScale: number;
-  /** "all", "none", or a space-separated list of tf lights clip quality stats export. */
+  /** "all", "none", or a space-separated list of tf channels lights clip quality stats export. */
   declare panels: string;
   /** Panels sidebar closed (the toolbar button opens it). */
   declare collapsed: boolean;
@@ -286,6 +286,27 @@ export class VptViewer extends LitElement implements PanelHost, SlotHolder {
   declare fps: number;
   /** Play the time series, looping (`play()`, `pause()`). */
   declare playing: boolean;
+  /** The page's (or the Channels panel's) channel settings, over the defaults (channels.ts); a new source drops them. */
+  private userChannels: Partial<ViewerChannel>[] | null = null;
+  /**
+   * Per channel of a multichannel volume: colour, enabled, transfer function, range (null for
+   * one channel). Reading gives every channel's current settings, defaults filled in; setting
+   * entries (missing fields and channels keep their defaults, null: all defaults) re-renders.
+   */
+  get channels(): ViewerChannel[] | null {
+    return this.volume?.multichannel?.resolve(this.userChannels) ?? null;
+  }
+  set channels(value: Partial<ViewerChannel>[] | null) {
+    try {
+      this.volume?.multichannel?.check(value, this.effectiveDensityScale());
+    } catch (e) {
+      this.fail(e, 'attribute');
+      return;
+    }
+    this.userChannels = value;
+    this.applySync();
+    this.requestUpdate();
+  }
   /** The time series player, loaded with the first series (time-player.ts, a lazy chunk). */
   private player: TimePlayer | null = null;
   declare private _crosshair: Voxel | null;
@@ -518,6 +539,8 @@ export class VptViewer extends LitElement implements PanelHost, SlotHolder {
   /** The time player's step is read (or failed): it becomes the scene's volume, and `time` and `vpt-change` follow. */
   showStep(volume: LoadedVolumeLike | null, index: number, error?: unknown): void {
     if (!volume) return this.fail(error, 'src');
+    // The channels' settings stay from step to step, as the transfer function does (not refitted).
+    if (volume.multichannel) this.userChannels = this.channels;
     this.volume = volume;
     this.time = index;
     this.applySync();
@@ -745,6 +768,11 @@ export class VptViewer extends LitElement implements PanelHost, SlotHolder {
 
   protected override render() {
     const panels = this.panelSet;
+    // The panels' and clip handles' rules come with the panels' chunk, adopted beside the element's once.
+    if (panelsModule && !this.panelStyled) {
+      adoptStyles(this.renderRoot as ShadowRoot, [viewerStyles, panelsModule.panelStyles]);
+      this.panelStyled = true;
+    }
     // Wide: a sidebar beside the image (the collapsed attribute closes it). Narrow: an
     // overlay over the image, closed at rest and opened by the toolbar button.
     const showAside = panels.size > 0 && (this._narrow ? this._overlayOpen : !this.collapsed);
@@ -1182,6 +1210,8 @@ export class VptViewer extends LitElement implements PanelHost, SlotHolder {
     this.resolution.interactionEnded();
   };
 
+  private panelStyled = false;
+
   /** The panels' templates, or nothing while their module loads (tracked: whenSettled waits for it). */
   private panelsNow(panels: Set<PanelName>) {
     if (panelsModule) return panelsModule.renderPanels(this, panels);
@@ -1555,6 +1585,7 @@ export class VptViewer extends LitElement implements PanelHost, SlotHolder {
           (this.player = p).update();
         }),
       );
+    if (source !== this.loadedSource) this.userChannels = null;
     this.volume = volume;
     this.loadedSource = source;
     this._status = '';
@@ -1672,6 +1703,8 @@ export class VptViewer extends LitElement implements PanelHost, SlotHolder {
   private sceneNow(): Scene | null {
     const scene = this.sceneFromAttributes();
     if (!scene) return null;
+    const mc = this.volume!.multichannel;
+    if (mc) Object.assign(scene, { volume: mc.volume, channels: this.channels });
     const attr = this.slicePlane && typeof this.slicePlane === 'object' ? this.slicePlane : null;
     const follow = this.followedPlane();
     if (follow && this.crosshair3d === 'slice') {

@@ -4,13 +4,14 @@ import { fileURLToPath } from 'node:url';
 import { describe, expect, it } from 'vitest';
 import { loadVolumeSource } from '../src/loading/volume-source.js';
 
-// The element has no Channels panel yet: a file with a channel axis shows its first channel,
-// as a scalar volume, and says so (before the loaders read channels it loaded the first too).
+// A file with a channel axis: the element's volume is channel 0 as a scalar volume (what the
+// Transfer function panel's histogram, the slice panes and the probe read), carrying the whole
+// volume and its channels' defaults as `multichannel` (channels.ts), which the 3D scene draws.
 const DIR = path.join(path.dirname(fileURLToPath(import.meta.url)), '../../loaders/test/fixtures/multiaxis');
 const expected = JSON.parse(fs.readFileSync(path.join(DIR, 'expected.json'), 'utf8')).files;
 
 describe('viewer: a file with a channel axis', () => {
-  it('loads channel 0 as a scalar volume (the reference reader’s channel 0), with a warning', async () => {
+  it('loads channel 0 as a scalar volume (the reference reader’s channel 0) carrying every channel', async () => {
     for (const name of ['rgba-last.nrrd', 'vector5d.nii.gz']) {
       const want = expected[name];
       const file = new File([fs.readFileSync(path.join(DIR, name))], name);
@@ -19,7 +20,12 @@ describe('viewer: a file with a channel axis', () => {
       expect(v.dims).toEqual(want.dims);
       const channel0 = (want.steps[0] as number[]).filter((_, i) => i % want.channels === 0);
       expect(Array.from(v.data), name).toEqual(Array.from(Float32Array.from(channel0)));
-      expect(String(v.meta?.warnings)).toMatch(new RegExp(`holds ${want.channels} channels`));
+      const mc = v.multichannel!;
+      expect(mc.volume.channels, name).toBe(want.channels);
+      expect(Array.from(mc.volume.data), name).toEqual(Array.from(Float32Array.from(want.steps[0] as number[])));
+      const chans = mc.resolve(null);
+      expect(chans.length).toBe(want.channels);
+      expect(new Set(chans.map((c) => c.color.join())).size, name).toBe(want.channels);
       const range = v.meta?.dataRange as number[];
       expect(range).toEqual([Math.min(...channel0), Math.max(...channel0)].map((x) => Math.fround(x)));
     }

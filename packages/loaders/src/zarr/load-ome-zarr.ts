@@ -94,6 +94,9 @@ export async function loadOmeZarr(location: string, options: ZarrLoadOptions, ct
     // Each channel's omero window: the default ranges of a channel scene.
     (meta.zarr as Record<string, unknown>).channelsRead = [...picked];
     meta.channelRanges = picked.map((k) => source.channelWindows?.[k] ?? null);
+    // Their omero labels and display colours (hex RRGGBB, sRGB): the viewer's names and default colours.
+    meta.channelLabels = picked.map((k) => source.channelInfo?.[k]?.label ?? null);
+    meta.channelColors = picked.map((k) => source.channelInfo?.[k]?.color ?? null);
     if (K === 1 && source.channelWindows?.[picked[0]]) meta.value_range = source.channelWindows[picked[0]];
   } else if (source.valueRange) meta.value_range = source.valueRange;
   return finishVolume(

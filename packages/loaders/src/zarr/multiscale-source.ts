@@ -43,6 +43,8 @@ export interface MultiscaleSource {
   ): Promise<VoxelArray>;
   /** Every channel's omero display window (by channel index), where the metadata gives one. */
   channelWindows?: readonly ([number, number] | undefined)[];
+  /** Every channel's omero label and display colour (`RRGGBB`), where the metadata gives them. */
+  channelInfo?: readonly { label?: string; color?: string }[];
   /** Where the store is, the NGFF version, axes, unit, channel and time chosen, warnings. */
   readonly meta: OmeZarrMeta;
   /** Bytes read from the store so far (metadata and chunks, as stored: compressed). */
@@ -428,6 +430,7 @@ export async function openOmeZarr(location: string, options: OmeZarrOptions = {}
     readRegion,
     readChannelsRegion: (level, picked, min, max, signal) => read(level, min, max, picked, signal),
     channelWindows: Array.from({ length: channels }, (_, k) => ms.windows[k]),
+    channelInfo: Array.from({ length: channels }, (_, k) => ms.channelInfo[k] ?? {}),
     bytesRead: () => store.bytesRead,
     async readLevel(level, signal) {
       const L = levels[level];

@@ -39,6 +39,8 @@ export interface OmeMultiscale {
   unit?: string;
   /** omero channel display windows, by channel index, when present: [start, end]. */
   windows: ([number, number] | undefined)[];
+  /** omero channel labels and display colours (`RRGGBB` hex, sRGB), by channel index, where given. */
+  channelInfo: { label?: string; color?: string }[];
   /**
    * A label image's `image-label` metadata (NGFF "labels"), when the group has it: per label
    * value its display colour (RGBA bytes) and name (from `properties`). Entries that are not an
@@ -165,6 +167,7 @@ export function parseOmeMultiscales(attributes: unknown, name: string): OmeMulti
     datasets,
     unit,
     windows: omeroWindows(ome.omero ?? attrs.omero),
+    channelInfo: omeroChannelInfo(ome.omero ?? attrs.omero),
     ...(ome['image-label'] !== undefined ? { imageLabel: imageLabelOf(ome['image-label'], warnings) } : {}),
     warnings,
   };
@@ -260,6 +263,17 @@ function readTransforms(
     });
   }
   return { scale, translation };
+}
+
+function omeroChannelInfo(omero: unknown): { label?: string; color?: string }[] {
+  if (!isObject(omero) || !Array.isArray(omero.channels)) return [];
+  return (omero.channels as unknown[]).map((ch) => {
+    const c = isObject(ch) ? ch : {};
+    return {
+      ...(typeof c.label === 'string' && c.label ? { label: c.label.slice(0, 200) } : {}),
+      ...(typeof c.color === 'string' && /^[0-9a-f]{6}$/i.test(c.color) ? { color: c.color } : {}),
+    };
+  });
 }
 
 function omeroWindows(omero: unknown): ([number, number] | undefined)[] {

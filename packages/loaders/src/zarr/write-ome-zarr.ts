@@ -26,6 +26,8 @@ export interface WriteOmeZarrOptions {
   unit?: string;
   /** Written as omero channel windows [start, end] (one per channel). */
   windows?: [number, number][];
+  /** Written as omero channel labels and colours (`RRGGBB`), one per channel. */
+  channelInfo?: { label?: string; color?: string }[];
   /** Write t and c axes (tczyx) even for one time point and channel. */
   fiveD?: boolean;
   name?: string;
@@ -104,14 +106,22 @@ export async function writeOmeZarr(
     space('x'),
   ];
   const multiscale = { name: options.name ?? 'image', axes, datasets };
-  const omero = options.windows
-    ? {
-        channels: options.windows.map(([start, end]) => ({
-          window: { start, end, min: start, max: end },
-          active: true,
-        })),
-      }
-    : undefined;
+  const omero =
+    options.windows || options.channelInfo
+      ? {
+          channels: Array.from(
+            { length: Math.max(options.windows?.length ?? 0, options.channelInfo?.length ?? 0) },
+            (_, k) => {
+              const w = options.windows?.[k];
+              return {
+                ...(w ? { window: { start: w[0], end: w[1], min: w[0], max: w[1] } } : {}),
+                ...options.channelInfo?.[k],
+                active: true,
+              };
+            },
+          ),
+        }
+      : undefined;
   if (version === '0.4') {
     await sink('.zgroup', json({ zarr_format: 2 }));
     await sink('.zattrs', json({ multiscales: [{ version: '0.4', ...multiscale }], ...(omero ? { omero } : {}) }));

@@ -164,10 +164,12 @@ export class VolumeLoading {
       // The budget and the texture limit are the context's: wait for one that is opening.
       if (this.opening) await this.opening;
       if (token !== this.tokens.src) return;
-      const target = finestFittingLevel(levels, BYTES_PER_VOXEL[first.type], this.volumeBudget(), this.max3D());
+      // A store's channels (channels.ts) count each: the GPU holds every drawn one.
+      const mc = first.multichannel?.volume.channels ?? 1;
+      const target = finestFittingLevel(levels, BYTES_PER_VOXEL[first.type] * mc, this.volumeBudget(), this.max3D());
       const plan = refinementPlan(levels, target, (first.dims[0] * first.dims[1] * first.dims[2]) / ms);
-      // Level 0 beyond the budget streams as bricks after the last level that fits.
-      const bricks = target > 0;
+      // Level 0 beyond the budget streams as bricks after the last level that fits (one channel's only).
+      const bricks = target > 0 && mc < 2;
       this._dataLevel = { shown: levels.length - 1, count: levels.length, target, loading: plan[0] ?? null };
       this.applyVolume(first, source, this.levelDetail(levels.length - 1, levels, plan.length === 0 && !bricks));
       shown = true;

@@ -114,24 +114,37 @@ function sharedLoad(
   });
 }
 
+/** The channel count of the OME-Zarr stores read so far (by URL without fragment): later levels and steps read them all at once. */
+const zarrChannels = new Map<string, number>();
+
 export async function loadVolumeSource(source: VolumeSource, options: LoadOptions): Promise<LoadedVolumeLike> {
   const procedural = proceduralVolume(source);
   if (procedural) return procedural;
   const { loadVolume } = await volumeLoader();
+  // An OME-Zarr store with a `c` axis whose fragment picks no channel: every channel (up to 16)
+  // in one read, once a first read (or an earlier level) said how many there are.
+  const store = typeof source === 'string' && !/[#&]channel=/.test(source) ? source.split('#')[0] : '';
+  const all = (n: number) => ({ ...options, zarr: { channels: [...Array(Math.min(n, 16)).keys()] } });
+  const known = options.zarr ? 0 : (zarrChannels.get(store) ?? 0);
+  if (known > 1) return loadVolumeSource(source, all(known));
   const opts: LoadOptions = { rawHint: ELEMENT_RAW_HINT, ...options };
   // Only URLs are shared, with progress from the first viewer that asked (the others see the bar jump).
   const key =
     typeof source === 'string' || source instanceof URL
-      ? JSON.stringify([absolute(String(source)), opts.limits ?? null, opts.format ?? null, opts.time ?? 0])
+      ? JSON.stringify([absolute(String(source)), opts.limits ?? null, opts.format ?? null, opts.time ?? 0, opts.zarr])
       : null;
   const volume = key
     ? await sharedLoad(key, opts, (signal) => loadVolume(source, { ...opts, signal }))
     : await loadVolume(source, opts);
-  // A file with a channel axis (an NRRD list/vector/colour axis, NIfTI dim[5] or RGB24): the
-  // element has no Channels panel yet, so it shows the first channel, said in the warnings (a
-  // multichannel volume without channel settings is no scene).
-  // (A lazy chunk: the entry bundle stays within its budget.)
-  if ((volume.channels ?? 1) > 1) return (await import('./first-channel.js')).firstChannel(volume);
+  const c = (volume.meta?.zarr as { channels?: number } | undefined)?.channels ?? 1;
+  if (c > 1 && store && !opts.zarr) {
+    zarrChannels.set(store, c);
+    return loadVolumeSource(source, all(c));
+  }
+  // A file with a channel axis (an NRRD list/vector/colour axis, NIfTI dim[5] or RGB24): channel
+  // 0's scalar view carrying the channels' defaults and panel (a lazy chunk: the entry bundle
+  // stays within its budget).
+  if ((volume.channels ?? 1) > 1) return (await import('../channels.js')).withChannels(volume);
   // A sidecar's value_range maps to [0, 1] for every voxel type, as the headless renderer
   // (vpt-render) reads scene files; @vpt/loaders keeps it in meta only. Applying it here
   // makes the element show exactly what vpt-render renders for the same scene.
