@@ -133,6 +133,9 @@ for (const d of selected) {
       console.log(`  $ ${d.original.command}`);
       if (!run(d.original.command, work, env) || !fs.existsSync(path.join(work, d.original.file)))
         throw new Error(`extracting ${d.original.file} failed`);
+      // Where the original is written by the command (not extracted as shipped), its sha256 is recorded too.
+      if (d.original.sha256 && sha256(path.join(work, d.original.file)) !== d.original.sha256)
+        throw new Error(`${d.original.file}: sha256 mismatch, expected ${d.original.sha256}`);
       fs.renameSync(path.join(work, d.original.file), originalTarget);
       console.log(`  ok: ${path.relative(root, originalTarget)}`);
     }

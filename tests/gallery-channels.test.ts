@@ -6,8 +6,9 @@ import { recordPageErrors } from './helpers/page-errors.js';
 
 // The gallery's multichannel and labelled entries (issue 24): "CT chest with lung
 // segmentation" (the pyradiomics lung2 CT with its label map, both from `pnpm data:fetch`) and
-// "Fluorescence microscopy, 2 channels" (a 2-channel OME-Zarr store with a `c` axis). Each is
-// skipped, its title saying why, where its data has not been fetched.
+// "Fluorescence microscopy, 2 channels" (a 2-channel OME-Zarr store with a `c` axis), and the
+// fluorescence time series (nellie's yeast mitochondria, a 4D NRRD) that plays with the viewer's
+// time toolbar. Each is skipped, its title saying why, where its data has not been fetched.
 //
 // What is checked here: the entry is listed, opens in <vpt-viewer> with the dataset's volume
 // (dims, type, channels as the manifest says), the CT entry sets the viewer's `labels` property
@@ -38,8 +39,10 @@ function multichannelStore(): string | null {
   return null;
 }
 const store = multichannelStore();
+const SERIES = 'micro_yeast_mitochondria_279x192x17x30_uint16';
+const seriesFetched = fs.existsSync(`${FETCHED}${SERIES}.nrrd`);
 
-const gallery = useGalleryServer(ctFetched || store !== null);
+const gallery = useGalleryServer(ctFetched || store !== null || seriesFetched);
 
 /** Open the gallery on `dataset` with MIP at a tenth of the size, 2 samples; resolves when the view is ready. */
 async function open(dataset: string) {
@@ -154,6 +157,63 @@ describe.skipIf(!store)(
       // NEEDS-MERGE (channels helper): loadedVolume.channels === r.channels (today the viewer
       // shows the first channel of a store), each channel in its own default colour.
       expect(errors.filter((e) => !/404/.test(e))).toEqual([]);
+    });
+  },
+);
+
+describe.skipIf(!seriesFetched)(
+  `gallery: a fluorescence time series plays${seriesFetched ? '' : ' (skipped: run pnpm data:fetch for the nellie yeast series)'}`,
+  () => {
+    it('opens the 4D NRRD as 30 steps; the toolbar button plays it, the slider picks a step', async () => {
+      const id = `${SERIES}-nrrd`;
+      const { page, errors } = await open(id);
+      const r = await page.evaluate(async (id: string) => {
+        const w = window as any;
+        const el = w.gallery.viewer;
+        const frames = () => new Promise((res) => requestAnimationFrame(() => requestAnimationFrame(res)));
+        let button: HTMLButtonElement | null = null;
+        for (let i = 0; i < 300 && !button; i++) {
+          await frames();
+          button = el.shadowRoot.querySelector('[part~="time-play"]');
+        }
+        const slider = el.shadowRoot.querySelector('[part~="time-slider"]') as HTMLInputElement;
+        const played: number[] = [];
+        el.addEventListener(
+          'vpt-change',
+          (e: CustomEvent) => e.detail.property === 'time' && played.push(e.detail.value),
+        );
+        el.fps = 30;
+        button!.click();
+        const t0 = performance.now();
+        while (played.length < 3 && performance.now() - t0 < 60_000) await frames();
+        const playing = el.playing;
+        button!.click();
+        await frames();
+        const paused = !el.playing;
+        slider.value = '7';
+        slider.dispatchEvent(new Event('input'));
+        for (let i = 0; i < 600 && el.time !== 7; i++) await frames();
+        return {
+          listed: !!document.querySelector(`button[data-id="${id}"]`),
+          steps: el.timeSteps,
+          dims: el.loadedVolume.dims,
+          sliderMax: slider.max,
+          played: played.slice(0, 3),
+          playing,
+          paused,
+          time: el.time,
+        };
+      }, id);
+      await page.close();
+      expect(r.listed).toBe(true);
+      expect(r.steps).toBe(30);
+      expect(r.dims).toEqual([279, 192, 17]);
+      expect(r.sliderMax).toBe('29');
+      expect(r.playing).toBe(true);
+      expect(r.played).toEqual([1, 2, 3]);
+      expect(r.paused).toBe(true);
+      expect(r.time).toBe(7);
+      expect(errors).toEqual([]);
     });
   },
 );

@@ -170,7 +170,7 @@ function scan(folder, urlPrefix, bundled) {
         url: `${urlPrefix}${f}`,
         format,
         bundled,
-        title: `${twin?.title ?? f} — original ${format.toUpperCase()} file`,
+        title: reg?.original?.galleryTitle ?? `${twin?.title ?? f} — original ${format.toUpperCase()} file`,
         modality: twin?.modality ?? '',
         dims: twin?.dims ?? null,
         type: twin?.voxel_type ?? null,
