@@ -11,7 +11,10 @@
  *   pnpm data:fetch -- --keep-work      keep data/fetched/.work/ (downloads, venvs) afterwards
  *
  * A dataset with an "omeZarr" entry also gets a multiscale OME-Zarr copy (the gallery's
- * OME-Zarr example), written by scripts/raw-to-ome-zarr.mjs from the verified raw file.
+ * OME-Zarr example), written by scripts/raw-to-ome-zarr.mjs from the verified raw file; its
+ * "channels" (names of other datasets of the same grid) become channels 1, 2, … on a c axis.
+ * A label map is a dataset whose sidecar has "labels_of" (its image's name): the gallery shows
+ * it as a second entry of that image with the viewer's `labels` set to it.
  *
  * Where a dataset was converted from a NIfTI or NRRD file, that original is kept beside
  * it too (datasets.json "original"); packages/loaders/test/fetched.test.ts then checks the
@@ -130,6 +133,9 @@ for (const d of selected) {
       console.log(`  $ ${d.original.command}`);
       if (!run(d.original.command, work, env) || !fs.existsSync(path.join(work, d.original.file)))
         throw new Error(`extracting ${d.original.file} failed`);
+      // Where the original is written by the command (not extracted as shipped), its sha256 is recorded too.
+      if (d.original.sha256 && sha256(path.join(work, d.original.file)) !== d.original.sha256)
+        throw new Error(`${d.original.file}: sha256 mismatch, expected ${d.original.sha256}`);
       fs.renameSync(path.join(work, d.original.file), originalTarget);
       console.log(`  ok: ${path.relative(root, originalTarget)}`);
     }
@@ -154,8 +160,17 @@ for (const d of selected.filter((x) => x.omeZarr)) {
     );
     continue;
   }
+  // "channels": further datasets (their names) of the same grid, written as channels 1, 2, … on a c axis.
+  const more = (d.omeZarr.channels ?? []).map((n) => path.join(outDir, `${n}.json`));
+  const absent = more.filter((f) => !fs.existsSync(f));
+  if (absent.length) {
+    console.log(
+      `\n${d.omeZarr.file}: skipped, fetch its other channels first (${absent.map((f) => path.basename(f)).join(', ')})`,
+    );
+    continue;
+  }
   const { convertRawToOmeZarr } = await import('./raw-to-ome-zarr.mjs');
-  await convertRawToOmeZarr(sidecarPath, out, d.omeZarr);
+  await convertRawToOmeZarr([sidecarPath, ...more], out, d.omeZarr);
   console.log(
     `\n${d.omeZarr.file}: OME-Zarr v${d.omeZarr.version}, ${d.omeZarr.levels} levels, ${d.omeZarr.codec} (from ${d.file})`,
   );

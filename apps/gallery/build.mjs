@@ -5,7 +5,9 @@
 //                                      the one-file <vpt-viewer> bundle with its lazy chunks
 //   dist/data/                         the bundled volumes (copied) and data/fetched/
 //                                      (linked: up to hundreds of MB; `cp -rL dist …` to deploy)
-//   dist/data/manifest.json            what is there: every sidecar, real-format file and OME-Zarr store found
+//   dist/data/manifest.json            what is there: every sidecar, real-format file and OME-Zarr store found;
+//                                      a label sidecar ("labels_of") is no dataset of its own but
+//                                      a second entry of its image with `labels` (the viewer's attribute)
 //   dist/scenes/                       the CLI's scene files (the bundled head's presets)
 // Usage: node build.mjs [--production]   (pnpm --filter @vpt/gallery run build[:production])
 // A production build (the site visitors see) leaves out developer hints such as `pnpm data:fetch`.
@@ -83,6 +85,20 @@ const readJson = (f) => {
 const registry = readJson(path.join(dataDir, 'datasets.json'))?.datasets ?? [];
 const registryEntry = (name) => registry.find((d) => d.name === name || d.original?.file === name);
 
+/** Label sidecars found by scan(): attached to their image afterwards (withLabels). */
+const labelSidecars = [];
+
+/** The channel count of an OME-Zarr store's level 0 (its `c` axis), 1 without one. */
+function zarrChannels(store) {
+  const attrs = readJson(path.join(store, '.zattrs')) ?? readJson(path.join(store, 'zarr.json'))?.attributes;
+  const ms = (attrs?.ome ?? attrs)?.multiscales?.[0];
+  const c = ms?.axes?.findIndex((a) => (typeof a === 'string' ? a : a.name) === 'c') ?? -1;
+  if (c < 0 || !ms.datasets?.[0]) return 1;
+  const level = path.join(store, ms.datasets[0].path);
+  const shape = readJson(path.join(level, '.zarray'))?.shape ?? readJson(path.join(level, 'zarr.json'))?.shape;
+  return shape?.[c] ?? 1;
+}
+
 /** One manifest entry per sidecar (with its .raw present) and per real-format file. */
 function scan(folder, urlPrefix, bundled) {
   if (!fs.existsSync(folder)) return [];
@@ -96,6 +112,15 @@ function scan(folder, urlPrefix, bundled) {
       if (!fs.existsSync(path.join(folder, raw))) continue;
       const id = f.replace(/\.json$/, '');
       const reg = registryEntry(id);
+      if (meta.labels_of) {
+        labelSidecars.push({
+          of: meta.labels_of,
+          url: `${urlPrefix}${f}`,
+          meta,
+          bytes: fs.statSync(path.join(folder, raw)).size,
+        });
+        continue;
+      }
       out.push({
         id,
         url: `${urlPrefix}${f}`,
@@ -116,12 +141,16 @@ function scan(folder, urlPrefix, bundled) {
       const reg = registry.find((d) => d.omeZarr?.file === f);
       const twin = reg ? readJson(path.join(folder, `${reg.name}.json`)) : null;
       const levels = fs.readdirSync(file).filter((l) => /^\d+$/.test(l)).length;
+      const channels = zarrChannels(file);
       out.push({
         id: f.replace(/\.ome\.zarr$/i, '') + '-ome-zarr',
         url: `${urlPrefix}${f}`,
         format: 'ome-zarr',
         bundled,
-        title: `${twin?.title ?? f} — OME-Zarr, ${levels} levels, refined level by level`,
+        title:
+          reg?.omeZarr?.galleryTitle ??
+          `${twin?.title ?? f} — OME-Zarr, ${levels} levels, refined level by level${channels > 1 ? `, ${channels} channels` : ''}`,
+        ...(channels > 1 ? { channels } : {}),
         modality: twin?.modality ?? '',
         dims: twin?.dims ?? null,
         type: twin?.voxel_type ?? null,
@@ -141,7 +170,7 @@ function scan(folder, urlPrefix, bundled) {
         url: `${urlPrefix}${f}`,
         format,
         bundled,
-        title: `${twin?.title ?? f} — original ${format.toUpperCase()} file`,
+        title: reg?.original?.galleryTitle ?? `${twin?.title ?? f} — original ${format.toUpperCase()} file`,
         modality: twin?.modality ?? '',
         dims: twin?.dims ?? null,
         type: twin?.voxel_type ?? null,
@@ -169,8 +198,34 @@ const fetched = scan(fetchedDir, 'data/fetched/', false).filter((d) => !bundled.
 if (fetched.length)
   fs.symlinkSync(path.relative(path.join(dist, 'data'), fetchedDir), path.join(dist, 'data', 'fetched'), 'dir');
 
+/**
+ * A label volume's image shown with it: a second entry of the image (same src, its view and
+ * presets through sameAs) whose `labels` is the label volume's URL, listed right after the image.
+ */
+function withLabels(datasets) {
+  const out = [];
+  for (const d of datasets) {
+    out.push(d);
+    for (const l of labelSidecars.filter((x) => x.of === d.id))
+      out.push({
+        ...d,
+        id: `${d.id}-labels`,
+        title: l.meta.gallery_title ?? `${d.title} with its segmentation`,
+        labels: l.url,
+        labelNames: l.meta.labels ?? [],
+        bytes: (d.bytes ?? 0) + l.bytes,
+        sameAs: d.id,
+      });
+  }
+  return out;
+}
+
 const development = !production;
-const manifest = { generated: new Date().toISOString(), development, datasets: [...bundled, ...fetched] };
+const manifest = {
+  generated: new Date().toISOString(),
+  development,
+  datasets: withLabels([...bundled, ...fetched]),
+};
 fs.writeFileSync(path.join(dist, 'data', 'manifest.json'), JSON.stringify(manifest, null, 1));
 console.log(
   `gallery: ${path.relative(root, dist)}/ with ${bundled.length} bundled and ${fetched.length} fetched datasets${fetched.length ? '' : ' (run `pnpm data:fetch` for more)'}`,

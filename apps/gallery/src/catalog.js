@@ -209,8 +209,10 @@ async function sceneFile(name) {
  * is `volume`: an object of <vpt-viewer> properties.
  */
 export async function presetFor(d, renderer, volume) {
-  // The layout is the dataset's (the head in slices: quad), else the 3D view alone.
-  return { ...(await rendererPreset(d, renderer, volume)), layout: d.layout ?? '3d' };
+  // The layout is the dataset's (the head in slices: quad), else the 3D view alone. `labels`:
+  // the URL of the dataset's label volume on the src grid (a CT with its segmentation, the
+  // build's "-labels" entries), else none, so another dataset does not keep the last one's.
+  return { ...(await rendererPreset(d, renderer, volume)), layout: d.layout ?? '3d', labels: d.labels ?? null };
 }
 
 async function rendererPreset(d, renderer, volume) {

@@ -221,7 +221,10 @@ export class VptViewer extends LitElement implements PanelHost, SlotHolder {
     _parked: { state: true },
   };
 
-  /** URL of the volume (any format @vpt/loaders reads; a JSON sidecar; or `procedural:blob?size=64`). */
+  /**
+   * URL of the volume (any format @vpt/loaders reads; a JSON sidecar; or `procedural:blob?size=64`).
+   * Several URLs separated by whitespace (files of one grid): a time series, step i file i.
+   */
   declare src: string | null;
   /** mip | iso | eam | mcrt, or any name added with registerRenderer(). */
   declare renderer: string;
@@ -744,7 +747,7 @@ export class VptViewer extends LitElement implements PanelHost, SlotHolder {
     // The first update reports the constructor's null src as a change; loading null would cancel
     // a load() called before it, so only a src that was set (or cleared after being set) loads.
     if (changed.has('src') && (this.src || changed.get('src') !== undefined))
-      this.track(this.volumeLoading.loadSource(this.src));
+      this.track(this.volumeLoading.loadSource(this.src?.trim().split(/\s/)[0] ?? null));
     if (changed.has('time') || changed.has('playing') || changed.has('fps')) this.player?.update();
     if (changed.has('environment')) this.track(this.resolveEnvironment());
     // The crosshair and the panes' window reach the 3D scene only under crosshair-3d.
@@ -794,6 +797,7 @@ export class VptViewer extends LitElement implements PanelHost, SlotHolder {
         >
           ${this._status ? html`<p class="overlay status" part="status" role="status">${this._status}</p>` : nothing}
           ${panels.has('clip') ? this.renderClipHandles() : nothing} ${this.renderHud()}
+          ${this.player?.bar(panels.size)}
           ${
             panels.size
               ? html`<div class="toolbar">
@@ -1574,15 +1578,21 @@ export class VptViewer extends LitElement implements PanelHost, SlotHolder {
     const refinement = level !== null && this.loadedSource === source && this.volume !== null;
     this.player?.dispose();
     this.player = null;
-    const steps = volume.meta?.timeSteps as number;
-    if (steps > 1 && !level?.bricked && (!level || level.final))
+    // A time series; or src is a list of URLs when it is not the source loaded (or a File came): the player decides.
+    if (((volume.meta?.timeSteps as number) > 1 || this.src !== source) && !level?.bricked && (!level || level.final))
       this.track(
         import('./time-player.js').then(async (m) => {
-          const budget = this.session?.ctx.volumeBudgetBytes ?? 1 << 30;
-          const p = await m.attachPlayer(this, volume, source, steps, budget, level?.index);
-          // Another volume came meanwhile: this series is not shown any more.
-          if (this.volume !== volume) return p.dispose();
-          (this.player = p).update();
+          const p = await m.attachPlayer(
+            this,
+            volume,
+            source,
+            this.session?.ctx.volumeBudgetBytes,
+            level?.index,
+            this.src,
+          );
+          // Another volume came meanwhile: this series is not shown any more. (Null: src is no series.)
+          if (this.volume !== volume) p?.dispose();
+          else (this.player = p)?.update();
         }),
       );
     if (source !== this.loadedSource) this.userChannels = null;
