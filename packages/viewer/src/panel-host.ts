@@ -12,7 +12,7 @@ import type { LoadedVolumeLike, VolumeSource } from './loading/types.js';
 import type { RefinementStats } from './session.js';
 
 /** The panels, in their order (the `panels` attribute names a subset). */
-export const PANEL_NAMES = ['tf', 'lights', 'clip', 'quality', 'stats', 'export'] as const;
+export const PANEL_NAMES = ['tf', 'lights', 'clip', 'labels', 'quality', 'stats', 'export'] as const;
 export type PanelName = (typeof PANEL_NAMES)[number];
 
 /** The properties a panel control may set, each through PanelHost.setInternal. */
@@ -31,7 +31,8 @@ export type InternalProperty =
   | 'densityScale'
   | 'seed'
   | 'rendererParams'
-  | 'resolutionScale';
+  | 'resolutionScale'
+  | 'labelTable';
 
 /** The state the panels display, with the defaults of unset attributes filled in. */
 export interface PanelState {
@@ -60,6 +61,8 @@ export interface PanelHost {
   readonly clip: Clip | string | null;
   readonly converged: boolean;
   readonly panelState: PanelState;
+  /** The Labels panel (labels-layer.ts, loaded with a label volume), or nothing without one. */
+  labelsPanel(): unknown;
   /** The core 2D preset the transfer function was fitted from, if any. */
   readonly fittedPresetName: string | null;
   /** The volume's (value, gradient) pairs for the 2D editor's histogram. */

@@ -199,7 +199,7 @@ export class RenderSession {
   }
 }
 
-/** Same image: same volume object, and equal transfer function, camera, lights, environment, clip, slice plane, density and seed. */
+/** Same image: same volume (and label volume) object, and equal transfer function, camera, lights, environment, clip, slice plane, label table, density and seed. */
 export function sameScene(a: Scene, b: Scene): boolean {
   return (
     a.volume === b.volume &&
@@ -210,6 +210,8 @@ export function sameScene(a: Scene, b: Scene): boolean {
     sameValue(a.lights, b.lights) &&
     sameValue(a.environment, b.environment) &&
     sameValue(a.clip ?? null, b.clip ?? null) &&
-    sameValue(a.slicePlane ?? null, b.slicePlane ?? null)
+    sameValue(a.slicePlane ?? null, b.slicePlane ?? null) &&
+    a.labels?.volume === b.labels?.volume &&
+    sameValue(a.labels?.table ?? null, b.labels?.table ?? null)
   );
 }

@@ -30,6 +30,8 @@ export interface LoadOptions {
   rawHint?: string;
   /** The time step of a source holding several (a 4D NIfTI, an OME-Zarr `t` axis). */
   time?: number;
+  /** A label volume: integer ids kept (never normalized or averaged), @vpt/loaders' LoadOptions.labels. */
+  labels?: boolean;
 }
 
 /** A core Volume plus the format it was read from (and, from @vpt/loaders, orientation and metadata). */

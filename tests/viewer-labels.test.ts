@@ -1,0 +1,247 @@
+import fs from 'node:fs';
+import os from 'node:os';
+import path from 'node:path';
+import { afterAll, describe, expect, it } from 'vitest';
+import { useViewerPage } from './helpers/viewer-page.js';
+
+// <vpt-viewer labels="…" > (labels-layer.ts): a label volume (NRRD with 3D Slicer's segment
+// names) over a raw + sidecar image on the same grid. Hiding a label in the Labels panel gives
+// the image of a label volume with that id set to 0, bit for bit; the hover readout names the
+// label a pixel's ray meets first (an analytic geometry); a label volume on another grid is a
+// typed error in the banner, the image still renders, and a valid one afterwards draws.
+const viewer = useViewerPage();
+const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'vpt-viewer-labels-'));
+afterAll(() => fs.rmSync(dir, { recursive: true, force: true }));
+
+const N = 16;
+/** The image: a ramp along x, so every pixel has some emission under the labels. */
+function image(): Uint8Array {
+  const v = new Uint8Array(N ** 3);
+  for (let z = 0; z < N; z++)
+    for (let y = 0; y < N; y++) for (let x = 0; x < N; x++) v[x + N * (y + N * z)] = 40 + 8 * x;
+  return v;
+}
+/** Labels: the cube [4, 12)³ of voxels, id 1 ("left") where x < 8, id 2 ("right") where x ≥ 8; `drop` set to 0. */
+function labels(dims: [number, number, number], drop = 0): Uint8Array {
+  const v = new Uint8Array(dims[0] * dims[1] * dims[2]);
+  for (let z = 0; z < dims[2]; z++)
+    for (let y = 0; y < dims[1]; y++)
+      for (let x = 0; x < dims[0]; x++) {
+        const inside = [x, y, z].every((c) => c >= 4 && c < 12);
+        const id = inside ? (x < 8 ? 1 : 2) : 0;
+        v[x + dims[0] * (y + dims[1] * z)] = id === drop ? 0 : id;
+      }
+  return v;
+}
+/** A raw NRRD (uint8, spacing 1) with 3D Slicer's segment keys. */
+function nrrd(dims: [number, number, number], data: Uint8Array): Buffer {
+  const header = [
+    'NRRD0004',
+    'type: uint8',
+    'dimension: 3',
+    `sizes: ${dims.join(' ')}`,
+    'spacings: 1 1 1',
+    'encoding: raw',
+    'Segment0_Name:=left',
+    'Segment0_LabelValue:=1',
+    'Segment1_Name:=right',
+    'Segment1_LabelValue:=2',
+    '',
+    '',
+  ].join('\n');
+  return Buffer.concat([Buffer.from(header, 'latin1'), Buffer.from(data)]);
+}
+
+fs.writeFileSync(path.join(dir, 'image.raw'), image());
+fs.writeFileSync(
+  path.join(dir, 'image.json'),
+  JSON.stringify({ file: 'image.raw', dims: [N, N, N], type: 'uint8', spacing: [1, 1, 1] }),
+);
+fs.writeFileSync(path.join(dir, 'labels.nrrd'), nrrd([N, N, N], labels([N, N, N])));
+fs.writeFileSync(path.join(dir, 'labels-no1.nrrd'), nrrd([N, N, N], labels([N, N, N], 1)));
+fs.writeFileSync(path.join(dir, 'labels-half.nrrd'), nrrd([N, N, 8], labels([N, N, 8])));
+
+// The camera looks down −z at the box (centred at 0, side 1) from z = 2, fovy 40°: the ray
+// through film point (fx, 0.5) crosses x = 1.5·(2fx − 1)·tan 20° at the front face (z = 0.5)
+// and 2.5·(…) at the back. fx = 0.35: x ∈ [−0.218, −0.164], voxel column 4–5, inside the label
+// cube's left half (id 1) from z index 11; fx = 0.65: columns 10–11, id 2; fy = 0.02: y > 0.5
+// at the front face and beyond, outside the box.
+const CAMERA = { position: [0, 0, 2], target: [0, 0, 0], up: [0, 1, 0], fovy: (40 * Math.PI) / 180 };
+
+describe('<vpt-viewer labels>', () => {
+  it('draws the labels, names them from the file, hides one from the panel as if its voxels were 0, and reports the hovered label', async () => {
+    const base = viewer().server.mount(dir);
+    const r = await viewer().run(
+      async (vt, base: string, camera: unknown) => {
+        const el = vt.create(
+          {
+            src: `${base}image.json`,
+            renderer: 'eam',
+            backend: 'webgl2',
+            panels: 'labels',
+            denoise: 'off',
+            temporal: 'off',
+            'max-samples': '3',
+            camera: JSON.stringify(camera),
+          },
+          'width:40px;height:40px',
+        );
+        await vt.next(el, 'load');
+        await vt.converged(el);
+        const none = await vt.ldr(el);
+        el.setAttribute('labels', `${base}labels.nrrd`);
+        await el.whenSettled();
+        await vt.converged(el);
+        const all = await vt.ldr(el);
+        const table = el.labelTable.map((e: { id: number; name?: string; visible?: boolean }) => [
+          e.id,
+          e.name,
+          e.visible,
+        ]);
+        const size = { ...el.context.size };
+        // Hover: pointer moves over the view at film points.
+        const view = el.shadowRoot.querySelector('.view') as HTMLElement;
+        const hovers: unknown[] = [];
+        el.addEventListener('vpt-hover', (e: CustomEvent) => hovers.push(e.detail.label?.id ?? null));
+        const at = (fx: number, fy: number) => {
+          const rect = view.getBoundingClientRect();
+          view.dispatchEvent(
+            new PointerEvent('pointermove', {
+              clientX: rect.left + fx * rect.width,
+              clientY: rect.top + fy * rect.height,
+              bubbles: true,
+            }),
+          );
+          const h = el.hoveredLabel;
+          const tip = el.shadowRoot.querySelector('[part=label-tip]') as HTMLElement | null;
+          return { id: h?.id ?? null, name: h?.name ?? null, tip: tip && !tip.hidden ? tip.textContent : null };
+        };
+        const hoverLeft = at(0.35, 0.5);
+        const hoverRight = at(0.65, 0.5);
+        const hoverOut = at(0.5, 0.02);
+        // The Labels panel (the overlay of a narrow element, opened by the toolbar button).
+        (el.shadowRoot.querySelector('[part=panels-toggle]') as HTMLElement).click();
+        await el.updateComplete;
+        await vt.frames(2);
+        const rows = [...el.shadowRoot.querySelectorAll('[data-label-id]')].map((n) =>
+          (n as HTMLElement).textContent!.trim().replace(/\s+/g, ' '),
+        );
+        const changes: unknown[] = [];
+        el.addEventListener('vpt-change', (e: CustomEvent) => changes.push(e.detail.property));
+        const box = el.shadowRoot.querySelector('[data-label-id="1"] input[type=checkbox]') as HTMLInputElement;
+        box.click();
+        await el.whenSettled();
+        await vt.converged(el);
+        const hidden = await vt.ldr(el);
+        const hoverHidden = at(0.35, 0.5);
+        const hoverRightAgain = at(0.65, 0.5);
+        el.setAttribute('labels', `${base}labels-no1.nrrd`);
+        await el.whenSettled();
+        await vt.converged(el);
+        const removed = await vt.ldr(el);
+        const errors = el.__events.filter((e: { type: string }) => e.type === 'error');
+        el.remove();
+        return {
+          none,
+          all,
+          hidden,
+          removed,
+          table,
+          size,
+          hoverLeft,
+          hoverRight,
+          hoverOut,
+          hoverHidden,
+          hoverRightAgain,
+          rows,
+          changes,
+          hovers,
+          errors,
+        };
+      },
+      base,
+      CAMERA,
+    );
+    expect(r.errors).toEqual([]);
+    expect(r.table).toEqual([
+      [1, 'left', true],
+      [2, 'right', true],
+    ]);
+    expect(r.rows).toEqual(['1 left', '2 right']);
+    // The labels change the image; hiding label 1 changes it again; the same as id 1 set to 0, bit for bit.
+    const differ = (a: number[], b: number[]) => a.some((x, i) => x !== b[i]);
+    expect(differ(r.all, r.none)).toBe(true);
+    expect(differ(r.hidden, r.all)).toBe(true);
+    expect(r.hidden).toEqual(r.removed);
+    expect(r.changes).toContain('labelTable');
+    // Hover (a square view, so the geometry above holds).
+    expect(r.size.width).toBe(r.size.height);
+    expect(r.hoverLeft).toEqual({ id: 1, name: 'left', tip: 'left' });
+    expect(r.hoverRight).toEqual({ id: 2, name: 'right', tip: 'right' });
+    expect(r.hoverOut).toEqual({ id: null, name: null, tip: null });
+    // Label 1 hidden: the ray through its half meets no visible label.
+    expect(r.hoverHidden.id).toBeNull();
+    expect(r.hoverRightAgain.id).toBe(2);
+    // vpt-hover fires on each change of label, the last when the next label file loads (nothing hovered then).
+    expect(r.hovers).toEqual([1, 2, null, 2, null]);
+    expect(viewer().errors).toEqual([]);
+  });
+
+  it('refuses a label volume on another grid with a typed error, keeps rendering the image, then draws a valid one', async () => {
+    const base = viewer().server.mount(dir);
+    const r = await viewer().run(
+      async (vt, base: string, camera: unknown) => {
+        const attrs = {
+          src: `${base}image.json`,
+          renderer: 'eam',
+          backend: 'webgl2',
+          panels: 'none',
+          denoise: 'off',
+          temporal: 'off',
+          'max-samples': '2',
+          camera: JSON.stringify(camera),
+        };
+        const ref = vt.create(attrs);
+        await vt.next(ref, 'load');
+        await vt.converged(ref);
+        const none = await vt.ldr(ref);
+        ref.setAttribute('labels', `${base}labels.nrrd`);
+        await ref.whenSettled();
+        await vt.converged(ref);
+        const withLabels = await vt.ldr(ref);
+        ref.remove();
+
+        const el = vt.create({ ...attrs, labels: `${base}labels-half.nrrd` });
+        const error = await vt.next(el, 'error');
+        await el.whenSettled();
+        await vt.converged(el);
+        const banner = vt.shadowText(el, '[part=error]');
+        const mismatched = await vt.ldr(el);
+        el.setAttribute('labels', `${base}labels.nrrd`);
+        await el.whenSettled();
+        await vt.converged(el);
+        const fixed = await vt.ldr(el);
+        const bannerAfter = vt.shadowText(el, '[part=error]');
+        el.remove();
+        return {
+          none,
+          withLabels,
+          mismatched,
+          fixed,
+          banner,
+          bannerAfter,
+          error: { code: error.code, source: error.source, name: error.error?.name },
+        };
+      },
+      base,
+      CAMERA,
+    );
+    expect(r.error).toMatchObject({ code: 'invalid-scene', source: 'labels' });
+    expect(r.banner).toMatch(/16×16×8.*not the image's 16×16×16/);
+    // The image renders as without labels; a valid label file then draws as it does on a fresh viewer.
+    expect(r.mismatched).toEqual(r.none);
+    expect(r.fixed).toEqual(r.withLabels);
+    expect((r.fixed as number[]).some((x, i) => x !== (r.none as number[])[i])).toBe(true);
+    expect(r.bannerAfter).toBeNull();
+  });
+});
