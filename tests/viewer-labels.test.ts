@@ -2,6 +2,7 @@ import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
 import { afterAll, describe, expect, it } from 'vitest';
+import { writeZarrFolder } from '../packages/loaders/test/zarr-fixtures.js';
 import { useViewerPage } from './helpers/viewer-page.js';
 
 // <vpt-viewer labels="…" > (labels-layer.ts): a label volume (NRRD with 3D Slicer's segment
@@ -243,5 +244,71 @@ describe('<vpt-viewer labels>', () => {
     expect(r.fixed).toEqual(r.withLabels);
     expect((r.fixed as number[]).some((x, i) => x !== (r.none as number[])[i])).toBe(true);
     expect(r.bannerAfter).toBeNull();
+  });
+
+  it("loads an OME-Zarr image's label group (labels/<name>) with its image-label names and colours", async () => {
+    const store = path.join(dir, 'image.ome.zarr');
+    await writeZarrFolder(store, { dims: [N, N, N], type: 'uint8', spacing: [1, 1, 1], images: [[image()]] });
+    const group = path.join(store, 'labels', 'organs');
+    await writeZarrFolder(group, { dims: [N, N, N], type: 'uint8', spacing: [1, 1, 1], images: [[labels([N, N, N])]] });
+    const attrsFile = path.join(group, '.zattrs');
+    const attrs = JSON.parse(fs.readFileSync(attrsFile, 'utf8'));
+    attrs['image-label'] = {
+      version: '0.4',
+      colors: [
+        { 'label-value': 1, rgba: [255, 0, 0, 255] },
+        { 'label-value': 2, rgba: [0, 0, 255, 255] },
+      ],
+      properties: [
+        { 'label-value': 1, name: 'liver' },
+        { 'label-value': 2, name: 'tumour' },
+      ],
+    };
+    fs.writeFileSync(attrsFile, JSON.stringify(attrs));
+    const base = viewer().server.mount(dir);
+    const r = await viewer().run(
+      async (vt, base: string, camera: unknown) => {
+        const el = vt.create(
+          {
+            src: `${base}image.ome.zarr`,
+            labels: `${base}image.ome.zarr/labels/organs`,
+            renderer: 'eam',
+            backend: 'webgl2',
+            panels: 'none',
+            'max-samples': '2',
+            camera: JSON.stringify(camera),
+          },
+          'width:40px;height:40px',
+        );
+        await el.whenSettled();
+        await vt.converged(el);
+        const view = el.shadowRoot.querySelector('.view') as HTMLElement;
+        const rect = view.getBoundingClientRect();
+        view.dispatchEvent(
+          new PointerEvent('pointermove', {
+            clientX: rect.left + 0.35 * rect.width,
+            clientY: rect.top + 0.5 * rect.height,
+            bubbles: true,
+          }),
+        );
+        const out = {
+          table: el.labelTable,
+          hover: el.hoveredLabel,
+          drawn: !!el.context.getScene().labels,
+          errors: el.__events.filter((e: { type: string }) => e.type === 'error'),
+        };
+        el.remove();
+        return out;
+      },
+      base,
+      CAMERA,
+    );
+    expect(r.errors).toEqual([]);
+    expect(r.drawn).toBe(true);
+    expect(r.table).toEqual([
+      { id: 1, name: 'liver', color: [1, 0, 0], opacity: 1, visible: true },
+      { id: 2, name: 'tumour', color: [0, 0, 1], opacity: 1, visible: true },
+    ]);
+    expect(r.hover).toMatchObject({ id: 1, name: 'liver' });
   });
 });

@@ -97,7 +97,15 @@ export async function loadLabels(
 ): Promise<{ volume: Volume; table: LabelEntry[] }> {
   enableLabels();
   const { loadVolume } = await volumeLoader();
-  const loaded = await loadVolume(url, { labels: true, request, rawHint: ELEMENT_RAW_HINT, signal });
+  // An OME-Zarr label image is a group inside the image's store (….ome.zarr/labels/<name>): its URL does not end in .zarr.
+  const zarr = /\.zarr\/labels\/[^/?#]+\/?([?#].*)?$/i.test(url);
+  const loaded = await loadVolume(url, {
+    labels: true,
+    request,
+    rawHint: ELEMENT_RAW_HINT,
+    signal,
+    ...(zarr ? { format: 'ome-zarr' as const } : {}),
+  });
   const volume = toLabelVolume(loaded, 'labels');
   return { volume, table: fileLabelTable(loaded, volume) };
 }

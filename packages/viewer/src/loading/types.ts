@@ -13,7 +13,7 @@ export interface LoadProgress {
 }
 
 export interface LoadOptions {
-  format?: 'auto' | 'raw' | 'nrrd' | 'nifti' | 'dicom';
+  format?: 'auto' | 'raw' | 'nrrd' | 'nifti' | 'dicom' | 'ome-zarr';
   raw?: {
     dims: [number, number, number];
     type: 'uint8' | 'uint16' | 'int16' | 'float32';
