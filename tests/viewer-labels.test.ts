@@ -22,13 +22,16 @@ function image(): Uint8Array {
     for (let y = 0; y < N; y++) for (let x = 0; x < N; x++) v[x + N * (y + N * z)] = 40 + 8 * x;
   return v;
 }
-/** Labels: the cube [4, 12)³ of voxels, id 1 ("left") where x < 8, id 2 ("right") where x ≥ 8; `drop` set to 0. */
+/**
+ * Labels: the box [4, 12) × [4, 10) × [4, 12) of voxels (not symmetric in y, so a flipped slice
+ * shows), id 1 ("left") where x < 8, id 2 ("right") where x ≥ 8; `drop` set to 0.
+ */
 function labels(dims: [number, number, number], drop = 0): Uint8Array {
   const v = new Uint8Array(dims[0] * dims[1] * dims[2]);
   for (let z = 0; z < dims[2]; z++)
     for (let y = 0; y < dims[1]; y++)
       for (let x = 0; x < dims[0]; x++) {
-        const inside = [x, y, z].every((c) => c >= 4 && c < 12);
+        const inside = x >= 4 && x < 12 && y >= 4 && y < 10 && z >= 4 && z < 12;
         const id = inside ? (x < 8 ? 1 : 2) : 0;
         v[x + dims[0] * (y + dims[1] * z)] = id === drop ? 0 : id;
       }
@@ -64,9 +67,9 @@ fs.writeFileSync(path.join(dir, 'labels-half.nrrd'), nrrd([N, N, 8], labels([N, 
 
 // The camera looks down −z at the box (centred at 0, side 1) from z = 2, fovy 40°: the ray
 // through film point (fx, 0.5) crosses x = 1.5·(2fx − 1)·tan 20° at the front face (z = 0.5)
-// and 2.5·(…) at the back. fx = 0.35: x ∈ [−0.218, −0.164], voxel column 4–5, inside the label
-// cube's left half (id 1) from z index 11; fx = 0.65: columns 10–11, id 2; fy = 0.02: y > 0.5
-// at the front face and beyond, outside the box.
+// and 2.5·(…) at the back. fx = 0.35: x ∈ [−0.218, −0.164], voxel column 4–5, at y = 0 (row 8),
+// inside the label box's left half (id 1) from z index 11; fx = 0.65: columns 10–11, id 2;
+// fy = 0.02: y > 0.5 at the front face and beyond, outside the box.
 const CAMERA = { position: [0, 0, 2], target: [0, 0, 0], up: [0, 1, 0], fovy: (40 * Math.PI) / 180 };
 
 describe('<vpt-viewer labels>', () => {
@@ -310,5 +313,98 @@ describe('<vpt-viewer labels>', () => {
       { id: 2, name: 'tumour', color: [0, 0, 1], opacity: 1, visible: true },
     ]);
     expect(r.hover).toMatchObject({ id: 1, name: 'liver' });
+  });
+
+  it("with the slice renderer names the label of the plane's voxel under the pointer, where the image shows its colour; in the slice panes the probe's", async () => {
+    const base = viewer().server.mount(dir);
+    const r = await viewer().run(async (vt, base: string) => {
+      const W = 32;
+      const el = vt.create(
+        {
+          src: `${base}image.json`,
+          labels: `${base}labels.nrrd`,
+          renderer: 'slice',
+          'renderer-params': JSON.stringify({ axis: 'z', index: 8, fit: true }),
+          backend: 'webgl2',
+          panels: 'none',
+          'max-samples': '1',
+        },
+        `width:${W}px;height:${W}px`,
+      );
+      await el.whenSettled();
+      await vt.converged(el);
+      const { width, height } = el.context.size;
+      const ldr = await vt.ldr(el);
+      const view = el.shadowRoot.querySelector('.view') as HTMLElement;
+      const rect = view.getBoundingClientRect();
+      const cells: { id: number | null; rgb: string }[] = [];
+      for (let y = 0; y < height; y++)
+        for (let x = 0; x < width; x++) {
+          view.dispatchEvent(
+            new PointerEvent('pointermove', {
+              clientX: rect.left + ((x + 0.5) / width) * rect.width,
+              clientY: rect.top + ((y + 0.5) / height) * rect.height,
+              bubbles: true,
+            }),
+          );
+          const i = 4 * (y * width + x);
+          cells.push({ id: el.hoveredLabel?.id ?? null, rgb: `${ldr[i]},${ldr[i + 1]},${ldr[i + 2]}` });
+        }
+      el.remove();
+      // The slice panes: the probe's voxel names its label.
+      const panes = vt.create(
+        { src: `${base}image.json`, labels: `${base}labels.nrrd`, layout: 'slices', backend: 'webgl2', panels: 'none' },
+        'width:120px;height:120px',
+      );
+      await panes.whenSettled();
+      await vt.frames(4);
+      await panes.whenSettled();
+      const stage = panes.shadowRoot.querySelector('[data-stage=axial]') as HTMLElement;
+      const probes: { index: number[] | null; label: { id: number; voxel: number[] } | null }[] = [];
+      for (const [fx, fy] of [
+        [0.4, 0.5],
+        [0.6, 0.5],
+        [0.1, 0.1],
+      ]) {
+        const sr = stage.getBoundingClientRect();
+        stage.dispatchEvent(
+          new PointerEvent('pointermove', {
+            clientX: sr.left + fx * sr.width,
+            clientY: sr.top + fy * sr.height,
+            bubbles: true,
+          }),
+        );
+        probes.push({ index: panes.probeReading?.index ?? null, label: panes.hoveredLabel });
+      }
+      panes.remove();
+      return { width, height, cells, probes };
+    }, base);
+    const byId = new Map<number | null, Set<string>>();
+    for (const c of r.cells) byId.set(c.id, (byId.get(c.id) ?? new Set()).add(c.rgb));
+    // Fitted: pixel (x, y) shows voxel (⌊16x/W⌋, ⌊16y/H⌋) of layer z = 8 (rows from the lowest y
+    // index): the hovered label is the label volume's id there, computed here from the fixture.
+    const ids = labels([N, N, N]);
+    const want = r.cells.map((_, k) => {
+      const x = Math.floor(((k % r.width) * N) / r.width),
+        y = Math.floor((Math.floor(k / r.width) * N) / r.height);
+      return ids[x + N * (y + N * 8)] || null;
+    });
+    expect(r.cells.map((c) => c.id)).toEqual(want);
+    expect([...byId.keys()].sort()).toEqual([1, 2, null]);
+    // Each label is one flat colour (opaque over the slice), the two differ, and no background pixel has either.
+    expect(byId.get(1)!.size).toBe(1);
+    expect(byId.get(2)!.size).toBe(1);
+    const [c1] = byId.get(1)!,
+      [c2] = byId.get(2)!;
+    expect(c1).not.toBe(c2);
+    expect(byId.get(null)!.has(c1) || byId.get(null)!.has(c2)).toBe(false);
+    // Panes: the hovered label is the probe's voxel's.
+    for (const p of r.probes) {
+      expect(p.index).not.toBeNull();
+      const id = ids[p.index![0] + N * (p.index![1] + N * p.index![2])];
+      expect(p.label?.id ?? 0).toBe(id);
+      if (p.label) expect(p.label.voxel).toEqual(p.index);
+    }
+    expect(r.probes.map((p) => p.label?.id ?? 0).sort()).toEqual([0, 1, 2]);
   });
 });
