@@ -249,11 +249,17 @@ describe('<vpt-viewer labels>', () => {
     expect(r.bannerAfter).toBeNull();
   });
 
-  it("loads an OME-Zarr image's label group (labels/<name>) with its image-label names and colours", async () => {
+  it("loads an OME-Zarr image's label group (labels/<name>) with its image-label names and colours, at the level the image shows", async () => {
+    // Two levels each (16³ and 8³): the element shows the image's 8³ level first, then 16³.
     const store = path.join(dir, 'image.ome.zarr');
-    await writeZarrFolder(store, { dims: [N, N, N], type: 'uint8', spacing: [1, 1, 1], images: [[image()]] });
+    const two = { levels: 2 };
+    await writeZarrFolder(store, { dims: [N, N, N], type: 'uint8', spacing: [1, 1, 1], images: [[image()]] }, two);
     const group = path.join(store, 'labels', 'organs');
-    await writeZarrFolder(group, { dims: [N, N, N], type: 'uint8', spacing: [1, 1, 1], images: [[labels([N, N, N])]] });
+    await writeZarrFolder(
+      group,
+      { dims: [N, N, N], type: 'uint8', spacing: [1, 1, 1], images: [[labels([N, N, N])]] },
+      two,
+    );
     const attrsFile = path.join(group, '.zattrs');
     const attrs = JSON.parse(fs.readFileSync(attrsFile, 'utf8'));
     attrs['image-label'] = {
@@ -297,17 +303,43 @@ describe('<vpt-viewer labels>', () => {
         const out = {
           table: el.labelTable,
           hover: el.hoveredLabel,
-          drawn: !!el.context.getScene().labels,
+          dims: el.context.getScene().labels?.volume.dims,
+          loads: el.__events.filter((e: { type: string }) => e.type === 'load').length,
           errors: el.__events.filter((e: { type: string }) => e.type === 'error'),
         };
         el.remove();
-        return out;
+        // The image held at its coarser level: the label group's level of that grid is drawn.
+        const coarse = vt.create(
+          {
+            src: `${base}image.ome.zarr#level=1`,
+            labels: `${base}image.ome.zarr/labels/organs`,
+            renderer: 'eam',
+            backend: 'webgl2',
+            panels: 'none',
+            'max-samples': '1',
+          },
+          'width:16px;height:16px',
+        );
+        await coarse.whenSettled();
+        await vt.converged(coarse);
+        const coarseOut = {
+          dims: coarse.context.getScene().labels?.volume.dims,
+          names: coarse.labelTable?.map((e: { name?: string }) => e.name),
+          errors: coarse.__events.filter((e: { type: string }) => e.type === 'error'),
+        };
+        coarse.remove();
+        return { ...out, coarse: coarseOut };
       },
       base,
       CAMERA,
     );
+    // Refined from level 1 to 0 (two vpt-load), labels following without an error.
     expect(r.errors).toEqual([]);
-    expect(r.drawn).toBe(true);
+    expect(r.loads).toBe(2);
+    expect(r.dims).toEqual([N, N, N]);
+    expect(r.coarse.errors).toEqual([]);
+    expect(r.coarse.dims).toEqual([N / 2, N / 2, N / 2]);
+    expect(r.coarse.names).toEqual(['liver', 'tumour']);
     expect(r.table).toEqual([
       { id: 1, name: 'liver', color: [1, 0, 0], opacity: 1, visible: true },
       { id: 2, name: 'tumour', color: [0, 0, 1], opacity: 1, visible: true },

@@ -21,6 +21,7 @@ import {
 import { defaultLabelColor, defaultLabelTable, enableLabels, toLabelVolume, withLabelColors } from '@vpt/core/labels';
 import { hexToLinear, linearToHex } from './color.js';
 import type { LoadedVolumeLike } from './loading/types.js';
+import { sourceAtLevel } from './loading/multiscale.js';
 import { volumeLoader, ELEMENT_RAW_HINT } from './loading/volume-source.js';
 import { pickLabel, slicePointAt, sliceSpecOf, visibleIds, voxelOf } from './label-pick.js';
 
@@ -89,12 +90,20 @@ export function fileLabelTable(loaded: LoadedVolumeLike, volume: Volume): LabelE
   return named.length ? withLabelColors(table, named) : table;
 }
 
+/** A label volume read: the ids, the file's default table, and an OME-Zarr group's level and its levels' dims. */
+interface LabelData {
+  volume: Volume;
+  table: LabelEntry[];
+  level: number;
+  levels: number[][];
+}
+
 /** Read `url` as a label volume (integer ids, never normalized) and its default table. */
 export async function loadLabels(
   url: string,
   request: Partial<RequestPolicy>,
   signal: AbortSignal,
-): Promise<{ volume: Volume; table: LabelEntry[] }> {
+): Promise<LabelData> {
   enableLabels();
   const { loadVolume } = await volumeLoader();
   // An OME-Zarr label image is a group inside the image's store (….ome.zarr/labels/<name>): its URL does not end in .zarr.
@@ -107,7 +116,13 @@ export async function loadLabels(
     ...(zarr ? { format: 'ome-zarr' as const } : {}),
   });
   const volume = toLabelVolume(loaded, 'labels');
-  return { volume, table: fileLabelTable(loaded, volume) };
+  const z = loaded.meta?.zarr as { level?: number; levels?: { dims: number[] }[] } | undefined;
+  return {
+    volume,
+    table: fileLabelTable(loaded, volume),
+    level: z?.level ?? 0,
+    levels: z?.levels?.map((l) => l.dims) ?? [],
+  };
 }
 
 /** The typed error of a label volume that does not lie on the image's grid (same dims, same box), else null. */
@@ -163,7 +178,8 @@ let uid = 0;
 
 /** The element's label volume: loading, the scene's `labels`, the hover readout and the Labels panel. */
 export class LabelLayer {
-  private data: { volume: Volume; table: LabelEntry[] } | null = null;
+  private data: LabelData | null = null;
+  private url: string | null = null;
   private abort: AbortController | null = null;
   private over: (HoveredLabel & { fx: number; fy: number }) | null = null;
 
@@ -202,6 +218,7 @@ export class LabelLayer {
     this.abort?.abort();
     const abort = (this.abort = new AbortController());
     this.data = null;
+    this.url = url;
     this.setHover(null);
     try {
       if (url) {
@@ -210,7 +227,7 @@ export class LabelLayer {
         this.data = data;
       }
       this.hooks.clear();
-      this.check();
+      await this.check();
     } catch (e) {
       if (abort.signal.aborted) return;
       this.hooks.fail(e);
@@ -219,11 +236,31 @@ export class LabelLayer {
     this.host.requestUpdate();
   }
 
-  /** Report a label volume off the image's grid (a new image, or new labels). */
-  check(): void {
-    const image = this.host.loadedVolume;
-    const err = this.data && image ? gridError(this.data.volume, image) : null;
-    if (err) this.hooks.fail(err);
+  /**
+   * A new image (or new labels): a label volume off the image's grid is reported, unless it is
+   * an OME-Zarr group with a level on that grid (the image shown at a coarser level of its
+   * store, as the element does while it refines), which is read instead, the table kept.
+   */
+  async check(): Promise<void> {
+    const image = this.host.loadedVolume,
+      d = this.data,
+      abort = this.abort;
+    if (!d || !image || !abort) return;
+    const err = gridError(d.volume, image);
+    if (!err) return this.hooks.clear();
+    const k = d.levels.findIndex((dims) => dims.every((n, i) => n === image.dims[i]));
+    if (k < 0 || k === d.level) return this.hooks.fail(err);
+    try {
+      const next = await loadLabels(sourceAtLevel(this.url!, k), this.host.requestPolicy, abort.signal);
+      // Another image (a finer level) or other labels came meanwhile: their own check decides.
+      if (abort.signal.aborted || this.data !== d || this.host.loadedVolume !== image) return;
+      this.data = { ...next, table: d.table, levels: d.levels };
+    } catch (e) {
+      if (!abort.signal.aborted) this.hooks.fail(e);
+      return;
+    }
+    this.hooks.clear();
+    this.hooks.apply();
   }
 
   /** The scene's `labels` for this image: none without a label volume on its grid. */

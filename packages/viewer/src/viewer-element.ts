@@ -483,8 +483,8 @@ export class VptViewer extends LitElement implements PanelHost, SlotHolder {
     const [table, url] = this._labelTable;
     return (url === this.labels && table) || (this.lab?.table ?? null);
   }
-  set labelTable(table: LabelEntry[] | string | null) {
-    this._labelTable = [typeof table === 'string' ? (JSON.parse(table) as LabelEntry[]) : table, this.labels];
+  set labelTable(table: LabelEntry[] | null) {
+    this._labelTable = [table, this.labels];
   }
   /** The label under the pointer (the first visible one on the pixel's ray; the slice's voxel), null: none. */
   get hoveredLabel(): HoveredLabel | null {
@@ -1614,7 +1614,7 @@ export class VptViewer extends LitElement implements PanelHost, SlotHolder {
     }
     if (!refinement) this.lightCamera = (this.camera as Camera | null) ?? null;
     this.clearError('src');
-    this.lab?.check();
+    if (this.lab) this.track(this.lab.check());
     this.applySync();
     // Renderer parameters that follow the data (iso's default surface) may have changed.
     if (this.session && this.desiredRendererKey() !== this.rendererKey) this.track(this.switchRenderer());
