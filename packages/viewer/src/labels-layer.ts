@@ -153,8 +153,12 @@ export interface LabelHost extends EventTarget {
   readonly labels: string | null;
   readonly labelTable: LabelEntry[] | null;
   readonly loadedVolume: Volume | null;
-  readonly context: { size: { width: number; height: number } } | null;
-  readonly renderer: string;
+  /** The RenderContext: its size, the scene it draws and its renderer (the slice renderer's plane). */
+  readonly context: {
+    size: { width: number; height: number };
+    getScene(): Scene | null;
+    renderer: { name: string; getParams?(): unknown };
+  } | null;
   readonly requestPolicy: Partial<RequestPolicy>;
   readonly renderRoot: HTMLElement | DocumentFragment;
   requestUpdate(): void;
@@ -163,10 +167,6 @@ export interface LabelHost extends EventTarget {
 
 /** The element's private side the layer needs, as closures. */
 export interface LabelHostHooks {
-  /** The 3D view's scene now (its `labels` included when they lie on the image's grid). */
-  scene(): Scene | null;
-  /** The renderer parameters in effect (the slice renderer's plane). */
-  params(): Record<string, unknown>;
   /** Report an error with source 'labels' (the banner, `vpt-error`), and clear it. */
   fail(e: unknown): void;
   clear(): void;
@@ -273,15 +273,18 @@ export class LabelLayer {
 
   /** The pointer over the 3D view (null: it left): the label its pixel sees (labelHit). */
   hover(e: PointerEvent | null): void {
-    const scene = e && this.host.context ? this.hooks.scene() : null;
+    // The scene on display (its camera, clip and labels), as its renderer draws it.
+    const ctx = this.host.context;
+    const scene = e && ctx ? ctx.getScene() : null;
     if (!e || !scene?.labels) return this.setHover(null);
     const r = (e.currentTarget as HTMLElement).getBoundingClientRect();
     const fx = (e.clientX - r.left) / r.width,
       fy = (e.clientY - r.top) / r.height;
-    const { width, height } = this.host.context!.size;
+    const { width, height } = ctx!.size;
+    const params = (ctx!.renderer.getParams?.() ?? {}) as Record<string, unknown>;
     const hit =
       fx >= 0 && fx <= 1 && fy >= 0 && fy <= 1
-        ? labelHit(scene, this.host.renderer, this.hooks.params(), width / height, fx, fy)
+        ? labelHit(scene, ctx!.renderer.name, params, width / height, fx, fy)
         : null;
     this.hoverVoxel(hit, fx, fy);
   }

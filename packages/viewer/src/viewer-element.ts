@@ -278,7 +278,7 @@ export class VptViewer extends LitElement implements PanelHost, SlotHolder {
   declare rendererParams: Record<string, unknown> | string | null;
   /** Render resolution relative to the element's device pixels (1 = full). */
   declare resolutionScale: number;
-  /** "all", "none", or a space-separated list of tf lights clip quality stats export. */
+  /** "all", "none", or a space-separated list of tf lights clip labels quality stats export. */
   declare panels: string;
   /** Panels sidebar closed (the toolbar button opens it). */
   declare collapsed: boolean;
@@ -1833,8 +1833,6 @@ export class VptViewer extends LitElement implements PanelHost, SlotHolder {
   private async loadLabels(): Promise<void> {
     const { LabelLayer } = await import('./labels-layer.js');
     this.lab ??= new LabelLayer(this, {
-      scene: () => this.sceneNow(),
-      params: () => this.effectiveRendererParams(),
       fail: (e) => this.fail(e, 'labels'),
       clear: () => this.clearError('labels'),
       apply: () => this.applySync(),
