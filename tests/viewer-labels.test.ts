@@ -191,7 +191,7 @@ describe('<vpt-viewer labels>', () => {
     expect(viewer().errors).toEqual([]);
   });
 
-  it('refuses a label volume on another grid with a typed error, keeps rendering the image, then draws a valid one', async () => {
+  it('refuses a label volume on another grid (and a missing file) with a typed error, keeps rendering the image, then draws a valid one', async () => {
     const base = viewer().server.mount(dir);
     const r = await viewer().run(
       async (vt, base: string, camera: unknown) => {
@@ -221,6 +221,12 @@ describe('<vpt-viewer labels>', () => {
         await vt.converged(el);
         const banner = vt.shadowText(el, '[part=error]');
         const mismatched = await vt.ldr(el);
+        // A label file that is not there: a typed load error, the image as before.
+        el.setAttribute('labels', `${base}missing.nrrd`);
+        const missing = await vt.next(el, 'error');
+        await el.whenSettled();
+        await vt.converged(el);
+        const missingImage = await vt.ldr(el);
         el.setAttribute('labels', `${base}labels.nrrd`);
         await el.whenSettled();
         await vt.converged(el);
@@ -235,6 +241,8 @@ describe('<vpt-viewer labels>', () => {
           banner,
           bannerAfter,
           error: { code: error.code, source: error.source, name: error.error?.name },
+          missing: { code: missing.code, source: missing.source, reason: missing.error?.reason },
+          missingImage,
         };
       },
       base,
@@ -244,6 +252,8 @@ describe('<vpt-viewer labels>', () => {
     expect(r.banner).toMatch(/16×16×8.*not the image's 16×16×16/);
     // The image renders as without labels; a valid label file then draws as it does on a fresh viewer.
     expect(r.mismatched).toEqual(r.none);
+    expect(r.missing).toMatchObject({ code: 'load-failed', source: 'labels', reason: 'not-found' });
+    expect(r.missingImage).toEqual(r.none);
     expect(r.fixed).toEqual(r.withLabels);
     expect((r.fixed as number[]).some((x, i) => x !== (r.none as number[])[i])).toBe(true);
     expect(r.bannerAfter).toBeNull();
