@@ -402,7 +402,11 @@ describe('<vpt-viewer labels>', () => {
       await vt.frames(4);
       await panes.whenSettled();
       const stage = panes.shadowRoot.querySelector('[data-stage=axial]') as HTMLElement;
-      const probes: { index: number[] | null; label: { id: number; voxel: number[] } | null }[] = [];
+      const probes: {
+        index: number[] | null;
+        label: { id: number; name?: string; voxel: number[] } | null;
+        text: string | null;
+      }[] = [];
       for (const [fx, fy] of [
         [0.4, 0.5],
         [0.6, 0.5],
@@ -416,7 +420,15 @@ describe('<vpt-viewer labels>', () => {
             bubbles: true,
           }),
         );
-        probes.push({ index: panes.probeReading?.index ?? null, label: panes.hoveredLabel });
+        await panes.updateComplete;
+        probes.push({
+          index: panes.probeReading?.index ?? null,
+          label: panes.hoveredLabel,
+          text: (() => {
+            const tip = panes.shadowRoot.querySelector('[data-stage=axial] [part=label-tip]') as HTMLElement | null;
+            return tip && !tip.hidden ? tip.textContent : null;
+          })(),
+        });
       }
       panes.remove();
       return { width, height, cells, probes };
@@ -446,6 +458,8 @@ describe('<vpt-viewer labels>', () => {
       const id = ids[p.index![0] + N * (p.index![1] + N * p.index![2])];
       expect(p.label?.id ?? 0).toBe(id);
       if (p.label) expect(p.label.voxel).toEqual(p.index);
+      // The tooltip on the pane names it.
+      expect(p.text).toBe(p.label ? p.label.name : null);
     }
     expect(r.probes.map((p) => p.label?.id ?? 0).sort()).toEqual([0, 1, 2]);
   });

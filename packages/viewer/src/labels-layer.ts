@@ -185,6 +185,8 @@ export class LabelLayer {
 
   /** The tooltip over the image (the hovered label's name, or its id), a node of the view beside the canvas. */
   private readonly tip: HTMLElement;
+  /** The elements whose pointerleave hides the tooltip. */
+  private readonly left = new WeakSet<HTMLElement>();
 
   constructor(
     private readonly host: LabelHost,
@@ -194,6 +196,7 @@ export class LabelLayer {
     const view = host.renderRoot.querySelector('.view') as HTMLElement;
     view.addEventListener('pointermove', (e) => this.hover(e));
     view.addEventListener('pointerleave', () => this.hover(null));
+    this.left.add(view);
     this.tip = document.createElement('p');
     this.tip.setAttribute('part', 'label-tip');
     this.tip.setAttribute('role', 'status');
@@ -286,11 +289,20 @@ export class LabelLayer {
       fx >= 0 && fx <= 1 && fy >= 0 && fy <= 1
         ? labelHit(scene, ctx!.renderer.name, params, width / height, fx, fy)
         : null;
-    this.hoverVoxel(hit, fx, fy);
+    this.hoverVoxel(hit, fx, fy, e.currentTarget as HTMLElement);
   }
 
-  /** The label of a voxel (a slice pane's probe, or the pick's), shown at (fx, fy) of the view. */
-  hoverVoxel(voxel: [number, number, number] | null, fx: number, fy: number): void {
+  /**
+   * The label of a voxel (the pick's, or a slice pane's probe), its tooltip at (fx, fy) of `where`
+   * (the 3D view, or the pane's stage).
+   */
+  hoverVoxel(voxel: [number, number, number] | null, fx: number, fy: number, where: HTMLElement): void {
+    if (this.tip.parentElement !== where) {
+      // A pane's stage: the tooltip goes when the pointer leaves it, as the probe line does.
+      if (!this.left.has(where)) where.addEventListener('pointerleave', () => this.hover(null));
+      this.left.add(where);
+      where.append(this.tip);
+    }
     const scene = this.scene(this.host.loadedVolume);
     const labels = scene.labels;
     if (!voxel || !labels) return this.setHover(null);

@@ -1080,7 +1080,7 @@ export class VptViewer extends LitElement implements PanelHost, SlotHolder {
     if (fx < 0 || fx > 1 || fy < 0 || fy > 1) return;
     const index = voxelAt(g, this.volume.dims, fx, fy, this._crosshair);
     this._probe = { pane: g.name, index, value: probeValue(this.volume, index) };
-    this.lab?.hoverVoxel(index, fx, fy);
+    this.lab?.hoverVoxel(index, fx, fy, e.currentTarget as HTMLElement);
   }
 
   private onPaneDown(e: PointerEvent, g: PaneGeometry): void {
