@@ -28,6 +28,13 @@ el.addEventListener('vpt-change', (e) => {
   // @ts-expect-error the crosshair is a voxel index, not a string
   if (e.detail.property === 'crosshair') console.log(e.detail.value.toUpperCase());
 });
+// The hovered label (labels-layer.ts): an id and an optional name, or null.
+el.addEventListener('vpt-hover', (e) => console.log(e.detail.label?.id.toFixed(0), e.detail.label?.name?.length));
+el.addEventListener('vpt-change', (e) => {
+  if (e.detail.property === 'labelTable') console.log(e.detail.value[0].id);
+});
+// @ts-expect-error a label id is a number
+el.addEventListener('vpt-hover', (e) => console.log(e.detail.label?.id.toUpperCase()));
 const layout: VptViewer['layout'] = 'quad';
 // @ts-expect-error not a layout
 const badLayout: VptViewer['layout'] = 'triple';

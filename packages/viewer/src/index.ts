@@ -10,6 +10,7 @@ import {
   type ViewerChangeDetail,
   type ViewerConvergedDetail,
   type ViewerErrorDetail,
+  type ViewerHoverDetail,
   type ViewerLoadDetail,
   type ViewerProgressDetail,
 } from './viewer-element.js';
@@ -21,6 +22,8 @@ export type {
   ViewerConvergedDetail,
   ViewerLoadDetail,
   ViewerChangeDetail,
+  ViewerHoverDetail,
+  HoveredLabel,
   ProbeReading,
   PanelName,
 } from './viewer-element.js';
@@ -90,6 +93,7 @@ declare global {
     'vpt-converged': CustomEvent<ViewerConvergedDetail>;
     'vpt-error': CustomEvent<ViewerErrorDetail>;
     'vpt-change': CustomEvent<ViewerChangeDetail>;
+    'vpt-hover': CustomEvent<ViewerHoverDetail>;
   }
   interface HTMLElementTagNameMap {
     'vpt-viewer': VptViewer;

@@ -12,7 +12,7 @@ import type { LoadedVolumeLike, ViewerChannel, VolumeSource } from './loading/ty
 import type { RefinementStats } from './session.js';
 
 /** The panels, in their order (the `panels` attribute names a subset). */
-export const PANEL_NAMES = ['tf', 'channels', 'lights', 'clip', 'quality', 'stats', 'export'] as const;
+export const PANEL_NAMES = ['tf', 'channels', 'lights', 'clip', 'labels', 'quality', 'stats', 'export'] as const;
 export type PanelName = (typeof PANEL_NAMES)[number];
 
 /** The properties a panel control may set, each through PanelHost.setInternal. */
@@ -32,7 +32,8 @@ export type InternalProperty =
   | 'seed'
   | 'rendererParams'
   | 'resolutionScale'
-  | 'channels';
+  | 'channels'
+  | 'labelTable';
 
 /** The state the panels display, with the defaults of unset attributes filled in. */
 export interface PanelState {
@@ -63,6 +64,8 @@ export interface PanelHost {
   readonly channels: ViewerChannel[] | null;
   readonly converged: boolean;
   readonly panelState: PanelState;
+  /** The Labels panel (labels-layer.ts, loaded with a label volume), or nothing without one. */
+  labelsPanel(): unknown;
   /** The core 2D preset the transfer function was fitted from, if any. */
   readonly fittedPresetName: string | null;
   /** The volume's (value, gradient) pairs for the 2D editor's histogram. */

@@ -1,6 +1,6 @@
 /**
  * The viewer's side panels, as template functions over the element: transfer function,
- * lights and environment, clip planes and crop box (clip-panel.ts), renderer and quality, a live readout, and export. Each control
+ * lights and environment, clip planes and crop box (clip-panel.ts), labels (labels-layer.ts, with a label volume), renderer and quality, a live readout, and export. Each control
  * writes through `setInternal`, so the matching attribute is reflected and a `vpt-change`
  * event announces it. Native <details>, labelled controls and buttons keep it all
  * reachable and operable from the keyboard.
@@ -33,8 +33,8 @@ export function renderPanels(v: PanelHost, panels: Set<PanelName>) {
   const mc = v.panelState.volume?.multichannel;
   return html` ${panels.has('tf') ? tfPanel(v) : nothing} ${panels.has('channels') && mc ? mc.panel(v) : nothing}
   ${panels.has('lights') ? lightsPanel(v) : nothing} ${panels.has('clip') ? clipPanel(v) : nothing}
-  ${panels.has('quality') ? qualityPanel(v) : nothing} ${panels.has('stats') ? statsPanel(v) : nothing}
-  ${panels.has('export') ? exportPanel(v) : nothing}`;
+  ${panels.has('labels') ? v.labelsPanel() : nothing} ${panels.has('quality') ? qualityPanel(v) : nothing}
+  ${panels.has('stats') ? statsPanel(v) : nothing} ${panels.has('export') ? exportPanel(v) : nothing}`;
 }
 
 function presetOf(tf: TransferFunction): string {

@@ -199,7 +199,7 @@ export class RenderSession {
   }
 }
 
-/** Same image: same volume object, and equal transfer function, camera, lights, environment, clip, slice plane, channels, density and seed. */
+/** Same image: same volume (and label volume) object, and equal transfer function, camera, lights, environment, clip, slice plane, channels, label table, density and seed. */
 export function sameScene(a: Scene, b: Scene): boolean {
   return (
     a.volume === b.volume &&
@@ -211,6 +211,8 @@ export function sameScene(a: Scene, b: Scene): boolean {
     sameValue(a.environment, b.environment) &&
     sameValue(a.clip ?? null, b.clip ?? null) &&
     sameValue(a.slicePlane ?? null, b.slicePlane ?? null) &&
-    sameValue(a.channels ?? null, b.channels ?? null)
+    sameValue(a.channels ?? null, b.channels ?? null) &&
+    a.labels?.volume === b.labels?.volume &&
+    sameValue(a.labels?.table ?? null, b.labels?.table ?? null)
   );
 }

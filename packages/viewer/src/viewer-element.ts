@@ -4,10 +4,11 @@
  * Attributes (all reflected, all also properties): src, renderer, backend,
  * transfer-function, camera, clip, lights, environment, exposure, tone-mapper, denoise, temporal,
  * max-samples, target-error, density-scale, seed, renderer-params, resolution-scale, panels,
- * collapsed, hide-progress, hide-stats, layout.
+ * collapsed, hide-progress, hide-stats, layout, labels (with the `labelTable` property).
  * Events (typed through HTMLElementEventMap, prefixed so none collides with a native
  * event): vpt-load, vpt-progress (loading and refinement), vpt-converged, vpt-error,
- * vpt-change (the user edited something through the element: camera drag, panels).
+ * vpt-change (the user edited something through the element: camera drag, panels),
+ * vpt-hover (the label under the pointer changed: labels-layer.ts).
  *
  * Async work (loading a renderer package, a volume, an environment image, opening a GPU
  * context) runs in the background and applies the *current* attribute values when it
@@ -23,6 +24,7 @@ import {
   type Camera,
   type Clip,
   type Environment,
+  type LabelEntry,
   type Light,
   MAX_CLIP_PLANES,
   type Renderer,
@@ -66,6 +68,7 @@ import type { LoadedVolumeLike, ViewerChannel, VolumeSource } from './loading/ty
 import { VolumeLoading, type DataLevel } from './loading/volume-loading.js';
 import { LazyOrbitCamera } from './orbit-lazy.js';
 import type { TimePlayer } from './time-player.js';
+import type { HoveredLabel, LabelLayer } from './labels-layer.js';
 import { PANEL_NAMES, type InternalProperty, type PanelHost, type PanelName, type PanelState } from './panel-host.js';
 import { DEFAULT_TRANSFER_FUNCTION, transferFunctionPreset } from './presets.js';
 import { createRenderer, rendererEntry } from './renderer-registry.js';
@@ -89,6 +92,7 @@ import {
 import { viewerStyles } from './styles.js';
 
 export type { ViewerLoadDetail, ViewerProgressDetail } from './loading/load-events.js';
+export type { HoveredLabel, ViewerHoverDetail } from './labels-layer.js';
 
 export interface ViewerErrorDetail {
   /** The typed error (a VptError: `code`, and `reason` for load failures). */
@@ -96,7 +100,7 @@ export interface ViewerErrorDetail {
   code: VptError['code'];
   message: string;
   /** What failed: the volume, the renderer, the environment image, the GPU context, or an attribute value. */
-  source: 'src' | 'renderer' | 'environment' | 'context' | 'attribute' | 'export';
+  source: 'src' | 'labels' | 'renderer' | 'environment' | 'context' | 'attribute' | 'export';
 }
 export type ViewerConvergedDetail = RefinementStats & { reason: 'max-samples' | 'target-error' };
 /**
@@ -112,7 +116,9 @@ export type ViewerChangeDetail =
   | { property: 'window'; value: [number, number] }
   /** The time step shown changed (the `time` property, or playback): its index. */
   | { property: 'time'; value: number }
-  | { property: Exclude<InternalProperty, 'clip'>; value: unknown };
+  /** The Labels panel changed the label table (a colour, a visibility): the new table. */
+  | { property: 'labelTable'; value: LabelEntry[] }
+  | { property: Exclude<InternalProperty, 'clip' | 'labelTable'>; value: unknown };
 
 /** What the value probe reads under the pointer in a slice pane: the voxel and its raw value in data units. */
 export interface ProbeReading {
@@ -203,6 +209,8 @@ export class VptViewer extends LitElement implements PanelHost, SlotHolder {
     time: { type: Number, reflect: true },
     fps: { type: Number, reflect: true },
     playing: { type: Boolean, reflect: true },
+    labels: { type: String, reflect: true },
+    _labelTable: { state: true },
     _crosshair: { state: true },
     _window: { state: true },
     _probe: { state: true },
@@ -273,7 +281,7 @@ export class VptViewer extends LitElement implements PanelHost, SlotHolder {
   declare rendererParams: Record<string, unknown> | string | null;
   /** Render resolution relative to the element's device pixels (1 = full). */
   declare resolutionScale: number;
-  /** "all", "none", or a space-separated list of tf channels lights clip quality stats export. */
+  /** "all", "none", or a space-separated list of tf channels lights clip labels quality stats export. */
   declare panels: string;
   /** Panels sidebar closed (the toolbar button opens it). */
   declare collapsed: boolean;
@@ -310,6 +318,14 @@ export class VptViewer extends LitElement implements PanelHost, SlotHolder {
     this.applySync();
     this.requestUpdate();
   }
+  /**
+   * URL of a label volume (a segmentation: integer ids, 0 = background) on the grid of `src`, in
+   * any format `src` takes, drawn with `labelTable`; null: none. Its code is a lazy chunk.
+   */
+  declare labels: string | null;
+  /** The table set (by the page or the Labels panel) and the `labels` URL it was set for. */
+  declare private _labelTable: [LabelEntry[] | null, string | null];
+  private lab: LabelLayer | null = null;
   /** The time series player, loaded with the first series (time-player.ts, a lazy chunk). */
   private player: TimePlayer | null = null;
   declare private _crosshair: Voxel | null;
@@ -411,6 +427,8 @@ export class VptViewer extends LitElement implements PanelHost, SlotHolder {
     this.time = 0;
     this.fps = 10;
     this.playing = false;
+    this.labels = null;
+    this._labelTable = [null, null];
     this._crosshair = null;
     this._window = null;
     this._probe = null;
@@ -478,6 +496,23 @@ export class VptViewer extends LitElement implements PanelHost, SlotHolder {
   /** Whether the current image has reached max-samples or target-error. */
   get converged(): boolean {
     return this.session?.isConverged ?? false;
+  }
+
+  /**
+   * The label table (core's LabelEntry per id: name, linear RGB color, opacity, visible): set it
+   * after `labels`; until then (and for a new `labels` file) the file's own (names and colours
+   * where it has them, else the tab20 palette). The Labels panel edits it (`vpt-change`).
+   */
+  get labelTable(): LabelEntry[] | null {
+    const [table, url] = this._labelTable;
+    return (url === this.labels && table) || (this.lab?.table ?? null);
+  }
+  set labelTable(table: LabelEntry[] | null) {
+    this._labelTable = [table, this.labels];
+  }
+  /** The label under the pointer (the first visible one on the pixel's ray; the slice's voxel), null: none. */
+  get hoveredLabel(): HoveredLabel | null {
+    return this.lab?.hovered ?? null;
   }
 
   /** The slice panes' linked crosshair, a voxel index [i, j, k] (null before a volume is loaded). */
@@ -749,6 +784,7 @@ export class VptViewer extends LitElement implements PanelHost, SlotHolder {
     if (changed.has('src') && (this.src || changed.get('src') !== undefined))
       this.track(this.volumeLoading.loadSource(this.src?.trim().split(/\s/)[0] ?? null));
     if (changed.has('time') || changed.has('playing') || changed.has('fps')) this.player?.update();
+    if (changed.has('labels') && (this.labels || changed.get('labels') !== undefined)) this.track(this.loadLabels());
     if (changed.has('environment')) this.track(this.resolveEnvironment());
     // The crosshair and the panes' window reach the 3D scene only under crosshair-3d.
     const followed =
@@ -756,7 +792,8 @@ export class VptViewer extends LitElement implements PanelHost, SlotHolder {
       (changed.has('_crosshair' as keyof VptViewer) ||
         changed.has('_window' as keyof VptViewer) ||
         changed.has('layout'));
-    if (followed || SYNC_FIELDS.some((f) => changed.has(f))) this.applySync();
+    if (followed || changed.has('_labelTable' as keyof VptViewer) || SYNC_FIELDS.some((f) => changed.has(f)))
+      this.applySync();
     this.syncPanes(changed.has('backend') || changed.has('layout'));
   }
 
@@ -1075,6 +1112,7 @@ export class VptViewer extends LitElement implements PanelHost, SlotHolder {
     if (fx < 0 || fx > 1 || fy < 0 || fy > 1) return;
     const index = voxelAt(g, this.volume.dims, fx, fy, this._crosshair);
     this._probe = { pane: g.name, index, value: probeValue(this.volume, index) };
+    this.lab?.hoverVoxel(index, fx, fy, e.currentTarget as HTMLElement);
   }
 
   private onPaneDown(e: PointerEvent, g: PaneGeometry): void {
@@ -1617,6 +1655,7 @@ export class VptViewer extends LitElement implements PanelHost, SlotHolder {
     }
     if (!refinement) this.lightCamera = (this.camera as Camera | null) ?? null;
     this.clearError('src');
+    if (this.lab) this.track(this.lab.check());
     this.applySync();
     // Renderer parameters that follow the data (iso's default surface) may have changed.
     if (this.session && this.desiredRendererKey() !== this.rendererKey) this.track(this.switchRenderer());
@@ -1766,6 +1805,7 @@ export class VptViewer extends LitElement implements PanelHost, SlotHolder {
       densityScale: this.effectiveDensityScale(),
       seed: this.seed,
       ...(clip ? { clip } : {}),
+      ...this.lab?.scene(this.volume),
     };
   }
 
@@ -1830,6 +1870,22 @@ export class VptViewer extends LitElement implements PanelHost, SlotHolder {
     this.resolution.interactionStarted();
     this.cameraIsAuto = false;
     this.setInternal('camera', camera);
+  }
+
+  /** Load `labels` (labels-layer.ts: a lazy chunk with @vpt/core/labels, imported only here). */
+  private async loadLabels(): Promise<void> {
+    const { LabelLayer } = await import('./labels-layer.js');
+    this.lab ??= new LabelLayer(this, {
+      fail: (e) => this.fail(e, 'labels'),
+      clear: () => this.clearError('labels'),
+      apply: () => this.applySync(),
+    });
+    await this.lab.load(this.labels);
+  }
+
+  /** @internal for the panels: the Labels panel while a label volume is loaded. */
+  labelsPanel() {
+    return this.lab?.panel();
   }
 
   // ——— errors ———

@@ -13,7 +13,7 @@ export interface LoadProgress {
 }
 
 export interface LoadOptions {
-  format?: 'auto' | 'raw' | 'nrrd' | 'nifti' | 'dicom';
+  format?: 'auto' | 'raw' | 'nrrd' | 'nifti' | 'dicom' | 'ome-zarr';
   raw?: {
     dims: [number, number, number];
     type: 'uint8' | 'uint16' | 'int16' | 'float32';
@@ -32,6 +32,8 @@ export interface LoadOptions {
   time?: number;
   /** OME-Zarr: the indices along `c` read into one multichannel volume. */
   zarr?: { channels?: number[] };
+  /** A label volume: integer ids kept (never normalized or averaged), @vpt/loaders' LoadOptions.labels. */
+  labels?: boolean;
 }
 
 /**
