@@ -13,9 +13,8 @@ import { recordPageErrors } from './helpers/page-errors.js';
 // What is checked here: the entry is listed, opens in <vpt-viewer> with the dataset's volume
 // (dims, type, channels as the manifest says), the CT entry sets the viewer's `labels` property
 // to the label volume's URL, and that label volume loads through the viewer's loaders on the CT's
-// grid (uint8, the ids 0 and 1). Drawing the labels (the `labels` attribute reflected, a label
-// table) and rendering every channel in its own colour come with the labels and channels work
-// of the viewer, merged separately; those assertions are marked NEEDS-MERGE and left out.
+// grid (uint8, the ids 0 and 1), and the scene the viewer draws holds it with a table naming
+// label 1; a multichannel store shows every channel, each in its own colour.
 const FETCHED = fileURLToPath(new URL('../data/fetched/', import.meta.url));
 const CT = 'ct_chest_pyradiomics_lung2_512x512x61_int16';
 const LABELS = 'ct_chest_pyradiomics_lung2_label_512x512x61_uint8';
@@ -67,6 +66,13 @@ describe.skipIf(!ctFetched)(
         const el = w.gallery.viewer;
         const entry = w.gallery.catalog.find((d: any) => d.id === `${ct}-labels`);
         const v = el.loadedVolume;
+        // The label volume the viewer draws over the CT (its lazy labels layer has read the URL).
+        await el.whenSettled();
+        const scene = el.context?.getScene();
+        const drawnLabels = scene?.labels
+          ? { dims: scene.labels.volume.dims, ids: scene.labels.table.map((e: any) => e.id) }
+          : null;
+        const table = (el.labelTable ?? []).map((e: any) => e.id);
         // The label volume through the viewer's own loaders: a second element with it as src.
         const probe = document.createElement('vpt-viewer') as any;
         probe.setAttribute('panels', 'none');
@@ -103,6 +109,8 @@ describe.skipIf(!ctFetched)(
           spacing: v.spacing,
           ones,
           other,
+          drawnLabels,
+          table,
         };
       }, CT);
       // Another dataset clears the labels (the preset sets labels: null).
@@ -123,8 +131,10 @@ describe.skipIf(!ctFetched)(
       expect(r.other).toBe(0);
       expect(r.ones).toBeGreaterThan(0);
       expect(afterOther).toBeNull();
-      // NEEDS-MERGE (labels helper): el.getAttribute('labels') === r.labelsUrl (the reflected
-      // attribute), the scene's labels volume set from it, and the lesion drawn over the CT.
+      // The scene the context draws holds the label volume on the CT grid, its table label 1.
+      expect(r.drawnLabels?.dims).toEqual(r.dims);
+      expect(r.drawnLabels?.ids).toContain(1);
+      expect(r.table).toContain(1);
       expect(errors).toEqual([]);
     });
   },
@@ -146,6 +156,8 @@ describe.skipIf(!store)(
           channels: entry.channels,
           dims: v.dims,
           current: w.gallery.current.dataset.id,
+          viewerChannels: (w.gallery.viewer.channels ?? []).length,
+          colors: (w.gallery.viewer.channels ?? []).map((c: any) => c.color.join(',')),
         };
       }, id);
       await page.close();
@@ -154,8 +166,9 @@ describe.skipIf(!store)(
       expect(r.channels).toBeGreaterThanOrEqual(2);
       expect(r.title).toMatch(/2 channels|channels/);
       expect(r.dims).toHaveLength(3);
-      // NEEDS-MERGE (channels helper): loadedVolume.channels === r.channels (today the viewer
-      // shows the first channel of a store), each channel in its own default colour.
+      // Every channel is drawn, each in its own default colour.
+      expect(r.viewerChannels).toBe(r.channels);
+      expect(new Set(r.colors).size).toBe(r.channels);
       expect(errors.filter((e) => !/404/.test(e))).toEqual([]);
     });
   },
