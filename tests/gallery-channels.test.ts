@@ -57,7 +57,7 @@ async function open(dataset: string) {
 }
 
 describe.skipIf(!ctFetched)(
-  `gallery: CT chest with lung segmentation${ctFetched ? '' : ' (skipped: run pnpm data:fetch for the chest CT and its label map)'}`,
+  `gallery: CT chest with its segmentation${ctFetched ? '' : ' (skipped: run pnpm data:fetch for the chest CT and its label map)'}`,
   () => {
     it('is listed, opens the CT with `labels` set to the label volume, which loads on the CT grid', async () => {
       const { page, errors } = await open(`${CT}-labels`);
@@ -118,7 +118,7 @@ describe.skipIf(!ctFetched)(
       const afterOther = await page.evaluate(() => (window as any).gallery.viewer.labels);
       await page.close();
       expect(r.listed).toBe(true);
-      expect(r.title).toMatch(/^CT chest with lung segmentation/);
+      expect(r.title).toMatch(/^CT chest with its segmentation/);
       expect(r.current).toBe(`${CT}-labels`);
       expect(r.src).toBe(r.ctUrl);
       expect(r.labelsUrl).toBe(`data/fetched/${LABELS}.json`);

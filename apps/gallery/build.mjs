@@ -213,6 +213,9 @@ function withLabels(datasets) {
         title: l.meta.gallery_title ?? `${d.title} with its segmentation`,
         labels: l.url,
         labelNames: l.meta.labels ?? [],
+        // A segmentation lies inside the body, where EAM's and MCRT's fitted functions hide it
+        // behind soft tissue: MIP draws its colour over the image.
+        renderer: 'mip',
         bytes: (d.bytes ?? 0) + l.bytes,
         sameAs: d.id,
       });
