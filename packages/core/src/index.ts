@@ -164,3 +164,17 @@ export {
   type ParamSpecs,
 } from './validation/params.js';
 export { validateSceneForDevice } from './validation/device.js';
+export { SAMPLE_DIMS as GLSL_SAMPLE_DIMS } from './shaders/blue-noise.glsl.js';
+export { SAMPLE_DIMS as WGSL_SAMPLE_DIMS } from './shaders/blue-noise.wgsl.js';
+export {
+  BLUE_NOISE_SIZE,
+  SAMPLERS,
+  SAMPLE_DIM,
+  SAMPLE_DIM_ALPHA,
+  blueNoiseMask,
+  blueNoiseTexture,
+  blueNoiseDim,
+  voidAndCluster,
+  samplerParam,
+  type Sampler,
+} from './shaders/blue-noise.js';
