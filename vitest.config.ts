@@ -18,6 +18,11 @@ export default defineConfig({
         find: /^@vpt\/core\/labels$/,
         replacement: `${fileURLToPath(new URL('./packages/', import.meta.url))}core/src/scene/labels.ts`,
       },
+      // Core's lazily loaded blue-noise module (@vpt/core/blue-noise).
+      {
+        find: /^@vpt\/core\/blue-noise$/,
+        replacement: `${fileURLToPath(new URL('./packages/', import.meta.url))}core/src/shaders/blue-noise-mask.ts`,
+      },
       // A renderer package's descriptor subpath (@vpt/renderer-<name>/descriptor).
       {
         find: /^@vpt\/(renderer-[a-z0-9-]+)\/descriptor$/,

@@ -59,7 +59,7 @@ describe('blue-noise sampling', () => {
             if (key === 'gl') mask = await ctx.readAuxiliaryTexture('blueNoise');
             ctx.dispose();
           }
-          const cpu = core.blueNoiseMask();
+          const cpu = (await core.loadBlueNoise()).blueNoiseMask();
           let maskDiff = 0;
           for (let i = 0; i < cpu.length; i++) if (mask![i * (mask!.length / cpu.length)] !== cpu[i]) maskDiff++;
           return {

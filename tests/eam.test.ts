@@ -1,8 +1,8 @@
 import { describe, expect, it } from 'vitest';
 import { tf1d } from './helpers/test-scene.js';
 import { DEFAULT_EAM_CUTOFF } from '@vpt/renderer-eam';
+import { blueNoiseDim } from '../packages/core/src/shaders/blue-noise-mask.js';
 import {
-  blueNoiseDim,
   rasterizeTransferFunction,
   reference,
   TF_RESOLUTION,

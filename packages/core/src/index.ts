@@ -166,15 +166,13 @@ export {
 export { validateSceneForDevice } from './validation/device.js';
 export { SAMPLE_DIMS as GLSL_SAMPLE_DIMS } from './shaders/blue-noise.glsl.js';
 export { SAMPLE_DIMS as WGSL_SAMPLE_DIMS } from './shaders/blue-noise.wgsl.js';
+// The mask, its CPU twin and the shader bodies load lazily (loadBlueNoise, or the subpath @vpt/core/blue-noise).
 export {
   BLUE_NOISE_SIZE,
   SAMPLERS,
   SAMPLE_DIM,
-  SAMPLE_DIM_ALPHA,
-  blueNoiseMask,
   blueNoiseTexture,
-  blueNoiseDim,
-  voidAndCluster,
+  loadBlueNoise,
   samplerParam,
   type Sampler,
 } from './shaders/blue-noise.js';

@@ -5,8 +5,16 @@ import {
   blueNoiseMask,
   SAMPLE_DIM_ALPHA,
   voidAndCluster,
-} from '../src/shaders/blue-noise.js';
+} from '../src/shaders/blue-noise-mask.js';
 import { pcgHash } from '../src/reference/cpu-reference.js';
+import { isVptError } from '../src/errors.js';
+import { preprocess } from '../src/shaders/preprocess.js';
+import { BLUE_NOISE_PLACEHOLDER, blueNoiseTexture, loadBlueNoise, withBlueNoise } from '../src/shaders/blue-noise.js';
+import { SAMPLE_DIMS as GLSL_SAMPLE_DIMS } from '../src/shaders/blue-noise.glsl.js';
+import { SAMPLE_DIMS as WGSL_SAMPLE_DIMS } from '../src/shaders/blue-noise.wgsl.js';
+import fs from 'node:fs';
+import path from 'node:path';
+import { fileURLToPath } from 'node:url';
 
 const N = BLUE_NOISE_SIZE;
 
@@ -142,5 +150,63 @@ describe('blueNoiseDim (CPU twin of the kernels)', () => {
     expect(chi2).toBeLessThan(37.7);
     // Correlation of two dimensions: sd 1/√K of the normalized product; 4σ.
     expect(Math.abs((corr / K) * 12)).toBeLessThan(4 / Math.sqrt(K));
+  });
+});
+
+describe('the lazy blue-noise module', () => {
+  const SRC = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '../src');
+  /** Source files reached from `file` by static imports (dynamic import() not followed). */
+  function staticGraph(file: string, seen = new Set<string>()): Set<string> {
+    if (seen.has(file)) return seen;
+    seen.add(file);
+    const text = fs.readFileSync(file, 'utf8');
+    for (const m of text.matchAll(
+      /(?:^|[;\s}])(?:import|export)\s+(?!type\b)(?:[\w*{}\s,$]+\s*from\s*)?['"](\.[^'"]+)['"]/g,
+    )) {
+      const target = path.resolve(path.dirname(file), m[1]!.replace(/\.js$/, '.ts'));
+      if (fs.existsSync(target)) staticGraph(target, seen);
+    }
+    return seen;
+  }
+
+  it("is not reached from core's index by static imports (so the viewer's entry does not carry it)", () => {
+    const graph = [...staticGraph(path.join(SRC, 'index.ts'))].map((f) => path.relative(SRC, f));
+    // The walk does reach the sampler's small part and the context that loads the rest.
+    expect(graph).toContain(path.join('shaders', 'blue-noise.ts'));
+    expect(graph).toContain(path.join('context', 'render-context.ts'));
+    for (const lazy of ['blue-noise-mask.ts', 'blue-noise-dims.glsl.ts', 'blue-noise-dims.wgsl.ts'])
+      expect(graph).not.toContain(path.join('shaders', lazy));
+  });
+
+  it('refuses typed before it is loaded, then fills the BLUE_NOISE variant of SAMPLE_DIMS in both languages', async () => {
+    const variant = (src: string, on: boolean) => preprocess(src, { BLUE_NOISE: on });
+    // Before loadBlueNoise(): a typed error, not a kernel without rngDim or an empty mask.
+    expect(() => withBlueNoise(variant(GLSL_SAMPLE_DIMS, true), 'glsl')).toThrow(
+      expect.objectContaining({ code: 'load-failed' }),
+    );
+    let caught: unknown;
+    try {
+      blueNoiseTexture().create!();
+    } catch (e) {
+      caught = e;
+    }
+    expect(isVptError(caught, 'load-failed')).toBe(true);
+    await loadBlueNoise();
+    for (const [lang, src] of [
+      ['glsl', GLSL_SAMPLE_DIMS],
+      ['wgsl', WGSL_SAMPLE_DIMS],
+    ] as const) {
+      const off = variant(src, false);
+      // PCG variant: no placeholder, returned unchanged, one rngDim (the PCG one) and no mask read.
+      expect(off).not.toContain(BLUE_NOISE_PLACEHOLDER);
+      expect(withBlueNoise(off, lang)).toBe(off);
+      const on = withBlueNoise(variant(src, true), lang);
+      expect(on).not.toContain(BLUE_NOISE_PLACEHOLDER);
+      expect(on.match(/\brngDim\s*\(/g)!.length).toBeGreaterThanOrEqual(3); // its definition and the jitter's two calls
+      expect(on).toContain(lang === 'glsl' ? 'texelFetch(blueNoise' : 'textureLoad(blueNoise');
+      expect(on).toContain('blueNoiseDim(vptDimPixel, dim)');
+    }
+    const tex = blueNoiseTexture().create!();
+    expect(tex.data).toBe(blueNoiseMask());
   });
 });
