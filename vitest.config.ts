@@ -18,10 +18,15 @@ export default defineConfig({
         find: /^@vpt\/core\/labels$/,
         replacement: `${fileURLToPath(new URL('./packages/', import.meta.url))}core/src/scene/labels.ts`,
       },
-      // Core's lazily loaded blue-noise module (@vpt/core/blue-noise).
+      // Core's blue-noise sampler subpath (@vpt/core/blue-noise).
       {
         find: /^@vpt\/core\/blue-noise$/,
-        replacement: `${fileURLToPath(new URL('./packages/', import.meta.url))}core/src/shaders/blue-noise-mask.ts`,
+        replacement: `${fileURLToPath(new URL('./packages/', import.meta.url))}core/src/shaders/blue-noise.ts`,
+      },
+      // Core's sampling chunks subpath (@vpt/core/sampling).
+      {
+        find: /^@vpt\/core\/sampling$/,
+        replacement: `${fileURLToPath(new URL('./packages/', import.meta.url))}core/src/shaders/sampling.ts`,
       },
       // A renderer package's descriptor subpath (@vpt/renderer-<name>/descriptor).
       {

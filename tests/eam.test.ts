@@ -1,7 +1,7 @@
 import { describe, expect, it } from 'vitest';
 import { tf1d } from './helpers/test-scene.js';
 import { DEFAULT_EAM_CUTOFF } from '@vpt/renderer-eam';
-import { blueNoiseDim } from '../packages/core/src/shaders/blue-noise-mask.js';
+import { blueNoiseDim } from '../packages/core/src/shaders/blue-noise.js';
 import {
   rasterizeTransferFunction,
   reference,

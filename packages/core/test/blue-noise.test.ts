@@ -5,13 +5,8 @@ import {
   blueNoiseMask,
   SAMPLE_DIM_ALPHA,
   voidAndCluster,
-} from '../src/shaders/blue-noise-mask.js';
+} from '../src/shaders/blue-noise.js';
 import { pcgHash } from '../src/reference/cpu-reference.js';
-import { isVptError } from '../src/errors.js';
-import { preprocess } from '../src/shaders/preprocess.js';
-import { BLUE_NOISE_PLACEHOLDER, blueNoiseTexture, loadBlueNoise, withBlueNoise } from '../src/shaders/blue-noise.js';
-import { SAMPLE_DIMS as GLSL_SAMPLE_DIMS } from '../src/shaders/blue-noise.glsl.js';
-import { SAMPLE_DIMS as WGSL_SAMPLE_DIMS } from '../src/shaders/blue-noise.wgsl.js';
 import fs from 'node:fs';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
@@ -153,7 +148,7 @@ describe('blueNoiseDim (CPU twin of the kernels)', () => {
   });
 });
 
-describe('the lazy blue-noise module', () => {
+describe('the renderer-only subpaths (@vpt/core/blue-noise, @vpt/core/sampling)', () => {
   const SRC = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '../src');
   /** Source files reached from `file` by static imports (dynamic import() not followed). */
   function staticGraph(file: string, seen = new Set<string>()): Set<string> {
@@ -171,42 +166,17 @@ describe('the lazy blue-noise module', () => {
 
   it("is not reached from core's index by static imports (so the viewer's entry does not carry it)", () => {
     const graph = [...staticGraph(path.join(SRC, 'index.ts'))].map((f) => path.relative(SRC, f));
-    // The walk does reach the sampler's small part and the context that loads the rest.
-    expect(graph).toContain(path.join('shaders', 'blue-noise.ts'));
-    expect(graph).toContain(path.join('context', 'render-context.ts'));
-    for (const lazy of ['blue-noise-mask.ts', 'blue-noise-dims.glsl.ts', 'blue-noise-dims.wgsl.ts'])
+    // The walk does reach the parameter's choices and the shared shader chunks.
+    expect(graph).toContain(path.join('shaders', 'sampler-param.ts'));
+    expect(graph).toContain(path.join('shaders', 'common.glsl.ts'));
+    // Neither are the sampling chunks (@vpt/core/sampling), which only ISO's and MCRT's kernels include.
+    for (const lazy of [
+      'blue-noise.ts',
+      'blue-noise.glsl.ts',
+      'blue-noise.wgsl.ts',
+      'sampling.glsl.ts',
+      'sampling.wgsl.ts',
+    ])
       expect(graph).not.toContain(path.join('shaders', lazy));
-  });
-
-  it('refuses typed before it is loaded, then fills the BLUE_NOISE variant of SAMPLE_DIMS in both languages', async () => {
-    const variant = (src: string, on: boolean) => preprocess(src, { BLUE_NOISE: on });
-    // Before loadBlueNoise(): a typed error, not a kernel without rngDim or an empty mask.
-    expect(() => withBlueNoise(variant(GLSL_SAMPLE_DIMS, true), 'glsl')).toThrow(
-      expect.objectContaining({ code: 'load-failed' }),
-    );
-    let caught: unknown;
-    try {
-      blueNoiseTexture().create!();
-    } catch (e) {
-      caught = e;
-    }
-    expect(isVptError(caught, 'load-failed')).toBe(true);
-    await loadBlueNoise();
-    for (const [lang, src] of [
-      ['glsl', GLSL_SAMPLE_DIMS],
-      ['wgsl', WGSL_SAMPLE_DIMS],
-    ] as const) {
-      const off = variant(src, false);
-      // PCG variant: no placeholder, returned unchanged, one rngDim (the PCG one) and no mask read.
-      expect(off).not.toContain(BLUE_NOISE_PLACEHOLDER);
-      expect(withBlueNoise(off, lang)).toBe(off);
-      const on = withBlueNoise(variant(src, true), lang);
-      expect(on).not.toContain(BLUE_NOISE_PLACEHOLDER);
-      expect(on.match(/\brngDim\s*\(/g)!.length).toBeGreaterThanOrEqual(3); // its definition and the jitter's two calls
-      expect(on).toContain(lang === 'glsl' ? 'texelFetch(blueNoise' : 'textureLoad(blueNoise');
-      expect(on).toContain('blueNoiseDim(vptDimPixel, dim)');
-    }
-    const tex = blueNoiseTexture().create!();
-    expect(tex.data).toBe(blueNoiseMask());
   });
 });

@@ -3,7 +3,7 @@
  * viewer look. Side-effect free and kernel free, so user interfaces import it alone
  * (`@vpt/renderer-eam/descriptor`).
  */
-import { defineRenderer, samplerParam, stepInVoxels, type ParamsOf } from '@vpt/core';
+import { defineRenderer, SAMPLER_PARAM, stepInVoxels, type ParamsOf } from '@vpt/core';
 
 /**
  * The default step in voxels: the pixel jitter, not the step, dominates EAM's early error at
@@ -54,7 +54,7 @@ export const EAM_DESCRIPTOR = defineRenderer({
      * pixel by a blue-noise mask (core's shaders/blue-noise.ts); 'pcg': the PCG stream. Default: by
      * measured iterations to 30/35 dB (docs/benchmarks.md, "Blue-noise sampling").
      */
-    sampler: samplerParam('pcg'),
+    sampler: SAMPLER_PARAM,
   },
   writesGuides: true,
   needs: { transferFunction: true, lights: false, environment: true },

@@ -1,6 +1,5 @@
 import {
   BaseRenderer,
-  blueNoiseTexture,
   COPY_ACCUMULATION_RENDER,
   DEFAULT_SKIP_CELL_SIZE,
   GRID_CELLS_FIELD,
@@ -18,6 +17,7 @@ import {
   type UniformValues,
   type VolumeBinding,
 } from '@vpt/core';
+import { blueNoiseTexture } from '@vpt/core/blue-noise';
 import * as glsl from './kernels/eam.glsl.js';
 import * as wgsl from './kernels/eam.wgsl.js';
 import { EAM_DESCRIPTOR, type EamParams } from './descriptor.js';

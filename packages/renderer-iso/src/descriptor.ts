@@ -6,8 +6,7 @@
 import {
   constantDefault,
   defineRenderer,
-  SAMPLERS,
-  samplerParam,
+  SAMPLER_PARAM,
   stepInVoxels,
   VptError,
   type ParamsOf,
@@ -180,7 +179,7 @@ export const ISO_DESCRIPTOR = defineRenderer({
      * 'pcg': the PCG stream. Default: by measured iterations to 30/35 dB (docs/benchmarks.md,
      * "Blue-noise sampling").
      */
-    sampler: samplerParam('pcg'),
+    sampler: SAMPLER_PARAM,
   },
   check: (p) => void resolveIsoParams(p),
   writesGuides: true,
@@ -241,9 +240,8 @@ export function resolveIsoParams(p: IsoParams): ResolvedIsoParams {
   const output = p.output ?? DEFAULT('output');
   if (!ISO_DESCRIPTOR.params.output.values.includes(output))
     bad(`output must be one of ${ISO_DESCRIPTOR.params.output.values.join(', ')}, got ${JSON.stringify(p.output)}`);
+  // The enum's values are checked by validateParams (the descriptor's spec).
   const sampler = p.sampler ?? DEFAULT('sampler');
-  if (!SAMPLERS.includes(sampler))
-    bad(`sampler must be one of ${SAMPLERS.join(', ')}, got ${JSON.stringify(p.sampler)}`);
   for (const k of ['shadows', 'ambientOcclusion', 'jitter', 'emptySpaceSkipping'] as const) {
     if (p[k] !== undefined && typeof p[k] !== 'boolean') bad(`${k} must be true or false, got ${JSON.stringify(p[k])}`);
   }

@@ -1,6 +1,5 @@
 import {
   BaseRenderer,
-  blueNoiseTexture,
   buildEnvironmentSampling,
   DEFAULT_SKIP_CELL_SIZE,
   environmentEmits,
@@ -20,6 +19,7 @@ import {
   type UniformValues,
   type VolumeBinding,
 } from '@vpt/core';
+import { blueNoiseTexture } from '@vpt/core/blue-noise';
 import * as glsl from './kernels/iso.glsl.js';
 import * as wgsl from './kernels/iso.wgsl.js';
 import { ISO_DESCRIPTOR } from './descriptor.js';

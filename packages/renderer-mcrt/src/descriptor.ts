@@ -3,7 +3,7 @@
  * viewer look, and the rules across parameters. Side-effect free and kernel free, so user
  * interfaces import it alone (`@vpt/renderer-mcrt/descriptor`).
  */
-import { defineRenderer, SAMPLERS, samplerParam, VptError, type ParamsOf } from '@vpt/core';
+import { defineRenderer, SAMPLER_PARAM, VptError, type ParamsOf } from '@vpt/core';
 
 /** Shadow-ray (transmittance) estimator. Free flights always use delta tracking. */
 export type TrackingMode = 'delta' | 'ratio' | 'residual';
@@ -120,7 +120,7 @@ export const MCRT_DESCRIPTOR = defineRenderer({
      * shaders/blue-noise.ts); the rest of the path keeps the PCG stream. 'pcg': the PCG stream
      * throughout. Default: by measured iterations to 30/35 dB (docs/benchmarks.md, "Blue-noise sampling").
      */
-    sampler: samplerParam('pcg'),
+    sampler: SAMPLER_PARAM,
   },
   check: (p) => void resolveMcrtParams(p),
   writesGuides: true,
@@ -160,7 +160,6 @@ export function resolveMcrtParams(p: McrtParams): ResolvedMcrtParams {
   oneOf('environmentSampling', r.environmentSampling, ['mis', 'light', 'phase'] as const);
   oneOf('misHeuristic', r.misHeuristic, ['power', 'balance'] as const);
   oneOf('debugOutput', r.debugOutput, ['none', 'transmittance', 'fetches'] as const);
-  oneOf('sampler', r.sampler, SAMPLERS);
   if (typeof r.specialize !== 'boolean')
     throw new VptError('invalid-scene', `MCRT: specialize must be a boolean, got ${JSON.stringify(r.specialize)}`);
   if (typeof r.majorantGrid !== 'boolean')

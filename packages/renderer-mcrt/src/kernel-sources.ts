@@ -1,15 +1,6 @@
-import {
-  GLSL_ENVIRONMENT_MAP,
-  GLSL_SAMPLE_DIMS,
-  GLSL_SAMPLING,
-  HALF_MEANS_INTEGRATE,
-  preprocess,
-  WGSL_ENVIRONMENT_MAP,
-  WGSL_SAMPLE_DIMS,
-  WGSL_SAMPLING,
-  type Flags,
-  type KernelSource,
-} from '@vpt/core';
+import { HALF_MEANS_INTEGRATE, preprocess, type Flags, type KernelSource } from '@vpt/core';
+import { GLSL_ENVIRONMENT_MAP, GLSL_SAMPLING, WGSL_ENVIRONMENT_MAP, WGSL_SAMPLING } from '@vpt/core/sampling';
+import { GLSL_SAMPLE_DIMS, WGSL_SAMPLE_DIMS } from '@vpt/core/blue-noise';
 import type { McrtFeatures } from './features.js';
 import * as glslPath from './kernels/path.glsl.js';
 import * as wgslPath from './kernels/path.wgsl.js';

@@ -1,6 +1,5 @@
 import {
   BaseRenderer,
-  blueNoiseTexture,
   validateParams,
   buildEnvironmentSampling,
   environmentTextures,
@@ -28,6 +27,7 @@ import {
   paramUniformFields,
   paramUniformValues,
 } from '@vpt/core';
+import { blueNoiseTexture } from '@vpt/core/blue-noise';
 // The CPU grid of what the kernel draws: the channels' sum, plus the labels' (label volumes' subpath).
 import { sceneMajorantGrid } from '@vpt/core/labels';
 import { MCRT_DESCRIPTOR } from './descriptor.js';

@@ -3,7 +3,7 @@
  * viewer look. Side-effect free and kernel free, so user interfaces import it alone
  * (`@vpt/renderer-mip/descriptor`).
  */
-import { defineRenderer, samplerParam, stepInVoxels, type ParamsOf } from '@vpt/core';
+import { defineRenderer, SAMPLER_PARAM, stepInVoxels, type ParamsOf } from '@vpt/core';
 
 /**
  * MIP's default step in voxels of the volume's longest side. The running maximum over random
@@ -34,7 +34,7 @@ export const MIP_DESCRIPTOR = defineRenderer({
      * pixel by a blue-noise mask (core's shaders/blue-noise.ts); 'pcg': the PCG stream. Default: by
      * measured iterations to 30/35 dB (docs/benchmarks.md, "Blue-noise sampling").
      */
-    sampler: samplerParam('pcg'),
+    sampler: SAMPLER_PARAM,
   },
   writesGuides: false,
   needs: { transferFunction: false, lights: false, environment: false },

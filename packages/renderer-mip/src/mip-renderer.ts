@@ -1,6 +1,5 @@
 import {
   BaseRenderer,
-  blueNoiseTexture,
   DEFAULT_SKIP_CELL_SIZE,
   GRID_CELLS_FIELD,
   gridGeometry,
@@ -17,6 +16,7 @@ import {
   type VolumeBinding,
   VptError,
 } from '@vpt/core';
+import { blueNoiseTexture } from '@vpt/core/blue-noise';
 import * as glsl from './kernels/mip.glsl.js';
 import * as wgsl from './kernels/mip.wgsl.js';
 import { DEFAULT_MIP_STEP_VOXELS, MIP_DESCRIPTOR, type MipParams } from './descriptor.js';

@@ -8,7 +8,6 @@ import { validateScene } from '../scene/scene.js';
 import { TF_RESOLUTION } from '../scene/transfer-function.js';
 import { BYTES_PER_TEXEL } from '../gpu/backend.js';
 import { commonChunks, PASS_CHUNKS, type CommonChunkOptions } from '../shaders/common.js';
-import { loadBlueNoise, withBlueNoise } from '../shaders/blue-noise.js';
 import { preprocess } from '../shaders/preprocess.js';
 import { validateGradientAtlasForDevice, validateSceneForDevice } from '../validation/device.js';
 import { SCENE_UNIFORM_FIELDS, sceneUniformValues } from '../shaders/scene-uniforms.js';
@@ -191,10 +190,6 @@ export class RenderContext {
   }
 
   static async create(opts: RenderContextOptions): Promise<RenderContext> {
-    // The blue-noise sampler's module (a lazy chunk of a bundle), fetched beside the backend so
-    // that the synchronous paths (iterate, readAuxiliaryTexture) find it; a failure surfaces
-    // only where a 'blue-noise' variant needs it (precompile() tries again).
-    const blueNoise = loadBlueNoise().catch(() => null);
     const backend = await createBackend({
       backend: opts.backend ?? 'auto',
       canvas: opts.canvas,
@@ -202,7 +197,6 @@ export class RenderContext {
       ...(opts.device ? { device: opts.device } : {}),
     });
     try {
-      await blueNoise;
       const ctx = new RenderContext(backend, opts);
       if (opts.temporal !== undefined) await ctx.setTemporal(opts.temporal);
       return ctx;
@@ -990,13 +984,8 @@ export class RenderContext {
       ): PassDescriptor => ({
         label: `${r.name}.${stage}`,
         // Kernels mark variants with #if lines on their feature flags; one preprocessor cuts both languages.
-        // withBlueNoise: a BLUE_NOISE variant's sampler body from the lazy blue-noise module.
-        glsl:
-          (stage === 'generate' ? generateChunks : PASS_CHUNKS).glsl +
-          withBlueNoise(preprocess(r.kernels[stage].glsl, features), 'glsl'),
-        wgsl:
-          (stage === 'generate' ? generateChunks : PASS_CHUNKS).wgsl +
-          withBlueNoise(preprocess(r.kernels[stage].wgsl, features), 'wgsl'),
+        glsl: (stage === 'generate' ? generateChunks : PASS_CHUNKS).glsl + preprocess(r.kernels[stage].glsl, features),
+        wgsl: (stage === 'generate' ? generateChunks : PASS_CHUNKS).wgsl + preprocess(r.kernels[stage].wgsl, features),
         uniforms: layout,
         textures,
         outputs,
@@ -1051,8 +1040,6 @@ export class RenderContext {
     this.assertAlive();
     if (!this.scene || this.backend.isLost) return;
     const scene = this.scene;
-    // A 'blue-noise' variant's kernel body and mask (normally loaded by create()).
-    if (this._renderer.features(scene).BLUE_NOISE) await loadBlueNoise();
     if (this.passes && this.precompiledFor === scene) return;
     this.precompiledFor = scene;
     const specs = this.resources.auxiliarySpecs();

@@ -1,4 +1,5 @@
-import { GLSL_CELL_WALK, GLSL_DEPTH_LIMIT, GLSL_SAMPLE_DIMS, MAX_MARCH_STEPS } from '@vpt/core';
+import { GLSL_CELL_WALK, GLSL_DEPTH_LIMIT, MAX_MARCH_STEPS } from '@vpt/core';
+import { GLSL_SAMPLE_DIMS } from '@vpt/core/blue-noise';
 
 // Emission-absorption (Max 1995, "Optical models for direct volume rendering", IEEE TVCG 1(2), the emission + absorption model)
 // by a stratified, randomly offset ray march; alpha = 1 - exp(-sigma_t * segment length),

@@ -1,4 +1,5 @@
-import { MAX_MARCH_STEPS, WGSL_CELL_WALK, WGSL_DEPTH_LIMIT, WGSL_SAMPLE_DIMS } from '@vpt/core';
+import { MAX_MARCH_STEPS, WGSL_CELL_WALK, WGSL_DEPTH_LIMIT } from '@vpt/core';
+import { WGSL_SAMPLE_DIMS } from '@vpt/core/blue-noise';
 
 // Emission-absorption (Max 1995, "Optical models for direct volume rendering", IEEE TVCG 1(2), the emission + absorption model)
 // by a stratified, randomly offset ray march; alpha = 1 - exp(-sigma_t * segment length).

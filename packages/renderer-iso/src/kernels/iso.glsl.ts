@@ -1,11 +1,6 @@
-import {
-  GLSL_CELL_WALK,
-  GLSL_SAMPLE_DIMS,
-  GLSL_DEPTH_LIMIT,
-  GLSL_ENVIRONMENT_MAP,
-  GLSL_SAMPLING,
-  MAX_MARCH_STEPS,
-} from '@vpt/core';
+import { GLSL_CELL_WALK, GLSL_DEPTH_LIMIT, MAX_MARCH_STEPS } from '@vpt/core';
+import { GLSL_ENVIRONMENT_MAP, GLSL_SAMPLING } from '@vpt/core/sampling';
+import { GLSL_SAMPLE_DIMS } from '@vpt/core/blue-noise';
 
 // Monte Carlo isosurface rendering (Lesar et al. 2018, "Real-Time Interactive Platform-
 // Agnostic Volumetric Path Tracing in WebGL 2.0", the ISO renderer): each iteration finds

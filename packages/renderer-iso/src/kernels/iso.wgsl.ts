@@ -1,11 +1,6 @@
-import {
-  WGSL_CELL_WALK,
-  WGSL_SAMPLE_DIMS,
-  WGSL_DEPTH_LIMIT,
-  WGSL_ENVIRONMENT_MAP,
-  WGSL_SAMPLING,
-  MAX_MARCH_STEPS,
-} from '@vpt/core';
+import { WGSL_CELL_WALK, WGSL_DEPTH_LIMIT, MAX_MARCH_STEPS } from '@vpt/core';
+import { WGSL_ENVIRONMENT_MAP, WGSL_SAMPLING } from '@vpt/core/sampling';
+import { WGSL_SAMPLE_DIMS } from '@vpt/core/blue-noise';
 
 // Monte Carlo isosurface rendering (Lesar et al. 2018, the ISO renderer) with stochastic
 // transparency (Enderton et al. 2010): twin of iso.glsl.ts, same arithmetic in the same

@@ -1,4 +1,5 @@
-import { GLSL_CELL_WALK, GLSL_DEPTH_LIMIT, GLSL_SAMPLE_DIMS, MAX_MARCH_STEPS } from '@vpt/core';
+import { GLSL_CELL_WALK, GLSL_DEPTH_LIMIT, MAX_MARCH_STEPS } from '@vpt/core';
+import { GLSL_SAMPLE_DIMS } from '@vpt/core/blue-noise';
 
 // Monte Carlo maximum intensity projection (Lesar, Bohak, Marolt 2018, "Real-Time Interactive Platform-Agnostic Volumetric Path Tracing in WebGL 2.0", its MIP renderer): each
 // iteration marches the pixel-centre ray with a random sample offset; the accumulation keeps the

@@ -1,4 +1,5 @@
-import { MAX_MARCH_STEPS, WGSL_CELL_WALK, WGSL_DEPTH_LIMIT, WGSL_SAMPLE_DIMS } from '@vpt/core';
+import { MAX_MARCH_STEPS, WGSL_CELL_WALK, WGSL_DEPTH_LIMIT } from '@vpt/core';
+import { WGSL_SAMPLE_DIMS } from '@vpt/core/blue-noise';
 
 // Monte Carlo maximum intensity projection (Lesar, Bohak, Marolt 2018, Web3D, its MIP renderer): each
 // iteration marches the pixel-centre ray with a random sample offset; the accumulation keeps the max.
