@@ -57,6 +57,8 @@ export const EAM_DESCRIPTOR = defineRenderer({
     sampler: SAMPLER_PARAM,
   },
   writesGuides: true,
+  // Nearly noise-free at 2 samples: in an orbit the denoiser only blurred (docs/benchmarks.md, "Orbit").
+  denoiseWhileMoving: false,
   needs: { transferFunction: true, lights: false, environment: true },
   // The palette's emissive top (2.2) saturates a dense volume; 0.55× keeps its structure.
   look: { densityScale: 60, environment: [0.03, 0.035, 0.05], transferFunction: { scaleColors: 0.55 } },
