@@ -18,6 +18,16 @@ export default defineConfig({
         find: /^@vpt\/core\/labels$/,
         replacement: `${fileURLToPath(new URL('./packages/', import.meta.url))}core/src/scene/labels.ts`,
       },
+      // Core's blue-noise sampler subpath (@vpt/core/blue-noise).
+      {
+        find: /^@vpt\/core\/blue-noise$/,
+        replacement: `${fileURLToPath(new URL('./packages/', import.meta.url))}core/src/shaders/blue-noise.ts`,
+      },
+      // Core's sampling chunks subpath (@vpt/core/sampling).
+      {
+        find: /^@vpt\/core\/sampling$/,
+        replacement: `${fileURLToPath(new URL('./packages/', import.meta.url))}core/src/shaders/sampling.ts`,
+      },
       // A renderer package's descriptor subpath (@vpt/renderer-<name>/descriptor).
       {
         find: /^@vpt\/(renderer-[a-z0-9-]+)\/descriptor$/,

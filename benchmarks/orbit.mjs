@@ -8,11 +8,11 @@
  * is on; upscaled by nearest neighbour to the element's size when adaptive resolution shrank it)
  * is compared with the converged image of that view: the RMSE (linear RGB), the render size
  * chosen and the samples behind the image are recorded, and the animation frames' intervals give
- * the frame time. Configurations are interleaved (A B C D, then D C B A); the load average is
- * printed. The references: a separate element per renderer, temporal and denoiser off, each
+ * the frame time. Configurations are interleaved (A B C D E, then E D C B A); the load average
+ * is printed. `defaults` is the element's own choice: temporal="on" denoise="auto". The references: a separate element per renderer, temporal and denoiser off, each
  * view refined to --ref-samples.
  *
- *   pnpm run build && node benchmarks/orbit.mjs [--size 64] [--rounds 2] [--renderers mcrt,eam] [--backends webgl2,webgpu]
+ *   pnpm run build && node benchmarks/orbit.mjs [--size 64] [--rounds 2] [--renderers mcrt,eam] [--backends webgl2,webgpu] [--configs defaults,...]
  */
 import fs from 'node:fs';
 import http from 'node:http';
@@ -24,7 +24,8 @@ import { parseCliOrExit } from '@vpt/cli-options';
 const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..');
 const args = parseCliOrExit({
   name: 'node benchmarks/orbit.mjs',
-  synopsis: '[--size N] [--rounds N] [--renderers mcrt,eam] [--backends webgl2,webgpu] [--ref-samples N]',
+  synopsis:
+    '[--size N] [--rounds N] [--renderers mcrt,eam] [--backends webgl2,webgpu] [--ref-samples N] [--configs LIST]',
   summary:
     'Per-frame RMSE against the converged view during a scripted orbit in <vpt-viewer>, with and without temporal reuse and denoising (needs pnpm run build).',
   options: {
@@ -38,6 +39,12 @@ const args = parseCliOrExit({
       description: "samples per pixel of each view's converged image (default: MCRT 256, EAM 64)",
     },
     degrees: { type: 'number', min: 0, max: 360, default: 30, description: 'the orbit angle over the 2 seconds' },
+    configs: {
+      type: 'list',
+      choices: ['temporal', 'denoise', 'temporal+denoise', 'defaults'],
+      default: ['temporal', 'denoise', 'temporal+denoise', 'defaults'],
+      description: 'configurations besides plain (always run: the ratios are against it)',
+    },
   },
 });
 const { launchChromium } = await import(path.join(root, 'packages/headless/dist/index.js'));
@@ -45,12 +52,16 @@ const { launchChromium } = await import(path.join(root, 'packages/headless/dist/
 const UPDATES = 60; // 2 s at 30 updates per second
 const EVERY = 4; // measure before every 4th update
 const HEAD = '/data/mri_head_volpack_brainsmall_128x128x84_uint8.json';
-const CONFIGS = [
+// 'defaults' is the element's own choice (temporal reuse on, denoise="auto": EAM stops the denoiser
+// while the camera moves, MCRT keeps it); the ratios are against the first configuration, plain.
+const ALL_CONFIGS = [
   { name: 'plain', temporal: 'off', denoise: 'off' },
   { name: 'temporal', temporal: 'on', denoise: 'off' },
   { name: 'denoise', temporal: 'off', denoise: 'on' },
   { name: 'temporal+denoise', temporal: 'on', denoise: 'on' },
+  { name: 'defaults', temporal: 'on', denoise: 'auto' },
 ];
+const CONFIGS = ALL_CONFIGS.filter((c) => c.name === 'plain' || args.configs.includes(c.name));
 
 const server = http.createServer((req, res) => {
   const file = path.resolve(root, '.' + decodeURIComponent(new URL(req.url, 'http://x').pathname));

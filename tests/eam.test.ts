@@ -1,10 +1,12 @@
 import { describe, expect, it } from 'vitest';
 import { tf1d } from './helpers/test-scene.js';
 import { DEFAULT_EAM_CUTOFF } from '@vpt/renderer-eam';
+import { blueNoiseDim } from '../packages/core/src/shaders/blue-noise.js';
 import {
   rasterizeTransferFunction,
   reference,
   TF_RESOLUTION,
+  type Sampler,
   type Scene,
   type Vec3,
   createProceduralVolume,
@@ -146,7 +148,14 @@ describe.each(BACKENDS)('EAM on %s', (backend) => {
  * numbers), the TF looked up linearly between texels, in float64. On a homogeneous cube the
  * sample placement never matters; here it does, so a march that ignores the offset differs.
  */
-function cpuEam(scene: Scene, w: number, h: number, iterations: number, stepSize: number): Float64Array {
+function cpuEam(
+  scene: Scene,
+  w: number,
+  h: number,
+  iterations: number,
+  stepSize: number,
+  dims: Sampler = 'pcg',
+): Float64Array {
   const sampler = new reference.CpuVolumeSampler(scene);
   const tex = rasterizeTransferFunction(scene.transferFunction, TF_RESOLUTION);
   const lookup = (v: number) => {
@@ -160,7 +169,12 @@ function cpuEam(scene: Scene, w: number, h: number, iterations: number, stepSize
   for (let y = 0; y < h; y++)
     for (let x = 0; x < w; x++) {
       for (let it = 0; it < iterations; it++) {
-        const rng = new reference.CpuRng(x, y, it, scene.seed);
+        // 'blue-noise': dimensions 0, 1 (jitter) and 2 (offset) of core's SAMPLE_DIMS, from its CPU twin.
+        let dim = 0;
+        const rng =
+          dims === 'pcg'
+            ? new reference.CpuRng(x, y, it, scene.seed)
+            : ({ next: () => blueNoiseDim(x, y, it, scene.seed, dim++) } as reference.CpuRng);
         const { origin, dir } = reference.jitteredCameraRay(scene, w, h, x, y, rng);
         const [t0, t1] = reference.intersectBox(origin, dir, sampler.box.min, sampler.box.max);
         const color = [0, 0, 0];
@@ -186,69 +200,78 @@ function cpuEam(scene: Scene, w: number, h: number, iterations: number, stepSize
 }
 
 describe.each(BACKENDS)('EAM on %s against a CPU twin', (backend) => {
-  it('equals a CPU emission–absorption march of a heterogeneous volume, sample for sample', async () => {
-    const camera = { position: [0.9, 0.5, 1.7] as Vec3, target: [0, 0, 0] as Vec3, up: [0, 1, 0] as Vec3, fovy: 0.45 };
-    const tf = tf1d([0.1, [0.2, 0.4, 1], 0], [0.4, [1, 0.6, 0.2], 0.8], [0.6, [0.3, 1, 0.4], 0.1], [1, [1, 1, 1], 1]);
-    const bg: Vec3 = [0.1, 0.15, 0.2];
-    const W = 20,
-      H = 16,
-      ITER = 3,
-      STEP = 1 / 24; // steps of ~1.3 voxels: where the samples fall matters
-    const scene: Scene = {
-      volume: createProceduralVolume('blob', 16),
-      transferFunction: tf,
-      camera,
-      lights: [],
-      environment: { type: 'constant', radiance: bg },
-      densityScale: 12,
-      seed: 9,
-    };
-    const gpu: number[] = await page.run(
-      async ({ core, t }, backend, W, H, ITER, STEP, camera, tf, bg) => {
-        // sampling: 'exact': the twin samples with float64 trilinear weights (a hardware filter's are coarser).
-        const ctx = await t.context({
-          backend,
-          renderer: 'eam',
-          width: W,
-          height: H,
-          params: { cutoff: 0, stepSize: STEP },
-          sampling: 'exact',
-        });
-        ctx.setScene(
-          t.scene({
-            volume: core.createProceduralVolume('blob', 16),
-            camera,
-            transferFunction: tf,
-            densityScale: 12,
-            seed: 9,
-            environment: { type: 'constant', radiance: bg },
-          }),
-        );
-        return t.finalHDR(ctx, ITER);
-      },
-      backend,
-      W,
-      H,
-      ITER,
-      STEP,
-      camera,
-      tf,
-      bg,
-    );
-    const cpu = cpuEam(scene, W, H, ITER, STEP);
-    let maxErr = 0,
-      covered = 0,
-      spread = 0;
-    for (let i = 0; i < W * H; i++) {
-      for (let c = 0; c < 4; c++) maxErr = Math.max(maxErr, Math.abs(gpu[4 * i + c] - cpu[4 * i + c]));
-      if (cpu[4 * i + 3] > 0.2) covered++;
-      spread = Math.max(spread, Math.abs(cpu[4 * i] - cpu[4 * i + 2]));
-    }
-    expect(covered).toBeGreaterThan(W * H * 0.2); // the volume is in view and absorbs
-    expect(spread).toBeGreaterThan(0.1); // colours vary (the TF's colour is looked up, not constant)
-    // Float32 against float64 over ~30 steps (measured ~1e-6): far below the effect of moving the samples.
-    expect(maxErr).toBeLessThan(5e-5);
-  });
+  it.each(['pcg', 'blue-noise'] as const)(
+    'sampler %s: equals a CPU emission–absorption march of a heterogeneous volume, sample for sample',
+    async (sampler) => {
+      const camera = {
+        position: [0.9, 0.5, 1.7] as Vec3,
+        target: [0, 0, 0] as Vec3,
+        up: [0, 1, 0] as Vec3,
+        fovy: 0.45,
+      };
+      const tf = tf1d([0.1, [0.2, 0.4, 1], 0], [0.4, [1, 0.6, 0.2], 0.8], [0.6, [0.3, 1, 0.4], 0.1], [1, [1, 1, 1], 1]);
+      const bg: Vec3 = [0.1, 0.15, 0.2];
+      const W = 20,
+        H = 16,
+        ITER = 3,
+        STEP = 1 / 24; // steps of ~1.3 voxels: where the samples fall matters
+      const scene: Scene = {
+        volume: createProceduralVolume('blob', 16),
+        transferFunction: tf,
+        camera,
+        lights: [],
+        environment: { type: 'constant', radiance: bg },
+        densityScale: 12,
+        seed: 9,
+      };
+      const gpu: number[] = await page.run(
+        async ({ core, t }, backend, W, H, ITER, STEP, camera, tf, bg, sampler) => {
+          // sampling: 'exact': the twin samples with float64 trilinear weights (a hardware filter's are coarser).
+          const ctx = await t.context({
+            backend,
+            renderer: 'eam',
+            width: W,
+            height: H,
+            params: { cutoff: 0, stepSize: STEP, sampler },
+            sampling: 'exact',
+          });
+          ctx.setScene(
+            t.scene({
+              volume: core.createProceduralVolume('blob', 16),
+              camera,
+              transferFunction: tf,
+              densityScale: 12,
+              seed: 9,
+              environment: { type: 'constant', radiance: bg },
+            }),
+          );
+          return t.finalHDR(ctx, ITER);
+        },
+        backend,
+        W,
+        H,
+        ITER,
+        STEP,
+        camera,
+        tf,
+        bg,
+        sampler,
+      );
+      const cpu = cpuEam(scene, W, H, ITER, STEP, sampler);
+      let maxErr = 0,
+        covered = 0,
+        spread = 0;
+      for (let i = 0; i < W * H; i++) {
+        for (let c = 0; c < 4; c++) maxErr = Math.max(maxErr, Math.abs(gpu[4 * i + c] - cpu[4 * i + c]));
+        if (cpu[4 * i + 3] > 0.2) covered++;
+        spread = Math.max(spread, Math.abs(cpu[4 * i] - cpu[4 * i + 2]));
+      }
+      expect(covered).toBeGreaterThan(W * H * 0.2); // the volume is in view and absorbs
+      expect(spread).toBeGreaterThan(0.1); // colours vary (the TF's colour is looked up, not constant)
+      // Float32 against float64 over ~30 steps (measured ~1e-6): far below the effect of moving the samples.
+      expect(maxErr).toBeLessThan(5e-5);
+    },
+  );
 
   it('stops early at the default cutoff, leaving behind at most cutoff × the brightest colour', async () => {
     // A dense blob in front of a white background: rays through it fall below the cutoff

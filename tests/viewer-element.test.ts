@@ -148,7 +148,9 @@ describe('<vpt-viewer> attributes', () => {
       reflected: string;
     }[]) {
       expect(c.differing, c.name).toBeGreaterThan(24 * 24 * 0.1);
-      expect(c.firstSamples, c.name).toBeLessThan(4); // accumulation started over
+      // Accumulation started over: converged at 4, the element reports no progress without a restart
+      // (\`same\` above); a loop that fills its frame budget may reach 4 again in the first frame.
+      expect(c.firstSamples, c.name).toBeLessThanOrEqual(4);
       expect(c.lastSamples, c.name).toBe(4);
     }
     expect((r.changes as { reflected: string }[])[0].reflected).toBe('hot');
@@ -338,9 +340,10 @@ describe('<vpt-viewer> interaction', () => {
     const r = await vp.run(async (vt) => {
       const el = document.getElementById('drag') as any;
       const before = (window as any).dragBefore;
-      await vt.next(el, 'converged');
-      // Converged may come from the reduced-resolution image; wait for the full-size one.
-      while (el.context.size.width !== 48 || !el.converged) await vt.next(el, 'converged');
+      // Converged may come from the reduced-resolution image; wait for the full-size one of the new
+      // view (which a fast loop may have reached before this runs).
+      while (el.getAttribute('camera') === before.camera || el.context.size.width !== 48 || !el.converged)
+        await vt.next(el, 'converged');
       const after = await vt.ldr(el);
       let differing = 0;
       for (let i = 0; i < after.length; i += 4) if (after[i] !== before.ldr[i]) differing++;

@@ -28,6 +28,7 @@ const SCRIPTS: Record<string, { notANumber?: { argv: string[]; names: string } }
   'benchmarks/time-series-read.mjs': { notANumber: { argv: ['--steps', 'many'], names: '--steps' } },
   'benchmarks/clip-cost.mjs': { notANumber: { argv: ['--rounds', 'many'], names: '--rounds' } },
   'benchmarks/denoise-error.mjs': { notANumber: { argv: ['--seeds', 'few'], names: '--seeds' } },
+  'benchmarks/blue-noise.mjs': { notANumber: { argv: ['--rounds', 'few'], names: '--rounds' } },
   'benchmarks/three-cost.mjs': { notANumber: { argv: ['--batch', 'many'], names: '--batch' } },
   'benchmarks/channel-cost.mjs': { notANumber: { argv: ['--rounds', 'many'], names: '--rounds' } },
   'benchmarks/label-cost.mjs': { notANumber: { argv: ['--rounds', 'many'], names: '--rounds' } },

@@ -90,8 +90,7 @@ export {
   TRANSFER_2D as WGSL_TRANSFER_2D,
 } from './shaders/common.wgsl.js';
 export { commonChunks, PASS_CHUNKS, type CommonChunkOptions } from './shaders/common.js';
-export { SAMPLING as GLSL_SAMPLING, ENVIRONMENT_MAP as GLSL_ENVIRONMENT_MAP } from './shaders/sampling.glsl.js';
-export { SAMPLING as WGSL_SAMPLING, ENVIRONMENT_MAP as WGSL_ENVIRONMENT_MAP } from './shaders/sampling.wgsl.js';
+// The sampling and environment-map chunks (ISO, MCRT) are the subpath @vpt/core/sampling (shaders/sampling.ts).
 export { SLICE_ATLAS as GLSL_SLICE_ATLAS } from './shaders/slice-atlas.glsl.js';
 export { SLICE_ATLAS as WGSL_SLICE_ATLAS } from './shaders/slice-atlas.wgsl.js';
 export { sliceAtlasLayout, atlasTexel, type SliceAtlasLayout } from './shaders/slice-atlas.js';
@@ -164,3 +163,6 @@ export {
   type ParamSpecs,
 } from './validation/params.js';
 export { validateSceneForDevice } from './validation/device.js';
+// The blue-noise sampler itself is the subpath @vpt/core/blue-noise (shaders/blue-noise.ts), imported by the
+// renderers only, so the viewer's entry (core and the descriptors) does not carry it.
+export { SAMPLER_PARAM, type Sampler } from './shaders/sampler-param.js';

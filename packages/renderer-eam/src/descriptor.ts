@@ -3,7 +3,7 @@
  * viewer look. Side-effect free and kernel free, so user interfaces import it alone
  * (`@vpt/renderer-eam/descriptor`).
  */
-import { defineRenderer, stepInVoxels, type ParamsOf } from '@vpt/core';
+import { defineRenderer, SAMPLER_PARAM, stepInVoxels, type ParamsOf } from '@vpt/core';
 
 /**
  * The default step in voxels: the pixel jitter, not the step, dominates EAM's early error at
@@ -49,8 +49,16 @@ export const EAM_DESCRIPTOR = defineRenderer({
      * tests and benchmarks.
      */
     emptySpaceSkipping: { kind: 'boolean', default: true },
+    /**
+     * 'blue-noise': the first dimensions of each sample (pixel jitter, march offset) are a rank-1 sequence rotated per
+     * pixel by a blue-noise mask (core's shaders/blue-noise.ts); 'pcg': the PCG stream. Default: by
+     * measured iterations to 30/35 dB (docs/benchmarks.md, "Blue-noise sampling").
+     */
+    sampler: SAMPLER_PARAM,
   },
   writesGuides: true,
+  // Nearly noise-free at 2 samples: in an orbit the denoiser only blurred (docs/benchmarks.md, "Orbit").
+  denoiseWhileMoving: false,
   needs: { transferFunction: true, lights: false, environment: true },
   // The palette's emissive top (2.2) saturates a dense volume; 0.55× keeps its structure.
   look: { densityScale: 60, environment: [0.03, 0.035, 0.05], transferFunction: { scaleColors: 0.55 } },

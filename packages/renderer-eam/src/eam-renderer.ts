@@ -17,6 +17,7 @@ import {
   type UniformValues,
   type VolumeBinding,
 } from '@vpt/core';
+import { blueNoiseTexture } from '@vpt/core/blue-noise';
 import * as glsl from './kernels/eam.glsl.js';
 import * as wgsl from './kernels/eam.wgsl.js';
 import { EAM_DESCRIPTOR, type EamParams } from './descriptor.js';
@@ -46,7 +47,7 @@ export class EamRenderer extends BaseRenderer<EamParams> {
   }
 
   override features(_scene: Scene): Record<string, boolean | number> {
-    return { SKIP_EMPTY: this.skipping };
+    return { SKIP_EMPTY: this.skipping, BLUE_NOISE: this.blueNoise };
   }
 
   paramValues(scene: Scene): UniformValues {
@@ -58,7 +59,12 @@ export class EamRenderer extends BaseRenderer<EamParams> {
 
   /** With skipping, the majorant grid (max of densityScale·opacity per cell; 0 = empty), built on the GPU. */
   auxiliaryTextures(scene: Scene, volume: VolumeBinding): readonly AuxiliaryTexture[] {
-    return this.skipping ? majorantGridTextures(scene, volume, DEFAULT_SKIP_CELL_SIZE, 'majorants') : [];
+    const grid = this.skipping ? majorantGridTextures(scene, volume, DEFAULT_SKIP_CELL_SIZE, 'majorants') : [];
+    return this.blueNoise ? [...grid, blueNoiseTexture()] : grid;
+  }
+
+  private get blueNoise(): boolean {
+    return (this.getParams().sampler ?? EAM_DESCRIPTOR.params.sampler.default) === 'blue-noise';
   }
 
   private get skipping(): boolean {

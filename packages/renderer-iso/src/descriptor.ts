@@ -6,9 +6,11 @@
 import {
   constantDefault,
   defineRenderer,
+  SAMPLER_PARAM,
   stepInVoxels,
   VptError,
   type ParamsOf,
+  type Sampler,
   type RendererParamSpec,
 } from '@vpt/core';
 
@@ -171,6 +173,13 @@ export const ISO_DESCRIPTOR = defineRenderer({
      * true). No crossing is lost, so the image is the same bits either way; false is the plain march.
      */
     emptySpaceSkipping: { kind: 'boolean', default: true },
+    /**
+     * 'blue-noise': the pixel jitter, the camera march's offset and the environment (AO) sample are
+     * a rank-1 sequence rotated per pixel by a blue-noise mask (core's shaders/blue-noise.ts);
+     * 'pcg': the PCG stream. Default: by measured iterations to 30/35 dB (docs/benchmarks.md,
+     * "Blue-noise sampling").
+     */
+    sampler: SAMPLER_PARAM,
   },
   check: (p) => void resolveIsoParams(p),
   writesGuides: true,
@@ -207,6 +216,7 @@ export interface ResolvedIsoParams {
   jitter: boolean;
   output: IsoOutput;
   emptySpaceSkipping: boolean;
+  sampler: Sampler;
 }
 
 const DEFAULT = <K extends keyof IsoParams>(key: K) => constantDefault(ISO_DESCRIPTOR, key) as Required<IsoParams>[K];
@@ -230,6 +240,8 @@ export function resolveIsoParams(p: IsoParams): ResolvedIsoParams {
   const output = p.output ?? DEFAULT('output');
   if (!ISO_DESCRIPTOR.params.output.values.includes(output))
     bad(`output must be one of ${ISO_DESCRIPTOR.params.output.values.join(', ')}, got ${JSON.stringify(p.output)}`);
+  // The enum's values are checked by validateParams (the descriptor's spec).
+  const sampler = p.sampler ?? DEFAULT('sampler');
   for (const k of ['shadows', 'ambientOcclusion', 'jitter', 'emptySpaceSkipping'] as const) {
     if (p[k] !== undefined && typeof p[k] !== 'boolean') bad(`${k} must be true or false, got ${JSON.stringify(p[k])}`);
   }
@@ -245,6 +257,7 @@ export function resolveIsoParams(p: IsoParams): ResolvedIsoParams {
     jitter: p.jitter ?? DEFAULT('jitter'),
     output,
     emptySpaceSkipping: p.emptySpaceSkipping ?? DEFAULT('emptySpaceSkipping'),
+    sampler,
   };
 }
 

@@ -19,6 +19,7 @@ import {
   type UniformValues,
   type VolumeBinding,
 } from '@vpt/core';
+import { blueNoiseTexture } from '@vpt/core/blue-noise';
 import * as glsl from './kernels/iso.glsl.js';
 import * as wgsl from './kernels/iso.wgsl.js';
 import { ISO_DESCRIPTOR } from './descriptor.js';
@@ -115,6 +116,7 @@ export class IsoRenderer extends BaseRenderer<IsoParams> {
       // A channel scene has no single value range per cell to skip by (majorant/grid-textures.ts);
       // a label scene's label surface is not in the value ranges either.
       SKIP_EMPTY: p.emptySpaceSkipping && !scene.channels && !scene.labels,
+      BLUE_NOISE: p.sampler === 'blue-noise',
     };
   }
 
@@ -167,10 +169,12 @@ export class IsoRenderer extends BaseRenderer<IsoParams> {
    */
   auxiliaryTextures(scene: Scene, volume?: VolumeBinding): readonly AuxiliaryTexture[] {
     // With skipping (and a volume binding: inside a RenderContext), each grid cell's range of volume texels.
-    const grid =
-      this.resolved.emptySpaceSkipping && volume && !scene.channels && !scene.labels
+    const grid = [
+      ...(this.resolved.emptySpaceSkipping && volume && !scene.channels && !scene.labels
         ? majorantGridTextures(scene, volume, DEFAULT_SKIP_CELL_SIZE, 'ranges')
-        : [];
+        : []),
+      ...(this.resolved.sampler === 'blue-noise' ? [blueNoiseTexture()] : []),
+    ];
     const env = scene.environment;
     if (env.type === 'latlong' && environmentEmits(env)) {
       const e = env as LatLongEnvironment;

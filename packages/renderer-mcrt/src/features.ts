@@ -31,6 +31,8 @@ export interface McrtFeatures {
   DEBUG_OUTPUT: number;
   /** The unspecialised kernel (`specialize: false`): scene features are runtime data (see McrtParams.specialize). */
   GENERIC: boolean;
+  /** `sampler: 'blue-noise'`: the path's first dimensions from core's SAMPLE_DIMS (texture blueNoise bound). */
+  BLUE_NOISE: boolean;
 }
 
 export interface ActiveLight {
@@ -67,6 +69,7 @@ export function computeFeatures(scene: Scene, p: ResolvedMcrtParams): McrtFeatur
     MIS_POWER: envSampling === 2 && p.misHeuristic === 'power',
     DEBUG_OUTPUT: p.debugOutput === 'transmittance' ? 1 : p.debugOutput === 'fetches' ? 2 : 0,
     GENERIC: false,
+    BLUE_NOISE: p.sampler === 'blue-noise',
   };
 }
 
@@ -91,6 +94,7 @@ function genericFeatures(p: ResolvedMcrtParams): McrtFeatures {
     MIS_POWER: envSampling === 2 && p.misHeuristic === 'power',
     DEBUG_OUTPUT: p.debugOutput === 'transmittance' ? 1 : p.debugOutput === 'fetches' ? 2 : 0,
     GENERIC: true,
+    BLUE_NOISE: p.sampler === 'blue-noise',
   };
 }
 

@@ -1,13 +1,6 @@
-import {
-  GLSL_ENVIRONMENT_MAP,
-  GLSL_SAMPLING,
-  HALF_MEANS_INTEGRATE,
-  preprocess,
-  WGSL_ENVIRONMENT_MAP,
-  WGSL_SAMPLING,
-  type Flags,
-  type KernelSource,
-} from '@vpt/core';
+import { HALF_MEANS_INTEGRATE, preprocess, type Flags, type KernelSource } from '@vpt/core';
+import { GLSL_ENVIRONMENT_MAP, GLSL_SAMPLING, WGSL_ENVIRONMENT_MAP, WGSL_SAMPLING } from '@vpt/core/sampling';
+import { GLSL_SAMPLE_DIMS, WGSL_SAMPLE_DIMS } from '@vpt/core/blue-noise';
 import type { McrtFeatures } from './features.js';
 import * as glslPath from './kernels/path.glsl.js';
 import * as wgslPath from './kernels/path.wgsl.js';
@@ -21,8 +14,10 @@ import * as wgslTracking from './kernels/tracking.wgsl.js';
  */
 export function generateKernel(f: McrtFeatures): KernelSource {
   const flags = f as unknown as Flags;
-  const glsl = GLSL_SAMPLING + (f.ENV_MAP ? GLSL_ENVIRONMENT_MAP : '') + glslTracking.tracking + glslPath.path;
-  const wgsl = WGSL_SAMPLING + (f.ENV_MAP ? WGSL_ENVIRONMENT_MAP : '') + wgslTracking.tracking + wgslPath.path;
+  const glsl =
+    GLSL_SAMPLE_DIMS + GLSL_SAMPLING + (f.ENV_MAP ? GLSL_ENVIRONMENT_MAP : '') + glslTracking.tracking + glslPath.path;
+  const wgsl =
+    WGSL_SAMPLE_DIMS + WGSL_SAMPLING + (f.ENV_MAP ? WGSL_ENVIRONMENT_MAP : '') + wgslTracking.tracking + wgslPath.path;
   // VPT_GUIDES, VPT_CLIP, VPT_DEPTH_LIMIT and VPT_SLICE_PLANE are the context's flags (RenderContext
   // defines them while a post step uses guides, for a clipped scene, while a depth limit is set and
   // for a scene with a slice plane).

@@ -27,6 +27,7 @@ import {
   paramUniformFields,
   paramUniformValues,
 } from '@vpt/core';
+import { blueNoiseTexture } from '@vpt/core/blue-noise';
 // The CPU grid of what the kernel draws: the channels' sum, plus the labels' (label volumes' subpath).
 import { sceneMajorantGrid } from '@vpt/core/labels';
 import { MCRT_DESCRIPTOR } from './descriptor.js';
@@ -163,6 +164,7 @@ export class McrtRenderer extends BaseRenderer<McrtParams> {
       const env = this.environmentMap(scene);
       aux.push(...environmentTextures(env, () => this.environmentTables(env, environmentTexturesKey(env))));
     }
+    if (f.BLUE_NOISE) aux.push(blueNoiseTexture());
     return aux;
   }
 
@@ -286,6 +288,7 @@ const DEFAULT_FEATURES: McrtFeatures = {
   MIS_POWER: true,
   DEBUG_OUTPUT: 0,
   GENERIC: false,
+  BLUE_NOISE: false,
 };
 
 /** A constant sky as a map for the generic kernel: small, since every texel is the same. */

@@ -25,6 +25,7 @@ describe('MCRT feature variants', () => {
     MIS_POWER: true,
     DEBUG_OUTPUT: 0,
     GENERIC: false,
+    BLUE_NOISE: false,
   };
 
   it('derives the flags from the scene and the parameters', () => {

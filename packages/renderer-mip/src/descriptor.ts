@@ -3,7 +3,7 @@
  * viewer look. Side-effect free and kernel free, so user interfaces import it alone
  * (`@vpt/renderer-mip/descriptor`).
  */
-import { defineRenderer, stepInVoxels, type ParamsOf } from '@vpt/core';
+import { defineRenderer, SAMPLER_PARAM, stepInVoxels, type ParamsOf } from '@vpt/core';
 
 /**
  * MIP's default step in voxels of the volume's longest side. The running maximum over random
@@ -29,6 +29,12 @@ export const MIP_DESCRIPTOR = defineRenderer({
      * bits either way; false is the plain march, for tests and benchmarks.
      */
     emptySpaceSkipping: { kind: 'boolean', default: true },
+    /**
+     * 'blue-noise': the first dimensions of each sample (the march offset) are a rank-1 sequence rotated per
+     * pixel by a blue-noise mask (core's shaders/blue-noise.ts); 'pcg': the PCG stream. Default: by
+     * measured iterations to 30/35 dB (docs/benchmarks.md, "Blue-noise sampling").
+     */
+    sampler: SAMPLER_PARAM,
   },
   writesGuides: false,
   needs: { transferFunction: false, lights: false, environment: false },

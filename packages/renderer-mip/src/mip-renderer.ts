@@ -16,6 +16,7 @@ import {
   type VolumeBinding,
   VptError,
 } from '@vpt/core';
+import { blueNoiseTexture } from '@vpt/core/blue-noise';
 import * as glsl from './kernels/mip.glsl.js';
 import * as wgsl from './kernels/mip.wgsl.js';
 import { DEFAULT_MIP_STEP_VOXELS, MIP_DESCRIPTOR, type MipParams } from './descriptor.js';
@@ -47,7 +48,7 @@ export class MipRenderer extends BaseRenderer<MipParams> {
   override features(scene: Scene): Record<string, boolean | number> {
     // A channel scene has no single value range per cell to skip by (majorant/grid-textures.ts);
     // a label scene marches every sample (a skipped cell could hold a label).
-    return { SKIP_EMPTY: this.skipping && !scene.channels && !scene.labels };
+    return { SKIP_EMPTY: this.skipping && !scene.channels && !scene.labels, BLUE_NOISE: this.blueNoise };
   }
 
   paramValues(scene: Scene): UniformValues {
@@ -59,9 +60,15 @@ export class MipRenderer extends BaseRenderer<MipParams> {
 
   /** With skipping, each majorant-grid cell's range of volume texels, built on the GPU. */
   auxiliaryTextures(scene: Scene, volume: VolumeBinding): readonly AuxiliaryTexture[] {
-    return this.skipping && !scene.channels && !scene.labels
-      ? majorantGridTextures(scene, volume, DEFAULT_SKIP_CELL_SIZE, 'ranges')
-      : [];
+    const grid =
+      this.skipping && !scene.channels && !scene.labels
+        ? majorantGridTextures(scene, volume, DEFAULT_SKIP_CELL_SIZE, 'ranges')
+        : [];
+    return this.blueNoise ? [...grid, blueNoiseTexture()] : grid;
+  }
+
+  private get blueNoise(): boolean {
+    return (this.getParams().sampler ?? MIP_DESCRIPTOR.params.sampler.default) === 'blue-noise';
   }
 
   /** Labels are drawn over a scalar volume: the frame's free components hold the label, a channel scene's hold channels. */

@@ -102,7 +102,7 @@ export class AdaptiveResolution implements ReactiveController {
     return { width: side(w, s), height: side(h, s) };
   }
 
-  /** A progress report: the cost of one iteration, learned at full size only. */
+  /** A progress report: the cost of a frame of one iteration while moving (the element's sum), learned at full size only. */
   recordIteration(msPerIteration: number): void {
     if (!this.interactingNow) this.fullResMs = msPerIteration;
   }

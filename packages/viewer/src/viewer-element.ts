@@ -1735,9 +1735,20 @@ export class VptViewer extends LitElement implements PanelHost, SlotHolder {
     return this.denoiseStep ? [this.denoiseStep, ...chain] : chain;
   }
 
-  /** 'auto' filters while refining and shows the plain estimate once converged (the step stays, a pass-through). */
+  /**
+   * 'auto' filters while refining and shows the plain estimate once converged (the step stays, a
+   * pass-through); nor while the camera moves for a renderer whose descriptor says
+   * `denoiseWhileMoving: false`.
+   */
   private updateDenoiser(): void {
-    if (this.denoiseStep) this.denoiseStep.enabled = this.denoise === 'on' || !this.converged;
+    if (!this.denoiseStep) return;
+    const still = this.resolution.interacting && this.denoiserStopsWhileMoving();
+    this.denoiseStep.enabled = this.denoise === 'on' || (!this.converged && !still);
+  }
+
+  /** 'auto' with a renderer whose descriptor says `denoiseWhileMoving: false`. */
+  private denoiserStopsWhileMoving(): boolean {
+    return this.denoise === 'auto' && rendererEntry(this.renderer)?.descriptor?.denoiseWhileMoving === false;
   }
 
   private postKeyNow(): string {
@@ -1850,6 +1861,8 @@ export class VptViewer extends LitElement implements PanelHost, SlotHolder {
     const max = s.ctx.backend.limits.maxTextureDimension2D;
     // Clamped to the GPU memory budget (a 3000 px element at resolution-scale 4 would not fit).
     const { width, height } = this.resolution.renderSize(max, s.ctx.maxRenderPixels);
+    // The denoiser may follow the interaction (updateDenoiser); the size changes when it starts and ends.
+    this.updateDenoiser();
     try {
       s.setSize(width, height);
     } catch (e) {
@@ -1859,7 +1872,10 @@ export class VptViewer extends LitElement implements PanelHost, SlotHolder {
 
   private onProgress(s: RefinementStats): void {
     if (this.holdsSlot) webglSlots.touch(this);
-    this.resolution.recordIteration(s.msPerIteration);
+    // What a frame costs while the camera moves: the iterations, and the render + post chain
+    // unless the denoiser stops then (denoiseWhileMoving false), when its cost must not shrink the image.
+    const post = this.denoiserStopsWhileMoving() ? 0 : (this.session?.ctx.stats.msPostPerFrame ?? 0);
+    this.resolution.recordIteration(s.msPerIteration + post);
     this._stats = s;
     this.updateDenoiser();
     this.dispatchEvent(new CustomEvent<ViewerProgressDetail>('vpt-progress', { detail: { phase: 'refining', ...s } }));

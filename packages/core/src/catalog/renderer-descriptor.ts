@@ -143,6 +143,13 @@ export interface RendererDescriptor<P extends RendererParams = RendererParams> {
   /** The generate kernel writes the denoiser's guides (see Renderer.writesGuides): the viewer denoises it by default. */
   readonly writesGuides: boolean;
   /**
+   * false: the viewer's `denoise="auto"` does not filter while the camera moves (it does while the
+   * image refines at rest). For a renderer nearly noise-free at a few samples (EAM), whose image in
+   * motion the filter blurs more than it cleans and whose per-frame cost lowers adaptive
+   * resolution's render size (docs/benchmarks.md, "Orbit"). Default true.
+   */
+  readonly denoiseWhileMoving?: boolean;
+  /**
    * The HDR image holds display values (linear, in [0, 1], a colour map's components) rather
    * than radiance: user interfaces and the CLI show it through exposure and a clamp, with no
    * tone curve and no sRGB encoding, so a PFM and the PNG hold the same values. Default false.

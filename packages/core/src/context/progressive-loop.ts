@@ -9,7 +9,8 @@ export interface ProgressiveLoopHooks {
   step(iterations: number): void;
   finishFrame(): void;
   sync(): Promise<void>;
-  onStats(msPerIteration: number): void;
+  /** The learned rates: ms per iteration, and ms per frame of finishFrame (render, post chain, present). */
+  onStats(msPerIteration: number, msPerFrame: number): void;
   /** Work for a converged frame (a bricked volume's arrived bricks); a reset it causes resumes the iterations. */
   idle?(): void;
 }
@@ -28,6 +29,7 @@ export class ProgressiveLoop {
   private paused = false;
   private scheduled = false;
   private msPerIteration = 0;
+  private msFinish = 0;
   private options: LoopOptions = {};
 
   constructor(private readonly hooks: ProgressiveLoopHooks) {}
@@ -79,10 +81,15 @@ export class ProgressiveLoop {
       this.schedule();
       return;
     }
-    // First frame: one iteration to learn the rate; later, fill the budget (at least one).
+    // First frame: one iteration to learn the rate; later, fill what the frame's finish (render,
+    // post chain: the denoiser's share can exceed the iterations') leaves of the budget (at least one).
     const n = Math.max(
       1,
-      Math.min(remaining, this.msPerIteration > 0 ? Math.floor(budget / this.msPerIteration) : 1, 256),
+      Math.min(
+        remaining,
+        this.msPerIteration > 0 ? Math.floor(Math.max(0, budget - this.msFinish) / this.msPerIteration) : 1,
+        256,
+      ),
     );
     try {
       await this.hooks.ready?.();
@@ -91,17 +98,33 @@ export class ProgressiveLoop {
     }
     if (!this.active || this.paused) return;
     const t0 = performance.now();
+    let t1: number;
     try {
       this.hooks.step(n);
+      // Synchronised twice, so the iterations' time is learned apart from the finish's: a post step
+      // costs once per frame, not per iteration (the element's adaptive resolution reads the rate).
+      await this.hooks.sync();
+      t1 = performance.now();
       this.hooks.finishFrame();
       await this.hooks.sync();
     } catch {
       // A lost context mid-frame: the backend's loss handler pauses us and restores later.
       return;
     }
-    const ms = (performance.now() - t0) / n;
-    this.msPerIteration = this.msPerIteration > 0 ? 0.7 * this.msPerIteration + 0.3 * ms : ms;
-    this.hooks.onStats(this.msPerIteration);
+    const ms = (t1 - t0) / n;
+    const finish = performance.now() - t1;
+    this.msPerIteration = learn(this.msPerIteration, ms);
+    this.msFinish = learn(this.msFinish, finish);
+    this.hooks.onStats(this.msPerIteration, this.msFinish);
     this.schedule();
   }
+}
+
+/**
+ * Smoothed rate: a frame under half the learned value replaces it at once (the value held a spike:
+ * the first frame's compilation, a stall, which smoothing would drag through many frames and the
+ * element's adaptive resolution would read as the cost of an iteration); otherwise 0.7 / 0.3.
+ */
+function learn(prev: number, ms: number): number {
+  return prev > 0 && ms >= 0.5 * prev ? 0.7 * prev + 0.3 * ms : ms;
 }

@@ -49,6 +49,11 @@ export interface RenderStats {
   samplesPerPixel: number;
   /** Mean wall-clock ms per iteration over the last measured batch (GPU synchronised). */
   msPerIteration: number;
+  /**
+   * The progressive loop's ms per frame for the render pass, the post chain and the present,
+   * learned apart from the iterations (0 before the loop ran): a denoiser costs once per frame.
+   */
+  msPostPerFrame: number;
   /** GPU memory held now. */
   gpuBytes: GpuBytes;
   /** The brick cache's state when the volume is bricked, else null. */
@@ -137,6 +142,7 @@ export class RenderContext {
   private imageVersion = 0; // bumped whenever renderImage() produced a new LDR image
   private presentedVersion = -1;
   private msPerIteration = 0;
+  private msPostPerFrame = 0;
   private disposed = false;
   private readonly loop: ProgressiveLoop;
   private readonly listeners = new Set<(stats: RenderStats) => void>();
@@ -180,8 +186,9 @@ export class RenderContext {
       idle: () => {
         if (this.updateBricks()) this.reset();
       },
-      onStats: (ms) => {
+      onStats: (ms, post) => {
         this.msPerIteration = ms;
+        this.msPostPerFrame = post;
         this.emit();
       },
     });
@@ -221,6 +228,7 @@ export class RenderContext {
       iterations: this.iteration,
       samplesPerPixel: this.iteration,
       msPerIteration: this.msPerIteration,
+      msPostPerFrame: this.msPostPerFrame,
       gpuBytes: this.gpuBytes(),
       bricking: this.resources.bricked?.stats() ?? null,
       renderer: this._renderer.stats?.() ?? {},

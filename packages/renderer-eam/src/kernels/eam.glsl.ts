@@ -1,4 +1,5 @@
 import { GLSL_CELL_WALK, GLSL_DEPTH_LIMIT, MAX_MARCH_STEPS } from '@vpt/core';
+import { GLSL_SAMPLE_DIMS } from '@vpt/core/blue-noise';
 
 // Emission-absorption (Max 1995, "Optical models for direct volume rendering", IEEE TVCG 1(2), the emission + absorption model)
 // by a stratified, randomly offset ray march; alpha = 1 - exp(-sigma_t * segment length),
@@ -8,8 +9,11 @@ import { GLSL_CELL_WALK, GLSL_DEPTH_LIMIT, MAX_MARCH_STEPS } from '@vpt/core';
 // transmittance as it is, so the march jumps over its samples and the image keeps its bits.
 // VPT_DEPTH_LIMIT (an opaque surface on a shared context, RenderContext.setDepthLimit): the march
 // ends at the surface and the background is left out, so rgb + (1 − a) · surface composites it.
+// BLUE_NOISE (sampler 'blue-noise', core's SAMPLE_DIMS): the pixel jitter and the march offset are
+// blue-noise-rotated rank-1 dimensions 0-2; 'pcg' draws them from the PCG stream as before.
 
 export const generate = /* glsl */ `
+${GLSL_SAMPLE_DIMS}
 #if SKIP_EMPTY
 ${GLSL_CELL_WALK}
 #endif
@@ -32,7 +36,8 @@ bool eamSample(vec3 dir, float s, float seg, inout vec3 color, inout float trans
 void main() {
   ivec2 pixel = vptPixel();
   uint rng = rngInit(pixel, u.iteration, u.seed);
-  vec3 dir = jitteredCameraRay(pixel, vptTargetSize(), rng);
+  sampleDimsInit(pixel);
+  vec3 dir = jitteredCameraRayDims(pixel, vptTargetSize(), rng);
 #if VPT_CLIP
   vec2 t = keptInterval(u.cameraPosition, dir);
 #else
@@ -52,7 +57,7 @@ void main() {
   // Denoiser guides at the mean termination depth: segments weighted by T·alpha, their share of the pixel.
   vec2 guide = vec2(0.0);
   if (t.x < t.y) {
-    float offset = rngNext(rng);
+    float offset = rngDim(rng, 2);
     float len = t.y - t.x;
     int n = max(1, int(min(ceil(len / u.stepSize), ${MAX_MARCH_STEPS}.0)));
     float seg = len / float(n);

@@ -1,10 +1,12 @@
 import { MAX_MARCH_STEPS, WGSL_CELL_WALK, WGSL_DEPTH_LIMIT } from '@vpt/core';
+import { WGSL_SAMPLE_DIMS } from '@vpt/core/blue-noise';
 
 // Emission-absorption (Max 1995, "Optical models for direct volume rendering", IEEE TVCG 1(2), the emission + absorption model)
 // by a stratified, randomly offset ray march; alpha = 1 - exp(-sigma_t * segment length).
 // Twin of eam.glsl.ts (SKIP_EMPTY: cells whose opacity bound is 0 are jumped over, bit for bit).
 
 export const generate = /* wgsl */ `
+${WGSL_SAMPLE_DIMS}
 #if SKIP_EMPTY
 ${WGSL_CELL_WALK}
 #endif
@@ -27,7 +29,8 @@ fn eamSample(
 @fragment fn fs_main(@builtin(position) fragCoord: vec4f) -> VptOut {
   let pixel = vptPixel(fragCoord);
   var rng = rngInit(pixel, u.iteration, u.seed);
-  let dir = jitteredCameraRay(pixel, vptTargetSize(), &rng);
+  sampleDimsInit(pixel);
+  let dir = jitteredCameraRayDims(pixel, vptTargetSize(), &rng);
 #if VPT_CLIP
   var t = keptInterval(u.cameraPosition, dir);
 #else
@@ -47,7 +50,7 @@ fn eamSample(
   // Denoiser guides at the mean termination depth: segments weighted by T·alpha, their share of the pixel.
   var guide = vec2f(0.0);
   if (t.x < t.y) {
-    let offset = rngNext(&rng);
+    let offset = rngDim(&rng, 2);
     let len = t.y - t.x;
     let n = max(1, i32(min(ceil(len / u.stepSize), ${MAX_MARCH_STEPS}.0)));
     let seg = len / f32(n);

@@ -1,4 +1,6 @@
-import { GLSL_CELL_WALK, GLSL_DEPTH_LIMIT, GLSL_ENVIRONMENT_MAP, GLSL_SAMPLING, MAX_MARCH_STEPS } from '@vpt/core';
+import { GLSL_CELL_WALK, GLSL_DEPTH_LIMIT, MAX_MARCH_STEPS } from '@vpt/core';
+import { GLSL_ENVIRONMENT_MAP, GLSL_SAMPLING } from '@vpt/core/sampling';
+import { GLSL_SAMPLE_DIMS } from '@vpt/core/blue-noise';
 
 // Monte Carlo isosurface rendering (Lesar et al. 2018, "Real-Time Interactive Platform-
 // Agnostic Volumetric Path Tracing in WebGL 2.0", the ISO renderer): each iteration finds
@@ -11,9 +13,12 @@ import { GLSL_CELL_WALK, GLSL_DEPTH_LIMIT, GLSL_ENVIRONMENT_MAP, GLSL_SAMPLING, 
 // probability alpha_k, independently, so the mean is alpha-compositing in depth order.
 // One march for scalar and channel scenes (isoValuesAt: surface k reads component k); VPT_LABELS
 // adds the visible labels' mask as one more opaque surface at its 0.5 level (core's scene/labels.ts).
+// BLUE_NOISE (sampler 'blue-noise', core's SAMPLE_DIMS): the pixel jitter, the camera march's offset
+// and the cosine-weighted environment (AO) sample are blue-noise-rotated rank-1 dimensions 0-4.
 
 /** Helpers shared by the generate kernel (twin of iso.wgsl.ts). */
 const ISO_COMMON = /* glsl */ `
+${GLSL_SAMPLE_DIMS}
 const int ISO_REFINE_STEPS = 10;
 
 #if SKIP_EMPTY
@@ -82,7 +87,7 @@ float isoRefine(vec3 o, vec3 d, float ta, float fa, float tb, float iso, int k) 
 // opaque by stochastic transparency (-1: none), y: its surface; z, w: the first crossing of
 // any visible surface, whatever the coin said (the depth buffer).
 vec4 isoTrace(vec3 o, vec3 d, float t0, float t1, inout uint rng) {
-  float offset = rngNext(rng);
+  float offset = rngDim(rng, 2);
   int n = max(1, int(min(ceil((t1 - t0) / u.stepSize), ${MAX_MARCH_STEPS}.0)));
   float seg = (t1 - t0) / float(n);
   float tPrev = t0;
@@ -254,8 +259,8 @@ vec3 isoShade(vec3 p, vec3 n, vec3 wo, vec3 albedo, inout uint rng) {
     }
   }
 #if ISO_ENV > 0
-  float e1 = rngNext(rng);
-  float e2 = rngNext(rng);
+  float e1 = rngDim(rng, 3);
+  float e2 = rngDim(rng, 4);
   float cosC = sqrt(1.0 - e1);
   vec3 wc = directionAround(n, cosC, sqrt(e1), 2.0 * VPT_PI * e2);
   float visC = 1.0;
@@ -305,8 +310,9 @@ void main() {
   ivec2 pixel = vptPixel();
   ivec2 size = vptTargetSize();
   uint rng = rngInit(pixel, u.iteration, u.seed);
+  sampleDimsInit(pixel);
 #if ISO_JITTER
-  vec3 dir = jitteredCameraRay(pixel, size, rng);
+  vec3 dir = jitteredCameraRayDims(pixel, size, rng);
 #else
   vec3 dir = cameraRayDirection(vec2((float(pixel.x) + 0.5) / float(size.x), (float(pixel.y) + 0.5) / float(size.y)));
 #endif

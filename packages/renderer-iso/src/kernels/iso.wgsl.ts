@@ -1,10 +1,13 @@
-import { WGSL_CELL_WALK, WGSL_DEPTH_LIMIT, WGSL_ENVIRONMENT_MAP, WGSL_SAMPLING, MAX_MARCH_STEPS } from '@vpt/core';
+import { WGSL_CELL_WALK, WGSL_DEPTH_LIMIT, MAX_MARCH_STEPS } from '@vpt/core';
+import { WGSL_ENVIRONMENT_MAP, WGSL_SAMPLING } from '@vpt/core/sampling';
+import { WGSL_SAMPLE_DIMS } from '@vpt/core/blue-noise';
 
 // Monte Carlo isosurface rendering (Lesar et al. 2018, the ISO renderer) with stochastic
 // transparency (Enderton et al. 2010): twin of iso.glsl.ts, same arithmetic in the same
 // order. Compile-time switches are `#if` lines, resolved for both languages by core's preprocessor.
 
 const ISO_COMMON = /* wgsl */ `
+${WGSL_SAMPLE_DIMS}
 const ISO_REFINE_STEPS: i32 = 10;
 
 #if SKIP_EMPTY
@@ -61,7 +64,7 @@ fn isoRefine(o: vec3f, d: vec3f, ta0: f32, fa0: f32, tb0: f32, iso: f32, k: i32)
 }
 
 fn isoTrace(o: vec3f, d: vec3f, t0: f32, t1: f32, rng: ptr<function, u32>) -> vec4f {
-  let offset = rngNext(rng);
+  let offset = rngDim(rng, 2);
   let n = max(1, i32(min(ceil((t1 - t0) / u.stepSize), ${MAX_MARCH_STEPS}.0)));
   let seg = (t1 - t0) / f32(n);
   var tPrev = t0;
@@ -219,8 +222,8 @@ fn isoShade(p: vec3f, n: vec3f, wo: vec3f, albedo: vec3f, rng: ptr<function, u32
     }
   }
 #if ISO_ENV > 0
-  let e1 = rngNext(rng);
-  let e2 = rngNext(rng);
+  let e1 = rngDim(rng, 3);
+  let e2 = rngDim(rng, 4);
   let cosC = sqrt(1.0 - e1);
   let wc = directionAround(n, cosC, sqrt(e1), 2.0 * VPT_PI * e2);
   var visC = 1.0;
@@ -268,8 +271,9 @@ export const generate =
   let pixel = vptPixel(fragCoord);
   let size = vptTargetSize();
   var rng = rngInit(pixel, u.iteration, u.seed);
+  sampleDimsInit(pixel);
 #if ISO_JITTER
-  let dir = jitteredCameraRay(pixel, size, &rng);
+  let dir = jitteredCameraRayDims(pixel, size, &rng);
 #else
   let dir = cameraRayDirection(vec2f((f32(pixel.x) + 0.5) / f32(size.x), (f32(pixel.y) + 0.5) / f32(size.y)));
 #endif

@@ -51,6 +51,8 @@ vec3 escapedRadiance(vec3 d, int depth, float phasePdf) {
 
 // Next-event estimation at x for a path arriving along w: the directional lights (delta lights,
 // phase sampling cannot hit them) and one light sample of the environment.
+// The sample dimensions (core's SAMPLE_DIMS) of the next environment light sample; -1: the PCG stream.
+int lightDim = -1;
 vec3 directLight(vec3 x, vec3 w, inout uint rng) {
   vec3 Ld = vec3(0.0);
 #if LIGHT_COUNT > 0
@@ -70,8 +72,9 @@ vec3 directLight(vec3 x, vec3 w, inout uint rng) {
   }
 #endif
 #if ENV_LIGHT && ENV_SAMPLING != 0
-  float xi1 = rngNext(rng);
-  float xi2 = rngNext(rng);
+  float xi1 = rngDim(rng, lightDim);
+  float xi2 = rngDim(rng, lightDim < 0 ? -1 : lightDim + 1);
+  lightDim = -1;
 #if ENV_MAP
   EnvSample e = sampleEnvironment(xi1, xi2);
   vec3 wl = e.direction;
@@ -104,7 +107,11 @@ vec3 directLight(vec3 x, vec3 w, inout uint rng) {
 void main() {
   ivec2 pixel = vptPixel();
   uint rng = rngInit(pixel, u.iteration, u.seed);
-  vec3 dir = jitteredCameraRay(pixel, vptTargetSize(), rng);
+  sampleDimsInit(pixel);
+  // Blue noise (BLUE_NOISE) serves the jitter, the camera ray's first free flight and the first light sample.
+  flightDim = 2;
+  lightDim = 3;
+  vec3 dir = jitteredCameraRayDims(pixel, vptTargetSize(), rng);
   vec3 pos = u.cameraPosition;
 #if VPT_CLIP
   vec2 tb = keptInterval(pos, dir);

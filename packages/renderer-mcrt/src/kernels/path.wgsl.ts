@@ -37,6 +37,8 @@ fn escapedRadiance(d: vec3f, depth: i32, phasePdf: f32) -> vec3f {
 #endif
 }
 
+// The sample dimensions (core's SAMPLE_DIMS) of the next environment light sample; -1: the PCG stream.
+var<private> lightDim: i32 = -1;
 fn directLight(x: vec3f, w: vec3f, rng: ptr<function, u32>) -> vec3f {
   var Ld = vec3f(0.0);
 #if LIGHT_COUNT > 0
@@ -57,8 +59,9 @@ fn directLight(x: vec3f, w: vec3f, rng: ptr<function, u32>) -> vec3f {
   }
 #endif
 #if ENV_LIGHT && ENV_SAMPLING != 0
-  let xi1 = rngNext(rng);
-  let xi2 = rngNext(rng);
+  let xi1 = rngDim(rng, lightDim);
+  let xi2 = rngDim(rng, select(lightDim + 1, -1, lightDim < 0));
+  lightDim = -1;
 #if ENV_MAP
   let e = sampleEnvironment(xi1, xi2);
   let wl = e.direction;
@@ -92,7 +95,11 @@ fn directLight(x: vec3f, w: vec3f, rng: ptr<function, u32>) -> vec3f {
 @fragment fn fs_main(@builtin(position) fragCoord: vec4f) -> VptOut {
   let pixel = vptPixel(fragCoord);
   var rng = rngInit(pixel, u.iteration, u.seed);
-  var dir = jitteredCameraRay(pixel, vptTargetSize(), &rng);
+  sampleDimsInit(pixel);
+  // Blue noise (BLUE_NOISE) serves the jitter, the camera ray's first free flight and the first light sample.
+  flightDim = 2;
+  lightDim = 3;
+  var dir = jitteredCameraRayDims(pixel, vptTargetSize(), &rng);
   var pos = u.cameraPosition;
 #if VPT_CLIP
   var tb = keptInterval(pos, dir);

@@ -12,6 +12,8 @@ export const tracking = /* glsl */ `
 // take more is ended as absorbed: it bounds a draw's run time (no hung tab) at a negligible bias.
 const int MAX_TRACKING_STEPS = 1048576;
 int trackingSteps = 0;
+// The sample dimension (core's SAMPLE_DIMS) of the next free flight's first distance; -1: the PCG stream.
+int flightDim = -1;
 int mediumLookups = 0;
 int cellVisits = 0;
 
@@ -61,7 +63,8 @@ struct Collision { bool hit; float t; vec3 albedo; };
 Collision freeFlight(vec3 o, vec3 d, float t0, float t1, inout uint rng) {
   Collision c = Collision(false, t1, vec3(0.0));
   float t = t0;
-  float tau = -log(1.0 - rngNext(rng));
+  float tau = -log(1.0 - rngDim(rng, flightDim));
+  flightDim = -1;
 #if MAJORANT_GRID
   Dda s = ddaStart(o, d, t0);
 #endif

@@ -6,6 +6,8 @@
 export const tracking = /* wgsl */ `
 const MAX_TRACKING_STEPS: i32 = 1048576;
 var<private> trackingSteps: i32 = 0;
+// The sample dimension (core's SAMPLE_DIMS) of the next free flight's first distance; -1: the PCG stream.
+var<private> flightDim: i32 = -1;
 var<private> mediumLookups: i32 = 0;
 var<private> cellVisits: i32 = 0;
 
@@ -50,7 +52,8 @@ struct Collision { hit: bool, t: f32, albedo: vec3f };
 fn freeFlight(o: vec3f, d: vec3f, t0: f32, t1: f32, rng: ptr<function, u32>) -> Collision {
   var c = Collision(false, t1, vec3f(0.0));
   var t = t0;
-  var tau = -log(1.0 - rngNext(rng));
+  var tau = -log(1.0 - rngDim(rng, flightDim));
+  flightDim = -1;
 #if MAJORANT_GRID
   var s = ddaStart(o, d, t0);
 #endif

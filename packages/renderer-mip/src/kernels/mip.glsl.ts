@@ -1,4 +1,5 @@
 import { GLSL_CELL_WALK, GLSL_DEPTH_LIMIT, MAX_MARCH_STEPS } from '@vpt/core';
+import { GLSL_SAMPLE_DIMS } from '@vpt/core/blue-noise';
 
 // Monte Carlo maximum intensity projection (Lesar, Bohak, Marolt 2018, "Real-Time Interactive Platform-Agnostic Volumetric Path Tracing in WebGL 2.0", its MIP renderer): each
 // iteration marches the pixel-centre ray with a random sample offset; the accumulation keeps the
@@ -11,8 +12,11 @@ import { GLSL_CELL_WALK, GLSL_DEPTH_LIMIT, MAX_MARCH_STEPS } from '@vpt/core';
 // beside the maximum and its colour laid over the grey maximum with its opacity.
 // VPT_CHANNELS (a channel scene): the maximum per channel (a miss is marked −1), each shown
 // through its transfer function in its colour, the channels added (as microscopy viewers do).
+// BLUE_NOISE (sampler 'blue-noise', core's SAMPLE_DIMS): the sample offset is the blue-noise-rotated
+// golden-ratio dimension 2; 'pcg' draws it from the PCG stream as before.
 
 export const generate = /* glsl */ `
+${GLSL_SAMPLE_DIMS}
 #if VPT_DEPTH_LIMIT
 ${GLSL_DEPTH_LIMIT}
 #endif
@@ -29,6 +33,7 @@ float cellMaxValue(CellWalk walk) {
 void main() {
   ivec2 pixel = vptPixel();
   uint rng = rngInit(pixel, u.iteration, u.seed);
+  sampleDimsInit(pixel);
   vec3 dir = centreCameraRay(pixel, vptTargetSize());
 #if VPT_CLIP
   vec2 t = keptInterval(u.cameraPosition, dir);
@@ -57,7 +62,7 @@ void main() {
   float coverage = 0.0;
   if (t.x < t.y) {
     coverage = 1.0;
-    float offset = rngNext(rng);
+    float offset = rngDim(rng, 2);
     float len = t.y - t.x;
     int n = max(1, int(min(ceil(len / u.stepSize), ${MAX_MARCH_STEPS}.0)));
     float seg = len / float(n);

@@ -1,10 +1,12 @@
 import { MAX_MARCH_STEPS, WGSL_CELL_WALK, WGSL_DEPTH_LIMIT } from '@vpt/core';
+import { WGSL_SAMPLE_DIMS } from '@vpt/core/blue-noise';
 
 // Monte Carlo maximum intensity projection (Lesar, Bohak, Marolt 2018, Web3D, its MIP renderer): each
 // iteration marches the pixel-centre ray with a random sample offset; the accumulation keeps the max.
 // Twin of mip.glsl.ts (SKIP_EMPTY: cells whose largest value cannot raise the maximum are jumped over).
 
 export const generate = /* wgsl */ `
+${WGSL_SAMPLE_DIMS}
 #if VPT_DEPTH_LIMIT
 ${WGSL_DEPTH_LIMIT}
 #endif
@@ -19,6 +21,7 @@ fn cellMaxValue(walk: CellWalk) -> f32 {
 @fragment fn fs_main(@builtin(position) fragCoord: vec4f) -> VptOut {
   let pixel = vptPixel(fragCoord);
   var rng = rngInit(pixel, u.iteration, u.seed);
+  sampleDimsInit(pixel);
   let dir = centreCameraRay(pixel, vptTargetSize());
 #if VPT_CLIP
   var t = keptInterval(u.cameraPosition, dir);
@@ -46,7 +49,7 @@ fn cellMaxValue(walk: CellWalk) -> f32 {
   var coverage = 0.0;
   if (t.x < t.y) {
     coverage = 1.0;
-    let offset = rngNext(&rng);
+    let offset = rngDim(&rng, 2);
     let len = t.y - t.x;
     let n = max(1, i32(min(ceil(len / u.stepSize), ${MAX_MARCH_STEPS}.0)));
     let seg = len / f32(n);
