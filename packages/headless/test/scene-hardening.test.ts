@@ -26,7 +26,7 @@ describe('renderer step parameters are validated where they are set', () => {
     expect(thrown(() => new MipRenderer({ stepSize: 0 })).message).toMatch(/MIP\.stepSize/);
     expect(thrown(() => new IsoRenderer({ stepSize: -1 })).message).toMatch(/stepSize/);
     expect(thrown(() => new EamRenderer({ stepsize: 0.01 } as never)).message).toMatch(
-      /unknown key "stepsize" \(known: stepSize, cutoff, emptySpaceSkipping\)/,
+      /unknown key "stepsize" \(known: stepSize, cutoff, emptySpaceSkipping, sampler\)/,
     );
     expect(thrown(() => new MipRenderer({ foo: 1 } as never)).message).toMatch(/unknown key "foo"/);
     expect(thrown(() => new IsoRenderer({ foo: 1 } as never)).message).toMatch(/unknown key "foo"/);
