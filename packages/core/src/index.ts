@@ -165,4 +165,4 @@ export {
 export { validateSceneForDevice } from './validation/device.js';
 // The blue-noise sampler itself is the subpath @vpt/core/blue-noise (shaders/blue-noise.ts), imported by the
 // renderers only, so the viewer's entry (core and the descriptors) does not carry it.
-export { SAMPLER_PARAM, type Sampler } from './shaders/sampler-param.js';
+export { SAMPLER_PARAM, samplerParam, type Sampler } from './shaders/sampler-param.js';

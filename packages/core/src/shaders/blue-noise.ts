@@ -24,7 +24,7 @@
 import type { AuxiliaryTexture } from '../renderer.js';
 import { pcgHash } from '../reference/cpu-reference.js';
 
-export { SAMPLER_PARAM, type Sampler } from './sampler-param.js';
+export { SAMPLER_PARAM, samplerParam, type Sampler } from './sampler-param.js';
 export { SAMPLE_DIMS as GLSL_SAMPLE_DIMS } from './blue-noise.glsl.js';
 export { SAMPLE_DIMS as WGSL_SAMPLE_DIMS } from './blue-noise.wgsl.js';
 

@@ -10,7 +10,13 @@ export type Sampler = 'pcg' | 'blue-noise';
 
 /**
  * The `sampler` parameter's spec, shared by the four descriptors: 'blue-noise' compiles the
- * kernels with BLUE_NOISE and binds the mask. The default stays 'pcg' for every renderer until a
- * measurement shows blue noise pays (docs/architecture.md, "Blue-noise sampling").
+ * kernels with BLUE_NOISE and binds the mask. Its default is 'pcg'; a descriptor takes
+ * `samplerParam('blue-noise')` where the measurement says blue noise pays (EAM, ISO:
+ * docs/benchmarks.md, "Blue-noise sampling").
  */
 export const SAMPLER_PARAM = { kind: 'enum', values: ['pcg', 'blue-noise'], default: 'pcg' as Sampler } as const;
+
+/** SAMPLER_PARAM with another default. */
+export function samplerParam(defaultSampler: Sampler) {
+  return { ...SAMPLER_PARAM, default: defaultSampler };
+}
