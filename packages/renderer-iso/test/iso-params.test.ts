@@ -107,10 +107,7 @@ describe('IsoRenderer parameters', () => {
 
   it('binds environment textures for a lat-long map only (the map and its CDFs); a constant sky compiles a variant that names none', () => {
     const r = new IsoRenderer();
-    // The blue-noise mask (the default sampler) is bound with every sky; the environment's textures are the question here.
-    const environmentTextures = (s: Scene) => r.auxiliaryTextures(s).filter((a) => a.name !== 'blueNoise');
-    expect(r.auxiliaryTextures(scene()).map((a) => a.name)).toEqual(['blueNoise']);
-    expect(environmentTextures(scene())).toEqual([]);
+    expect(r.auxiliaryTextures(scene())).toEqual([]);
     for (const lang of ['glsl', 'wgsl'] as const) {
       const constantVariant = preprocess(r.kernels.generate[lang], {
         ...r.features(scene()),
@@ -127,18 +124,18 @@ describe('IsoRenderer parameters', () => {
       expect(constantVariant).toMatch(/u\.background/);
     }
     const data = new Float32Array(4 * 2 * 3).fill(1);
-    const latlong = environmentTextures(scene({ environment: { type: 'latlong', width: 4, height: 2, data } }));
+    const latlong = r.auxiliaryTextures(scene({ environment: { type: 'latlong', width: 4, height: 2, data } }));
     expect(latlong.map((a) => [a.create!().width, a.create!().height])).toEqual([
       [4, 2],
       [3, 1],
       [5, 2],
     ]);
     // The key follows the image's identity, so a camera move rebuilds nothing.
-    expect(environmentTextures(scene({ environment: { type: 'latlong', width: 4, height: 2, data } }))[0].key).toBe(
+    expect(r.auxiliaryTextures(scene({ environment: { type: 'latlong', width: 4, height: 2, data } }))[0].key).toBe(
       latlong[0].key,
     );
     expect(
-      environmentTextures(scene({ environment: { type: 'latlong', width: 4, height: 2, data: data.slice() } }))[0].key,
+      r.auxiliaryTextures(scene({ environment: { type: 'latlong', width: 4, height: 2, data: data.slice() } }))[0].key,
     ).not.toBe(latlong[0].key);
   });
 });
