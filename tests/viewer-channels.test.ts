@@ -4,6 +4,7 @@ import path from 'node:path';
 import { afterAll, describe, expect, it } from 'vitest';
 import { startFaultServer, writeZarrFolder } from '../packages/loaders/test/zarr-fixtures.js';
 import { useViewerPage } from './helpers/viewer-page.js';
+import { uint8Ball } from './helpers/uint8-ball.js';
 
 // <vpt-viewer> on a 2-channel NIfTI (dim[5] = 2): every channel is drawn, each through its own
 // transfer function fitted to its histogram, in its own colour (channels.ts); the `channels`
@@ -19,14 +20,7 @@ afterAll(() => fs.rmSync(dir, { recursive: true, force: true }));
 const D = 12;
 /** A ball of radius r centred at (cx, 6, 6), peak value `peak`. */
 function ball(cx: number, r: number, peak: number): Uint8Array {
-  const v = new Uint8Array(D ** 3);
-  for (let z = 0; z < D; z++)
-    for (let y = 0; y < D; y++)
-      for (let x = 0; x < D; x++) {
-        const d = Math.hypot(x - cx, y - 6, z - 6);
-        v[x + D * (y + D * z)] = Math.max(0, Math.round(peak * (1 - d / r)));
-      }
-  return v;
+  return uint8Ball(D, [cx, 6, 6], r, peak);
 }
 
 /** A NIfTI-1 file (uint8, 1 mm) holding these volumes as channels along dim[5] (one: a 3D file). */

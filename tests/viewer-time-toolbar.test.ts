@@ -3,6 +3,7 @@ import os from 'node:os';
 import path from 'node:path';
 import { afterAll, describe, expect, it } from 'vitest';
 import { useViewerPage } from './helpers/viewer-page.js';
+import { uint8Ball } from './helpers/uint8-ball.js';
 
 // The viewer's time toolbar (time-player.ts, lazy) and a `src` that lists several files (URLs
 // separated by whitespace) as a time series: the toolbar shows only for a series; its button toggles `playing`, its slider sets
@@ -15,14 +16,7 @@ afterAll(() => fs.rmSync(dir, { recursive: true, force: true }));
 const D = 10;
 /** Step k: a ball whose centre moves along y with k (a different image per step). */
 function ball(k: number): Uint8Array {
-  const v = new Uint8Array(D ** 3);
-  for (let z = 0; z < D; z++)
-    for (let y = 0; y < D; y++)
-      for (let x = 0; x < D; x++) {
-        const r = Math.hypot(x - 5, y - (2 + 2.5 * k), z - 5);
-        v[x + D * (y + D * z)] = Math.max(0, Math.round(255 * (1 - r / 3.5)));
-      }
-  return v;
+  return uint8Ball(D, [5, 2 + 2.5 * k, 5], 3.5);
 }
 
 describe('<vpt-viewer> time toolbar and a src list', () => {

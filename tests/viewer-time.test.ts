@@ -3,6 +3,7 @@ import os from 'node:os';
 import path from 'node:path';
 import { afterAll, describe, expect, it } from 'vitest';
 import { useViewerPage } from './helpers/viewer-page.js';
+import { uint8Ball } from './helpers/uint8-ball.js';
 
 // <vpt-viewer time fps playing> on a 4D NIfTI: the `time` attribute shows that step (the
 // image of the step's own 3D file), `vpt-change` says so, and playback walks the steps in
@@ -14,14 +15,7 @@ afterAll(() => fs.rmSync(dir, { recursive: true, force: true }));
 const D = 10;
 /** Step k: a ball whose centre moves along x with k. */
 function ball(k: number): Uint8Array {
-  const v = new Uint8Array(D ** 3);
-  for (let z = 0; z < D; z++)
-    for (let y = 0; y < D; y++)
-      for (let x = 0; x < D; x++) {
-        const r = Math.hypot(x - (2 + 2 * k), y - 5, z - 5);
-        v[x + D * (y + D * z)] = Math.max(0, Math.round(255 * (1 - r / 3.5)));
-      }
-  return v;
+  return uint8Ball(D, [2 + 2 * k, 5, 5], 3.5);
 }
 
 /** A NIfTI-1 file (uint8, 1 mm) of these volumes along dim[4] (one volume: a 3D file). */
