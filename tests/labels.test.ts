@@ -1,7 +1,9 @@
 import { describe, expect, it } from 'vitest';
 import { labelEntryOf, labelIdAt } from '../packages/core/src/scene/labels.js';
+import { downsampleLabels } from '../packages/core/src/scene/label-downsample.js';
 import {
   createVolume,
+  downsampleVolume,
   rasterizeTransferFunction,
   reference,
   TF_RESOLUTION,
@@ -657,4 +659,115 @@ describe('labels on the slice plane, the fast path, and a scene without labels a
       expect(bitsDiffer(r.before, r.after)).toBe(0);
       expect(bitsDiffer(r.before, r.withLabels)).toBeGreaterThan(0);
     });
+});
+
+describe('labels in the memory budget: counted beside the image and downsampled with it by majority vote', () => {
+  // A budget where the image fits alone but not with its labels: the context downsamples both
+  // by the same factors (labels by majority vote) and renders what a scene holding those two
+  // downsampled volumes renders with room to spare, bit for bit.
+  for (const backend of BACKENDS)
+    for (const renderer of ['eam', 'mcrt'])
+      it(`${renderer} on ${backend}`, async () => {
+        const over = await page.run(
+          async ({ core, t }, backend, renderer, image, labels, table, n, camera, w, h) => {
+            const spec = { backend: backend as 'webgl2', renderer, width: w, height: h, sampling: 'exact' as const };
+            const scene = t.scene({
+              volume: core.createVolume([n, n, n], 'uint8', new Uint8Array(image)),
+              camera,
+              densityScale: 10,
+              environment: { type: 'constant', radiance: [0.1, 0.12, 0.15] },
+            });
+            // The image's bytes and the render targets' share, read off a context with room.
+            const roomy = await t.context({ ...spec, maxGpuBytes: 1 << 28 });
+            roomy.setScene(scene);
+            await roomy.renderIterations(1);
+            const imageBytes = roomy.stats.gpuBytes.volume;
+            const overhead = (1 << 28) - roomy.volumeBudgetBytes;
+            roomy.dispose();
+            // Room for the image and half the labels' n³ bytes.
+            const budget = overhead + imageBytes + Math.floor(n ** 3 / 2);
+            const ctx = await t.context({ ...spec, maxGpuBytes: budget });
+            const warnings: { code: string; factors: number[]; message: string }[] = [];
+            ctx.onWarning((w: never) => warnings.push(w));
+            const lv = core.createVolume([n, n, n], 'uint8', new Uint8Array(labels));
+            ctx.setScene({ ...scene, labels: { volume: lv, table } });
+            await ctx.renderIterations(2);
+            const hdr = Array.from(await ctx.readHDR()) as number[];
+            const fitted = ctx.getScene()!;
+            const out = {
+              hdr,
+              warnings,
+              imageBytes,
+              imageDims: fitted.volume.dims,
+              labelDims: fitted.labels!.volume.dims,
+              total: ctx.stats.gpuBytes.total,
+              budget,
+            };
+            ctx.dispose();
+            return out;
+          },
+          backend,
+          renderer,
+          BLOB,
+          ORGANS,
+          TABLE,
+          N,
+          CAMERA,
+          W,
+          H,
+        );
+        expect(over.warnings).toHaveLength(1);
+        expect(over.warnings[0].code).toBe('volume-downsampled');
+        expect(over.warnings[0].message).toMatch(/label volume/);
+        const factors = over.warnings[0].factors as [number, number, number];
+        expect(factors.some((f) => f > 1)).toBe(true);
+        expect(over.labelDims).toEqual(over.imageDims);
+        expect(over.total).toBeLessThanOrEqual(over.budget);
+        // The reference: both volumes downsampled here, rendered with room to spare.
+        const image = downsampleVolume(createVolume([N, N, N], 'uint8', new Uint8Array(BLOB)), factors);
+        const labels = downsampleLabels(createVolume([N, N, N], 'uint8', new Uint8Array(ORGANS)), factors);
+        const ref = await page.run(
+          async ({ core, t }, backend, renderer, image, labels, dims, spacing, table, camera, w, h) => {
+            const ctx = await t.context({
+              backend: backend as 'webgl2',
+              renderer,
+              width: w,
+              height: h,
+              sampling: 'exact',
+            });
+            const volume = core.createVolume(dims, 'uint8', new Uint8Array(image), spacing);
+            const scene = t.scene({
+              volume,
+              camera,
+              densityScale: 10,
+              environment: { type: 'constant', radiance: [0.1, 0.12, 0.15] },
+            });
+            const lv = core.createVolume(dims, 'uint8', new Uint8Array(labels), spacing);
+            ctx.setScene({ ...scene, labels: { volume: lv, table } });
+            const hdr = await t.finalHDR(ctx, 2);
+            const plain = await t.context({
+              backend: backend as 'webgl2',
+              renderer,
+              width: w,
+              height: h,
+              sampling: 'exact',
+            });
+            plain.setScene(scene);
+            return { hdr, without: await t.finalHDR(plain, 2) };
+          },
+          backend,
+          renderer,
+          Array.from(image.data),
+          Array.from(labels.data),
+          image.dims,
+          image.spacing,
+          TABLE,
+          CAMERA,
+          W,
+          H,
+        );
+        expect(bitsDiffer(over.hdr, ref.hdr)).toBe(0);
+        // Counter-check: the labels show in it (the image without them differs).
+        expect(bitsDiffer(over.hdr, ref.without)).toBeGreaterThan(0);
+      });
 });

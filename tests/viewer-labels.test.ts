@@ -139,6 +139,23 @@ describe('<vpt-viewer labels>', () => {
         const hidden = await vt.ldr(el);
         const hoverHidden = at(0.35, 0.5);
         const hoverRightAgain = at(0.65, 0.5);
+        // Visible again, then its opacity slider to 0 (drawn as hidden) and to 0.5 (between).
+        box.click();
+        await el.whenSettled();
+        const slide = async (value: string) => {
+          const range = el.shadowRoot.querySelector('[data-label-id="1"] input[type=range]') as HTMLInputElement;
+          range.value = value;
+          range.dispatchEvent(new Event('input', { bubbles: true }));
+          await el.whenSettled();
+          await vt.converged(el);
+          return {
+            image: await vt.ldr(el),
+            opacity: el.labelTable.find((e: { id: number }) => e.id === 1).opacity,
+            visible: el.labelTable.find((e: { id: number }) => e.id === 1).visible,
+          };
+        };
+        const transparent = await slide('0');
+        const half = await slide('0.5');
         el.setAttribute('labels', `${base}labels-no1.nrrd`);
         await el.whenSettled();
         await vt.converged(el);
@@ -149,6 +166,8 @@ describe('<vpt-viewer labels>', () => {
           none,
           all,
           hidden,
+          transparent,
+          half,
           removed,
           table,
           size,
@@ -178,6 +197,13 @@ describe('<vpt-viewer labels>', () => {
     expect(differ(r.hidden, r.all)).toBe(true);
     expect(r.hidden).toEqual(r.removed);
     expect(r.changes).toContain('labelTable');
+    // The opacity slider: 0 draws label 1 as absent (bit for bit), 0.5 draws it between.
+    expect(r.transparent.opacity).toBe(0);
+    expect(r.transparent.visible).toBe(true);
+    expect(r.transparent.image).toEqual(r.removed);
+    expect(r.half.opacity).toBe(0.5);
+    expect(differ(r.half.image, r.all)).toBe(true);
+    expect(differ(r.half.image, r.removed)).toBe(true);
     // Hover (a square view, so the geometry above holds).
     expect(r.size.width).toBe(r.size.height);
     expect(r.hoverLeft).toEqual({ id: 1, name: 'left', tip: 'left' });

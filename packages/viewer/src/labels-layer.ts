@@ -278,8 +278,12 @@ export class LabelLayer {
   hover(e: PointerEvent | null): void {
     // The scene on display (its camera, clip and labels), as its renderer draws it.
     const ctx = this.host.context;
-    const scene = e && ctx ? ctx.getScene() : null;
-    if (!e || !scene?.labels) return this.setHover(null);
+    const drawn = e && ctx ? ctx.getScene() : null;
+    if (!e || !drawn?.labels) return this.setHover(null);
+    // The file's label volume, not the context's copy (downsampled when over the memory budget):
+    // the voxel reported is the file's.
+    const own = this.scene(this.host.loadedVolume).labels;
+    const scene = own ? { ...drawn, labels: { ...drawn.labels, volume: own.volume } } : drawn;
     const r = (e.currentTarget as HTMLElement).getBoundingClientRect();
     const fx = (e.clientX - r.left) / r.width,
       fy = (e.clientY - r.top) / r.height;
@@ -326,7 +330,11 @@ export class LabelLayer {
       this.host.dispatchEvent(new CustomEvent<ViewerHoverDetail>('vpt-hover', { detail: { label: this.hovered } }));
   }
 
-  /** The Labels panel: per label of the table its id and name, a colour picker and a visible toggle. */
+  /**
+   * The Labels panel: per label of the table its id and name, a colour picker, an opacity slider
+   * (the entry's `opacity`, the extinction per unit densityScale its voxels add; 0 draws it as hidden)
+   * and a visible toggle.
+   */
   panel() {
     const table = this.host.labelTable;
     if (!this.data || !table) return nothing;
@@ -351,6 +359,16 @@ export class LabelLayer {
                       aria-label="Colour of label ${e.id}"
                       .value=${linearToHex(e.color ?? defaultLabelColor(e.id))}
                       @change=${(ev: Event) => write(i, { color: hexToLinear((ev.target as HTMLInputElement).value) })}
+                    />
+                    <input
+                      type="range"
+                      min="0"
+                      max="1"
+                      step="0.05"
+                      aria-label="Opacity of label ${e.id}"
+                      title="Opacity"
+                      .value=${String(e.opacity ?? 1)}
+                      @input=${(ev: Event) => write(i, { opacity: Number((ev.target as HTMLInputElement).value) })}
                     />
                     <input
                       id=${cid}

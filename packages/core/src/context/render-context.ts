@@ -171,6 +171,14 @@ export class RenderContext {
       max3D: () => this.backend.limits.maxTextureDimension3D,
       size: () => this.size,
       budgetBytes: () => this.volumeBudgetBytes,
+      labels: (scene) => {
+        if (!this.drawsLabels(scene)) return null;
+        const support = labelSupport();
+        return {
+          bytesPerVoxel: support.labelBytesPerVoxel(scene.labels!.volume.type, this.backend.capabilities.norm16),
+          downsample: support.downsampleLabels,
+        };
+      },
       warn: (w) => this.warn(w),
     });
     checkRenderSize(opts.width, opts.height, backend.limits);

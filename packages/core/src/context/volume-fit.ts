@@ -87,13 +87,26 @@ export interface VolumeFitHost {
   size(): { width: number; height: number };
   /** volumeBudgetBytes for the current size, renderer and post chain. */
   budgetBytes(): number;
+  /**
+   * The scene's label volume as the renderer draws it (null: none, or a renderer that does not
+   * draw labels) and its GPU bytes per voxel, with the label support's downsampler.
+   */
+  labels(
+    scene: Scene,
+  ): { bytesPerVoxel: number; downsample: (v: Scene['volume'], f: [number, number, number]) => Scene['volume'] } | null;
   warn(warning: RenderWarning): void;
 }
 
 export class VolumeFit {
   // The last fit: a scene volume → the volume actually uploaded (itself when it fits).
-  private fitted: { source: Scene['volume']; key: string; volume: Scene['volume']; bricks: BrickPlan | null } | null =
-    null;
+  // With labels, their source volume and the one uploaded (the same grid's factors, by majority vote).
+  private fitted: {
+    source: Scene['volume'];
+    key: string;
+    volume: Scene['volume'];
+    bricks: BrickPlan | null;
+    labels?: { source: Scene['volume']; volume: Scene['volume'] };
+  } | null = null;
   // Volumes backed by a multiscale source (setVolumeSource): the scene's volume is a stand-in.
   private readonly volumeSources = new WeakMap<Scene['volume'], MultiscaleSource>();
 
@@ -151,24 +164,29 @@ export class VolumeFit {
     const sampling = scene.sampling ?? this.options.sampling;
     const gradient = host.resources.wantsGradient(scene);
     const channels = scene.channels ? enabledChannels(scene.channels) : undefined;
-    const key = `${sampling}|${gradient}|${width}x${height}${channels ? `|channels ${channels.join(',')}` : ''}`;
+    // A label volume drawn on the image's grid takes its bytes from the same budget (labels.ts).
+    const labels = host.labels(scene);
+    const key = `${sampling}|${gradient}|${width}x${height}${channels ? `|channels ${channels.join(',')}` : ''}${labels ? `|labels ${labels.bytesPerVoxel}` : ''}`;
     const f = this.fitted;
-    if (f && f.key === key && f.source === scene.volume) {
-      return f.volume === scene.volume ? scene : { ...scene, volume: f.volume };
+    // The last fit holds for these labels too: none then and now, or the same label volume.
+    const sameLabels = f !== null && (f.labels?.source ?? null) === (labels ? scene.labels!.volume : null);
+    if (f && sameLabels && f.key === key && f.source === scene.volume) {
+      return withFitted(scene, f.volume, f.labels);
     }
-    if (f && f.key === key && f.bricks && !f.bricks.source && sameVoxels(f.source, scene.volume)) {
+    if (f && sameLabels && f.key === key && f.bricks && !f.bricks.source && sameVoxels(f.source, scene.volume)) {
       this.fitted = { ...f, source: scene.volume, volume: scene.volume };
-      return scene;
+      return withFitted(scene, scene.volume, f.labels);
     }
-    if (f && f.key === key && sameVoxels(f.source, scene.volume) && f.volume !== f.source) {
+    if (f && sameLabels && f.key === key && sameVoxels(f.source, scene.volume) && f.volume !== f.source) {
       // The same voxels with another value range: keep the downsampled copy, take the new range.
       const volume = { ...f.volume, valueRange: scene.volume.valueRange };
-      this.fitted = { source: scene.volume, key, volume, bricks: null };
-      return { ...scene, volume };
+      this.fitted = { source: scene.volume, key, volume, bricks: null, labels: f.labels };
+      return withFitted(scene, volume, f.labels);
     }
     // With channels the texture holds every drawn channel, so the budget counts them all.
     const upload = host.resources.planUpload(scene.volume, sampling, channels);
-    const perVoxel = upload.bytesPerVoxel + (gradient ? (sampling === 'exact' ? 4 : 2) : 0);
+    const imagePerVoxel = upload.bytesPerVoxel + (gradient ? (sampling === 'exact' ? 4 : 2) : 0);
+    const perVoxel = imagePerVoxel + (labels?.bytesPerVoxel ?? 0);
     const budget = host.budgetBytes();
     const max3D = host.max3D();
     const from = [...scene.volume.dims] as [number, number, number];
@@ -192,8 +210,27 @@ export class VolumeFit {
         `setVolumeSource: the source has ${source.channels ?? 1} channel(s) per voxel (MultiscaleSource.channels), the stand-in volume ${channelCount(scene.volume)}; they must match`,
       );
     if (brickable && (source || bricking === 'force' || (bricking === 'auto' && factors.some((f) => f > 1)))) {
+      // Labels beside a brick atlas stay one texture: whole while they fit half the budget,
+      // else downsampled to that half; the atlas has what they leave.
+      let fittedLabels: { source: Scene['volume']; volume: Scene['volume'] } | undefined;
+      let labelBytes = 0;
+      if (labels) {
+        const lv = scene.labels!.volume;
+        const lf = fitFactors(from, labels.bytesPerVoxel, budget / 2, max3D) ?? [1, 1, 1];
+        const volume = lf.some((x) => x > 1) ? labels.downsample(lv, lf) : lv;
+        if (volume !== lv)
+          this.warnDownsampled(
+            from,
+            lf,
+            volume,
+            'label volume',
+            `${voxelCount(from)} label voxels take more than half of the GPU memory budget of ${host.maxGpuBytes} bytes beside a brick atlas`,
+          );
+        fittedLabels = { source: lv, volume };
+        labelBytes = voxelCount(volume.dims) * labels.bytesPerVoxel;
+      }
       const bricks: BrickPlan = {
-        capacityBytes: budget,
+        capacityBytes: budget - labelBytes,
         brickSize: this.options.brickSize,
         uploadsPerFrame: this.options.brickUploadsPerFrame,
         lod: this.options.brickLod,
@@ -201,27 +238,55 @@ export class VolumeFit {
         ...(source ? { source } : {}),
       };
       const volume = source ? standInWithLevel0Box(scene.volume, source) : scene.volume;
-      this.fitted = { source: scene.volume, key, volume, bricks };
-      return volume === scene.volume ? scene : { ...scene, volume };
+      this.fitted = { source: scene.volume, key, volume, bricks, labels: fittedLabels };
+      return withFitted(scene, volume, fittedLabels);
     }
     let volume = scene.volume;
+    let fittedLabels = labels ? { source: scene.labels!.volume, volume: scene.labels!.volume } : undefined;
     if (factors.some((f) => f > 1)) {
       volume = channels ? downsampleChannels(scene.volume, factors) : downsampleVolume(scene.volume, factors);
       const over3D = from.some((d) => d > max3D);
+      const bytes = labels ? `${imagePerVoxel} + ${labels.bytesPerVoxel} (labels)` : `${perVoxel}`;
       const why = over3D
         ? `a side exceeds this device's 3D texture limit of ${max3D} (maxTextureDimension3D)`
-        : `${voxelCount(from)} voxels x ${perVoxel} bytes${channels ? ` (${channels.length} channels)` : ''} exceed the GPU memory budget of ${host.maxGpuBytes} bytes (maxGpuBytes)`;
-      host.warn({
-        code: 'volume-downsampled',
-        factors,
-        from,
-        to: [...volume.dims] as [number, number, number],
-        message: `Volume [${from.join(', ')}] downsampled by [${factors.join(', ')}] to [${volume.dims.join(', ')}]: ${why}`,
-      });
+        : `${voxelCount(from)} voxels x ${bytes} bytes${channels ? ` (${channels.length} channels)` : ''} exceed the GPU memory budget of ${host.maxGpuBytes} bytes (maxGpuBytes)`;
+      // The label volume lies on the image's grid: the same factors, by majority vote.
+      if (labels && fittedLabels)
+        fittedLabels = { ...fittedLabels, volume: labels.downsample(fittedLabels.source, factors) };
+      this.warnDownsampled(from, factors, volume, labels ? 'Volume and label volume' : 'Volume', why);
     }
-    this.fitted = { source: scene.volume, key, volume, bricks: null };
-    return volume === scene.volume ? scene : { ...scene, volume };
+    this.fitted = { source: scene.volume, key, volume, bricks: null, labels: fittedLabels };
+    return withFitted(scene, volume, fittedLabels);
   }
+
+  private warnDownsampled(
+    from: [number, number, number],
+    factors: [number, number, number],
+    volume: Scene['volume'],
+    what: string,
+    why: string,
+  ): void {
+    this.host.warn({
+      code: 'volume-downsampled',
+      factors,
+      from,
+      to: [...volume.dims] as [number, number, number],
+      message: `${what} [${from.join(', ')}] downsampled by [${factors.join(', ')}] to [${volume.dims.join(', ')}]: ${why}`,
+    });
+  }
+}
+
+/** The scene as fitted: its volume, and its label volume where the fit made one (the table as given). */
+function withFitted(
+  scene: Scene,
+  volume: Scene['volume'],
+  labels: { source: Scene['volume']; volume: Scene['volume'] } | undefined,
+): Scene {
+  const newLabels = labels !== undefined && scene.labels !== undefined && labels.volume !== scene.labels.volume;
+  if (volume === scene.volume && !newLabels) return scene;
+  const out = { ...scene, volume };
+  if (newLabels) out.labels = { ...scene.labels!, volume: labels!.volume };
+  return out;
 }
 
 /**

@@ -21,6 +21,10 @@ export interface LabelSupport {
   labelScaleOf(volume: Pick<Volume, 'type'>, caps: BackendCapabilities): number;
   /** The `'majorants'` grid of a label scene (majorant/grid-textures.ts): the image's plus the labels'. */
   majorantGridTexture(scene: Scene, volume: VolumeBinding, cellSize: number): AuxiliaryTexture;
+  /** The label volume by majority vote, for the budget's fit (scene/label-downsample.ts). */
+  downsampleLabels(volume: Volume, factors: readonly [number, number, number]): Volume;
+  /** GPU bytes per label voxel (uint8: 1; uint16: 2 with 16-bit norm formats, else 4). */
+  labelBytesPerVoxel(type: Volume['type'], norm16: boolean): number;
   /** The shared LABELS shader chunk (shaders/labels.*.ts). */
   chunks: { glsl: string; wgsl: string };
 }

@@ -28,8 +28,11 @@ import {
 } from '../majorant/majorant-grid.js';
 import { atlasTexture } from '../majorant/grid-textures.js';
 import { registerLabelSupport } from './label-support.js';
+import { downsampleLabels, labelBytesPerVoxel } from './label-downsample.js';
 import * as glslLabels from '../shaders/labels.glsl.js';
 import * as wgslLabels from '../shaders/labels.wgsl.js';
+
+export { downsampleLabels, labelBytesPerVoxel };
 
 /**
  * Enable label volumes (scene/label-support.ts): call once before setting a scene with `labels`
@@ -41,6 +44,8 @@ export function enableLabels(): void {
     labelTextures,
     labelScaleOf,
     majorantGridTexture: labelMajorantGridTexture,
+    downsampleLabels,
+    labelBytesPerVoxel,
     chunks: { glsl: glslLabels.LABELS, wgsl: wgslLabels.LABELS },
   });
 }
