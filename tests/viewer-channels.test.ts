@@ -155,7 +155,7 @@ describe('<vpt-viewer> channels', () => {
     expect(r.both).not.toEqual(r.alone);
   });
 
-  it('ISO and MCRT draw the channels too (a surface on channel 0; the channels as one mixture)', async () => {
+  it('ISO and MCRT draw the channels too (a surface per drawn channel in its colour; the channels as one mixture)', async () => {
     const base = viewer().server.mount(dir);
     const r = await viewer().run(async (vt, base: string) => {
       const out: Record<string, unknown> = {};
@@ -167,9 +167,30 @@ describe('<vpt-viewer> channels', () => {
         await vt.next(el, 'load');
         await vt.converged(el);
         const both = await vt.ldr(el);
+        const surfacesBoth = el.context.renderer.getParams().surfaces;
+        const defaults = el.channels;
         el.channels = [{ enabled: false }, {}];
         await vt.converged(el);
         const only1 = await vt.ldr(el);
+        // Pixels green (channel 0's default colour) and magenta (channel 1's) in the image.
+        const hues = (img: number[]) => {
+          let green = 0,
+            magenta = 0;
+          for (let i = 0; i < img.length; i += 4) {
+            const [r, g, b] = [img[i], img[i + 1], img[i + 2]];
+            if (g > r + 40 && g > b + 40) green++;
+            if (r > g + 40 && b > g + 40) magenta++;
+          }
+          return { green, magenta };
+        };
+        if (renderer === 'iso')
+          out.isoSurfaces = {
+            both: surfacesBoth,
+            only1: el.context.renderer.getParams().surfaces,
+            colors: defaults.map((c: any) => c.color),
+            firstPoints: defaults.map((c: any) => c.transferFunction.points.slice(0, 2).map((p: any) => p.value)),
+            hues: { both: hues(both), only1: hues(only1) },
+          };
         out[renderer] = {
           drawn: el.context.getScene().channels.map((c: any) => c.enabled !== false),
           errors: el.__events.filter((e: any) => e.type === 'error').map((e: any) => e.message),
@@ -182,6 +203,25 @@ describe('<vpt-viewer> channels', () => {
     }, base);
     for (const renderer of ['iso', 'mcrt'])
       expect(r[renderer], renderer).toEqual({ drawn: [false, true], errors: [], lit: true, changed: true });
+    // ISO's default surfaces follow the drawn channels: one each, in the channel's colour, at the
+    // isovalue its own fitted function suggests (halfway between its first two points).
+    const iso = r.isoSurfaces as {
+      both: { value: number; color: number[] }[];
+      only1: { value: number; color: number[] }[];
+      colors: number[][];
+      firstPoints: number[][];
+      hues: { both: { green: number; magenta: number }; only1: { green: number; magenta: number } };
+    };
+    const isoValue = (k: number) => (iso.firstPoints[k][0] + iso.firstPoints[k][1]) / 2;
+    expect(iso.both.map((s) => s.color)).toEqual(iso.colors);
+    iso.both.forEach((s, k) => expect(s.value).toBeCloseTo(isoValue(k), 3));
+    expect(iso.only1.map((s) => s.color)).toEqual([iso.colors[1]]);
+    expect(iso.only1[0].value).toBeCloseTo(isoValue(1), 3);
+    // Both balls show, each in its colour; with channel 0 off only the magenta one.
+    expect(iso.hues.both.green).toBeGreaterThan(5);
+    expect(iso.hues.both.magenta).toBeGreaterThan(5);
+    expect(iso.hues.only1.green).toBe(0);
+    expect(iso.hues.only1.magenta).toBeGreaterThan(5);
   });
 
   it('an OME-Zarr store with a c axis shows every channel (unless its fragment picks one), with its omero names and colours', async () => {

@@ -12,6 +12,7 @@ import {
   type ParamsOf,
   type Sampler,
   type RendererParamSpec,
+  type TransferFunction,
 } from '@vpt/core';
 
 /** One isosurface: where the normalized value crosses `value`, with its own colour and opacity. */
@@ -92,6 +93,19 @@ export function resolveIsoSurfaces(given: unknown): Required<IsoSurface>[] {
       bad(`surface ${i}: opacity must be in [0, 1], got ${s.opacity}`);
     return { value: s.value, color: [s.color[0], s.color[1], s.color[2]], opacity };
   });
+}
+
+/** The default surface's albedo: a warm bone white. */
+const DEFAULT_SURFACE_COLOR: [number, number, number] = [0.92, 0.88, 0.8];
+
+/**
+ * The isovalue the viewer's automatic function suggests: halfway between where it starts (the
+ * median of the foreground) and its 90th percentile, the outer surface of the object rather
+ * than its densest core; null for a function that is not 1D with two points.
+ */
+function isoValueOf(tf: TransferFunction): number | null {
+  if (tf.dimensions !== '1d' || tf.points.length < 2) return null;
+  return Math.round(((tf.points[0].value + tf.points[1].value) / 2) * 1000) / 1000;
 }
 
 export const ISO_DESCRIPTOR = defineRenderer({
@@ -189,16 +203,20 @@ export const ISO_DESCRIPTOR = defineRenderer({
     densityScale: 20,
     environment: [0.1, 0.11, 0.14],
     keyLight: [2.6, 2.5, 2.3],
-    params: (tf) => {
-      if (tf?.dimensions !== '1d' || tf.points.length < 2) return {};
-      // Halfway between where the automatic function starts (the median of the foreground)
-      // and its 90th percentile: the outer surface of the object rather than its densest core.
-      const value = (tf.points[0].value + tf.points[1].value) / 2;
-      return {
-        surfaces: [{ value: Math.round(value * 1000) / 1000, color: [0.92, 0.88, 0.8], opacity: 1 }],
-        specular: 0.15,
-        shininess: 30,
-      };
+    params: (tf, channels) => {
+      // A multichannel volume: one surface per drawn channel (surface k lies on drawn channel
+      // k), at that channel's own isovalue, in its colour, as a microscopist reads them apart.
+      if (channels?.length) {
+        const surfaces = channels.map((c) => ({
+          value: isoValueOf(c.transferFunction) ?? 0.5,
+          color: c.color ? ([...c.color] as [number, number, number]) : DEFAULT_SURFACE_COLOR,
+          opacity: 1,
+        }));
+        return { surfaces, specular: 0.15, shininess: 30 };
+      }
+      const value = tf ? isoValueOf(tf) : null;
+      if (value === null) return {};
+      return { surfaces: [{ value, color: DEFAULT_SURFACE_COLOR, opacity: 1 }], specular: 0.15, shininess: 30 };
     },
   },
 });

@@ -7,6 +7,7 @@
 import {
   DEFAULT_RENDERER_NAME,
   type Camera,
+  type ChannelSettings,
   type Environment,
   type Light,
   type RendererLookDefaults,
@@ -142,7 +143,15 @@ export function rendererLook(renderer: string): RendererLook {
 
 const BLACK_LOOK: RendererLookDefaults = { densityScale: 20, environment: [0, 0, 0] };
 
-/** Renderer parameters that depend on the data, used while `renderer-params` is unset (the descriptor's look.params; iso: one surface at the automatic function's isovalue). */
-export function defaultRendererParams(renderer: string, tf: TransferFunction | null): Record<string, unknown> {
-  return rendererEntry(renderer)?.descriptor?.look?.params?.(tf) ?? {};
+/**
+ * Renderer parameters that depend on the data, used while `renderer-params` is unset (the
+ * descriptor's look.params; iso: one surface at the automatic function's isovalue, or with
+ * `channels`, the drawn channels of a multichannel volume, one surface per channel).
+ */
+export function defaultRendererParams(
+  renderer: string,
+  tf: TransferFunction | null,
+  channels?: readonly ChannelSettings[],
+): Record<string, unknown> {
+  return rendererEntry(renderer)?.descriptor?.look?.params?.(tf, channels) ?? {};
 }

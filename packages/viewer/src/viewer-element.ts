@@ -1717,7 +1717,14 @@ export class VptViewer extends LitElement implements PanelHost, SlotHolder {
   private effectiveRendererParams(): Record<string, unknown> {
     const p = this.rendererParams;
     if (p && typeof p === 'object') return p;
-    return defaultRendererParams(this.renderer, this.autoTransferFunction);
+    // A multichannel volume's drawn channels (their functions and colours) shape the defaults too.
+    const drawn = this.volume?.multichannel
+      ? this.channels?.filter(
+          (c): c is ViewerChannel & { transferFunction: TransferFunction } =>
+            c.enabled !== false && c.transferFunction !== undefined,
+        )
+      : undefined;
+    return defaultRendererParams(this.renderer, this.autoTransferFunction, drawn);
   }
 
   private makePost() {
@@ -1837,6 +1844,19 @@ export class VptViewer extends LitElement implements PanelHost, SlotHolder {
       s.ctx.setTemporal(this.temporal !== 'off').catch((e: unknown) => this.fail(e, 'context'));
     this.applySize();
     s.setStopping(this.maxSamples, this.targetError);
+    // Defaults of the renderer's parameters that follow the scene (ISO: a surface per drawn
+    // channel) changed: the new renderer first (switchRenderer applies the scene after it), so
+    // the scene never meets parameters made for another one.
+    const desired = this.desiredRendererKey();
+    if (
+      this.rendererInstance &&
+      s.ctx.renderer === this.rendererInstance &&
+      desired !== this.rendererKey &&
+      desired !== this.failedRendererKey
+    ) {
+      this.track(this.switchRenderer());
+      return;
+    }
     const scene = this.sceneNow();
     if (!scene) return;
     try {

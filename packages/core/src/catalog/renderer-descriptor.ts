@@ -12,6 +12,7 @@
  * `Create` switch, and luma.gl's ShaderModule (uniform types and defaults with the code).
  */
 import { VptError } from '../errors.js';
+import type { ChannelSettings } from '../scene/channels.js';
 import type { Scene } from '../scene/scene.js';
 import type { TransferFunction } from '../scene/transfer-function.js';
 import type { UniformField, UniformValues } from '../uniforms/layout.js';
@@ -117,8 +118,12 @@ export interface RendererLookDefaults {
   keyLight?: readonly [number, number, number];
   /** The automatic transfer function: as is (default), its colours scaled, or its colours used as albedo. */
   transferFunction?: 'as-is' | 'albedo' | { scaleColors: number };
-  /** Parameters that depend on the automatic transfer function, used while the user set none. */
-  params?(tf: TransferFunction | null): Record<string, unknown>;
+  /**
+   * Parameters that depend on the automatic transfer function, used while the user set none;
+   * for a multichannel volume `channels` holds the drawn channels' settings, in order (their
+   * own functions and colours).
+   */
+  params?(tf: TransferFunction | null, channels?: readonly ChannelSettings[]): Record<string, unknown>;
 }
 
 /** What a renderer reads from the scene besides the volume (declarative: for documentation and user interfaces). */
