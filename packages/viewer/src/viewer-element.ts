@@ -1764,7 +1764,13 @@ export class VptViewer extends LitElement implements PanelHost, SlotHolder {
     const scene = this.sceneFromAttributes();
     if (!scene) return null;
     const mc = this.volume!.multichannel;
-    if (mc) Object.assign(scene, { volume: mc.volume, channels: this.channels });
+    if (mc) {
+      const channels = this.channels!;
+      Object.assign(scene, { volume: mc.volume, channels });
+      // A streamed store reads the channels drawn, from before the context's bricks need them.
+      const streamed = this.volumeLoading.streamed;
+      if (streamed?.standIn === mc.volume) streamed.draw?.(channels.flatMap((c, k) => (c.enabled ? [k] : [])));
+    }
     const attr = this.slicePlane && typeof this.slicePlane === 'object' ? this.slicePlane : null;
     const follow = this.followedPlane();
     if (follow && this.crosshair3d === 'slice') {
