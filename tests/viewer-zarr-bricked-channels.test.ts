@@ -15,7 +15,8 @@ import { openViewerPage, type ViewerPage } from './helpers/viewer-page.js';
 // its bricks are resident the image equals the unbricked level 0 (`#level=0`, both channels
 // whole) with the same channel settings. Turning a channel off (or the other one) while
 // streamed draws the other channel alone: the unbricked level 0 with that channel off, and,
-// each channel being drawn purely in its colour, no trace of the channel turned off.
+// each channel being drawn purely in its colour, no trace of the channel turned off. The slice
+// panes, which draw the element's channel-0 view, stream channel 0 (as tests/viewer-zarr-panes.test.ts).
 const N = 128;
 /** Two fields on one ball in an exactly empty cube: a smooth fall-off and a rippled rise, both 0 outside. */
 function balls(): [Uint8Array, Uint8Array] {
@@ -55,12 +56,14 @@ const BOTH = [
 const ONLY0 = [BOTH[0], { ...BOTH[1], enabled: false }];
 const ONLY1 = [{ ...BOTH[0], enabled: false }, BOTH[1]];
 
+let A: Uint8Array;
 let vp: ViewerPage;
 let server: FaultServer;
 let root: string;
 beforeAll(async () => {
   root = tempDir('vpt-viewer-zarr-bricked-channels-');
   const [a, b] = balls();
+  A = a;
   await writeZarrFolder(
     path.join(root, 'two.ome.zarr'),
     { dims: [N, N, N], type: 'uint8', spacing: [1, 1, 1], images: [[a, b]] },
@@ -230,5 +233,88 @@ describe('<vpt-viewer> streams a multichannel OME-Zarr level 0 beyond the budget
       `bricked 2-channel OME-Zarr (128³ uint8, budget ${MAX_GPU_BYTES} B), atlas + tables: both ${figures[0]}; ` +
         `channel 0 ${figures[1]}; channel 1 ${figures[2]}; ${level0.length} level-0 chunk requests`,
     );
+  });
+  it("the slice panes stream channel 0: the axial pane equals level 0's channel 0 once its bricks are resident", async () => {
+    const WINDOW: [number, number] = [128, 256];
+    const r = await vp.page.evaluate(
+      async (src: string, budget: number, win: [number, number]) => {
+        const vt = window.vt as any;
+        document.body.style.margin = '0';
+        const el = vt.create(
+          { src, backend: 'webgl2', panels: 'none', 'max-samples': '1', layout: 'slices' },
+          'width:900px;height:400px',
+        );
+        el.maxGpuBytes = budget;
+        const loads: any[] = [];
+        el.addEventListener('vpt-load', (e: CustomEvent) => loads.push(e.detail.level));
+        await el.whenSettled();
+        for (let i = 0; i < 500 && !loads.some((l) => l?.bricked); i++) await vt.frames(1);
+        el.sliceWindow = win;
+        await el.updateComplete;
+        let complete = false;
+        for (let i = 0; i < 600 && !complete; i++) {
+          await vt.frames(2);
+          const b = el.paneContext('axial')?.stats.bricking;
+          complete = !!b && b.complete;
+        }
+        await new Promise((res) => setTimeout(res, 300));
+        await vt.frames(4);
+        const ctx = el.paneContext('axial');
+        const view = el.loadedVolume;
+        const out = {
+          loads,
+          complete,
+          size: ctx.size,
+          params: ctx.renderer.getParams(),
+          hdr: Array.from((await ctx.readHDR()) as Float32Array),
+          view: {
+            dims: Array.from(view.dims as number[]),
+            channels: view.channels ?? 1,
+            data: Array.from(view.data as Uint8Array),
+          },
+          paneChannels: ctx.getScene().volume.channels ?? 1,
+          errors: el.__events.filter((e: { type: string }) => e.type === 'error'),
+        };
+        el.remove();
+        return out;
+      },
+      `${server.url}two.ome.zarr`,
+      MAX_GPU_BYTES,
+      WINDOW,
+    );
+    expect(r.errors).toEqual([]);
+    expect(r.loads.at(-1)).toMatchObject({ index: 0, bricked: true });
+    expect(r.complete).toBe(true);
+    // The element's volume: channel 0 of the stand-in (level 1), one channel; so is the pane's scene.
+    const [sx, sy] = r.view.dims;
+    expect([sx, r.view.channels, r.paneChannels]).toEqual([64, 1, 1]);
+    // Axial cuts z at the stand-in's layer k: world z through its centre, the border of level 0's
+    // layers 2k and 2k + 1 (float rounding picks either); each pixel one of the nearest voxels.
+    const k = r.params.index as number;
+    const w = (d: number) => Math.min(1, Math.max(0, (d - (WINDOW[0] - WINDOW[1] / 2)) / WINDOW[1]));
+    const cands = (p: number, n: number, size: number) => {
+      const s = ((p + 0.5) / size) * n;
+      return [...new Set([Math.floor(s - 1e-4), Math.floor(s + 1e-4)])].filter((c) => c >= 0 && c < n);
+    };
+    const { width: W, height: H } = r.size;
+    let worst0 = 0,
+      worstView = 0;
+    for (let j = 0; j < H; j++)
+      for (let i = 0; i < W; i++) {
+        const got = r.hdr[4 * (i + W * j)];
+        let best = Infinity;
+        for (const z of [2 * k, 2 * k + 1])
+          for (const x of cands(i, N, W))
+            for (const y of cands(j, N, H)) best = Math.min(best, Math.abs(got - w(A[x + N * (y + N * z)])));
+        worst0 = Math.max(worst0, best);
+        let bestV = Infinity;
+        for (const x of cands(i, sx, W))
+          for (const y of cands(j, sy, H))
+            bestV = Math.min(bestV, Math.abs(got - w(r.view.data[x + sx * (y + sy * k)])));
+        worstView = Math.max(worstView, bestV);
+      }
+    expect(worst0).toBeLessThan(1e-6);
+    // The stand-in's own slice is not what is shown.
+    expect(worstView).toBeGreaterThan(0.01);
   });
 });

@@ -1053,7 +1053,8 @@ export class VptViewer extends LitElement implements PanelHost, SlotHolder {
     const window = this._window;
     if (!scene || !cross || !window) return;
     const dpr = globalThis.devicePixelRatio || 1;
-    const streamed = this.volumeLoading.streamed;
+    // A store's channels: the panes stream channel 0 under the element's scalar view (volume-loading.ts).
+    const streamed = this.volumeLoading.streamed?.pane ?? this.volumeLoading.streamed;
     for (const g of this.paneGeometry()) {
       const pane = this.slicePanes.get(g.name);
       const size = this._paneSizes[g.name];

@@ -54,12 +54,14 @@ export class VolumeLoading {
   /**
    * A level 0 streamed as bricks: the stand-in volume the scene holds and its source
    * (registered on every new context); `draw`, for a store's channels: the channels a scene
-   * about to be set draws (the source reads only those, StreamedChannels).
+   * about to be set draws (the source reads only those, StreamedChannels); `pane`: the panes'.
    */
   streamed: {
     standIn: LoadedVolumeLike;
     source: MultiscaleSource;
     draw?: (channels: readonly number[]) => void;
+    /** For a store's channels: what the slice panes stream, channel 0 under the element's scalar view. */
+    pane?: { standIn: LoadedVolumeLike; source: MultiscaleSource };
   } | null = null;
   private brickFailureWarned = false;
   private tokens = { src: 0 };
@@ -223,6 +225,7 @@ export class VolumeLoading {
     }
     let standIn: LoadedVolumeLike, view: LoadedVolumeLike, streamedSource: MultiscaleSource;
     let draw: ((channels: readonly number[]) => void) | undefined;
+    let pane: { standIn: LoadedVolumeLike; source: MultiscaleSource } | undefined;
     if (mc) {
       // The scene's volume (the multichannel one, sceneNow) is the stand-in, streamed from
       // every channel's source as one interleaved source; the element keeps channel 0's
@@ -238,13 +241,24 @@ export class VolumeLoading {
       view = { ...shown, multichannel: mc.over(standIn) };
       streamedSource = channels;
       draw = (ks) => channels.draw(ks);
+      // The panes draw the scalar view: channel 0's source, without its own value range, so
+      // they map values as the view does (core takes a source's range over its stand-in's).
+      pane = {
+        standIn: view,
+        source: {
+          type: multiscale.type,
+          levels: multiscale.levels,
+          readRegion: (l, min, max, signal) => multiscale.readRegion(l, min, max, signal),
+          readLevel: (l, signal) => multiscale.readLevel(l, signal),
+        },
+      };
     } else {
       // A new object: the context fits it afresh, as bricks, instead of reusing the upload of `shown`.
       standIn = { ...shown };
       view = standIn;
       streamedSource = multiscale;
     }
-    this.streamed = { standIn, source: streamedSource, ...(draw ? { draw } : {}) };
+    this.streamed = { standIn, source: streamedSource, ...(draw ? { draw } : {}), ...(pane ? { pane } : {}) };
     this.brickFailureWarned = false;
     this.session?.ctx.setVolumeSource(standIn, streamedSource);
     this._dataLevel = { ...this._dataLevel, shown: 0, loading: null, bricked: true };
