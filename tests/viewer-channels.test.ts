@@ -299,7 +299,8 @@ describe('<vpt-viewer> channels', () => {
   it("an OME-Zarr store's levels are planned for all its channels' bytes, each level read once", async () => {
     // 64³ uint8: level 0 is 256 KiB a channel, level 1 32 KiB. The volume budget is maxGpuBytes
     // less 1 MiB (transfer function) and the render targets: about 340 kB fits one channel of
-    // level 0 but not two, so the store must stop at level 1.
+    // level 0 but not two, so the store loads whole up to level 1 only (level 0 then streams as
+    // bricks: tests/viewer-zarr-bricked-channels.test.ts).
     const N = 64;
     const blob = (cx: number) => {
       const v = new Uint8Array(N ** 3);
@@ -324,13 +325,17 @@ describe('<vpt-viewer> channels', () => {
       );
       el.maxGpuBytes = (1 << 20) + 384 * 1024;
       const loads: any[] = [];
-      el.addEventListener('vpt-load', (e: CustomEvent) => loads.push(e.detail.level));
+      el.addEventListener('vpt-load', (e: CustomEvent) => {
+        loads.push(e.detail.level);
+        // Level 1 is read whole: a mark in the request log before level 0's streaming reads the store again.
+        if (e.detail.level.index === 1) fetch(`${base}levels.ome.zarr/zarr.json?mark`);
+      });
       await el.whenSettled();
       await vt.converged(el);
       const scene = el.context.getScene();
       const out = {
         budget: el.context.volumeBudgetBytes,
-        last: loads[loads.length - 1],
+        loads: loads.map((l: any) => [l.index, l.final, l.bricked ?? false]),
         dims: scene.volume.dims,
         channels: scene.volume.channels,
         errors: el.__events.filter((e: any) => e.type === 'error').map((e: any) => e.message),
@@ -338,17 +343,23 @@ describe('<vpt-viewer> channels', () => {
       el.remove();
       return out;
     }, server.url);
-    const level1 = server.log.filter(
-      (p) => /levels\.ome\.zarr\/1\//.test(p) && !/\.z(array|attrs|group)$|zarr\.json$/.test(p),
-    );
+    const mark = server.queries.indexOf('?mark');
+    expect(mark).toBeGreaterThan(0);
+    const level1 = server.log
+      .slice(0, mark)
+      .filter((p) => /levels\.ome\.zarr\/1\//.test(p) && !/\.z(array|attrs|group)$|zarr\.json$/.test(p));
     await server.close();
     expect(level1.length, level1.join(' ')).toBe(2);
     // The premise: one channel of level 0 fits, two do not.
     expect(r.budget).toBeGreaterThan(N ** 3);
     expect(r.budget).toBeLessThan(2 * N ** 3);
     expect(r.errors).toEqual([]);
-    expect(r.last).toMatchObject({ index: 1, final: true });
-    expect(r.last.bricked).toBeUndefined();
+    expect(r.loads).toEqual([
+      [2, false, false],
+      [1, false, false],
+      [0, true, true],
+    ]);
+    // The scene's volume: level 1 with both channels (whole, or standing in for the bricks).
     expect([r.dims, r.channels]).toEqual([[32, 32, 32], 2]);
   });
 

@@ -17,11 +17,16 @@ import { html } from 'lit';
 import {
   channelCount,
   channelVolume,
+  interleaveChannels,
   MAX_ENABLED_CHANNELS,
   validateChannels,
   VptError,
+  type MultiscaleLevel,
+  type MultiscaleSource,
   type TransferFunction,
   type Volume,
+  type VoxelArray,
+  type VoxelType,
 } from '@vpt/core';
 import { hexToLinear, linearToHex } from './color.js';
 import { autoTransferFunction } from './defaults.js';
@@ -98,6 +103,14 @@ export class Channels implements ChannelView {
       const label = list(labels)?.[k];
       return typeof label === 'string' && label ? label : `Channel ${k}`;
     });
+  }
+
+  /**
+   * The same channels (defaults, names, histograms) over another object with these voxels: the
+   * stand-in of a streamed level 0 (RenderContext.setVolumeSource wants a volume of its own).
+   */
+  over(volume: LoadedVolumeLike): Channels {
+    return Object.assign(Object.create(Channels.prototype) as Channels, { ...this, volume });
   }
 
   resolve(user: readonly Partial<ViewerChannel>[] | null): ViewerChannel[] {
@@ -204,4 +217,84 @@ export function withChannels(volume: LoadedVolumeLike): LoadedVolumeLike {
     meta: { ...meta, channelCount: volume.channels },
     multichannel: new Channels(volume),
   };
+}
+
+const ARRAYS: Record<VoxelType, new (n: number) => VoxelArray> = {
+  uint8: Uint8Array,
+  uint16: Uint16Array,
+  int16: Int16Array,
+  float32: Float32Array,
+};
+
+/**
+ * A store's channels as one multiscale source for the brick cache (MultiscaleSource.channels:
+ * the values of every channel per voxel, interleaved, the channel fastest), over one source per
+ * channel (`open(k)`, opened on first use; channel 0's given). The bricks keep only the drawn
+ * channels (core's BrickChannels.pick), so a region is read only from the channels drawn since
+ * streaming began (`draw`, called before a scene that draws them is set, so every brick cache's
+ * channels are among them); the others read as 0, which no brick keeps.
+ */
+export class StreamedChannels implements MultiscaleSource {
+  readonly type: VoxelType;
+  readonly levels: MultiscaleLevel[];
+  private readonly drawn = new Set<number>();
+  private readonly parts = new Map<number, Promise<MultiscaleSource>>();
+
+  constructor(
+    first: MultiscaleSource,
+    readonly channels: number,
+    private readonly open: (channel: number) => Promise<MultiscaleSource>,
+  ) {
+    this.type = first.type;
+    this.levels = first.levels;
+    this.parts.set(0, Promise.resolve(first));
+  }
+
+  /** Channels a scene about to be set draws: read from now on. */
+  draw(channels: Iterable<number>): void {
+    for (const k of channels) if (k >= 0 && k < this.channels) this.drawn.add(k);
+  }
+
+  /** The channels read (drawn since streaming began), in order. */
+  get read(): number[] {
+    return [...this.drawn].sort((a, b) => a - b);
+  }
+
+  private part(k: number): Promise<MultiscaleSource> {
+    let p = this.parts.get(k);
+    if (!p) {
+      p = this.open(k);
+      this.parts.set(k, p);
+      // A failed open is tried again by the next brick that needs the channel.
+      p.catch(() => {
+        if (this.parts.get(k) === p) this.parts.delete(k);
+      });
+    }
+    return p;
+  }
+
+  async readRegion(
+    level: number,
+    min: [number, number, number],
+    max: [number, number, number],
+    signal?: AbortSignal,
+  ): Promise<VoxelArray> {
+    const read = this.read;
+    const regions = await Promise.all(read.map(async (k) => (await this.part(k)).readRegion(level, min, max, signal)));
+    const n = (max[0] - min[0]) * (max[1] - min[1]) * (max[2] - min[2]);
+    const C = this.channels;
+    const out = new ARRAYS[this.type](n * C);
+    read.forEach((k, j) => {
+      const r = regions[j];
+      for (let i = 0; i < n; i++) out[k + C * i] = r[i];
+    });
+    return out;
+  }
+
+  /** A whole level with every channel (a user of the source may want them all; the bricks never read this). */
+  async readLevel(level: number, signal?: AbortSignal): Promise<Volume> {
+    const all = [...Array(this.channels).keys()];
+    const volumes = await Promise.all(all.map(async (k) => (await this.part(k)).readLevel(level, signal)));
+    return interleaveChannels(volumes.map((v) => ({ ...v, valueRange: undefined })));
+  }
 }

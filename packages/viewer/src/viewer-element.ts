@@ -1053,7 +1053,8 @@ export class VptViewer extends LitElement implements PanelHost, SlotHolder {
     const window = this._window;
     if (!scene || !cross || !window) return;
     const dpr = globalThis.devicePixelRatio || 1;
-    const streamed = this.volumeLoading.streamed;
+    // A store's channels: the panes stream channel 0 under the element's scalar view (volume-loading.ts).
+    const streamed = this.volumeLoading.streamed?.pane ?? this.volumeLoading.streamed;
     for (const g of this.paneGeometry()) {
       const pane = this.slicePanes.get(g.name);
       const size = this._paneSizes[g.name];
@@ -1771,7 +1772,13 @@ export class VptViewer extends LitElement implements PanelHost, SlotHolder {
     const scene = this.sceneFromAttributes();
     if (!scene) return null;
     const mc = this.volume!.multichannel;
-    if (mc) Object.assign(scene, { volume: mc.volume, channels: this.channels });
+    if (mc) {
+      const channels = this.channels!;
+      Object.assign(scene, { volume: mc.volume, channels });
+      // A streamed store reads the channels drawn, from before the context's bricks need them.
+      const streamed = this.volumeLoading.streamed;
+      if (streamed?.standIn === mc.volume) streamed.draw?.(channels.flatMap((c, k) => (c.enabled ? [k] : [])));
+    }
     const attr = this.slicePlane && typeof this.slicePlane === 'object' ? this.slicePlane : null;
     const follow = this.followedPlane();
     if (follow && this.crosshair3d === 'slice') {

@@ -75,6 +75,8 @@ export interface ChannelView {
   check(user: unknown, densityScale: number): void;
   /** The Channels panel's template. */
   panel(host: ChannelsHost): unknown;
+  /** The same channels over another object with these voxels (a streamed level 0's stand-in). */
+  over(volume: LoadedVolumeLike): ChannelView;
 }
 
 export type LoadVolumeFn = (source: VolumeSource, options?: LoadOptions) => Promise<LoadedVolumeLike>;

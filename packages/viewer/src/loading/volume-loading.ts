@@ -51,8 +51,18 @@ export interface VolumeLoadingHost {
 }
 
 export class VolumeLoading {
-  /** A level 0 streamed as bricks: the stand-in volume the scene holds and its source (registered on every new context). */
-  streamed: { standIn: LoadedVolumeLike; source: MultiscaleSource } | null = null;
+  /**
+   * A level 0 streamed as bricks: the stand-in volume the scene holds and its source
+   * (registered on every new context); `draw`, for a store's channels: the channels a scene
+   * about to be set draws (the source reads only those, StreamedChannels); `pane`: the panes'.
+   */
+  streamed: {
+    standIn: LoadedVolumeLike;
+    source: MultiscaleSource;
+    draw?: (channels: readonly number[]) => void;
+    /** For a store's channels: what the slice panes stream, channel 0 under the element's scalar view. */
+    pane?: { standIn: LoadedVolumeLike; source: MultiscaleSource };
+  } | null = null;
   private brickFailureWarned = false;
   private tokens = { src: 0 };
   private srcAbort: AbortController | null = null;
@@ -164,12 +174,15 @@ export class VolumeLoading {
       // The budget and the texture limit are the context's: wait for one that is opening.
       if (this.opening) await this.opening;
       if (token !== this.tokens.src) return;
-      // A store's channels (channels.ts) count each: the GPU holds every drawn one.
+      // A store's channels (channels.ts) count as the texture's components: it holds every drawn
+      // one (at most MAX_ENABLED_CHANNELS), two as rg, three or four as rgba (planChannelUpload).
       const mc = first.multichannel?.volume.channels ?? 1;
-      const target = finestFittingLevel(levels, BYTES_PER_VOXEL[first.type] * mc, this.volumeBudget(), this.max3D());
+      const components = mc === 1 ? 1 : mc === 2 ? 2 : 4;
+      const perVoxel = BYTES_PER_VOXEL[first.type] * components;
+      const target = finestFittingLevel(levels, perVoxel, this.volumeBudget(), this.max3D());
       const plan = refinementPlan(levels, target, (first.dims[0] * first.dims[1] * first.dims[2]) / ms);
-      // Level 0 beyond the budget streams as bricks after the last level that fits (one channel's only).
-      const bricks = target > 0 && mc < 2;
+      // Level 0 beyond the budget streams as bricks after the last level that fits (every channel's, see streamLevel0).
+      const bricks = target > 0;
       this._dataLevel = { shown: levels.length - 1, count: levels.length, target, loading: plan[0] ?? null };
       this.applyVolume(first, source, this.levelDetail(levels.length - 1, levels, plan.length === 0 && !bricks));
       shown = true;
@@ -201,19 +214,55 @@ export class VolumeLoading {
     const shown = this.volume;
     if (!shown || !this._dataLevel) return;
     this._dataLevel = { ...this._dataLevel, loading: 0 };
-    const multiscale = await openMultiscaleSource(source, this.host.requestPolicy());
+    const request = this.host.requestPolicy();
+    const mc = shown.multichannel;
+    // A store's channels: channel 0's source first, the others opened when first drawn.
+    const multiscale = await openMultiscaleSource(source, request, mc ? 0 : undefined);
     if (token !== this.tokens.src || this.volume !== shown) return;
     if (!multiscale) {
       this._dataLevel = { ...this._dataLevel, loading: null };
       return;
     }
-    // A new object: the context fits it afresh, as bricks, instead of reusing the upload of `shown`.
-    const standIn: LoadedVolumeLike = { ...shown };
-    this.streamed = { standIn, source: multiscale };
+    let standIn: LoadedVolumeLike, view: LoadedVolumeLike, streamedSource: MultiscaleSource;
+    let draw: ((channels: readonly number[]) => void) | undefined;
+    let pane: { standIn: LoadedVolumeLike; source: MultiscaleSource } | undefined;
+    if (mc) {
+      // The scene's volume (the multichannel one, sceneNow) is the stand-in, streamed from
+      // every channel's source as one interleaved source; the element keeps channel 0's
+      // scalar view (histogram, slice panes, probe), now carrying the stand-in's channels.
+      const { StreamedChannels } = await import('../channels.js');
+      if (token !== this.tokens.src || this.volume !== shown) return;
+      const channels = new StreamedChannels(multiscale, mc.volume.channels ?? 1, async (k) => {
+        const part = await openMultiscaleSource(source, request, k);
+        if (!part) throw new Error(`${source}: channel ${k} could not be opened`);
+        return part;
+      });
+      standIn = { ...mc.volume };
+      view = { ...shown, multichannel: mc.over(standIn) };
+      streamedSource = channels;
+      draw = (ks) => channels.draw(ks);
+      // The panes draw the scalar view: channel 0's source, without its own value range, so
+      // they map values as the view does (core takes a source's range over its stand-in's).
+      pane = {
+        standIn: view,
+        source: {
+          type: multiscale.type,
+          levels: multiscale.levels,
+          readRegion: (l, min, max, signal) => multiscale.readRegion(l, min, max, signal),
+          readLevel: (l, signal) => multiscale.readLevel(l, signal),
+        },
+      };
+    } else {
+      // A new object: the context fits it afresh, as bricks, instead of reusing the upload of `shown`.
+      standIn = { ...shown };
+      view = standIn;
+      streamedSource = multiscale;
+    }
+    this.streamed = { standIn, source: streamedSource, ...(draw ? { draw } : {}), ...(pane ? { pane } : {}) };
     this.brickFailureWarned = false;
-    this.session?.ctx.setVolumeSource(standIn, multiscale);
+    this.session?.ctx.setVolumeSource(standIn, streamedSource);
     this._dataLevel = { ...this._dataLevel, shown: 0, loading: null, bricked: true };
-    this.applyVolume(standIn, source, { ...this.levelDetail(0, levels, true)!, bricked: true });
+    this.applyVolume(view, source, { ...this.levelDetail(0, levels, true)!, bricked: true });
   }
 
   /**

@@ -163,12 +163,13 @@ export async function loadVolumeSource(source: VolumeSource, options: LoadOption
 
 /**
  * An OME-Zarr `src` opened for region reads in this thread (@vpt/loaders' openOmeZarr, with
- * the channel and time of its fragment), for the brick cache (RenderContext.setVolumeSource);
+ * the channel and time of its fragment, or channel `channel`), for the brick cache (RenderContext.setVolumeSource);
  * null when @vpt/loaders is not installed (the fallback loader cannot read Zarr).
  */
 export async function openMultiscaleSource(
   source: string,
   request: Partial<RequestPolicy> = {},
+  channel?: number,
 ): Promise<MultiscaleSource | null> {
   const { name } = await volumeLoader();
   if (name !== '@vpt/loaders') return null;
@@ -180,7 +181,9 @@ export async function openMultiscaleSource(
     ) => Promise<MultiscaleSource>;
     splitZarrLocation: (location: string) => { store: string; selection: { channel?: number; time?: number } };
   };
-  const { store, selection } = m.splitZarrLocation(source);
+  const { store, selection: fragment } = m.splitZarrLocation(source);
+  // `channel`: one channel of a store streamed with all its channels (channels.ts, StreamedChannels).
+  const selection = channel !== undefined ? { ...fragment, channel } : fragment;
   // The worker resolves a relative src against the page; so does this thread.
   const location = typeof document !== 'undefined' ? new URL(store, document.baseURI).href : store;
   return m.openOmeZarr(location, {
