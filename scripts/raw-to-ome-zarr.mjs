@@ -9,7 +9,8 @@
  *
  * `--channels` (convertRawToOmeZarr: a list of sidecars) adds more raw volumes of the same dims
  * and voxel type as further channels: the store then has a `c` axis (tczyx), channel 0 the
- * first sidecar, and one omero window per channel (each sidecar's value_range).
+ * first sidecar, and one omero window per channel (each sidecar's value_range); a sidecar's
+ * `channel_label` and `channel_color` (RRGGBB) become its channel's omero label and colour.
  *
  * Levels are 2× box averages (every side longer than 1 halves); the sidecar's value_range
  * becomes the omero channel window, which vpt reads as the normalization range.
@@ -81,9 +82,20 @@ export async function convertRawToOmeZarr(sidecarPaths, outDir, options = {}) {
       levels: options.levels ?? 1,
       chunk: [chunk, chunk, chunk],
       unit: options.unit ?? 'micrometer',
-      name: sidecar.title ?? path.basename(sidecarPath, '.json'),
+      // A multichannel store's name is not its channel 0's title: datasets.json omeZarr.name.
+      name: options.name ?? sidecar.title ?? path.basename(sidecarPath, '.json'),
       ...(channels.every((c) => Array.isArray(c.sidecar.value_range))
         ? { windows: channels.map((c) => c.sidecar.value_range) }
+        : {}),
+      // A sidecar's channel_label / channel_color (RRGGBB) name and colour its channel (omero),
+      // which the viewer shows; where none has them, the viewer's defaults apply.
+      ...(channels.some((c) => c.sidecar.channel_label || c.sidecar.channel_color)
+        ? {
+            channelInfo: channels.map((c) => ({
+              ...(c.sidecar.channel_label ? { label: String(c.sidecar.channel_label) } : {}),
+              ...(c.sidecar.channel_color ? { color: String(c.sidecar.channel_color) } : {}),
+            })),
+          }
         : {}),
     },
   );

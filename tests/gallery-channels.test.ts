@@ -6,7 +6,8 @@ import { recordPageErrors } from './helpers/page-errors.js';
 
 // The gallery's multichannel and labelled entries (issue 24): "CT chest with lung
 // segmentation" (the pyradiomics lung2 CT with its label map, both from `pnpm data:fetch`) and
-// "Fluorescence microscopy, 2 channels" (a 2-channel OME-Zarr store with a `c` axis), and the
+// "2-channel microscopy" (a real 2-channel brain stack from the imaris-ims-file-reader sdist,
+// as the OME-Zarr store `pnpm data:fetch` writes, with a `c` axis), and the
 // fluorescence time series (nellie's yeast mitochondria, a 4D NRRD) that plays with the viewer's
 // time toolbar. Each is skipped, its title saying why, where its data has not been fetched.
 //
@@ -14,7 +15,8 @@ import { recordPageErrors } from './helpers/page-errors.js';
 // (dims, type, channels as the manifest says), the CT entry sets the viewer's `labels` property
 // to the label volume's URL, and that label volume loads through the viewer's loaders on the CT's
 // grid (uint8, the ids 0 and 1), and the scene the viewer draws holds it with a table naming
-// label 1; a multichannel store shows every channel, each in its own colour.
+// label 1; the 2-channel store shows both channels with the label, colour and window of
+// each channel's sidecar (through the store's omero metadata).
 const FETCHED = fileURLToPath(new URL('../data/fetched/', import.meta.url));
 const CT = 'ct_chest_pyradiomics_lung2_512x512x61_int16';
 const LABELS = 'ct_chest_pyradiomics_lung2_label_512x512x61_uint8';
@@ -22,22 +24,19 @@ const ctFetched = [CT, LABELS].every(
   (n) => fs.existsSync(`${FETCHED}${n}.raw`) && fs.existsSync(`${FETCHED}${n}.json`),
 );
 
-/** A fetched OME-Zarr store whose level 0 has a `c` axis of 2 or more channels (v0.4 layout). */
-function multichannelStore(): string | null {
-  if (!fs.existsSync(FETCHED)) return null;
-  for (const f of fs.readdirSync(FETCHED).filter((x) => x.endsWith('.ome.zarr'))) {
-    try {
-      const ms = JSON.parse(fs.readFileSync(`${FETCHED}${f}/.zattrs`, 'utf8')).multiscales[0];
-      const c = ms.axes.findIndex((a: { name: string } | string) => (typeof a === 'string' ? a : a.name) === 'c');
-      const shape = JSON.parse(fs.readFileSync(`${FETCHED}${f}/${ms.datasets[0].path}/.zarray`, 'utf8')).shape;
-      if (c >= 0 && shape[c] >= 2) return f;
-    } catch {
-      // not a v0.4 store, or not a multiscale image
-    }
-  }
-  return null;
-}
-const store = multichannelStore();
+// The 2-channel store: imaris-ims-file-reader's brain_crop3.ims (Imaris resolution level 1, both
+// channels), written by `pnpm data:fetch` from the two verified raw channels and their sidecars.
+const STORE = 'micro_brain_ims_2ch.ome.zarr';
+const CHANNEL_SIDECARS = [0, 1].map((c) => `${FETCHED}micro_brain_ims_ch${c}_336x317x51_uint16.json`);
+const store = [`${FETCHED}${STORE}/.zattrs`, ...CHANNEL_SIDECARS].every((f) => fs.existsSync(f)) ? STORE : null;
+/** The fetched channels' sidecars (what the store was written from: dims, windows, labels, colours). */
+const channelSidecars = () => CHANNEL_SIDECARS.map((f) => JSON.parse(fs.readFileSync(f, 'utf8')));
+/** sRGB hex RRGGBB to linear RGB (the viewer's channel colours are linear; omero's are sRGB). */
+const linear = (hex: string) =>
+  [0, 2, 4].map((i) => {
+    const v = parseInt(hex.slice(i, i + 2), 16) / 255;
+    return v <= 0.04045 ? v / 12.92 : ((v + 0.055) / 1.055) ** 2.4;
+  });
 const SERIES = 'micro_yeast_mitochondria_279x192x17x30_uint16';
 const seriesFetched = fs.existsSync(`${FETCHED}${SERIES}.nrrd`);
 
@@ -141,34 +140,54 @@ describe.skipIf(!ctFetched)(
 );
 
 describe.skipIf(!store)(
-  `gallery: Fluorescence microscopy, 2 channels${store ? '' : ' (skipped: no fetched OME-Zarr store with a c axis of 2+ channels in data/fetched/)'}`,
+  `gallery: 2-channel microscopy (brain tissue)${store ? '' : ' (skipped: run pnpm data:fetch for the imaris-ims-file-reader brain stack, micro_brain_ims)'}`,
   () => {
-    it('is listed and opens the store with every channel', async () => {
-      const id = store!.replace(/\.ome\.zarr$/, '') + '-ome-zarr';
+    it('is listed and opens the store with both channels, named, coloured and windowed as its sidecars say', async () => {
+      const sidecars = channelSidecars();
+      const zattrs = JSON.parse(fs.readFileSync(`${FETCHED}${STORE}/.zattrs`, 'utf8'));
+      const axes = zattrs.multiscales[0].axes.map((a: { name: string }) => a.name);
+      const shape = JSON.parse(
+        fs.readFileSync(`${FETCHED}${STORE}/${zattrs.multiscales[0].datasets[0].path}/.zarray`, 'utf8'),
+      ).shape;
+      const id = STORE.replace(/\.ome\.zarr$/, '') + '-ome-zarr';
       const { page, errors } = await open(id);
-      const r = await page.evaluate((id: string) => {
+      const r = await page.evaluate(async (id: string) => {
         const w = window as any;
+        const el = w.gallery.viewer;
+        await el.whenSettled();
         const entry = w.gallery.catalog.find((d: any) => d.id === id);
-        const v = w.gallery.viewer.loadedVolume;
+        const v = el.loadedVolume;
         return {
           listed: !!document.querySelector(`button[data-id="${id}"]`),
           title: entry.title,
           channels: entry.channels,
           dims: v.dims,
+          spacing: v.spacing,
+          labels: v.meta?.channelLabels ?? null,
           current: w.gallery.current.dataset.id,
-          viewerChannels: (w.gallery.viewer.channels ?? []).length,
-          colors: (w.gallery.viewer.channels ?? []).map((c: any) => c.color.join(',')),
+          viewerChannels: (el.channels ?? []).map((c: any) => ({ color: c.color, enabled: c.enabled, range: c.range })),
         };
       }, id);
       await page.close();
+      // The store: a c axis of 2, on the sidecars' grid (zarr shape is t, c, z, y, x).
+      expect(axes).toEqual(['t', 'c', 'z', 'y', 'x']);
+      expect(shape).toEqual([1, 2, ...[...sidecars[0].dims].reverse()]);
       expect(r.listed).toBe(true);
       expect(r.current).toBe(id);
-      expect(r.channels).toBeGreaterThanOrEqual(2);
-      expect(r.title).toMatch(/2 channels|channels/);
+      expect(r.channels).toBe(2);
+      expect(r.title).toMatch(/^2-channel microscopy.*2 channels/);
       expect(r.dims).toHaveLength(3);
-      // Every channel is drawn, each in its own default colour.
-      expect(r.viewerChannels).toBe(r.channels);
-      expect(new Set(r.colors).size).toBe(r.channels);
+      // Every channel drawn, in the colour its sidecar gives (omero, sRGB) as linear RGB, with
+      // its sidecar's value_range as the window and its channel_label as the name.
+      expect(r.viewerChannels).toHaveLength(2);
+      expect(r.labels).toEqual(sidecars.map((s) => s.channel_label));
+      for (const [k, c] of r.viewerChannels.entries()) {
+        expect(c.enabled).toBe(true);
+        const want = linear(sidecars[k].channel_color);
+        for (let i = 0; i < 3; i++) expect(c.color[i]).toBeCloseTo(want[i], 4);
+        expect(c.range).toEqual(sidecars[k].value_range);
+      }
+      expect(new Set(r.viewerChannels.map((c: any) => c.color.join(','))).size).toBe(2);
       expect(errors.filter((e) => !/404/.test(e))).toEqual([]);
     });
   },
