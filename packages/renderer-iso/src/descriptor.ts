@@ -6,7 +6,7 @@
 import {
   constantDefault,
   defineRenderer,
-  SAMPLER_PARAM,
+  samplerParam,
   stepInVoxels,
   VptError,
   type ParamsOf,
@@ -190,11 +190,10 @@ export const ISO_DESCRIPTOR = defineRenderer({
     /**
      * 'blue-noise': the pixel jitter, the camera march's offset and the environment (AO) sample are
      * a rank-1 sequence rotated per pixel by a blue-noise mask (core's shaders/blue-noise.ts);
-     * 'pcg': the PCG stream. Default PCG: blue noise takes 1.3–1.9× fewer iterations to 35 dB,
-     * but with exact sampling its march offsets can land on a cell face, where empty-space
-     * skipping then changes pixels (docs/benchmarks.md, "Blue-noise sampling").
+     * 'pcg': the PCG stream. Default blue noise: 1.3–1.9× fewer iterations to 35 dB
+     * (docs/benchmarks.md, "Blue-noise sampling").
      */
-    sampler: SAMPLER_PARAM,
+    sampler: samplerParam('blue-noise'),
   },
   check: (p) => void resolveIsoParams(p),
   writesGuides: true,

@@ -11,7 +11,7 @@ export type Sampler = 'pcg' | 'blue-noise';
 /**
  * The `sampler` parameter's spec, shared by the four descriptors: 'blue-noise' compiles the
  * kernels with BLUE_NOISE and binds the mask. Its default is 'pcg'; a descriptor takes
- * `samplerParam('blue-noise')` where the measurement says blue noise pays (EAM:
+ * `samplerParam('blue-noise')` where the measurement says blue noise pays (EAM, ISO:
  * docs/benchmarks.md, "Blue-noise sampling").
  */
 export const SAMPLER_PARAM = { kind: 'enum', values: ['pcg', 'blue-noise'], default: 'pcg' as Sampler } as const;
