@@ -88,6 +88,14 @@ export interface Renderer {
    */
   readonly writesGuides?: boolean;
   /**
+   * false: temporal reuse leaves out its normal test (TemporalOptions.normalCos) for this
+   * renderer, whose guide normal is no surface's: EAM's is the gradient at one sample's mean
+   * termination depth inside a semi-transparent medium, which turns from sample to sample, so
+   * the test rejected history taps at random (docs/benchmarks.md, "Orbit: a sharper and
+   * decorrelated history"). Default true.
+   */
+  readonly temporalNormalTest?: boolean;
+  /**
    * The renderer's parameters and their ranges (core's validateParams): unknown keys and
    * out-of-range values are refused by the constructor and setParams; 'step' parameters are
    * checked against the scene's voxel size by RenderContext.setScene.

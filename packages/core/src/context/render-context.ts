@@ -683,6 +683,7 @@ export class RenderContext {
           this.width,
           this.height,
           this.iteration,
+          this._renderer.temporalNormalTest !== false,
         )
       : this.hdr!.textures[0];
     this.hdrRenderedAt = this.iteration;
@@ -878,9 +879,11 @@ export class RenderContext {
 
   private uniforms(scene: Scene, iteration = this.iteration): ArrayBuffer {
     const bricked = this.resources.bricked;
+    // Temporal reuse's seed offset (TemporalReuse.seedOffset): each view since the history began draws its own numbers.
+    const seedOffset = this.temporal?.seedOffset ?? 0;
     return this.layout.pack({
       ...sceneUniformValues(
-        scene,
+        seedOffset === 0 ? scene : { ...scene, seed: (scene.seed + seedOffset) >>> 0 },
         this.width,
         this.height,
         iteration,
