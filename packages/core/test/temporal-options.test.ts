@@ -13,7 +13,10 @@ describe('temporal reuse options', () => {
     expect(checkTemporalOptions(false)).toBeNull();
     expect(checkTemporalOptions(true)).toEqual(TEMPORAL_DEFAULTS);
     expect(checkTemporalOptions({ maxHistory: 4 })).toEqual({ ...TEMPORAL_DEFAULTS, maxHistory: 4 });
-    expect(checkTemporalOptions({ historyFilter: 'bilinear' })).toEqual({ ...TEMPORAL_DEFAULTS, historyFilter: 'bilinear' });
+    expect(checkTemporalOptions({ historyFilter: 'bilinear' })).toEqual({
+      ...TEMPORAL_DEFAULTS,
+      historyFilter: 'bilinear',
+    });
     for (const [bad, field] of [
       [{ maxHistory: -1 }, 'temporal.maxHistory'],
       [{ depthTolerance: NaN }, 'temporal.depthTolerance'],

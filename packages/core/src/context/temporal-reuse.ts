@@ -187,7 +187,8 @@ export class TemporalReuse {
 
   /**
    * Draws the resolve of `current` (the renderer's HDR mean of `samples` samples at `camera`;
-   * `normalTest` false leaves out the normal test) and returns the image to show; out1/out2 keep its guide and state for the next view.
+   * `normalTest` false leaves out the normal test and weighs a cut footprint's history by the
+   * share that passed) and returns the image to show; out1/out2 keep its guide and state for the next view.
    */
   resolve(
     current: GpuTexture,
@@ -245,6 +246,11 @@ export class TemporalReuse {
         // −2: every cosine passes (the renderer's normal guide is no surface's, Renderer.temporalNormalTest).
         normalCos: normalTest ? this.options.normalCos : -2,
         historyFilter: this.options.historyFilter === 'catmull-rom' ? 1 : 0,
+        // Without the normal test a tap fails only at a depth or hit/miss edge, and a cut footprint's
+        // passed taps are a neighbour's: the history then counts by the share that passed. With it
+        // (MCRT's one-sample normals) most cuts are the normals' noise, and the passed taps serve as
+        // well as the rest (docs/benchmarks.md, "Orbit: a sharper and decorrelated history").
+        footprintWeight: normalTest ? 0 : 1,
       }),
       textures: {
         current,

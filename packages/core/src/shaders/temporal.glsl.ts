@@ -20,6 +20,8 @@
  * 4×4 Catmull-Rom sum instead (each outer tap under the same tests, else its nearest inner tap's
  * colour), clamped per channel to the inner taps' min/max, so it never rings past them and only
  * tested, finite texels enter it; the guide, hit share and samples stay bilinear.
+ * u.footprintWeight 1 (the context sets it where the normal test is off): w is also scaled by the
+ * share of the footprint that passed (wsum).
  */
 export const TEMPORAL_RESOLVE = /* glsl */ `
 // The ray of film point (x, y) in [0,1]^2 (y down) of a camera given by its basis (common's cameraRayDirection).
@@ -133,9 +135,10 @@ void main() {
     histGuide /= wsum;
     histSamples /= wsum;
     histHit /= wsum;
-    // A footprint the tests cut to a part (wsum < 1) stands for its neighbours, not for this pixel:
-    // the history counts in proportion to the part that passed.
-    w = min(histSamples, u.maxHistory) * u.historyScale * min(wsum, 1.0);
+    w = min(histSamples, u.maxHistory) * u.historyScale;
+    // u.footprintWeight 1: a footprint the tests cut (wsum < 1) is an edge whose passed taps are a
+    // neighbour's: the history counts by the share that passed.
+    if (u.footprintWeight > 0.0) w *= min(wsum, 1.0);
     if (u.historyFilter == 1u && allTaps) {
       // A zero-weight inner tap was not tested: the bilinear colour stands in (its weight is 0 too).
       for (int k = 0; k < 4; k++) {

@@ -26,4 +26,5 @@ export const TEMPORAL_UNIFORMS = new UniformLayout('TemporalParams', [
   { name: 'depthTolerance', type: 'f32' },
   { name: 'normalCos', type: 'f32' },
   { name: 'historyFilter', type: 'u32' },
+  { name: 'footprintWeight', type: 'f32' },
 ]);

@@ -123,9 +123,10 @@ fn temporalTap(t: vec2i, osize: vec2i, hit: f32, expected: f32, normal: vec3f) -
     histGuide /= wsum;
     histSamples /= wsum;
     histHit /= wsum;
-    // A footprint the tests cut to a part (wsum < 1) stands for its neighbours, not for this pixel:
-    // the history counts in proportion to the part that passed.
-    w = min(histSamples, u.maxHistory) * u.historyScale * min(wsum, 1.0);
+    w = min(histSamples, u.maxHistory) * u.historyScale;
+    // u.footprintWeight 1: a footprint the tests cut (wsum < 1) is an edge whose passed taps are a
+    // neighbour's: the history counts by the share that passed.
+    if (u.footprintWeight > 0.0) { w *= min(wsum, 1.0); }
     if (u.historyFilter == 1u && allTaps) {
       // A zero-weight inner tap was not tested: the bilinear colour stands in (its weight is 0 too).
       for (var k = 0; k < 4; k++) {
