@@ -105,7 +105,13 @@ describe('temporal reuse', () => {
     const r = await page().page.evaluate(async (d) => {
       const { core } = window.vpt;
       const S = 64;
-      const make = (temporal: unknown) =>
+      type Options = {
+        historyFilter?: 'bilinear' | 'catmull-rom';
+        maxHistory?: number;
+        fadeSamples?: number;
+        viewDecay?: number;
+      };
+      const make = (temporal: boolean | Options) =>
         core.RenderContext.create({
           backend: 'webgl2',
           width: S,
@@ -123,7 +129,8 @@ describe('temporal reuse', () => {
       const cr = [u[1] * f[2] - u[2] * f[1], u[2] * f[0] - u[0] * f[2], u[0] * f[1] - u[1] * f[0]];
       // Rodrigues' rotation of the view vector f about u by a.
       const rot = f.map((x, i) => x * Math.cos(a) + cr[i] * Math.sin(a) + u[i] * ud * (1 - Math.cos(a)));
-      const sceneB = { ...sceneA, camera: { ...c, target: c.position.map((p: number, i: number) => p + rot[i]) } };
+      const target = c.position.map((p: number, i: number) => p + rot[i]) as [number, number, number];
+      const sceneB = { ...sceneA, camera: { ...c, target } };
       const plain = await make(false);
       plain.setScene({ ...sceneB, seed: 11 });
       await plain.renderIterations(128);
@@ -134,7 +141,7 @@ describe('temporal reuse', () => {
       const cur = Array.from(await plain.readHDR());
       plain.dispose();
       const out: Record<string, { image: number[]; state: number[] }> = {};
-      for (const historyFilter of ['bilinear', 'catmull-rom']) {
+      for (const historyFilter of ['bilinear', 'catmull-rom'] as const) {
         // A history that neither fades nor decays: it weighs its 128 samples against the one new one.
         const ctx = await make({ historyFilter, maxHistory: 1024, fadeSamples: 1e6, viewDecay: 1e6 });
         ctx.setScene(sceneA);

@@ -90,8 +90,8 @@ export interface Renderer {
   /**
    * false: temporal reuse leaves out its normal test (TemporalOptions.normalCos) for this
    * renderer, whose guide normal is no surface's: EAM's is the gradient at one sample's mean
-   * termination depth inside a semi-transparent medium, which turns from sample to sample, so
-   * the test rejected history taps at random (docs/benchmarks.md, "Orbit: a sharper and
+   * termination depth inside a semi-transparent medium, MCRT's at one sample's first collision;
+   * both turn from sample to sample, so the test rejected history taps at random (docs/benchmarks.md, "Orbit: a sharper and
    * decorrelated history"). Without it a tap fails only at a depth or hit/miss edge, so the
    * history of a footprint the tests cut counts by the share that passed. Default true.
    */

@@ -248,8 +248,7 @@ export class TemporalReuse {
         historyFilter: this.options.historyFilter === 'catmull-rom' ? 1 : 0,
         // Without the normal test a tap fails only at a depth or hit/miss edge, and a cut footprint's
         // passed taps are a neighbour's: the history then counts by the share that passed. With it
-        // (MCRT's one-sample normals) most cuts are the normals' noise, and the passed taps serve as
-        // well as the rest (docs/benchmarks.md, "Orbit: a sharper and decorrelated history").
+        // (ISO's surface normals) a cut footprint is renormalised as in SVGF.
         footprintWeight: normalTest ? 0 : 1,
       }),
       textures: {
