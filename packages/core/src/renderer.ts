@@ -97,6 +97,13 @@ export interface Renderer {
    */
   readonly temporalNormalTest?: boolean;
   /**
+   * Temporal reuse's history length for this renderer where TemporalOptions.maxHistory is not
+   * given (default: that option's default, 12). A renderer nearly noise-free at a few samples
+   * (EAM) gains less from a long history than the reprojection's error adds to it, step after
+   * step (docs/benchmarks.md, "Orbit: a sharper and decorrelated history").
+   */
+  readonly temporalMaxHistory?: number;
+  /**
    * The renderer's parameters and their ranges (core's validateParams): unknown keys and
    * out-of-range values are refused by the constructor and setParams; 'step' parameters are
    * checked against the scene's voxel size by RenderContext.setScene.

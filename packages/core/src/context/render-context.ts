@@ -537,7 +537,9 @@ export class RenderContext {
     }
     // A later call decided otherwise while the module loaded.
     if (generation !== this.temporalGeneration || this.disposed || !checked) return;
-    this.temporal = new module.TemporalReuse(this.backend, checked);
+    // A maxHistory given here holds for every renderer; else a renderer's own (Renderer.temporalMaxHistory) does.
+    const ownMaxHistory = typeof options === 'object' && options.maxHistory !== undefined;
+    this.temporal = new module.TemporalReuse(this.backend, checked, ownMaxHistory);
     this.hdrRenderedAt = -1;
     this.hdrIteration = -1;
     if (!this.guidesActive && this.wantsGuides()) this.reset();
@@ -684,6 +686,7 @@ export class RenderContext {
           this.height,
           this.iteration,
           this._renderer.temporalNormalTest !== false,
+          this._renderer.temporalMaxHistory,
         )
       : this.hdr!.textures[0];
     this.hdrRenderedAt = this.iteration;

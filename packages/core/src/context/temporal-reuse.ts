@@ -132,6 +132,8 @@ export class TemporalReuse {
   constructor(
     private readonly backend: GpuBackend,
     readonly options: Required<TemporalOptions>,
+    /** options.maxHistory was given (not the default), so it overrides a renderer's own. */
+    private readonly ownMaxHistory = false,
   ) {}
 
   /** Whether a scene change is a camera change alone (sameSceneButCamera), which keeps the history. */
@@ -188,7 +190,7 @@ export class TemporalReuse {
   /**
    * Draws the resolve of `current` (the renderer's HDR mean of `samples` samples at `camera`;
    * `normalTest` false leaves out the normal test and weighs a cut footprint's history by the
-   * share that passed) and returns the image to show; out1/out2 keep its guide and state for the next view.
+   * share that passed; `rendererMaxHistory` replaces the default maxHistory) and returns the image to show; out1/out2 keep its guide and state for the next view.
    */
   resolve(
     current: GpuTexture,
@@ -198,6 +200,7 @@ export class TemporalReuse {
     height: number,
     samples: number,
     normalTest = true,
+    rendererMaxHistory?: number,
   ): GpuTexture {
     if (this.out && (this.out.width !== width || this.out.height !== height)) {
       this.backend.destroyRenderTarget(this.out);
@@ -240,7 +243,8 @@ export class TemporalReuse {
         oldForward: ob.forward,
         oldAspect: this.historyCamera ? this.historyAspect : width / height,
         oldRight: ob.right,
-        maxHistory: this.options.maxHistory,
+        maxHistory:
+          this.ownMaxHistory || rendererMaxHistory === undefined ? this.options.maxHistory : rendererMaxHistory,
         oldUp: ob.up,
         depthTolerance: this.options.depthTolerance,
         // −2: every cosine passes (the renderer's normal guide is no surface's, Renderer.temporalNormalTest).
