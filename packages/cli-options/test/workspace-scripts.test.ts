@@ -35,6 +35,7 @@ const SCRIPTS: Record<string, { notANumber?: { argv: string[]; names: string } }
   'benchmarks/bundle-size.mjs': { notANumber: { argv: ['--budget', 'small'], names: '--budget' } },
   'benchmarks/first-image.mjs': { notANumber: { argv: ['--rounds', 'few'], names: '--rounds' } },
   'benchmarks/orbit.mjs': { notANumber: { argv: ['--rounds', 'few'], names: '--rounds' } },
+  'benchmarks/temporal-reprojection.mjs': { notANumber: { argv: ['--steps', 'few'], names: '--steps' } },
   'benchmarks/read-speed.mjs': { notANumber: { argv: ['--runs', 'many'], names: '--runs' } },
   'benchmarks/mcrt-fetches.mjs': { notANumber: { argv: ['--iterations', '1.5'], names: '--iterations' } },
   'benchmarks/slice-plane-cost.mjs': { notANumber: { argv: ['--rounds', 'many'], names: '--rounds' } },

@@ -88,6 +88,22 @@ export interface Renderer {
    */
   readonly writesGuides?: boolean;
   /**
+   * false: temporal reuse leaves out its normal test (TemporalOptions.normalCos) for this
+   * renderer, whose guide normal is no surface's: EAM's is the gradient at one sample's mean
+   * termination depth inside a semi-transparent medium, MCRT's at one sample's first collision;
+   * both turn from sample to sample, so the test rejected history taps at random (docs/benchmarks.md, "Orbit: a sharper and
+   * decorrelated history"). Without it a tap fails only at a depth or hit/miss edge, so the
+   * history of a footprint the tests cut counts by the share that passed. Default true.
+   */
+  readonly temporalNormalTest?: boolean;
+  /**
+   * Temporal reuse's history length for this renderer where TemporalOptions.maxHistory is not
+   * given (default: that option's default, 12). A renderer nearly noise-free at a few samples
+   * (EAM) gains less from a long history than the reprojection's error adds to it, step after
+   * step (docs/benchmarks.md, "Orbit: a sharper and decorrelated history").
+   */
+  readonly temporalMaxHistory?: number;
+  /**
    * The renderer's parameters and their ranges (core's validateParams): unknown keys and
    * out-of-range values are refused by the constructor and setParams; 'step' parameters are
    * checked against the scene's voxel size by RenderContext.setScene.

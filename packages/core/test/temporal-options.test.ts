@@ -13,12 +13,17 @@ describe('temporal reuse options', () => {
     expect(checkTemporalOptions(false)).toBeNull();
     expect(checkTemporalOptions(true)).toEqual(TEMPORAL_DEFAULTS);
     expect(checkTemporalOptions({ maxHistory: 4 })).toEqual({ ...TEMPORAL_DEFAULTS, maxHistory: 4 });
+    expect(checkTemporalOptions({ historyFilter: 'bilinear' })).toEqual({
+      ...TEMPORAL_DEFAULTS,
+      historyFilter: 'bilinear',
+    });
     for (const [bad, field] of [
       [{ maxHistory: -1 }, 'temporal.maxHistory'],
       [{ depthTolerance: NaN }, 'temporal.depthTolerance'],
       [{ normalCos: 2 }, 'temporal.normalCos'],
       [{ fadeSamples: 1.5 }, 'temporal.fadeSamples'],
       [{ viewDecay: 0 }, 'temporal.viewDecay'],
+      [{ historyFilter: 'bicubic' }, 'temporal.historyFilter'],
       [{ history: 3 }, 'history'],
       ['on', 'temporal'],
     ] as const) {

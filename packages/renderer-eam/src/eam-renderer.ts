@@ -31,6 +31,10 @@ export class EamRenderer extends BaseRenderer<EamParams> {
   readonly frameFormats = ['rgba32float'] as const;
   readonly accumulationFormats = ['rgba32float'] as const;
   readonly writesGuides = EAM_DESCRIPTOR.writesGuides;
+  /** Its guide normal is a gradient inside the medium, noise at a sample or two: no normal test in temporal reuse. */
+  readonly temporalNormalTest = false;
+  /** A history of 6 samples: at 12 its reprojection error, added at each camera update, outweighed its noise gain (paced orbit ×0.58 against ×0.47). */
+  readonly temporalMaxHistory = 6;
   /** Draws a scene's slicePlane (core's scene/slice-plane.ts) under VPT_SLICE_PLANE. */
   readonly drawsSlicePlane = true;
   /** Draws a scene's labels (core's scene/labels.ts) under VPT_LABELS: their opacity and colour join the medium (transferAt). */

@@ -68,6 +68,12 @@ export class McrtRenderer extends BaseRenderer<McrtParams> {
   readonly accumulationFormats = ['rgba32float', 'rgba32float', 'rgba32float'] as const;
   readonly halfAccumulations = [1, 2] as const;
   readonly writesGuides = MCRT_DESCRIPTOR.writesGuides;
+  /**
+   * No normal test in temporal reuse: one sample's first collision in a medium has a gradient
+   * normal that turns from sample to sample, and the test rejected history taps at random
+   * (docs/benchmarks.md, "Orbit: a sharper and decorrelated history").
+   */
+  readonly temporalNormalTest = false;
   /** Draws a scene's slicePlane (core's scene/slice-plane.ts) under VPT_SLICE_PLANE. */
   readonly drawsSlicePlane = true;
   /** Draws a scene's labels (core's scene/labels.ts) under VPT_LABELS: their opacity joins the medium (transferAt). */

@@ -545,7 +545,9 @@ export class RenderContext {
     }
     // A later call decided otherwise while the module loaded.
     if (generation !== this.temporalGeneration || this.disposed || !checked) return;
-    this.temporal = new module.TemporalReuse(this.backend, checked);
+    // A maxHistory given here holds for every renderer; else a renderer's own (Renderer.temporalMaxHistory) does.
+    const ownMaxHistory = typeof options === 'object' && options.maxHistory !== undefined;
+    this.temporal = new module.TemporalReuse(this.backend, checked, ownMaxHistory);
     this.hdrRenderedAt = -1;
     this.hdrIteration = -1;
     if (!this.guidesActive && this.wantsGuides()) this.reset();
@@ -691,6 +693,8 @@ export class RenderContext {
           this.width,
           this.height,
           this.iteration,
+          this._renderer.temporalNormalTest !== false,
+          this._renderer.temporalMaxHistory,
         )
       : this.hdr!.textures[0];
     this.hdrRenderedAt = this.iteration;
@@ -886,9 +890,11 @@ export class RenderContext {
 
   private uniforms(scene: Scene, iteration = this.iteration): ArrayBuffer {
     const bricked = this.resources.bricked;
+    // Temporal reuse's seed offset (TemporalReuse.seedOffset): each view since the history began draws its own numbers.
+    const seedOffset = this.temporal?.seedOffset ?? 0;
     return this.layout.pack({
       ...sceneUniformValues(
-        scene,
+        seedOffset === 0 ? scene : { ...scene, seed: (scene.seed + seedOffset) >>> 0 },
         this.width,
         this.height,
         iteration,

@@ -2,7 +2,7 @@ import type { GpuBackend, GpuPass, GpuTexture, RenderTarget, TextureFormat } fro
 import { cameraBasis, dot, sub, type Camera } from '../scene/camera.js';
 import { TEMPORAL_RESOLVE, TEMPORAL_UNIFORMS } from '../shaders/temporal.js';
 import type { Scene } from '../scene/scene.js';
-import { checkKnownKeys, checkNumber, checkObject } from '../validation/checks.js';
+import { checkKnownKeys, checkNumber, checkObject, checkOneOf } from '../validation/checks.js';
 
 // RenderContext imports this module only when temporal reuse is turned on (a lazy chunk in the
 // viewer's bundle): the options' checks, the scene comparison and the resolve pass with its targets.
@@ -23,6 +23,13 @@ export interface TemporalOptions {
   fadeSamples?: number;
   /** The history's weight decays as exp(−θ / viewDecay) with the view change θ in radians (default 1). */
   viewDecay?: number;
+  /**
+   * How the history image is resampled at the reprojected point: 'catmull-rom' (default: the
+   * 4×4 bicubic taps where all four bilinear taps pass the consistency tests, an outer tap that
+   * fails replaced by its nearest inner one, the result clamped to the four's range) or
+   * 'bilinear' (the four taps alone, which blurs the history a little at every camera update).
+   */
+  historyFilter?: 'catmull-rom' | 'bilinear';
 }
 
 export const TEMPORAL_DEFAULTS: Required<TemporalOptions> = {
@@ -31,7 +38,10 @@ export const TEMPORAL_DEFAULTS: Required<TemporalOptions> = {
   normalCos: 0,
   fadeSamples: 64,
   viewDecay: 1,
+  historyFilter: 'catmull-rom',
 };
+
+export const HISTORY_FILTERS = ['catmull-rom', 'bilinear'] as const;
 
 /** Checks temporal options (VptError 'invalid-scene' naming the field) and fills in the defaults; null for false. */
 export function checkTemporalOptions(x: unknown): Required<TemporalOptions> | null {
@@ -39,7 +49,7 @@ export function checkTemporalOptions(x: unknown): Required<TemporalOptions> | nu
   if (x === true) return { ...TEMPORAL_DEFAULTS };
   const o = checkObject('temporal', x);
   checkKnownKeys('temporal', o, Object.keys(TEMPORAL_DEFAULTS));
-  const get = (k: keyof TemporalOptions, rule: Parameters<typeof checkNumber>[2]) =>
+  const get = (k: Exclude<keyof TemporalOptions, 'historyFilter'>, rule: Parameters<typeof checkNumber>[2]) =>
     o[k] === undefined ? TEMPORAL_DEFAULTS[k] : checkNumber(`temporal.${k}`, o[k], rule);
   return {
     maxHistory: get('maxHistory', { min: 0, max: 1024 }),
@@ -47,6 +57,10 @@ export function checkTemporalOptions(x: unknown): Required<TemporalOptions> | nu
     normalCos: get('normalCos', { min: -1, max: 1 }),
     fadeSamples: get('fadeSamples', { min: 1, max: 1e6, integer: true }),
     viewDecay: get('viewDecay', { min: 1e-6, max: 1e6, exclusiveMin: true }),
+    historyFilter:
+      o.historyFilter === undefined
+        ? TEMPORAL_DEFAULTS.historyFilter
+        : checkOneOf('temporal.historyFilter', o.historyFilter, HISTORY_FILTERS),
   };
 }
 
@@ -113,10 +127,13 @@ export class TemporalReuse {
   private history: RenderTarget | null = null;
   private historyCamera: Camera | null = null;
   private historyAspect = 1;
+  private moves = 0;
 
   constructor(
     private readonly backend: GpuBackend,
     readonly options: Required<TemporalOptions>,
+    /** options.maxHistory was given (not the default), so it overrides a renderer's own. */
+    private readonly ownMaxHistory = false,
   ) {}
 
   /** Whether a scene change is a camera change alone (sameSceneButCamera), which keeps the history. */
@@ -134,6 +151,7 @@ export class TemporalReuse {
    * `aspect`) becomes the history. Without a resolve since the last change the history stays.
    */
   keep(camera: Camera, aspect: number): void {
+    this.moves++;
     if (!this.out) return;
     if (this.history) this.backend.destroyRenderTarget(this.history);
     this.history = this.out;
@@ -147,6 +165,20 @@ export class TemporalReuse {
     this.destroy();
   }
 
+  /**
+   * What the context adds to the scene's seed: the number of view changes since the history was
+   * last dropped. Each new view's estimate then draws other random numbers than the last one's
+   * (the sample streams restart at every reset), so the samples the history carries and the new
+   * ones are independent and their mean is worth their count. With the streams restarted alike,
+   * a small move renders nearly the same error pattern again (EAM's jitter and march offset are
+   * all its randomness, and blue noise repeats them exactly): the mean of the history and the
+   * new samples then keeps the error of one view's (docs/benchmarks.md, "Orbit: a sharper and
+   * decorrelated history"). 0 with no move, so a still image keeps its bits.
+   */
+  get seedOffset(): number {
+    return this.moves;
+  }
+
   /** The history weight's factor at this view after `samples` new samples. */
   historyScale(camera: Camera, samples: number): number {
     if (!this.history || !this.historyCamera) return 0;
@@ -156,8 +188,9 @@ export class TemporalReuse {
   }
 
   /**
-   * Draws the resolve of `current` (the renderer's HDR mean of `samples` samples at `camera`)
-   * and returns the image to show; out1/out2 keep its guide and state for the next view.
+   * Draws the resolve of `current` (the renderer's HDR mean of `samples` samples at `camera`;
+   * `normalTest` false leaves out the normal test and weighs a cut footprint's history by the
+   * share that passed; `rendererMaxHistory` replaces the default maxHistory) and returns the image to show; out1/out2 keep its guide and state for the next view.
    */
   resolve(
     current: GpuTexture,
@@ -166,6 +199,8 @@ export class TemporalReuse {
     width: number,
     height: number,
     samples: number,
+    normalTest = true,
+    rendererMaxHistory?: number,
   ): GpuTexture {
     if (this.out && (this.out.width !== width || this.out.height !== height)) {
       this.backend.destroyRenderTarget(this.out);
@@ -208,10 +243,17 @@ export class TemporalReuse {
         oldForward: ob.forward,
         oldAspect: this.historyCamera ? this.historyAspect : width / height,
         oldRight: ob.right,
-        maxHistory: this.options.maxHistory,
+        maxHistory:
+          this.ownMaxHistory || rendererMaxHistory === undefined ? this.options.maxHistory : rendererMaxHistory,
         oldUp: ob.up,
         depthTolerance: this.options.depthTolerance,
-        normalCos: this.options.normalCos,
+        // −2: every cosine passes (the renderer's normal guide is no surface's, Renderer.temporalNormalTest).
+        normalCos: normalTest ? this.options.normalCos : -2,
+        historyFilter: this.options.historyFilter === 'catmull-rom' ? 1 : 0,
+        // Without the normal test a tap fails only at a depth or hit/miss edge, and a cut footprint's
+        // passed taps are a neighbour's: the history then counts by the share that passed. With it
+        // (ISO's surface normals) a cut footprint is renormalised as in SVGF.
+        footprintWeight: normalTest ? 0 : 1,
       }),
       textures: {
         current,
@@ -240,6 +282,7 @@ export class TemporalReuse {
     this.out = null;
     this.history = null;
     this.historyCamera = null;
+    this.moves = 0;
   }
 
   /** After a context loss: the targets are gone with it. */
@@ -248,5 +291,6 @@ export class TemporalReuse {
     this.out = null;
     this.history = null;
     this.historyCamera = null;
+    this.moves = 0;
   }
 }

@@ -25,4 +25,6 @@ export const TEMPORAL_UNIFORMS = new UniformLayout('TemporalParams', [
   { name: 'oldUp', type: 'vec3' },
   { name: 'depthTolerance', type: 'f32' },
   { name: 'normalCos', type: 'f32' },
+  { name: 'historyFilter', type: 'u32' },
+  { name: 'footprintWeight', type: 'f32' },
 ]);

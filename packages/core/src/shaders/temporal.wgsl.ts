@@ -1,7 +1,9 @@
 // Temporal reuse (WGSL; the twin is temporal.glsl.ts, composed in temporal.ts): the previous view's
 // image reprojected through the depth guide and blended with the new samples, as SVGF's temporal
 // accumulation (Schied et al. 2017, HPG, Sec. 4.1: backprojection, depth/normal consistency tests,
-// bilinear taps over the consistent samples, history clamped in length).
+// bilinear taps over the consistent samples, history clamped in length); the colour resampled by
+// Catmull-Rom (Keys 1981, a = −0.5, as TAA does: Jimenez 2016, "Filmic SMAA") clamped to the bilinear
+// taps' range.
 
 /** One full-screen pass per displayed image; see the GLSL twin's comment. */
 export const TEMPORAL_RESOLVE = /* wgsl */ `
@@ -20,6 +22,35 @@ fn temporalHitDepth(normalDepth: vec4f, albedoHit: vec4f) -> f32 {
   if (albedoHit.a > 0.0) { return normalDepth.w / albedoHit.a; }
   return 0.0;
 }
+// The Catmull-Rom weights of the taps at −1, 0, 1, 2 for the fraction f (they sum to 1).
+fn temporalCatmullRom(f: f32) -> vec4f {
+  return vec4f(
+    f * (-0.5 + f * (1.0 - 0.5 * f)),
+    1.0 + f * f * (-2.5 + 1.5 * f),
+    f * (0.5 + f * (2.0 - 1.5 * f)),
+    f * f * (-0.5 + 0.5 * f));
+}
+struct TemporalTap { ok: bool, hc: vec4f, hg: vec4f, hs: vec4f }
+// Whether history texel t may stand for the new pixel (finite, and the hit/miss, depth and normal
+// tests), with its colour, guide and state.
+fn temporalTap(t: vec2i, osize: vec2i, hit: f32, expected: f32, normal: vec3f) -> TemporalTap {
+  var r = TemporalTap(false, vec4f(0.0), vec4f(0.0), vec4f(0.0));
+  if (t.x < 0 || t.y < 0 || t.x >= osize.x || t.y >= osize.y) { return r; }
+  r.hc = textureLoad(historyImage, t, 0);
+  r.hg = textureLoad(historyGuide, t, 0);
+  r.hs = textureLoad(historyState, t, 0);
+  if (temporalBad(r.hc) || temporalBad(r.hg) || temporalBad(r.hs)) { return r; }
+  var ok: bool;
+  if (hit > 0.0) {
+    ok = r.hs.x > 0.0 && abs(r.hg.w - expected) <= u.depthTolerance * expected;
+    let nn = length(normal) * length(r.hg.xyz);
+    if (ok && nn > 1e-12) { ok = dot(normal, r.hg.xyz) >= u.normalCos * nn; }
+  } else {
+    ok = r.hs.x <= 0.5;
+  }
+  r.ok = ok;
+  return r;
+}
 
 @fragment fn fs_main(@builtin(position) fragCoord: vec4f) -> VptOut {
   let p = vptPixel(fragCoord);
@@ -37,6 +68,15 @@ fn temporalHitDepth(normalDepth: vec4f, albedoHit: vec4f) -> f32 {
   var histSamples = 0.0;
   var histHit = 0.0;
   var wsum = 0.0;
+  // For the Catmull-Rom: whether every weighted bilinear tap passed, their colours and range.
+  var allTaps = false;
+  var inner = array<vec4f, 4>(vec4f(0.0), vec4f(0.0), vec4f(0.0), vec4f(0.0));
+  var lo = vec4f(0.0);
+  var hi = vec4f(0.0);
+  var q0 = vec2f(0.0);
+  var fr = vec2f(0.0);
+  var osize = vec2i(0);
+  var expected = 0.0;
   if (u.historyScale > 0.0) {
     let film = (vec2f(p) + 0.5) / vec2f(size);
     let dir = temporalRay(film, u.newForward, u.newRight, u.newUp, u.newTanHalfFovy, u.newAspect);
@@ -45,37 +85,34 @@ fn temporalHitDepth(normalDepth: vec4f, albedoHit: vec4f) -> f32 {
     if (hit > 0.0) { d = u.newPosition + dir * depth - u.oldPosition; }
     let z = dot(d, u.oldForward);
     if (z > 1e-6) {
-      let expected = length(d);
+      expected = length(d);
       let ofilm = vec2f(
         0.5 + 0.5 * dot(d, u.oldRight) / (z * u.oldTanHalfFovy * u.oldAspect),
         0.5 - 0.5 * dot(d, u.oldUp) / (z * u.oldTanHalfFovy));
-      let osize = vec2i(textureDimensions(historyImage));
+      osize = vec2i(textureDimensions(historyImage));
       let q = ofilm * vec2f(osize) - 0.5;
-      let q0 = floor(q);
-      let fr = q - q0;
+      q0 = floor(q);
+      fr = q - q0;
+      allTaps = true;
+      lo = vec4f(3.0e38);
+      hi = vec4f(-3.0e38);
       for (var k = 0; k < 4; k++) {
         let o = vec2i(k & 1, k >> 1u);
         let t = vec2i(q0) + o;
-        if (t.x < 0 || t.y < 0 || t.x >= osize.x || t.y >= osize.y) { continue; }
         let bw = select(1.0 - fr.x, fr.x, o.x == 1) * select(1.0 - fr.y, fr.y, o.y == 1);
         if (bw <= 0.0) { continue; }
-        let hc = textureLoad(historyImage, t, 0);
-        let hg = textureLoad(historyGuide, t, 0);
-        let hs = textureLoad(historyState, t, 0);
-        if (temporalBad(hc) || temporalBad(hg) || temporalBad(hs)) { continue; }
-        var ok: bool;
-        if (hit > 0.0) {
-          ok = hs.x > 0.0 && abs(hg.w - expected) <= u.depthTolerance * expected;
-          let nn = length(normal) * length(hg.xyz);
-          if (ok && nn > 1e-12) { ok = dot(normal, hg.xyz) >= u.normalCos * nn; }
-        } else {
-          ok = hs.x <= 0.5;
+        let tap = temporalTap(t, osize, hit, expected, normal);
+        if (!tap.ok) {
+          allTaps = false;
+          continue;
         }
-        if (!ok) { continue; }
-        histColor += bw * hc;
-        histGuide += bw * vec4f(hg.xyz, depth + (hg.w - expected));
-        histSamples += bw * hs.y;
-        histHit += bw * hs.x;
+        inner[k] = tap.hc;
+        lo = min(lo, tap.hc);
+        hi = max(hi, tap.hc);
+        histColor += bw * tap.hc;
+        histGuide += bw * vec4f(tap.hg.xyz, depth + (tap.hg.w - expected));
+        histSamples += bw * tap.hs.y;
+        histHit += bw * tap.hs.x;
         wsum += bw;
       }
     }
@@ -87,6 +124,35 @@ fn temporalHitDepth(normalDepth: vec4f, albedoHit: vec4f) -> f32 {
     histSamples /= wsum;
     histHit /= wsum;
     w = min(histSamples, u.maxHistory) * u.historyScale;
+    // u.footprintWeight 1: a footprint the tests cut (wsum < 1) is an edge whose passed taps are a
+    // neighbour's: the history counts by the share that passed.
+    if (u.footprintWeight > 0.0) { w *= min(wsum, 1.0); }
+    if (u.historyFilter == 1u && allTaps) {
+      // A zero-weight inner tap was not tested: the bilinear colour stands in (its weight is 0 too).
+      for (var k = 0; k < 4; k++) {
+        let o = vec2i(k & 1, k >> 1u);
+        let bw = select(1.0 - fr.x, fr.x, o.x == 1) * select(1.0 - fr.y, fr.y, o.y == 1);
+        if (bw <= 0.0) { inner[k] = histColor; }
+      }
+      let wx = temporalCatmullRom(fr.x);
+      let wy = temporalCatmullRom(fr.y);
+      var c = vec4f(0.0);
+      for (var j = 0; j < 4; j++) {
+        var row = vec4f(0.0);
+        for (var i = 0; i < 4; i++) {
+          if (wx[i] * wy[j] == 0.0) { continue; }
+          let ci = clamp(vec2i(i, j) - 1, vec2i(0), vec2i(1));
+          var hc = inner[ci.x + 2 * ci.y];
+          if (i == 0 || i == 3 || j == 0 || j == 3) {
+            let tap = temporalTap(vec2i(q0) + vec2i(i, j) - 1, osize, hit, expected, normal);
+            if (tap.ok) { hc = tap.hc; }
+          }
+          row += wx[i] * hc;
+        }
+        c += wy[j] * row;
+      }
+      if (!temporalBad(c)) { histColor = clamp(c, lo, hi); }
+    }
   }
   var r: VptOut;
   if (w <= 0.0) {
