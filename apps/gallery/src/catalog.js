@@ -250,11 +250,15 @@ async function rendererPreset(d, renderer, volume) {
         ...base,
         environment: { type: 'constant', radiance: [0.25, 0.28, 0.35] },
         densityScale: 20,
-        rendererParams: {
-          surfaces: [{ value: Math.round(iso * 1000) / 1000, color: [0.92, 0.88, 0.8], opacity: 1 }],
-          specular: 0.15,
-          shininess: 30,
-        },
+        // A multichannel store: the viewer's own defaults, a surface per drawn channel in its colour.
+        rendererParams:
+          (d.channels ?? 1) > 1
+            ? null
+            : {
+                surfaces: [{ value: Math.round(iso * 1000) / 1000, color: [0.92, 0.88, 0.8], opacity: 1 }],
+                specular: 0.15,
+                shininess: 30,
+              },
         lights: keyLight(camera, [2.2, 2.1, 2.0]),
       };
     case 'mcrt':
