@@ -77,9 +77,22 @@ describe('gallery: three.html', () => {
     const tf = await page.evaluate(() => (window as any).threePage.head.scene.transferFunction.points[2].opacity);
     expect(tf).toBeCloseTo(0.52, 6);
     // Accumulation restarted (the count fell), then a fresh estimate of as many samples as the first one.
+    // The restart is awaited first: the edit reaches the scene a frame or more after the key press,
+    // so under load the old count could still satisfy `ready` before any frame saw the reset.
+    const restarted = await page
+      .waitForFunction(
+        () => {
+          const c: number[] = (window as any).__counts;
+          return c.some((x, i) => i > 0 && x < c[i - 1]);
+        },
+        { timeout: 60_000, polling: 50 },
+      )
+      .then(
+        () => true,
+        () => false,
+      );
+    expect(restarted).toBe(true);
     await page.waitForFunction(ready, { timeout: 120_000, polling: 100 }, a.samples);
-    const counts: number[] = await page.evaluate(() => (window as any).__counts);
-    expect(counts.some((c, i) => i > 0 && c < counts[i - 1])).toBe(true);
     const b = await page.evaluate(snapshot);
     const refine = meanDiff(a.px, a2.px);
     const edit = meanDiff(a.px, b.px);
