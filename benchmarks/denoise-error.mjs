@@ -49,16 +49,8 @@ const load = () =>
     .loadavg()
     .map((x) => x.toFixed(2))
     .join(' / ');
-const rmse = (a, b) => {
-  let s = 0,
-    n = 0;
-  for (let i = 0; i < a.length; i += 4)
-    for (let c = 0; c < 3; c++) {
-      s += (a[i + c] - b[i + c]) ** 2;
-      n++;
-    }
-  return Math.sqrt(s / n);
-};
+// The RGB RMSE of two RGBA images (metrics.ts).
+const { rgbRmse: rmse } = await import('./dist/metrics.js');
 
 const session = await openVptPage({ root: ROOT });
 try {

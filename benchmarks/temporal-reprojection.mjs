@@ -45,16 +45,8 @@ const headDesc = (renderer) => {
   d.volume = { sidecar: '/data/mri_head_volpack_brainsmall_128x128x84_uint8.json' };
   return d;
 };
-const rmse = (a, b) => {
-  let s = 0,
-    n = 0;
-  for (let i = 0; i < a.length; i += 4)
-    for (let c = 0; c < 3; c++) {
-      s += (a[i + c] - b[i + c]) ** 2;
-      n++;
-    }
-  return Math.sqrt(s / n);
-};
+// The RGB RMSE of two RGBA images (metrics.ts).
+const { rgbRmse: rmse } = await import('./dist/metrics.js');
 const load = () =>
   os
     .loadavg()

@@ -8,6 +8,7 @@ import {
   type FaultServer,
 } from '../packages/loaders/test/zarr-fixtures.js';
 import { openViewerPage, type ViewerPage } from './helpers/viewer-page.js';
+import { twoFieldBall } from './helpers/uint8-ball.js';
 
 // <vpt-viewer src="….ome.zarr"> on a 2-channel store whose level 0 does not fit the GPU memory
 // budget with both channels counted: after the levels that fit, level 0 streams from both
@@ -18,22 +19,6 @@ import { openViewerPage, type ViewerPage } from './helpers/viewer-page.js';
 // each channel being drawn purely in its colour, no trace of the channel turned off. The slice
 // panes, which draw the element's channel-0 view, stream channel 0 (as tests/viewer-zarr-panes.test.ts).
 const N = 128;
-/** Two fields on one ball in an exactly empty cube: a smooth fall-off and a rippled rise, both 0 outside. */
-function balls(): [Uint8Array, Uint8Array] {
-  const a = new Uint8Array(N * N * N),
-    b = new Uint8Array(N * N * N);
-  const c = (N - 1) / 2;
-  for (let z = 0; z < N; z++)
-    for (let y = 0; y < N; y++)
-      for (let x = 0; x < N; x++) {
-        const r = Math.hypot(x - c, y - c, z - c) / 24;
-        if (r >= 1) continue;
-        const i = x + N * (y + N * z);
-        a[i] = Math.round(40 + 215 * (1 - r * r));
-        b[i] = Math.round(40 + 215 * r * (1 + 0.3 * Math.sin(x / 3)) * 0.75);
-      }
-  return [a, b];
-}
 
 // Level 0 takes 4 MiB (two uint8 channels, an rg8 texture), level 1 512 KiB. The volume budget
 // is maxGpuBytes less 1 MiB for the transfer function and the small render targets: about
@@ -62,7 +47,7 @@ let server: FaultServer;
 let root: string;
 beforeAll(async () => {
   root = tempDir('vpt-viewer-zarr-bricked-channels-');
-  const [a, b] = balls();
+  const [a, b] = twoFieldBall(N);
   A = a;
   await writeZarrFolder(
     path.join(root, 'two.ome.zarr'),

@@ -4,6 +4,7 @@ import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import type { SceneDescription } from '../packages/headless/src/index.js';
 import { tempDir, writeZarrFolder } from '../packages/loaders/test/zarr-fixtures.js';
 import { BACKENDS, usePage } from './helpers/session.js';
+import { twoFieldBall } from './helpers/uint8-ball.js';
 
 // vpt-render: a 2-channel OME-Zarr (`"channels": [0, 1]`, no `level`) whose level 0 exceeds
 // maxGpuBytes with both channels counted streams through the brick cache (one source per
@@ -14,22 +15,6 @@ const TMP = tempDir('vpt-zarr-bricked-channels-');
 afterAll(() => fs.rmSync(TMP, { recursive: true, force: true }));
 
 const N = 128;
-/** Two fields on one ball in an exactly empty cube: a smooth fall-off and its complement, both 0 outside. */
-function balls(): [Uint8Array, Uint8Array] {
-  const a = new Uint8Array(N * N * N),
-    b = new Uint8Array(N * N * N);
-  const c = (N - 1) / 2;
-  for (let z = 0; z < N; z++)
-    for (let y = 0; y < N; y++)
-      for (let x = 0; x < N; x++) {
-        const r = Math.hypot(x - c, y - c, z - c) / 24;
-        if (r >= 1) continue;
-        const i = x + N * (y + N * z);
-        a[i] = Math.round(40 + 215 * (1 - r * r));
-        b[i] = Math.round(40 + 215 * r * (1 + 0.3 * Math.sin(x / 3)) * 0.75);
-      }
-  return [a, b];
-}
 
 // Exact sampling stores 4 bytes a voxel per channel (rg32float): level 0 takes 16 MiB, level 1
 // 2 MiB. The budget left after the 1 MiB transfer-function allowance and the small targets is
@@ -63,7 +48,7 @@ const scene = (renderer: string, level: number | undefined, backend: 'webgl2' | 
 
 describe('vpt-render streams a multichannel OME-Zarr level 0 beyond maxGpuBytes as bricks', () => {
   beforeAll(async () => {
-    const [a, b] = balls();
+    const [a, b] = twoFieldBall(N);
     await writeZarrFolder(
       path.join(TMP, 'two.ome.zarr'),
       { dims: [N, N, N], type: 'uint8', spacing: [1, 1, 1], images: [[a, b]] },

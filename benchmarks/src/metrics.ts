@@ -45,3 +45,15 @@ export function median(xs: readonly number[]): number {
 export function spread(xs: readonly number[]): { min: number; max: number } {
   return { min: Math.min(...xs), max: Math.max(...xs) };
 }
+
+/** Root-mean-square difference over the RGB channels of two RGBA images (alpha ignored). */
+export function rgbRmse(a: ArrayLike<number>, b: ArrayLike<number>): number {
+  let s = 0,
+    n = 0;
+  for (let i = 0; i < a.length; i += 4)
+    for (let c = 0; c < 3; c++) {
+      s += (a[i + c] - b[i + c]) ** 2;
+      n++;
+    }
+  return Math.sqrt(s / n);
+}
