@@ -86,7 +86,8 @@ try {
           return { ...sceneA, camera: { ...c, position: p } };
         };
         const plain = await make(false);
-        const render = async (scene, n) => {
+        const render = async (scene, n, start = 0) => {
+          plain.setSampleStart(start);
           plain.setScene(scene);
           await plain.renderIterations(n);
           return Array.from(await plain.readHDR());
@@ -95,8 +96,8 @@ try {
         const last = orbit(step * steps);
         const out = {
           refB: await render({ ...sceneB, seed: 11 }, refIt),
-          // The moved context's new sample: its seed + 1 after one move (TemporalReuse.seedOffset).
-          curB: await render({ ...sceneB, seed: 4 }, 1),
+          // The moved context's new sample: sample 64 on, after the first view's 64 (TemporalReuse.sampleBase).
+          curB: await render(sceneB, 1, 64),
           plain1: await render(sceneB, 1),
           refLast: await render({ ...last, seed: 11 }, refIt),
           plain2: await render(last, 2),

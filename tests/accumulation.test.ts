@@ -40,6 +40,60 @@ describe.each(BACKENDS)('accumulation on %s', (backend) => {
     expect(r.maxErr).toBeLessThan(1e-5);
   });
 
+  it.each(['eam', 'mcrt'])(
+    'setSampleStart: %s estimates over disjoint sample ranges average to the estimate over their union',
+    async (renderer) => {
+      const r = await page.run(
+        async ({ core, t }, backend, renderer) => {
+          const ctx = await t.context({ backend, renderer, width: 16, height: 16 });
+          ctx.setScene(
+            t.scene({
+              volume: core.createProceduralVolume('sphere', 12),
+              densityScale: 6,
+              seed: 5,
+              environment: { type: 'constant', radiance: [0.5, 0.5, 0.5] },
+            }),
+          );
+          const N = 6;
+          const estimate = async (start: number, n: number): Promise<Float32Array> => {
+            ctx.setSampleStart(start);
+            await ctx.renderIterations(n);
+            return ctx.readHDR();
+          };
+          const union = await estimate(0, 2 * N);
+          const first = await estimate(0, N);
+          const second = await estimate(N, N);
+          const elsewhere = await estimate(3 * N, N);
+          let maxErr = 0,
+            halvesDiffer = 0,
+            elsewhereDiffers = 0;
+          for (let i = 0; i < union.length; i++) {
+            maxErr = Math.max(maxErr, Math.abs(union[i] - (first[i] + second[i]) / 2));
+            halvesDiffer = Math.max(halvesDiffer, Math.abs(first[i] - second[i]));
+            elsewhereDiffers = Math.max(elsewhereDiffers, Math.abs(elsewhere[i] - second[i]));
+          }
+          const codes: string[] = [];
+          for (const bad of [-1, 1.5, 2 ** 32, NaN])
+            try {
+              ctx.setSampleStart(bad);
+            } catch (e) {
+              codes.push((e as { code?: string }).code ?? 'none');
+            }
+          ctx.dispose();
+          return { maxErr, halvesDiffer, elsewhereDiffers, codes };
+        },
+        backend,
+        renderer,
+      );
+      // The running mean of samples [0, 2N) is the mean of [0, N) and [N, 2N) up to float rounding.
+      expect(r.maxErr).toBeLessThan(1e-5);
+      // ... and the two halves, and another range, really drew other numbers.
+      expect(r.halvesDiffer).toBeGreaterThan(1e-3);
+      expect(r.elsewhereDiffers).toBeGreaterThan(1e-3);
+      expect(r.codes).toEqual(['invalid-scene', 'invalid-scene', 'invalid-scene', 'invalid-scene']);
+    },
+  );
+
   it('changing the camera resets accumulation', async () => {
     const r = await page.run(async ({ core, t }, backend) => {
       const ctx = await t.context({ backend, renderer: 'eam', width: 16, height: 16 });

@@ -135,8 +135,10 @@ describe('temporal reuse', () => {
       plain.setScene({ ...sceneB, seed: 11 });
       await plain.renderIterations(128);
       const ref = Array.from(await plain.readHDR());
-      // The new sample the moved context draws (seed + 1 after one move), to take out of the blend.
-      plain.setScene({ ...sceneB, seed: 4 });
+      // The new sample the moved context draws (TemporalReuse.sampleBase: sample 128, after the
+      // first view's 128), to take out of the blend.
+      plain.setSampleStart(128);
+      plain.setScene(sceneB);
       await plain.renderIterations(1);
       const cur = Array.from(await plain.readHDR());
       plain.dispose();
@@ -213,9 +215,11 @@ describe('temporal reuse', () => {
           },
         };
         // Without the move: N single frames (for the standard error per pixel) and their mean, with
-        // the random numbers the moved context draws (TemporalReuse.seedOffset: the seed + 1 after one move).
+        // the random numbers the moved context draws (TemporalReuse.sampleBase: the moved view's
+        // samples continue the sequence after the 64 of the first view).
         const plainCtx = await make(false);
-        plainCtx.setScene({ ...sceneB, seed: sceneB.seed + 1 });
+        plainCtx.setSampleStart(64);
+        plainCtx.setScene(sceneB);
         await plainCtx.precompile();
         const sum = new Float64Array(32 * 32 * 4),
           sq = new Float64Array(32 * 32 * 4);
@@ -332,9 +336,10 @@ describe('temporal reuse', () => {
       const reused = await ctx.readHDR();
       const guide = Array.from((await ctx.readTemporalGuide())!);
       const state = Array.from((await ctx.readTemporalState())!);
-      // The plain render draws the numbers the moved one did (TemporalReuse.seedOffset: the seed + 1 after one move).
+      // The plain render draws the numbers the moved one did (TemporalReuse.sampleBase: sample 16 on, after camA's 16).
       await ctx.setTemporal(false);
-      ctx.setScene({ ...base, camera: camB, seed: base.seed + 1 });
+      ctx.setSampleStart(16);
+      ctx.setScene({ ...base, camera: camB });
       await ctx.renderIterations(1);
       const plain = await ctx.readHDR();
       const same = Array.from({ length: 48 * 48 }, (_, p) =>

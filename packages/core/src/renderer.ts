@@ -24,7 +24,9 @@ export interface KernelSource {
  *  - render:    textures `accum0..` → one rgba32float HDR image (linear RGB, a = coverage).
  *
  * All three see the same uniform block: SCENE_UNIFORM_FIELDS followed by `paramFields`.
- * `u.iteration` is the index of the sample being generated/integrated (0-based).
+ * `u.iteration` is the index of the sample being generated/integrated (0-based); a kernel draws
+ * its random numbers for sample `u.iteration + u.sampleBase` (rngInit), where `u.sampleBase` is 0
+ * but under temporal reuse, whose views continue one sample sequence.
  */
 export interface Renderer {
   readonly name: string;

@@ -127,6 +127,7 @@ export class RenderContext {
   private guidesActive = false;
   // Temporal reuse across camera changes (null: off), see "Temporal reuse".
   private temporal: TemporalReuse | null = null;
+  private sampleStart = 0;
   private temporalGeneration = 0;
   private temporalWanted = false;
   // The HDR image shown: the render pass's, or the temporal resolve's.
@@ -519,6 +520,24 @@ export class RenderContext {
   }
 
   /**
+   * Where estimates start in the sample sequence from now on (default 0): iteration i draws the
+   * random numbers of sample start + i. Estimates of one scene over disjoint ranges draw
+   * disjoint numbers (blue noise's per-pixel rank-1 sequence runs on), so they can be made apart
+   * and averaged: a still rendered in parts, or the plain estimate a temporal view draws (its
+   * views continue the sequence, TemporalReuse.sampleBase, on top of this start). An integer in
+   * [0, 2^32); a change restarts accumulation.
+   */
+  setSampleStart(start: number): void {
+    this.assertAlive();
+    if (!Number.isInteger(start) || start < 0 || start > 0xffffffff)
+      throw new VptError('invalid-scene', `setSampleStart needs an integer in [0, 2^32), got ${start}`);
+    if (start === this.sampleStart) return;
+    this.sampleStart = start;
+    this.temporal?.invalidate();
+    this.reset();
+  }
+
+  /**
    * Temporal reuse across camera changes (see docs/architecture.md, "Temporal reuse"): true or
    * options turn it on (for renderers that write guides: MCRT, EAM, ISO), false off. Turning it
    * on starts a new estimate (it needs the depth guide from the first sample). Its module is
@@ -567,7 +586,7 @@ export class RenderContext {
   private keepHistory(): void {
     if (!this.temporal || !this.scene) return;
     if (this.iteration > 0 && this.resolving() && !this.backend.isLost) this.renderHdr();
-    this.temporal.keep(this.scene.camera, this.width / this.height);
+    this.temporal.keep(this.scene.camera, this.width / this.height, this.iteration);
   }
 
   /**
@@ -890,16 +909,16 @@ export class RenderContext {
 
   private uniforms(scene: Scene, iteration = this.iteration): ArrayBuffer {
     const bricked = this.resources.bricked;
-    // Temporal reuse's seed offset (TemporalReuse.seedOffset): each view since the history began draws its own numbers.
-    const seedOffset = this.temporal?.seedOffset ?? 0;
     return this.layout.pack({
       ...sceneUniformValues(
-        seedOffset === 0 ? scene : { ...scene, seed: (scene.seed + seedOffset) >>> 0 },
+        scene,
         this.width,
         this.height,
         iteration,
         TF_RESOLUTION,
         this.resources.volumeMapping(scene),
+        // Temporal reuse: each view continues the sample sequence where its history ended (TemporalReuse.sampleBase).
+        this.sampleStart + (this.temporal?.sampleBase ?? 0),
       ),
       // The bricked sampler reads level 0's dims and the brick size from here (a streamed
       // scene's volume is a coarser stand-in); nothing else reads volumeDims when bricked.

@@ -127,7 +127,7 @@ export class TemporalReuse {
   private history: RenderTarget | null = null;
   private historyCamera: Camera | null = null;
   private historyAspect = 1;
-  private moves = 0;
+  private base = 0;
 
   constructor(
     private readonly backend: GpuBackend,
@@ -147,11 +147,12 @@ export class TemporalReuse {
   }
 
   /**
-   * The view changes (camera or size) and the current resolve (made with `camera` at
-   * `aspect`) becomes the history. Without a resolve since the last change the history stays.
+   * The view changes (camera or size) after `samples` samples of it, and the current resolve
+   * (made with `camera` at `aspect`) becomes the history. Without a resolve since the last
+   * change the history stays.
    */
-  keep(camera: Camera, aspect: number): void {
-    this.moves++;
+  keep(camera: Camera, aspect: number, samples: number): void {
+    this.base = (this.base + samples) >>> 0;
     if (!this.out) return;
     if (this.history) this.backend.destroyRenderTarget(this.history);
     this.history = this.out;
@@ -166,17 +167,19 @@ export class TemporalReuse {
   }
 
   /**
-   * What the context adds to the scene's seed: the number of view changes since the history was
-   * last dropped. Each new view's estimate then draws other random numbers than the last one's
-   * (the sample streams restart at every reset), so the samples the history carries and the new
-   * ones are independent and their mean is worth their count. With the streams restarted alike,
-   * a small move renders nearly the same error pattern again (EAM's jitter and march offset are
-   * all its randomness, and blue noise repeats them exactly): the mean of the history and the
-   * new samples then keeps the error of one view's (docs/benchmarks.md, "Orbit: a sharper and
-   * decorrelated history"). 0 with no move, so a still image keeps its bits.
+   * Where the new view's samples start in the sample sequence (the uniform u.sampleBase): the
+   * samples of every view since the history was last dropped. Each view then continues the
+   * sequence the history ended at instead of restarting it: with the streams restarted alike a
+   * small move renders nearly the same error pattern again (EAM's jitter and march offset are
+   * all its randomness, and blue noise repeats them exactly), and the mean of the history and
+   * the new samples keeps the error of one view's. Continued, the PCG streams are new numbers
+   * and blue noise's rank-1 sequence runs on at each pixel, so where the view moved by less
+   * than a pixel the history and the new samples together are one low-discrepancy run
+   * (docs/benchmarks.md, "Orbit: a sharper and decorrelated history"). 0 with no move, so a
+   * still image keeps its bits.
    */
-  get seedOffset(): number {
-    return this.moves;
+  get sampleBase(): number {
+    return this.base;
   }
 
   /** The history weight's factor at this view after `samples` new samples. */
@@ -282,7 +285,7 @@ export class TemporalReuse {
     this.out = null;
     this.history = null;
     this.historyCamera = null;
-    this.moves = 0;
+    this.base = 0;
   }
 
   /** After a context loss: the targets are gone with it. */
@@ -291,6 +294,6 @@ export class TemporalReuse {
     this.out = null;
     this.history = null;
     this.historyCamera = null;
-    this.moves = 0;
+    this.base = 0;
   }
 }

@@ -23,7 +23,7 @@ float blueNoiseDim(ivec2 pixel, int dim) {
   uint h = pcgHash(u.seed + pcgHash(uint(dim) + 2654435769u));
   ivec2 q = (pixel + ivec2(int(h & 63u), int((h >> 6u) & 63u))) & 63;
   uint r = uint(texelFetch(blueNoise, q, 0).r);
-  uint x = (r << 20u) + (1u << 19u) + u.iteration * sampleDimAlpha(dim) + pcgHash(h);
+  uint x = (r << 20u) + (1u << 19u) + (u.iteration + u.sampleBase) * sampleDimAlpha(dim) + pcgHash(h);
   return float(x >> 8u) * (1.0 / 16777216.0);
 }
 // Dimension dim >= 0 from blue noise; dim = -1: the PCG stream's next draw.

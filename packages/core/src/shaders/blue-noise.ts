@@ -12,7 +12,7 @@
  * the zeros' energy is the constant kernel sum minus the ones', so the largest void of the
  * ones is the tightest cluster of the zeros). Its texels hold the ranks 0…4095, each once.
  *
- * A kernel's dimension d at pixel p of iteration i is x = frac(m(p + o_d) + i·α_d + U_d), in
+ * A kernel's dimension d at pixel p of sample i (u.iteration + u.sampleBase) is x = frac(m(p + o_d) + i·α_d + U_d), in
  * 32-bit fixed point: the rank-1 sequence i·α (Roberts 2018, "The unreasonable effectiveness
  * of quasirandom sequences": R2 for the jitter, the golden ratio, Richtmyer's √2, √3 for the light sample) Cranley–Patterson
  * rotated per pixel by the blue-noise mask (Georgiev & Fajardo 2016, "Blue-noise dithered

@@ -18,7 +18,7 @@ fn blueNoiseDim(pixel: vec2i, dim: i32) -> f32 {
   let h = pcgHash(u.seed + pcgHash(u32(dim) + 2654435769u));
   let q = (pixel + vec2i(i32(h & 63u), i32((h >> 6u) & 63u))) & vec2i(63);
   let r = u32(textureLoad(blueNoise, q, 0).r);
-  let x = (r << 20u) + (1u << 19u) + u.iteration * sampleDimAlpha(dim) + pcgHash(h);
+  let x = (r << 20u) + (1u << 19u) + (u.iteration + u.sampleBase) * sampleDimAlpha(dim) + pcgHash(h);
   return f32(x >> 8u) * (1.0 / 16777216.0);
 }
 // Dimension dim >= 0 from blue noise; dim = -1: the PCG stream's next draw.

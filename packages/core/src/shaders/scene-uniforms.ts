@@ -36,6 +36,10 @@ export const SCENE_UNIFORM_FIELDS: readonly UniformField[] = [
   // the value range, its inversion and the texture format's decoding).
   { name: 'valueScale', type: 'f32' },
   { name: 'valueOffset', type: 'f32' },
+  // Where this estimate's samples start in the sample sequence: a kernel draws sample
+  // u.iteration + u.sampleBase (rngInit, blueNoiseDim). 0 but under temporal reuse, where each
+  // view continues the sequence its history ended at (TemporalReuse.sampleBase).
+  { name: 'sampleBase', type: 'u32' },
 ];
 
 /**
@@ -61,6 +65,7 @@ export function sceneUniformValues(
   iteration: number,
   tfSize: number,
   mapping?: { valueScale: number; valueOffset: number },
+  sampleBase = 0,
 ): UniformValues {
   const map = mapping ?? volumeValueMapping(scene.volume, { decodeScale: 1, decodeOffset: 0 });
   const basis = cameraBasis(scene.camera);
@@ -90,6 +95,7 @@ export function sceneUniformValues(
       !scene.channels && scene.transferFunction.dimensions === '2d' ? (scene.transferFunction.gradientMax ?? 0) : 0,
     valueScale: map.valueScale,
     valueOffset: map.valueOffset,
+    sampleBase: sampleBase >>> 0,
   };
 }
 

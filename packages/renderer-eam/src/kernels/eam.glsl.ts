@@ -35,7 +35,7 @@ bool eamSample(vec3 dir, float s, float seg, inout vec3 color, inout float trans
 }
 void main() {
   ivec2 pixel = vptPixel();
-  uint rng = rngInit(pixel, u.iteration, u.seed);
+  uint rng = rngInit(pixel, u.iteration + u.sampleBase, u.seed);
   sampleDimsInit(pixel);
   vec3 dir = jitteredCameraRayDims(pixel, vptTargetSize(), rng);
 #if VPT_CLIP

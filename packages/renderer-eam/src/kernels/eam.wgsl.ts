@@ -28,7 +28,7 @@ fn eamSample(
 }
 @fragment fn fs_main(@builtin(position) fragCoord: vec4f) -> VptOut {
   let pixel = vptPixel(fragCoord);
-  var rng = rngInit(pixel, u.iteration, u.seed);
+  var rng = rngInit(pixel, u.iteration + u.sampleBase, u.seed);
   sampleDimsInit(pixel);
   let dir = jitteredCameraRayDims(pixel, vptTargetSize(), &rng);
 #if VPT_CLIP

@@ -309,7 +309,7 @@ export const generate =
 void main() {
   ivec2 pixel = vptPixel();
   ivec2 size = vptTargetSize();
-  uint rng = rngInit(pixel, u.iteration, u.seed);
+  uint rng = rngInit(pixel, u.iteration + u.sampleBase, u.seed);
   sampleDimsInit(pixel);
 #if ISO_JITTER
   vec3 dir = jitteredCameraRayDims(pixel, size, rng);

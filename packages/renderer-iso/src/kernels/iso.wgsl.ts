@@ -270,7 +270,7 @@ export const generate =
 @fragment fn fs_main(@builtin(position) fragCoord: vec4f) -> VptOut {
   let pixel = vptPixel(fragCoord);
   let size = vptTargetSize();
-  var rng = rngInit(pixel, u.iteration, u.seed);
+  var rng = rngInit(pixel, u.iteration + u.sampleBase, u.seed);
   sampleDimsInit(pixel);
 #if ISO_JITTER
   let dir = jitteredCameraRayDims(pixel, size, &rng);

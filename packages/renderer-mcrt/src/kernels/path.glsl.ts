@@ -106,7 +106,7 @@ vec3 directLight(vec3 x, vec3 w, inout uint rng) {
 
 void main() {
   ivec2 pixel = vptPixel();
-  uint rng = rngInit(pixel, u.iteration, u.seed);
+  uint rng = rngInit(pixel, u.iteration + u.sampleBase, u.seed);
   sampleDimsInit(pixel);
   // Blue noise (BLUE_NOISE) serves the jitter, the camera ray's first free flight and the first light sample.
   flightDim = 2;

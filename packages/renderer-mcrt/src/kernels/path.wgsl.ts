@@ -94,7 +94,7 @@ fn directLight(x: vec3f, w: vec3f, rng: ptr<function, u32>) -> vec3f {
 
 @fragment fn fs_main(@builtin(position) fragCoord: vec4f) -> VptOut {
   let pixel = vptPixel(fragCoord);
-  var rng = rngInit(pixel, u.iteration, u.seed);
+  var rng = rngInit(pixel, u.iteration + u.sampleBase, u.seed);
   sampleDimsInit(pixel);
   // Blue noise (BLUE_NOISE) serves the jitter, the camera ray's first free flight and the first light sample.
   flightDim = 2;

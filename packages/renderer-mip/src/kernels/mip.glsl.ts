@@ -32,7 +32,7 @@ float cellMaxValue(CellWalk walk) {
 #endif
 void main() {
   ivec2 pixel = vptPixel();
-  uint rng = rngInit(pixel, u.iteration, u.seed);
+  uint rng = rngInit(pixel, u.iteration + u.sampleBase, u.seed);
   sampleDimsInit(pixel);
   vec3 dir = centreCameraRay(pixel, vptTargetSize());
 #if VPT_CLIP

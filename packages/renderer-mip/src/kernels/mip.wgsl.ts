@@ -20,7 +20,7 @@ fn cellMaxValue(walk: CellWalk) -> f32 {
 #endif
 @fragment fn fs_main(@builtin(position) fragCoord: vec4f) -> VptOut {
   let pixel = vptPixel(fragCoord);
-  var rng = rngInit(pixel, u.iteration, u.seed);
+  var rng = rngInit(pixel, u.iteration + u.sampleBase, u.seed);
   sampleDimsInit(pixel);
   let dir = centreCameraRay(pixel, vptTargetSize());
 #if VPT_CLIP
