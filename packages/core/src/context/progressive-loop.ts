@@ -13,6 +13,13 @@ export interface ProgressiveLoopHooks {
   onStats(msPerIteration: number, msPerFrame: number): void;
   /** Work for a converged frame (a bricked volume's arrived bricks); a reset it causes resumes the iterations. */
   idle?(): void;
+  /**
+   * Whether GPU work was queued outside the loop's frames since the last call (temporal reuse
+   * resolves the history when the camera moves between frames); the call clears it. Such work
+   * runs in the queue before or among the frame's iterations, so timing it as theirs would
+   * inflate the learned rate: the loop waits for it first, or leaves that frame out of learning.
+   */
+  takeOutsideWork?(): boolean;
 }
 
 export interface LoopOptions {
@@ -30,6 +37,8 @@ export class ProgressiveLoop {
   private scheduled = false;
   private msPerIteration = 0;
   private msFinish = 0;
+  /** Outside work came in during the last frame's finish and may still be queued. */
+  private outsidePending = false;
   private options: LoopOptions = {};
 
   constructor(private readonly hooks: ProgressiveLoopHooks) {}
@@ -81,42 +90,72 @@ export class ProgressiveLoop {
       this.schedule();
       return;
     }
-    // First frame: one iteration to learn the rate; later, fill what the frame's finish (render,
-    // post chain: the denoiser's share can exceed the iterations') leaves of the budget (at least one).
-    const n = Math.max(
-      1,
-      Math.min(
-        remaining,
-        this.msPerIteration > 0 ? Math.floor(Math.max(0, budget - this.msFinish) / this.msPerIteration) : 1,
-        256,
-      ),
-    );
     try {
       await this.hooks.ready?.();
     } catch {
       return; // disposed or lost while compiling: the loss handler resumes us
     }
     if (!this.active || this.paused) return;
+    // Work queued between frames (a camera move's history resolve) runs first: wait for it, so the
+    // batch below times only its iterations, and take its time off this frame's budget.
+    let outside = 0;
+    const outsidePending = this.outsidePending || this.takeOutsideWork();
+    this.outsidePending = false;
+    if (outsidePending) {
+      const tw = performance.now();
+      try {
+        await this.hooks.sync();
+      } catch {
+        return;
+      }
+      outside = performance.now() - tw;
+      if (!this.active || this.paused) return;
+    }
+    // First frame: one iteration to learn the rate; later, fill what the frame's finish (render,
+    // post chain: the denoiser's share can exceed the iterations') leaves of the budget (at least one).
+    const n = Math.max(
+      1,
+      Math.min(
+        remaining,
+        this.msPerIteration > 0 ? Math.floor(Math.max(0, budget - this.msFinish - outside) / this.msPerIteration) : 1,
+        256,
+      ),
+    );
+    const counted = this.options.currentIterations;
+    const start = counted?.() ?? 0;
     const t0 = performance.now();
     let t1: number;
+    // Whether the batch and the finish ran as timed: no reset (a camera change) and no outside work
+    // came in while the loop awaited the GPU (WebGPU's sync is a real wait; WebGL 2's readPixels
+    // blocks, so nothing comes in there); a part that had either teaches nothing.
+    let batchClean: boolean;
+    let finishClean: boolean;
     try {
       this.hooks.step(n);
       // Synchronised twice, so the iterations' time is learned apart from the finish's: a post step
       // costs once per frame, not per iteration (the element's adaptive resolution reads the rate).
       await this.hooks.sync();
       t1 = performance.now();
+      batchClean = !this.takeOutsideWork() && (!counted || counted() === start + n);
       this.hooks.finishFrame();
       await this.hooks.sync();
+      // Work that came in while the finish was awaited may still be queued: the next frame waits for it.
+      this.outsidePending = this.takeOutsideWork();
+      finishClean = batchClean && !this.outsidePending;
     } catch {
       // A lost context mid-frame: the backend's loss handler pauses us and restores later.
       return;
     }
     const ms = (t1 - t0) / n;
     const finish = performance.now() - t1;
-    this.msPerIteration = learn(this.msPerIteration, ms);
-    this.msFinish = learn(this.msFinish, finish);
+    if (batchClean || !(this.msPerIteration > 0)) this.msPerIteration = learn(this.msPerIteration, ms);
+    if (finishClean || !(this.msFinish > 0)) this.msFinish = learn(this.msFinish, finish);
     this.hooks.onStats(this.msPerIteration, this.msFinish);
     this.schedule();
+  }
+
+  private takeOutsideWork(): boolean {
+    return this.hooks.takeOutsideWork?.() ?? false;
   }
 }
 

@@ -128,6 +128,8 @@ export class RenderContext {
   // Temporal reuse across camera changes (null: off), see "Temporal reuse".
   private temporal: TemporalReuse | null = null;
   private sampleStart = 0;
+  // GPU work queued between the progressive loop's frames (ProgressiveLoopHooks.takeOutsideWork).
+  private outsideWork = false;
   private temporalGeneration = 0;
   private temporalWanted = false;
   // The HDR image shown: the render pass's, or the temporal resolve's.
@@ -194,6 +196,11 @@ export class RenderContext {
       // Bricks that arrive after convergence still upload; the reset makes the loop iterate again.
       idle: () => {
         if (this.updateBricks()) this.reset();
+      },
+      takeOutsideWork: () => {
+        const queued = this.outsideWork;
+        this.outsideWork = false;
+        return queued;
       },
       onStats: (ms, post) => {
         this.msPerIteration = ms;
@@ -585,7 +592,12 @@ export class RenderContext {
   /** The view changes: keep the image shown now (resolved to the current iteration) as history. */
   private keepHistory(): void {
     if (!this.temporal || !this.scene) return;
-    if (this.iteration > 0 && this.resolving() && !this.backend.isLost) this.renderHdr();
+    if (this.iteration > 0 && this.resolving() && !this.backend.isLost) {
+      // Drawn now, outside the loop's frames, unless this iteration count was resolved already:
+      // the loop must not time it as its iterations'.
+      if (this.hdrRenderedAt !== this.iteration || !this.displayed) this.outsideWork = true;
+      this.renderHdr();
+    }
     this.temporal.keep(this.scene.camera, this.width / this.height, this.iteration);
   }
 
