@@ -9,6 +9,14 @@ import type { ReactiveController, ReactiveControllerHost } from 'lit';
 
 /** Interaction should leave time for at least one iteration per 60 Hz frame. */
 export const INTERACTION_BUDGET_MS = 14;
+/**
+ * While moving, a side shrunk by less than this factor stays at full size: a nearest upscale from
+ * a few pixels short misplaces every pixel by up to half of one, an error far above what the time
+ * saved buys (EAM on the bundled head at 64², 57 px against 64: 2.1x the RMSE of plain resets as
+ * shown; docs/benchmarks.md, "Orbit: the history continues the sample sequence"). A frame then
+ * takes at most 1 / 0.8² ≈ 1.6x the budget.
+ */
+export const MIN_SHRINK = 0.8;
 /** Full resolution returns this long after the last camera movement. */
 export const SETTLE_MS = 180;
 
@@ -128,12 +136,14 @@ export class AdaptiveResolution implements ReactiveController {
 
   /**
    * While the camera moves, shrink the image so one iteration fits the frame budget:
-   * the cost scales with the pixel count, so the side scales with the square root.
+   * the cost scales with the pixel count, so the side scales with the square root; a shrink
+   * smaller than MIN_SHRINK is not made.
    */
   private interactionFactor(): number {
     const ms = this.fullResMs;
     if (!(ms > 0)) return 0.5;
-    return Math.min(1, Math.max(0.25, Math.sqrt(INTERACTION_BUDGET_MS / ms)));
+    const factor = Math.min(1, Math.max(0.25, Math.sqrt(INTERACTION_BUDGET_MS / ms)));
+    return factor > MIN_SHRINK ? 1 : factor;
   }
 
   private watchDevicePixelRatio(): void {
