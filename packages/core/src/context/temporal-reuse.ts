@@ -125,6 +125,9 @@ export class TemporalReuse {
   private pass: GpuPass | null = null;
   private out: RenderTarget | null = null;
   private history: RenderTarget | null = null;
+  // The history before the current one, kept for the next resolve to draw into (see keep()); only
+  // while there is no out, so the targets stay two sets, as before.
+  private spare: RenderTarget | null = null;
   private historyCamera: Camera | null = null;
   private historyAspect = 1;
   private base = 0;
@@ -154,7 +157,10 @@ export class TemporalReuse {
   keep(camera: Camera, aspect: number, samples: number): void {
     this.base = (this.base + samples) >>> 0;
     if (!this.out) return;
-    if (this.history) this.backend.destroyRenderTarget(this.history);
+    // The old history's targets become the next resolve's (same size in motion): no texture is
+    // made or freed per camera update.
+    if (this.spare) this.backend.destroyRenderTarget(this.spare);
+    this.spare = this.history;
     this.history = this.out;
     this.out = null;
     this.historyCamera = { ...camera };
@@ -208,6 +214,11 @@ export class TemporalReuse {
     if (this.out && (this.out.width !== width || this.out.height !== height)) {
       this.backend.destroyRenderTarget(this.out);
       this.out = null;
+    }
+    if (!this.out && this.spare) {
+      if (this.spare.width === width && this.spare.height === height) this.out = this.spare;
+      else this.backend.destroyRenderTarget(this.spare);
+      this.spare = null;
     }
     this.out ??= this.backend.createRenderTarget(width, height, FORMATS, 'temporal resolve');
     this.pass ??= this.backend.createPass({
@@ -277,13 +288,14 @@ export class TemporalReuse {
   }
 
   get targets(): RenderTarget[] {
-    return [this.out, this.history].filter((t): t is RenderTarget => t !== null);
+    return [this.out, this.history, this.spare].filter((t): t is RenderTarget => t !== null);
   }
 
   destroy(): void {
     this.targets.forEach((t) => this.backend.destroyRenderTarget(t));
     this.out = null;
     this.history = null;
+    this.spare = null;
     this.historyCamera = null;
     this.base = 0;
   }
@@ -293,6 +305,7 @@ export class TemporalReuse {
     this.pass = null;
     this.out = null;
     this.history = null;
+    this.spare = null;
     this.historyCamera = null;
     this.base = 0;
   }
