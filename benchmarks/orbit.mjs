@@ -135,7 +135,8 @@ window.measure = async (el, want, size) => {
   const state = el.context.readTemporalState ? await el.context.readTemporalState() : null;
   let effective = el.context.stats.iterations;
   if (state) { let s = 0; for (let i = 1; i < state.length; i += 4) s += state[i]; effective = s / (state.length / 4); }
-  return { rmse: shown, rmseAtSize: Math.sqrt(sq / n), width, height, samples: iterations, effective };
+  const { msPerIteration, msPostPerFrame } = el.context.stats;
+  return { rmse: shown, rmseAtSize: Math.sqrt(sq / n), width, height, samples: iterations, effective, msPerIteration, msPostPerFrame };
 };
 window.frames = (n) => new Promise((r) => { const f = () => (n-- <= 0 ? r() : requestAnimationFrame(f)); f(); });
 window.orbitCamera = (c, angle) => {
@@ -312,7 +313,7 @@ for (const renderer of args.renderers) {
               r.rows
                 .map(
                   (x) =>
-                    `${x.rmseAtSize.toFixed(3)}/${x.rmse.toFixed(3)}@${x.width}:${x.samples}:${x.effective.toFixed(1)}`,
+                    `${x.rmseAtSize.toFixed(3)}/${x.rmse.toFixed(3)}@${x.width}:${x.samples}:${x.effective.toFixed(1)}:${x.msPerIteration.toFixed(1)}+${x.msPostPerFrame.toFixed(1)}ms`,
                 )
                 .join(' '),
             )

@@ -181,7 +181,7 @@ export class TemporalReuse {
    * the new samples keeps the error of one view's. Continued, the PCG streams are new numbers
    * and blue noise's rank-1 sequence runs on at each pixel, so where the view moved by less
    * than a pixel the history and the new samples together are one low-discrepancy run
-   * (docs/benchmarks.md, "Orbit: a sharper and decorrelated history"). 0 with no move, so a
+   * (docs/benchmarks.md, "Orbit: the history continues the sample sequence"). 0 with no move, so a
    * still image keeps its bits.
    */
   get sampleBase(): number {
