@@ -465,7 +465,7 @@ describe('temporal reuse', () => {
               c.target[0] + x * Math.cos(a) + z * Math.sin(a),
               c.position[1],
               c.target[2] - x * Math.sin(a) + z * Math.cos(a),
-            ],
+            ] as [number, number, number],
           },
         };
       };
@@ -476,7 +476,7 @@ describe('temporal reuse', () => {
         ctx.setScene(orbit(0.01 * k));
         ctx.iterate(2);
         await ctx.readHDR();
-        const state = await ctx.readTemporalState();
+        const state = (await ctx.readTemporalState())!;
         let samples = 0;
         for (let i = 1; i < state.length; i += 4) samples += state[i];
         if (k > 0 && samples / (state.length / 4) > 2.5) tookHistory++;
