@@ -2,39 +2,38 @@ import { describe, expect, it } from 'vitest';
 import { BACKENDS, usePage } from './helpers/session.js';
 
 const page = usePage();
+// A dense sphere under a grey sky (the volume is made in the page): every pixel's samples differ.
+const SPHERE = { densityScale: 6, seed: 5, environment: { type: 'constant', radiance: [0.5, 0.5, 0.5] } };
 
 describe.each(BACKENDS)('accumulation on %s', (backend) => {
   it('the running mean after N iterations equals the mean of the N single-iteration images', async () => {
-    const r = await page.run(async ({ core, t }, backend) => {
-      const ctx = await t.context({ backend, renderer: 'eam', width: 16, height: 16 });
-      ctx.setScene(
-        t.scene({
-          volume: core.createProceduralVolume('sphere', 12),
-          densityScale: 6,
-          seed: 5,
-          environment: { type: 'constant', radiance: [0.5, 0.5, 0.5] },
-        }),
-      );
-      const N = 12;
-      const sum = new Float64Array(16 * 16 * 4);
-      let spread = 0;
-      let first: Float32Array | null = null;
-      for (let k = 0; k < N; k++) {
-        ctx.iterate(1);
-        const f: Float32Array = await ctx.readFrame();
-        first ??= f;
-        for (let i = 0; i < f.length; i++) {
-          sum[i] += f[i];
-          spread = Math.max(spread, Math.abs(f[i] - first[i]));
+    const r = await page.run(
+      async ({ core, t }, backend, sphere) => {
+        const ctx = await t.context({ backend, renderer: 'eam', width: 16, height: 16 });
+        ctx.setScene(t.scene({ volume: core.createProceduralVolume('sphere', 12), ...sphere }));
+        const N = 12;
+        const sum = new Float64Array(16 * 16 * 4);
+        let spread = 0;
+        let first: Float32Array | null = null;
+        for (let k = 0; k < N; k++) {
+          ctx.iterate(1);
+          const f: Float32Array = await ctx.readFrame();
+          first ??= f;
+          for (let i = 0; i < f.length; i++) {
+            sum[i] += f[i];
+            spread = Math.max(spread, Math.abs(f[i] - first[i]));
+          }
         }
-      }
-      const hdr: Float32Array = await ctx.readHDR();
-      let maxErr = 0;
-      for (let i = 0; i < hdr.length; i++) maxErr = Math.max(maxErr, Math.abs(hdr[i] - sum[i] / N));
-      const stats = ctx.stats;
-      ctx.dispose();
-      return { maxErr, spread, iterations: stats.iterations };
-    }, backend);
+        const hdr: Float32Array = await ctx.readHDR();
+        let maxErr = 0;
+        for (let i = 0; i < hdr.length; i++) maxErr = Math.max(maxErr, Math.abs(hdr[i] - sum[i] / N));
+        const stats = ctx.stats;
+        ctx.dispose();
+        return { maxErr, spread, iterations: stats.iterations };
+      },
+      backend,
+      SPHERE,
+    );
     expect(r.iterations).toBe(12);
     expect(r.spread).toBeGreaterThan(0.01); // the single images really differ (jitter)
     expect(r.maxErr).toBeLessThan(1e-5);
@@ -44,16 +43,9 @@ describe.each(BACKENDS)('accumulation on %s', (backend) => {
     'setSampleStart: %s estimates over disjoint sample ranges average to the estimate over their union',
     async (renderer) => {
       const r = await page.run(
-        async ({ core, t }, backend, renderer) => {
+        async ({ core, t }, backend, renderer, sphere) => {
           const ctx = await t.context({ backend, renderer, width: 16, height: 16 });
-          ctx.setScene(
-            t.scene({
-              volume: core.createProceduralVolume('sphere', 12),
-              densityScale: 6,
-              seed: 5,
-              environment: { type: 'constant', radiance: [0.5, 0.5, 0.5] },
-            }),
-          );
+          ctx.setScene(t.scene({ volume: core.createProceduralVolume('sphere', 12), ...sphere }));
           const N = 6;
           const estimate = async (start: number, n: number): Promise<Float32Array> => {
             ctx.setSampleStart(start);
@@ -84,6 +76,7 @@ describe.each(BACKENDS)('accumulation on %s', (backend) => {
         },
         backend,
         renderer,
+        SPHERE,
       );
       // The running mean of samples [0, 2N) is the mean of [0, N) and [N, 2N) up to float rounding.
       expect(r.maxErr).toBeLessThan(1e-5);

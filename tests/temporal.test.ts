@@ -50,20 +50,7 @@ describe('temporal reuse', () => {
               temporal,
             });
           const sceneA = await window.vpt.buildScene({ ...d, seed: 3 }, location.origin + '/');
-          const c = sceneA.camera;
-          const a = 0.05;
-          const [x, z] = [c.position[0] - c.target[0], c.position[2] - c.target[2]];
-          const sceneB = {
-            ...sceneA,
-            camera: {
-              ...c,
-              position: [
-                c.target[0] + x * Math.cos(a) + z * Math.sin(a),
-                c.position[1],
-                c.target[2] - x * Math.sin(a) + z * Math.cos(a),
-              ] as [number, number, number],
-            },
-          };
+          const sceneB = { ...sceneA, camera: window.t.orbit(sceneA.camera, 0.05) };
           const plainCtx = await make(false);
           plainCtx.setScene({ ...sceneB, seed: 11 });
           await plainCtx.renderIterations(refIterations);
@@ -454,21 +441,7 @@ describe('temporal reuse', () => {
         temporal: true,
       });
       const scene = await window.vpt.buildScene({ ...d, seed: 3 }, location.origin + '/');
-      const c = scene.camera;
-      const orbit = (a: number) => {
-        const [x, z] = [c.position[0] - c.target[0], c.position[2] - c.target[2]];
-        return {
-          ...scene,
-          camera: {
-            ...c,
-            position: [
-              c.target[0] + x * Math.cos(a) + z * Math.sin(a),
-              c.position[1],
-              c.target[2] - x * Math.sin(a) + z * Math.cos(a),
-            ] as [number, number, number],
-          },
-        };
-      };
+      const orbit = (a: number) => ({ ...scene, camera: window.t.orbit(scene.camera, a) });
       const targetBytes: number[] = [];
       let tookHistory = 0;
       for (let k = 0; k < 8; k++) {

@@ -50,6 +50,8 @@ export interface TestSceneSpec {
 export interface InPageHelpers {
   context(opts: TestContextOptions): Promise<RenderContext>;
   scene(spec: TestSceneSpec): Scene;
+  /** `camera` orbited by `angle` radians about the vertical (y) axis through its target. */
+  orbit(camera: Camera, angle: number): Camera;
   /** A 1D transfer function from [value, color, opacity] stops (Node-side twin: `tf1d` in test-scene.ts). */
   tf1d(...stops: [value: number, color: [number, number, number], opacity: number][]): TransferFunction;
   loadRaw(url: string, dims: [number, number, number], type: VoxelType): Promise<Volume>;
@@ -86,6 +88,17 @@ export function installInPageHelpers(): void {
         brickSize: opts.brickSize,
         brickUploadsPerFrame: opts.brickUploadsPerFrame,
       });
+    },
+    orbit(c, a) {
+      const [x, z] = [c.position[0] - c.target[0], c.position[2] - c.target[2]];
+      return {
+        ...c,
+        position: [
+          c.target[0] + x * Math.cos(a) + z * Math.sin(a),
+          c.position[1],
+          c.target[2] - x * Math.sin(a) + z * Math.cos(a),
+        ],
+      };
     },
     scene(spec) {
       const { core } = window.vpt;

@@ -75,9 +75,11 @@ describe('ProgressiveLoop rate', () => {
   });
 
   /**
-   * A fake GPU queue on a fake clock: `queue(ms)` adds work, `sync()` waits for all of it. The
-   * iterations cost `it` ms each and the finish `finish` ms; `outside(ms)` queues work the way
-   * temporal reuse's history resolve does on a camera change, and raises the loop's flag.
+   * A fake GPU queue on a fake clock: `sync()` waits for all the queued work. The iterations cost
+   * `it` ms each and the finish `finish` ms; `outside(ms)` queues work the way temporal reuse's
+   * history resolve does on a camera change, and raises the loop's flag. `run(frames, onReport)`
+   * runs a loop with a 12 ms budget for that many frames and returns each frame's
+   * [ms per iteration, finish ms] and batch size.
    */
   function fakeGpu(it: number, finish: number) {
     let now = 0;
@@ -87,30 +89,46 @@ describe('ProgressiveLoop rate', () => {
     const gpu = {
       iterations: 0,
       duringNextSync: null as (() => void) | null,
-      queue: (ms: number) => (pending += ms),
       outside(ms: number) {
         pending += ms;
         flag = true;
       },
-      hooks: {
-        step: (n: number) => {
-          pending += it * n;
-          gpu.iterations += n;
-        },
-        finishFrame: () => (pending += finish),
-        sync: async () => {
-          now += pending;
-          pending = 0;
-          // Something that runs while the loop awaits the GPU (a camera change: a reset and its resolve).
-          const during = gpu.duringNextSync;
-          gpu.duringNextSync = null;
-          during?.();
-        },
-        takeOutsideWork: () => {
-          const f = flag;
-          flag = false;
-          return f;
-        },
+      async run(frames: number, onReport: (frame: number) => void) {
+        const reports: [number, number][] = [];
+        const batches: number[] = [];
+        await new Promise<void>((resolve) => {
+          const loop = new ProgressiveLoop({
+            step: (n) => {
+              pending += it * n;
+              gpu.iterations += n;
+              batches.push(n);
+            },
+            finishFrame: () => (pending += finish),
+            sync: async () => {
+              now += pending;
+              pending = 0;
+              // Something that runs while the loop awaits the GPU (a camera change: a reset and its resolve).
+              const during = gpu.duringNextSync;
+              gpu.duringNextSync = null;
+              during?.();
+            },
+            takeOutsideWork: () => {
+              const f = flag;
+              flag = false;
+              return f;
+            },
+            onStats: (ms, finishMs) => {
+              reports.push([ms, finishMs]);
+              onReport(reports.length);
+              if (reports.length === frames) {
+                loop.stop();
+                resolve();
+              }
+            },
+          });
+          loop.start({ frameBudgetMs: 12, currentIterations: () => gpu.iterations });
+        });
+        return { reports, batches };
       },
     };
     return gpu;
@@ -119,28 +137,9 @@ describe('ProgressiveLoop rate', () => {
   it('waits for work queued between frames before timing the iterations, and takes its time off that frame', async () => {
     // Iterations 3 ms, finish 1 ms, budget 12 ms; before every other frame a camera change queues a 3 ms resolve.
     const gpu = fakeGpu(3, 1);
-    const batches: number[] = [];
-    const reports: [number, number][] = [];
-    let loop!: ProgressiveLoop;
-    const done = new Promise<void>((resolve) => {
-      loop = new ProgressiveLoop({
-        ...gpu.hooks,
-        step: (n) => {
-          batches.push(n);
-          gpu.hooks.step(n);
-        },
-        onStats: (ms, finish) => {
-          reports.push([ms, finish]);
-          if (reports.length % 2 === 1) gpu.outside(3);
-          if (reports.length === 7) {
-            loop.stop();
-            resolve();
-          }
-        },
-      });
+    const { reports, batches } = await gpu.run(7, (frame) => {
+      if (frame % 2 === 1) gpu.outside(3);
     });
-    loop.start({ frameBudgetMs: 12, currentIterations: () => gpu.iterations });
-    await done;
     // The rate stays the iterations' own: 3 ms, not (3n + 3) / n.
     for (const [ms, finish] of reports) {
       expect(ms).toBeCloseTo(3, 9);
@@ -154,27 +153,13 @@ describe('ProgressiveLoop rate', () => {
     // Iterations 2 ms, finish 1 ms. During the 3rd frame's batch a camera change resets the
     // estimate and queues a 5 ms resolve, which the frame's finish then waits for.
     const gpu = fakeGpu(2, 1);
-    const reports: [number, number][] = [];
-    let loop!: ProgressiveLoop;
-    const done = new Promise<void>((resolve) => {
-      loop = new ProgressiveLoop({
-        ...gpu.hooks,
-        onStats: (ms, finish) => {
-          reports.push([ms, finish]);
-          if (reports.length === 2)
-            gpu.duringNextSync = () => {
-              gpu.iterations = 0;
-              gpu.outside(5);
-            };
-          if (reports.length === 5) {
-            loop.stop();
-            resolve();
-          }
-        },
-      });
+    const { reports } = await gpu.run(5, (frame) => {
+      if (frame === 2)
+        gpu.duringNextSync = () => {
+          gpu.iterations = 0;
+          gpu.outside(5);
+        };
     });
-    loop.start({ frameBudgetMs: 12, currentIterations: () => gpu.iterations });
-    await done;
     for (const [ms, finish] of reports) {
       expect(ms).toBeCloseTo(2, 9);
       expect(finish).toBeCloseTo(1, 9);

@@ -99,9 +99,10 @@ export class ProgressiveLoop {
     // Work queued between frames (a camera move's history resolve) runs first: wait for it, so the
     // batch below times only its iterations, and take its time off this frame's budget.
     let outside = 0;
-    const outsidePending = this.outsidePending || this.takeOutsideWork();
+    // Both read: taking the flag clears it, so it is taken even when the last finish left work queued.
+    const outsideQueued = this.takeOutsideWork() || this.outsidePending;
     this.outsidePending = false;
-    if (outsidePending) {
+    if (outsideQueued) {
       const tw = performance.now();
       try {
         await this.hooks.sync();

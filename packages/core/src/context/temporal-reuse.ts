@@ -158,8 +158,7 @@ export class TemporalReuse {
     this.base = (this.base + samples) >>> 0;
     if (!this.out) return;
     // The old history's targets become the next resolve's (same size in motion): no texture is
-    // made or freed per camera update.
-    if (this.spare) this.backend.destroyRenderTarget(this.spare);
+    // made or freed per camera update. There is no spare now: the resolve that made `out` took it.
     this.spare = this.history;
     this.history = this.out;
     this.out = null;
